@@ -1,0 +1,165 @@
+// A scene on the CPU, as loaded from glTF 2.0: meshes with a full tangent frame and per-vertex
+// curvature, PBR materials (plus the optional skin parameters), decoded images, punctual lights
+// and cameras. The node hierarchy is flattened into world-space mesh instances, lights and cameras.
+// Units: metres, radians; light intensities as in KHR_lights_punctual (lux for directional,
+// candela for point and spot).
+#pragma once
+
+#include <preskin/Export.h>
+#include <preskin/SkinMaterial.h>
+
+#include <glm/glm.hpp>
+
+#include <cstdint>
+#include <filesystem>
+#include <limits>
+#include <optional>
+#include <string>
+#include <vector>
+
+namespace preskin {
+
+struct Bounds {
+    glm::vec3 min{std::numeric_limits<float>::max()};
+    glm::vec3 max{-std::numeric_limits<float>::max()};
+
+    bool empty() const { return min.x > max.x; }
+    void extend(const glm::vec3& p) { min = glm::min(min, p); max = glm::max(max, p); }
+    void extend(const Bounds& b) { if (!b.empty()) { extend(b.min); extend(b.max); } }
+    glm::vec3 center() const { return 0.5f * (min + max); }
+    glm::vec3 extent() const { return max - min; }
+};
+
+// One interleaved vertex, the layout the GPU reads (see shaders/shared/gpu_types.h).
+struct Vertex {
+    glm::vec3 positionOs{0.0f};
+    glm::vec3 normalOs{0.0f, 0.0f, 1.0f};
+    glm::vec4 tangentOs{1.0f, 0.0f, 0.0f, 1.0f};  // xyz tangent, w = bitangent sign
+    glm::vec2 uv0{0.0f};
+    float curvaturePerM = 0.0f;  // mean curvature magnitude 1/radius in object-space units, >= 0
+};
+
+struct Primitive {
+    std::vector<Vertex> vertices;
+    std::vector<uint32_t> indices;  // triangle list
+    int material = -1;              // -1: the default material
+    Bounds boundsOs;
+};
+
+struct Mesh {
+    std::string name;
+    std::vector<Primitive> primitives;
+};
+
+struct MeshInstance {
+    int mesh = 0;
+    glm::mat4 worldFromObject{1.0f};
+    std::string nodeName;
+};
+
+enum class Filter { Nearest, Linear };
+enum class Wrap { Repeat, ClampToEdge, MirroredRepeat };
+
+struct Sampler {
+    Filter magFilter = Filter::Linear;
+    Filter minFilter = Filter::Linear;
+    Filter mipFilter = Filter::Linear;
+    bool mipmaps = true;
+    Wrap wrapU = Wrap::Repeat;
+    Wrap wrapV = Wrap::Repeat;
+};
+
+// Decoded image, 8 bits per channel RGBA, top row first. The colour space is chosen per use
+// (base colour and emissive are sRGB, everything else linear), so one image can serve both.
+struct Image {
+    std::string name;  // the URI or "images[i]"
+    uint32_t width = 0;
+    uint32_t height = 0;
+    std::vector<uint8_t> rgba8;
+};
+
+// A material's reference to a texture: glTF textureInfo plus KHR_texture_transform.
+struct TextureRef {
+    int image = -1;    // index into Scene::images, -1: none
+    int sampler = -1;  // index into Scene::samplers, -1: default sampler
+    float scale = 1.0f;  // normalTexture.scale or occlusionTexture.strength
+    glm::vec2 uvOffset{0.0f};
+    float uvRotation = 0.0f;  // radians, counter-clockwise as in KHR_texture_transform
+    glm::vec2 uvScale{1.0f};
+
+    bool valid() const { return image >= 0; }
+    // Row-major 2x3 UV transform: uv' = M * (u, v, 1).
+    glm::mat3 uvTransform() const;
+};
+
+enum class AlphaMode { Opaque, Mask, Blend };
+
+struct Material {
+    std::string name;
+    glm::vec4 baseColorFactor{1.0f};
+    float metallicFactor = 1.0f;
+    float roughnessFactor = 1.0f;
+    glm::vec3 emissiveFactor{0.0f};
+    TextureRef baseColor;
+    TextureRef metallicRoughness;
+    TextureRef normal;
+    TextureRef occlusion;
+    TextureRef emissive;
+    AlphaMode alphaMode = AlphaMode::Opaque;
+    float alphaCutoff = 0.5f;
+    bool doubleSided = false;
+    // Present when the material is shaded as skin (the PRESKIN_materials_skin extension,
+    // or forced with Scene::makeSkin).
+    std::optional<SkinMaterial> skin;
+};
+
+enum class LightType { Directional, Point, Spot };
+
+struct Light {
+    std::string name;
+    LightType type = LightType::Directional;
+    glm::vec3 color{1.0f};
+    float intensity = 1.0f;  // lux (directional) or candela (point, spot)
+    float range = 0.0f;      // metres, 0 = unlimited
+    float innerConeAngle = 0.0f;
+    float outerConeAngle = 0.7853982f;
+    glm::vec3 positionWs{0.0f};
+    glm::vec3 directionWs{0.0f, 0.0f, -1.0f};  // direction the light travels
+    bool castsShadow = false;
+};
+
+struct Camera {
+    std::string name;
+    glm::mat4 worldFromView{1.0f};  // view looks down -Z, +Y up
+    bool orthographic = false;
+    float yfov = 0.6f;         // radians (perspective)
+    float aspectRatio = 0.0f;  // 0: use the viewport's
+    float xmag = 1.0f;         // orthographic half extents
+    float ymag = 1.0f;
+    float znear = 0.01f;
+    float zfar = 0.0f;  // 0: infinite (perspective only)
+};
+
+struct Scene {
+    std::filesystem::path sourcePath;
+    std::vector<Mesh> meshes;
+    std::vector<MeshInstance> instances;
+    std::vector<Material> materials;
+    std::vector<Image> images;
+    std::vector<Sampler> samplers;
+    std::vector<Light> lights;
+    std::vector<Camera> cameras;
+    // Scene-level environment from the PRESKIN_environment extension (a file next to the scene).
+    std::optional<std::filesystem::path> environmentPath;
+    float environmentIntensity = 1.0f;
+
+    // Loads .gltf or .glb. Throws preskin::Error naming the file and the field on bad input.
+    PRESKIN_API static Scene load(const std::filesystem::path& path);
+
+    PRESKIN_API Bounds worldBounds() const;
+    // Marks materials as skin: every material for "all", else the material with that name
+    // (throws preskin::Error when no material has it). Existing skin parameters are kept.
+    PRESKIN_API void makeSkin(const std::string& materialName, const SkinMaterial& defaults = {});
+};
+
+}  // namespace preskin

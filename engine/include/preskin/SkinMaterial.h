@@ -1,0 +1,49 @@
+// Per-material parameters of the pre-integrated skin path. Read from the glTF material extension
+// PRESKIN_materials_skin (documented in the README) or set by the host / CLI (--skin).
+#pragma once
+
+#include <glm/glm.hpp>
+
+#include <optional>
+#include <string>
+
+namespace preskin {
+
+enum class CurvatureSource {
+    Vertex,       // per-vertex curvature computed from the mesh at load (default)
+    Texture,      // a curvature texture (red channel, scaled by curvatureTextureScalePerM)
+    Derivatives,  // screen-space derivatives length(fwidth(N)) / length(fwidth(P)) (Penner)
+};
+
+struct SkinTextureRef {
+    int image = -1;  // index into Scene::images
+    int sampler = -1;
+    bool valid() const { return image >= 0; }
+};
+
+struct SkinMaterial {
+    // How many profile millimetres one world millimetre is: curvature, penumbra width and
+    // thickness are converted to profile units with it. 1 for a life-size head in metres.
+    float scatterScale = 1.0f;
+    CurvatureSource curvatureSource = CurvatureSource::Vertex;
+    SkinTextureRef curvatureTexture;
+    float curvatureTextureScalePerM = 100.0f;  // texture value 1.0 means this many 1/m
+    // Per-channel mip LOD bias of the normal map (R, G, B). Unset: derived from the profile's
+    // per-channel scattering width and the mesh's texel density.
+    std::optional<glm::vec3> normalLodBias;
+    SkinTextureRef detailNormalTexture;
+    float detailNormalScale = 1.0f;
+    float detailUvScale = 8.0f;  // detail map tiling relative to TEXCOORD_0
+    // Transmission through thin parts (ears, nostrils). 0 disables it for this material.
+    float transmission = 1.0f;
+    glm::vec3 transmissionColor{1.0f};
+    float thicknessScale = 1.0f;  // scales the shadow-map thickness (KHR_materials_volume thicknessFactor)
+    // Specular: dual-lobe GGX with F0 = 0.028 * specularIntensity * specular map.
+    float specularIntensity = 1.0f;
+    SkinTextureRef specularTexture;  // red channel scales F0
+    float lobeRoughness0 = 0.75f;    // multipliers of the material roughness, lobe 0
+    float lobeRoughness1 = 1.30f;    // lobe 1
+    float lobeMix = 0.15f;           // weight of lobe 1
+};
+
+}  // namespace preskin

@@ -1,0 +1,2 @@
+/* The volk meta-loader, compiled into libpreskin with hidden visibility (see engine/CMakeLists.txt). */
+#include <volk.c>
