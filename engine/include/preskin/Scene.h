@@ -3,6 +3,11 @@
 // and cameras. The node hierarchy is flattened into world-space mesh instances, lights and cameras.
 // Units: metres, radians; light intensities as in KHR_lights_punctual (lux for directional,
 // candela for point and spot).
+//
+// What the loader reads and how it treats bad input is described in engine/src/scene/GltfLoader.h
+// and docs/gltf-extensions.md. In short: triangle lists, strips and fans (points and lines are
+// skipped with a warning), TEXCOORD_0 only, no skins, morph targets or animation (the static
+// pose is loaded). Every primitive gets an index list (generated for non-indexed ones).
 #pragma once
 
 #include <preskin/Export.h>
@@ -10,6 +15,7 @@
 
 #include <glm/glm.hpp>
 
+#include <cmath>
 #include <cstdint>
 #include <filesystem>
 #include <limits>
@@ -55,6 +61,10 @@ struct MeshInstance {
     int mesh = 0;
     glm::mat4 worldFromObject{1.0f};
     std::string nodeName;
+
+    // Object-to-world length scale (cube root of |det| of the 3x3 part): world-space curvature is
+    // Vertex::curvaturePerM / curvatureScale() (exact for uniform scale, a mean otherwise).
+    float curvatureScale() const { return std::cbrt(std::abs(glm::determinant(glm::mat3(worldFromObject)))); }
 };
 
 enum class Filter { Nearest, Linear };
@@ -88,8 +98,9 @@ struct TextureRef {
     glm::vec2 uvScale{1.0f};
 
     bool valid() const { return image >= 0; }
-    // Row-major 2x3 UV transform: uv' = M * (u, v, 1).
-    glm::mat3 uvTransform() const;
+    // The KHR_texture_transform matrix T(offset) * R(rotation) * S(scale), as a glm (column-major)
+    // 3x3 whose last row is (0, 0, 1): uv' = (uvTransform() * vec3(uv, 1)).xy.
+    PRESKIN_API glm::mat3 uvTransform() const;
 };
 
 enum class AlphaMode { Opaque, Mask, Blend };
@@ -99,7 +110,7 @@ struct Material {
     glm::vec4 baseColorFactor{1.0f};
     float metallicFactor = 1.0f;
     float roughnessFactor = 1.0f;
-    glm::vec3 emissiveFactor{0.0f};
+    glm::vec3 emissiveFactor{0.0f};  // includes KHR_materials_emissive_strength
     TextureRef baseColor;
     TextureRef metallicRoughness;
     TextureRef normal;
@@ -111,6 +122,12 @@ struct Material {
     // Present when the material is shaded as skin (the PRESKIN_materials_skin extension,
     // or forced with Scene::makeSkin).
     std::optional<SkinMaterial> skin;
+    // Values of KHR_materials_diffuse_transmission and KHR_materials_volume, when the material
+    // has them. They seed SkinMaterial::transmission, transmissionColor and thicknessScale (at
+    // load, and in makeSkin); PRESKIN_materials_skin's own fields win over them.
+    std::optional<float> diffuseTransmissionFactor;
+    std::optional<glm::vec3> diffuseTransmissionColor;
+    std::optional<float> volumeThicknessFactor;  // mesh units; only values > 0 are kept
 };
 
 enum class LightType { Directional, Point, Spot };
@@ -125,12 +142,14 @@ struct Light {
     float outerConeAngle = 0.7853982f;
     glm::vec3 positionWs{0.0f};
     glm::vec3 directionWs{0.0f, 0.0f, -1.0f};  // direction the light travels
+    // From the light's extras.castsShadow (docs/gltf-extensions.md); when no light in the file
+    // says either way, the first directional light casts shadows.
     bool castsShadow = false;
 };
 
 struct Camera {
     std::string name;
-    glm::mat4 worldFromView{1.0f};  // view looks down -Z, +Y up
+    glm::mat4 worldFromView{1.0f};  // rigid (node scale removed); view looks down -Z, +Y up
     bool orthographic = false;
     float yfov = 0.6f;         // radians (perspective)
     float aspectRatio = 0.0f;  // 0: use the viewport's
@@ -150,8 +169,10 @@ struct Scene {
     std::vector<Light> lights;
     std::vector<Camera> cameras;
     // Scene-level environment from the PRESKIN_environment extension (a file next to the scene).
-    std::optional<std::filesystem::path> environmentPath;
+    std::optional<std::filesystem::path> environmentPath;  // absolute; the file exists at load
     float environmentIntensity = 1.0f;
+    // Non-fatal problems found while loading ("file: field: what was ignored"), for the host to show.
+    std::vector<std::string> warnings;
 
     // Loads .gltf or .glb. Throws preskin::Error naming the file and the field on bad input.
     PRESKIN_API static Scene load(const std::filesystem::path& path);
@@ -159,6 +180,7 @@ struct Scene {
     PRESKIN_API Bounds worldBounds() const;
     // Marks materials as skin: every material for "all", else the material with that name
     // (throws preskin::Error when no material has it). Existing skin parameters are kept.
+    // A material made skin here gets `defaults`, then the material's KHR transmission / volume values.
     PRESKIN_API void makeSkin(const std::string& materialName, const SkinMaterial& defaults = {});
 };
 

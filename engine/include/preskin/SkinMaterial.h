@@ -1,5 +1,6 @@
 // Per-material parameters of the pre-integrated skin path. Read from the glTF material extension
-// PRESKIN_materials_skin (documented in the README) or set by the host / CLI (--skin).
+// PRESKIN_materials_skin (every field, its JSON name, default and units: docs/gltf-extensions.md)
+// or set by the host / CLI (--skin). Skin textures use TEXCOORD_0 without KHR_texture_transform.
 #pragma once
 
 #include <glm/glm.hpp>
@@ -16,8 +17,8 @@ enum class CurvatureSource {
 };
 
 struct SkinTextureRef {
-    int image = -1;  // index into Scene::images
-    int sampler = -1;
+    int image = -1;    // index into Scene::images
+    int sampler = -1;  // index into Scene::samplers, -1: default sampler
     bool valid() const { return image >= 0; }
 };
 

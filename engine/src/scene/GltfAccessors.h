@@ -1,0 +1,32 @@
+// Reading glTF accessors into plain arrays, with every range checked first (accessor inside its
+// bufferView, bufferView inside its buffer, sparse indices and values inside theirs, sparse
+// indices increasing and below count), so no read ever leaves the loaded data.
+// Integer components are converted as glTF 2.0 specifies: normalized ones to [0, 1] or [-1, 1]
+// (signed: max(c / (2^(n-1) - 1), -1)), others to their value. An accessor without bufferView
+// reads as zeros (plus its sparse values). Matrix types are not read (no attribute needs them).
+#pragma once
+
+#include "scene/GltfContext.h"
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+namespace preskin::gltf {
+
+struct FloatAccessor {
+    size_t count = 0;
+    int components = 0;          // 1..4
+    std::vector<float> values;   // count * components
+};
+
+// Reads accessor `index` as floats. `componentsAllowed` lists the accepted element sizes (e.g.
+// {3} for POSITION, {2} for TEXCOORD_0); `what` names the use in messages, such as
+// "meshes[0].primitives[0].attributes.POSITION". Non-finite values are an error.
+FloatAccessor readFloatAccessor(const LoadContext& ctx, int index, std::initializer_list<int> componentsAllowed,
+                                const std::string& what);
+
+// Reads an index accessor (SCALAR, unsigned byte/short/int) and checks every index < vertexCount.
+std::vector<uint32_t> readIndexAccessor(const LoadContext& ctx, int index, size_t vertexCount, const std::string& what);
+
+}  // namespace preskin::gltf

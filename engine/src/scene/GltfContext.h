@@ -1,0 +1,57 @@
+// State shared by the parts of the glTF loader (materials, meshes, nodes), and typed readers for
+// extension fields held as tinygltf::Value. Every reader names the field in its error message:
+// a field that is present with the wrong type or a non-finite value is an error, a missing one
+// yields std::nullopt.
+#pragma once
+
+#include "scene/GltfFiles.h"
+#include "scene/TinyGltf.h"
+
+#include <preskin/Scene.h>
+
+#include <filesystem>
+#include <optional>
+#include <string>
+#include <vector>
+
+namespace preskin::gltf {
+
+struct LoadContext {
+    std::string file;                  // the scene file as given, for messages
+    std::filesystem::path folder;      // absolute folder of the scene file
+    const tinygltf::Model* model = nullptr;
+    Scene* scene = nullptr;
+    // Per image: a description of its format when it is not decodable (then it has no pixels).
+    std::vector<std::string> unsupportedImageFormat;
+
+    [[noreturn]] void fail(const std::string& where, const std::string& what) const {
+        gltf::fail(file, where, what);
+    }
+    void warn(const std::string& where, const std::string& what) const {
+        scene->warnings.push_back(file + ": " + where + ": " + oneLine(what));
+    }
+};
+
+inline std::string indexed(const std::string& array, size_t index) {
+    return array + "[" + std::to_string(index) + "]";
+}
+
+// Typed reads from a JSON object held as tinygltf::Value.
+std::optional<double> numberField(const LoadContext& ctx, const tinygltf::Value& object, const char* key,
+                                  const std::string& where);
+std::optional<int> integerField(const LoadContext& ctx, const tinygltf::Value& object, const char* key,
+                                const std::string& where);
+std::optional<bool> boolField(const LoadContext& ctx, const tinygltf::Value& object, const char* key,
+                              const std::string& where);
+std::optional<std::string> stringField(const LoadContext& ctx, const tinygltf::Value& object, const char* key,
+                                       const std::string& where);
+std::optional<glm::vec2> vec2Field(const LoadContext& ctx, const tinygltf::Value& object, const char* key,
+                                   const std::string& where);
+std::optional<glm::vec3> vec3Field(const LoadContext& ctx, const tinygltf::Value& object, const char* key,
+                                   const std::string& where);
+
+// Finite components of a core glTF number array with an exact length, or nullopt when empty.
+std::optional<std::vector<double>> fixedArray(const LoadContext& ctx, const std::vector<double>& values,
+                                              size_t length, const std::string& where);
+
+}  // namespace preskin::gltf

@@ -1,0 +1,610 @@
+// glTF 2.0 loading: file and container checks, tinygltf with confined file access and an
+// OpenImageIO image callback, then meshes, nodes, lights and cameras (see GltfLoader.h).
+#include "scene/GltfLoader.h"
+#include "scene/GltfAccessors.h"
+#include "scene/GltfContext.h"
+#include "scene/GltfFiles.h"
+#include "scene/GltfMaterials.h"
+#include "scene/GltfPrepass.h"
+#include "scene/ImageDecoder.h"
+#include "scene/TangentFrames.h"
+
+#include <preskin/Curvature.h>
+#include <preskin/Error.h>
+
+#include <glm/gtc/quaternion.hpp>
+#include <glm/gtc/type_ptr.hpp>
+#include <nlohmann/json.hpp>
+
+#include <algorithm>
+#include <cctype>
+#include <cmath>
+#include <numbers>
+#include <optional>
+#include <sstream>
+
+namespace preskin::gltf {
+
+namespace fs = std::filesystem;
+using scene::generateTangents;
+using scene::makeFlatNormals;
+using scene::orthonormalizeTangents;
+
+namespace {
+
+constexpr uint64_t kMaxSceneVertices = 1ull << 26;
+constexpr uint64_t kMaxSceneIndices = 1ull << 28;
+constexpr uint64_t kMaxScenePixels = 1ull << 29;
+
+// ---- tinygltf callbacks -------------------------------------------------------------------
+
+struct FsState {
+    fs::path folder;
+};
+
+bool insideAndRegular(const std::string& path, const FsState& state) {
+    const fs::path p = fs::path(path).lexically_normal();
+    if (!p.is_absolute() || !isInsideFolder(p, state.folder)) return false;
+    std::error_code ec;
+    return fs::is_regular_file(p, ec);
+}
+
+bool fileExists(const std::string& path, void* user) {
+    return insideAndRegular(path, *static_cast<const FsState*>(user));
+}
+
+std::string expandFilePath(const std::string& path, void*) { return path; }  // no ~ or $VAR expansion
+
+bool readWholeFile(std::vector<unsigned char>* out, std::string* err, const std::string& path, void* user) {
+    if (!insideAndRegular(path, *static_cast<const FsState*>(user))) {
+        if (err) *err += "'" + path + "' is not a file inside the scene's folder";
+        return false;
+    }
+    try {
+        *out = readRegularFile(path, path);
+        return true;
+    } catch (const std::exception& e) {
+        if (err) *err += e.what();
+        return false;
+    }
+}
+
+bool writeWholeFile(std::string* err, const std::string&, const std::vector<unsigned char>&, void*) {
+    if (err) *err += "writing is disabled";
+    return false;
+}
+
+struct ImageState {
+    std::vector<std::string> unsupported;  // per image index: format description when unsupported
+    std::optional<std::string> error;      // "images[i] (...): why"
+    uint64_t totalPixels = 0;
+};
+
+bool loadImage(tinygltf::Image* image, const int index, std::string* err, std::string*, int, int,
+               const unsigned char* bytes, int size, void* user) {
+    auto& state = *static_cast<ImageState*>(user);
+    std::string where = "images[" + std::to_string(index) + "]";
+    if (!image->uri.empty()) where += " ('" + image->uri + "')";
+    try {
+        if (index < 0 || size < 0) throw std::runtime_error("invalid image data");
+        if (state.unsupported.size() <= static_cast<size_t>(index)) state.unsupported.resize(static_cast<size_t>(index) + 1);
+        const std::span<const uint8_t> data(bytes, static_cast<size_t>(size));
+        const ImageFormat format = sniffImageFormat(data);
+        if (format == ImageFormat::Unsupported) {
+            state.unsupported[static_cast<size_t>(index)] = describeImageFormat(data) + " data";
+            image->width = image->height = 0;
+            image->image.clear();
+            return true;
+        }
+        DecodedImage decoded = decodeImageRgba8(data, format);
+        state.totalPixels += uint64_t(decoded.width) * decoded.height;
+        if (state.totalPixels > kMaxScenePixels) {
+            throw std::runtime_error("the scene's images exceed " + std::to_string(kMaxScenePixels) + " pixels in total");
+        }
+        image->width = static_cast<int>(decoded.width);
+        image->height = static_cast<int>(decoded.height);
+        image->component = 4;
+        image->bits = 8;
+        image->pixel_type = TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE;
+        image->image = std::move(decoded.rgba8);
+        return true;
+    } catch (const std::exception& e) {
+        state.error = where + ": " + e.what();
+        if (err) *err += *state.error;
+        return false;
+    }
+}
+
+// ---- meshes -------------------------------------------------------------------------------
+
+std::vector<uint32_t> toTriangleList(const LoadContext& ctx, const std::vector<uint32_t>& indices, int mode,
+                                     const std::string& where) {
+    std::vector<uint32_t> list;
+    const size_t n = indices.size();
+    if (mode == TINYGLTF_MODE_TRIANGLES) {
+        if (n % 3 != 0) ctx.fail(where, std::to_string(n) + " vertices (indices) is not a multiple of 3 for a triangle list");
+        return indices;
+    }
+    if (n < 3) return list;
+    list.reserve((n - 2) * 3);
+    for (size_t i = 0; i + 2 < n; ++i) {
+        if (mode == TINYGLTF_MODE_TRIANGLE_STRIP) {  // p_i = {v_i, v_{i+(1+i%2)}, v_{i+(2-i%2)}}
+            list.insert(list.end(), {indices[i], indices[i + 1 + i % 2], indices[i + 2 - i % 2]});
+        } else {  // fan: p_i = {v_{i+1}, v_{i+2}, v_0}
+            list.insert(list.end(), {indices[i + 1], indices[i + 2], indices[0]});
+        }
+    }
+    return list;
+}
+
+size_t repairNormals(Primitive& primitive) {
+    std::vector<size_t> broken;
+    for (size_t i = 0; i < primitive.vertices.size(); ++i) {
+        glm::vec3& n = primitive.vertices[i].normalOs;
+        const float len = glm::length(n);
+        if (len > 1e-12f) n /= len;
+        else broken.push_back(i);
+    }
+    if (broken.empty()) return 0;
+    std::vector<glm::vec3> faceSum(primitive.vertices.size(), glm::vec3(0.0f));
+    for (size_t t = 0; t + 2 < primitive.indices.size(); t += 3) {
+        const uint32_t a = primitive.indices[t], b = primitive.indices[t + 1], c = primitive.indices[t + 2];
+        const glm::vec3 areaNormal = glm::cross(primitive.vertices[b].positionOs - primitive.vertices[a].positionOs,
+                                                primitive.vertices[c].positionOs - primitive.vertices[a].positionOs);
+        faceSum[a] += areaNormal;
+        faceSum[b] += areaNormal;
+        faceSum[c] += areaNormal;
+    }
+    for (size_t i : broken) {
+        const float len = glm::length(faceSum[i]);
+        primitive.vertices[i].normalOs = len > 0.0f ? faceSum[i] / len : glm::vec3(0.0f, 0.0f, 1.0f);
+    }
+    return broken.size();
+}
+
+void convertMeshes(const LoadContext& ctx) {
+    const tinygltf::Model& model = *ctx.model;
+    uint64_t totalVertices = 0;
+    uint64_t totalIndices = 0;
+    for (size_t m = 0; m < model.meshes.size(); ++m) {
+        const tinygltf::Mesh& in = model.meshes[m];
+        Mesh mesh;
+        mesh.name = in.name.empty() ? indexed("meshes", m) : in.name;
+        for (size_t p = 0; p < in.primitives.size(); ++p) {
+            const tinygltf::Primitive& prim = in.primitives[p];
+            const std::string where = indexed("meshes", m) + indexed(".primitives", p);
+            const int mode = prim.mode == -1 ? TINYGLTF_MODE_TRIANGLES : prim.mode;
+            if (mode >= TINYGLTF_MODE_POINTS && mode <= TINYGLTF_MODE_LINE_STRIP) {
+                ctx.warn(where + ".mode", std::to_string(mode) + " (points or lines) is not drawn; primitive skipped");
+                continue;
+            }
+            if (mode != TINYGLTF_MODE_TRIANGLES && mode != TINYGLTF_MODE_TRIANGLE_STRIP &&
+                mode != TINYGLTF_MODE_TRIANGLE_FAN) {
+                ctx.fail(where + ".mode", std::to_string(mode) + " is not a glTF primitive mode");
+            }
+            if (!prim.targets.empty()) ctx.warn(where + ".targets", "morph targets are not supported; the base shape is used");
+            if (prim.material < -1 || prim.material >= static_cast<int>(model.materials.size())) {
+                ctx.fail(where + ".material", std::to_string(prim.material) + " is out of range: the file has " +
+                                                  std::to_string(model.materials.size()) + " materials");
+            }
+            auto attribute = [&](const char* name) {
+                auto it = prim.attributes.find(name);
+                return it == prim.attributes.end() ? -1 : it->second;
+            };
+            const int positionIndex = attribute("POSITION");
+            if (positionIndex < 0) ctx.fail(where + ".attributes", "no POSITION");
+            const FloatAccessor positions = readFloatAccessor(ctx, positionIndex, {3}, where + ".attributes.POSITION");
+            const size_t vertexCount = positions.count;
+            totalVertices += vertexCount;
+            if (totalVertices > kMaxSceneVertices) {
+                ctx.fail(where, "the scene exceeds the limit of " + std::to_string(kMaxSceneVertices) + " vertices");
+            }
+
+            Primitive out;
+            out.material = prim.material;
+            out.vertices.resize(vertexCount);
+            for (size_t i = 0; i < vertexCount; ++i) {
+                out.vertices[i].positionOs = glm::make_vec3(&positions.values[i * 3]);
+            }
+            auto readMatching = [&](const char* name, int components) -> std::optional<FloatAccessor> {
+                const int index = attribute(name);
+                if (index < 0) return std::nullopt;
+                const std::string at = where + ".attributes." + name;
+                FloatAccessor a = readFloatAccessor(ctx, index, {components}, at);
+                if (a.count != vertexCount) {
+                    ctx.fail(at, "accessors[" + std::to_string(index) + "] has " + std::to_string(a.count) +
+                                     " elements, POSITION has " + std::to_string(vertexCount));
+                }
+                return a;
+            };
+            const auto normals = readMatching("NORMAL", 3);
+            const auto uvs = readMatching("TEXCOORD_0", 2);
+            const auto tangents = readMatching("TANGENT", 4);
+            for (size_t i = 0; i < vertexCount; ++i) {
+                Vertex& v = out.vertices[i];
+                if (normals) v.normalOs = glm::make_vec3(&normals->values[i * 3]);
+                if (uvs) v.uv0 = glm::make_vec2(&uvs->values[i * 2]);
+                if (tangents) v.tangentOs = glm::make_vec4(&tangents->values[i * 4]);
+            }
+            if (attribute("JOINTS_0") >= 0) ctx.warn(where + ".attributes.JOINTS_0", "skinning is not supported; ignored");
+
+            std::vector<uint32_t> indices;
+            if (prim.indices >= 0) {
+                indices = readIndexAccessor(ctx, prim.indices, vertexCount, where + ".indices");
+            } else {
+                indices.resize(vertexCount);
+                for (size_t i = 0; i < vertexCount; ++i) indices[i] = static_cast<uint32_t>(i);
+            }
+            out.indices = toTriangleList(ctx, indices, mode, prim.indices >= 0 ? where + ".indices" : where);
+            totalIndices += out.indices.size();
+            if (totalIndices > kMaxSceneIndices) {
+                ctx.fail(where, "the scene exceeds the limit of " + std::to_string(kMaxSceneIndices) + " indices");
+            }
+            if (out.indices.empty()) {
+                ctx.warn(where, "no triangles; primitive skipped");
+                continue;
+            }
+
+            if (!normals) {
+                makeFlatNormals(out);
+            } else if (const size_t fixed = repairNormals(out); fixed > 0) {
+                ctx.warn(where + ".attributes.NORMAL", std::to_string(fixed) +
+                                                           " zero-length normals replaced by the mean face normal");
+            }
+            if (tangents) {
+                if (const size_t fixed = orthonormalizeTangents(out); fixed > 0) {
+                    ctx.warn(where + ".attributes.TANGENT",
+                             std::to_string(fixed) + " degenerate tangents replaced by a perpendicular to the normal");
+                }
+            } else {
+                const size_t fallbacks = generateTangents(out);
+                if (fallbacks > 0 && uvs) {
+                    ctx.warn(where + ".attributes.TEXCOORD_0", std::to_string(fallbacks) +
+                                                                  " vertices have no usable UV direction; their tangent is arbitrary");
+                }
+            }
+            for (const Vertex& v : out.vertices) out.boundsOs.extend(v.positionOs);
+            mesh.primitives.push_back(std::move(out));
+        }
+        updateMeshCurvature(mesh);
+        ctx.scene->meshes.push_back(std::move(mesh));
+    }
+}
+
+// ---- nodes --------------------------------------------------------------------------------
+
+bool finite(const glm::mat4& m) {
+    for (int c = 0; c < 4; ++c)
+        for (int r = 0; r < 4; ++r)
+            if (!std::isfinite(m[c][r])) return false;
+    return true;
+}
+
+glm::mat4 localMatrix(const LoadContext& ctx, const tinygltf::Node& node, const std::string& where) {
+    if (auto m = fixedArray(ctx, node.matrix, 16, where + ".matrix")) {
+        if (!node.translation.empty() || !node.rotation.empty() || !node.scale.empty()) {
+            ctx.fail(where, "has both matrix and translation/rotation/scale");
+        }
+        glm::mat4 out(1.0f);
+        for (int c = 0; c < 4; ++c)
+            for (int r = 0; r < 4; ++r) out[c][r] = static_cast<float>((*m)[static_cast<size_t>(c * 4 + r)]);
+        return out;
+    }
+    glm::mat4 t(1.0f), r(1.0f), s(1.0f);
+    if (auto v = fixedArray(ctx, node.translation, 3, where + ".translation")) {
+        t[3] = glm::vec4(static_cast<float>((*v)[0]), static_cast<float>((*v)[1]), static_cast<float>((*v)[2]), 1.0f);
+    }
+    if (auto q = fixedArray(ctx, node.rotation, 4, where + ".rotation")) {
+        glm::dquat quat((*q)[3], (*q)[0], (*q)[1], (*q)[2]);  // glTF stores x, y, z, w
+        const double len = glm::length(quat);
+        if (!(len > 1e-6)) ctx.fail(where + ".rotation", "zero-length quaternion");
+        r = glm::mat4(glm::mat4_cast(quat / len));
+    }
+    if (auto v = fixedArray(ctx, node.scale, 3, where + ".scale")) {
+        s = glm::mat4(1.0f);
+        for (int k = 0; k < 3; ++k) s[k][k] = static_cast<float>((*v)[static_cast<size_t>(k)]);
+    }
+    return t * r * s;
+}
+
+Light convertLight(const LoadContext& ctx, int lightIndex, const glm::mat4& world, const std::string& nodeName,
+                   const std::string& nodeWhere, bool& explicitShadowFlag) {
+    const tinygltf::Model& model = *ctx.model;
+    if (lightIndex < 0 || static_cast<size_t>(lightIndex) >= model.lights.size()) {
+        ctx.fail(nodeWhere + ".extensions.KHR_lights_punctual.light",
+                 std::to_string(lightIndex) + " is out of range: the file has " + std::to_string(model.lights.size()) + " lights");
+    }
+    const tinygltf::Light& in = model.lights[static_cast<size_t>(lightIndex)];
+    const std::string where = "extensions.KHR_lights_punctual.lights[" + std::to_string(lightIndex) + "]";
+    Light out;
+    out.name = in.name.empty() ? nodeName : in.name;
+    if (in.type == "directional") out.type = LightType::Directional;
+    else if (in.type == "point") out.type = LightType::Point;
+    else if (in.type == "spot") out.type = LightType::Spot;
+    else ctx.fail(where + ".type", "'" + in.type + "' (expected directional, point or spot)");
+    if (auto c = fixedArray(ctx, in.color, 3, where + ".color")) {
+        out.color = glm::vec3(static_cast<float>((*c)[0]), static_cast<float>((*c)[1]), static_cast<float>((*c)[2]));
+        if (glm::any(glm::lessThan(out.color, glm::vec3(0.0f)))) ctx.fail(where + ".color", "negative component");
+    }
+    if (!std::isfinite(in.intensity) || in.intensity < 0.0) ctx.fail(where + ".intensity", "must be finite and >= 0");
+    out.intensity = static_cast<float>(in.intensity);
+    if (!std::isfinite(in.range) || in.range < 0.0) ctx.fail(where + ".range", "must be finite and > 0");
+    out.range = static_cast<float>(in.range);
+    if (out.type == LightType::Spot) {
+        const double inner = in.spot.innerConeAngle, outer = in.spot.outerConeAngle;
+        if (!(inner >= 0.0 && inner < outer && outer <= std::numbers::pi / 2 + 1e-6)) {
+            ctx.fail(where + ".spot", "cone angles inner " + std::to_string(inner) + ", outer " + std::to_string(outer) +
+                                          " (need 0 <= inner < outer <= pi/2)");
+        }
+        out.innerConeAngle = static_cast<float>(inner);
+        out.outerConeAngle = static_cast<float>(outer);
+    }
+    out.positionWs = glm::vec3(world[3]);
+    const glm::vec3 direction = glm::mat3(world) * glm::vec3(0.0f, 0.0f, -1.0f);
+    if (!(glm::length(direction) > 1e-12f)) ctx.fail(nodeWhere, "the light's node transform collapses its direction");
+    out.directionWs = glm::normalize(direction);
+    explicitShadowFlag = false;
+    if (auto casts = boolField(ctx, in.extras, "castsShadow", where + ".extras")) {
+        out.castsShadow = *casts;
+        explicitShadowFlag = true;
+    }
+    return out;
+}
+
+Camera convertCamera(const LoadContext& ctx, int cameraIndex, const glm::mat4& world, const std::string& nodeName,
+                     const std::string& nodeWhere) {
+    const tinygltf::Model& model = *ctx.model;
+    if (cameraIndex < 0 || static_cast<size_t>(cameraIndex) >= model.cameras.size()) {
+        ctx.fail(nodeWhere + ".camera", std::to_string(cameraIndex) + " is out of range: the file has " +
+                                            std::to_string(model.cameras.size()) + " cameras");
+    }
+    const tinygltf::Camera& in = model.cameras[static_cast<size_t>(cameraIndex)];
+    const std::string where = indexed("cameras", static_cast<size_t>(cameraIndex));
+    Camera out;
+    out.name = in.name.empty() ? nodeName : in.name;
+    if (in.type == "perspective") {
+        const auto& p = in.perspective;
+        if (!(p.yfov > 0.0 && p.yfov < std::numbers::pi)) ctx.fail(where + ".perspective.yfov", "must be in (0, pi)");
+        if (!(p.znear > 0.0) || !std::isfinite(p.znear)) ctx.fail(where + ".perspective.znear", "must be > 0");
+        if (!std::isfinite(p.zfar) || (p.zfar != 0.0 && !(p.zfar > p.znear))) {
+            ctx.fail(where + ".perspective.zfar", "must be greater than znear (or absent for infinite)");
+        }
+        if (!std::isfinite(p.aspectRatio) || p.aspectRatio < 0.0) ctx.fail(where + ".perspective.aspectRatio", "must be > 0");
+        out.yfov = static_cast<float>(p.yfov);
+        out.znear = static_cast<float>(p.znear);
+        out.zfar = static_cast<float>(p.zfar);
+        out.aspectRatio = static_cast<float>(p.aspectRatio);
+    } else if (in.type == "orthographic") {
+        const auto& o = in.orthographic;
+        if (!std::isfinite(o.xmag) || o.xmag == 0.0) ctx.fail(where + ".orthographic.xmag", "must be finite and non-zero");
+        if (!std::isfinite(o.ymag) || o.ymag == 0.0) ctx.fail(where + ".orthographic.ymag", "must be finite and non-zero");
+        if (!(o.znear >= 0.0) || !std::isfinite(o.znear)) ctx.fail(where + ".orthographic.znear", "must be >= 0");
+        if (!(o.zfar > o.znear) || !std::isfinite(o.zfar)) ctx.fail(where + ".orthographic.zfar", "must be greater than znear");
+        out.orthographic = true;
+        out.xmag = static_cast<float>(o.xmag);
+        out.ymag = static_cast<float>(o.ymag);
+        out.znear = static_cast<float>(o.znear);
+        out.zfar = static_cast<float>(o.zfar);
+    } else {
+        ctx.fail(where + ".type", "'" + in.type + "' (expected perspective or orthographic)");
+    }
+    // Rigid part of the node transform: Gram-Schmidt on the view axes, scale dropped.
+    const glm::vec3 z = glm::vec3(world[2]), x0 = glm::vec3(world[0]);
+    if (!(glm::length(z) > 1e-12f)) ctx.fail(nodeWhere, "the camera's node transform is degenerate");
+    const glm::vec3 zn = glm::normalize(z);
+    const glm::vec3 xo = x0 - zn * glm::dot(zn, x0);
+    if (!(glm::length(xo) > 1e-12f)) ctx.fail(nodeWhere, "the camera's node transform is degenerate");
+    const glm::vec3 xn = glm::normalize(xo);
+    const glm::vec3 yn = glm::cross(zn, xn);
+    out.worldFromView = glm::mat4(glm::vec4(xn, 0.0f), glm::vec4(yn, 0.0f), glm::vec4(zn, 0.0f), world[3]);
+    return out;
+}
+
+void convertNodes(const LoadContext& ctx) {
+    const tinygltf::Model& model = *ctx.model;
+    const size_t nodeCount = model.nodes.size();
+    std::vector<uint8_t> hasParent(nodeCount, 0);
+    for (size_t i = 0; i < nodeCount; ++i) {
+        const auto& children = model.nodes[i].children;
+        for (size_t k = 0; k < children.size(); ++k) {
+            if (children[k] < 0 || static_cast<size_t>(children[k]) >= nodeCount) {
+                ctx.fail(indexed("nodes", i) + indexed(".children", k),
+                         std::to_string(children[k]) + " is out of range: the file has " + std::to_string(nodeCount) + " nodes");
+            }
+            hasParent[static_cast<size_t>(children[k])] = 1;
+        }
+    }
+
+    std::vector<int> roots;
+    if (model.defaultScene >= 0 || !model.scenes.empty()) {
+        const int sceneIndex = model.defaultScene >= 0 ? model.defaultScene : 0;
+        if (static_cast<size_t>(sceneIndex) >= model.scenes.size()) {
+            ctx.fail("scene", std::to_string(sceneIndex) + " is out of range: the file has " +
+                                  std::to_string(model.scenes.size()) + " scenes");
+        }
+        const auto& nodes = model.scenes[static_cast<size_t>(sceneIndex)].nodes;
+        for (size_t k = 0; k < nodes.size(); ++k) {
+            if (nodes[k] < 0 || static_cast<size_t>(nodes[k]) >= nodeCount) {
+                ctx.fail(indexed("scenes", static_cast<size_t>(sceneIndex)) + indexed(".nodes", k),
+                         std::to_string(nodes[k]) + " is out of range: the file has " + std::to_string(nodeCount) + " nodes");
+            }
+            roots.push_back(nodes[k]);
+        }
+    } else {
+        for (size_t i = 0; i < nodeCount; ++i)
+            if (!hasParent[i]) roots.push_back(static_cast<int>(i));
+    }
+
+    Scene& scene = *ctx.scene;
+    std::vector<uint8_t> visited(nodeCount, 0);
+    std::vector<uint8_t> explicitShadow;
+    struct Pending {
+        int node;
+        glm::mat4 parentWorld;
+    };
+    std::vector<Pending> stack;
+    for (auto it = roots.rbegin(); it != roots.rend(); ++it) stack.push_back({*it, glm::mat4(1.0f)});
+    while (!stack.empty()) {
+        const Pending item = stack.back();
+        stack.pop_back();
+        const auto index = static_cast<size_t>(item.node);
+        const std::string where = indexed("nodes", index);
+        if (visited[index]) {
+            ctx.fail(where, "is reached twice: the node graph has a cycle, a node with two parents, or a node listed twice");
+        }
+        visited[index] = 1;
+        const tinygltf::Node& node = model.nodes[index];
+        const std::string nodeName = node.name.empty() ? where : node.name;
+        const glm::mat4 world = item.parentWorld * localMatrix(ctx, node, where);
+        if (!finite(world)) ctx.fail(where, "its world transform is not finite");
+
+        if (node.skin >= 0) ctx.warn(where + ".skin", "skinning is not supported; the mesh is drawn in its bind pose");
+        if (node.mesh >= 0) {
+            if (static_cast<size_t>(node.mesh) >= model.meshes.size()) {
+                ctx.fail(where + ".mesh", std::to_string(node.mesh) + " is out of range: the file has " +
+                                              std::to_string(model.meshes.size()) + " meshes");
+            }
+            scene.instances.push_back(MeshInstance{node.mesh, world, nodeName});
+        } else if (node.mesh < -1) {
+            ctx.fail(where + ".mesh", std::to_string(node.mesh) + " is out of range");
+        }
+        if (node.camera >= 0 || node.camera < -1) scene.cameras.push_back(convertCamera(ctx, node.camera, world, nodeName, where));
+        if (auto it = node.extensions.find("KHR_lights_punctual"); it != node.extensions.end()) {
+            const std::string at = where + ".extensions.KHR_lights_punctual";
+            const auto light = integerField(ctx, it->second, "light", at);
+            if (!light) ctx.fail(at + ".light", "missing");
+            bool isExplicit = false;
+            scene.lights.push_back(convertLight(ctx, *light, world, nodeName, where, isExplicit));
+            explicitShadow.push_back(isExplicit ? 1 : 0);
+        }
+        for (auto child = node.children.rbegin(); child != node.children.rend(); ++child) {
+            stack.push_back({*child, world});
+        }
+    }
+
+    // Without any explicit castsShadow, the first directional light casts shadows.
+    if (std::find(explicitShadow.begin(), explicitShadow.end(), 1) == explicitShadow.end()) {
+        for (Light& light : scene.lights) {
+            if (light.type == LightType::Directional) {
+                light.castsShadow = true;
+                break;
+            }
+        }
+    }
+}
+
+std::string lowercase(std::string s) {
+    for (char& c : s) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+    return s;
+}
+
+std::string jsonError(const std::exception& e) {
+    // nlohmann's messages start with "[json.exception.parse_error.101] "; keep what follows.
+    std::string what = e.what();
+    if (!what.empty() && what[0] == '[') {
+        const size_t end = what.find("] ");
+        if (end != std::string::npos) what = what.substr(end + 2);
+    }
+    return what;
+}
+
+}  // namespace
+
+Scene loadScene(const fs::path& path) {
+    const std::string file = path.string();
+    const std::string extension = lowercase(path.extension().string());
+    if (extension != ".gltf" && extension != ".glb") {
+        fail(file, "", "unsupported file type '" + extension + "' (expected .gltf or .glb)");
+    }
+    std::vector<uint8_t> bytes = readRegularFile(path, file);
+    std::error_code ec;
+    const fs::path absolute = fs::absolute(path, ec);
+    if (ec) fail(file, "", "cannot resolve the path: " + ec.message());
+    const fs::path folder = absolute.lexically_normal().parent_path();
+
+    const bool isGlb = extension == ".glb";
+    GlbChunks glb;
+    std::span<const uint8_t> jsonText(bytes);
+    if (isGlb) {
+        glb = splitGlb(bytes, file);
+        jsonText = glb.json;
+    } else {
+        if (bytes.empty()) fail(file, "", "empty file");
+        if (bytes.size() >= 4 && std::equal(bytes.begin(), bytes.begin() + 4, "glTF")) {
+            fail(file, "", "binary glTF content in a .gltf file (name it .glb)");
+        }
+    }
+    if (jsonNestingDepth(jsonText, kMaxJsonDepth) > kMaxJsonDepth) {
+        fail(file, "JSON", "nested deeper than " + std::to_string(kMaxJsonDepth) + " levels");
+    }
+    PrepassResult prepass;
+    {
+        nlohmann::json doc;
+        try {
+            doc = nlohmann::json::parse(jsonText.begin(), jsonText.end());
+        } catch (const nlohmann::json::exception& e) {
+            fail(file, "JSON", jsonError(e));
+        }
+        prepass = checkDocument(doc, file, folder, isGlb ? &glb : nullptr);
+    }
+
+    tinygltf::TinyGLTF loader;
+    FsState fsState{folder};
+    loader.SetFsCallbacks(tinygltf::FsCallbacks{&fileExists, &expandFilePath, &readWholeFile, &writeWholeFile, &fsState});
+    ImageState imageState;
+    loader.SetImageLoader(&loadImage, &imageState);
+    tinygltf::Model model;
+    std::string err, warn;
+    const bool ok =
+        isGlb ? loader.LoadBinaryFromMemory(&model, &err, &warn, bytes.data(), static_cast<unsigned>(bytes.size()),
+                                            folder.string())
+              : loader.LoadASCIIFromString(&model, &err, &warn, reinterpret_cast<const char*>(bytes.data()),
+                                           static_cast<unsigned>(bytes.size()), folder.string());
+    if (imageState.error) fail(file, "", *imageState.error);
+    if (!ok) fail(file, "", "glTF parse error: " + (err.empty() ? std::string("unknown") : err));
+    bytes = {};
+
+    Scene scene;
+    scene.sourcePath = path;
+    scene.warnings = std::move(prepass.warnings);
+    {
+        std::istringstream lines(warn);
+        for (std::string line; std::getline(lines, line);) {
+            if (!line.empty()) scene.warnings.push_back(file + ": " + line);
+        }
+    }
+    scene.environmentPath = prepass.environmentPath;
+    scene.environmentIntensity = prepass.environmentIntensity;
+
+    LoadContext ctx;
+    ctx.file = file;
+    ctx.folder = folder;
+    ctx.model = &model;
+    ctx.scene = &scene;
+    ctx.unsupportedImageFormat = std::move(imageState.unsupported);
+    ctx.unsupportedImageFormat.resize(model.images.size());
+
+    for (size_t i = 0; i < model.images.size(); ++i) {
+        tinygltf::Image& in = model.images[i];
+        const std::string where = indexed("images", i);
+        Image out;
+        out.name = !in.uri.empty() ? in.uri : !in.name.empty() ? in.name : where;
+        if (!ctx.unsupportedImageFormat[i].empty()) {
+            ctx.warn(where, ctx.unsupportedImageFormat[i] + " is not decoded (PNG and JPEG are supported)");
+        } else if (in.image.empty() || in.width <= 0 || in.height <= 0 || in.component != 4) {
+            ctx.fail(where, "no pixel data could be read");
+        } else {
+            out.width = static_cast<uint32_t>(in.width);
+            out.height = static_cast<uint32_t>(in.height);
+            out.rgba8 = std::move(in.image);
+        }
+        scene.images.push_back(std::move(out));
+    }
+    convertSamplers(ctx);
+    convertMaterials(ctx);
+    convertMeshes(ctx);
+    convertNodes(ctx);
+    return scene;
+}
+
+}  // namespace preskin::gltf

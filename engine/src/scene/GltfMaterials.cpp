@@ -1,0 +1,286 @@
+// glTF samplers, textures and materials, core and extensions (see GltfMaterials.h).
+#include "scene/GltfMaterials.h"
+
+#include <algorithm>
+#include <cmath>
+#include <set>
+
+namespace preskin::gltf {
+
+namespace {
+
+Filter filterOf(bool nearest) { return nearest ? Filter::Nearest : Filter::Linear; }
+
+Wrap wrapOf(const LoadContext& ctx, int mode, const std::string& where) {
+    switch (mode) {
+    case TINYGLTF_TEXTURE_WRAP_REPEAT: return Wrap::Repeat;
+    case TINYGLTF_TEXTURE_WRAP_CLAMP_TO_EDGE: return Wrap::ClampToEdge;
+    case TINYGLTF_TEXTURE_WRAP_MIRRORED_REPEAT: return Wrap::MirroredRepeat;
+    default: ctx.fail(where, std::to_string(mode) + " is not a glTF wrap mode");
+    }
+}
+
+// The image and sampler a texture index resolves to; image -1 when the texture has no source
+// preskin can read (a warning says so).
+std::pair<int, int> resolveTexture(const LoadContext& ctx, int textureIndex, const std::string& where) {
+    const tinygltf::Model& model = *ctx.model;
+    if (textureIndex < 0 || static_cast<size_t>(textureIndex) >= model.textures.size()) {
+        ctx.fail(where + ".index", std::to_string(textureIndex) + " is out of range: the file has " +
+                                       std::to_string(model.textures.size()) + " textures");
+    }
+    const std::string textureName = indexed("textures", static_cast<size_t>(textureIndex));
+    const tinygltf::Texture& texture = model.textures[static_cast<size_t>(textureIndex)];
+    if (texture.sampler >= 0 && static_cast<size_t>(texture.sampler) >= model.samplers.size()) {
+        ctx.fail(textureName + ".sampler", std::to_string(texture.sampler) + " is out of range: the file has " +
+                                               std::to_string(model.samplers.size()) + " samplers");
+    }
+    if (texture.source < 0) {
+        ctx.warn(where, textureName + " has no PNG or JPEG source (only an extension's); the texture is ignored");
+        return {-1, -1};
+    }
+    if (static_cast<size_t>(texture.source) >= model.images.size()) {
+        ctx.fail(textureName + ".source", std::to_string(texture.source) + " is out of range: the file has " +
+                                              std::to_string(model.images.size()) + " images");
+    }
+    const auto image = static_cast<size_t>(texture.source);
+    if (!ctx.unsupportedImageFormat[image].empty()) {
+        ctx.fail(where, indexed("images", image) + " is " + ctx.unsupportedImageFormat[image] +
+                            ", an unsupported image format (PNG and JPEG are supported)");
+    }
+    return {texture.source, texture.sampler};
+}
+
+void warnTexCoord(const LoadContext& ctx, int texCoord, const std::string& where) {
+    if (texCoord != 0) {
+        ctx.warn(where, "uses TEXCOORD_" + std::to_string(texCoord) + "; only TEXCOORD_0 is loaded, so set 0 is used");
+    }
+}
+
+template <typename Info>
+TextureRef textureRef(const LoadContext& ctx, const Info& info, const std::string& where) {
+    TextureRef ref;
+    if (info.index < 0) return ref;  // absent
+    const auto [image, sampler] = resolveTexture(ctx, info.index, where);
+    if (image < 0) return ref;
+    ref.image = image;
+    ref.sampler = sampler;
+    warnTexCoord(ctx, info.texCoord, where + ".texCoord");
+    auto it = info.extensions.find("KHR_texture_transform");
+    if (it != info.extensions.end()) {
+        const tinygltf::Value& t = it->second;
+        const std::string at = where + ".extensions.KHR_texture_transform";
+        if (!t.IsObject()) ctx.fail(at, "not an object");
+        ref.uvOffset = vec2Field(ctx, t, "offset", at).value_or(glm::vec2(0.0f));
+        ref.uvRotation = static_cast<float>(numberField(ctx, t, "rotation", at).value_or(0.0));
+        ref.uvScale = vec2Field(ctx, t, "scale", at).value_or(glm::vec2(1.0f));
+        if (auto texCoord = integerField(ctx, t, "texCoord", at)) warnTexCoord(ctx, *texCoord, at + ".texCoord");
+    }
+    return ref;
+}
+
+SkinTextureRef skinTextureRef(const LoadContext& ctx, const tinygltf::Value& skin, const char* key,
+                              const std::string& where, float* scaleOut) {
+    SkinTextureRef ref;
+    if (!skin.Has(key)) return ref;
+    const tinygltf::Value& info = skin.Get(key);
+    const std::string at = where + "." + key;
+    if (!info.IsObject()) ctx.fail(at, "not a textureInfo object");
+    const auto index = integerField(ctx, info, "index", at);
+    if (!index) ctx.fail(at + ".index", "missing");
+    const auto [image, sampler] = resolveTexture(ctx, *index, at);
+    ref.image = image;
+    ref.sampler = sampler;
+    if (auto texCoord = integerField(ctx, info, "texCoord", at)) warnTexCoord(ctx, *texCoord, at + ".texCoord");
+    if (scaleOut) {
+        if (auto scale = numberField(ctx, info, "scale", at)) *scaleOut = static_cast<float>(*scale);
+    }
+    if (info.Has("extensions") && info.Get("extensions").Has("KHR_texture_transform")) {
+        ctx.warn(at, "KHR_texture_transform is not applied to skin textures; ignored");
+    }
+    return ref;
+}
+
+float clampedFactor(const LoadContext& ctx, double value, double lo, double hi, const std::string& where) {
+    if (!std::isfinite(value)) ctx.fail(where, "not finite");
+    if (value < lo || value > hi) {
+        ctx.warn(where, std::to_string(value) + " is outside [" + std::to_string(lo) + ", " + std::to_string(hi) +
+                            "]; clamped");
+        value = std::clamp(value, lo, hi);
+    }
+    return static_cast<float>(value);
+}
+
+// A PRESKIN_materials_skin number with its allowed range.
+void skinNumber(const LoadContext& ctx, const tinygltf::Value& skin, const char* key, const std::string& where,
+                float& out, double lo, double hi, bool loOpen = false) {
+    auto v = numberField(ctx, skin, key, where);
+    if (!v) return;
+    if (*v < lo || *v > hi || (loOpen && *v == lo)) {
+        ctx.fail(where + "." + key, std::to_string(*v) + " is outside " + (loOpen ? "(" : "[") + std::to_string(lo) +
+                                        ", " + (std::isinf(hi) ? "inf)" : std::to_string(hi) + "]"));
+    }
+    out = static_cast<float>(*v);
+}
+
+SkinMaterial parseSkinExtension(const LoadContext& ctx, const tinygltf::Value& skin, const std::string& where,
+                                SkinMaterial s) {
+    if (!skin.IsObject()) ctx.fail(where, "not an object");
+    static const std::set<std::string> known = {
+        "scatterScale",     "curvatureSource",     "curvatureTexture",  "curvatureTextureScalePerM",
+        "normalLodBias",    "detailNormalTexture", "detailUvScale",     "transmission",
+        "transmissionColor", "thicknessScale",     "specularIntensity", "specularTexture",
+        "lobeRoughness0",   "lobeRoughness1",      "lobeMix"};
+    for (const std::string& key : skin.Keys()) {
+        if (!known.count(key) && key != "extensions" && key != "extras") ctx.warn(where + "." + key, "unknown field; ignored");
+    }
+    constexpr double inf = std::numeric_limits<double>::infinity();
+    skinNumber(ctx, skin, "scatterScale", where, s.scatterScale, 0.0, inf, true);
+    if (auto source = stringField(ctx, skin, "curvatureSource", where)) {
+        if (*source == "vertex") s.curvatureSource = CurvatureSource::Vertex;
+        else if (*source == "texture") s.curvatureSource = CurvatureSource::Texture;
+        else if (*source == "derivatives") s.curvatureSource = CurvatureSource::Derivatives;
+        else ctx.fail(where + ".curvatureSource", "'" + *source + "' (expected vertex, texture or derivatives)");
+    }
+    s.curvatureTexture = skinTextureRef(ctx, skin, "curvatureTexture", where, nullptr);
+    if (s.curvatureSource == CurvatureSource::Texture && !s.curvatureTexture.valid()) {
+        ctx.fail(where + ".curvatureSource", "'texture' but there is no usable curvatureTexture");
+    }
+    skinNumber(ctx, skin, "curvatureTextureScalePerM", where, s.curvatureTextureScalePerM, 0.0, inf);
+    if (auto bias = vec3Field(ctx, skin, "normalLodBias", where)) s.normalLodBias = *bias;
+    s.detailNormalTexture = skinTextureRef(ctx, skin, "detailNormalTexture", where, &s.detailNormalScale);
+    skinNumber(ctx, skin, "detailUvScale", where, s.detailUvScale, 0.0, inf, true);
+    skinNumber(ctx, skin, "transmission", where, s.transmission, 0.0, inf);
+    if (auto color = vec3Field(ctx, skin, "transmissionColor", where)) {
+        if (glm::any(glm::lessThan(*color, glm::vec3(0.0f)))) ctx.fail(where + ".transmissionColor", "negative component");
+        s.transmissionColor = *color;
+    }
+    skinNumber(ctx, skin, "thicknessScale", where, s.thicknessScale, 0.0, inf, true);
+    skinNumber(ctx, skin, "specularIntensity", where, s.specularIntensity, 0.0, inf);
+    s.specularTexture = skinTextureRef(ctx, skin, "specularTexture", where, nullptr);
+    skinNumber(ctx, skin, "lobeRoughness0", where, s.lobeRoughness0, 0.0, inf, true);
+    skinNumber(ctx, skin, "lobeRoughness1", where, s.lobeRoughness1, 0.0, inf, true);
+    skinNumber(ctx, skin, "lobeMix", where, s.lobeMix, 0.0, 1.0);
+    return s;
+}
+
+}  // namespace
+
+SkinMaterial seededSkin(const Material& material, const SkinMaterial& defaults) {
+    SkinMaterial s = defaults;
+    if (material.diffuseTransmissionFactor) s.transmission = *material.diffuseTransmissionFactor;
+    if (material.diffuseTransmissionColor) s.transmissionColor = *material.diffuseTransmissionColor;
+    if (material.volumeThicknessFactor) s.thicknessScale = *material.volumeThicknessFactor;
+    return s;
+}
+
+void convertSamplers(const LoadContext& ctx) {
+    const tinygltf::Model& model = *ctx.model;
+    for (size_t i = 0; i < model.samplers.size(); ++i) {
+        const tinygltf::Sampler& in = model.samplers[i];
+        const std::string where = indexed("samplers", i);
+        Sampler out;
+        switch (in.magFilter) {
+        case -1:
+        case TINYGLTF_TEXTURE_FILTER_LINEAR: out.magFilter = Filter::Linear; break;
+        case TINYGLTF_TEXTURE_FILTER_NEAREST: out.magFilter = Filter::Nearest; break;
+        default: ctx.fail(where + ".magFilter", std::to_string(in.magFilter) + " is not a glTF magnification filter");
+        }
+        switch (in.minFilter) {
+        case -1: break;  // undefined: trilinear
+        case TINYGLTF_TEXTURE_FILTER_NEAREST:
+        case TINYGLTF_TEXTURE_FILTER_LINEAR:
+            out.minFilter = filterOf(in.minFilter == TINYGLTF_TEXTURE_FILTER_NEAREST);
+            out.mipmaps = false;
+            break;
+        case TINYGLTF_TEXTURE_FILTER_NEAREST_MIPMAP_NEAREST:
+        case TINYGLTF_TEXTURE_FILTER_LINEAR_MIPMAP_NEAREST:
+        case TINYGLTF_TEXTURE_FILTER_NEAREST_MIPMAP_LINEAR:
+        case TINYGLTF_TEXTURE_FILTER_LINEAR_MIPMAP_LINEAR:
+            out.minFilter = filterOf(in.minFilter == TINYGLTF_TEXTURE_FILTER_NEAREST_MIPMAP_NEAREST ||
+                                     in.minFilter == TINYGLTF_TEXTURE_FILTER_NEAREST_MIPMAP_LINEAR);
+            out.mipFilter = filterOf(in.minFilter == TINYGLTF_TEXTURE_FILTER_NEAREST_MIPMAP_NEAREST ||
+                                     in.minFilter == TINYGLTF_TEXTURE_FILTER_LINEAR_MIPMAP_NEAREST);
+            out.mipmaps = true;
+            break;
+        default: ctx.fail(where + ".minFilter", std::to_string(in.minFilter) + " is not a glTF minification filter");
+        }
+        out.wrapU = wrapOf(ctx, in.wrapS, where + ".wrapS");
+        out.wrapV = wrapOf(ctx, in.wrapT, where + ".wrapT");
+        ctx.scene->samplers.push_back(out);
+    }
+}
+
+void convertMaterials(const LoadContext& ctx) {
+    const tinygltf::Model& model = *ctx.model;
+    for (size_t i = 0; i < model.materials.size(); ++i) {
+        const tinygltf::Material& in = model.materials[i];
+        const std::string where = indexed("materials", i);
+        const std::string pbr = where + ".pbrMetallicRoughness";
+        Material out;
+        out.name = in.name.empty() ? where : in.name;
+
+        if (auto c = fixedArray(ctx, in.pbrMetallicRoughness.baseColorFactor, 4, pbr + ".baseColorFactor")) {
+            for (int k = 0; k < 4; ++k) {
+                out.baseColorFactor[k] =
+                    clampedFactor(ctx, (*c)[static_cast<size_t>(k)], 0.0, 1.0, pbr + ".baseColorFactor");
+            }
+        }
+        out.metallicFactor = clampedFactor(ctx, in.pbrMetallicRoughness.metallicFactor, 0.0, 1.0, pbr + ".metallicFactor");
+        out.roughnessFactor = clampedFactor(ctx, in.pbrMetallicRoughness.roughnessFactor, 0.0, 1.0, pbr + ".roughnessFactor");
+        out.baseColor = textureRef(ctx, in.pbrMetallicRoughness.baseColorTexture, pbr + ".baseColorTexture");
+        out.metallicRoughness =
+            textureRef(ctx, in.pbrMetallicRoughness.metallicRoughnessTexture, pbr + ".metallicRoughnessTexture");
+        out.normal = textureRef(ctx, in.normalTexture, where + ".normalTexture");
+        if (!std::isfinite(in.normalTexture.scale)) ctx.fail(where + ".normalTexture.scale", "not finite");
+        out.normal.scale = static_cast<float>(in.normalTexture.scale);
+        out.occlusion = textureRef(ctx, in.occlusionTexture, where + ".occlusionTexture");
+        out.occlusion.scale = clampedFactor(ctx, in.occlusionTexture.strength, 0.0, 1.0, where + ".occlusionTexture.strength");
+        out.emissive = textureRef(ctx, in.emissiveTexture, where + ".emissiveTexture");
+        if (auto e = fixedArray(ctx, in.emissiveFactor, 3, where + ".emissiveFactor")) {
+            for (int k = 0; k < 3; ++k) {
+                out.emissiveFactor[k] = clampedFactor(ctx, (*e)[static_cast<size_t>(k)], 0.0, 1.0, where + ".emissiveFactor");
+            }
+        }
+
+        if (in.alphaMode == "OPAQUE") out.alphaMode = AlphaMode::Opaque;
+        else if (in.alphaMode == "MASK") out.alphaMode = AlphaMode::Mask;
+        else if (in.alphaMode == "BLEND") out.alphaMode = AlphaMode::Blend;
+        else ctx.fail(where + ".alphaMode", "'" + in.alphaMode + "' (expected OPAQUE, MASK or BLEND)");
+        if (!std::isfinite(in.alphaCutoff) || in.alphaCutoff < 0.0) ctx.fail(where + ".alphaCutoff", "must be finite and >= 0");
+        out.alphaCutoff = static_cast<float>(in.alphaCutoff);
+        out.doubleSided = in.doubleSided;
+
+        const auto& ext = in.extensions;
+        if (auto it = ext.find("KHR_materials_emissive_strength"); it != ext.end()) {
+            const std::string at = where + ".extensions.KHR_materials_emissive_strength";
+            const double strength = numberField(ctx, it->second, "emissiveStrength", at).value_or(1.0);
+            if (strength < 0.0) ctx.fail(at + ".emissiveStrength", "negative");
+            out.emissiveFactor *= static_cast<float>(strength);
+        }
+        if (auto it = ext.find("KHR_materials_diffuse_transmission"); it != ext.end()) {
+            const std::string at = where + ".extensions.KHR_materials_diffuse_transmission";
+            out.diffuseTransmissionFactor = clampedFactor(
+                ctx, numberField(ctx, it->second, "diffuseTransmissionFactor", at).value_or(0.0), 0.0, 1.0,
+                at + ".diffuseTransmissionFactor");
+            out.diffuseTransmissionColor =
+                glm::clamp(vec3Field(ctx, it->second, "diffuseTransmissionColorFactor", at).value_or(glm::vec3(1.0f)),
+                           0.0f, 1.0f);
+            if (it->second.Has("diffuseTransmissionTexture") || it->second.Has("diffuseTransmissionColorTexture")) {
+                ctx.warn(at, "transmission textures are not used; only the factors are read");
+            }
+        }
+        if (auto it = ext.find("KHR_materials_volume"); it != ext.end()) {
+            const std::string at = where + ".extensions.KHR_materials_volume";
+            const double thickness = numberField(ctx, it->second, "thicknessFactor", at).value_or(0.0);
+            if (thickness < 0.0) ctx.fail(at + ".thicknessFactor", "negative");
+            if (thickness > 0.0) out.volumeThicknessFactor = static_cast<float>(thickness);
+        }
+        if (auto it = ext.find("PRESKIN_materials_skin"); it != ext.end()) {
+            out.skin = parseSkinExtension(ctx, it->second, where + ".extensions.PRESKIN_materials_skin",
+                                          seededSkin(out, SkinMaterial{}));
+        }
+        ctx.scene->materials.push_back(std::move(out));
+    }
+}
+
+}  // namespace preskin::gltf

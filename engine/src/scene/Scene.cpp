@@ -1,0 +1,60 @@
+// preskin::Scene: loading (delegated to the glTF loader), world bounds, turning materials into
+// skin, and the KHR_texture_transform matrix of a texture reference.
+#include <preskin/Error.h>
+#include <preskin/Scene.h>
+
+#include "scene/GltfLoader.h"
+#include "scene/GltfMaterials.h"
+
+#include <cmath>
+
+namespace preskin {
+
+glm::mat3 TextureRef::uvTransform() const {
+    // KHR_texture_transform: T(offset) * R(rotation) * S(scale) with
+    //   R = | cos  sin 0 |
+    //       |-sin  cos 0 |
+    //       |  0    0  1 |   (rows), so uv' = (sx u cos + sy v sin + ox, -sx u sin + sy v cos + oy).
+    const float c = std::cos(uvRotation), s = std::sin(uvRotation);
+    glm::mat3 m(1.0f);  // glm: m[column][row]
+    m[0] = glm::vec3(uvScale.x * c, -uvScale.x * s, 0.0f);
+    m[1] = glm::vec3(uvScale.y * s, uvScale.y * c, 0.0f);
+    m[2] = glm::vec3(uvOffset.x, uvOffset.y, 1.0f);
+    return m;
+}
+
+Scene Scene::load(const std::filesystem::path& path) { return gltf::loadScene(path); }
+
+Bounds Scene::worldBounds() const {
+    Bounds bounds;
+    for (const MeshInstance& instance : instances) {
+        if (instance.mesh < 0 || static_cast<size_t>(instance.mesh) >= meshes.size()) continue;
+        for (const Primitive& primitive : meshes[static_cast<size_t>(instance.mesh)].primitives) {
+            const Bounds& b = primitive.boundsOs;
+            if (b.empty()) continue;
+            for (int corner = 0; corner < 8; ++corner) {
+                const glm::vec3 p((corner & 1) ? b.max.x : b.min.x, (corner & 2) ? b.max.y : b.min.y,
+                                  (corner & 4) ? b.max.z : b.min.z);
+                bounds.extend(glm::vec3(instance.worldFromObject * glm::vec4(p, 1.0f)));
+            }
+        }
+    }
+    return bounds;
+}
+
+void Scene::makeSkin(const std::string& materialName, const SkinMaterial& defaults) {
+    bool found = false;
+    for (Material& material : materials) {
+        if (materialName != "all" && material.name != materialName) continue;
+        found = true;
+        if (!material.skin) material.skin = gltf::seededSkin(material, defaults);
+    }
+    if (!found) {
+        std::string names;
+        for (const Material& material : materials) names += (names.empty() ? "" : ", ") + material.name;
+        throw Error(sourcePath.string() + ": no material named '" + materialName + "' (materials: " +
+                    (names.empty() ? "none" : names) + ")");
+    }
+}
+
+}  // namespace preskin
