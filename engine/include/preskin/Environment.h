@@ -1,0 +1,68 @@
+// Distant lighting from an HDR environment, as 9 RGB spherical-harmonic coefficients (L2).
+// Projection and evaluation follow Ramamoorthi & Hanrahan, "An Efficient Representation for
+// Irradiance Environment Maps" (SIGGRAPH 2001): real SH basis with their constants; irradiance
+// is radiance convolved with Lambert's zonal kernel A_l = (pi, 2pi/3, pi/4).
+// Equirectangular convention: image column u in [0,1) is longitude phi = 2 pi (u - 0.5) measured
+// from +X towards +Z; row v in [0,1] is the polar angle theta = pi v from +Y (up). Hence
+// direction = (sin(theta) cos(phi), cos(theta), sin(theta) sin(phi)).
+#pragma once
+
+#include <preskin/Export.h>
+
+#include <glm/glm.hpp>
+
+#include <array>
+#include <filesystem>
+#include <vector>
+
+namespace preskin {
+
+struct ShRgb {
+    std::array<glm::vec3, 9> c{};  // index l*l + l + m: (0,0) (1,-1) (1,0) (1,1) (2,-2) (2,-1) (2,0) (2,1) (2,2)
+};
+
+// The 9 real SH basis functions at a unit direction.
+PRESKIN_API std::array<float, 9> shBasis(const glm::vec3& direction);
+// Sum of c_lm * Y_lm(direction), each band scaled by bandScale[l] (1,1,1: the function itself;
+// Lambert's (pi, 2pi/3, pi/4): irradiance).
+PRESKIN_API glm::vec3 evaluateSh(const ShRgb& sh, const glm::vec3& direction,
+                                 const glm::vec3& bandScale = glm::vec3(1.0f));
+inline constexpr float kPi = 3.14159265358979323846f;
+inline const glm::vec3 kLambertBands{kPi, 2.0f * kPi / 3.0f, kPi / 4.0f};
+
+// Linear RGB equirectangular image.
+struct EquirectImage {
+    uint32_t width = 0;
+    uint32_t height = 0;
+    std::vector<float> rgb;  // width * height * 3, top row first
+
+    glm::vec3 texel(uint32_t x, uint32_t y) const {
+        const size_t i = (size_t(y) * width + x) * 3;
+        return {rgb[i], rgb[i + 1], rgb[i + 2]};
+    }
+    static glm::vec3 directionAt(float u, float v);
+};
+
+// Projects radiance onto SH by integrating over every texel with its exact solid angle.
+PRESKIN_API ShRgb projectEquirect(const EquirectImage& image);
+
+class PRESKIN_API Environment {
+public:
+    // Reads an equirectangular .hdr or .exr (any format OpenImageIO reads); throws
+    // preskin::Error naming the file on a missing, unreadable, non-2:1 or non-finite image.
+    static Environment load(const std::filesystem::path& path, float intensity = 1.0f);
+    // Uniform radiance in every direction.
+    static Environment constant(const glm::vec3& radiance);
+
+    const ShRgb& radianceSh() const { return radianceSh_; }
+    // The decoded image (empty for constant environments); kept for CPU references.
+    const EquirectImage& image() const { return image_; }
+    float intensity() const { return intensity_; }
+
+private:
+    ShRgb radianceSh_;
+    EquirectImage image_;
+    float intensity_ = 1.0f;
+};
+
+}  // namespace preskin

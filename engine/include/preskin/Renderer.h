@@ -1,0 +1,140 @@
+// The sample renderer around the skin module: uploads a Scene, and renders frames of
+//   shadow pass (one directional light) -> light clustering (compute) -> one forward pass
+// either headless into an image it reads back, or into a host's command buffer and target.
+// Skin adds no pass: all skin work happens in the forward pass's fragment shader.
+#pragma once
+
+#include <preskin/Context.h>
+#include <preskin/Environment.h>
+#include <preskin/Export.h>
+#include <preskin/Scene.h>
+#include <preskin/View.h>
+
+#include <vulkan/vulkan_core.h>
+
+#include <cstdint>
+#include <filesystem>
+#include <memory>
+#include <string>
+#include <vector>
+
+namespace preskin {
+
+class LutSet;
+
+// Each technique of the skin path on or off; off falls back to its standard equivalent
+// (Lambert NoL, one normal, plain PCF shadow, Lambert SH, no transmission, one GGX lobe).
+struct SkinFeatures {
+    bool lutDiffuse = true;
+    bool normalPrefilter = true;
+    bool penumbra = true;
+    bool shAmbient = true;
+    bool transmission = true;
+    bool dualSpecular = true;
+
+    static SkinFeatures none() { return {false, false, false, false, false, false}; }
+    uint32_t mask() const;
+    bool operator==(const SkinFeatures&) const = default;
+};
+
+enum class DebugView { None, Curvature, Normals, Shadow, Penumbra, LightCount, ShAmbient, Transmission };
+
+// How the forward pass finds the local (point and spot) lights of a fragment.
+enum class LightLoop { Clustered, All };
+
+// Light clustering grid (froxels): screen tiles times depth slices.
+struct ClusterSettings {
+    uint32_t tileSizePx = 64;
+    uint32_t depthSlices = 24;
+    float nearSliceM = 0.05f;            // the first slice ends here; slices are logarithmic beyond
+    uint32_t maxLightsPerCluster = 256;  // overflow rule: see README ("Light clustering")
+};
+
+struct RenderSettings {
+    SkinFeatures skin;
+    DebugView debugView = DebugView::None;
+    LightLoop lightLoop = LightLoop::Clustered;
+    ClusterSettings clusters;
+    float exposure = 1.0f;
+    uint32_t shadowMapSize = 2048;
+    float shadowSoftnessTexels = 1.5f;  // Gaussian sigma of the PCF kernel, in shadow-map texels
+    bool shadows = true;
+};
+
+enum class OutputEncoding {
+    DisplaySrgb8,  // tone-mapped, sRGB-encoded 8-bit (PNG)
+    LinearFloat,   // scene-referred linear radiance times exposure (EXR)
+};
+
+struct RenderedImage {
+    uint32_t width = 0;
+    uint32_t height = 0;
+    OutputEncoding encoding = OutputEncoding::DisplaySrgb8;
+    std::vector<uint8_t> rgba8;  // DisplaySrgb8
+    std::vector<float> rgba32f;  // LinearFloat
+};
+
+struct PassTime {
+    std::string name;
+    double gpuMs = 0.0;
+};
+
+struct FrameStats {
+    std::vector<PassTime> passes;  // GPU timestamps per pass (empty when unsupported)
+    double gpuMs = 0.0;            // first to last timestamp
+    double wallMs = 0.0;           // CPU wall clock of record + submit + wait (headless only)
+    uint32_t lightCount = 0;
+    uint32_t clusterOverflows = 0;  // clusters whose list was truncated (see ClusterSettings)
+    double clusterBuildCpuMs = 0.0;  // CPU time of the light-list build (part of wallMs)
+};
+
+// Where `record` draws: the host's colour image, in `layoutBefore` on entry and left in
+// `layoutAfter`. An 8-bit UNORM/SRGB format gets tone-mapped output, a float one linear.
+struct RenderTarget {
+    VkImage image = VK_NULL_HANDLE;
+    VkImageView view = VK_NULL_HANDLE;
+    VkFormat format = VK_FORMAT_UNDEFINED;
+    VkExtent2D extent{};
+    VkImageLayout layoutBefore = VK_IMAGE_LAYOUT_UNDEFINED;
+    VkImageLayout layoutAfter = VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL;
+};
+
+class PRESKIN_API Renderer {
+public:
+    // luts may be null: skin materials then render with the standard model.
+    Renderer(Context& context, const Scene& scene, const Environment& environment, const LutSet* luts,
+             const RenderSettings& settings = {});
+    ~Renderer();
+    Renderer(const Renderer&) = delete;
+    Renderer& operator=(const Renderer&) = delete;
+
+    const RenderSettings& settings() const;
+    void setSettings(const RenderSettings& settings);
+    // Replaces the lights (the scene's lights are the initial set).
+    void setLights(const std::vector<Light>& lights);
+    const std::vector<Light>& lights() const;
+    void setEnvironment(const Environment& environment);
+    void setLuts(const LutSet* luts);
+
+    // Headless: renders one frame and reads it back.
+    RenderedImage render(const View& view, uint32_t width, uint32_t height, OutputEncoding encoding);
+    // Embedded: records one frame into the host's command buffer. `frameSlot` (0 or 1) selects
+    // the per-frame buffers; the host must not reuse a slot before its previous frame finished.
+    void record(VkCommandBuffer cmd, const RenderTarget& target, const View& view, uint32_t frameSlot = 0);
+    // Timings of the last finished frame of a slot (reads its timestamp queries).
+    FrameStats frameStats(uint32_t frameSlot = 0) const;
+
+    struct Impl;
+
+private:
+    std::unique_ptr<Impl> impl_;
+};
+
+// Writes an image atomically (a temporary file renamed into place): .png for DisplaySrgb8,
+// .exr (half float) for LinearFloat. Throws preskin::Error naming the path on failure.
+PRESKIN_API void writeImage(const std::filesystem::path& path, const RenderedImage& image);
+// Throws preskin::Error unless `path` has a supported extension for the encoding and its
+// folder exists and is writable; call before expensive work.
+PRESKIN_API void checkOutputPath(const std::filesystem::path& path, OutputEncoding encoding);
+
+}  // namespace preskin

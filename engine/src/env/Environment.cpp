@@ -1,0 +1,114 @@
+// Environment loading (OpenImageIO) and L2 SH projection; see <preskin/Environment.h>.
+#include <preskin/Environment.h>
+#include <preskin/Error.h>
+
+#include <OpenImageIO/imageio.h>
+#include <fmt/core.h>
+#include <tbb/parallel_reduce.h>
+#include <tbb/blocked_range.h>
+
+#include <algorithm>
+#include <cmath>
+
+namespace preskin {
+
+std::array<float, 9> shBasis(const glm::vec3& d) {
+    return {0.282095f,
+            0.488603f * d.y,
+            0.488603f * d.z,
+            0.488603f * d.x,
+            1.092548f * d.x * d.y,
+            1.092548f * d.y * d.z,
+            0.315392f * (3.0f * d.z * d.z - 1.0f),
+            1.092548f * d.x * d.z,
+            0.546274f * (d.x * d.x - d.y * d.y)};
+}
+
+glm::vec3 evaluateSh(const ShRgb& sh, const glm::vec3& direction, const glm::vec3& bandScale) {
+    const auto y = shBasis(direction);
+    glm::vec3 sum = sh.c[0] * y[0] * bandScale[0];
+    for (int i = 1; i < 4; ++i) sum += sh.c[i] * y[i] * bandScale[1];
+    for (int i = 4; i < 9; ++i) sum += sh.c[i] * y[i] * bandScale[2];
+    return sum;
+}
+
+glm::vec3 EquirectImage::directionAt(float u, float v) {
+    const float phi = 2.0f * kPi * (u - 0.5f);
+    const float theta = kPi * v;
+    return {std::sin(theta) * std::cos(phi), std::cos(theta), std::sin(theta) * std::sin(phi)};
+}
+
+ShRgb projectEquirect(const EquirectImage& image) {
+    // Row y spans theta in [pi y/H, pi (y+1)/H]; its exact solid angle per texel is
+    // (2 pi / W) (cos(theta0) - cos(theta1)).
+    using Acc = std::array<glm::dvec3, 9>;
+    const Acc total = tbb::parallel_reduce(
+        tbb::blocked_range<uint32_t>(0, image.height), Acc{},
+        [&](const tbb::blocked_range<uint32_t>& rows, Acc acc) {
+            for (uint32_t y = rows.begin(); y != rows.end(); ++y) {
+                const double theta0 = M_PI * y / image.height;
+                const double theta1 = M_PI * (y + 1) / image.height;
+                const double solidAngle = (2.0 * M_PI / image.width) * (std::cos(theta0) - std::cos(theta1));
+                const float v = (static_cast<float>(y) + 0.5f) / static_cast<float>(image.height);
+                for (uint32_t x = 0; x < image.width; ++x) {
+                    const float u = (static_cast<float>(x) + 0.5f) / static_cast<float>(image.width);
+                    const auto basis = shBasis(EquirectImage::directionAt(u, v));
+                    const glm::dvec3 radiance(image.texel(x, y));
+                    for (int i = 0; i < 9; ++i) acc[i] += radiance * (double(basis[i]) * solidAngle);
+                }
+            }
+            return acc;
+        },
+        [](Acc a, const Acc& b) {
+            for (int i = 0; i < 9; ++i) a[i] += b[i];
+            return a;
+        });
+    ShRgb sh;
+    for (int i = 0; i < 9; ++i) sh.c[i] = glm::vec3(total[i]);
+    return sh;
+}
+
+Environment Environment::load(const std::filesystem::path& path, float intensity) {
+    const std::string name = path.string();
+    if (!std::isfinite(intensity) || intensity < 0.0f)
+        throw Error(fmt::format("{}: intensity: must be a finite number >= 0, got {}", name, intensity));
+    std::error_code ec;
+    if (!std::filesystem::is_regular_file(path, ec))
+        throw Error(fmt::format("{}: environment file not found", name));
+    auto input = OIIO::ImageInput::open(name);
+    if (!input) throw Error(fmt::format("{}: cannot read environment image: {}", name, OIIO::geterror()));
+    const OIIO::ImageSpec& spec = input->spec();
+    if (spec.width <= 0 || spec.height <= 0 || spec.width > 16384 || spec.height > 8192)
+        throw Error(fmt::format("{}: size: {}x{} is not a supported environment size (at most 16384x8192)", name,
+                                spec.width, spec.height));
+    if (spec.width != 2 * spec.height)
+        throw Error(fmt::format("{}: size: {}x{} is not equirectangular (width must be twice the height)", name,
+                                spec.width, spec.height));
+    if (spec.nchannels < 3)
+        throw Error(fmt::format("{}: channels: {} channel(s), RGB needed", name, spec.nchannels));
+    Environment env;
+    env.intensity_ = intensity;
+    env.image_.width = static_cast<uint32_t>(spec.width);
+    env.image_.height = static_cast<uint32_t>(spec.height);
+    env.image_.rgb.resize(size_t(spec.width) * spec.height * 3);
+    if (!input->read_image(0, 0, 0, 3, OIIO::TypeDesc::FLOAT, env.image_.rgb.data()))
+        throw Error(fmt::format("{}: cannot decode environment image: {}", name, input->geterror()));
+    for (size_t i = 0; i < env.image_.rgb.size(); ++i) {
+        float& v = env.image_.rgb[i];
+        if (!std::isfinite(v))
+            throw Error(fmt::format("{}: pixel ({}, {}): radiance {} is not finite", name,
+                                    (i / 3) % env.image_.width, (i / 3) / env.image_.width, v));
+        v = std::max(v, 0.0f) * intensity;  // tiny negatives from lossy EXR compression are clamped
+    }
+    env.radianceSh_ = projectEquirect(env.image_);
+    return env;
+}
+
+Environment Environment::constant(const glm::vec3& radiance) {
+    Environment env;
+    // A constant function c has only c_00 = c * sqrt(4 pi).
+    env.radianceSh_.c[0] = radiance * std::sqrt(4.0f * kPi);
+    return env;
+}
+
+}  // namespace preskin

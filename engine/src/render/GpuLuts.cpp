@@ -1,0 +1,34 @@
+#include "render/GpuLuts.h"
+
+#include "vk/Check.h"
+
+namespace preskin {
+
+GpuLuts::GpuLuts(const vk::Device& device, const LutSet* luts) : device_(device) {
+    VkSamplerCreateInfo info{VK_STRUCTURE_TYPE_SAMPLER_CREATE_INFO};
+    info.magFilter = VK_FILTER_LINEAR;
+    info.minFilter = VK_FILTER_LINEAR;
+    info.mipmapMode = VK_SAMPLER_MIPMAP_MODE_NEAREST;
+    info.addressModeU = info.addressModeV = info.addressModeW = VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_EDGE;
+    PRESKIN_VK(vkCreateSampler(device.device(), &info, nullptr, &sampler_));
+    (void)luts;
+    const uint8_t white[4] = {255, 255, 255, 255};
+    for (vk::Image& image : images_) {
+        image = vk::Image(device, {VK_FORMAT_R8G8B8A8_UNORM, 1, 1, 1,
+                                   VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_DST_BIT,
+                                   VK_IMAGE_ASPECT_COLOR_BIT});
+        image.uploadAndGenerateMips(white, sizeof(white));
+    }
+}
+
+GpuLuts::~GpuLuts() {
+    if (sampler_) vkDestroySampler(device_.device(), sampler_, nullptr);
+}
+
+std::array<VkDescriptorImageInfo, 4> GpuLuts::descriptors() const {
+    std::array<VkDescriptorImageInfo, 4> out{};
+    for (size_t i = 0; i < 4; ++i) out[i] = {sampler_, images_[i].view(), VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL};
+    return out;
+}
+
+}  // namespace preskin

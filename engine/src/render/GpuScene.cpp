@@ -1,0 +1,306 @@
+#include "render/GpuScene.h"
+
+#include "vk/Check.h"
+#include "vk/Pipeline.h"
+
+#include <fmt/core.h>
+
+#include <glm/gtc/matrix_inverse.hpp>
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+
+namespace preskin {
+
+static_assert(sizeof(Vertex) == 52, "Vertex is read by the GPU with the layout of forward.vert");
+
+namespace {
+
+VkFilter toVk(Filter f) { return f == Filter::Nearest ? VK_FILTER_NEAREST : VK_FILTER_LINEAR; }
+VkSamplerAddressMode toVk(Wrap w) {
+    switch (w) {
+    case Wrap::ClampToEdge: return VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_EDGE;
+    case Wrap::MirroredRepeat: return VK_SAMPLER_ADDRESS_MODE_MIRRORED_REPEAT;
+    default: return VK_SAMPLER_ADDRESS_MODE_REPEAT;
+    }
+}
+
+gpu::GpuUvTransform toGpu(const TextureRef& ref) {
+    const glm::mat3 m = ref.uvTransform();  // column-major: m[col][row]
+    return {glm::vec4(m[0][0], m[1][0], m[2][0], 0.0f), glm::vec4(m[0][1], m[1][1], m[2][1], 0.0f)};
+}
+
+// Normal-map texels per world millimetre: sqrt(texel area / surface area) over all triangles
+// drawn with the material (instance scale included).
+void accumulateTexelDensity(const Primitive& primitive, const glm::mat4& worldFromObject, double& uvArea,
+                            double& worldAreaMm2) {
+    const glm::mat3 m(worldFromObject);
+    for (size_t t = 0; t + 2 < primitive.indices.size(); t += 3) {
+        const Vertex& a = primitive.vertices[primitive.indices[t]];
+        const Vertex& b = primitive.vertices[primitive.indices[t + 1]];
+        const Vertex& c = primitive.vertices[primitive.indices[t + 2]];
+        const glm::vec3 e1 = m * (b.positionOs - a.positionOs) * 1000.0f;
+        const glm::vec3 e2 = m * (c.positionOs - a.positionOs) * 1000.0f;
+        worldAreaMm2 += 0.5 * double(glm::length(glm::cross(e1, e2)));
+        const glm::vec2 u1 = b.uv0 - a.uv0;
+        const glm::vec2 u2 = c.uv0 - a.uv0;
+        uvArea += 0.5 * std::abs(double(u1.x * u2.y - u1.y * u2.x));
+    }
+}
+
+}  // namespace
+
+glm::vec3 normalLodBias(const glm::vec3& widthMm, float scatterScale, float texelsPerMm) {
+    const float scale = std::max(scatterScale, 1e-6f);
+    return glm::log2(glm::vec3(1.0f) + widthMm / scale * texelsPerMm);
+}
+
+GpuScene::GpuScene(const vk::Device& device, const Scene& scene)
+    : device_(device), sceneMaterials_(scene.materials) {
+    const VkDevice dev = device.device();
+    // Geometry: one buffer each; draws keep their offsets.
+    std::vector<Vertex> allVertices;
+    std::vector<uint32_t> allIndices;
+    struct PrimitiveRange {
+        uint32_t firstIndex, indexCount;
+        int32_t vertexOffset;
+    };
+    std::vector<std::vector<PrimitiveRange>> meshRanges(scene.meshes.size());
+    for (size_t m = 0; m < scene.meshes.size(); ++m) {
+        for (const Primitive& p : scene.meshes[m].primitives) {
+            meshRanges[m].push_back({static_cast<uint32_t>(allIndices.size()), static_cast<uint32_t>(p.indices.size()),
+                                     static_cast<int32_t>(allVertices.size())});
+            allVertices.insert(allVertices.end(), p.vertices.begin(), p.vertices.end());
+            allIndices.insert(allIndices.end(), p.indices.begin(), p.indices.end());
+        }
+    }
+    vertices = vk::Buffer(device, std::max<size_t>(allVertices.size(), 1) * sizeof(Vertex),
+                          VK_BUFFER_USAGE_VERTEX_BUFFER_BIT, false);
+    vertices.upload(allVertices.data(), allVertices.size() * sizeof(Vertex));
+    indices = vk::Buffer(device, std::max<size_t>(allIndices.size(), 1) * sizeof(uint32_t),
+                         VK_BUFFER_USAGE_INDEX_BUFFER_BIT, false);
+    indices.upload(allIndices.data(), allIndices.size() * sizeof(uint32_t));
+
+    // Instances and draws; texel density per material.
+    const uint32_t defaultMaterial = static_cast<uint32_t>(scene.materials.size());
+    std::vector<gpu::GpuInstance> instanceData;
+    std::vector<double> uvArea(scene.materials.size() + 1, 0.0);
+    std::vector<double> worldArea(scene.materials.size() + 1, 0.0);
+    for (const MeshInstance& inst : scene.instances) {
+        if (inst.mesh < 0 || size_t(inst.mesh) >= scene.meshes.size()) continue;
+        const glm::mat3 m3(inst.worldFromObject);
+        const float det = std::abs(glm::determinant(m3));
+        gpu::GpuInstance g{};
+        g.worldFromObject = inst.worldFromObject;
+        g.normalWorldFromObject = glm::mat4(glm::inverseTranspose(m3));
+        g.params = glm::vec4(det > 0.0f ? 1.0f / std::cbrt(det) : 1.0f, 0.0f, 0.0f, 0.0f);
+        const uint32_t instanceIndex = static_cast<uint32_t>(instanceData.size());
+        instanceData.push_back(g);
+        const Mesh& mesh = scene.meshes[size_t(inst.mesh)];
+        for (size_t p = 0; p < mesh.primitives.size(); ++p) {
+            const Primitive& prim = mesh.primitives[p];
+            const PrimitiveRange& r = meshRanges[size_t(inst.mesh)][p];
+            if (r.indexCount == 0) continue;
+            const uint32_t material = prim.material >= 0 && size_t(prim.material) < scene.materials.size()
+                                          ? static_cast<uint32_t>(prim.material)
+                                          : defaultMaterial;
+            const glm::vec3 center = glm::vec3(inst.worldFromObject * glm::vec4(prim.boundsOs.empty() ? glm::vec3(0.0f)
+                                                                                    : prim.boundsOs.center(), 1.0f));
+            draws.push_back({r.firstIndex, r.indexCount, r.vertexOffset, instanceIndex, material, center});
+            accumulateTexelDensity(prim, inst.worldFromObject, uvArea[material], worldArea[material]);
+        }
+    }
+    instances = vk::Buffer(device, std::max<size_t>(instanceData.size(), 1) * sizeof(gpu::GpuInstance),
+                           VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, false);
+    instances.upload(instanceData.data(), instanceData.size() * sizeof(gpu::GpuInstance));
+
+    // Default textures.
+    const uint8_t whitePixel[4] = {255, 255, 255, 255};
+    const uint8_t flatPixel[4] = {128, 128, 255, 255};
+    white_ = vk::Image(device, {VK_FORMAT_R8G8B8A8_UNORM, 1, 1, 1,
+                                VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_DST_BIT, VK_IMAGE_ASPECT_COLOR_BIT});
+    white_.uploadAndGenerateMips(whitePixel, 4);
+    flatNormal_ = vk::Image(device, {VK_FORMAT_R8G8B8A8_UNORM, 1, 1, 1,
+                                     VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_DST_BIT,
+                                     VK_IMAGE_ASPECT_COLOR_BIT});
+    flatNormal_.uploadAndGenerateMips(flatPixel, 4);
+
+    // Samplers: the scene's, then the default (linear, mipmapped, repeat).
+    VkPhysicalDeviceFeatures features;
+    vkGetPhysicalDeviceFeatures(device.physicalDevice(), &features);
+    std::vector<Sampler> samplerDescs = scene.samplers;
+    samplerDescs.push_back(Sampler{});
+    for (const Sampler& s : samplerDescs) {
+        VkSamplerCreateInfo info{VK_STRUCTURE_TYPE_SAMPLER_CREATE_INFO};
+        info.magFilter = toVk(s.magFilter);
+        info.minFilter = toVk(s.minFilter);
+        info.mipmapMode = s.mipFilter == Filter::Nearest ? VK_SAMPLER_MIPMAP_MODE_NEAREST : VK_SAMPLER_MIPMAP_MODE_LINEAR;
+        info.addressModeU = toVk(s.wrapU);
+        info.addressModeV = toVk(s.wrapV);
+        info.addressModeW = VK_SAMPLER_ADDRESS_MODE_REPEAT;
+        info.maxLod = s.mipmaps ? VK_LOD_CLAMP_NONE : 0.0f;
+        if (features.samplerAnisotropy && s.mipmaps && s.minFilter == Filter::Linear) {
+            info.anisotropyEnable = VK_TRUE;
+            info.maxAnisotropy = std::min(8.0f, device.properties().limits.maxSamplerAnisotropy);
+        }
+        VkSampler sampler = VK_NULL_HANDLE;
+        PRESKIN_VK(vkCreateSampler(dev, &info, nullptr, &sampler));
+        samplers_.push_back(sampler);
+    }
+
+    // Material descriptor sets.
+    std::vector<vk::Binding> bindings = {{gpu::kBindingMaterial, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER,
+                                          VK_SHADER_STAGE_FRAGMENT_BIT}};
+    for (uint32_t b = 1; b <= gpu::kMaterialTextureCount; ++b)
+        bindings.push_back({b, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, VK_SHADER_STAGE_FRAGMENT_BIT});
+    materialLayout_ = vk::createSetLayout(device, bindings);
+    const uint32_t setCount = defaultMaterial + 1;
+    const VkDescriptorPoolSize sizes[] = {{VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, setCount},
+                                          {VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, setCount * gpu::kMaterialTextureCount}};
+    VkDescriptorPoolCreateInfo poolInfo{VK_STRUCTURE_TYPE_DESCRIPTOR_POOL_CREATE_INFO};
+    poolInfo.maxSets = setCount;
+    poolInfo.poolSizeCount = 2;
+    poolInfo.pPoolSizes = sizes;
+    PRESKIN_VK(vkCreateDescriptorPool(dev, &poolInfo, nullptr, &pool_));
+
+    const VkDeviceSize align = device.properties().limits.minUniformBufferOffsetAlignment;
+    uniformStride_ = (sizeof(gpu::MaterialUniforms) + align - 1) / align * align;
+    materialUniforms_ = vk::Buffer(device, uniformStride_ * setCount, VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT, true);
+
+    for (uint32_t i = 0; i < setCount; ++i) {
+        const Material fallback;
+        const Material& mat = i < defaultMaterial ? sceneMaterials_[i] : fallback;
+        GpuMaterial gm;
+        gm.skin = mat.skin.has_value();
+        gm.alphaMode = mat.alphaMode;
+        gm.doubleSided = mat.doubleSided;
+        if (mat.normal.valid() && size_t(mat.normal.image) < scene.images.size() && worldArea[i] > 0.0) {
+            const Image& img = scene.images[size_t(mat.normal.image)];
+            const double texels = uvArea[i] * double(img.width) * double(img.height) *
+                                  double(mat.normal.uvScale.x * mat.normal.uvScale.y);
+            gm.texelsPerMm = static_cast<float>(std::sqrt(std::abs(texels) / worldArea[i]));
+        }
+        VkDescriptorSetAllocateInfo alloc{VK_STRUCTURE_TYPE_DESCRIPTOR_SET_ALLOCATE_INFO};
+        alloc.descriptorPool = pool_;
+        alloc.descriptorSetCount = 1;
+        alloc.pSetLayouts = &materialLayout_;
+        PRESKIN_VK(vkAllocateDescriptorSets(dev, &alloc, &gm.set));
+
+        struct Slot {
+            uint32_t binding;
+            int image;
+            int sampler;
+            bool srgb;
+            const vk::Image* fallbackImage;
+        };
+        const SkinMaterial skin = mat.skin.value_or(SkinMaterial{});
+        const Slot slots[] = {
+            {gpu::kBindingBaseColorTexture, mat.baseColor.image, mat.baseColor.sampler, true, &white_},
+            {gpu::kBindingMetallicRoughnessTexture, mat.metallicRoughness.image, mat.metallicRoughness.sampler, false,
+             &white_},
+            {gpu::kBindingNormalTexture, mat.normal.image, mat.normal.sampler, false, &flatNormal_},
+            {gpu::kBindingOcclusionTexture, mat.occlusion.image, mat.occlusion.sampler, false, &white_},
+            {gpu::kBindingEmissiveTexture, mat.emissive.image, mat.emissive.sampler, true, &white_},
+            {gpu::kBindingSpecularTexture, skin.specularTexture.image, skin.specularTexture.sampler, false, &white_},
+            {gpu::kBindingDetailNormalTexture, skin.detailNormalTexture.image, skin.detailNormalTexture.sampler, false,
+             &flatNormal_},
+            {gpu::kBindingCurvatureTexture, skin.curvatureTexture.image, skin.curvatureTexture.sampler, false, &white_},
+        };
+        std::array<VkDescriptorImageInfo, gpu::kMaterialTextureCount> imageInfos{};
+        std::array<VkWriteDescriptorSet, gpu::kMaterialTextureCount + 1> writes{};
+        const VkDescriptorBufferInfo bufferInfo{materialUniforms_.handle(), uniformStride_ * i,
+                                                sizeof(gpu::MaterialUniforms)};
+        writes[0] = {VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET};
+        writes[0].dstSet = gm.set;
+        writes[0].dstBinding = gpu::kBindingMaterial;
+        writes[0].descriptorCount = 1;
+        writes[0].descriptorType = VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER;
+        writes[0].pBufferInfo = &bufferInfo;
+        for (size_t s = 0; s < std::size(slots); ++s) {
+            const Slot& slot = slots[s];
+            const bool valid = slot.image >= 0 && size_t(slot.image) < scene.images.size();
+            const vk::Image& image = valid ? texture(scene, slot.image, slot.srgb) : *slot.fallbackImage;
+            imageInfos[s] = {sampler(slot.sampler), image.view(), VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL};
+            writes[s + 1] = {VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET};
+            writes[s + 1].dstSet = gm.set;
+            writes[s + 1].dstBinding = slot.binding;
+            writes[s + 1].descriptorCount = 1;
+            writes[s + 1].descriptorType = VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER;
+            writes[s + 1].pImageInfo = &imageInfos[s];
+        }
+        vkUpdateDescriptorSets(dev, static_cast<uint32_t>(writes.size()), writes.data(), 0, nullptr);
+        materials.push_back(gm);
+    }
+    updateMaterials(ProfileWidths{});
+}
+
+GpuScene::~GpuScene() {
+    const VkDevice dev = device_.device();
+    for (VkSampler s : samplers_) vkDestroySampler(dev, s, nullptr);
+    if (pool_) vkDestroyDescriptorPool(dev, pool_, nullptr);
+    if (materialLayout_) vkDestroyDescriptorSetLayout(dev, materialLayout_, nullptr);
+}
+
+const vk::Image& GpuScene::texture(const Scene& scene, int image, bool srgb) {
+    const auto key = std::make_pair(image, srgb);
+    auto it = textures_.find(key);
+    if (it != textures_.end()) return it->second;
+    const Image& src = scene.images[size_t(image)];
+    if (src.width == 0 || src.height == 0 || src.rgba8.size() != size_t(src.width) * src.height * 4)
+        throw Error(fmt::format("{}: image data does not match its size {}x{}", src.name, src.width, src.height));
+    const uint32_t maxDim = device_.properties().limits.maxImageDimension2D;
+    if (src.width > maxDim || src.height > maxDim)
+        throw Error(fmt::format("{}: {}x{} exceeds the device's largest texture ({})", src.name, src.width, src.height,
+                                maxDim));
+    vk::ImageDesc desc;
+    desc.format = srgb ? VK_FORMAT_R8G8B8A8_SRGB : VK_FORMAT_R8G8B8A8_UNORM;
+    desc.width = src.width;
+    desc.height = src.height;
+    desc.mipLevels = vk::mipLevelCount(src.width, src.height);
+    desc.usage = VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_DST_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT;
+    vk::Image gpuImage(device_, desc);
+    gpuImage.uploadAndGenerateMips(src.rgba8.data(), src.rgba8.size());
+    return textures_.emplace(key, std::move(gpuImage)).first->second;
+}
+
+VkSampler GpuScene::sampler(int index) const {
+    if (index >= 0 && size_t(index) + 1 < samplers_.size()) return samplers_[size_t(index)];
+    return samplers_.back();
+}
+
+gpu::MaterialUniforms GpuScene::uniformsFor(const Material& mat, const GpuMaterial& gm,
+                                            const ProfileWidths& widths) const {
+    gpu::MaterialUniforms u{};
+    u.baseColorFactor = mat.baseColorFactor;
+    u.emissiveAlphaCutoff = glm::vec4(mat.emissiveFactor, mat.alphaCutoff);
+    u.pbr = glm::vec4(mat.metallicFactor, mat.roughnessFactor, mat.normal.scale, mat.occlusion.scale);
+    u.textureFlags = glm::vec4(0.0f, 1.0f, 0.0f, mat.normal.valid() ? 1.0f : 0.0f);
+    const TextureRef* refs[] = {&mat.baseColor, &mat.metallicRoughness, &mat.normal, &mat.occlusion, &mat.emissive};
+    for (size_t i = 0; i < 5; ++i) u.uv[i] = toGpu(*refs[i]);
+    if (mat.skin) {
+        const SkinMaterial& s = *mat.skin;
+        u.skinScatter = glm::vec4(s.scatterScale, float(static_cast<int>(s.curvatureSource)),
+                                  s.curvatureTextureScalePerM, s.transmission);
+        const glm::vec3 bias = s.normalLodBias ? *s.normalLodBias
+                                               : normalLodBias(widths.widthMm, s.scatterScale, gm.texelsPerMm);
+        u.skinNormalLodBias = glm::vec4(bias, s.detailNormalScale);
+        u.skinTransmission = glm::vec4(s.transmissionColor, s.thicknessScale);
+        u.skinSpecular = glm::vec4(s.specularIntensity, s.lobeRoughness0, s.lobeRoughness1, s.lobeMix);
+        u.textureFlags.x = s.detailNormalTexture.valid() ? 1.0f : 0.0f;
+        u.textureFlags.y = s.detailUvScale;
+        u.textureFlags.z = s.specularTexture.valid() ? 1.0f : 0.0f;
+    }
+    return u;
+}
+
+void GpuScene::updateMaterials(const ProfileWidths& widths) {
+    const Material fallback;
+    for (size_t i = 0; i < materials.size(); ++i) {
+        const Material& mat = i < sceneMaterials_.size() ? sceneMaterials_[i] : fallback;
+        const gpu::MaterialUniforms u = uniformsFor(mat, materials[i], widths);
+        materialUniforms_.upload(&u, sizeof(u), uniformStride_ * i);
+    }
+}
+
+}  // namespace preskin

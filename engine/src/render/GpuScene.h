@@ -1,0 +1,78 @@
+// A Scene on the GPU: one vertex and one index buffer for all primitives, the instance table,
+// textures (sRGB or linear per use, full mip chains), samplers, and one descriptor set per
+// material (uniforms + textures; no descriptor indexing, which lavapipe lacks).
+#pragma once
+
+#include <preskin/Scene.h>
+
+#include "shared/gpu_types.h"
+#include "vk/Resources.h"
+
+#include <map>
+#include <utility>
+#include <vector>
+
+namespace preskin {
+
+struct DrawItem {
+    uint32_t firstIndex = 0;
+    uint32_t indexCount = 0;
+    int32_t vertexOffset = 0;
+    uint32_t instance = 0;
+    uint32_t material = 0;  // index into GpuScene::materials
+    glm::vec3 centerWs{0.0f};
+};
+
+struct GpuMaterial {
+    VkDescriptorSet set = VK_NULL_HANDLE;
+    bool skin = false;
+    AlphaMode alphaMode = AlphaMode::Opaque;
+    bool doubleSided = false;
+    float texelsPerMm = 0.0f;  // normal-map texels per world millimetre on the meshes using it
+};
+
+// Scattering widths of the active diffusion profile, for the normal-map LOD biases.
+struct ProfileWidths {
+    glm::vec3 widthMm{0.0f};
+};
+
+class GpuScene {
+public:
+    GpuScene(const vk::Device& device, const Scene& scene);
+    ~GpuScene();
+    GpuScene(const GpuScene&) = delete;
+    GpuScene& operator=(const GpuScene&) = delete;
+
+    VkDescriptorSetLayout materialLayout() const { return materialLayout_; }
+    // Fills every material's uniforms; the skin LOD biases depend on the profile's widths.
+    void updateMaterials(const ProfileWidths& widths);
+
+    vk::Buffer vertices;
+    vk::Buffer indices;
+    vk::Buffer instances;
+    std::vector<DrawItem> draws;
+    std::vector<GpuMaterial> materials;  // scene materials, then the default material
+
+private:
+    const vk::Image& texture(const Scene& scene, int image, bool srgb);
+    VkSampler sampler(int index) const;
+    gpu::MaterialUniforms uniformsFor(const Material& material, const GpuMaterial& gpu,
+                                      const ProfileWidths& widths) const;
+
+    const vk::Device& device_;
+    std::vector<Material> sceneMaterials_;
+    std::map<std::pair<int, bool>, vk::Image> textures_;
+    vk::Image white_;
+    vk::Image flatNormal_;
+    std::vector<VkSampler> samplers_;  // scene samplers, then the default
+    VkDescriptorSetLayout materialLayout_ = VK_NULL_HANDLE;
+    VkDescriptorPool pool_ = VK_NULL_HANDLE;
+    vk::Buffer materialUniforms_;
+    VkDeviceSize uniformStride_ = 0;
+};
+
+// Normal-map mip LOD bias of each channel: how many mip levels wider the profile's scattering
+// width is than one texel of the map, log2(1 + widthMm / scatterScale * texelsPerMm).
+glm::vec3 normalLodBias(const glm::vec3& widthMm, float scatterScale, float texelsPerMm);
+
+}  // namespace preskin

@@ -1,0 +1,79 @@
+// Writing rendered images: PNG (8-bit sRGB) or EXR (half float, linear) through OpenImageIO,
+// into a temporary file in the same folder that is renamed into place, so a failed run never
+// leaves a partly written image behind.
+#include <preskin/Error.h>
+#include <preskin/Renderer.h>
+
+#include <OpenImageIO/imageio.h>
+#include <fmt/core.h>
+#include <unistd.h>
+
+#include <algorithm>
+#include <cctype>
+#include <filesystem>
+#include <system_error>
+
+namespace preskin {
+
+namespace {
+
+std::string lowerExtension(const std::filesystem::path& path) {
+    std::string ext = path.extension().string();
+    std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return char(std::tolower(c)); });
+    return ext;
+}
+
+}  // namespace
+
+void checkOutputPath(const std::filesystem::path& path, OutputEncoding encoding) {
+    const std::string ext = lowerExtension(path);
+    const std::string wanted = encoding == OutputEncoding::DisplaySrgb8 ? ".png" : ".exr";
+    if (ext != wanted)
+        throw Error(fmt::format("{}: output type '{}' does not match the encoding (expected {})", path.string(), ext,
+                                wanted));
+    std::error_code ec;
+    if (std::filesystem::is_directory(path, ec))
+        throw Error(fmt::format("{}: output path is a directory", path.string()));
+    const std::filesystem::path dir = path.has_parent_path() ? path.parent_path() : std::filesystem::path(".");
+    if (!std::filesystem::is_directory(dir, ec))
+        throw Error(fmt::format("{}: output folder {} does not exist", path.string(), dir.string()));
+    if (::access(dir.c_str(), W_OK) != 0)
+        throw Error(fmt::format("{}: output folder {} is not writable", path.string(), dir.string()));
+}
+
+void writeImage(const std::filesystem::path& path, const RenderedImage& image) {
+    checkOutputPath(path, image.encoding);
+    const bool display = image.encoding == OutputEncoding::DisplaySrgb8;
+    const size_t expected = size_t(image.width) * image.height * 4;
+    if (image.width == 0 || image.height == 0 || (display ? image.rgba8.size() : image.rgba32f.size()) != expected)
+        throw Error(fmt::format("{}: image data does not match its size {}x{}", path.string(), image.width,
+                                image.height));
+    const std::filesystem::path dir = path.has_parent_path() ? path.parent_path() : std::filesystem::path(".");
+    const std::filesystem::path temp =
+        dir / fmt::format(".{}.{}.partial{}", path.filename().string(), ::getpid(), lowerExtension(path));
+    const std::string format = display ? "png" : "openexr";
+    auto out = OIIO::ImageOutput::create(format);
+    if (!out) throw Error(fmt::format("{}: no {} writer: {}", path.string(), format, OIIO::geterror()));
+    OIIO::ImageSpec spec(int(image.width), int(image.height), 4, display ? OIIO::TypeDesc::UINT8 : OIIO::TypeDesc::HALF);
+    spec.attribute("oiio:ColorSpace", display ? "sRGB" : "Linear");
+    if (!display) spec.attribute("compression", "zip");
+    auto fail = [&](const std::string& what) {
+        std::error_code ec;
+        std::filesystem::remove(temp, ec);
+        throw Error(fmt::format("{}: {}", path.string(), what));
+    };
+    if (!out->open(temp.string(), spec)) fail("cannot create file: " + out->geterror());
+    const bool ok = display ? out->write_image(OIIO::TypeDesc::UINT8, image.rgba8.data())
+                            : out->write_image(OIIO::TypeDesc::FLOAT, image.rgba32f.data());
+    if (!ok) {
+        const std::string error = out->geterror();
+        out->close();
+        fail("cannot write image: " + error);
+    }
+    if (!out->close()) fail("cannot finish image: " + out->geterror());
+    std::error_code ec;
+    std::filesystem::rename(temp, path, ec);
+    if (ec) fail("cannot move the finished image into place: " + ec.message());
+}
+
+}  // namespace preskin

@@ -1,0 +1,651 @@
+// Frame ordering of the sample renderer (see <preskin/Renderer.h>):
+//   shadow pass (directional light, depth only) -> light clustering (compute) -> forward pass.
+// Per-frame data (uniforms, lights, cluster lists, timestamps) lives in two slots so a host can
+// keep one frame in flight while recording the next.
+#include <preskin/Renderer.h>
+
+#include "lights/ClusterBuilder.h"
+#include "render/GpuLuts.h"
+#include "render/GpuScene.h"
+#include "shared/gpu_types.h"
+#include "vk/Check.h"
+#include "vk/Pipeline.h"
+#include "vk/Resources.h"
+
+#include <fmt/core.h>
+
+#include <algorithm>
+#include <array>
+#include <chrono>
+#include <cmath>
+#include <cstring>
+#include <map>
+#include <span>
+#include <tuple>
+
+namespace preskin::shaders {
+std::span<const uint32_t> spirv(std::string_view fileName);
+}
+
+namespace preskin {
+
+namespace {
+
+constexpr VkFormat kDepthFormat = VK_FORMAT_D32_SFLOAT;
+constexpr uint32_t kSlotCount = 2;
+constexpr uint32_t kQueryCount = 4;  // start, after shadow, after clustering, after forward
+
+std::span<const uint32_t> shader(const char* name) {
+    auto code = shaders::spirv(name);
+    if (code.empty()) throw Error(fmt::format("internal: shader {} is not compiled into the library", name));
+    return code;
+}
+
+bool isDisplayFormat(VkFormat format) {
+    switch (format) {
+    case VK_FORMAT_R8G8B8A8_UNORM:
+    case VK_FORMAT_R8G8B8A8_SRGB:
+    case VK_FORMAT_B8G8R8A8_UNORM:
+    case VK_FORMAT_B8G8R8A8_SRGB:
+    case VK_FORMAT_A2B10G10R10_UNORM_PACK32:
+    case VK_FORMAT_A2R10G10B10_UNORM_PACK32: return true;
+    default: return false;
+    }
+}
+
+// Index of the light that gets the shadow map: the first directional light flagged
+// castsShadow, else the first directional light; -1 when there is none.
+int shadowLightIndex(const std::vector<Light>& lights) {
+    int firstDirectional = -1;
+    for (size_t i = 0; i < lights.size(); ++i) {
+        if (lights[i].type != LightType::Directional) continue;
+        if (lights[i].castsShadow) return static_cast<int>(i);
+        if (firstDirectional < 0) firstDirectional = static_cast<int>(i);
+    }
+    return firstDirectional;
+}
+
+gpu::GpuLight toGpu(const Light& light, bool shadowed) {
+    gpu::GpuLight g{};
+    const glm::vec3 dir = glm::length(light.directionWs) > 0.0f ? glm::normalize(light.directionWs)
+                                                                 : glm::vec3(0.0f, 0.0f, -1.0f);
+    uint32_t type = gpu::kLightDirectional;
+    if (light.type == LightType::Point) type = gpu::kLightPoint;
+    if (light.type == LightType::Spot) type = gpu::kLightSpot;
+    g.positionRange = glm::vec4(light.positionWs, std::max(light.range, 0.0f));
+    g.directionType = glm::vec4(dir, float(type));
+    g.colorIntensity = glm::vec4(light.color * light.intensity, shadowed ? 0.0f : -1.0f);
+    // KHR_lights_punctual cone attenuation: saturate(cd * scale + offset)^2.
+    const float cosOuter = std::cos(light.outerConeAngle);
+    const float cosInner = std::cos(std::min(light.innerConeAngle, light.outerConeAngle));
+    const float scale = 1.0f / std::max(1e-3f, cosInner - cosOuter);
+    g.spotScaleOffset = glm::vec4(scale, -cosOuter * scale, 0.0f, 0.0f);
+    return g;
+}
+
+// Orthographic light matrix around the scene's bounding sphere (depth 0 near .. 1 far).
+glm::mat4 shadowMatrix(const Bounds& bounds, const glm::vec3& direction, float& radiusOut) {
+    const glm::vec3 c = bounds.empty() ? glm::vec3(0.0f) : bounds.center();
+    const float r = bounds.empty() ? 1.0f : std::max(0.5f * glm::length(bounds.extent()), 1e-4f);
+    const glm::vec3 d = glm::normalize(direction);
+    const glm::vec3 helper = std::abs(d.y) < 0.99f ? glm::vec3(0.0f, 1.0f, 0.0f) : glm::vec3(1.0f, 0.0f, 0.0f);
+    const glm::vec3 right = glm::normalize(glm::cross(helper, d));
+    const glm::vec3 up = glm::cross(d, right);
+    glm::mat4 m(0.0f);  // m[col][row]
+    for (int i = 0; i < 3; ++i) {
+        m[i][0] = right[i] / r;
+        m[i][1] = up[i] / r;
+        m[i][2] = d[i] / (2.0f * r);
+    }
+    m[3][0] = -glm::dot(c, right) / r;
+    m[3][1] = -glm::dot(c, up) / r;
+    m[3][2] = (r - glm::dot(c, d)) / (2.0f * r);
+    m[3][3] = 1.0f;
+    radiusOut = r;
+    return m;
+}
+
+struct PipelineKey {
+    uint32_t model, alphaMode, doubleSided, format, debugView, skinMask, lightLoop;
+    auto tie() const { return std::tie(model, alphaMode, doubleSided, format, debugView, skinMask, lightLoop); }
+    bool operator<(const PipelineKey& o) const { return tie() < o.tie(); }
+};
+
+}  // namespace
+
+uint32_t SkinFeatures::mask() const {
+    return (lutDiffuse ? gpu::kSkinLutDiffuse : 0u) | (normalPrefilter ? gpu::kSkinNormalPrefilter : 0u) |
+           (penumbra ? gpu::kSkinPenumbra : 0u) | (shAmbient ? gpu::kSkinShAmbient : 0u) |
+           (transmission ? gpu::kSkinTransmission : 0u) | (dualSpecular ? gpu::kSkinDualSpecular : 0u);
+}
+
+struct Renderer::Impl {
+    struct Slot {
+        vk::Buffer frameUniforms;
+        vk::Buffer lights;
+        VkDescriptorSet set = VK_NULL_HANDLE;
+        VkQueryPool queries = VK_NULL_HANDLE;
+        bool recorded = false;
+        bool shadowRecorded = false;
+        double wallMs = 0.0;
+        uint32_t lightCount = 0;
+    };
+
+    Context& context;
+    const vk::Device& dev;
+    RenderSettings settings;
+    std::vector<Light> lights;
+    Bounds bounds;
+    ShRgb radianceSh;
+    std::unique_ptr<GpuScene> scene;
+    std::unique_ptr<GpuLuts> luts;
+    std::unique_ptr<ClusterBuilder> clusters;
+
+    VkDescriptorSetLayout frameLayout = VK_NULL_HANDLE;
+    VkPipelineLayout forwardLayout = VK_NULL_HANDLE;
+    VkPipelineLayout shadowLayout = VK_NULL_HANDLE;
+    VkDescriptorPool framePool = VK_NULL_HANDLE;
+    VkSampler shadowSampler = VK_NULL_HANDLE;
+    std::array<Slot, kSlotCount> slots;
+    vk::Image shadowMap;
+    vk::Image depth;
+    std::map<PipelineKey, VkPipeline> pipelines;
+    VkPipeline shadowPipeline = VK_NULL_HANDLE;
+    // Headless render target and readback.
+    vk::Image colorTarget;
+    vk::Buffer readback;
+
+    Impl(Context& ctx, const Scene& s, const Environment& env, const LutSet* lutSet, const RenderSettings& rs)
+        : context(ctx), dev(ctx.core()), settings(rs), lights(s.lights), bounds(s.worldBounds()),
+          radianceSh(env.radianceSh()) {
+        scene = std::make_unique<GpuScene>(dev, s);
+        luts = std::make_unique<GpuLuts>(dev, lutSet);
+        scene->updateMaterials(luts->profileWidths());
+        clusters = std::make_unique<ClusterBuilder>(dev);
+        createLayouts();
+        createShadowMap();
+    }
+
+    ~Impl() {
+        const VkDevice d = dev.device();
+        vkDeviceWaitIdle(d);
+        for (auto& [key, p] : pipelines) vkDestroyPipeline(d, p, nullptr);
+        if (shadowPipeline) vkDestroyPipeline(d, shadowPipeline, nullptr);
+        for (Slot& s : slots)
+            if (s.queries) vkDestroyQueryPool(d, s.queries, nullptr);
+        if (framePool) vkDestroyDescriptorPool(d, framePool, nullptr);
+        if (forwardLayout) vkDestroyPipelineLayout(d, forwardLayout, nullptr);
+        if (shadowLayout) vkDestroyPipelineLayout(d, shadowLayout, nullptr);
+        if (frameLayout) vkDestroyDescriptorSetLayout(d, frameLayout, nullptr);
+        if (shadowSampler) vkDestroySampler(d, shadowSampler, nullptr);
+    }
+
+    void createLayouts() {
+        const VkDevice d = dev.device();
+        const VkShaderStageFlags fs = VK_SHADER_STAGE_FRAGMENT_BIT;
+        const VkShaderStageFlags all = VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_FRAGMENT_BIT;
+        const vk::Binding bindings[] = {
+            {gpu::kBindingFrame, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, all},
+            {gpu::kBindingLights, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, fs},
+            {gpu::kBindingInstances, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, VK_SHADER_STAGE_VERTEX_BIT},
+            {gpu::kBindingShadowMap, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, fs},
+            {gpu::kBindingDiffuseLut, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, fs},
+            {gpu::kBindingPenumbraLut, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, fs},
+            {gpu::kBindingShTransferLut, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, fs},
+            {gpu::kBindingTransmittanceLut, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, fs},
+            {gpu::kBindingClusterRanges, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, fs},
+            {gpu::kBindingClusterIndices, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, fs},
+        };
+        frameLayout = vk::createSetLayout(dev, bindings);
+        const VkDescriptorSetLayout forwardSets[] = {frameLayout, scene->materialLayout()};
+        forwardLayout = vk::createPipelineLayout(dev, forwardSets, sizeof(gpu::DrawPush), all);
+        shadowLayout = vk::createPipelineLayout(dev, std::span(forwardSets, 1), sizeof(gpu::DrawPush), all);
+
+        const VkDescriptorPoolSize sizes[] = {{VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, kSlotCount},
+                                              {VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 4 * kSlotCount},
+                                              {VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 5 * kSlotCount}};
+        VkDescriptorPoolCreateInfo poolInfo{VK_STRUCTURE_TYPE_DESCRIPTOR_POOL_CREATE_INFO};
+        poolInfo.maxSets = kSlotCount;
+        poolInfo.poolSizeCount = 3;
+        poolInfo.pPoolSizes = sizes;
+        PRESKIN_VK(vkCreateDescriptorPool(d, &poolInfo, nullptr, &framePool));
+        for (Slot& s : slots) {
+            VkDescriptorSetAllocateInfo alloc{VK_STRUCTURE_TYPE_DESCRIPTOR_SET_ALLOCATE_INFO};
+            alloc.descriptorPool = framePool;
+            alloc.descriptorSetCount = 1;
+            alloc.pSetLayouts = &frameLayout;
+            PRESKIN_VK(vkAllocateDescriptorSets(d, &alloc, &s.set));
+            s.frameUniforms = vk::Buffer(dev, sizeof(gpu::FrameUniforms), VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT, true);
+            s.lights = vk::Buffer(dev, 64 * sizeof(gpu::GpuLight), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, true);
+            if (dev.timestampsSupported()) {
+                VkQueryPoolCreateInfo q{VK_STRUCTURE_TYPE_QUERY_POOL_CREATE_INFO};
+                q.queryType = VK_QUERY_TYPE_TIMESTAMP;
+                q.queryCount = kQueryCount;
+                PRESKIN_VK(vkCreateQueryPool(d, &q, nullptr, &s.queries));
+            }
+        }
+        VkSamplerCreateInfo nearest{VK_STRUCTURE_TYPE_SAMPLER_CREATE_INFO};
+        nearest.magFilter = VK_FILTER_NEAREST;
+        nearest.minFilter = VK_FILTER_NEAREST;
+        nearest.mipmapMode = VK_SAMPLER_MIPMAP_MODE_NEAREST;
+        nearest.addressModeU = nearest.addressModeV = nearest.addressModeW = VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_EDGE;
+        PRESKIN_VK(vkCreateSampler(d, &nearest, nullptr, &shadowSampler));
+    }
+
+    void createShadowMap() {
+        const uint32_t size = std::clamp<uint32_t>(settings.shadowMapSize, 16, 8192);
+        if (shadowMap && shadowMap.desc().width == size) return;
+        if (!dev.supportsFormat(kDepthFormat, VK_FORMAT_FEATURE_2_DEPTH_STENCIL_ATTACHMENT_BIT |
+                                                  VK_FORMAT_FEATURE_2_SAMPLED_IMAGE_BIT))
+            throw Error("Vulkan: the device cannot render and sample D32_SFLOAT depth");
+        vkDeviceWaitIdle(dev.device());
+        shadowMap = vk::Image(dev, {kDepthFormat, size, size, 1,
+                                    VK_IMAGE_USAGE_DEPTH_STENCIL_ATTACHMENT_BIT | VK_IMAGE_USAGE_SAMPLED_BIT,
+                                    VK_IMAGE_ASPECT_DEPTH_BIT});
+        // Sampled even when no light casts a shadow: start in the read layout.
+        dev.submitAndWait([&](VkCommandBuffer cmd) {
+            vk::imageBarrier(cmd, shadowMap.handle(), VK_IMAGE_ASPECT_DEPTH_BIT, VK_IMAGE_LAYOUT_UNDEFINED,
+                             VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL, VK_PIPELINE_STAGE_2_NONE, VK_ACCESS_2_NONE,
+                             VK_PIPELINE_STAGE_2_FRAGMENT_SHADER_BIT, VK_ACCESS_2_SHADER_SAMPLED_READ_BIT);
+        });
+    }
+
+    VkPipeline forwardPipeline(const GpuMaterial& m, VkFormat format) {
+        const bool skin = m.skin && luts->valid();
+        const PipelineKey key{skin ? gpu::kModelSkin : gpu::kModelStandard,
+                              static_cast<uint32_t>(m.alphaMode),
+                              m.doubleSided ? 1u : 0u,
+                              static_cast<uint32_t>(format),
+                              static_cast<uint32_t>(settings.debugView),
+                              skin ? settings.skin.mask() : 0u,
+                              settings.lightLoop == LightLoop::Clustered ? gpu::kLightLoopClustered
+                                                                          : gpu::kLightLoopAll};
+        auto it = pipelines.find(key);
+        if (it != pipelines.end()) return it->second;
+        vk::GraphicsPipelineDesc desc;
+        desc.vertexSpirv = shader("forward.vert");
+        desc.fragmentSpirv = shader("forward.frag");
+        desc.specialization.values.resize(6);
+        desc.specialization.values[gpu::kSpecMaterialModel] = key.model;
+        desc.specialization.values[gpu::kSpecOutputMode] = isDisplayFormat(format) ? gpu::kOutputTonemapped
+                                                                                   : gpu::kOutputLinear;
+        desc.specialization.values[gpu::kSpecDebugView] = key.debugView;
+        desc.specialization.values[gpu::kSpecAlphaMode] = key.alphaMode;
+        desc.specialization.values[gpu::kSpecSkinFeatures] = key.skinMask;
+        desc.specialization.values[gpu::kSpecLightLoop] = key.lightLoop;
+        desc.vertexBindings = {{0, sizeof(Vertex), VK_VERTEX_INPUT_RATE_VERTEX}};
+        desc.vertexAttributes = {
+            {0, 0, VK_FORMAT_R32G32B32_SFLOAT, offsetof(Vertex, positionOs)},
+            {1, 0, VK_FORMAT_R32G32B32_SFLOAT, offsetof(Vertex, normalOs)},
+            {2, 0, VK_FORMAT_R32G32B32A32_SFLOAT, offsetof(Vertex, tangentOs)},
+            {3, 0, VK_FORMAT_R32G32_SFLOAT, offsetof(Vertex, uv0)},
+            {4, 0, VK_FORMAT_R32_SFLOAT, offsetof(Vertex, curvaturePerM)},
+        };
+        desc.colorFormats = {format};
+        desc.depthFormat = kDepthFormat;
+        desc.cullMode = m.doubleSided ? VK_CULL_MODE_NONE : VK_CULL_MODE_BACK_BIT;
+        desc.depthWrite = m.alphaMode != AlphaMode::Blend;
+        desc.alphaBlend = m.alphaMode == AlphaMode::Blend;
+        desc.layout = forwardLayout;
+        VkPipeline p = vk::createGraphicsPipeline(dev, desc);
+        pipelines.emplace(key, p);
+        return p;
+    }
+
+    VkPipeline depthOnlyPipeline() {
+        if (shadowPipeline) return shadowPipeline;
+        vk::GraphicsPipelineDesc desc;
+        desc.vertexSpirv = shader("shadow.vert");
+        desc.vertexBindings = {{0, sizeof(Vertex), VK_VERTEX_INPUT_RATE_VERTEX}};
+        desc.vertexAttributes = {{0, 0, VK_FORMAT_R32G32B32_SFLOAT, offsetof(Vertex, positionOs)}};
+        desc.depthFormat = kDepthFormat;
+        desc.cullMode = VK_CULL_MODE_NONE;  // the nearest surface of either facing: thickness needs it
+        desc.depthCompare = VK_COMPARE_OP_LESS_OR_EQUAL;
+        desc.depthBias = true;
+        desc.layout = shadowLayout;
+        shadowPipeline = vk::createGraphicsPipeline(dev, desc);
+        return shadowPipeline;
+    }
+
+    void ensureDepth(VkExtent2D extent) {
+        if (depth && depth.desc().width == extent.width && depth.desc().height == extent.height) return;
+        vkDeviceWaitIdle(dev.device());
+        depth = vk::Image(dev, {kDepthFormat, extent.width, extent.height, 1,
+                                VK_IMAGE_USAGE_DEPTH_STENCIL_ATTACHMENT_BIT, VK_IMAGE_ASPECT_DEPTH_BIT});
+    }
+
+    // Fills the slot's uniforms and light list; returns whether a shadow map is rendered.
+    bool prepareFrame(Slot& slot, uint32_t slotIndex, const View& view, VkExtent2D extent,
+                      glm::mat4& shadowClipFromWorld) {
+        const int shadowLight = settings.shadows ? shadowLightIndex(lights) : -1;
+        std::vector<gpu::GpuLight> gpuLights;
+        gpuLights.reserve(lights.size());
+        uint32_t directional = 0;
+        for (size_t i = 0; i < lights.size(); ++i)
+            if (lights[i].type == LightType::Directional) {
+                gpuLights.push_back(toGpu(lights[i], int(i) == shadowLight));
+                ++directional;
+            }
+        for (const Light& l : lights)
+            if (l.type != LightType::Directional) gpuLights.push_back(toGpu(l, false));
+        const VkDeviceSize bytes = std::max<size_t>(gpuLights.size(), 1) * sizeof(gpu::GpuLight);
+        if (bytes > slot.lights.size())
+            slot.lights = vk::Buffer(dev, bytes * 2, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, true);
+        slot.lights.upload(gpuLights.data(), gpuLights.size() * sizeof(gpu::GpuLight));
+        slot.lightCount = static_cast<uint32_t>(gpuLights.size());
+
+        gpu::FrameUniforms u{};
+        u.clipFromWorld = view.clipFromWorld();
+        u.viewFromWorld = view.viewFromWorld;
+        u.cameraPositionWs = glm::vec4(view.positionWs, settings.exposure);
+        u.viewport = glm::vec4(float(extent.width), float(extent.height), 1.0f / float(extent.width),
+                               1.0f / float(extent.height));
+        float radius = 1.0f;
+        const uint32_t mapSize = shadowMap.desc().width;
+        if (shadowLight >= 0) {
+            const glm::vec3 dir = glm::length(lights[size_t(shadowLight)].directionWs) > 0.0f
+                                      ? glm::normalize(lights[size_t(shadowLight)].directionWs)
+                                      : glm::vec3(0.0f, 0.0f, -1.0f);
+            shadowClipFromWorld = shadowMatrix(bounds, dir, radius);
+            u.shadowClipFromWorld = shadowClipFromWorld;
+            u.shadowDirectionWs = glm::vec4(dir, 1.0f);
+        }
+        u.shadowParams = glm::vec4(2.0f * radius / float(mapSize), std::max(settings.shadowSoftnessTexels, 0.25f),
+                                   2.0f * radius, float(mapSize));
+        for (int i = 0; i < 9; ++i) u.shRadiance[i] = glm::vec4(radianceSh.c[size_t(i)], 0.0f);
+        u.lightCounts = glm::uvec4(slot.lightCount, directional, 0u, 0u);
+        if (settings.lightLoop == LightLoop::Clustered)
+            clusters->build(slotIndex, settings.clusters, view, extent, gpuLights, directional, u);
+        slot.frameUniforms.upload(&u, sizeof(u));
+        return shadowLight >= 0;
+    }
+
+    void updateFrameSet(Slot& slot, uint32_t slotIndex) {
+        const VkDescriptorBufferInfo frameInfo{slot.frameUniforms.handle(), 0, sizeof(gpu::FrameUniforms)};
+        const VkDescriptorBufferInfo lightInfo{slot.lights.handle(), 0, VK_WHOLE_SIZE};
+        const VkDescriptorBufferInfo instanceInfo{scene->instances.handle(), 0, VK_WHOLE_SIZE};
+        const VkDescriptorBufferInfo rangesInfo{clusters->ranges(slotIndex).handle(), 0, VK_WHOLE_SIZE};
+        const VkDescriptorBufferInfo indicesInfo{clusters->indices(slotIndex).handle(), 0, VK_WHOLE_SIZE};
+        const VkDescriptorImageInfo shadowInfo{shadowSampler, shadowMap.view(), VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL};
+        const std::array<VkDescriptorImageInfo, 4> lutInfos = luts->descriptors();
+        std::vector<VkWriteDescriptorSet> writes;
+        auto buffer = [&](uint32_t binding, VkDescriptorType type, const VkDescriptorBufferInfo* info) {
+            VkWriteDescriptorSet w{VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET};
+            w.dstSet = slot.set;
+            w.dstBinding = binding;
+            w.descriptorCount = 1;
+            w.descriptorType = type;
+            w.pBufferInfo = info;
+            writes.push_back(w);
+        };
+        auto image = [&](uint32_t binding, const VkDescriptorImageInfo* info) {
+            VkWriteDescriptorSet w{VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET};
+            w.dstSet = slot.set;
+            w.dstBinding = binding;
+            w.descriptorCount = 1;
+            w.descriptorType = VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER;
+            w.pImageInfo = info;
+            writes.push_back(w);
+        };
+        buffer(gpu::kBindingFrame, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, &frameInfo);
+        buffer(gpu::kBindingLights, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, &lightInfo);
+        buffer(gpu::kBindingInstances, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, &instanceInfo);
+        buffer(gpu::kBindingClusterRanges, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, &rangesInfo);
+        buffer(gpu::kBindingClusterIndices, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, &indicesInfo);
+        image(gpu::kBindingShadowMap, &shadowInfo);
+        image(gpu::kBindingDiffuseLut, &lutInfos[0]);
+        image(gpu::kBindingPenumbraLut, &lutInfos[1]);
+        image(gpu::kBindingShTransferLut, &lutInfos[2]);
+        image(gpu::kBindingTransmittanceLut, &lutInfos[3]);
+        vkUpdateDescriptorSets(dev.device(), static_cast<uint32_t>(writes.size()), writes.data(), 0, nullptr);
+    }
+
+    void bindGeometry(VkCommandBuffer cmd) {
+        const VkDeviceSize offset = 0;
+        const VkBuffer vb = scene->vertices.handle();
+        vkCmdBindVertexBuffers(cmd, 0, 1, &vb, &offset);
+        vkCmdBindIndexBuffer(cmd, scene->indices.handle(), 0, VK_INDEX_TYPE_UINT32);
+    }
+
+    void recordShadowPass(VkCommandBuffer cmd, Slot& slot) {
+        const uint32_t size = shadowMap.desc().width;
+        vk::imageBarrier(cmd, shadowMap.handle(), VK_IMAGE_ASPECT_DEPTH_BIT, VK_IMAGE_LAYOUT_UNDEFINED,
+                         VK_IMAGE_LAYOUT_DEPTH_ATTACHMENT_OPTIMAL, VK_PIPELINE_STAGE_2_FRAGMENT_SHADER_BIT,
+                         VK_ACCESS_2_NONE,
+                         VK_PIPELINE_STAGE_2_EARLY_FRAGMENT_TESTS_BIT | VK_PIPELINE_STAGE_2_LATE_FRAGMENT_TESTS_BIT,
+                         VK_ACCESS_2_DEPTH_STENCIL_ATTACHMENT_READ_BIT | VK_ACCESS_2_DEPTH_STENCIL_ATTACHMENT_WRITE_BIT);
+        VkRenderingAttachmentInfo depthAttachment{VK_STRUCTURE_TYPE_RENDERING_ATTACHMENT_INFO};
+        depthAttachment.imageView = shadowMap.view();
+        depthAttachment.imageLayout = VK_IMAGE_LAYOUT_DEPTH_ATTACHMENT_OPTIMAL;
+        depthAttachment.loadOp = VK_ATTACHMENT_LOAD_OP_CLEAR;
+        depthAttachment.storeOp = VK_ATTACHMENT_STORE_OP_STORE;
+        depthAttachment.clearValue.depthStencil = {1.0f, 0};
+        VkRenderingInfo info{VK_STRUCTURE_TYPE_RENDERING_INFO};
+        info.renderArea = {{0, 0}, {size, size}};
+        info.layerCount = 1;
+        info.pDepthAttachment = &depthAttachment;
+        vkCmdBeginRendering(cmd, &info);
+        const VkViewport viewport{0.0f, 0.0f, float(size), float(size), 0.0f, 1.0f};
+        const VkRect2D scissor{{0, 0}, {size, size}};
+        vkCmdSetViewport(cmd, 0, 1, &viewport);
+        vkCmdSetScissor(cmd, 0, 1, &scissor);
+        vkCmdSetDepthBias(cmd, 1.0f, 0.0f, 1.5f);
+        vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, depthOnlyPipeline());
+        vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, shadowLayout, 0, 1, &slot.set, 0, nullptr);
+        bindGeometry(cmd);
+        for (const DrawItem& d : scene->draws) {
+            if (scene->materials[d.material].alphaMode == AlphaMode::Blend) continue;
+            const gpu::DrawPush push{glm::uvec4(d.instance, d.material, 0, 0)};
+            vkCmdPushConstants(cmd, shadowLayout, VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_FRAGMENT_BIT, 0,
+                               sizeof(push), &push);
+            vkCmdDrawIndexed(cmd, d.indexCount, 1, d.firstIndex, d.vertexOffset, 0);
+        }
+        vkCmdEndRendering(cmd);
+        vk::imageBarrier(cmd, shadowMap.handle(), VK_IMAGE_ASPECT_DEPTH_BIT, VK_IMAGE_LAYOUT_DEPTH_ATTACHMENT_OPTIMAL,
+                         VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL, VK_PIPELINE_STAGE_2_LATE_FRAGMENT_TESTS_BIT,
+                         VK_ACCESS_2_DEPTH_STENCIL_ATTACHMENT_WRITE_BIT, VK_PIPELINE_STAGE_2_FRAGMENT_SHADER_BIT,
+                         VK_ACCESS_2_SHADER_SAMPLED_READ_BIT);
+    }
+
+    void recordForwardPass(VkCommandBuffer cmd, Slot& slot, const RenderTarget& target, const View& view) {
+        vk::imageBarrier(cmd, target.image, VK_IMAGE_ASPECT_COLOR_BIT, target.layoutBefore,
+                         VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL, VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT,
+                         VK_ACCESS_2_MEMORY_READ_BIT | VK_ACCESS_2_MEMORY_WRITE_BIT,
+                         VK_PIPELINE_STAGE_2_COLOR_ATTACHMENT_OUTPUT_BIT,
+                         VK_ACCESS_2_COLOR_ATTACHMENT_READ_BIT | VK_ACCESS_2_COLOR_ATTACHMENT_WRITE_BIT);
+        vk::imageBarrier(cmd, depth.handle(), VK_IMAGE_ASPECT_DEPTH_BIT, VK_IMAGE_LAYOUT_UNDEFINED,
+                         VK_IMAGE_LAYOUT_DEPTH_ATTACHMENT_OPTIMAL,
+                         VK_PIPELINE_STAGE_2_EARLY_FRAGMENT_TESTS_BIT | VK_PIPELINE_STAGE_2_LATE_FRAGMENT_TESTS_BIT,
+                         VK_ACCESS_2_DEPTH_STENCIL_ATTACHMENT_WRITE_BIT,
+                         VK_PIPELINE_STAGE_2_EARLY_FRAGMENT_TESTS_BIT | VK_PIPELINE_STAGE_2_LATE_FRAGMENT_TESTS_BIT,
+                         VK_ACCESS_2_DEPTH_STENCIL_ATTACHMENT_READ_BIT | VK_ACCESS_2_DEPTH_STENCIL_ATTACHMENT_WRITE_BIT);
+        VkRenderingAttachmentInfo color{VK_STRUCTURE_TYPE_RENDERING_ATTACHMENT_INFO};
+        color.imageView = target.view;
+        color.imageLayout = VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL;
+        color.loadOp = VK_ATTACHMENT_LOAD_OP_CLEAR;
+        color.storeOp = VK_ATTACHMENT_STORE_OP_STORE;
+        color.clearValue.color = {{0.045f, 0.045f, 0.05f, 1.0f}};
+        VkRenderingAttachmentInfo depthAttachment{VK_STRUCTURE_TYPE_RENDERING_ATTACHMENT_INFO};
+        depthAttachment.imageView = depth.view();
+        depthAttachment.imageLayout = VK_IMAGE_LAYOUT_DEPTH_ATTACHMENT_OPTIMAL;
+        depthAttachment.loadOp = VK_ATTACHMENT_LOAD_OP_CLEAR;
+        depthAttachment.storeOp = VK_ATTACHMENT_STORE_OP_DONT_CARE;
+        depthAttachment.clearValue.depthStencil = {0.0f, 0};  // reversed Z
+        VkRenderingInfo info{VK_STRUCTURE_TYPE_RENDERING_INFO};
+        info.renderArea = {{0, 0}, target.extent};
+        info.layerCount = 1;
+        info.colorAttachmentCount = 1;
+        info.pColorAttachments = &color;
+        info.pDepthAttachment = &depthAttachment;
+        vkCmdBeginRendering(cmd, &info);
+        const VkViewport viewport{0.0f, 0.0f, float(target.extent.width), float(target.extent.height), 0.0f, 1.0f};
+        const VkRect2D scissor{{0, 0}, target.extent};
+        vkCmdSetViewport(cmd, 0, 1, &viewport);
+        vkCmdSetScissor(cmd, 0, 1, &scissor);
+        bindGeometry(cmd);
+        vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, forwardLayout, 0, 1, &slot.set, 0, nullptr);
+
+        // Opaque and masked first, then blended ones back to front.
+        std::vector<const DrawItem*> order;
+        for (const DrawItem& d : scene->draws) order.push_back(&d);
+        auto blended = [&](const DrawItem* d) { return scene->materials[d->material].alphaMode == AlphaMode::Blend; };
+        std::stable_sort(order.begin(), order.end(), [&](const DrawItem* a, const DrawItem* b) {
+            if (blended(a) != blended(b)) return !blended(a);
+            if (!blended(a)) return a->material < b->material;
+            return glm::distance(a->centerWs, view.positionWs) > glm::distance(b->centerWs, view.positionWs);
+        });
+        VkPipeline bound = VK_NULL_HANDLE;
+        uint32_t boundMaterial = UINT32_MAX;
+        for (const DrawItem* d : order) {
+            const GpuMaterial& m = scene->materials[d->material];
+            VkPipeline p = forwardPipeline(m, target.format);
+            if (p != bound) {
+                vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, p);
+                bound = p;
+            }
+            if (d->material != boundMaterial) {
+                vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, forwardLayout, 1, 1, &m.set, 0, nullptr);
+                boundMaterial = d->material;
+            }
+            const gpu::DrawPush push{glm::uvec4(d->instance, d->material, 0, 0)};
+            vkCmdPushConstants(cmd, forwardLayout, VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_FRAGMENT_BIT, 0,
+                               sizeof(push), &push);
+            vkCmdDrawIndexed(cmd, d->indexCount, 1, d->firstIndex, d->vertexOffset, 0);
+        }
+        vkCmdEndRendering(cmd);
+        vk::imageBarrier(cmd, target.image, VK_IMAGE_ASPECT_COLOR_BIT, VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL,
+                         target.layoutAfter, VK_PIPELINE_STAGE_2_COLOR_ATTACHMENT_OUTPUT_BIT,
+                         VK_ACCESS_2_COLOR_ATTACHMENT_WRITE_BIT, VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT,
+                         VK_ACCESS_2_MEMORY_READ_BIT | VK_ACCESS_2_MEMORY_WRITE_BIT);
+    }
+
+    void timestamp(VkCommandBuffer cmd, Slot& slot, uint32_t query) {
+        if (slot.queries) vkCmdWriteTimestamp2(cmd, VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT, slot.queries, query);
+    }
+
+    void record(VkCommandBuffer cmd, const RenderTarget& target, const View& view, uint32_t slotIndex) {
+        if (slotIndex >= kSlotCount) throw Error(fmt::format("Renderer::record: frame slot {} (0 or 1)", slotIndex));
+        if (target.extent.width == 0 || target.extent.height == 0)
+            throw Error("Renderer::record: target extent is empty");
+        Slot& slot = slots[slotIndex];
+        createShadowMap();
+        ensureDepth(target.extent);
+        glm::mat4 shadowClipFromWorld(1.0f);
+        const bool shadow = prepareFrame(slot, slotIndex, view, target.extent, shadowClipFromWorld);
+        updateFrameSet(slot, slotIndex);
+        if (slot.queries) vkCmdResetQueryPool(cmd, slot.queries, 0, kQueryCount);
+        timestamp(cmd, slot, 0);
+        if (shadow) recordShadowPass(cmd, slot);
+        timestamp(cmd, slot, 1);
+        timestamp(cmd, slot, 2);  // light lists are built on the CPU in prepareFrame
+        recordForwardPass(cmd, slot, target, view);
+        timestamp(cmd, slot, 3);
+        slot.recorded = true;
+        slot.shadowRecorded = shadow;
+    }
+
+    FrameStats stats(uint32_t slotIndex) const {
+        FrameStats s;
+        if (slotIndex >= kSlotCount) return s;
+        const Slot& slot = slots[slotIndex];
+        s.wallMs = slot.wallMs;
+        s.lightCount = slot.lightCount;
+        s.clusterOverflows = clusters->overflows(slotIndex);
+        s.clusterBuildCpuMs = settings.lightLoop == LightLoop::Clustered ? clusters->buildMs(slotIndex) : 0.0;
+        if (!slot.recorded || !slot.queries) return s;
+        std::array<uint64_t, kQueryCount> ticks{};
+        const VkResult r = vkGetQueryPoolResults(dev.device(), slot.queries, 0, kQueryCount, sizeof(ticks), ticks.data(),
+                                                 sizeof(uint64_t), VK_QUERY_RESULT_64_BIT);
+        if (r != VK_SUCCESS) return s;
+        const double toMs = double(dev.timestampPeriodNs()) * 1e-6;
+        auto ms = [&](int a, int b) { return double(ticks[size_t(b)] - ticks[size_t(a)]) * toMs; };
+        s.passes = {{"shadow", ms(0, 1)}, {"forward", ms(2, 3)}};
+        s.gpuMs = ms(0, 3);
+        return s;
+    }
+};
+
+Renderer::Renderer(Context& context, const Scene& scene, const Environment& environment, const LutSet* luts,
+                   const RenderSettings& settings)
+    : impl_(std::make_unique<Impl>(context, scene, environment, luts, settings)) {}
+
+Renderer::~Renderer() = default;
+
+const RenderSettings& Renderer::settings() const { return impl_->settings; }
+
+void Renderer::setSettings(const RenderSettings& settings) {
+    if (!std::isfinite(settings.exposure) || !std::isfinite(settings.shadowSoftnessTexels))
+        throw Error("RenderSettings: exposure and shadowSoftnessTexels must be finite");
+    impl_->settings = settings;
+}
+
+void Renderer::setLights(const std::vector<Light>& lights) { impl_->lights = lights; }
+const std::vector<Light>& Renderer::lights() const { return impl_->lights; }
+void Renderer::setEnvironment(const Environment& environment) { impl_->radianceSh = environment.radianceSh(); }
+
+void Renderer::setLuts(const LutSet* luts) {
+    vkDeviceWaitIdle(impl_->dev.device());
+    impl_->luts = std::make_unique<GpuLuts>(impl_->dev, luts);
+    impl_->scene->updateMaterials(impl_->luts->profileWidths());
+}
+
+void Renderer::record(VkCommandBuffer cmd, const RenderTarget& target, const View& view, uint32_t frameSlot) {
+    impl_->record(cmd, target, view, frameSlot);
+}
+
+FrameStats Renderer::frameStats(uint32_t frameSlot) const { return impl_->stats(frameSlot); }
+
+RenderedImage Renderer::render(const View& view, uint32_t width, uint32_t height, OutputEncoding encoding) {
+    Impl& im = *impl_;
+    const uint32_t maxDim = std::min<uint32_t>(im.dev.properties().limits.maxImageDimension2D, 16384);
+    if (width == 0 || height == 0 || width > maxDim || height > maxDim)
+        throw Error(fmt::format("image size: {}x{} is outside 1..{} pixels per side", width, height, maxDim));
+    const VkFormat format =
+        encoding == OutputEncoding::DisplaySrgb8 ? VK_FORMAT_R8G8B8A8_SRGB : VK_FORMAT_R32G32B32A32_SFLOAT;
+    const VkDeviceSize pixelBytes = encoding == OutputEncoding::DisplaySrgb8 ? 4 : 16;
+    if (!im.colorTarget || im.colorTarget.desc().width != width || im.colorTarget.desc().height != height ||
+        im.colorTarget.desc().format != format) {
+        vkDeviceWaitIdle(im.dev.device());
+        im.colorTarget = vk::Image(im.dev, {format, width, height, 1,
+                                            VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT,
+                                            VK_IMAGE_ASPECT_COLOR_BIT});
+        im.readback = vk::Buffer(im.dev, VkDeviceSize(width) * height * pixelBytes, VK_BUFFER_USAGE_TRANSFER_DST_BIT,
+                                 true);
+    }
+    RenderTarget target;
+    target.image = im.colorTarget.handle();
+    target.view = im.colorTarget.view();
+    target.format = format;
+    target.extent = {width, height};
+    target.layoutBefore = VK_IMAGE_LAYOUT_UNDEFINED;
+    target.layoutAfter = VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL;
+
+    const auto start = std::chrono::steady_clock::now();
+    im.dev.submitAndWait([&](VkCommandBuffer cmd) {
+        im.record(cmd, target, view, 0);
+        VkBufferImageCopy region{};
+        region.imageSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, 1};
+        region.imageExtent = {width, height, 1};
+        vkCmdCopyImageToBuffer(cmd, target.image, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, im.readback.handle(), 1,
+                               &region);
+        vk::memoryBarrier(cmd, VK_PIPELINE_STAGE_2_COPY_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT,
+                          VK_PIPELINE_STAGE_2_HOST_BIT, VK_ACCESS_2_HOST_READ_BIT);
+    });
+    im.slots[0].wallMs = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+
+    RenderedImage out;
+    out.width = width;
+    out.height = height;
+    out.encoding = encoding;
+    const size_t count = size_t(width) * height * 4;
+    if (encoding == OutputEncoding::DisplaySrgb8) {
+        out.rgba8.resize(count);
+        std::memcpy(out.rgba8.data(), im.readback.mapped(), count);
+    } else {
+        out.rgba32f.resize(count);
+        std::memcpy(out.rgba32f.data(), im.readback.mapped(), count * sizeof(float));
+    }
+    return out;
+}
+
+}  // namespace preskin

@@ -1,0 +1,32 @@
+// Public face of the Vulkan core (see vk/Device.h).
+#include <preskin/Context.h>
+
+#include "vk/Device.h"
+
+namespace preskin {
+
+Context::Context(std::unique_ptr<vk::Device> device) : device_(std::move(device)) {}
+Context::~Context() = default;
+
+std::unique_ptr<Context> Context::create(const ContextDesc& desc) {
+    return std::unique_ptr<Context>(new Context(vk::Device::create(desc)));
+}
+
+std::unique_ptr<Context> Context::wrap(const HostVulkan& host) {
+    return std::unique_ptr<Context>(new Context(vk::Device::wrap(host)));
+}
+
+std::vector<DeviceInfo> Context::listDevices() { return vk::Device::enumerate(); }
+
+VkInstance Context::instance() const { return device_->instance(); }
+VkPhysicalDevice Context::physicalDevice() const { return device_->physicalDevice(); }
+VkDevice Context::device() const { return device_->device(); }
+VkQueue Context::queue() const { return device_->queue(); }
+uint32_t Context::queueFamilyIndex() const { return device_->queueFamilyIndex(); }
+std::string Context::deviceName() const { return device_->properties().deviceName; }
+bool Context::isSoftwareDevice() const { return device_->properties().deviceType == VK_PHYSICAL_DEVICE_TYPE_CPU; }
+uint32_t Context::validationMessageCount() const { return device_->validationMessageCount(); }
+std::vector<std::string> Context::validationMessages() const { return device_->validationMessages(); }
+void Context::waitIdle() const { vkDeviceWaitIdle(device_->device()); }
+
+}  // namespace preskin

@@ -1,0 +1,172 @@
+#include "Options.h"
+
+#include <preskin/Error.h>
+#include <preskin/LightScatter.h>
+
+#include <fmt/core.h>
+
+#include <cmath>
+#include <cstdlib>
+#include <sstream>
+
+namespace preskin::cli {
+
+namespace {
+
+std::string lower(std::string s) {
+    for (char& c : s) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+    return s;
+}
+
+}  // namespace
+
+void addCommonOptions(CLI::App& cmd, CommonOptions& o) {
+    cmd.add_option("--env", o.env, "HDR environment (equirectangular .hdr or .exr); default: the scene's");
+    cmd.add_option("--env-intensity", o.envIntensity, "Environment radiance scale")->check(CLI::Range(0.0f, 1e6f));
+    cmd.add_option("--device", o.device, "Vulkan device: index or part of its name (default: best GPU, else lavapipe)");
+    cmd.add_flag("--validation", o.validation, "Enable Vulkan validation layers; any message makes the run fail");
+    cmd.add_option("--skin", o.skin, "Shade this material (or 'all') as skin with default parameters");
+    cmd.add_flag("--standard", o.standard, "Turn every skin technique off (standard shading, for comparison)");
+    cmd.add_flag("--no-lut-diffuse", o.noLutDiffuse, "Skin: Lambert instead of the pre-integrated diffuse LUT");
+    cmd.add_flag("--no-normal-prefilter", o.noNormalPrefilter, "Skin: one normal-map sample for all channels");
+    cmd.add_flag("--no-penumbra", o.noPenumbra, "Skin: plain PCF shadow instead of penumbra scattering");
+    cmd.add_flag("--no-sh-skin", o.noShSkin, "Skin: Lambert SH ambient instead of the skin transfer");
+    cmd.add_flag("--no-transmission", o.noTransmission, "Skin: no transmission through thin parts");
+    cmd.add_flag("--no-dual-specular", o.noDualSpecular, "Skin: one GGX lobe instead of two");
+    cmd.add_option("--debug", o.debug,
+                   "Debug view: none, curvature, normals, shadow, penumbra, lightcount, shambient, transmission")
+        ->capture_default_str();
+    cmd.add_option("--lights", o.lights, "Scatter this many coloured point and spot lights (clustered)")
+        ->check(CLI::Range(0u, 1u << 20));
+    cmd.add_option("--seed", o.seed, "Seed for --lights")->capture_default_str();
+    cmd.add_option("--light-loop", o.lightLoop, "clustered (light grid) or all (every light, brute force)")
+        ->check(CLI::IsMember({"clustered", "all"}))
+        ->capture_default_str();
+    cmd.add_option("--exposure", o.exposure, "Exposure multiplier")->check(CLI::Range(0.0f, 1e6f))->capture_default_str();
+    cmd.add_option("--shadow-softness", o.shadowSoftness, "Shadow filter sigma in shadow-map texels")
+        ->check(CLI::Range(0.25f, 2.0f))
+        ->capture_default_str();
+    cmd.add_option("--shadow-map-size", o.shadowMapSize, "Shadow map resolution")
+        ->check(CLI::Range(16u, 8192u))
+        ->capture_default_str();
+    cmd.add_flag("--no-shadows", o.noShadows, "Disable the shadow map");
+}
+
+std::filesystem::path dataDir() {
+    if (const char* env = std::getenv("PRESKIN_DATA_DIR"); env && *env) return env;
+    return PRESKIN_SOURCE_DIR;
+}
+
+std::filesystem::path defaultScenePath() { return dataDir() / "samples" / "assets" / "head" / "head.gltf"; }
+
+OutputEncoding encodingFor(const std::filesystem::path& out) {
+    const std::string ext = lower(out.extension().string());
+    if (ext == ".png") return OutputEncoding::DisplaySrgb8;
+    if (ext == ".exr") return OutputEncoding::LinearFloat;
+    throw Error(fmt::format("--out {}: unsupported image type '{}' (use .png or .exr)", out.string(), ext));
+}
+
+std::vector<float> parseFloats(const std::string& text, size_t count, const char* flag) {
+    std::vector<float> values;
+    std::stringstream ss(text);
+    std::string item;
+    while (std::getline(ss, item, ',')) {
+        char* end = nullptr;
+        const float v = std::strtof(item.c_str(), &end);
+        if (item.empty() || end == item.c_str() || *end != '\0' || !std::isfinite(v))
+            throw Error(fmt::format("{} {}: '{}' is not a finite number", flag, text, item));
+        values.push_back(v);
+    }
+    if (values.size() != count)
+        throw Error(fmt::format("{} {}: expected {} comma-separated numbers, got {}", flag, text, count, values.size()));
+    return values;
+}
+
+ContextDesc contextDesc(const CommonOptions& o) {
+    ContextDesc desc;
+    desc.validation = o.validation;
+#ifndef NDEBUG
+    desc.validation = true;  // debug builds always validate
+#endif
+    if (const char* env = std::getenv("PRESKIN_VALIDATION"); env && std::string(env) == "1") desc.validation = true;
+    desc.device = o.device;
+    return desc;
+}
+
+RenderSettings renderSettings(const CommonOptions& o) {
+    RenderSettings s;
+    s.skin.lutDiffuse = !o.noLutDiffuse;
+    s.skin.normalPrefilter = !o.noNormalPrefilter;
+    s.skin.penumbra = !o.noPenumbra;
+    s.skin.shAmbient = !o.noShSkin;
+    s.skin.transmission = !o.noTransmission;
+    s.skin.dualSpecular = !o.noDualSpecular;
+    if (o.standard) s.skin = SkinFeatures::none();
+    const std::string d = lower(o.debug);
+    if (d == "none") s.debugView = DebugView::None;
+    else if (d == "curvature") s.debugView = DebugView::Curvature;
+    else if (d == "normals") s.debugView = DebugView::Normals;
+    else if (d == "shadow") s.debugView = DebugView::Shadow;
+    else if (d == "penumbra") s.debugView = DebugView::Penumbra;
+    else if (d == "lightcount") s.debugView = DebugView::LightCount;
+    else if (d == "shambient") s.debugView = DebugView::ShAmbient;
+    else if (d == "transmission") s.debugView = DebugView::Transmission;
+    else throw Error(fmt::format("--debug {}: unknown debug view", o.debug));
+    s.lightLoop = o.lightLoop == "all" ? LightLoop::All : LightLoop::Clustered;
+    s.exposure = o.exposure;
+    s.shadowSoftnessTexels = o.shadowSoftness;
+    s.shadowMapSize = o.shadowMapSize;
+    s.shadows = !o.noShadows;
+    return s;
+}
+
+void applySkinOption(Scene& scene, const CommonOptions& o) {
+    if (!o.skin.empty()) scene.makeSkin(o.skin);
+}
+
+Environment loadEnvironment(const Scene& scene, const CommonOptions& o) {
+    if (!o.env.empty()) return Environment::load(o.env, o.envIntensity >= 0.0f ? o.envIntensity : 1.0f);
+    if (scene.environmentPath)
+        return Environment::load(*scene.environmentPath,
+                                 o.envIntensity >= 0.0f ? o.envIntensity : scene.environmentIntensity);
+    return Environment::constant(glm::vec3(0.25f) * (o.envIntensity >= 0.0f ? o.envIntensity : 1.0f));
+}
+
+std::vector<Light> sceneLights(const Scene& scene, const CommonOptions& o) {
+    std::vector<Light> lights = scene.lights;
+    if (lights.empty()) {
+        Light key;
+        key.name = "default key";
+        key.type = LightType::Directional;
+        key.directionWs = glm::normalize(glm::vec3(0.5f, -0.6f, -0.65f));
+        key.intensity = 3.0f;
+        key.castsShadow = true;
+        lights.push_back(key);
+    }
+    if (o.lights > 0) {
+        const auto scattered = scatterLights(scene.worldBounds(), o.lights, o.seed);
+        lights.insert(lights.end(), scattered.begin(), scattered.end());
+    }
+    return lights;
+}
+
+void applyLightOptions(Renderer& renderer, const Scene& scene, const CommonOptions& o) {
+    renderer.setLights(sceneLights(scene, o));
+}
+
+void reportValidation(const Context& context) {
+    const uint32_t n = context.validationMessageCount();
+    if (n > 0) throw Error(fmt::format("Vulkan validation reported {} message(s) (printed above)", n));
+}
+
+std::string formatStats(const FrameStats& stats) {
+    std::string passes;
+    for (const PassTime& p : stats.passes) passes += fmt::format("{}{} {:.2f}", passes.empty() ? "" : ", ", p.name, p.gpuMs);
+    std::string text = stats.passes.empty() ? "gpu timestamps unavailable"
+                                            : fmt::format("gpu {:.2f} ms ({})", stats.gpuMs, passes);
+    text += fmt::format(", wall {:.2f} ms", stats.wallMs);
+    if (stats.clusterBuildCpuMs > 0.0) text += fmt::format(" (light grid build {:.2f} ms cpu)", stats.clusterBuildCpuMs);
+    return text;
+}
+
+}  // namespace preskin::cli

@@ -1,0 +1,63 @@
+// Command-line options shared by the sample programs, and the helpers that turn them into
+// library objects (context, environment, renderer settings, lights). Public API only.
+#pragma once
+
+#include <preskin/Context.h>
+#include <preskin/Environment.h>
+#include <preskin/Renderer.h>
+#include <preskin/Scene.h>
+
+#include <CLI/CLI.hpp>
+
+#include <filesystem>
+#include <memory>
+#include <string>
+#include <vector>
+
+namespace preskin::cli {
+
+struct CommonOptions {
+    std::string env;
+    float envIntensity = -1.0f;  // < 0: the scene's (or 1)
+    std::string device;
+    bool validation = false;
+    std::string skin;  // material name or "all"
+    bool standard = false;
+    bool noLutDiffuse = false;
+    bool noNormalPrefilter = false;
+    bool noPenumbra = false;
+    bool noShSkin = false;
+    bool noTransmission = false;
+    bool noDualSpecular = false;
+    std::string debug = "none";
+    uint32_t lights = 0;
+    uint32_t seed = 1;
+    std::string lightLoop = "clustered";
+    float exposure = 1.0f;
+    float shadowSoftness = 1.5f;
+    uint32_t shadowMapSize = 2048;
+    bool noShadows = false;
+};
+
+void addCommonOptions(CLI::App& cmd, CommonOptions& o);
+
+// The bundled sample scene (samples/assets/head/head.gltf of the source tree, or of
+// $PRESKIN_DATA_DIR when set).
+std::filesystem::path dataDir();
+std::filesystem::path defaultScenePath();
+OutputEncoding encodingFor(const std::filesystem::path& out);
+std::vector<float> parseFloats(const std::string& text, size_t count, const char* flag);
+
+ContextDesc contextDesc(const CommonOptions& o);
+RenderSettings renderSettings(const CommonOptions& o);
+void applySkinOption(Scene& scene, const CommonOptions& o);
+// --env, else the scene's PRESKIN_environment, else a dim uniform grey.
+Environment loadEnvironment(const Scene& scene, const CommonOptions& o);
+// The scene's lights plus --lights N scattered ones; a scene without any light gets a key light.
+std::vector<Light> sceneLights(const Scene& scene, const CommonOptions& o);
+void applyLightOptions(Renderer& renderer, const Scene& scene, const CommonOptions& o);
+// Throws when validation is on and reported anything.
+void reportValidation(const Context& context);
+std::string formatStats(const FrameStats& stats);
+
+}  // namespace preskin::cli

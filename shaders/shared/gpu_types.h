@@ -1,0 +1,129 @@
+// GPU-visible structs, binding numbers and specialization-constant ids of the renderer, read by
+// C++ (engine/src/render) and GLSL (shaders/*). See common.h for the layout rules.
+#ifndef PRESKIN_SHARED_GPU_TYPES_H
+#define PRESKIN_SHARED_GPU_TYPES_H
+
+#include "shared/common.h"
+
+PRESKIN_GPU_BEGIN
+
+// ---- descriptor set 0: per frame -------------------------------------------------------------
+PRESKIN_CONST(uint, kBindingFrame, 0)          // FrameUniforms (uniform buffer)
+PRESKIN_CONST(uint, kBindingLights, 1)         // GpuLight[] (storage buffer)
+PRESKIN_CONST(uint, kBindingInstances, 2)      // GpuInstance[] (storage buffer)
+PRESKIN_CONST(uint, kBindingShadowMap, 3)      // depth, sampled with NEAREST taps (manual PCF)
+PRESKIN_CONST(uint, kBindingDiffuseLut, 4)     // D(NoL, curvature)
+PRESKIN_CONST(uint, kBindingPenumbraLut, 5)    // P(penumbra position, width)
+PRESKIN_CONST(uint, kBindingShTransferLut, 6)  // A_l(curvature), bands 0..2
+PRESKIN_CONST(uint, kBindingTransmittanceLut, 7)  // T(thickness)
+PRESKIN_CONST(uint, kBindingClusterRanges, 8)  // uvec2 (offset, count) per cluster
+PRESKIN_CONST(uint, kBindingClusterIndices, 9) // uint light indices
+
+// ---- descriptor set 1: per material ----------------------------------------------------------
+PRESKIN_CONST(uint, kBindingMaterial, 0)  // MaterialUniforms (uniform buffer)
+PRESKIN_CONST(uint, kBindingBaseColorTexture, 1)
+PRESKIN_CONST(uint, kBindingMetallicRoughnessTexture, 2)
+PRESKIN_CONST(uint, kBindingNormalTexture, 3)
+PRESKIN_CONST(uint, kBindingOcclusionTexture, 4)
+PRESKIN_CONST(uint, kBindingEmissiveTexture, 5)
+PRESKIN_CONST(uint, kBindingSpecularTexture, 6)      // skin: F0 scale (red)
+PRESKIN_CONST(uint, kBindingDetailNormalTexture, 7)  // skin: detail normal map
+PRESKIN_CONST(uint, kBindingCurvatureTexture, 8)     // skin: curvature (red)
+PRESKIN_CONST(uint, kMaterialTextureCount, 8)
+
+// ---- specialization constants of forward.frag ------------------------------------------------
+PRESKIN_CONST(uint, kSpecMaterialModel, 0)  // kModelStandard or kModelSkin
+PRESKIN_CONST(uint, kSpecOutputMode, 1)     // kOutputLinear or kOutputTonemapped
+PRESKIN_CONST(uint, kSpecDebugView, 2)      // kDebug*
+PRESKIN_CONST(uint, kSpecAlphaMode, 3)      // 0 opaque, 1 mask, 2 blend
+PRESKIN_CONST(uint, kSpecSkinFeatures, 4)   // bit mask of kSkin* below
+PRESKIN_CONST(uint, kSpecLightLoop, 5)      // kLightLoopClustered or kLightLoopAll
+
+PRESKIN_CONST(uint, kModelStandard, 0)
+PRESKIN_CONST(uint, kModelSkin, 1)
+PRESKIN_CONST(uint, kOutputLinear, 0)
+PRESKIN_CONST(uint, kOutputTonemapped, 1)
+PRESKIN_CONST(uint, kLightLoopAll, 0)
+PRESKIN_CONST(uint, kLightLoopClustered, 1)
+
+PRESKIN_CONST(uint, kSkinLutDiffuse, 1)
+PRESKIN_CONST(uint, kSkinNormalPrefilter, 2)
+PRESKIN_CONST(uint, kSkinPenumbra, 4)
+PRESKIN_CONST(uint, kSkinShAmbient, 8)
+PRESKIN_CONST(uint, kSkinTransmission, 16)
+PRESKIN_CONST(uint, kSkinDualSpecular, 32)
+PRESKIN_CONST(uint, kSkinAll, 63)
+
+PRESKIN_CONST(uint, kDebugNone, 0)
+PRESKIN_CONST(uint, kDebugCurvature, 1)
+PRESKIN_CONST(uint, kDebugNormals, 2)
+PRESKIN_CONST(uint, kDebugShadow, 3)
+PRESKIN_CONST(uint, kDebugPenumbra, 4)
+PRESKIN_CONST(uint, kDebugLightCount, 5)
+PRESKIN_CONST(uint, kDebugShAmbient, 6)
+PRESKIN_CONST(uint, kDebugTransmission, 7)
+
+PRESKIN_CONST(uint, kLightDirectional, 0)
+PRESKIN_CONST(uint, kLightPoint, 1)
+PRESKIN_CONST(uint, kLightSpot, 2)
+
+// One punctual light. Directional lights are not clustered; they are evaluated for every pixel.
+struct GpuLight {
+    vec4 positionRange;      // xyz position (world, m), w range (m); 0 = unlimited
+    vec4 directionType;      // xyz direction the light travels (world), w type (kLight*)
+    vec4 colorIntensity;     // rgb linear colour * intensity (lux or candela), w shadow index (-1: none)
+    vec4 spotScaleOffset;    // x,y: KHR_lights_punctual cone attenuation scale and offset
+};
+PRESKIN_CHECK_SIZE(GpuLight, 64)
+
+struct GpuInstance {
+    mat4 worldFromObject;
+    mat4 normalWorldFromObject;  // inverse transpose of the upper 3x3
+    vec4 params;                 // x: 1 / uniform scale (object curvature -> world curvature)
+};
+PRESKIN_CHECK_SIZE(GpuInstance, 144)
+
+struct FrameUniforms {
+    mat4 clipFromWorld;
+    mat4 viewFromWorld;
+    mat4 shadowClipFromWorld;   // directional shadow: orthographic, depth 0 (near) .. 1 (far)
+    vec4 cameraPositionWs;      // xyz, w: exposure
+    vec4 viewport;              // width, height, 1/width, 1/height
+    vec4 shadowParams;          // x texel size (m), y Gaussian sigma (texels), z depth range (m), w map size
+    vec4 shadowDirectionWs;     // xyz direction the shadow light travels, w: 1 when a shadow map exists
+    vec4 shRadiance[9];         // L2 SH of environment radiance, RGB (environment intensity applied)
+    uvec4 lightCounts;          // x: lights, y: directional lights (first y entries), z: cluster index capacity
+    vec4 clusterScale;          // x,y: tiles per pixel, z,w: depth slice = log2(viewDepth) * z + w
+    uvec4 clusterDims;          // x, y, z clusters; w: max lights per cluster
+};
+PRESKIN_CHECK_SIZE(FrameUniforms, 3 * 64 + 4 * 16 + 9 * 16 + 3 * 16)
+
+// Per-texture transform rows (KHR_texture_transform): uv' = (dot(r0.xyz, (u,v,1)), dot(r1.xyz, (u,v,1))).
+struct GpuUvTransform {
+    vec4 row0;
+    vec4 row1;
+};
+
+struct MaterialUniforms {
+    vec4 baseColorFactor;
+    vec4 emissiveAlphaCutoff;  // rgb emissive factor (strength applied), w alpha cutoff
+    vec4 pbr;                  // x metallic, y roughness, z normal scale, w occlusion strength
+    vec4 skinScatter;          // x scatter scale, y curvature source (0 vertex,1 texture,2 derivatives),
+                               // z curvature texture scale (1/m), w transmission strength
+    vec4 skinNormalLodBias;    // rgb LOD bias per channel, w detail normal scale
+    vec4 skinTransmission;     // rgb transmission colour, w thickness scale
+    vec4 skinSpecular;         // x F0 scale, y lobe-0 roughness multiplier, z lobe-1 multiplier, w lobe-1 weight
+    vec4 textureFlags;         // x has detail normal, y detail uv scale, z has specular texture, w has normal map
+    GpuUvTransform uv[5];      // base colour, metallic-roughness, normal, occlusion, emissive
+};
+PRESKIN_CHECK_SIZE(MaterialUniforms, 8 * 16 + 5 * 32)
+
+// Per draw.
+struct DrawPush {
+    uvec4 indices;  // x: instance index
+};
+PRESKIN_CHECK_SIZE(DrawPush, 16)
+
+PRESKIN_GPU_END
+
+#endif

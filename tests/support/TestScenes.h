@@ -1,0 +1,17 @@
+// Scenes built in code for tests: analytic shapes with exact normals and tangents.
+#pragma once
+
+#include <preskin/Scene.h>
+
+namespace preskin::test {
+
+// UV sphere of the given radius at the origin (segments around, rings pole to pole).
+Primitive makeSphere(float radiusM, uint32_t segments, uint32_t rings);
+// Square in the XY plane facing +Z, centred at the origin, subdivided n x n.
+Primitive makeQuad(float sizeM, uint32_t n);
+// Axis-aligned box centred at the origin with outward faces.
+Primitive makeBox(const glm::vec3& sizeM);
+// A scene holding each primitive as one mesh instance with its own transform.
+Scene makeScene(const std::vector<std::pair<Primitive, glm::mat4>>& parts, const std::vector<Material>& materials);
+
+}  // namespace preskin::test
