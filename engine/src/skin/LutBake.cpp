@@ -1,0 +1,199 @@
+// Baking a LutSet from a DiffusionProfile: diffuse ring integral (Penner & Borshukov 2011),
+// penumbra scattering, SH transfer and transmittance, in parallel over table columns with TBB.
+// Models and axis definitions: engine/include/preskin/LutSet.h; quadrature: RingScatter.h.
+// Limits: sizes in [16, 4096] per axis; curvature range (0, 100] 1/mm.
+#include <preskin/LutSet.h>
+
+#include "skin/Half.h"
+#include "skin/LutLayout.h"
+#include "skin/RingScatter.h"
+#include "skin/SpecialFunctions.h"
+
+#include <preskin/Error.h>
+
+#include <fmt/core.h>
+#include <tbb/parallel_for.h>
+
+#include <algorithm>
+#include <atomic>
+#include <cmath>
+#include <limits>
+#include <mutex>
+#include <vector>
+
+namespace preskin {
+namespace skin {
+namespace {
+
+void checkSize(int value, std::string_view source, std::string_view field) {
+    if (value < LutBakeSettings::kMinSize || value > LutBakeSettings::kMaxSize)
+        throw Error(fmt::format("{}: {}: must be an integer in [{}, {}], got {}", source, field, LutBakeSettings::kMinSize,
+                                LutBakeSettings::kMaxSize, value));
+}
+
+// The thickness where the largest channel's transmittance falls to kTransmittanceFloor, rounded
+// up to 0.01 mm (a round number keeps manifests comparable across machines).
+double transmittanceRangeMm(const DiffusionProfile& profile) {
+    auto largest = [&](double d) {
+        const glm::dvec3 t = profile.transmittance(d);
+        return std::max({t.x, t.y, t.z});
+    };
+    double lo = 0.0;
+    double hi = profile.maxWidthMm();
+    while (largest(hi) > kTransmittanceFloor) {
+        lo = hi;
+        hi *= 2.0;
+    }
+    for (int i = 0; i < 200 && hi - lo > 1e-9 * hi; ++i) {
+        const double mid = 0.5 * (lo + hi);
+        (largest(mid) > kTransmittanceFloor ? lo : hi) = mid;
+    }
+    return std::ceil(hi * 100.0) / 100.0;
+}
+
+LutAxis axis(std::string quantity, std::string unit, AxisMapping mapping, double min, double max, double scale, int size) {
+    LutAxis a;
+    a.quantity = std::move(quantity);
+    a.unit = std::move(unit);
+    a.mapping = mapping;
+    a.min = min;
+    a.max = max;
+    a.scale = scale;
+    a.size = size;
+    return a;
+}
+
+void storeHalf(LutTable& table, int ix, int iy, glm::dvec3 value) {
+    const size_t i = (static_cast<size_t>(iy) * static_cast<size_t>(table.width()) + static_cast<size_t>(ix)) * 3;
+    for (int c = 0; c < 3; ++c) table.rgb[i + static_cast<size_t>(c)] = roundToHalf(static_cast<float>(value[c]));
+}
+
+}  // namespace
+
+void validateBakeSettings(const LutBakeSettings& s, std::string_view source, std::string_view prefix) {
+    const std::string p(prefix);
+    checkSize(s.diffuseNoLSize, source, p + "diffuseNoLSize");
+    checkSize(s.diffuseCurvatureSize, source, p + "diffuseCurvatureSize");
+    checkSize(s.penumbraShadowSize, source, p + "penumbraShadowSize");
+    checkSize(s.penumbraWidthSize, source, p + "penumbraWidthSize");
+    checkSize(s.shCurvatureSize, source, p + "shCurvatureSize");
+    checkSize(s.transmittanceSize, source, p + "transmittanceSize");
+    if (!std::isfinite(s.curvatureMaxPerMm) || !(s.curvatureMaxPerMm > 0.0) || s.curvatureMaxPerMm > 100.0)
+        throw Error(fmt::format("{}: {}curvatureMaxPerMm: must be in (0, 100] 1/mm, got {}", source, p, s.curvatureMaxPerMm));
+}
+
+LutLayout makeLutLayout(const DiffusionProfile& profile, const LutBakeSettings& s) {
+    const double inf = std::numeric_limits<double>::infinity();
+    LutLayout layout;
+    layout.diffuse.name = "diffuse";
+    layout.diffuse.x = axis("NoL", "1", AxisMapping::SplitLinear, -1.0, 1.0, 1.0, s.diffuseNoLSize);
+    layout.diffuse.y = axis("curvature", "1/mm", AxisMapping::Sqrt, 0.0, s.curvatureMaxPerMm, 1.0, s.diffuseCurvatureSize);
+    layout.penumbra.name = "penumbra";
+    layout.penumbra.x = axis("shadow", "1", AxisMapping::Linear, 0.0, 1.0, 1.0, s.penumbraShadowSize);
+    layout.penumbra.y = axis("filterSigmaRelative", "1", AxisMapping::Rational, 0.0, inf, 1.0, s.penumbraWidthSize);
+    layout.shTransfer.name = "shTransfer";
+    layout.shTransfer.x = axis("curvature", "1/mm", AxisMapping::Sqrt, 0.0, s.curvatureMaxPerMm, 1.0, s.shCurvatureSize);
+    layout.shTransfer.y = axis("band", "1", AxisMapping::Index, 0.0, 2.0, 1.0, 3);
+    layout.transmittance.name = "transmittance";
+    layout.transmittance.x = axis("thickness", "mm", AxisMapping::Log1p, 0.0, transmittanceRangeMm(profile),
+                                  profile.narrowestScaleMm(), s.transmittanceSize);
+    layout.transmittance.y = axis("row", "1", AxisMapping::Index, 0.0, 0.0, 1.0, 1);
+    layout.penumbraReferenceWidthMm = profile.maxWidthMm();
+    return layout;
+}
+
+}  // namespace skin
+
+LutBakeSettings LutBakeSettings::withSize(int size) {
+    LutBakeSettings s;
+    s.diffuseNoLSize = s.diffuseCurvatureSize = s.penumbraShadowSize = s.penumbraWidthSize = s.shCurvatureSize =
+        s.transmittanceSize = size;
+    return s;
+}
+
+void LutBakeSettings::validate() const { skin::validateBakeSettings(*this, "LutBakeSettings", ""); }
+
+LutSet LutSet::bake(const DiffusionProfile& profile, const LutBakeSettings& settings, const LutBakeProgress& progress) {
+    settings.validate();
+    skin::LutLayout layout = skin::makeLutLayout(profile, settings);
+    LutSet set(profile);
+    set.settings_ = settings;
+    set.penumbraReferenceWidthMm_ = layout.penumbraReferenceWidthMm;
+    set.diffuse_ = std::move(layout.diffuse);
+    set.penumbra_ = std::move(layout.penumbra);
+    set.shTransfer_ = std::move(layout.shTransfer);
+    set.transmittance_ = std::move(layout.transmittance);
+    for (LutTable* table : {&set.diffuse_, &set.penumbra_, &set.shTransfer_, &set.transmittance_})
+        table->rgb.assign(static_cast<size_t>(table->width()) * static_cast<size_t>(table->height()) * 3, 0.0f);
+
+    // Node values shared by all columns.
+    std::vector<double> nol(static_cast<size_t>(set.diffuse_.width()));
+    for (int i = 0; i < set.diffuse_.width(); ++i) nol[static_cast<size_t>(i)] = set.diffuse_.x.valueAt(i);
+    std::vector<double> shadowQuantile(static_cast<size_t>(set.penumbra_.width()));
+    for (int i = 0; i < set.penumbra_.width(); ++i) shadowQuantile[static_cast<size_t>(i)] = skin::normalQuantile(set.penumbra_.x.valueAt(i));
+
+    // Work units: diffuse columns (one curvature each), SH columns, penumbra rows (one filter
+    // width each), the transmittance row.
+    const int diffuseUnits = set.diffuse_.height();
+    const int shUnits = set.shTransfer_.width();
+    const int penumbraUnits = set.penumbra_.height();
+    const int total = diffuseUnits + shUnits + penumbraUnits + 1;
+    std::atomic<int> done{0};
+    std::mutex progressMutex;
+    int reported = 0;
+    auto finishUnit = [&] {
+        done.fetch_add(1);
+        if (!progress) return;
+        std::lock_guard lock(progressMutex);
+        const int now = done.load();
+        if (now > reported) {
+            reported = now;
+            progress(static_cast<double>(now) / total);
+        }
+    };
+
+    const double windowSigmas = skin::kPenumbraWindowSigmas;
+    tbb::parallel_for(0, total, [&](int unit) {
+        if (unit < diffuseUnits) {
+            const int iy = unit;
+            const double curvaturePerMm = set.diffuse_.y.valueAt(iy);
+            std::vector<glm::dvec3> column(nol.size());
+            skin::ringScatter(profile, curvaturePerMm, nol, column);
+            for (int ix = 0; ix < set.diffuse_.width(); ++ix) skin::storeHalf(set.diffuse_, ix, iy, column[static_cast<size_t>(ix)]);
+        } else if (unit < diffuseUnits + shUnits) {
+            const int ix = unit - diffuseUnits;
+            const std::array<glm::dvec3, 3> a = skin::shTransfer(profile, set.shTransfer_.x.valueAt(ix));
+            for (int l = 0; l < 3; ++l)
+                skin::storeHalf(set.shTransfer_, ix, l, a[static_cast<size_t>(l)] / skin::kLambertZonal[static_cast<size_t>(l)]);
+        } else if (unit < diffuseUnits + shUnits + penumbraUnits) {
+            const int iy = unit - diffuseUnits - shUnits;
+            const int lastRow = set.penumbra_.height() - 1;
+            const double sigmaMm = set.penumbra_.y.valueAt(iy) * set.penumbraReferenceWidthMm_;
+            const glm::dvec3 low = iy == 0 || iy == lastRow ? glm::dvec3(0.0) : profile.edgeResponse(-windowSigmas * sigmaMm);
+            const glm::dvec3 high = iy == 0 || iy == lastRow ? glm::dvec3(1.0) : profile.edgeResponse(windowSigmas * sigmaMm);
+            for (int ix = 0; ix < set.penumbra_.width(); ++ix) {
+                const double q = shadowQuantile[static_cast<size_t>(ix)];
+                glm::dvec3 value;
+                if (iy == lastRow) {
+                    value = glm::dvec3(q < 0.0 ? 0.0 : (q > 0.0 ? 1.0 : 0.5));  // infinitely wide filter: a step
+                } else if (q <= -windowSigmas) {
+                    value = glm::dvec3(0.0);
+                } else if (q >= windowSigmas) {
+                    value = glm::dvec3(1.0);
+                } else if (iy == 0) {
+                    value = glm::dvec3(0.5 * (q / windowSigmas + 1.0));  // vanishing filter: the linear limit
+                } else {
+                    value = (profile.edgeResponse(sigmaMm * q) - low) / (high - low);
+                }
+                skin::storeHalf(set.penumbra_, ix, iy, glm::clamp(value, 0.0, 1.0));
+            }
+        } else {
+            for (int ix = 0; ix < set.transmittance_.width(); ++ix)
+                skin::storeHalf(set.transmittance_, ix, 0, profile.transmittance(set.transmittance_.x.valueAt(ix)));
+        }
+        finishUnit();
+    });
+    return set;
+}
+
+}  // namespace preskin

@@ -1,0 +1,425 @@
+// LutSet files: four half-float RGB EXR tables (OpenImageIO) and manifest.json describing the
+// profile, settings, axes (range, unit, mapping, formula), sizes, sample counts, conventions and
+// an FNV-1a content hash per table; optional 8-bit sRGB PNG previews. Saving writes temporary
+// files and renames them into place (manifest last); loading validates everything and names the
+// file and field of the first problem.
+// Limits: one set per folder; files are replaced one by one (a reader racing a writer can see
+// a manifest whose hashes do not match, and then reports it).
+#include <preskin/LutSet.h>
+
+#include "skin/Half.h"
+#include "skin/LutLayout.h"
+#include "skin/ProfileJson.h"
+
+#include <preskin/Error.h>
+
+#include <OpenImageIO/imageio.h>
+#include <fmt/core.h>
+#include <nlohmann/json.hpp>
+
+#include <cmath>
+#include <fstream>
+#include <functional>
+#include <numbers>
+#include <random>
+#include <sstream>
+#include <system_error>
+
+namespace preskin {
+namespace {
+
+namespace fs = std::filesystem;
+using ordered_json = nlohmann::ordered_json;
+
+constexpr const char* kFormat = "preskin-lut-set";
+constexpr int kVersion = 1;
+constexpr const char* kManifestName = "manifest.json";
+
+struct TableFile {
+    const char* key;       // manifest key
+    const char* fileName;  // EXR name
+    const char* preview;   // PNG name
+};
+constexpr TableFile kDiffuseFile{"diffuse", "diffuse.exr", "preview_diffuse.png"};
+constexpr TableFile kPenumbraFile{"penumbra", "penumbra.exr", "preview_penumbra.png"};
+constexpr TableFile kShFile{"shTransfer", "sh_transfer.exr", "preview_sh_transfer.png"};
+constexpr TableFile kTransmittanceFile{"transmittance", "transmittance.exr", "preview_transmittance.png"};
+
+std::string shown(const fs::path& p) { return p.string(); }
+
+// ---- manifest writing ----------------------------------------------------------------------
+
+ordered_json axisJson(const LutAxis& axis) {
+    ordered_json j;
+    j["quantity"] = axis.quantity;
+    j["unit"] = axis.unit;
+    j["min"] = axis.min;
+    if (std::isinf(axis.max)) j["max"] = "infinity"; else j["max"] = axis.max;
+    if (axis.mapping == AxisMapping::Log1p) j["scale"] = axis.scale;
+    j["size"] = axis.size;
+    j["mapping"] = axisMappingName(axis.mapping);
+    j["formula"] = axis.formula();
+    j["textureCoordinate"] = "(t + 0.5) / size";
+    return j;
+}
+
+ordered_json tableJson(const LutTable& table, const TableFile& file) {
+    ordered_json j;
+    j["file"] = file.fileName;
+    j["width"] = table.width();
+    j["height"] = table.height();
+    j["channels"] = ordered_json::array({"R", "G", "B"});
+    j["pixelType"] = "half";
+    j["x"] = axisJson(table.x);
+    j["y"] = axisJson(table.y);
+    j["hash"] = table.contentHash();
+    return j;
+}
+
+ordered_json rgbJson(glm::dvec3 v) { return ordered_json::array({v.x, v.y, v.z}); }
+
+std::string manifestText(const LutSet& set) {
+    const DiffusionProfile& profile = set.profile();
+    const LutBakeSettings& s = set.settings();
+    ordered_json j;
+    j["format"] = kFormat;
+    j["version"] = kVersion;
+    j["profile"] = skin::profileToJson(profile);
+    j["profileProperties"] = {
+        {"albedo", rgbJson(profile.albedo())},
+        {"widthMm", rgbJson(profile.widthMm())},
+        {"widthDefinition", "RMS radius sqrt(int r^2 2 pi r R(r) dr / albedo) per channel"},
+        {"narrowestScaleMm", profile.narrowestScaleMm()},
+    };
+    j["settings"] = {
+        {"diffuseNoLSize", s.diffuseNoLSize},       {"diffuseCurvatureSize", s.diffuseCurvatureSize},
+        {"penumbraShadowSize", s.penumbraShadowSize}, {"penumbraWidthSize", s.penumbraWidthSize},
+        {"shCurvatureSize", s.shCurvatureSize},     {"transmittanceSize", s.transmittanceSize},
+        {"curvatureMaxPerMm", s.curvatureMaxPerMm},
+    };
+    j["conventions"] = {
+        {"layout", "row-major RGB; scanline y (v = (y + 0.5) / height) holds y-axis node y; column x holds x-axis node x"},
+        {"texelCentres", "axis node i sits at texel centre (i + 0.5) / size; node 0 = range start, node size-1 = range "
+                         "end; sample with LINEAR filtering and CLAMP_TO_EDGE"},
+        {"values", "rounded to half precision at bake time; the EXR files hold exactly the baked numbers"},
+        {"normalisation", "every table carries the profile's shape only (per channel, albedo divided out); multiply "
+                          "by the material's albedo"},
+        {"varianceScale", "none: Gaussian variances are used as published (no 1.414 factor)"},
+        {"ringKernel", "diffuse ring integral (Penner & Borshukov 2011) with K(x) = P(2 r sin(|x|/2)), P the profile "
+                       "integrated along the cylinder axis (1D-normalised Gaussians for sums of Gaussians)"},
+        {"penumbraModel", "hard edge seen through a Gaussian shadow filter of standard deviation sigma_f; x = sigma_f "
+                          "Phi^-1(shadow); value = edge response of the profile renormalised to |x| <= 3 sigma_f"},
+        {"shTransfer", "stored as A_l / (pi, 2 pi / 3, pi / 4)_l, A_l = 2 pi int D(theta) P_l(cos theta) sin theta "
+                       "dtheta; flat skin stores 1"},
+        {"transmittance", "T(d) = int 2 pi r R(sqrt(r^2 + d^2)) dr / albedo; Gaussians: sum_i w_i exp(-d^2 / 2 v_i) / "
+                          "albedo (Jimenez et al. 2010's form with variances doubled, no 1.414 factor)"},
+        {"previews", "preview_*.png: sRGB-encoded, first y node at the bottom; SH bands 0, 1, 2 bottom to top"},
+    };
+
+    ordered_json tables;
+    ordered_json diffuse = tableJson(set.diffuse(), kDiffuseFile);
+    diffuse["method"] = "ring integral over [0, pi] by 8-point Gauss-Legendre on intervals between every lit-arc "
+                        "endpoint and a geometric mesh (ratio 1.25) from 1e-7 of the narrowest kernel scale; row 0 "
+                        "(curvature 0) is exactly saturate(NoL)";
+    diffuse["samples"] = {{"gaussLegendrePointsPerInterval", 8}, {"gradedMeshRatio", 1.25}, {"uniformBreaks", 32}};
+    tables["diffuse"] = std::move(diffuse);
+
+    ordered_json penumbra = tableJson(set.penumbra(), kPenumbraFile);
+    penumbra["referenceWidthMm"] = set.penumbraReferenceWidthMm();
+    penumbra["windowSigmas"] = skin::kPenumbraWindowSigmas;
+    penumbra["method"] = "closed form (erfc) for Gaussians; Craig-form integral (1/pi) int_0^{pi/2} T(a / sin psi) dpsi "
+                         "by 8-point Gauss-Legendre on a halving mesh for normalized diffusion";
+    tables["penumbra"] = std::move(penumbra);
+
+    ordered_json sh = tableJson(set.shTransfer(), kShFile);
+    sh["lambert"] = ordered_json::array({std::numbers::pi, 2.0 * std::numbers::pi / 3.0, std::numbers::pi / 4.0});
+    sh["method"] = "16-point Gauss-Legendre in cos(theta) on [-1, 1] with breaks at 0, +-1/256, +-1/64, +-1/16, +-1/4 "
+                   "(160 ring integrals per curvature)";
+    sh["samples"] = {{"cosThetaNodes", 160}};
+    tables["shTransfer"] = std::move(sh);
+
+    ordered_json transmittance = tableJson(set.transmittance(), kTransmittanceFile);
+    transmittance["floor"] = skin::kTransmittanceFloor;
+    transmittance["method"] = "closed form";
+    tables["transmittance"] = std::move(transmittance);
+    j["tables"] = std::move(tables);
+    return j.dump(2) + "\n";
+}
+
+// ---- image writing -------------------------------------------------------------------------
+
+void writeExr(const fs::path& path, const fs::path& shownPath, const LutTable& table) {
+    std::vector<uint16_t> half(table.rgb.size());
+    for (size_t i = 0; i < half.size(); ++i) half[i] = skin::floatToHalfBits(table.rgb[i]);
+    auto out = OIIO::ImageOutput::create("openexr");
+    if (!out) throw Error(fmt::format("{}: cannot create an EXR writer: {}", shown(shownPath), OIIO::geterror()));
+    OIIO::ImageSpec spec(table.width(), table.height(), 3, OIIO::TypeDesc::HALF);
+    spec.attribute("compression", "zip");
+    spec.attribute("oiio:ColorSpace", "linear");
+    spec.attribute("preskin:table", table.name);
+    if (!out->open(path.string(), spec) || !out->write_image(OIIO::TypeDesc::HALF, half.data()) || !out->close())
+        throw Error(fmt::format("{}: cannot write: {}", shown(shownPath), out->geterror()));
+}
+
+float srgbEncode(float linear) {
+    const float c = std::clamp(linear, 0.0f, 1.0f);
+    return c <= 0.0031308f ? 12.92f * c : 1.055f * std::pow(c, 1.0f / 2.4f) - 0.055f;
+}
+
+// Rows bottom-up (first y node at the bottom); each table row repeated `rowRepeat` times.
+void writePreview(const fs::path& path, const fs::path& shownPath, const LutTable& table, int rowRepeat) {
+    const int width = table.width();
+    const int height = table.height() * rowRepeat;
+    std::vector<uint8_t> pixels(static_cast<size_t>(width) * static_cast<size_t>(height) * 3);
+    for (int py = 0; py < height; ++py) {
+        const int iy = (height - 1 - py) / rowRepeat;
+        for (int ix = 0; ix < width; ++ix) {
+            const glm::vec3 v = table.texel(ix, iy);
+            for (int c = 0; c < 3; ++c)
+                pixels[(static_cast<size_t>(py) * static_cast<size_t>(width) + static_cast<size_t>(ix)) * 3 + static_cast<size_t>(c)] =
+                    static_cast<uint8_t>(std::lround(255.0f * srgbEncode(v[c])));
+        }
+    }
+    auto out = OIIO::ImageOutput::create("png");
+    if (!out) throw Error(fmt::format("{}: cannot create a PNG writer: {}", shown(shownPath), OIIO::geterror()));
+    OIIO::ImageSpec spec(width, height, 3, OIIO::TypeDesc::UINT8);
+    if (!out->open(path.string(), spec) || !out->write_image(OIIO::TypeDesc::UINT8, pixels.data()) || !out->close())
+        throw Error(fmt::format("{}: cannot write: {}", shown(shownPath), out->geterror()));
+}
+
+void writeText(const fs::path& path, const fs::path& shownPath, const std::string& text) {
+    std::ofstream out(path, std::ios::binary | std::ios::trunc);
+    out << text;
+    out.close();
+    if (!out) throw Error(fmt::format("{}: cannot write", shown(shownPath)));
+}
+
+// ---- manifest reading ----------------------------------------------------------------------
+
+struct ManifestReader {
+    std::string source;  // the manifest's path, for messages
+
+    [[noreturn]] void fail(const std::string& field, const std::string& problem) const {
+        throw Error(fmt::format("{}: {}: {}", source, field, problem));
+    }
+    const nlohmann::json& field(const nlohmann::json& object, const std::string& path, const char* key) const {
+        const std::string full = path.empty() ? key : path + "." + key;
+        if (!object.is_object()) fail(path, std::string("must be an object, got ") + object.type_name());
+        const auto it = object.find(key);
+        if (it == object.end()) fail(full, "missing");
+        return *it;
+    }
+    int integer(const nlohmann::json& object, const std::string& path, const char* key) const {
+        const nlohmann::json& v = field(object, path, key);
+        const std::string full = path.empty() ? key : path + "." + key;
+        if (!v.is_number_integer()) fail(full, std::string("must be an integer, got ") + v.dump());
+        const auto value = v.get<int64_t>();
+        if (value < -1000000000 || value > 1000000000) fail(full, "out of range: " + v.dump());
+        return static_cast<int>(value);
+    }
+    double number(const nlohmann::json& object, const std::string& path, const char* key) const {
+        const nlohmann::json& v = field(object, path, key);
+        const std::string full = path.empty() ? key : path + "." + key;
+        if (v.is_string() && v.get<std::string>() == "infinity") return std::numeric_limits<double>::infinity();
+        if (!v.is_number()) fail(full, std::string("must be a number, got ") + v.dump());
+        return v.get<double>();
+    }
+    std::string string(const nlohmann::json& object, const std::string& path, const char* key) const {
+        const nlohmann::json& v = field(object, path, key);
+        const std::string full = path.empty() ? key : path + "." + key;
+        if (!v.is_string()) fail(full, std::string("must be a string, got ") + v.dump());
+        return v.get<std::string>();
+    }
+};
+
+bool sameNumber(double a, double b) {
+    if (std::isinf(a) || std::isinf(b)) return a == b;
+    return std::abs(a - b) <= 1e-9 * std::max({1.0, std::abs(a), std::abs(b)});
+}
+
+void checkAxis(const ManifestReader& reader, const nlohmann::json& tables, const std::string& path, const char* key,
+               const LutAxis& expected) {
+    const std::string at = path + "." + key;
+    const nlohmann::json& a = reader.field(tables, path, key);
+    auto expect = [&](const char* name, double got, double want) {
+        if (!sameNumber(got, want))
+            reader.fail(at + "." + name, fmt::format("{} does not match the profile and settings ({})", got, want));
+    };
+    const std::string quantity = reader.string(a, at, "quantity");
+    if (quantity != expected.quantity) reader.fail(at + ".quantity", fmt::format("expected \"{}\", got \"{}\"", expected.quantity, quantity));
+    const std::string mapping = reader.string(a, at, "mapping");
+    if (mapping != axisMappingName(expected.mapping))
+        reader.fail(at + ".mapping", fmt::format("expected \"{}\", got \"{}\"", axisMappingName(expected.mapping), mapping));
+    expect("size", reader.integer(a, at, "size"), expected.size);
+    expect("min", reader.number(a, at, "min"), expected.min);
+    expect("max", reader.number(a, at, "max"), expected.max);
+    if (expected.mapping == AxisMapping::Log1p) expect("scale", reader.number(a, at, "scale"), expected.scale);
+}
+
+LutTable readTable(const fs::path& dir, const ManifestReader& reader, const nlohmann::json& tables, const TableFile& file,
+                   LutTable expected) {
+    const std::string path = std::string("tables.") + file.key;
+    const nlohmann::json& t = reader.field(tables, "tables", file.key);
+    const std::string name = reader.string(t, path, "file");
+    if (name != file.fileName) reader.fail(path + ".file", fmt::format("expected \"{}\", got \"{}\"", file.fileName, name));
+    const int width = reader.integer(t, path, "width");
+    const int height = reader.integer(t, path, "height");
+    if (width != expected.width() || height != expected.height())
+        reader.fail(path + ".width", fmt::format("{}x{} does not match the settings ({}x{})", width, height, expected.width(),
+                                                 expected.height()));
+    checkAxis(reader, t, path, "x", expected.x);
+    checkAxis(reader, t, path, "y", expected.y);
+    const std::string hash = reader.string(t, path, "hash");
+
+    const fs::path exrPath = dir / file.fileName;
+    auto in = OIIO::ImageInput::open(exrPath.string());
+    if (!in) throw Error(fmt::format("{}: cannot read: {}", shown(exrPath), OIIO::geterror()));
+    const OIIO::ImageSpec& spec = in->spec();
+    if (spec.width != width || spec.height != height || spec.nchannels != 3)
+        throw Error(fmt::format("{}: image is {}x{} with {} channels, but {} {} says {}x{} RGB", shown(exrPath), spec.width,
+                                spec.height, spec.nchannels, reader.source, path, width, height));
+    std::vector<uint16_t> half(static_cast<size_t>(width) * static_cast<size_t>(height) * 3);
+    if (!in->read_image(0, 0, 0, 3, OIIO::TypeDesc::HALF, half.data()))
+        throw Error(fmt::format("{}: cannot read: {}", shown(exrPath), in->geterror()));
+    in->close();
+    expected.rgb.resize(half.size());
+    for (size_t i = 0; i < half.size(); ++i) {
+        expected.rgb[i] = skin::halfBitsToFloat(half[i]);
+        if (!std::isfinite(expected.rgb[i]))
+            throw Error(fmt::format("{}: texel {} holds a non-finite value", shown(exrPath), i / 3));
+    }
+    const std::string actual = expected.contentHash();
+    if (actual != hash)
+        throw Error(fmt::format("{}: content hash {} does not match {} {}.hash ({}); the file is corrupt or from another bake",
+                                shown(exrPath), actual, reader.source, path, hash));
+    return expected;
+}
+
+}  // namespace
+
+// Builds and validates sets for LutSet's save/load (needs its private members).
+struct LutSetAccess {
+    static LutSet load(const fs::path& dir);
+};
+
+void LutSet::save(const fs::path& dir, const LutSaveOptions& options) const {
+    struct Pending {
+        fs::path finalPath;
+        std::function<void(const fs::path& temp)> write;
+    };
+    std::vector<Pending> files;
+    auto addTable = [&](const LutTable& table, const TableFile& file) {
+        files.push_back({dir / file.fileName, [&table, shownPath = dir / file.fileName](const fs::path& temp) {
+                             writeExr(temp, shownPath, table);
+                         }});
+    };
+    addTable(diffuse_, kDiffuseFile);
+    addTable(penumbra_, kPenumbraFile);
+    addTable(shTransfer_, kShFile);
+    addTable(transmittance_, kTransmittanceFile);
+    if (options.previewPngs) {
+        auto addPreview = [&](const LutTable& table, const TableFile& file, int rowRepeat) {
+            files.push_back({dir / file.preview, [&table, rowRepeat, shownPath = dir / file.preview](const fs::path& temp) {
+                                 writePreview(temp, shownPath, table, rowRepeat);
+                             }});
+        };
+        addPreview(diffuse_, kDiffuseFile, 1);
+        addPreview(penumbra_, kPenumbraFile, 1);
+        addPreview(shTransfer_, kShFile, 16);
+        addPreview(transmittance_, kTransmittanceFile, 32);
+    }
+    const std::string manifest = manifestText(*this);
+    files.push_back({dir / kManifestName, [&manifest, shownPath = dir / kManifestName](const fs::path& temp) {
+                         writeText(temp, shownPath, manifest);
+                     }});
+
+    // Create the folder, remembering what did not exist so a failure can remove it again.
+    std::vector<fs::path> created;
+    std::error_code ec;
+    for (fs::path p = dir; !p.empty() && !fs::exists(p, ec); p = p.parent_path()) {
+        created.push_back(p);
+        if (p == p.parent_path()) break;
+    }
+    if (!fs::create_directories(dir, ec) && ec)
+        throw Error(fmt::format("{}: cannot create the output folder: {}", shown(dir), ec.message()));
+    if (!fs::is_directory(dir, ec)) throw Error(fmt::format("{}: exists and is not a folder", shown(dir)));
+
+    std::random_device entropy;
+    const std::string tag = fmt::format("{:08x}", entropy());
+    std::vector<fs::path> temps;
+    try {
+        for (const Pending& file : files) {
+            const fs::path temp = dir / fmt::format(".{}.tmp-{}{}", file.finalPath.stem().string(), tag,
+                                                    file.finalPath.extension().string());
+            temps.push_back(temp);
+            file.write(temp);
+        }
+        for (size_t i = 0; i < files.size(); ++i) {
+            fs::rename(temps[i], files[i].finalPath, ec);
+            if (ec) throw Error(fmt::format("{}: cannot move into place: {}", shown(files[i].finalPath), ec.message()));
+        }
+    } catch (...) {
+        for (const fs::path& temp : temps) fs::remove(temp, ec);
+        for (const fs::path& p : created) fs::remove(p, ec);  // only removes empty folders
+        throw;
+    }
+}
+
+LutSet LutSetAccess::load(const fs::path& dir) {
+    const fs::path manifestPath = dir / kManifestName;
+    ManifestReader reader{shown(manifestPath)};
+    std::ifstream in(manifestPath, std::ios::binary);
+    if (!in) throw Error(fmt::format("{}: cannot open the LUT manifest", reader.source));
+    std::ostringstream text;
+    text << in.rdbuf();
+    nlohmann::json j;
+    try {
+        j = nlohmann::json::parse(text.str());
+    } catch (const nlohmann::json::parse_error& e) {
+        std::string message = e.what();
+        const auto close = message.find("] ");
+        if (close != std::string::npos) message = message.substr(close + 2);
+        throw Error(fmt::format("{}: invalid JSON: {}", reader.source, message));
+    }
+    if (!j.is_object()) reader.fail("(root)", "must be a JSON object");
+    if (reader.string(j, "", "format") != kFormat) reader.fail("format", fmt::format("expected \"{}\"", kFormat));
+    const int version = reader.integer(j, "", "version");
+    if (version != kVersion) reader.fail("version", fmt::format("unsupported version {} (this build reads {})", version, kVersion));
+
+    DiffusionProfile profile = skin::parseProfileJson(reader.field(j, "", "profile"), reader.source, "profile.");
+    const nlohmann::json& s = reader.field(j, "", "settings");
+    LutBakeSettings settings;
+    settings.diffuseNoLSize = reader.integer(s, "settings", "diffuseNoLSize");
+    settings.diffuseCurvatureSize = reader.integer(s, "settings", "diffuseCurvatureSize");
+    settings.penumbraShadowSize = reader.integer(s, "settings", "penumbraShadowSize");
+    settings.penumbraWidthSize = reader.integer(s, "settings", "penumbraWidthSize");
+    settings.shCurvatureSize = reader.integer(s, "settings", "shCurvatureSize");
+    settings.transmittanceSize = reader.integer(s, "settings", "transmittanceSize");
+    settings.curvatureMaxPerMm = reader.number(s, "settings", "curvatureMaxPerMm");
+    skin::validateBakeSettings(settings, reader.source, "settings.");
+
+    skin::LutLayout layout = skin::makeLutLayout(profile, settings);
+    const nlohmann::json& tables = reader.field(j, "", "tables");
+    const double referenceWidth = reader.number(reader.field(tables, "tables", "penumbra"), "tables.penumbra", "referenceWidthMm");
+    if (!sameNumber(referenceWidth, layout.penumbraReferenceWidthMm))
+        reader.fail("tables.penumbra.referenceWidthMm",
+                    fmt::format("{} does not match the profile ({})", referenceWidth, layout.penumbraReferenceWidthMm));
+
+    LutSet set(std::move(profile));
+    set.settings_ = settings;
+    set.penumbraReferenceWidthMm_ = layout.penumbraReferenceWidthMm;
+    set.diffuse_ = readTable(dir, reader, tables, kDiffuseFile, std::move(layout.diffuse));
+    set.penumbra_ = readTable(dir, reader, tables, kPenumbraFile, std::move(layout.penumbra));
+    set.shTransfer_ = readTable(dir, reader, tables, kShFile, std::move(layout.shTransfer));
+    set.transmittance_ = readTable(dir, reader, tables, kTransmittanceFile, std::move(layout.transmittance));
+    return set;
+}
+
+LutSet LutSet::load(const fs::path& dir) { return LutSetAccess::load(dir); }
+
+const LutSet& LutSet::loadDefault() {
+    static const LutSet set = bake(DiffusionProfile::deonLuebke());
+    return set;
+}
+
+}  // namespace preskin
