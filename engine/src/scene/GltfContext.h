@@ -11,6 +11,7 @@
 
 #include <filesystem>
 #include <optional>
+#include <sstream>
 #include <string>
 #include <vector>
 
@@ -31,6 +32,13 @@ struct LoadContext {
         scene->warnings.push_back(file + ": " + where + ": " + oneLine(what));
     }
 };
+
+// A number as written in JSON (shortest form: 0.5, 1, 1e-07).
+inline std::string number(double value) {
+    std::ostringstream out;
+    out << value;
+    return out.str();
+}
 
 inline std::string indexed(const std::string& array, size_t index) {
     return array + "[" + std::to_string(index) + "]";

@@ -118,11 +118,14 @@ bool loadImage(tinygltf::Image* image, const int index, std::string* err, std::s
 // ---- meshes -------------------------------------------------------------------------------
 
 std::vector<uint32_t> toTriangleList(const LoadContext& ctx, const std::vector<uint32_t>& indices, int mode,
-                                     const std::string& where) {
+                                     bool indexed, const std::string& where) {
     std::vector<uint32_t> list;
     const size_t n = indices.size();
     if (mode == TINYGLTF_MODE_TRIANGLES) {
-        if (n % 3 != 0) ctx.fail(where, std::to_string(n) + " vertices (indices) is not a multiple of 3 for a triangle list");
+        if (n % 3 != 0) {
+            ctx.fail(where, std::string(indexed ? "index" : "vertex") + " count " + std::to_string(n) +
+                                " is not a multiple of 3 for a triangle list");
+        }
         return indices;
     }
     if (n < 3) return list;
@@ -235,7 +238,7 @@ void convertMeshes(const LoadContext& ctx) {
                 indices.resize(vertexCount);
                 for (size_t i = 0; i < vertexCount; ++i) indices[i] = static_cast<uint32_t>(i);
             }
-            out.indices = toTriangleList(ctx, indices, mode, prim.indices >= 0 ? where + ".indices" : where);
+            out.indices = toTriangleList(ctx, indices, mode, prim.indices >= 0, prim.indices >= 0 ? where + ".indices" : where);
             totalIndices += out.indices.size();
             if (totalIndices > kMaxSceneIndices) {
                 ctx.fail(where, "the scene exceeds the limit of " + std::to_string(kMaxSceneIndices) + " indices");
@@ -333,7 +336,7 @@ Light convertLight(const LoadContext& ctx, int lightIndex, const glm::mat4& worl
     if (out.type == LightType::Spot) {
         const double inner = in.spot.innerConeAngle, outer = in.spot.outerConeAngle;
         if (!(inner >= 0.0 && inner < outer && outer <= std::numbers::pi / 2 + 1e-6)) {
-            ctx.fail(where + ".spot", "cone angles inner " + std::to_string(inner) + ", outer " + std::to_string(outer) +
+            ctx.fail(where + ".spot", "cone angles inner " + number(inner) + ", outer " + number(outer) +
                                           " (need 0 <= inner < outer <= pi/2)");
         }
         out.innerConeAngle = static_cast<float>(inner);
@@ -450,7 +453,7 @@ void convertNodes(const LoadContext& ctx) {
         const auto index = static_cast<size_t>(item.node);
         const std::string where = indexed("nodes", index);
         if (visited[index]) {
-            ctx.fail(where, "is reached twice: the node graph has a cycle, a node with two parents, or a node listed twice");
+            ctx.fail(where, "reached twice: the node graph has a cycle, a node with two parents, or a node listed twice");
         }
         visited[index] = 1;
         const tinygltf::Node& node = model.nodes[index];

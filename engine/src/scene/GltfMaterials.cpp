@@ -103,8 +103,7 @@ SkinTextureRef skinTextureRef(const LoadContext& ctx, const tinygltf::Value& ski
 float clampedFactor(const LoadContext& ctx, double value, double lo, double hi, const std::string& where) {
     if (!std::isfinite(value)) ctx.fail(where, "not finite");
     if (value < lo || value > hi) {
-        ctx.warn(where, std::to_string(value) + " is outside [" + std::to_string(lo) + ", " + std::to_string(hi) +
-                            "]; clamped");
+        ctx.warn(where, number(value) + " is outside [" + number(lo) + ", " + number(hi) + "]; clamped");
         value = std::clamp(value, lo, hi);
     }
     return static_cast<float>(value);
@@ -116,8 +115,8 @@ void skinNumber(const LoadContext& ctx, const tinygltf::Value& skin, const char*
     auto v = numberField(ctx, skin, key, where);
     if (!v) return;
     if (*v < lo || *v > hi || (loOpen && *v == lo)) {
-        ctx.fail(where + "." + key, std::to_string(*v) + " is outside " + (loOpen ? "(" : "[") + std::to_string(lo) +
-                                        ", " + (std::isinf(hi) ? "inf)" : std::to_string(hi) + "]"));
+        ctx.fail(where + "." + key, number(*v) + " is outside " + (loOpen ? "(" : "[") + number(lo) + ", " +
+                                        (std::isinf(hi) ? "inf)" : number(hi) + "]"));
     }
     out = static_cast<float>(*v);
 }

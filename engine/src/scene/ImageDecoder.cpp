@@ -91,6 +91,8 @@ DecodedImage decodeImageRgba8(std::span<const uint8_t> bytes, ImageFormat format
     OIIO::Filesystem::IOMemReader memory(bytes.data(), bytes.size());
     std::unique_ptr<TempFile> temp;
     OIIO::ImageSpec config;
+    // glTF colours are straight (unassociated) alpha; OIIO would premultiply PNG alpha otherwise.
+    config.attribute("oiio:UnassociatedAlpha", 1);
     std::string openName;
     if (input->supports("ioproxy")) {
         void* proxy = &memory;
