@@ -16,6 +16,10 @@ layout(constant_id = kSpecLightLoop) const uint kLightLoop = kLightLoopAll;
 layout(set = 0, binding = kBindingFrame) uniform Frame { FrameUniforms frame; };
 layout(std430, set = 0, binding = kBindingLights) readonly buffer Lights { GpuLight lights[]; };
 layout(set = 0, binding = kBindingShadowMap) uniform sampler2D shadowMap;
+layout(set = 0, binding = kBindingDiffuseLut) uniform sampler2D diffuseLut;
+layout(set = 0, binding = kBindingPenumbraLut) uniform sampler2D penumbraLut;
+layout(set = 0, binding = kBindingShTransferLut) uniform sampler2D shTransferLut;
+layout(set = 0, binding = kBindingTransmittanceLut) uniform sampler2D transmittanceLut;
 layout(std430, set = 0, binding = kBindingClusterRanges) readonly buffer ClusterRanges { uvec2 clusterRanges[]; };
 layout(std430, set = 0, binding = kBindingClusterIndices) readonly buffer ClusterIndices { uint clusterIndices[]; };
 
@@ -25,11 +29,15 @@ layout(set = 1, binding = kBindingMetallicRoughnessTexture) uniform sampler2D me
 layout(set = 1, binding = kBindingNormalTexture) uniform sampler2D normalTexture;
 layout(set = 1, binding = kBindingOcclusionTexture) uniform sampler2D occlusionTexture;
 layout(set = 1, binding = kBindingEmissiveTexture) uniform sampler2D emissiveTexture;
+layout(set = 1, binding = kBindingSpecularTexture) uniform sampler2D specularTexture;
+layout(set = 1, binding = kBindingDetailNormalTexture) uniform sampler2D detailNormalTexture;
+layout(set = 1, binding = kBindingCurvatureTexture) uniform sampler2D curvatureTexture;
 
 #include "preskin/brdf.glsl"
 #include "preskin/lights.glsl"
 #include "preskin/shadow.glsl"
 #include "preskin/sh.glsl"
+#include "preskin/skin.glsl"
 #include "preskin/tonemap.glsl"
 
 layout(location = 0) in vec3 inPositionWs;
@@ -76,6 +84,31 @@ void localLightRange(out uint first, out uint count, out bool indirect) {
     }
 }
 
+// Tangent-space normal from the base map plus the optional detail map (whiteout blend),
+// each sampled with a mip LOD bias.
+vec3 skinNormal(vec2 uv, float bias, vec3 N, vec4 T) {
+    vec3 base = texture(normalTexture, uv, bias).rgb * 2.0 - 1.0;
+    base.xy *= material.pbr.z;
+    if (material.textureFlags.x > 0.5) {
+        vec3 detail = texture(detailNormalTexture, uv * material.textureFlags.y, bias).rgb * 2.0 - 1.0;
+        detail.xy *= material.skinNormalLodBias.w;
+        base = vec3(base.xy + detail.xy, base.z * detail.z);
+    }
+    return perturbNormal(normalize(base) * 0.5 + 0.5, 1.0, N, T);
+}
+
+float skinCurvaturePerM(vec3 geometricN) {
+    uint source = uint(material.skinScatter.y);
+    if (source == 1u) return texture(curvatureTexture, transformUv(material.uv[0], inUv0)).r * material.skinScatter.z;
+    if (source == 2u) return preskinCurvatureFromDerivatives(geometricN, inPositionWs);
+    return inCurvaturePerM;
+}
+
+vec3 curvatureHeat(float curvaturePerMm) {
+    float t = clamp(sqrt(curvaturePerMm / 0.5), 0.0, 1.0);  // 0 .. 0.5 / mm (radius 2 mm)
+    return vec3(smoothstep(0.25, 0.75, t), sin(t * PRESKIN_PI), smoothstep(0.5, 0.0, t));
+}
+
 void main() {
     vec2 uvBase = transformUv(material.uv[0], inUv0);
     vec4 baseColor = material.baseColorFactor * texture(baseColorTexture, uvBase);
@@ -89,16 +122,12 @@ void main() {
 
     vec3 geometricN = normalize(inNormalWs);
     if (!gl_FrontFacing) geometricN = -geometricN;
-    vec3 N = geometricN;
-    if (material.textureFlags.w > 0.5)
-        N = perturbNormal(texture(normalTexture, transformUv(material.uv[2], inUv0)).rgb, material.pbr.z, geometricN,
-                          inTangentWs);
+    vec2 uvNormal = transformUv(material.uv[2], inUv0);
+    bool hasNormalMap = material.textureFlags.w > 0.5;
+    vec3 N = hasNormalMap ? perturbNormal(texture(normalTexture, uvNormal).rgb, material.pbr.z, geometricN, inTangentWs)
+                          : geometricN;
     vec3 V = normalize(frame.cameraPositionWs.xyz - inPositionWs);
-
-    PreskinStandardSurface surface;
-    surface.diffuseColor = baseColor.rgb * (1.0 - metallic);
-    surface.F0 = mix(vec3(0.04), baseColor.rgb, metallic);
-    surface.roughness = roughness;
+    float NoV = max(dot(N, V), 1e-4);
 
     PreskinShadowSample shadow;
     shadow.visibility = 1.0;
@@ -107,44 +136,130 @@ void main() {
     if (frame.shadowDirectionWs.w > 0.5)
         shadow = preskinSampleShadow(shadowMap, frame.shadowClipFromWorld, frame.shadowParams, inPositionWs, geometricN);
 
-    vec3 color = vec3(0.0);
-    for (uint i = 0; i < frame.lightCounts.y; ++i) {
-        GpuLight light = lights[i];
-        vec3 L;
-        vec3 irradiance;
-        preskinLightIncidence(light, inPositionWs, L, irradiance);
-        float visibility = light.colorIntensity.w >= 0.0 ? shadow.visibility : 1.0;
-        color += preskinStandardLight(surface, N, V, L, irradiance * visibility);
-    }
     uint first;
     uint count;
     bool indirect;
     localLightRange(first, count, indirect);
-    for (uint i = 0; i < count; ++i) {
-        GpuLight light = lights[indirect ? clusterIndices[first + i] : first + i];
-        vec3 L;
-        vec3 irradiance;
-        preskinLightIncidence(light, inPositionWs, L, irradiance);
-        color += preskinStandardLight(surface, N, V, L, irradiance);
-    }
+    uint lightTotal = frame.lightCounts.y + count;
 
-    // Ambient: SH irradiance for diffuse; for specular the cosine-convolved SH in the
-    // reflection direction, exact for rough surfaces and too blurry for glossy ones.
-    float NoV = max(dot(N, V), 1e-4);
-    vec3 irradianceSh = max(preskinShEvaluate(frame.shRadiance, N, PRESKIN_SH_LAMBERT), vec3(0.0));
-    vec3 R = reflect(-V, N);
-    vec3 specularSh = max(preskinShEvaluate(frame.shRadiance, R, PRESKIN_SH_LAMBERT), vec3(0.0)) / PRESKIN_PI;
-    vec3 envBrdf = preskinEnvBrdfApprox(surface.F0, roughness, NoV);
-    color += (surface.diffuseColor * irradianceSh / PRESKIN_PI * (vec3(1.0) - envBrdf) + specularSh * envBrdf) * occlusion;
+    vec3 color = vec3(0.0);
+    vec3 debugColor = vec3(0.0);
+    vec3 diffuseColor;
+    vec3 ambientDiffuse;
+    if (kMaterialModel == kModelSkin) {
+        // Pre-integrated skin (preskin/skin.glsl). Skin is a dielectric: metallic is ignored.
+        const uint features = kSkinFeatures;
+        PreskinSkinSurface skin;
+        skin.albedo = baseColor.rgb;
+        skin.geometricNormal = geometricN;
+        skin.normalSpecular = hasNormalMap ? skinNormal(uvNormal, 0.0, geometricN, inTangentWs) : geometricN;
+        skin.normalR = skin.normalSpecular;
+        skin.normalG = skin.normalSpecular;
+        skin.normalB = skin.normalSpecular;
+        if (hasNormalMap && (features & kSkinNormalPrefilter) != 0u) {
+            skin.normalR = skinNormal(uvNormal, material.skinNormalLodBias.r, geometricN, inTangentWs);
+            skin.normalG = skinNormal(uvNormal, material.skinNormalLodBias.g, geometricN, inTangentWs);
+            skin.normalB = skinNormal(uvNormal, material.skinNormalLodBias.b, geometricN, inTangentWs);
+        }
+        N = skin.normalSpecular;
+        NoV = max(dot(N, V), 1e-4);
+        skin.scatterScale = material.skinScatter.x;
+        skin.curvaturePerMm = skinCurvaturePerM(geometricN) * 0.001 / max(skin.scatterScale, 1e-6);
+        skin.roughness = roughness;
+        float specularMap = material.textureFlags.z > 0.5 ? texture(specularTexture, uvBase).r : 1.0;
+        skin.F0 = vec3(0.028 * material.skinSpecular.x * specularMap);
+        skin.lobes = material.skinSpecular.yzww;
+        skin.transmissionTint = material.skinScatter.w * material.skinTransmission.rgb;
+        skin.thicknessScale = material.skinTransmission.w;
+
+        vec3 transmitted = vec3(0.0);
+        vec3 penumbra = vec3(1.0);
+        for (uint i = 0; i < frame.lightCounts.y; ++i) {
+            GpuLight light = lights[i];
+            vec3 L;
+            vec3 irradiance;
+            preskinLightIncidence(light, inPositionWs, L, irradiance);
+            bool shadowed = light.colorIntensity.w >= 0.0 && frame.shadowDirectionWs.w > 0.5;
+            vec3 shadowRgb = vec3(1.0);
+            float visibility = 1.0;
+            if (shadowed) {
+                visibility = shadow.visibility;
+                shadowRgb = preskinSkinShadow(skin, frame.lut, penumbraLut, visibility, shadow.kernelWidthM, L, features);
+                penumbra = shadowRgb;
+                // Thickness from a point moved 2 profile-mm inside along the normal (Jimenez et al.
+                // 2010 shrink): the lit side near the terminator is not a zero-thickness slab.
+                float thicknessM = 0.0;
+                if ((features & kSkinTransmission) != 0u)
+                    thicknessM = preskinShadowThickness(shadowMap, frame.shadowClipFromWorld, frame.shadowParams,
+                                                        inPositionWs - geometricN * (0.002 / max(skin.scatterScale, 1e-6)));
+                transmitted += preskinSkinTransmission(skin, frame.lut, transmittanceLut, L, irradiance, thicknessM,
+                                                       features);
+            }
+            color += preskinSkinLight(skin, frame.lut, diffuseLut, V, L, irradiance, shadowRgb, visibility, features);
+        }
+        for (uint i = 0; i < count; ++i) {
+            GpuLight light = lights[indirect ? clusterIndices[first + i] : first + i];
+            vec3 L;
+            vec3 irradiance;
+            preskinLightIncidence(light, inPositionWs, L, irradiance);
+            color += preskinSkinLight(skin, frame.lut, diffuseLut, V, L, irradiance, vec3(1.0), 1.0, features);
+        }
+        color += transmitted;
+        diffuseColor = skin.albedo;
+        vec3 ambientIrradiance = preskinSkinAmbientIrradiance(skin, frame.lut, shTransferLut, frame.shRadiance, features);
+        vec3 envBrdf = preskinEnvBrdfApprox(skin.F0, roughness, NoV);
+        vec3 R = reflect(-V, skin.normalSpecular);
+        vec3 specularSh = max(preskinShEvaluate(frame.shRadiance, R, PRESKIN_SH_LAMBERT), vec3(0.0)) / PRESKIN_PI;
+        ambientDiffuse = diffuseColor * ambientIrradiance / PRESKIN_PI * (vec3(1.0) - envBrdf) * occlusion;
+        color += ambientDiffuse + specularSh * envBrdf * occlusion;
+        if (kDebugView == kDebugCurvature) debugColor = curvatureHeat(skin.curvaturePerMm);
+        else if (kDebugView == kDebugNormals)
+            debugColor = vec3(skin.normalR.x, skin.normalG.y, skin.normalB.z) * 0.5 + 0.5;
+        else if (kDebugView == kDebugPenumbra) debugColor = penumbra;
+        else if (kDebugView == kDebugTransmission) debugColor = transmitted;
+    } else {
+        PreskinStandardSurface surface;
+        surface.diffuseColor = baseColor.rgb * (1.0 - metallic);
+        surface.F0 = mix(vec3(0.04), baseColor.rgb, metallic);
+        surface.roughness = roughness;
+        for (uint i = 0; i < frame.lightCounts.y; ++i) {
+            GpuLight light = lights[i];
+            vec3 L;
+            vec3 irradiance;
+            preskinLightIncidence(light, inPositionWs, L, irradiance);
+            float visibility = light.colorIntensity.w >= 0.0 ? shadow.visibility : 1.0;
+            color += preskinStandardLight(surface, N, V, L, irradiance * visibility);
+        }
+        for (uint i = 0; i < count; ++i) {
+            GpuLight light = lights[indirect ? clusterIndices[first + i] : first + i];
+            vec3 L;
+            vec3 irradiance;
+            preskinLightIncidence(light, inPositionWs, L, irradiance);
+            color += preskinStandardLight(surface, N, V, L, irradiance);
+        }
+        // Ambient: SH irradiance for diffuse; for specular the cosine-convolved SH in the
+        // reflection direction, exact for rough surfaces and too blurry for glossy ones.
+        vec3 irradianceSh = max(preskinShEvaluate(frame.shRadiance, N, PRESKIN_SH_LAMBERT), vec3(0.0));
+        vec3 R = reflect(-V, N);
+        vec3 specularSh = max(preskinShEvaluate(frame.shRadiance, R, PRESKIN_SH_LAMBERT), vec3(0.0)) / PRESKIN_PI;
+        vec3 envBrdf = preskinEnvBrdfApprox(surface.F0, roughness, NoV);
+        diffuseColor = surface.diffuseColor;
+        ambientDiffuse = surface.diffuseColor * irradianceSh / PRESKIN_PI * (vec3(1.0) - envBrdf) * occlusion;
+        color += ambientDiffuse + specularSh * envBrdf * occlusion;
+        if (kDebugView == kDebugCurvature) debugColor = curvatureHeat(inCurvaturePerM * 0.001);
+        else if (kDebugView == kDebugNormals) debugColor = N * 0.5 + 0.5;
+        else if (kDebugView == kDebugPenumbra) debugColor = vec3(shadow.visibility);
+    }
     color += emissive;
 
-    if (kDebugView == kDebugNormals) color = N * 0.5 + 0.5;
-    else if (kDebugView == kDebugShadow) color = vec3(shadow.visibility);
-    else if (kDebugView == kDebugShAmbient) color = surface.diffuseColor * irradianceSh / PRESKIN_PI;
+    if (kDebugView == kDebugShadow) debugColor = vec3(shadow.visibility);
+    else if (kDebugView == kDebugShAmbient) debugColor = ambientDiffuse;
     else if (kDebugView == kDebugLightCount) {
-        float t = clamp(float(count) / 32.0, 0.0, 1.0);
-        color = vec3(smoothstep(0.3, 0.7, t), sin(t * PRESKIN_PI), smoothstep(0.6, 0.2, t)) * (count > 0 ? 1.0 : 0.1);
+        float t = clamp(float(lightTotal) / 32.0, 0.0, 1.0);
+        debugColor = vec3(smoothstep(0.3, 0.7, t), sin(t * PRESKIN_PI), smoothstep(0.6, 0.2, t)) *
+                     (lightTotal > 0u ? 1.0 : 0.1);
     }
+    if (kDebugView != kDebugNone) color = debugColor;
 
     color *= (kDebugView == kDebugNone) ? frame.cameraPositionWs.w : 1.0;
     float alpha = kAlphaMode == 2 ? baseColor.a : 1.0;

@@ -40,8 +40,8 @@ void run(const RenderOptions& o) {
     applySkinOption(scene, o.common);
     const Environment environment = loadEnvironment(scene, o.common);
     auto context = Context::create(contextDesc(o.common));
-    const LutSet* luts = nullptr;
-    Renderer renderer(*context, scene, environment, luts, renderSettings(o.common));
+    const LutSet luts = loadLuts(o.common);
+    Renderer renderer(*context, scene, environment, &luts, renderSettings(o.common));
     applyLightOptions(renderer, scene, o.common);
 
     const float aspect = float(o.width) / float(o.height);

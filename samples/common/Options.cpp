@@ -50,6 +50,7 @@ void addCommonOptions(CLI::App& cmd, CommonOptions& o) {
         ->check(CLI::Range(16u, 8192u))
         ->capture_default_str();
     cmd.add_flag("--no-shadows", o.noShadows, "Disable the shadow map");
+    cmd.add_option("--luts", o.luts, "Skin LUT set folder (from `preskin bake`); default: the bundled d'Eon set");
 }
 
 std::filesystem::path dataDir() {
@@ -91,6 +92,14 @@ ContextDesc contextDesc(const CommonOptions& o) {
     if (const char* env = std::getenv("PRESKIN_VALIDATION"); env && std::string(env) == "1") desc.validation = true;
     desc.device = o.device;
     return desc;
+}
+
+LutSet loadLuts(const CommonOptions& o) {
+    if (!o.luts.empty()) return LutSet::load(o.luts);
+    const std::filesystem::path bundled = dataDir() / "luts";
+    std::error_code ec;
+    if (std::filesystem::exists(bundled / "manifest.json", ec)) return LutSet::load(bundled);
+    return LutSet::loadDefault();
 }
 
 RenderSettings renderSettings(const CommonOptions& o) {

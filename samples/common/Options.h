@@ -4,6 +4,7 @@
 
 #include <preskin/Context.h>
 #include <preskin/Environment.h>
+#include <preskin/LutSet.h>
 #include <preskin/Renderer.h>
 #include <preskin/Scene.h>
 
@@ -37,6 +38,7 @@ struct CommonOptions {
     float shadowSoftness = 1.5f;
     uint32_t shadowMapSize = 2048;
     bool noShadows = false;
+    std::string luts;  // LUT set folder; default: the committed luts/ (d'Eon)
 };
 
 void addCommonOptions(CLI::App& cmd, CommonOptions& o);
@@ -49,6 +51,8 @@ OutputEncoding encodingFor(const std::filesystem::path& out);
 std::vector<float> parseFloats(const std::string& text, size_t count, const char* flag);
 
 ContextDesc contextDesc(const CommonOptions& o);
+// --luts DIR, else the committed default set (luts/ of the data folder), else a fresh bake.
+LutSet loadLuts(const CommonOptions& o);
 RenderSettings renderSettings(const CommonOptions& o);
 void applySkinOption(Scene& scene, const CommonOptions& o);
 // --env, else the scene's PRESKIN_environment, else a dim uniform grey.

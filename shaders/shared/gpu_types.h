@@ -4,6 +4,8 @@
 #define PRESKIN_SHARED_GPU_TYPES_H
 
 #include "shared/common.h"
+#include "shared/lut_mapping.h"
+#include "shared/skin_features.h"
 
 PRESKIN_GPU_BEGIN
 
@@ -36,7 +38,7 @@ PRESKIN_CONST(uint, kSpecMaterialModel, 0)  // kModelStandard or kModelSkin
 PRESKIN_CONST(uint, kSpecOutputMode, 1)     // kOutputLinear or kOutputTonemapped
 PRESKIN_CONST(uint, kSpecDebugView, 2)      // kDebug*
 PRESKIN_CONST(uint, kSpecAlphaMode, 3)      // 0 opaque, 1 mask, 2 blend
-PRESKIN_CONST(uint, kSpecSkinFeatures, 4)   // bit mask of kSkin* below
+PRESKIN_CONST(uint, kSpecSkinFeatures, 4)   // bit mask of kSkin* (shared/skin_features.h)
 PRESKIN_CONST(uint, kSpecLightLoop, 5)      // kLightLoopClustered or kLightLoopAll
 
 PRESKIN_CONST(uint, kModelStandard, 0)
@@ -46,13 +48,6 @@ PRESKIN_CONST(uint, kOutputTonemapped, 1)
 PRESKIN_CONST(uint, kLightLoopAll, 0)
 PRESKIN_CONST(uint, kLightLoopClustered, 1)
 
-PRESKIN_CONST(uint, kSkinLutDiffuse, 1)
-PRESKIN_CONST(uint, kSkinNormalPrefilter, 2)
-PRESKIN_CONST(uint, kSkinPenumbra, 4)
-PRESKIN_CONST(uint, kSkinShAmbient, 8)
-PRESKIN_CONST(uint, kSkinTransmission, 16)
-PRESKIN_CONST(uint, kSkinDualSpecular, 32)
-PRESKIN_CONST(uint, kSkinAll, 63)
 
 PRESKIN_CONST(uint, kDebugNone, 0)
 PRESKIN_CONST(uint, kDebugCurvature, 1)
@@ -95,8 +90,9 @@ struct FrameUniforms {
     uvec4 lightCounts;          // x: lights, y: directional lights (first y entries), z: cluster index capacity
     vec4 clusterScale;          // x,y: tiles per pixel, z,w: depth slice = log2(viewDepth) * z + w
     uvec4 clusterDims;          // x, y, z clusters; w: max lights per cluster
+    LutMapping lut;             // skin LUT coordinates (shared/lut_mapping.h)
 };
-PRESKIN_CHECK_SIZE(FrameUniforms, 3 * 64 + 4 * 16 + 9 * 16 + 3 * 16)
+PRESKIN_CHECK_SIZE(FrameUniforms, 3 * 64 + 4 * 16 + 9 * 16 + 3 * 16 + 128)
 
 // Per-texture transform rows (KHR_texture_transform): uv' = (dot(r0.xyz, (u,v,1)), dot(r1.xyz, (u,v,1))).
 struct GpuUvTransform {

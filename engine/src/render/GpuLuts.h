@@ -4,6 +4,7 @@
 #pragma once
 
 #include "render/GpuScene.h"
+#include "shared/gpu_types.h"
 #include "vk/Resources.h"
 
 #include <array>
@@ -21,6 +22,7 @@ public:
 
     bool valid() const { return valid_; }
     ProfileWidths profileWidths() const { return widths_; }
+    const gpu::LutMapping& mapping() const { return mapping_; }
     // diffuse, penumbra, SH transfer, transmittance
     std::array<VkDescriptorImageInfo, 4> descriptors() const;
 
@@ -28,6 +30,7 @@ private:
     const vk::Device& device_;
     bool valid_ = false;
     ProfileWidths widths_;
+    gpu::LutMapping mapping_{};
     std::array<vk::Image, 4> images_;
     VkSampler sampler_ = VK_NULL_HANDLE;
 };

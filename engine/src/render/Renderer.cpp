@@ -354,6 +354,7 @@ struct Renderer::Impl {
                                    2.0f * radius, float(mapSize));
         for (int i = 0; i < 9; ++i) u.shRadiance[i] = glm::vec4(radianceSh.c[size_t(i)], 0.0f);
         u.lightCounts = glm::uvec4(slot.lightCount, directional, 0u, 0u);
+        u.lut = luts->mapping();
         if (settings.lightLoop == LightLoop::Clustered)
             clusters->build(slotIndex, settings.clusters, view, extent, gpuLights, directional, u);
         slot.frameUniforms.upload(&u, sizeof(u));

@@ -44,11 +44,28 @@ View perspectiveView(const glm::mat4& worldFromView, float yfov, float aspect, f
 View orbitView(const Bounds& bounds, float yawDeg, float pitchDeg, float distanceM, float aspect, float yfov) {
     const glm::vec3 center = bounds.empty() ? glm::vec3(0.0f) : bounds.center();
     const float radius = bounds.empty() ? 1.0f : std::max(0.5f * glm::length(bounds.extent()), 1e-4f);
-    const float fitFov = std::min(yfov, 2.0f * std::atan(std::tan(0.5f * yfov) * aspect));
-    const float distance = distanceM > 0.0f ? distanceM : radius / std::sin(0.5f * fitFov) * 1.02f;
     const float yaw = glm::radians(yawDeg);
     const float pitch = glm::radians(std::clamp(pitchDeg, -89.0f, 89.0f));
     const glm::vec3 offset(std::sin(yaw) * std::cos(pitch), std::sin(pitch), std::cos(yaw) * std::cos(pitch));
+    float distance = distanceM;
+    if (distance <= 0.0f) {
+        // The nearest distance at which all 8 corners of the bounds are inside the view
+        // (with a 4% margin): per corner, its offset across the view over the half-angle tangent
+        // plus its depth towards the camera.
+        const glm::mat4 viewFromWorldAtCenter = glm::lookAt(center + offset, center, glm::vec3(0.0f, 1.0f, 0.0f));
+        const float tanY = std::tan(0.5f * yfov) / 1.04f;
+        const float tanX = tanY * aspect;
+        const glm::vec3 lo = bounds.empty() ? glm::vec3(-1.0f) : bounds.min;
+        const glm::vec3 hi = bounds.empty() ? glm::vec3(1.0f) : bounds.max;
+        distance = 1e-3f;
+        for (int i = 0; i < 8; ++i) {
+            const glm::vec3 corner((i & 1) ? hi.x : lo.x, (i & 2) ? hi.y : lo.y, (i & 4) ? hi.z : lo.z);
+            const glm::vec3 v = glm::vec3(viewFromWorldAtCenter * glm::vec4(corner, 1.0f)) + glm::vec3(0.0f, 0.0f, 1.0f);
+            const float towards = v.z;  // > 0: nearer the camera than the centre
+            distance = std::max(distance, std::abs(v.x) / tanX + towards);
+            distance = std::max(distance, std::abs(v.y) / tanY + towards);
+        }
+    }
     const glm::vec3 eye = center + offset * distance;
     const glm::mat4 worldFromView = glm::inverse(glm::lookAt(eye, center, glm::vec3(0.0f, 1.0f, 0.0f)));
     const float nearM = std::max(distance - radius * 1.5f, distance * 1e-3f);

@@ -1,0 +1,136 @@
+// preskin/skin.glsl: pre-integrated skin shading for one fragment of a forward pass.
+//
+// Models (sources in DESIGN notes and README):
+//  - diffuse: Penner & Borshukov's pre-integrated ring scattering (GPU Pro 2, 2011): per light
+//    and per colour channel D_c(NoL_c, curvature) from the diffuse LUT replaces saturate(NoL);
+//    NoL_c uses that channel's prefiltered normal;
+//  - per-channel normal prefiltering (same source; d'Eon & Luebke, GPU Gems 3 ch. 14): the normal
+//    map sampled three times with a mip LOD bias per channel, red blurred most; the bias comes
+//    from the profile's scattering width per channel and the map's texel density (C++ side);
+//    specular keeps the unbiased normal;
+//  - penumbra scattering (Penner): the filtered shadow and the shadow filter's width on the
+//    receiver index the penumbra LUT, giving an RGB shadow whose red bleeds into the dark side;
+//  - ambient: L2 SH radiance convolved per channel with the skin's zonal transfer A_l(curvature)
+//    instead of Lambert's (pi, 2pi/3, pi/4);
+//  - transmission through thin parts (Jimenez et al., "Real-Time Realistic Skin Translucency",
+//    IEEE CG&A 2010): thickness from the shadow map, T(thickness) from the profile, times a
+//    saturate(0.3 - NoL) wrap on the side facing away from the light;
+//  - specular: two GGX lobes (roughness multipliers and mix in the material) with F0 = 0.028
+//    (IOR 1.4) times the specular map.
+// Every technique can be switched off (kSkin* bits of shared/skin_features.h in `features`); off falls back to the
+// standard equivalent, so with no bits set this equals the standard dielectric BRDF.
+//
+// Inputs are in world units (metres) except where named; the material's scatter scale
+// converts them to profile millimetres. Needs: preskin/brdf.glsl, preskin/lut.glsl,
+// preskin/sh.glsl and the four LUT samplers (see README, "Skin in your own forward shader").
+// Limits: curvature and thickness are scalar per fragment; transmission only for the light that
+// owns the shadow map; the ring model assumes locally spherical geometry (Penner).
+#ifndef PRESKIN_SKIN_GLSL
+#define PRESKIN_SKIN_GLSL
+
+#include "preskin/brdf.glsl"
+#include "preskin/lut.glsl"
+#include "preskin/sh.glsl"
+#include "shared/skin_features.h"
+
+
+struct PreskinSkinSurface {
+    vec3 albedo;             // linear diffuse colour
+    vec3 normalR;            // prefiltered normals per channel (all equal without prefiltering)
+    vec3 normalG;
+    vec3 normalB;
+    vec3 normalSpecular;     // unbiased normal for specular
+    vec3 geometricNormal;    // interpolated vertex normal, facing the viewer
+    float curvaturePerMm;    // profile units: world curvature (1/mm) / scatter scale
+    float scatterScale;      // profile mm per world mm
+    float roughness;         // perceptual
+    vec3 F0;                 // 0.028 * intensity * specular map for skin
+    vec4 lobes;              // x lobe-0 roughness multiplier, y lobe-1 multiplier, z lobe-1 weight
+    vec3 transmissionTint;   // strength * colour
+    float thicknessScale;
+};
+
+// Diffuse response per channel for one light direction (replaces saturate(NoL)).
+vec3 preskinSkinDiffuseResponse(PreskinSkinSurface s, LutMapping m, sampler2D diffuseLut, vec3 L, uint features) {
+    vec3 NoL = vec3(dot(s.normalR, L), dot(s.normalG, L), dot(s.normalB, L));
+    if ((features & kSkinLutDiffuse) == 0u) return clamp(NoL, 0.0, 1.0);
+    if ((features & kSkinNormalPrefilter) == 0u)
+        return preskinDiffuseLut(m, diffuseLut, NoL.g, s.curvaturePerMm);
+    return vec3(preskinDiffuseLut(m, diffuseLut, NoL.r, s.curvaturePerMm).r,
+                preskinDiffuseLut(m, diffuseLut, NoL.g, s.curvaturePerMm).g,
+                preskinDiffuseLut(m, diffuseLut, NoL.b, s.curvaturePerMm).b);
+}
+
+// Specular of one light: one or two GGX lobes with the unbiased normal.
+vec3 preskinSkinSpecular(PreskinSkinSurface s, vec3 V, vec3 L, uint features) {
+    vec3 N = s.normalSpecular;
+    float NoL = dot(N, L);
+    if (NoL <= 0.0) return vec3(0.0);
+    vec3 H = normalize(L + V);
+    float NoV = max(dot(N, V), 1e-4);
+    float NoH = preskinSaturate(dot(N, H));
+    float VoH = preskinSaturate(dot(V, H));
+    if ((features & kSkinDualSpecular) == 0u)
+        return preskinSpecularGgx(s.F0, s.roughness, NoL, NoV, NoH, VoH) * NoL;
+    vec3 lobe0 = preskinSpecularGgx(s.F0, clamp(s.roughness * s.lobes.x, 0.03, 1.0), NoL, NoV, NoH, VoH);
+    vec3 lobe1 = preskinSpecularGgx(s.F0, clamp(s.roughness * s.lobes.y, 0.03, 1.0), NoL, NoV, NoH, VoH);
+    return mix(lobe0, lobe1, s.lobes.z) * NoL;
+}
+
+// Reflected radiance of one light. shadowRgb: per-channel visibility (penumbra LUT, or the plain
+// filtered shadow in all channels); specularVisibility: the plain filtered shadow.
+vec3 preskinSkinLight(PreskinSkinSurface s, LutMapping m, sampler2D diffuseLut, vec3 V, vec3 L, vec3 irradiance,
+                      vec3 shadowRgb, float specularVisibility, uint features) {
+    vec3 F = preskinSchlickF(s.F0, preskinSaturate(dot(V, normalize(L + V))));
+    vec3 diffuse = (vec3(1.0) - F) * s.albedo / PRESKIN_PI * preskinSkinDiffuseResponse(s, m, diffuseLut, L, features);
+    vec3 specular = preskinSkinSpecular(s, V, L, features);
+    return (diffuse * shadowRgb + specular * specularVisibility) * irradiance;
+}
+
+// Per-channel shadow for skin: the penumbra LUT indexed by the filtered visibility and the
+// filter's width on the receiver (the light-plane width stretched by the receiver's slope).
+vec3 preskinSkinShadow(PreskinSkinSurface s, LutMapping m, sampler2D penumbraLut, float visibility,
+                       float filterWidthLightM, vec3 L, uint features) {
+    if ((features & kSkinPenumbra) == 0u) return vec3(visibility);
+    float slope = max(abs(dot(s.geometricNormal, L)), 0.2);
+    float sigmaProfileMm = filterWidthLightM * 1000.0 / slope * s.scatterScale;
+    return preskinPenumbraLut(m, penumbraLut, visibility, sigmaProfileMm);
+}
+
+// Light transmitted through the surface from a light behind it: thicknessM from the shadow
+// map (metres), T(thickness) from the profile, wrap saturate(0.3 - NoL) (Jimenez et al. 2010).
+vec3 preskinSkinTransmission(PreskinSkinSurface s, LutMapping m, sampler2D transmittanceLut, vec3 L,
+                             vec3 irradiance, float thicknessM, uint features) {
+    if ((features & kSkinTransmission) == 0u) return vec3(0.0);
+    float thicknessMm = thicknessM * 1000.0 * s.thicknessScale * s.scatterScale;
+    vec3 T = preskinTransmittanceLut(m, transmittanceLut, thicknessMm);
+    float wrap = preskinSaturate(0.3 - dot(s.geometricNormal, L));
+    return T * wrap * s.transmissionTint * s.albedo / PRESKIN_PI * irradiance;
+}
+
+// Diffuse ambient irradiance per channel from L2 SH radiance (multiply by albedo / pi).
+vec3 preskinSkinAmbientIrradiance(PreskinSkinSurface s, LutMapping m, sampler2D shTransferLut, vec4 sh[9],
+                                  uint features) {
+    vec3 bandR = PRESKIN_SH_LAMBERT;
+    vec3 bandG = PRESKIN_SH_LAMBERT;
+    vec3 bandB = PRESKIN_SH_LAMBERT;
+    if ((features & kSkinShAmbient) != 0u) {
+        vec3 a0, a1, a2;
+        preskinShTransferLut(m, shTransferLut, s.curvaturePerMm, a0, a1, a2);
+        bandR = vec3(a0.r, a1.r, a2.r);
+        bandG = vec3(a0.g, a1.g, a2.g);
+        bandB = vec3(a0.b, a1.b, a2.b);
+    }
+    return max(vec3(preskinShEvaluate(sh, s.normalR, bandR).r, preskinShEvaluate(sh, s.normalG, bandG).g,
+                    preskinShEvaluate(sh, s.normalB, bandB).b),
+               vec3(0.0));
+}
+
+// Curvature in 1/m from screen-space derivatives (Penner's fallback: constant per triangle).
+float preskinCurvatureFromDerivatives(vec3 normalWs, vec3 positionWs) {
+    float dn = length(fwidth(normalWs));
+    float dp = length(fwidth(positionWs));
+    return dp > 0.0 ? dn / dp : 0.0;
+}
+
+#endif
