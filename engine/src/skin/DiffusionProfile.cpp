@@ -64,7 +64,7 @@ void checkGaussians(const std::vector<GaussianTerm>& terms, std::string_view sou
                  fmt::format("channel {} has zero albedo (the weights sum to 0)", kChannelNames[c]));
         if (sum[c] > 1.0 + 1e-9)
             fail(source, fmt::format("{}[*].weights[{}]", field, c),
-                 fmt::format("channel {} has albedo {} > 1 (the weights must sum to at most 1)", kChannelNames[c], sum[c]));
+                 fmt::format("channel {} has albedo {:.6g} > 1 (the weights must sum to at most 1)", kChannelNames[c], sum[c]));
     }
 }
 
@@ -265,8 +265,9 @@ DiffusionProfile DiffusionProfile::fromJsonText(std::string_view text, std::stri
     nlohmann::json json;
     try {
         json = nlohmann::json::parse(text.begin(), text.end());
-    } catch (const nlohmann::json::parse_error& e) {
-        // e.what() is "[json.exception.parse_error.101] parse error at line L, column C: ..."
+    } catch (const nlohmann::json::exception& e) {
+        // e.what() is "[json.exception.parse_error.101] parse error at line L, column C: ..." or
+        // "[json.exception.out_of_range.406] number overflow parsing '1e999'"
         std::string message = e.what();
         const auto close = message.find("] ");
         if (close != std::string::npos) message = message.substr(close + 2);

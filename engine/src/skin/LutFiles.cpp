@@ -105,6 +105,12 @@ std::string manifestText(const LutSet& set) {
         {"normalisation", "every table carries the profile's shape only (per channel, albedo divided out); multiply "
                           "by the material's albedo"},
         {"varianceScale", "none: Gaussian variances are used as published (no 1.414 factor)"},
+        {"curvature", "1/r in 1/mm of the profile's units, range [0, curvatureMaxPerMm] (default 1: radii from 1 mm to "
+                      "flat); sqrt mapping, so half the rows lie below a quarter of the range, where faces are "
+                      "(radii ~2..100 mm); values beyond the range clamp to the last row"},
+        {"penumbraWidth", "filterSigmaRelative = sigma_f / referenceWidthMm; sigma_f is the shadow filter's Gaussian "
+                          "standard deviation on the receiver across the edge (mm), referenceWidthMm the widest "
+                          "channel's RMS width"},
         {"ringKernel", "diffuse ring integral (Penner & Borshukov 2011) with K(x) = P(2 r sin(|x|/2)), P the profile "
                        "integrated along the cylinder axis (1D-normalised Gaussians for sums of Gaussians)"},
         {"penumbraModel", "hard edge seen through a Gaussian shadow filter of standard deviation sigma_f; x = sigma_f "
@@ -348,6 +354,11 @@ void LutSet::save(const fs::path& dir, const LutSaveOptions& options) const {
     const std::string tag = fmt::format("{:08x}", entropy());
     std::vector<fs::path> temps;
     try {
+        // Refuse before writing anything if a target cannot be replaced by a rename.
+        for (const Pending& file : files) {
+            if (fs::exists(file.finalPath, ec) && !fs::is_regular_file(file.finalPath, ec))
+                throw Error(fmt::format("{}: exists and is not a regular file", shown(file.finalPath)));
+        }
         for (const Pending& file : files) {
             const fs::path temp = dir / fmt::format(".{}.tmp-{}{}", file.finalPath.stem().string(), tag,
                                                     file.finalPath.extension().string());
@@ -375,7 +386,7 @@ LutSet LutSetAccess::load(const fs::path& dir) {
     nlohmann::json j;
     try {
         j = nlohmann::json::parse(text.str());
-    } catch (const nlohmann::json::parse_error& e) {
+    } catch (const nlohmann::json::exception& e) {
         std::string message = e.what();
         const auto close = message.find("] ");
         if (close != std::string::npos) message = message.substr(close + 2);

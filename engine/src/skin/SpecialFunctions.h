@@ -40,6 +40,7 @@ inline double normalQuantile(double p) {
     double x = 0.0;
     for (int iteration = 0; iteration < 200; ++iteration) {
         const double f = normalCdf(x) - p;
+        if (f == 0.0) return x;
         if (f < 0.0) lo = x; else hi = x;
         const double density = std::exp(-0.5 * x * x) / std::sqrt(2.0 * std::numbers::pi);
         double next = density > 0.0 ? x - f / density : 0.5 * (lo + hi);

@@ -1,0 +1,152 @@
+// `preskin bake`: bakes the pre-integrated skin LUTs (diffuse ring integral after Penner &
+// Borshukov 2011, penumbra, SH transfer, transmittance) of a diffusion profile on all cores and
+// writes them as half-float EXR plus manifest.json (and PNG previews with --preview):
+//   preskin bake --profile deon|burley|FILE.json [--albedo R,G,B] [--mfp R,G,B] [--size N]
+//                [--preview] --out DIR
+// Bad input (a profile file, a size, a colour) is refused before anything is written.
+// Limits: --size sets every table axis at once (16..4096); finer control is in the library
+// (preskin::LutBakeSettings).
+#include "Commands.h"
+
+#include <preskin/DiffusionProfile.h>
+#include <preskin/Error.h>
+#include <preskin/LutSet.h>
+
+#include <fmt/core.h>
+
+#include <unistd.h>
+
+#include <charconv>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <memory>
+#include <string>
+#include <thread>
+
+namespace preskin::cli {
+namespace {
+
+struct BakeOptions {
+    std::string profile = "deon";
+    std::string albedo;
+    std::string meanFreePath;
+    std::string size;
+    bool preview = false;
+    std::string out;
+};
+
+double parseNumber(std::string_view text, bool& ok) {
+    double value = 0.0;
+    const auto [end, error] = std::from_chars(text.data(), text.data() + text.size(), value);
+    ok = error == std::errc() && end == text.data() + text.size() && std::isfinite(value);
+    return value;
+}
+
+glm::dvec3 parseRgb(const std::string& text, const char* option) {
+    glm::dvec3 rgb(0.0);
+    size_t start = 0;
+    for (int c = 0; c < 3; ++c) {
+        const size_t comma = text.find(',', start);
+        const bool last = c == 2;
+        if (last != (comma == std::string::npos))
+            throw Error(fmt::format("{}: expected three comma-separated numbers R,G,B, got '{}'", option, text));
+        bool ok = false;
+        rgb[c] = parseNumber(std::string_view(text).substr(start, last ? std::string::npos : comma - start), ok);
+        if (!ok) throw Error(fmt::format("{}: expected three comma-separated numbers R,G,B, got '{}'", option, text));
+        start = comma + 1;
+    }
+    return rgb;
+}
+
+int parseSize(const std::string& text) {
+    int value = 0;
+    const auto [end, error] = std::from_chars(text.data(), text.data() + text.size(), value);
+    if (error != std::errc() || end != text.data() + text.size() || value < LutBakeSettings::kMinSize ||
+        value > LutBakeSettings::kMaxSize)
+        throw Error(fmt::format("--size: must be an integer in [{}, {}], got '{}'", LutBakeSettings::kMinSize,
+                                LutBakeSettings::kMaxSize, text));
+    return value;
+}
+
+DiffusionProfile selectProfile(const BakeOptions& o) {
+    const bool burley = o.profile == "burley";
+    if (!burley && (!o.albedo.empty() || !o.meanFreePath.empty()))
+        throw Error(fmt::format("--albedo and --mfp apply only to --profile burley (got --profile {})", o.profile));
+    if (burley) {
+        if (o.albedo.empty() || o.meanFreePath.empty())
+            throw Error("--profile burley: needs --albedo R,G,B (surface albedo, 0..1) and --mfp R,G,B (mean free path, mm)");
+        const glm::dvec3 albedo = parseRgb(o.albedo, "--albedo");
+        const glm::dvec3 meanFreePathMm = parseRgb(o.meanFreePath, "--mfp");
+        return DiffusionProfile::burley(albedo, meanFreePathMm);
+    }
+    if (o.profile == "deon") return DiffusionProfile::deonLuebke();
+    return DiffusionProfile::fromJsonFile(o.profile);
+}
+
+// A one-line progress bar on stderr when it is a terminal.
+class ProgressBar {
+public:
+    ProgressBar() : enabled_(isatty(fileno(stderr)) != 0) {}
+    void update(double fraction) {
+        if (!enabled_) return;
+        const int percent = static_cast<int>(std::lround(fraction * 100.0));
+        if (percent == shown_) return;
+        shown_ = percent;
+        constexpr int kWidth = 40;
+        const int filled = percent * kWidth / 100;
+        fmt::print(stderr, "\rbaking [{}{}] {:3d}%", std::string(static_cast<size_t>(filled), '#'),
+                   std::string(static_cast<size_t>(kWidth - filled), '.'), percent);
+        std::fflush(stderr);
+    }
+    void finish() {
+        if (enabled_ && shown_ >= 0) fmt::print(stderr, "\n");
+    }
+
+private:
+    bool enabled_;
+    int shown_ = -1;
+};
+
+void runBake(const BakeOptions& o) {
+    // Everything is validated before the (possibly long) bake, and the bake before any file.
+    const LutBakeSettings settings = o.size.empty() ? LutBakeSettings{} : LutBakeSettings::withSize(parseSize(o.size));
+    const DiffusionProfile profile = selectProfile(o);
+
+    ProgressBar bar;
+    const auto start = std::chrono::steady_clock::now();
+    const LutSet luts = LutSet::bake(profile, settings, [&bar](double fraction) { bar.update(fraction); });
+    const auto baked = std::chrono::steady_clock::now();
+    bar.finish();
+    luts.save(o.out, {.previewPngs = o.preview});
+    const auto saved = std::chrono::steady_clock::now();
+
+    auto ms = [](auto d) { return std::chrono::duration<double, std::milli>(d).count(); };
+    const glm::dvec3 width = profile.widthMm();
+    fmt::print("profile: {} (RMS width R {:.3f} G {:.3f} B {:.3f} mm)\n", profile.name(), width.r, width.g, width.b);
+    fmt::print("baked in {:.1f} ms on {} hardware threads: diffuse {}x{}, penumbra {}x{}, SH transfer {}x{}, "
+               "transmittance {}x{}\n",
+               ms(baked - start), std::thread::hardware_concurrency(), luts.diffuse().width(), luts.diffuse().height(),
+               luts.penumbra().width(), luts.penumbra().height(), luts.shTransfer().width(), luts.shTransfer().height(),
+               luts.transmittance().width(), luts.transmittance().height());
+    fmt::print("wrote {} in {:.1f} ms{}\n", o.out, ms(saved - baked), o.preview ? " (with preview_*.png)" : "");
+}
+
+}  // namespace
+
+void addBakeCommand(CLI::App& app) {
+    auto options = std::make_shared<BakeOptions>();
+    CLI::App* command = app.add_subcommand("bake", "Bake the pre-integrated skin LUTs of a diffusion profile");
+    command->add_option("--profile", options->profile,
+                        "deon (d'Eon & Luebke 2007 six-Gaussian skin), burley (Christensen & Burley 2015, needs --albedo "
+                        "and --mfp) or a profile JSON file")
+        ->capture_default_str();
+    command->add_option("--albedo", options->albedo, "burley: surface albedo per channel, R,G,B in (0, 1]");
+    command->add_option("--mfp", options->meanFreePath, "burley: mean free path per channel in mm, R,G,B");
+    command->add_option("--size", options->size, "samples along every table axis, 16..4096 (default 256)");
+    command->add_flag("--preview", options->preview, "also write preview_*.png visualisations of each table");
+    command->add_option("--out", options->out, "output folder (created if missing)")->required();
+    command->callback([options] { runBake(*options); });
+}
+
+}  // namespace preskin::cli
