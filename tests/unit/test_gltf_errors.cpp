@@ -390,3 +390,47 @@ TEST(GltfErrors, ImageProblems) {
     d.doc["materials"] = json::array({{{"normalTexture", {{"index", 0}}}}});
     expectError(d.writeGltf(dir.path(), "webp"), {"materials[0].normalTexture", "images[0] is WebP", "unsupported image format"});
 }
+
+TEST(GltfErrors, RandomCorruptionOnlyEverThrowsPreskinErrors) {
+    // Deterministic byte flips and truncations of a valid .glb and .gltf: every load either
+    // succeeds or throws preskin::Error naming the file; nothing else escapes, nothing crashes.
+    TempDir dir;
+    GltfBuilder b = preskin::test::triangleScene();
+    const std::vector<uint8_t> png = preskin::test::encodeImage(dir.path(), "i.png", 2, 2, 4, std::vector<uint8_t>(16, 7));
+    const int view = b.addView(png);
+    b.doc["images"] = json::array({{{"bufferView", view}, {"mimeType", "image/png"}}});
+    b.doc["textures"] = json::array({{{"source", 0}}});
+    b.doc["materials"] = json::array({{{"pbrMetallicRoughness", {{"baseColorTexture", {{"index", 0}}}}}}});
+    b.doc["meshes"][0]["primitives"][0]["material"] = 0;
+    const std::vector<uint8_t> glb = b.glbBytes();
+    b.writeGltf(dir.path(), "base");  // base.bin for the .gltf variants
+    const std::string text = b.doc.dump();
+    uint64_t state = 0x9E3779B97F4A7C15ull;
+    auto next = [&]() {
+        state ^= state << 13;
+        state ^= state >> 7;
+        state ^= state << 17;
+        return state;
+    };
+    int loaded = 0, rejected = 0;
+    for (int round = 0; round < 400; ++round) {
+        const bool binary = round % 2 == 0;
+        std::vector<uint8_t> bytes = binary ? glb : std::vector<uint8_t>(text.begin(), text.end());
+        const int flips = 1 + static_cast<int>(next() % 4);
+        for (int f = 0; f < flips; ++f) bytes[next() % bytes.size()] = static_cast<uint8_t>(next());
+        if (next() % 4 == 0) bytes.resize(next() % bytes.size());
+        const fs::path path = dir / (std::string("r") + std::to_string(round) + (binary ? ".glb" : ".gltf"));
+        preskin::test::writeBytes(path, bytes);
+        try {
+            preskin::Scene::load(path);
+            ++loaded;
+        } catch (const preskin::Error& e) {
+            ++rejected;
+            EXPECT_EQ(std::string(e.what()).rfind(path.string() + ": ", 0), 0u) << e.what();
+        } catch (const std::exception& e) {
+            ADD_FAILURE() << "round " << round << ": " << e.what();
+        }
+    }
+    EXPECT_GT(rejected, 100);
+    EXPECT_EQ(loaded + rejected, 400);
+}
