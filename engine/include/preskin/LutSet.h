@@ -36,9 +36,10 @@
 //
 // Files (save/load): diffuse.exr, penumbra.exr, sh_transfer.exr, transmittance.exr (RGB half,
 // zip) and manifest.json (profile, settings, every axis with range, unit, mapping and formula,
-// sizes, sample counts, conventions and an FNV-1a content hash per table). Writing is atomic
-// per file (temporary files renamed into place, the manifest last); on failure nothing new is
-// left behind.
+// sizes, sample counts, conventions and an FNV-1a content hash per table). Every file is first
+// written under a temporary name and then renamed into place, the manifest last; targets are
+// checked before the renames, and on failure the temporary files (and folders save created) are
+// removed, so nothing new is left behind.
 //
 // Limits: see RingScatter.h (ring model), the penumbra model above (hard edges, Gaussian
 // filter), and LutTable.h (GPU sub-texel precision).
@@ -53,6 +54,7 @@
 #include <array>
 #include <filesystem>
 #include <functional>
+#include <utility>
 
 namespace preskin {
 

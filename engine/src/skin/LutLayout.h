@@ -1,6 +1,8 @@
 // The axes and file names of a LutSet, derived from its profile and bake settings. Baking and
 // loading both use these, so a manifest is checked against exactly what a bake would produce.
 // Definitions and reasons: engine/include/preskin/LutSet.h.
+// Limits: the mappings are fixed per table (LutMapping in shaders/shared/lut_mapping.h encodes
+// exactly these); only sizes and the curvature range are settings.
 #pragma once
 
 #include <preskin/DiffusionProfile.h>
