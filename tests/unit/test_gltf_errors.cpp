@@ -197,7 +197,7 @@ TEST(GltfErrors, UrisThatLeaveTheFolderAreRefusedBeforeAnyRead) {
     for (size_t i = 0; i < cases.size(); ++i) {
         GltfBuilder c = preskin::test::triangleScene();
         c.doc["buffers"] = json::array({{{"uri", cases[i].first}, {"byteLength", c.bin.size()}}});
-        const fs::path file = dir / ("case" + std::to_string(i) + ".gltf");
+        const fs::path file = dir / std::string("case").append(std::to_string(i)).append(".gltf");
         preskin::test::writeText(file, c.doc.dump());
         std::vector<const char*> fragments = cases[i].second;
         fragments.push_back("buffers[0].uri");
@@ -419,7 +419,9 @@ TEST(GltfErrors, RandomCorruptionOnlyEverThrowsPreskinErrors) {
         const int flips = 1 + static_cast<int>(next() % 4);
         for (int f = 0; f < flips; ++f) bytes[next() % bytes.size()] = static_cast<uint8_t>(next());
         if (next() % 4 == 0) bytes.resize(next() % bytes.size());
-        const fs::path path = dir / (std::string("r") + std::to_string(round) + (binary ? ".glb" : ".gltf"));
+        std::string name = "r";
+        name.append(std::to_string(round)).append(binary ? ".glb" : ".gltf");
+        const fs::path path = dir / name;
         preskin::test::writeBytes(path, bytes);
         try {
             preskin::Scene::load(path);

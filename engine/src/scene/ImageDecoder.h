@@ -1,8 +1,9 @@
 // Decodes an encoded image held in memory (PNG or JPEG, the formats core glTF allows) into 8-bit
 // RGBA, top row first, with OpenImageIO. The bytes are read through an in-memory IOProxy; where
 // the OIIO build cannot read a format from memory, through a private temporary file instead.
-// Grey becomes RGB, missing alpha becomes 255, 16-bit data is rounded to 8 bits; colour profiles
-// are not applied. Sizes are checked before any pixel memory is allocated.
+// Grey becomes RGB, missing alpha becomes 255, alpha stays straight (not premultiplied), 16-bit
+// data is rounded to 8 bits; colour profiles are not applied. Sizes are checked before any pixel
+// memory is allocated (at most kMaxImagePixels, kMaxImageDimension per side).
 #pragma once
 
 #include <cstdint>
