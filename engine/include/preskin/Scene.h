@@ -178,8 +178,9 @@ struct Scene {
     PRESKIN_API static Scene load(const std::filesystem::path& path);
 
     PRESKIN_API Bounds worldBounds() const;
-    // Marks materials as skin: every material for "all", else the material with that name
+    // Marks materials as skin: every material for "all", else the materials with that name
     // (throws preskin::Error when no material has it). Existing skin parameters are kept.
+    // Primitives without a material (Primitive::material == -1) are not covered.
     // A material made skin here gets `defaults`, then the material's KHR transmission / volume values.
     PRESKIN_API void makeSkin(const std::string& materialName, const SkinMaterial& defaults = {});
 };

@@ -99,11 +99,12 @@ GlbChunks splitGlb(std::span<const uint8_t> bytes, const std::string& file) {
             if (chunkLength == 0) fail(file, where + " length", "empty JSON chunk");
             chunks.json = data;
             haveJson = true;
-        } else if (chunkIndex == 1 && chunkType == kChunkBin) {
+        } else if (chunkType == kChunkBin) {
+            if (chunkIndex != 1) fail(file, where + " type", "a BIN chunk that does not directly follow the JSON chunk");
             chunks.bin = data;
             chunks.hasBin = true;
-        } else if (chunkType == kChunkJson || chunkType == kChunkBin) {
-            fail(file, where + " type", "a second JSON or BIN chunk");
+        } else if (chunkType == kChunkJson) {
+            fail(file, where + " type", "a second JSON chunk");
         }
         // Chunks of other types are skipped, as the specification asks.
         offset = payload + chunkLength;

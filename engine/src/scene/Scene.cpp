@@ -49,7 +49,7 @@ void Scene::makeSkin(const std::string& materialName, const SkinMaterial& defaul
         found = true;
         if (!material.skin) material.skin = gltf::seededSkin(material, defaults);
     }
-    if (!found) {
+    if (!found && materialName != "all") {
         std::string names;
         for (const Material& material : materials) names += (names.empty() ? "" : ", ") + material.name;
         throw Error(sourcePath.string() + ": no material named '" + materialName + "' (materials: " +
