@@ -37,6 +37,7 @@ void run(const RenderOptions& o) {
     const std::filesystem::path scenePath = o.scene.empty() ? defaultScenePath() : std::filesystem::path(o.scene);
 
     Scene scene = Scene::load(scenePath);
+    for (const std::string& warning : scene.warnings) fmt::print(stderr, "preskin: warning: {}\n", warning);
     applySkinOption(scene, o.common);
     const Environment environment = loadEnvironment(scene, o.common);
     auto context = Context::create(contextDesc(o.common));

@@ -51,15 +51,15 @@ TEST(ShProjection, SingleBrightDirectionGivesItsBasisValues) {
     const double solidAngle = 2.0 * M_PI / w * (std::cos(theta0) - std::cos(theta1));
     const glm::vec3 d = EquirectImage::directionAt((x0 + 0.5f) / float(w), (y0 + 0.5f) / float(h));
     // Independent basis: Ramamoorthi & Hanrahan 2001, eq. 3 constants written out here.
-    const double x = d.x, y = d.y, z = d.z;
+    const double x = double(d.x), y = double(d.y), z = double(d.z);
     const double basis[9] = {0.282095,         0.488603 * y,     0.488603 * z,
                              0.488603 * x,     1.092548 * x * y, 1.092548 * y * z,
                              0.315392 * (3 * z * z - 1), 1.092548 * x * z, 0.546274 * (x * x - y * y)};
     for (int i = 0; i < 9; ++i) {
-        const double expected = L0 * solidAngle * basis[i];
-        EXPECT_NEAR(sh.c[size_t(i)].r, expected, 5e-3 * L0 * solidAngle) << "coefficient " << i;
-        EXPECT_NEAR(sh.c[size_t(i)].g, 0.5 * expected, 5e-3 * L0 * solidAngle) << "coefficient " << i;
-        EXPECT_NEAR(sh.c[size_t(i)].b, 0.0, 1e-9) << "coefficient " << i;
+        const double expected = double(L0) * solidAngle * basis[i];
+        EXPECT_NEAR(double(sh.c[size_t(i)].r), expected, 5e-3 * double(L0) * solidAngle) << "coefficient " << i;
+        EXPECT_NEAR(double(sh.c[size_t(i)].g), 0.5 * expected, 5e-3 * double(L0) * solidAngle) << "coefficient " << i;
+        EXPECT_NEAR(double(sh.c[size_t(i)].b), 0.0, 1e-9) << "coefficient " << i;
     }
 }
 

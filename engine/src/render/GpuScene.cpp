@@ -90,11 +90,11 @@ GpuScene::GpuScene(const vk::Device& device, const Scene& scene)
     for (const MeshInstance& inst : scene.instances) {
         if (inst.mesh < 0 || size_t(inst.mesh) >= scene.meshes.size()) continue;
         const glm::mat3 m3(inst.worldFromObject);
-        const float det = std::abs(glm::determinant(m3));
         gpu::GpuInstance g{};
         g.worldFromObject = inst.worldFromObject;
         g.normalWorldFromObject = glm::mat4(glm::inverseTranspose(m3));
-        g.params = glm::vec4(det > 0.0f ? 1.0f / std::cbrt(det) : 1.0f, 0.0f, 0.0f, 0.0f);
+        const float curvatureScale = inst.curvatureScale();
+        g.params = glm::vec4(curvatureScale > 0.0f ? 1.0f / curvatureScale : 1.0f, 0.0f, 0.0f, 0.0f);
         const uint32_t instanceIndex = static_cast<uint32_t>(instanceData.size());
         instanceData.push_back(g);
         const Mesh& mesh = scene.meshes[size_t(inst.mesh)];

@@ -53,16 +53,12 @@ bool isDisplayFormat(VkFormat format) {
     }
 }
 
-// Index of the light that gets the shadow map: the first directional light flagged
-// castsShadow, else the first directional light; -1 when there is none.
+// Index of the light that gets the shadow map: the first directional light flagged castsShadow
+// (the glTF loader flags the first directional light when a file says nothing); -1 when none.
 int shadowLightIndex(const std::vector<Light>& lights) {
-    int firstDirectional = -1;
-    for (size_t i = 0; i < lights.size(); ++i) {
-        if (lights[i].type != LightType::Directional) continue;
-        if (lights[i].castsShadow) return static_cast<int>(i);
-        if (firstDirectional < 0) firstDirectional = static_cast<int>(i);
-    }
-    return firstDirectional;
+    for (size_t i = 0; i < lights.size(); ++i)
+        if (lights[i].type == LightType::Directional && lights[i].castsShadow) return static_cast<int>(i);
+    return -1;
 }
 
 gpu::GpuLight toGpu(const Light& light, bool shadowed) {
