@@ -14,6 +14,7 @@
 
 #include <cstdint>
 #include <filesystem>
+#include <map>
 #include <memory>
 #include <string>
 #include <vector>
@@ -115,6 +116,11 @@ public:
     const std::vector<Light>& lights() const;
     void setEnvironment(const Environment& environment);
     void setLuts(const LutSet* luts);
+    // Replaces the SPIR-V of built-in shader stages by file name ("forward.vert", "forward.frag",
+    // "shadow.vert"); stages missing from the map use the code built into the library. Every
+    // pipeline in use is rebuilt at once; when that fails, throws preskin::Error and keeps the
+    // previous code and pipelines (so a host can hot-reload shaders and survive bad edits).
+    void setShaderOverrides(const std::map<std::string, std::vector<uint32_t>>& spirvByFile);
 
     // Headless: renders one frame and reads it back.
     RenderedImage render(const View& view, uint32_t width, uint32_t height, OutputEncoding encoding);

@@ -22,6 +22,7 @@
 #include <map>
 #include <span>
 #include <tuple>
+#include <utility>
 
 namespace preskin::shaders {
 std::span<const uint32_t> spirv(std::string_view fileName);
@@ -35,7 +36,7 @@ constexpr VkFormat kDepthFormat = VK_FORMAT_D32_SFLOAT;
 constexpr uint32_t kSlotCount = 2;
 constexpr uint32_t kQueryCount = 4;  // start, after shadow, after clustering, after forward
 
-std::span<const uint32_t> shader(const char* name) {
+std::span<const uint32_t> builtinShader(const char* name) {
     auto code = shaders::spirv(name);
     if (code.empty()) throw Error(fmt::format("internal: shader {} is not compiled into the library", name));
     return code;
@@ -147,6 +148,7 @@ struct Renderer::Impl {
     vk::Image depth;
     std::map<PipelineKey, VkPipeline> pipelines;
     VkPipeline shadowPipeline = VK_NULL_HANDLE;
+    std::map<std::string, std::vector<uint32_t>> shaderOverrides;
     // Headless render target and readback.
     vk::Image colorTarget;
     vk::Buffer readback;
@@ -246,18 +248,33 @@ struct Renderer::Impl {
         });
     }
 
-    VkPipeline forwardPipeline(const GpuMaterial& m, VkFormat format) {
+    std::span<const uint32_t> shader(const char* name) const {
+        auto it = shaderOverrides.find(name);
+        return it != shaderOverrides.end() ? std::span<const uint32_t>(it->second) : builtinShader(name);
+    }
+
+    PipelineKey pipelineKey(const GpuMaterial& m, VkFormat format) const {
         const bool skin = m.skin && luts->valid();
-        const PipelineKey key{skin ? gpu::kModelSkin : gpu::kModelStandard,
-                              static_cast<uint32_t>(m.alphaMode),
-                              m.doubleSided ? 1u : 0u,
-                              static_cast<uint32_t>(format),
-                              static_cast<uint32_t>(settings.debugView),
-                              skin ? settings.skin.mask() : 0u,
-                              settings.lightLoop == LightLoop::Clustered ? gpu::kLightLoopClustered
-                                                                          : gpu::kLightLoopAll};
+        return PipelineKey{skin ? gpu::kModelSkin : gpu::kModelStandard,
+                           static_cast<uint32_t>(m.alphaMode),
+                           m.doubleSided ? 1u : 0u,
+                           static_cast<uint32_t>(format),
+                           static_cast<uint32_t>(settings.debugView),
+                           skin ? settings.skin.mask() : 0u,
+                           settings.lightLoop == LightLoop::Clustered ? gpu::kLightLoopClustered : gpu::kLightLoopAll};
+    }
+
+    VkPipeline forwardPipeline(const GpuMaterial& m, VkFormat format) {
+        const PipelineKey key = pipelineKey(m, format);
         auto it = pipelines.find(key);
         if (it != pipelines.end()) return it->second;
+        VkPipeline p = createForwardPipeline(key);
+        pipelines.emplace(key, p);
+        return p;
+    }
+
+    VkPipeline createForwardPipeline(const PipelineKey& key) const {
+        const VkFormat format = static_cast<VkFormat>(key.format);
         vk::GraphicsPipelineDesc desc;
         desc.vertexSpirv = shader("forward.vert");
         desc.fragmentSpirv = shader("forward.frag");
@@ -279,17 +296,15 @@ struct Renderer::Impl {
         };
         desc.colorFormats = {format};
         desc.depthFormat = kDepthFormat;
-        desc.cullMode = m.doubleSided ? VK_CULL_MODE_NONE : VK_CULL_MODE_BACK_BIT;
-        desc.depthWrite = m.alphaMode != AlphaMode::Blend;
-        desc.alphaBlend = m.alphaMode == AlphaMode::Blend;
+        const AlphaMode alphaMode = static_cast<AlphaMode>(key.alphaMode);
+        desc.cullMode = key.doubleSided ? VK_CULL_MODE_NONE : VK_CULL_MODE_BACK_BIT;
+        desc.depthWrite = alphaMode != AlphaMode::Blend;
+        desc.alphaBlend = alphaMode == AlphaMode::Blend;
         desc.layout = forwardLayout;
-        VkPipeline p = vk::createGraphicsPipeline(dev, desc);
-        pipelines.emplace(key, p);
-        return p;
+        return vk::createGraphicsPipeline(dev, desc);
     }
 
-    VkPipeline depthOnlyPipeline() {
-        if (shadowPipeline) return shadowPipeline;
+    VkPipeline createShadowPipeline() const {
         vk::GraphicsPipelineDesc desc;
         desc.vertexSpirv = shader("shadow.vert");
         desc.vertexBindings = {{0, sizeof(Vertex), VK_VERTEX_INPUT_RATE_VERTEX}};
@@ -299,7 +314,30 @@ struct Renderer::Impl {
         desc.depthCompare = VK_COMPARE_OP_LESS_OR_EQUAL;
         desc.depthBias = true;
         desc.layout = shadowLayout;
-        shadowPipeline = vk::createGraphicsPipeline(dev, desc);
+        return vk::createGraphicsPipeline(dev, desc);
+    }
+
+    void setShaderOverrides(const std::map<std::string, std::vector<uint32_t>>& spirv) {
+        vkDeviceWaitIdle(dev.device());
+        auto previous = std::exchange(shaderOverrides, spirv);
+        std::map<PipelineKey, VkPipeline> rebuilt;
+        VkPipeline rebuiltShadow = VK_NULL_HANDLE;
+        try {
+            for (const auto& [key, p] : pipelines) rebuilt.emplace(key, createForwardPipeline(key));
+            rebuiltShadow = createShadowPipeline();
+        } catch (...) {
+            for (auto& [key, p] : rebuilt) vkDestroyPipeline(dev.device(), p, nullptr);
+            shaderOverrides = std::move(previous);
+            throw;
+        }
+        for (auto& [key, p] : pipelines) vkDestroyPipeline(dev.device(), p, nullptr);
+        if (shadowPipeline) vkDestroyPipeline(dev.device(), shadowPipeline, nullptr);
+        pipelines = std::move(rebuilt);
+        shadowPipeline = rebuiltShadow;
+    }
+
+    VkPipeline depthOnlyPipeline() {
+        if (!shadowPipeline) shadowPipeline = createShadowPipeline();
         return shadowPipeline;
     }
 
@@ -584,6 +622,10 @@ void Renderer::setLuts(const LutSet* luts) {
     vkDeviceWaitIdle(impl_->dev.device());
     impl_->luts = std::make_unique<GpuLuts>(impl_->dev, luts);
     impl_->scene->updateMaterials(impl_->luts->profileWidths());
+}
+
+void Renderer::setShaderOverrides(const std::map<std::string, std::vector<uint32_t>>& spirvByFile) {
+    impl_->setShaderOverrides(spirvByFile);
 }
 
 void Renderer::record(VkCommandBuffer cmd, const RenderTarget& target, const View& view, uint32_t frameSlot) {
