@@ -23,6 +23,8 @@ std::string lower(std::string s) {
 void addCommonOptions(CLI::App& cmd, CommonOptions& o) {
     cmd.add_option("--env", o.env, "HDR environment (equirectangular .hdr or .exr); default: the scene's");
     cmd.add_option("--env-intensity", o.envIntensity, "Environment radiance scale")->check(CLI::Range(0.0f, 1e6f));
+    cmd.add_option("--env-rotation", o.envRotationDeg, "Turn the environment about +Y, degrees")
+        ->check(CLI::Range(-3600.0f, 3600.0f));
     cmd.add_option("--device", o.device, "Vulkan device: index or part of its name (default: best GPU, else lavapipe)");
     cmd.add_flag("--validation", o.validation, "Enable Vulkan validation layers; any message makes the run fail");
     cmd.add_option("--skin", o.skin, "Shade this material (or 'all') as skin with default parameters");
@@ -134,10 +136,13 @@ void applySkinOption(Scene& scene, const CommonOptions& o) {
 }
 
 Environment loadEnvironment(const Scene& scene, const CommonOptions& o) {
-    if (!o.env.empty()) return Environment::load(o.env, o.envIntensity >= 0.0f ? o.envIntensity : 1.0f);
+    if (!o.env.empty())
+        return Environment::load(o.env, o.envIntensity >= 0.0f ? o.envIntensity : 1.0f,
+                                 glm::radians(o.envRotationDeg.value_or(0.0f)));
     if (scene.environmentPath)
         return Environment::load(*scene.environmentPath,
-                                 o.envIntensity >= 0.0f ? o.envIntensity : scene.environmentIntensity);
+                                 o.envIntensity >= 0.0f ? o.envIntensity : scene.environmentIntensity,
+                                 o.envRotationDeg ? glm::radians(*o.envRotationDeg) : scene.environmentRotation);
     return Environment::constant(glm::vec3(0.25f) * (o.envIntensity >= 0.0f ? o.envIntensity : 1.0f));
 }
 

@@ -12,6 +12,7 @@
 
 #include <filesystem>
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -20,6 +21,7 @@ namespace preskin::cli {
 struct CommonOptions {
     std::string env;
     float envIntensity = -1.0f;  // < 0: the scene's (or 1)
+    std::optional<float> envRotationDeg;  // unset: the scene's (or 0)
     std::string device;
     bool validation = false;
     std::string skin;  // material name or "all"

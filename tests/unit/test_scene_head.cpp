@@ -193,5 +193,6 @@ TEST(SceneHead, KeyLightCameraAndEnvironment) {
     ASSERT_TRUE(s.environmentPath.has_value());
     EXPECT_EQ(s.environmentPath->filename(), "studio_small_05_1k.hdr");
     EXPECT_TRUE(std::filesystem::is_regular_file(*s.environmentPath));
-    EXPECT_FLOAT_EQ(s.environmentIntensity, 1.0f);
+    EXPECT_FLOAT_EQ(s.environmentIntensity, 0.5f);
+    EXPECT_NEAR(s.environmentRotation, 1.5f * 3.14159265f, 1e-5f);  // the softbox to the side as fill
 }

@@ -75,3 +75,29 @@ TEST(ShProjection, EquirectDirectionConvention) {
 
 }  // namespace
 }  // namespace preskin
+
+namespace preskin {
+namespace {
+
+TEST(ShProjection, RotationTurnsTheLightAboutY) {
+    // A lit texel at +X turned by +90 degrees must light from -Z (right-handed about +Y).
+    const uint32_t w = 256, h = 128;
+    EquirectImage img;
+    img.width = w;
+    img.height = h;
+    img.rgb.assign(size_t(w) * h * 3, 0.0f);
+    const uint32_t x0 = w / 2, y0 = h / 2;  // u = 0.5 (+X) on the horizon
+    for (int c = 0; c < 3; ++c) img.rgb[(size_t(y0) * w + x0) * 3 + size_t(c)] = 100.0f;
+    const ShRgb turned = projectEquirect(img, 0.5f * kPi);
+    const glm::vec3 d = rotateY(EquirectImage::directionAt((x0 + 0.5f) / float(w), (y0 + 0.5f) / float(h)), 0.5f * kPi);
+    EXPECT_NEAR(d.z, -1.0f, 1e-3f);
+    // The irradiance is largest facing the turned direction and zero facing away.
+    const float towards = evaluateSh(turned, glm::vec3(0, 0, -1), kLambertBands).r;
+    const float away = evaluateSh(turned, glm::vec3(0, 0, 1), kLambertBands).r;
+    const float side = evaluateSh(turned, glm::vec3(1, 0, 0), kLambertBands).r;
+    EXPECT_GT(towards, 5.0f * std::abs(away));
+    EXPECT_GT(towards, side);
+}
+
+}  // namespace
+}  // namespace preskin

@@ -43,14 +43,17 @@ struct EquirectImage {
     static glm::vec3 directionAt(float u, float v);
 };
 
-// Projects radiance onto SH by integrating over every texel with its exact solid angle.
-PRESKIN_API ShRgb projectEquirect(const EquirectImage& image);
+// Projects radiance onto SH by integrating over every texel with its exact solid angle. The
+// image is turned by rotationY radians about +Y first (right-handed: +Z turns towards +X).
+PRESKIN_API ShRgb projectEquirect(const EquirectImage& image, float rotationY = 0.0f);
+// Direction d of the image turned by rotationY radians about +Y.
+PRESKIN_API glm::vec3 rotateY(const glm::vec3& d, float rotationY);
 
 class PRESKIN_API Environment {
 public:
     // Reads an equirectangular .hdr or .exr (any format OpenImageIO reads); throws
     // preskin::Error naming the file on a missing, unreadable, non-2:1 or non-finite image.
-    static Environment load(const std::filesystem::path& path, float intensity = 1.0f);
+    static Environment load(const std::filesystem::path& path, float intensity = 1.0f, float rotationY = 0.0f);
     // Uniform radiance in every direction.
     static Environment constant(const glm::vec3& radiance);
 

@@ -171,6 +171,7 @@ struct Scene {
     // Scene-level environment from the PRESKIN_environment extension (a file next to the scene).
     std::optional<std::filesystem::path> environmentPath;  // absolute; the file exists at load
     float environmentIntensity = 1.0f;
+    float environmentRotation = 0.0f;  // radians about +Y, right-handed (+Z turns towards +X)
     // Non-fatal problems found while loading ("file: field: what was ignored"), for the host to show.
     std::vector<std::string> warnings;
 

@@ -38,7 +38,13 @@ glm::vec3 EquirectImage::directionAt(float u, float v) {
     return {std::sin(theta) * std::cos(phi), std::cos(theta), std::sin(theta) * std::sin(phi)};
 }
 
-ShRgb projectEquirect(const EquirectImage& image) {
+glm::vec3 rotateY(const glm::vec3& d, float rotationY) {
+    const float c = std::cos(rotationY);
+    const float s = std::sin(rotationY);
+    return {c * d.x + s * d.z, d.y, -s * d.x + c * d.z};
+}
+
+ShRgb projectEquirect(const EquirectImage& image, float rotationY) {
     // Row y spans theta in [pi y/H, pi (y+1)/H]; its exact solid angle per texel is
     // (2 pi / W) (cos(theta0) - cos(theta1)).
     using Acc = std::array<glm::dvec3, 9>;
@@ -52,7 +58,7 @@ ShRgb projectEquirect(const EquirectImage& image) {
                 const float v = (static_cast<float>(y) + 0.5f) / static_cast<float>(image.height);
                 for (uint32_t x = 0; x < image.width; ++x) {
                     const float u = (static_cast<float>(x) + 0.5f) / static_cast<float>(image.width);
-                    const auto basis = shBasis(EquirectImage::directionAt(u, v));
+                    const auto basis = shBasis(rotateY(EquirectImage::directionAt(u, v), rotationY));
                     const glm::dvec3 radiance(image.texel(x, y));
                     for (int i = 0; i < 9; ++i) acc[i] += radiance * (double(basis[i]) * solidAngle);
                 }
@@ -68,10 +74,11 @@ ShRgb projectEquirect(const EquirectImage& image) {
     return sh;
 }
 
-Environment Environment::load(const std::filesystem::path& path, float intensity) {
+Environment Environment::load(const std::filesystem::path& path, float intensity, float rotationY) {
     const std::string name = path.string();
     if (!std::isfinite(intensity) || intensity < 0.0f)
         throw Error(fmt::format("{}: intensity: must be a finite number >= 0, got {}", name, intensity));
+    if (!std::isfinite(rotationY)) throw Error(fmt::format("{}: rotation: must be finite, got {}", name, rotationY));
     std::error_code ec;
     if (!std::filesystem::is_regular_file(path, ec))
         throw Error(fmt::format("{}: environment file not found", name));
@@ -100,7 +107,7 @@ Environment Environment::load(const std::filesystem::path& path, float intensity
                                     (i / 3) % env.image_.width, (i / 3) / env.image_.width, v));
         v = std::max(v, 0.0f) * intensity;  // tiny negatives from lossy EXR compression are clamped
     }
-    env.radianceSh_ = projectEquirect(env.image_);
+    env.radianceSh_ = projectEquirect(env.image_, rotationY);
     return env;
 }
 

@@ -578,6 +578,7 @@ Scene loadScene(const fs::path& path) {
     }
     scene.environmentPath = prepass.environmentPath;
     scene.environmentIntensity = prepass.environmentIntensity;
+    scene.environmentRotation = prepass.environmentRotation;
 
     LoadContext ctx;
     ctx.file = file;

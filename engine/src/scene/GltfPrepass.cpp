@@ -266,6 +266,12 @@ PrepassResult checkDocument(const json& doc, const std::string& file, const fs::
                 }
                 result.environmentIntensity = static_cast<float>(value);
             }
+            if (const json* rotation = c.member(*env, "rotation")) {
+                if (!rotation->is_number()) c.error(where + ".rotation", "not a number");
+                const double value = rotation->get<double>();
+                if (!std::isfinite(value)) c.error(where + ".rotation", "not a finite number of radians");
+                result.environmentRotation = static_cast<float>(value);
+            }
         }
     }
     return result;

@@ -27,6 +27,7 @@ const std::vector<std::string>& supportedRequiredExtensions();
 struct PrepassResult {
     std::optional<std::filesystem::path> environmentPath;
     float environmentIntensity = 1.0f;
+    float environmentRotation = 0.0f;
     std::vector<std::string> warnings;
 };
 

@@ -250,9 +250,14 @@ void Device::initializeDevice(const ContextDesc& desc) {
     for (const auto& e : desc.deviceExtensions) extensions.push_back(e.c_str());
     VkPhysicalDeviceFeatures supported;
     vkGetPhysicalDeviceFeatures(chosen, &supported);
+    VkPhysicalDeviceVulkan13Features supported13{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_VULKAN_1_3_FEATURES};
+    VkPhysicalDeviceFeatures2 supported2{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_FEATURES_2, &supported13, {}};
+    vkGetPhysicalDeviceFeatures2(chosen, &supported2);
     VkPhysicalDeviceVulkan13Features f13{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_VULKAN_1_3_FEATURES};
     f13.dynamicRendering = VK_TRUE;
     f13.synchronization2 = VK_TRUE;
+    // Required by Vulkan 1.3; lets compute shaders size workgroups with specialization constants.
+    f13.maintenance4 = supported13.maintenance4;
     VkPhysicalDeviceFeatures2 features{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_FEATURES_2, &f13, {}};
     features.features.samplerAnisotropy = supported.samplerAnisotropy;
     features.features.fragmentStoresAndAtomics = supported.fragmentStoresAndAtomics;

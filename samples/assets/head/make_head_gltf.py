@@ -162,7 +162,7 @@ def main(argv):
             "KHR_lights_punctual": {"lights": [{
                 "name": "key", "type": "directional", "color": [1.0, 0.96, 0.92], "intensity": 3.0,
                 "extras": {"castsShadow": True}}]},
-            "PRESKIN_environment": {"uri": ENVIRONMENT, "intensity": 1.0},
+            "PRESKIN_environment": {"uri": ENVIRONMENT, "intensity": 0.5, "rotation": 4.712389},
         },
         "scene": 0,
         "scenes": [{"name": "head", "nodes": [0, 1, 2]}],
