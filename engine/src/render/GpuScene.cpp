@@ -129,6 +129,10 @@ GpuScene::GpuScene(const vk::Device& device, const Scene& scene)
     // Samplers: the scene's, then the default (linear, mipmapped, repeat).
     VkPhysicalDeviceFeatures features;
     vkGetPhysicalDeviceFeatures(device.physicalDevice(), &features);
+    // Anisotropic filtering on hardware only: lavapipe emulates it with many taps per sample,
+    // which nearly doubled the forward pass of the head scene there.
+    const bool anisotropy = features.samplerAnisotropy &&
+                            device.properties().deviceType != VK_PHYSICAL_DEVICE_TYPE_CPU;
     std::vector<Sampler> samplerDescs = scene.samplers;
     samplerDescs.push_back(Sampler{});
     for (const Sampler& s : samplerDescs) {
@@ -140,7 +144,7 @@ GpuScene::GpuScene(const vk::Device& device, const Scene& scene)
         info.addressModeV = toVk(s.wrapV);
         info.addressModeW = VK_SAMPLER_ADDRESS_MODE_REPEAT;
         info.maxLod = s.mipmaps ? VK_LOD_CLAMP_NONE : 0.0f;
-        if (features.samplerAnisotropy && s.mipmaps && s.minFilter == Filter::Linear) {
+        if (anisotropy && s.mipmaps && s.minFilter == Filter::Linear) {
             info.anisotropyEnable = VK_TRUE;
             info.maxAnisotropy = std::min(8.0f, device.properties().limits.maxSamplerAnisotropy);
         }
