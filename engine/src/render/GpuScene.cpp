@@ -1,5 +1,7 @@
 #include "render/GpuScene.h"
 
+#include <preskin/SkinParameters.h>
+
 #include "vk/Check.h"
 #include "vk/Pipeline.h"
 
@@ -31,30 +33,7 @@ gpu::GpuUvTransform toGpu(const TextureRef& ref) {
     return {glm::vec4(m[0][0], m[1][0], m[2][0], 0.0f), glm::vec4(m[0][1], m[1][1], m[2][1], 0.0f)};
 }
 
-// Normal-map texels per world millimetre: sqrt(texel area / surface area) over all triangles
-// drawn with the material (instance scale included).
-void accumulateTexelDensity(const Primitive& primitive, const glm::mat4& worldFromObject, double& uvArea,
-                            double& worldAreaMm2) {
-    const glm::mat3 m(worldFromObject);
-    for (size_t t = 0; t + 2 < primitive.indices.size(); t += 3) {
-        const Vertex& a = primitive.vertices[primitive.indices[t]];
-        const Vertex& b = primitive.vertices[primitive.indices[t + 1]];
-        const Vertex& c = primitive.vertices[primitive.indices[t + 2]];
-        const glm::vec3 e1 = m * (b.positionOs - a.positionOs) * 1000.0f;
-        const glm::vec3 e2 = m * (c.positionOs - a.positionOs) * 1000.0f;
-        worldAreaMm2 += 0.5 * double(glm::length(glm::cross(e1, e2)));
-        const glm::vec2 u1 = b.uv0 - a.uv0;
-        const glm::vec2 u2 = c.uv0 - a.uv0;
-        uvArea += 0.5 * std::abs(double(u1.x * u2.y - u1.y * u2.x));
-    }
-}
-
 }  // namespace
-
-glm::vec3 normalLodBias(const glm::vec3& widthMm, float scatterScale, float texelsPerMm) {
-    const float scale = std::max(scatterScale, 1e-6f);
-    return glm::log2(glm::vec3(1.0f) + widthMm / scale * texelsPerMm);
-}
 
 GpuScene::GpuScene(const vk::Device& device, const Scene& scene)
     : device_(device), sceneMaterials_(scene.materials) {
@@ -179,11 +158,11 @@ GpuScene::GpuScene(const vk::Device& device, const Scene& scene)
         gm.skin = mat.skin.has_value();
         gm.alphaMode = mat.alphaMode;
         gm.doubleSided = mat.doubleSided;
-        if (mat.normal.valid() && size_t(mat.normal.image) < scene.images.size() && worldArea[i] > 0.0) {
+        if (mat.normal.valid() && size_t(mat.normal.image) < scene.images.size()) {
             const Image& img = scene.images[size_t(mat.normal.image)];
-            const double texels = uvArea[i] * double(img.width) * double(img.height) *
-                                  double(mat.normal.uvScale.x * mat.normal.uvScale.y);
-            gm.texelsPerMm = static_cast<float>(std::sqrt(std::abs(texels) / worldArea[i]));
+            // KHR_texture_transform's scale repeats the map: density grows with it.
+            gm.texelsPerMm = texelsPerMm(uvArea[i], worldArea[i], img.width, img.height) *
+                             std::sqrt(std::abs(mat.normal.uvScale.x * mat.normal.uvScale.y));
         }
         VkDescriptorSetAllocateInfo alloc{VK_STRUCTURE_TYPE_DESCRIPTOR_SET_ALLOCATE_INFO};
         alloc.descriptorPool = pool_;

@@ -71,8 +71,4 @@ private:
     VkDeviceSize uniformStride_ = 0;
 };
 
-// Normal-map mip LOD bias of each channel: how many mip levels wider the profile's scattering
-// width is than one texel of the map, log2(1 + widthMm / scatterScale * texelsPerMm).
-glm::vec3 normalLodBias(const glm::vec3& widthMm, float scatterScale, float texelsPerMm);
-
 }  // namespace preskin
