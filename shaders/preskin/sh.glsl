@@ -42,4 +42,15 @@ vec3 preskinShEvaluateRgb(vec4 sh[9], vec3 d, vec3 bandR, vec3 bandG, vec3 bandB
                 dot(vec3(b0.b, b1.b, b2.b), bandB));
 }
 
+// One colour channel (0 red, 1 green, 2 blue) of preskinShEvaluate.
+float preskinShEvaluateChannel(vec4 sh[9], vec3 d, vec3 bandScale, int channel) {
+    float y[9];
+    preskinShBasis(d, y);
+    float b0 = sh[0][channel] * y[0];
+    float b1 = sh[1][channel] * y[1] + sh[2][channel] * y[2] + sh[3][channel] * y[3];
+    float b2 = sh[4][channel] * y[4] + sh[5][channel] * y[5] + sh[6][channel] * y[6] + sh[7][channel] * y[7] +
+               sh[8][channel] * y[8];
+    return dot(vec3(b0, b1, b2), bandScale);
+}
+
 #endif

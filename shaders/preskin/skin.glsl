@@ -61,7 +61,7 @@ vec3 preskinSkinDiffuseResponse(PreskinSkinSurface s, LutMapping m, sampler2D di
                 preskinDiffuseLut(m, diffuseLut, NoL.b, s.curvaturePerMm).b);
 }
 
-// Specular of one light: one or two GGX lobes with the unbiased normal.
+// Specular of one light: one or two GGX lobes with the unbiased normal (Fresnel shared).
 vec3 preskinSkinSpecular(PreskinSkinSurface s, vec3 V, vec3 L, uint features) {
     vec3 N = s.normalSpecular;
     float NoL = dot(N, L);
@@ -69,12 +69,18 @@ vec3 preskinSkinSpecular(PreskinSkinSurface s, vec3 V, vec3 L, uint features) {
     vec3 H = normalize(L + V);
     float NoV = max(dot(N, V), 1e-4);
     float NoH = preskinSaturate(dot(N, H));
-    float VoH = preskinSaturate(dot(V, H));
-    if ((features & kSkinDualSpecular) == 0u)
-        return preskinSpecularGgx(s.F0, s.roughness, NoL, NoV, NoH, VoH) * NoL;
-    vec3 lobe0 = preskinSpecularGgx(s.F0, clamp(s.roughness * s.lobes.x, 0.03, 1.0), NoL, NoV, NoH, VoH);
-    vec3 lobe1 = preskinSpecularGgx(s.F0, clamp(s.roughness * s.lobes.y, 0.03, 1.0), NoL, NoV, NoH, VoH);
-    return mix(lobe0, lobe1, s.lobes.z) * NoL;
+    vec3 F = preskinSchlickF(s.F0, preskinSaturate(dot(V, H)));
+    if ((features & kSkinDualSpecular) == 0u) {
+        float alpha = max(s.roughness * s.roughness, 1e-3);
+        return F * (preskinGgxD(NoH, alpha) * preskinSmithV(NoL, NoV, alpha) * NoL);
+    }
+    float r0 = clamp(s.roughness * s.lobes.x, 0.03, 1.0);
+    float r1 = clamp(s.roughness * s.lobes.y, 0.03, 1.0);
+    float a0 = max(r0 * r0, 1e-3);
+    float a1 = max(r1 * r1, 1e-3);
+    float lobe0 = preskinGgxD(NoH, a0) * preskinSmithV(NoL, NoV, a0);
+    float lobe1 = preskinGgxD(NoH, a1) * preskinSmithV(NoL, NoV, a1);
+    return F * (mix(lobe0, lobe1, s.lobes.z) * NoL);
 }
 
 // Reflected radiance of one light. shadowRgb: per-channel visibility (penumbra LUT, or the plain
@@ -121,8 +127,10 @@ vec3 preskinSkinAmbientIrradiance(PreskinSkinSurface s, LutMapping m, sampler2D 
         bandG = vec3(a0.g, a1.g, a2.g);
         bandB = vec3(a0.b, a1.b, a2.b);
     }
-    return max(vec3(preskinShEvaluate(sh, s.normalR, bandR).r, preskinShEvaluate(sh, s.normalG, bandG).g,
-                    preskinShEvaluate(sh, s.normalB, bandB).b),
+    if ((features & kSkinNormalPrefilter) == 0u)  // one normal for all channels
+        return max(preskinShEvaluateRgb(sh, s.normalG, bandR, bandG, bandB), vec3(0.0));
+    return max(vec3(preskinShEvaluateChannel(sh, s.normalR, bandR, 0), preskinShEvaluateChannel(sh, s.normalG, bandG, 1),
+                    preskinShEvaluateChannel(sh, s.normalB, bandB, 2)),
                vec3(0.0));
 }
 
