@@ -1,0 +1,246 @@
+// The GLSL LUT lookups of shaders/preskin/lut.glsl (run by tests/gpu/shaders/lut_lookup.comp on
+// the renderer's own LUT textures and sampler, render/GpuLuts) against LutSet's CPU lookups, over
+// grids that include every axis end, values just inside and outside them, and far out-of-range
+// inputs (which must clamp like the CPU). Tolerance per lookup: a GPU quantises the bilinear
+// weights to subTexelPrecisionBits (LutTable.h), so it may differ from the exact bilinear value by
+// up to 2^-bits of the spread of the 2x2 texels it blends along each of the two axes; plus
+// float rounding. A lookup half a texel off, a wrong row or a missing clamp exceeds that.
+#include "support/GpuTest.h"
+#include "support/TestShaders.h"
+
+#include <preskin/Environment.h>
+#include <preskin/LutSet.h>
+
+#include "render/GpuLuts.h"
+#include "vk/Check.h"
+#include "vk/Pipeline.h"
+#include "vk/Resources.h"
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <cstdio>
+#include <random>
+#include <string>
+#include <vector>
+
+namespace preskin::test {
+namespace {
+
+enum Table : int { kDiffuse = 0, kPenumbra = 1, kShTransfer = 2, kTransmittance = 3 };
+
+struct Lookup {
+    int table;
+    float a;
+    float b;
+};
+
+// Runs lut_lookup.comp over `lookups` and returns one RGB result per lookup.
+std::vector<glm::vec3> runOnGpu(const vk::Device& device, const LutSet& luts, const std::vector<Lookup>& lookups) {
+    const GpuLuts gpuLuts(device, &luts);
+    const VkDevice d = device.device();
+    const VkShaderStageFlags compute = VK_SHADER_STAGE_COMPUTE_BIT;
+    const std::array<vk::Binding, 7> bindings{{{0, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, compute},
+                                               {1, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, compute},
+                                               {2, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, compute},
+                                               {3, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, compute},
+                                               {4, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, compute},
+                                               {5, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, compute},
+                                               {6, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, compute}}};
+    const VkDescriptorSetLayout setLayout = vk::createSetLayout(device, bindings);
+    const VkPipelineLayout layout = vk::createPipelineLayout(device, std::span(&setLayout, 1), sizeof(uint32_t), compute);
+    const VkPipeline pipeline = vk::createComputePipeline(device, test_shaders::spirv("lut_lookup.comp"), layout);
+
+    const std::array<VkDescriptorPoolSize, 3> sizes{{{VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, 1},
+                                                     {VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 4},
+                                                     {VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 2}}};
+    VkDescriptorPoolCreateInfo poolInfo{VK_STRUCTURE_TYPE_DESCRIPTOR_POOL_CREATE_INFO};
+    poolInfo.maxSets = 1;
+    poolInfo.poolSizeCount = static_cast<uint32_t>(sizes.size());
+    poolInfo.pPoolSizes = sizes.data();
+    VkDescriptorPool pool = VK_NULL_HANDLE;
+    PRESKIN_VK(vkCreateDescriptorPool(d, &poolInfo, nullptr, &pool));
+    VkDescriptorSetAllocateInfo allocInfo{VK_STRUCTURE_TYPE_DESCRIPTOR_SET_ALLOCATE_INFO};
+    allocInfo.descriptorPool = pool;
+    allocInfo.descriptorSetCount = 1;
+    allocInfo.pSetLayouts = &setLayout;
+    VkDescriptorSet set = VK_NULL_HANDLE;
+    PRESKIN_VK(vkAllocateDescriptorSets(d, &allocInfo, &set));
+
+    const gpu::LutMapping mapping = gpuLuts.mapping();
+    vk::Buffer uniforms(device, sizeof(mapping), VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT, true);
+    uniforms.upload(&mapping, sizeof(mapping));
+    std::vector<glm::vec4> inputData;
+    for (const Lookup& l : lookups) inputData.emplace_back(float(l.table), l.a, l.b, 0.0f);
+    const VkDeviceSize bytes = inputData.size() * sizeof(glm::vec4);
+    vk::Buffer inputs(device, bytes, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, true);
+    inputs.upload(inputData.data(), bytes);
+    vk::Buffer outputs(device, bytes, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, true);
+
+    const VkDescriptorBufferInfo uniformInfo{uniforms.handle(), 0, sizeof(mapping)};
+    const VkDescriptorBufferInfo inputInfo{inputs.handle(), 0, bytes};
+    const VkDescriptorBufferInfo outputInfo{outputs.handle(), 0, bytes};
+    const auto images = gpuLuts.descriptors();
+    std::array<VkWriteDescriptorSet, 7> writes{};
+    for (uint32_t i = 0; i < 7; ++i) {
+        writes[i] = {VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET};
+        writes[i].dstSet = set;
+        writes[i].dstBinding = i;
+        writes[i].descriptorCount = 1;
+        writes[i].descriptorType = bindings[i].type;
+    }
+    writes[0].pBufferInfo = &uniformInfo;
+    for (uint32_t i = 0; i < 4; ++i) writes[i + 1].pImageInfo = &images[i];
+    writes[5].pBufferInfo = &inputInfo;
+    writes[6].pBufferInfo = &outputInfo;
+    vkUpdateDescriptorSets(d, static_cast<uint32_t>(writes.size()), writes.data(), 0, nullptr);
+
+    const uint32_t count = static_cast<uint32_t>(lookups.size());
+    device.submitAndWait([&](VkCommandBuffer cmd) {
+        vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, pipeline);
+        vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, layout, 0, 1, &set, 0, nullptr);
+        vkCmdPushConstants(cmd, layout, compute, 0, sizeof(count), &count);
+        vkCmdDispatch(cmd, (count + 63) / 64, 1, 1);
+        vk::memoryBarrier(cmd, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT,
+                          VK_PIPELINE_STAGE_2_HOST_BIT, VK_ACCESS_2_HOST_READ_BIT);
+    });
+
+    std::vector<glm::vec3> results(lookups.size());
+    const auto* out = static_cast<const glm::vec4*>(outputs.mapped());
+    for (size_t i = 0; i < results.size(); ++i) results[i] = glm::vec3(out[i]);
+    vkDestroyDescriptorPool(d, pool, nullptr);
+    vkDestroyPipeline(d, pipeline, nullptr);
+    vkDestroyPipelineLayout(d, layout, nullptr);
+    vkDestroyDescriptorSetLayout(d, setLayout, nullptr);
+    return results;
+}
+
+// Largest difference between the 2x2 texels a bilinear lookup at uv blends, per table axis
+// (x: along u, y: along v), over the three channels.
+glm::vec2 texelSpread(const LutTable& table, glm::vec2 uv) {
+    auto pair = [](double coordinate, int size) {
+        const double t = std::clamp(coordinate * size - 0.5, 0.0, double(size - 1));
+        const int i0 = static_cast<int>(std::floor(t));
+        return std::array<int, 2>{i0, std::min(i0 + 1, size - 1)};
+    };
+    const auto xs = pair(uv.x, table.width());
+    const auto ys = pair(uv.y, table.height());
+    glm::vec2 spread(0.0f);
+    for (int j = 0; j < 2; ++j) {
+        const glm::vec3 a = table.texel(xs[0], ys[j]);
+        const glm::vec3 b = table.texel(xs[1], ys[j]);
+        const glm::vec3 c = table.texel(xs[j], ys[0]);
+        const glm::vec3 e = table.texel(xs[j], ys[1]);
+        for (int ch = 0; ch < 3; ++ch) {
+            spread.x = std::max(spread.x, std::abs(a[ch] - b[ch]));
+            spread.y = std::max(spread.y, std::abs(c[ch] - e[ch]));
+        }
+    }
+    return spread;
+}
+
+class LutGpu : public GpuTest {};
+
+TEST_F(LutGpu, GlslLookupsMatchCpuLookups) {
+    const LutSet& luts = LutSet::loadDefault();
+    const float curvatureMax = float(luts.settings().curvatureMaxPerMm);
+    const float thicknessMax = float(luts.transmittanceMaxMm());
+    const float referenceWidth = float(luts.penumbraReferenceWidthMm());
+
+    // Axis ends, values just inside and outside them, and far out of range.
+    const std::vector<float> NoLs = {-1e6f, -1.5f, -1.0f, -0.999f, -0.75f, -0.5f, -0.2f, -1e-3f, 0.0f, 1e-3f,
+                                     0.1f,  0.3f,  0.5f,  0.7071f, 0.9f,  0.999f, 1.0f,  1.001f, 2.0f, 1e6f};
+    const std::vector<float> curvatures = {-1.0f, 0.0f, 1e-5f, 1e-3f, 0.01f, 0.05f, 0.1f, 0.2f, 0.3333f, 0.5f,
+                                           0.75f * curvatureMax, 0.999f * curvatureMax, curvatureMax,
+                                           1.001f * curvatureMax, 3.0f * curvatureMax, 1e6f};
+    const std::vector<float> shadows = {-1.0f, -1e-3f, 0.0f, 1e-3f, 0.00135f, 0.01f, 0.1f, 0.3f, 0.5f,
+                                        0.7f, 0.9f, 0.99f, 0.99865f, 0.999f, 1.0f, 1.001f, 2.0f};
+    const std::vector<float> widths = {-1.0f, 0.0f, 1e-4f, 0.01f, 0.1f * referenceWidth, 0.5f * referenceWidth,
+                                       referenceWidth, 2.0f * referenceWidth, 10.0f * referenceWidth,
+                                       100.0f * referenceWidth, 1e4f, 1e7f};
+    const std::vector<float> thicknesses = {-1.0f, 0.0f, 1e-4f, 0.01f, 0.05f, 0.1f, 0.25f, 0.5f, 1.0f, 2.0f,
+                                            0.5f * thicknessMax, 0.999f * thicknessMax, thicknessMax,
+                                            1.001f * thicknessMax, 10.0f * thicknessMax, 1e6f};
+
+    std::vector<Lookup> lookups;
+    for (float n : NoLs)
+        for (float c : curvatures) lookups.push_back({kDiffuse, n, c});
+    for (float s : shadows)
+        for (float w : widths) lookups.push_back({kPenumbra, s, w});
+    for (float c : curvatures)
+        for (int band = 0; band < 3; ++band) lookups.push_back({kShTransfer, c, float(band)});
+    for (float t : thicknesses) lookups.push_back({kTransmittance, t, 0.0f});
+    // Plus random in-range inputs, which land between texel centres.
+    std::mt19937 rng(20240607u);
+    std::uniform_real_distribution<float> unit(0.0f, 1.0f);
+    for (int i = 0; i < 4000; ++i) {
+        lookups.push_back({kDiffuse, 2.0f * unit(rng) - 1.0f, curvatureMax * unit(rng)});
+        lookups.push_back({kPenumbra, unit(rng), 4.0f * referenceWidth * unit(rng)});
+    }
+    for (int i = 0; i < 1000; ++i) {
+        lookups.push_back({kShTransfer, curvatureMax * unit(rng), float(i % 3)});
+        lookups.push_back({kTransmittance, thicknessMax * unit(rng), 0.0f});
+    }
+
+    const std::vector<glm::vec3> gpuResults = runOnGpu(context().core(), luts, lookups);
+    const uint32_t bits = context().core().properties().limits.subTexelPrecisionBits;
+    ASSERT_GE(bits, 4u) << "Vulkan requires at least 4 sub-texel precision bits";
+    const double weightStep = std::ldexp(1.0, -int(bits));
+
+    const char* names[] = {"diffuse", "penumbra", "SH transfer", "transmittance"};
+    std::array<int, 4> failures{};
+    std::array<double, 4> worst{};           // largest |GPU - CPU|
+    std::array<double, 4> worstRatio{};      // largest |GPU - CPU| / tolerance
+    std::array<double, 4> largestValue{};    // to show the errors are not vacuous
+    std::string firstFailures;
+    for (size_t i = 0; i < lookups.size(); ++i) {
+        const Lookup& l = lookups[i];
+        glm::vec3 cpu;
+        glm::vec2 spread;
+        switch (l.table) {
+            case kDiffuse:
+                cpu = luts.lookupDiffuse(l.a, l.b);
+                spread = texelSpread(luts.diffuse(), luts.diffuseUv(l.a, l.b));
+                break;
+            case kPenumbra:
+                cpu = luts.lookupPenumbra(l.a, l.b);
+                spread = texelSpread(luts.penumbra(), luts.penumbraUv(l.a, l.b));
+                break;
+            case kShTransfer: {
+                const int band = static_cast<int>(l.b);
+                cpu = luts.lookupShTransfer(l.a)[size_t(band)];
+                // The table holds A_l relative to Lambert's coefficient; the lookup multiplies it back.
+                spread = texelSpread(luts.shTransfer(), luts.shTransferUv(l.a, band)) * kLambertBands[band];
+                break;
+            }
+            default:
+                cpu = luts.lookupTransmittance(l.a);
+                spread = texelSpread(luts.transmittance(), luts.transmittanceUv(l.a));
+                break;
+        }
+        const glm::vec3 got = gpuResults[i];
+        const double magnitude = std::max({1.0, double(std::abs(cpu.r)), double(std::abs(cpu.g)), double(std::abs(cpu.b))});
+        const double tolerance = weightStep * double(spread.x + spread.y) + 2e-6 * magnitude;
+        double error = 0.0;
+        for (int c = 0; c < 3; ++c) error = std::max(error, double(std::abs(got[c] - cpu[c])));
+        const auto t = size_t(l.table);
+        worst[t] = std::max(worst[t], error);
+        worstRatio[t] = std::max(worstRatio[t], error / tolerance);
+        largestValue[t] = std::max(largestValue[t], double(std::max({cpu.r, cpu.g, cpu.b})));
+        if (!(error <= tolerance) && failures[t]++ < 5)
+            firstFailures += std::string(names[t]) + "(" + std::to_string(l.a) + ", " + std::to_string(l.b) +
+                             "): GPU (" + std::to_string(got.r) + ", " + std::to_string(got.g) + ", " +
+                             std::to_string(got.b) + ") CPU (" + std::to_string(cpu.r) + ", " + std::to_string(cpu.g) +
+                             ", " + std::to_string(cpu.b) + "), tolerance " + std::to_string(tolerance) + "\n";
+    }
+    for (size_t t = 0; t < 4; ++t) {
+        EXPECT_EQ(failures[t], 0) << names[t] << ": " << failures[t] << " lookups outside tolerance";
+        EXPECT_GT(largestValue[t], 0.5) << names[t] << ": the grid should reach large table values";
+        std::printf("[ lut gpu  ] %-13s worst |GPU - CPU| %.3g, worst error / tolerance %.3f (%u sub-texel bits)\n",
+                    names[t], worst[t], worstRatio[t], bits);
+    }
+    EXPECT_TRUE(firstFailures.empty()) << firstFailures;
+}
+
+}  // namespace
+}  // namespace preskin::test

@@ -1,0 +1,171 @@
+// Penumbra scattering: a skin plane behind a floating caster, lit by the shadowed directional
+// light at 45 degrees, seen from above across the shadow's edge. Along each image row the
+// shadow transition of every channel is normalised between its lit and dark plateaus and its
+// 10%-90% width measured. With penumbra scattering on, red's transition must be wider than
+// blue's (red scatters farthest; blue, narrower than the shadow filter, becomes sharper); with
+// it off (plain filtered shadow in every channel) the channels' widths must agree. Far from the
+// edge, where the plain filtered shadow is exactly 0 or 1, turning the technique on must not
+// change the image (within 1/255).
+#include "support/GpuTest.h"
+#include "support/ImageCompare.h"
+#include "support/SkinTestSupport.h"
+#include "support/TestScenes.h"
+
+#include <preskin/LutSet.h>
+#include <preskin/Renderer.h>
+
+#include <glm/gtc/matrix_transform.hpp>
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <cstdio>
+#include <optional>
+
+namespace preskin::test {
+namespace {
+
+// Position (in pixels, fractional) where a monotone row profile crosses `level`, searching from
+// the left; none when it never does.
+std::optional<double> crossing(const std::vector<double>& row, double level) {
+    for (size_t i = 0; i + 1 < row.size(); ++i) {
+        const double a = row[i] - level;
+        const double b = row[i + 1] - level;
+        if (a == 0.0) return double(i);
+        if ((a > 0.0) != (b > 0.0)) return double(i) + a / (a - b);
+    }
+    return std::nullopt;
+}
+
+struct Transition {
+    std::array<double, 3> width{};  // 10%-90% width per channel, pixels, averaged over rows
+    int rows = 0;
+};
+
+// Rows whose every channel runs from a lit plateau (left) to a dark one (right).
+Transition measure(const RenderedImage& image, uint32_t firstRow, uint32_t lastRow) {
+    Transition t;
+    const uint32_t plateau = 6;
+    for (uint32_t y = firstRow; y <= lastRow; ++y) {
+        std::array<double, 3> widths{};
+        bool ok = true;
+        for (int c = 0; c < 3 && ok; ++c) {
+            std::vector<double> row(image.width);
+            for (uint32_t x = 0; x < image.width; ++x) row[x] = pixelLinear(image, x, y)[c];
+            double lit = 0.0;
+            double dark = 0.0;
+            for (uint32_t i = 0; i < plateau; ++i) {
+                lit += row[i] / plateau;
+                dark += row[image.width - 1 - i] / plateau;
+            }
+            if (!(lit > dark + 1e-3)) {
+                ok = false;
+                break;
+            }
+            for (double& v : row) v = (v - dark) / (lit - dark);
+            const auto a = crossing(row, 0.9);
+            const auto b = crossing(row, 0.1);
+            ok = a && b;
+            if (ok) widths[size_t(c)] = *b - *a;
+        }
+        if (!ok) continue;
+        for (size_t c = 0; c < 3; ++c) t.width[c] += widths[c];
+        ++t.rows;
+    }
+    for (double& w : t.width) w /= std::max(t.rows, 1);
+    return t;
+}
+
+class SkinPenumbra : public GpuTest {};
+
+TEST_F(SkinPenumbra, RedTransitionWiderThanBlueAndNoChangeFarFromTheEdge) {
+    SkinMaterial skin;
+    skin.scatterScale = 0.5f;  // scattering twice as wide in world units as life-size skin
+    skin.specularIntensity = 0.0f;
+    Material receiver;
+    receiver.baseColorFactor = glm::vec4(0.8f, 0.8f, 0.8f, 1.0f);
+    receiver.metallicFactor = 0.0f;
+    receiver.roughnessFactor = 0.7f;
+    receiver.skin = skin;
+    Material caster;
+    caster.baseColorFactor = glm::vec4(0.3f, 0.3f, 0.3f, 1.0f);
+    caster.metallicFactor = 0.0f;
+
+    Primitive plane = makeQuad(0.4f, 4);
+    plane.material = 0;
+    Primitive box = makeBox(glm::vec3(0.2f, 0.5f, 0.01f));
+    box.material = 1;
+    // The caster floats 0.1 m above the plane over x in [0.05, 0.25]; with the light at 45
+    // degrees its shadow on the plane spans x in [-0.05, 0.15]: the edge in view is at x = -0.05.
+    Scene scene = makeScene({{plane, glm::mat4(1.0f)},
+                             {box, glm::translate(glm::mat4(1.0f), glm::vec3(0.15f, 0.0f, 0.1f))}},
+                            {receiver, caster});
+    Light light;
+    light.type = LightType::Directional;
+    light.directionWs = glm::normalize(glm::vec3(-1.0f, 0.0f, -1.0f));
+    light.intensity = 2.5f;
+    light.castsShadow = true;
+    scene.lights = {light};
+
+    RenderSettings settings;
+    settings.shadowMapSize = 512;  // a wide filter on the receiver: 1.27 mm texels, sigma 1.5 texels
+    settings.shadowSoftnessTexels = 1.5f;
+    RenderSettings plain = settings;
+    plain.skin.penumbra = false;
+    Renderer renderer(context(), scene, Environment::constant(glm::vec3(0.05f)), &LutSet::loadDefault(), settings);
+    // 30 mm of the plane across the edge, seen straight from above.
+    const uint32_t size = 128;
+    const glm::mat4 worldFromView = glm::inverse(glm::lookAt(glm::vec3(-0.05f, 0.0f, 0.5f), glm::vec3(-0.05f, 0.0f, 0.0f),
+                                                             glm::vec3(0.0f, 1.0f, 0.0f)));
+    const View view = perspectiveView(worldFromView, 2.0f * std::atan(0.015f / 0.5f), 1.0f, 0.05f, 2.0f);
+    const RenderedImage skinShadow = renderer.render(view, size, size, OutputEncoding::LinearFloat);
+    renderer.setSettings(plain);
+    const RenderedImage plainShadow = renderer.render(view, size, size, OutputEncoding::LinearFloat);
+    dumpImage("skin_penumbra_on", skinShadow);
+    dumpImage("skin_penumbra_off", plainShadow);
+
+    const Transition on = measure(skinShadow, 8, size - 9);
+    const Transition off = measure(plainShadow, 8, size - 9);
+    const double pixelMm = 30.0 / size;
+    std::printf("[ skin     ] penumbra 10-90%% widths (mm): on R %.2f G %.2f B %.2f (%d rows); off R %.2f G %.2f "
+                "B %.2f (%d rows)\n",
+                on.width[0] * pixelMm, on.width[1] * pixelMm, on.width[2] * pixelMm, on.rows, off.width[0] * pixelMm,
+                off.width[1] * pixelMm, off.width[2] * pixelMm, off.rows);
+    ASSERT_GE(on.rows, int(size) - 20) << "every row should cross the shadow edge";
+    ASSERT_GE(off.rows, int(size) - 20);
+    EXPECT_GT(on.width[0], 2.0 * on.width[2]) << "red's transition should be much wider than blue's";
+    EXPECT_GT(on.width[0], on.width[1]);
+    EXPECT_NEAR(off.width[0], off.width[2], 0.1) << "without penumbra scattering every channel has the same edge";
+    EXPECT_GT(off.width[1], 3.0) << "the plain edge should span several pixels, or the widths mean little";
+
+    // Far from the edge: where the plain filtered visibility (the Shadow debug view) is exactly
+    // 1 or 0 over a neighbourhood, the skin shadow must equal the plain one.
+    RenderSettings visibilityView = plain;
+    visibilityView.debugView = DebugView::Shadow;
+    renderer.setSettings(visibilityView);
+    const RenderedImage visibility = renderer.render(view, size, size, OutputEncoding::LinearFloat);
+    size_t farLit = 0;
+    size_t farDark = 0;
+    double farWorst = 0.0;
+    for (uint32_t y = 0; y < size; ++y)
+        for (uint32_t x = 0; x < size; ++x) {
+            const double v = pixelLinear(visibility, x, y).r;
+            if (v != 0.0 && v != 1.0) continue;
+            bool flat = true;
+            for (int dx = -4; dx <= 4 && flat; ++dx) {
+                const int xx = std::clamp(int(x) + dx, 0, int(size) - 1);
+                flat = pixelLinear(visibility, uint32_t(xx), y).r == v;
+            }
+            if (!flat) continue;
+            (v == 1.0 ? farLit : farDark) += 1;
+            farWorst = std::max(farWorst, srgbDifference(pixelLinear(skinShadow, x, y), pixelLinear(plainShadow, x, y)));
+        }
+    std::printf("[ skin     ] penumbra far from the edge: %zu lit and %zu dark pixels, worst change %.3f/255\n", farLit,
+                farDark, farWorst);
+    EXPECT_GT(farLit, size_t(size) * 8) << "the view should hold a lit region clear of the edge";
+    EXPECT_GT(farDark, size_t(size) * 8) << "the view should hold a dark region clear of the edge";
+    EXPECT_LE(farWorst, 1.0) << "penumbra scattering changed the image far from the shadow edge";
+}
+
+}  // namespace
+}  // namespace preskin::test

@@ -1,0 +1,203 @@
+// The skin techniques' switches (RenderSettings::skin, the shader's kSkin* specialisation bits):
+//  - each one, switched off alone, changes the image of a scene made to show it (pixels changed
+//    by more than 2/255 counted);
+//  - with all of them off the skin path equals the standard path within 1/255 on every pixel of
+//    every scene. For that the skin material gets specularIntensity = 0.04 / 0.028, so its F0 is
+//    the standard dielectric's 0.04, and the standard material is a dielectric (metallic 0) with
+//    the same base colour, roughness and normal map.
+// Scenes: a normal-mapped skin sphere (2 cm, scatter scale 0.2: it scatters like a 4 mm one) under a shadowed key light with a
+// caster and a structured environment (LUT diffuse, normal prefilter, SH ambient, dual specular);
+// a skin plane behind a caster with a wide shadow filter (penumbra); a thin skin slab lit from
+// behind (transmission).
+#include "support/GpuTest.h"
+#include "support/ImageCompare.h"
+#include "support/SkinTestSupport.h"
+#include "support/TestScenes.h"
+
+#include <preskin/LutSet.h>
+#include <preskin/Renderer.h>
+
+#include <glm/gtc/matrix_transform.hpp>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <string>
+#include <vector>
+
+namespace preskin::test {
+namespace {
+
+struct ToggleScene {
+    std::string name;
+    Scene scene;  // its materials are skin
+    Environment environment = Environment::constant(glm::vec3(0.0f));
+    RenderSettings settings;
+    View view;
+};
+
+Material skinMaterial(const glm::vec3& albedo, float roughness, float scatterScale) {
+    Material m;
+    m.baseColorFactor = glm::vec4(albedo, 1.0f);
+    m.metallicFactor = 0.0f;
+    m.roughnessFactor = roughness;
+    SkinMaterial skin;
+    skin.scatterScale = scatterScale;
+    m.skin = skin;
+    return m;
+}
+
+View lookAtView(const glm::vec3& eye, const glm::vec3& target, float yfov, float nearM) {
+    return perspectiveView(glm::inverse(glm::lookAt(eye, target, glm::vec3(0.0f, 1.0f, 0.0f))), yfov, 1.0f, nearM,
+                           10.0f);
+}
+
+ToggleScene sphereScene() {
+    ToggleScene s;
+    s.name = "sphere";
+    Primitive sphere = makeSphere(0.02f, 128, 64);
+    sphere.material = 0;
+    Material skin = skinMaterial({0.78f, 0.55f, 0.45f}, 0.4f, 0.2f);
+    Primitive caster = makeBox(glm::vec3(0.03f, 0.03f, 0.002f));
+    Material standard;
+    standard.baseColorFactor = glm::vec4(0.4f, 0.4f, 0.45f, 1.0f);
+    standard.metallicFactor = 0.0f;
+    standard.roughnessFactor = 0.6f;
+    caster.material = 1;
+    const glm::vec3 toLight = glm::normalize(glm::vec3(1.0f, 0.6f, 0.7f));
+    // The caster sits towards the light, shifted sideways so its shadow edge crosses the lit side.
+    const glm::vec3 side = glm::normalize(glm::cross(toLight, glm::vec3(0.0f, 1.0f, 0.0f)));
+    const glm::mat4 casterFrame = glm::inverse(glm::lookAt(0.05f * toLight + 0.027f * side, glm::vec3(0.0f),
+                                                           glm::vec3(0.0f, 1.0f, 0.0f)));
+    s.scene = makeScene({{sphere, glm::mat4(1.0f)}, {caster, casterFrame}}, {skin, standard});
+    // Bumps of about 10 texels: the red channel's prefiltered normal (derived mip bias ~3.5) loses them.
+    const int normalMap = addNormalMap(s.scene, 128, 64, [](glm::vec2 uv) {
+        const float pi = 3.14159265f;
+        const float dx = 0.5f * std::cos(2.0f * pi * 12.0f * uv.x) * std::sin(2.0f * pi * 6.0f * uv.y);
+        const float dy = 0.5f * std::sin(2.0f * pi * 12.0f * uv.x) * std::cos(2.0f * pi * 6.0f * uv.y);
+        return glm::vec3(-dx, -dy, 1.0f);
+    });
+    s.scene.materials[0].normal.image = normalMap;
+    Light key;
+    key.type = LightType::Directional;
+    key.directionWs = -toLight;
+    key.intensity = 2.0f;
+    key.castsShadow = true;
+    s.scene.lights = {key};
+    s.environment = makeEnvironment(64, [](const glm::vec3& d) {
+        return glm::vec3(0.4f, 0.34f, 0.3f) * (1.0f + 0.8f * d.y + 0.2f * d.x * d.z) + glm::vec3(0.0f, 0.05f, 0.1f) * d.x;
+    });
+    s.view = lookAtView(glm::vec3(0.0f, 0.01f, 0.1f), glm::vec3(0.0f), 0.5f, 0.01f);
+    return s;
+}
+
+ToggleScene penumbraScene() {
+    ToggleScene s;
+    s.name = "penumbra";
+    Primitive plane = makeQuad(0.4f, 4);
+    plane.material = 0;
+    Primitive caster = makeBox(glm::vec3(0.2f, 0.5f, 0.01f));
+    caster.material = 0;
+    s.scene = makeScene({{plane, glm::mat4(1.0f)},
+                         {caster, glm::translate(glm::mat4(1.0f), glm::vec3(0.15f, 0.0f, 0.1f))}},
+                        {skinMaterial({0.8f, 0.8f, 0.8f}, 0.7f, 0.5f)});
+    Light light;
+    light.type = LightType::Directional;
+    light.directionWs = glm::normalize(glm::vec3(-1.0f, 0.0f, -1.0f));
+    light.intensity = 2.5f;
+    light.castsShadow = true;
+    s.scene.lights = {light};
+    s.environment = Environment::constant(glm::vec3(0.05f));
+    s.settings.shadowMapSize = 512;
+    s.view = lookAtView(glm::vec3(-0.05f, 0.0f, 0.5f), glm::vec3(-0.05f, 0.0f, 0.0f), 0.06f, 0.05f);
+    return s;
+}
+
+ToggleScene transmissionScene() {
+    ToggleScene s;
+    s.name = "transmission";
+    Primitive slab = makeBox(glm::vec3(0.08f, 0.08f, 0.003f));
+    slab.material = 0;
+    s.scene = makeScene({{slab, glm::mat4(1.0f)}}, {skinMaterial({0.8f, 0.6f, 0.5f}, 0.6f, 1.0f)});
+    Light light;
+    light.type = LightType::Directional;
+    light.directionWs = glm::normalize(glm::vec3(0.2f, -0.1f, 1.0f));  // from behind
+    light.intensity = 3.0f;
+    light.castsShadow = true;
+    s.scene.lights = {light};
+    s.environment = Environment::constant(glm::vec3(0.02f));
+    s.view = lookAtView(glm::vec3(0.0f, 0.0f, 0.2f), glm::vec3(0.0f), 0.6f, 0.01f);
+    return s;
+}
+
+constexpr uint32_t kSize = 128;
+
+class SkinToggles : public GpuTest {};
+
+TEST_F(SkinToggles, EachTechniqueChangesTheImage) {
+    struct Case {
+        const char* name;
+        bool SkinFeatures::*feature;
+        ToggleScene* scene;
+    };
+    ToggleScene sphere = sphereScene();
+    ToggleScene penumbra = penumbraScene();
+    ToggleScene transmission = transmissionScene();
+    const std::vector<Case> cases = {{"lutDiffuse", &SkinFeatures::lutDiffuse, &sphere},
+                                     {"normalPrefilter", &SkinFeatures::normalPrefilter, &sphere},
+                                     {"shAmbient", &SkinFeatures::shAmbient, &sphere},
+                                     {"dualSpecular", &SkinFeatures::dualSpecular, &sphere},
+                                     {"penumbra", &SkinFeatures::penumbra, &penumbra},
+                                     {"transmission", &SkinFeatures::transmission, &transmission}};
+    const LutSet& luts = LutSet::loadDefault();
+    for (ToggleScene* s : {&sphere, &penumbra, &transmission}) {
+        Renderer renderer(context(), s->scene, s->environment, &luts, s->settings);
+        const RenderedImage all = renderer.render(s->view, kSize, kSize, OutputEncoding::LinearFloat);
+        dumpImage("skin_toggles_" + s->name + "_all", all);
+        for (const Case& c : cases) {
+            if (c.scene != s) continue;
+            RenderSettings settings = s->settings;
+            settings.skin.*c.feature = false;
+            renderer.setSettings(settings);
+            const RenderedImage without = renderer.render(s->view, kSize, kSize, OutputEncoding::LinearFloat);
+            dumpImage("skin_toggles_" + s->name + "_no_" + c.name, without);
+            const size_t changed = countDifferingPixels(all, without, 2.0);
+            std::printf("[ skin     ] switching %-15s off changes %5zu pixels by > 2/255 (largest %.1f/255)\n", c.name,
+                        changed, maxSrgbDifference(all, without));
+            EXPECT_GE(changed, size_t(kSize * kSize / 100)) << c.name << " off should change at least 1% of the image";
+        }
+    }
+}
+
+TEST_F(SkinToggles, AllOffEqualsStandardPath) {
+    const LutSet& luts = LutSet::loadDefault();
+    for (ToggleScene s : {sphereScene(), penumbraScene(), transmissionScene()}) {
+        Scene standard = s.scene;
+        for (Material& m : s.scene.materials)
+            if (m.skin) m.skin->specularIntensity = 0.04f / 0.028f;  // F0 = 0.028 * intensity = 0.04
+        for (Material& m : standard.materials) m.skin.reset();
+        RenderSettings off = s.settings;
+        off.skin = SkinFeatures::none();
+        Renderer skinRenderer(context(), s.scene, s.environment, &luts, off);
+        Renderer standardRenderer(context(), standard, s.environment, &luts, off);
+        const RenderedImage skinImage = skinRenderer.render(s.view, kSize, kSize, OutputEncoding::LinearFloat);
+        const RenderedImage standardImage = standardRenderer.render(s.view, kSize, kSize, OutputEncoding::LinearFloat);
+        dumpImage("skin_all_off_" + s.name, skinImage);
+        dumpImage("standard_" + s.name, standardImage);
+        // Not vacuous: most of the view shows the scene (differs from the background in the
+        // corner by more than 10/255).
+        const glm::dvec3 background = pixelLinear(standardImage, 0, 0);
+        size_t lit = 0;
+        for (uint32_t y = 0; y < kSize; ++y)
+            for (uint32_t x = 0; x < kSize; ++x)
+                if (srgbDifference(pixelLinear(standardImage, x, y), background) > 10.0) ++lit;
+        const double worst = maxSrgbDifference(skinImage, standardImage);
+        std::printf("[ skin     ] all techniques off vs standard (%s): worst %.3f/255 over %zu scene pixels\n", s.name.c_str(),
+                    worst, lit);
+        EXPECT_GT(lit, size_t(kSize * kSize / 4)) << s.name;
+        EXPECT_LE(worst, 1.0) << s.name << ": skin with every technique off should equal the standard path";
+    }
+}
+
+}  // namespace
+}  // namespace preskin::test

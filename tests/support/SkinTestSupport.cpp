@@ -1,0 +1,141 @@
+#include "support/SkinTestSupport.h"
+
+#include "support/ImageCompare.h"
+
+#include <preskin/Curvature.h>
+
+#include <unistd.h>
+
+#include <algorithm>
+#include <atomic>
+#include <cmath>
+#include <filesystem>
+
+namespace preskin::test {
+
+std::vector<SphereHit> traceSphere(const View& view, uint32_t width, uint32_t height, const glm::dvec3& centerWs,
+                                   double radiusM) {
+    const glm::dmat4 worldFromClip = glm::inverse(glm::dmat4(view.clipFromWorld()));
+    // Ray through image position (px, py) in pixels: from the near plane (reversed Z: depth 1)
+    // towards depth 0.5, which works for perspective and orthographic projections.
+    auto hit = [&](double px, double py, glm::dvec3& p) {
+        const glm::dvec2 ndc(px / width * 2.0 - 1.0, py / height * 2.0 - 1.0);
+        const glm::dvec4 a = worldFromClip * glm::dvec4(ndc, 1.0, 1.0);
+        const glm::dvec4 b = worldFromClip * glm::dvec4(ndc, 0.5, 1.0);
+        const glm::dvec3 origin = glm::dvec3(a) / a.w;
+        const glm::dvec3 dir = glm::normalize(glm::dvec3(b) / b.w - origin);
+        const glm::dvec3 oc = origin - centerWs;
+        const double half = glm::dot(oc, dir);
+        const double c = glm::dot(oc, oc) - radiusM * radiusM;
+        const double disc = half * half - c;
+        if (disc <= 0.0) return false;
+        const double t = -half - std::sqrt(disc);
+        if (t <= 0.0) return false;
+        p = origin + dir * t;
+        return true;
+    };
+    std::vector<SphereHit> hits(size_t(width) * height);
+    for (uint32_t y = 0; y < height; ++y)
+        for (uint32_t x = 0; x < width; ++x) {
+            SphereHit& h = hits[size_t(y) * width + x];
+            glm::dvec3 p;
+            bool inside = true;
+            for (int dy = -1; dy <= 2 && inside; ++dy)
+                for (int dx = -1; dx <= 2 && inside; ++dx) inside = hit(double(x) + dx, double(y) + dy, p);
+            h.interior = inside && hit(x + 0.5, y + 0.5, h.positionWs);
+        }
+    return hits;
+}
+
+Environment makeEnvironment(uint32_t width, const std::function<glm::vec3(const glm::vec3&)>& radiance) {
+    static std::atomic<int> counter{0};
+    const uint32_t height = width / 2;
+    RenderedImage image;
+    image.width = width;
+    image.height = height;
+    image.encoding = OutputEncoding::LinearFloat;
+    image.rgba32f.resize(size_t(width) * height * 4);
+    for (uint32_t y = 0; y < height; ++y)
+        for (uint32_t x = 0; x < width; ++x) {
+            const float u = (float(x) + 0.5f) / float(width);
+            const float v = (float(y) + 0.5f) / float(height);
+            const glm::vec3 l = radiance(EquirectImage::directionAt(u, v));
+            float* px = &image.rgba32f[(size_t(y) * width + x) * 4];
+            px[0] = l.r;
+            px[1] = l.g;
+            px[2] = l.b;
+            px[3] = 1.0f;
+        }
+    const std::filesystem::path dir = std::filesystem::temp_directory_path() /
+                                      ("preskin_test_env_" + std::to_string(::getpid()) + "_" + std::to_string(counter++));
+    std::filesystem::create_directories(dir);
+    const std::filesystem::path file = dir / "environment.exr";
+    try {
+        writeImage(file, image);
+        Environment env = Environment::load(file);
+        std::filesystem::remove_all(dir);
+        return env;
+    } catch (...) {
+        std::error_code ec;
+        std::filesystem::remove_all(dir, ec);
+        throw;
+    }
+}
+
+int addNormalMap(Scene& scene, uint32_t width, uint32_t height, const std::function<glm::vec3(glm::vec2)>& normalAt) {
+    Image image;
+    image.name = "procedural normal map";
+    image.width = width;
+    image.height = height;
+    image.rgba8.resize(size_t(width) * height * 4);
+    for (uint32_t y = 0; y < height; ++y)
+        for (uint32_t x = 0; x < width; ++x) {
+            const glm::vec2 uv((float(x) + 0.5f) / float(width), (float(y) + 0.5f) / float(height));
+            const glm::vec3 n = glm::normalize(normalAt(uv)) * 0.5f + 0.5f;
+            uint8_t* px = &image.rgba8[(size_t(y) * width + x) * 4];
+            for (int c = 0; c < 3; ++c) px[c] = static_cast<uint8_t>(std::lround(std::clamp(n[c], 0.0f, 1.0f) * 255.0f));
+            px[3] = 255;
+        }
+    scene.images.push_back(std::move(image));
+    return static_cast<int>(scene.images.size()) - 1;
+}
+
+void recomputeCurvature(Primitive& primitive) {
+    std::vector<glm::vec3> positions;
+    std::vector<glm::vec3> normals;
+    for (const Vertex& v : primitive.vertices) {
+        positions.push_back(v.positionOs);
+        normals.push_back(v.normalOs);
+    }
+    const std::vector<float> curvature = computeVertexCurvature(positions, normals, primitive.indices);
+    for (size_t i = 0; i < primitive.vertices.size(); ++i) primitive.vertices[i].curvaturePerM = curvature[i];
+}
+
+glm::dvec3 pixelLinear(const RenderedImage& image, uint32_t x, uint32_t y) {
+    const float* p = &image.rgba32f[(size_t(y) * image.width + x) * 4];
+    return {p[0], p[1], p[2]};
+}
+
+double srgbDifference(const glm::dvec3& a, const glm::dvec3& b) {
+    double d = 0.0;
+    for (int c = 0; c < 3; ++c) d = std::max(d, std::abs(srgb255(a[c]) - srgb255(b[c])));
+    return d;
+}
+
+size_t countDifferingPixels(const RenderedImage& a, const RenderedImage& b, double steps) {
+    size_t n = 0;
+    for (uint32_t y = 0; y < a.height; ++y)
+        for (uint32_t x = 0; x < a.width; ++x)
+            if (srgbDifference(pixelLinear(a, x, y), pixelLinear(b, x, y)) > steps) ++n;
+    return n;
+}
+
+double maxSrgbDifference(const RenderedImage& a, const RenderedImage& b) {
+    double worst = 0.0;
+    for (uint32_t y = 0; y < a.height; ++y)
+        for (uint32_t x = 0; x < a.width; ++x)
+            worst = std::max(worst, srgbDifference(pixelLinear(a, x, y), pixelLinear(b, x, y)));
+    return worst;
+}
+
+}  // namespace preskin::test

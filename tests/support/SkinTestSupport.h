@@ -1,0 +1,59 @@
+// Helpers for the skin shading tests (tests/gpu/test_skin_*.cpp): analytic sphere hits per pixel
+// for CPU references, synthetic environments, procedural normal maps, and image comparisons in
+// 8-bit sRGB steps.
+#pragma once
+
+#include <preskin/Environment.h>
+#include <preskin/Renderer.h>
+#include <preskin/Scene.h>
+#include <preskin/View.h>
+
+#include <glm/glm.hpp>
+
+#include <cstdint>
+#include <functional>
+#include <string>
+#include <vector>
+
+namespace preskin::test {
+
+// The first hit of a pixel's ray with a sphere. `interior`: the rays through every corner of the
+// pixel and of its eight neighbours hit the sphere too, so the pixel is fully covered and far
+// from the silhouette.
+struct SphereHit {
+    bool interior = false;
+    glm::dvec3 positionWs{0.0};
+};
+
+// One entry per pixel (row-major, top row first, as RenderedImage) of a width x height image of
+// `view` (perspective or orthographic, Vulkan clip conventions of View.h).
+std::vector<SphereHit> traceSphere(const View& view, uint32_t width, uint32_t height, const glm::dvec3& centerWs,
+                                   double radiusM);
+
+// An equirectangular environment (convention of Environment.h) of width x width/2 texels whose
+// texel centres hold radiance(direction); written as EXR into a temporary folder, loaded with
+// Environment::load and the folder removed. The loaded image (half-float rounded) is what both
+// the GPU and CPU references see.
+Environment makeEnvironment(uint32_t width, const std::function<glm::vec3(const glm::vec3&)>& radiance);
+
+// Appends a tangent-space normal map (glTF: RGB = n * 0.5 + 0.5, +Y up) of width x height texels
+// holding normalAt(uv) (uv at texel centres, any non-zero vector; normalised here) to the
+// scene's images and returns its index.
+int addNormalMap(Scene& scene, uint32_t width, uint32_t height, const std::function<glm::vec3(glm::vec2)>& normalAt);
+
+// Per-vertex curvature of a primitive recomputed from its positions and normals
+// (computeVertexCurvature), replacing whatever it held.
+void recomputeCurvature(Primitive& primitive);
+
+// Linear RGB of one pixel of a LinearFloat image.
+glm::dvec3 pixelLinear(const RenderedImage& image, uint32_t x, uint32_t y);
+
+// Largest per-channel difference between two values after sRGB encoding, in 8-bit steps.
+double srgbDifference(const glm::dvec3& a, const glm::dvec3& b);
+
+// Pixels of two LinearFloat images of one size whose sRGB difference exceeds `steps`.
+size_t countDifferingPixels(const RenderedImage& a, const RenderedImage& b, double steps);
+// The largest sRGB difference over all pixels, in 8-bit steps.
+double maxSrgbDifference(const RenderedImage& a, const RenderedImage& b);
+
+}  // namespace preskin::test
