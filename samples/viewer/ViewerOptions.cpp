@@ -1,0 +1,33 @@
+// preskin-viewer's command line (see ViewerOptions.h).
+#include "ViewerOptions.h"
+
+namespace preskin::viewer {
+
+void addViewerOptions(CLI::App& app, ViewerOptions& o) {
+    app.add_option("scene", o.scene, "glTF scene (.gltf or .glb); default: the bundled head scene");
+    app.add_option("--width", o.widthPx, "Window width in pixels")->capture_default_str()->check(CLI::Range(64, 16384));
+    app.add_option("--height", o.heightPx, "Window height in pixels")
+        ->capture_default_str()
+        ->check(CLI::Range(64, 16384));
+    app.add_flag("--no-vsync", o.noVsync, "Present without waiting for vertical blank (MAILBOX or IMMEDIATE)");
+    auto* camera = app.add_option("--camera", o.camera, "Start with the scene's camera of this name");
+    auto* orbit = app.add_option("--orbit", o.orbit,
+                                 "Start orbiting at YAW,PITCH,DIST in degrees, degrees, metres (DIST 0: fit)");
+    camera->excludes(orbit);
+    app.add_option("--frames", o.frames,
+                   "Scripted run: draw this many frames (and on until loads, bakes and shader builds are done), "
+                   "then exit (0: run until closed)")
+        ->check(CLI::Range(0u, 1u << 24));
+    app.add_option("--screenshot", o.screenshot,
+                   "Write the last frame (of --frames, else the first) as PNG, without the panels");
+    app.add_flag("--screenshot-ui", o.screenshotUi, "The screenshot includes the panels");
+    app.add_flag("--hide-ui", o.hideUi, "Start with the panels hidden (F1 shows them)");
+    app.add_flag("--no-shader-reload", o.noShaderReload,
+                 "Do not watch shaders/ for changes (F5 and the panel still reload on request)");
+    app.add_flag("--compile-shaders", o.compileShaders,
+                 "Compile shaders/ from source at start and use them, as a hot reload does");
+    app.add_option("--drop", o.drops, "Load this file at start as if it was dropped on the window (repeatable)");
+    cli::addCommonOptions(app, o.common);
+}
+
+}  // namespace preskin::viewer

@@ -1,0 +1,36 @@
+// Command-line options of preskin-viewer: the shared sample options (environment, device,
+// validation, skin toggles, debug view, lights, LUTs; samples/common/Options.h) plus the window,
+// the starting view and the scripted mode (--frames N --screenshot FILE; --drop and
+// --compile-shaders drive the drag-and-drop and hot-reload paths from scripts and tests).
+#pragma once
+
+#include "Options.h"  // samples/common
+
+#include <CLI/CLI.hpp>
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+namespace preskin::viewer {
+
+struct ViewerOptions {
+    std::string scene;  // default: the bundled head
+    uint32_t widthPx = 1280;
+    uint32_t heightPx = 720;
+    bool noVsync = false;
+    std::string camera;  // a glTF camera's name
+    std::string orbit;   // YAW,PITCH,DIST (degrees, degrees, metres; DIST 0 fits)
+    uint32_t frames = 0;  // > 0: draw this many frames, then exit
+    std::string screenshot;  // written from frame `frames` (or the first frame when frames is 0)
+    bool screenshotUi = false;  // the screenshot includes the panels
+    bool hideUi = false;
+    bool noShaderReload = false;
+    bool compileShaders = false;     // compile shaders/ at start, as a hot reload would
+    std::vector<std::string> drops;  // files loaded at start as if dropped on the window
+    cli::CommonOptions common;
+};
+
+void addViewerOptions(CLI::App& app, ViewerOptions& options);
+
+}  // namespace preskin::viewer

@@ -1,0 +1,494 @@
+// preskin-viewer's Dear ImGui panels: scene and environment, camera, skin techniques, the
+// selected material's skin parameters, diffusion profile (live LUT re-bake), lights, debug
+// views, frame timing, shader hot reload and messages. Edits take effect as follows: render
+// settings and lights at the next frame; profile changes after the background bake; material
+// edits rebuild the Renderer when a control is released (the Renderer reads materials once).
+#include "Viewer.h"
+
+#include <preskin/Error.h>
+
+#include <imgui.h>
+#include <imgui_stdlib.h>
+
+#include <fmt/core.h>
+
+#include <glm/gtc/constants.hpp>
+
+#include <algorithm>
+#include <cmath>
+
+namespace preskin::viewer {
+
+namespace {
+
+const ImVec4 kErrorColor{1.0f, 0.35f, 0.3f, 1.0f};
+const ImVec4 kWarnColor{1.0f, 0.8f, 0.3f, 1.0f};
+
+void tooltip(const char* text) {
+    if (ImGui::IsItemHovered()) ImGui::SetTooltip("%s", text);
+}
+
+size_t triangleCount(const Scene& scene) {
+    size_t n = 0;
+    for (const MeshInstance& inst : scene.instances)
+        if (inst.mesh >= 0 && size_t(inst.mesh) < scene.meshes.size())
+            for (const Primitive& p : scene.meshes[size_t(inst.mesh)].primitives) n += p.indices.size() / 3;
+    return n;
+}
+
+}  // namespace
+
+void Viewer::drawUi() {
+    if (!showUi_) return;
+    const ImVec2 display = ImGui::GetIO().DisplaySize;
+    ImGui::SetNextWindowPos(ImVec2(10.0f, 10.0f), ImGuiCond_FirstUseEver);
+    ImGui::SetNextWindowSize(ImVec2(400.0f, std::max(display.y - 20.0f, 200.0f)), ImGuiCond_FirstUseEver);
+    if (ImGui::Begin("preskin")) {
+        ImGui::PushItemWidth(-175.0f);  // room for the labels
+        ImGui::TextDisabled("F1 hides the panels. Drop .gltf/.glb/.hdr/.exr");
+        ImGui::TextDisabled("files on the window to load them.");
+        panelScene();
+        panelCamera();
+        panelTechniques();
+        panelMaterial();
+        panelProfile();
+        panelLights();
+        panelDebug();
+        panelShaders();
+        ImGui::PopItemWidth();
+    }
+    ImGui::End();
+
+    ImGui::SetNextWindowPos(ImVec2(std::max(display.x - 350.0f, 10.0f), 10.0f), ImGuiCond_FirstUseEver);
+    if (ImGui::Begin("Frame", nullptr, ImGuiWindowFlags_AlwaysAutoResize)) panelTiming();
+    ImGui::End();
+
+    ImGui::SetNextWindowPos(ImVec2(std::max(display.x - 350.0f, 10.0f), std::max(display.y - 210.0f, 10.0f)),
+                            ImGuiCond_FirstUseEver);
+    ImGui::SetNextWindowSize(ImVec2(340.0f, 200.0f), ImGuiCond_FirstUseEver);
+    if (ImGui::Begin("Messages")) panelMessages();
+    ImGui::End();
+    statusBar();
+}
+
+void Viewer::panelScene() {
+    if (!ImGui::CollapsingHeader("Scene and environment")) return;
+    size_t skinMaterials = 0;
+    for (const Material& m : scene_.materials) skinMaterials += m.skin ? 1 : 0;
+    ImGui::Text("%s", scenePath_.filename().string().c_str());
+    tooltip(scenePath_.string().c_str());
+    ImGui::TextDisabled("%zu meshes, %zu triangles, %zu materials (%zu skin)", scene_.meshes.size(),
+                        triangleCount(scene_), scene_.materials.size(), skinMaterials);
+    ImGui::TextDisabled("%zu lights, %zu cameras", scene_.lights.size(), scene_.cameras.size());
+    if (!scene_.warnings.empty())
+        ImGui::TextColored(kWarnColor, "%zu loader warnings (see Messages)", scene_.warnings.size());
+    ImGui::SetNextItemWidth(-90.0f);
+    const bool enterScene = ImGui::InputText("##scenepath", &scenePathInput_, ImGuiInputTextFlags_EnterReturnsTrue);
+    ImGui::SameLine();
+    if (ImGui::Button("Load scene") || enterScene) startSceneLoad(scenePathInput_);
+    if (sceneJob_.valid()) ImGui::TextColored(kWarnColor, "loading scene...");
+
+    ImGui::Separator();
+    ImGui::Text("Environment: %s", std::filesystem::path(environmentName_).filename().string().c_str());
+    tooltip(environmentName_.c_str());
+    ImGui::SetNextItemWidth(-90.0f);
+    const bool enterEnv = ImGui::InputText("##envpath", &environmentPathInput_, ImGuiInputTextFlags_EnterReturnsTrue);
+    ImGui::SameLine();
+    if (ImGui::Button("Load env") || enterEnv)
+        startEnvironmentLoad(std::filesystem::path(environmentPathInput_), environmentIntensity_);
+    ImGui::SliderFloat("Intensity##env", &environmentIntensity_, 0.01f, 16.0f, "%.2f", ImGuiSliderFlags_Logarithmic);
+    tooltip("Environment radiance scale (re-projects the environment when released)");
+    if (ImGui::IsItemDeactivatedAfterEdit())
+        startEnvironmentLoad(environmentFromScene_ ? std::nullopt
+                                                   : std::optional<std::filesystem::path>(environmentName_),
+                             environmentIntensity_);
+    if (environmentJob_.valid()) ImGui::TextColored(kWarnColor, "loading environment...");
+}
+
+void Viewer::panelCamera() {
+    if (!ImGui::CollapsingHeader("Camera")) return;
+    int mode = static_cast<int>(camera_.mode());
+    bool changed = ImGui::RadioButton("Orbit", &mode, 0);
+    ImGui::SameLine();
+    changed |= ImGui::RadioButton("Fly", &mode, 1);
+    ImGui::SameLine();
+    ImGui::BeginDisabled(scene_.cameras.empty());
+    changed |= ImGui::RadioButton("Scene camera", &mode, 2);
+    ImGui::EndDisabled();
+    if (changed) camera_.setMode(static_cast<CameraMode>(mode), aspect());
+
+    if (camera_.mode() == CameraMode::Scene) {
+        int index = camera_.sceneCamera();
+        std::vector<const char*> names;
+        for (const Camera& c : scene_.cameras) names.push_back(c.name.empty() ? "(unnamed)" : c.name.c_str());
+        if (ImGui::Combo("Camera", &index, names.data(), static_cast<int>(names.size()))) camera_.setSceneCamera(index);
+    } else if (camera_.mode() == CameraMode::Orbit) {
+        ImGui::SliderFloat("Yaw", &camera_.yawDeg(), -180.0f, 180.0f, "%.1f deg");
+        ImGui::SliderFloat("Pitch", &camera_.pitchDeg(), -89.0f, 89.0f, "%.1f deg");
+        ImGui::DragFloat("Distance", &camera_.distanceM(), 0.005f, 0.0f, 1000.0f,
+                         camera_.distanceM() <= 0.0f ? "fit" : "%.3f m");
+        ImGui::SameLine();
+        if (ImGui::SmallButton("Fit")) camera_.distanceM() = 0.0f;
+    } else {
+        ImGui::SliderFloat("Speed", &camera_.flySpeedMps(), 0.001f, 100.0f, "%.3f m/s", ImGuiSliderFlags_Logarithmic);
+        ImGui::DragFloat3("Position", &camera_.flyPositionWs().x, 0.01f, 0.0f, 0.0f, "%.3f");
+    }
+    if (ImGui::Button("Reset view (Home)")) camera_.reset(scene_.worldBounds(), scene_.cameras);
+    ImGui::TextDisabled("Orbit: drag to turn, wheel to zoom.");
+    ImGui::TextDisabled("Fly: drag to look, W/A/S/D move, Q/E down/up,");
+    ImGui::TextDisabled("Shift faster, wheel sets speed. Tab: orbit/fly.");
+}
+
+void Viewer::panelTechniques() {
+    if (!ImGui::CollapsingHeader("Skin techniques", ImGuiTreeNodeFlags_DefaultOpen)) return;
+    SkinFeatures& f = settings_.skin;
+    ImGui::Checkbox("Pre-integrated diffuse (LUT)", &f.lutDiffuse);
+    tooltip("Off: Lambert N.L");
+    ImGui::Checkbox("Normal prefilter (per channel)", &f.normalPrefilter);
+    tooltip("Off: one normal-map sample for all channels");
+    ImGui::Checkbox("Penumbra scattering", &f.penumbra);
+    tooltip("Off: the plain filtered shadow");
+    ImGui::Checkbox("SH ambient skin transfer", &f.shAmbient);
+    tooltip("Off: Lambert SH irradiance");
+    ImGui::Checkbox("Transmission (thin parts)", &f.transmission);
+    ImGui::Checkbox("Dual specular lobes", &f.dualSpecular);
+    tooltip("Off: one GGX lobe");
+    if (ImGui::Button("All on")) f = SkinFeatures{};
+    ImGui::SameLine();
+    if (ImGui::Button("Standard (all off)")) f = SkinFeatures::none();
+    ImGui::SliderFloat("Exposure", &settings_.exposure, 0.05f, 16.0f, "%.2f", ImGuiSliderFlags_Logarithmic);
+}
+
+void Viewer::panelMaterial() {
+    if (!ImGui::CollapsingHeader("Skin material", ImGuiTreeNodeFlags_DefaultOpen)) return;
+    if (scene_.materials.empty()) {
+        ImGui::TextDisabled("the scene has no materials");
+        return;
+    }
+    selectedMaterial_ = std::clamp(selectedMaterial_, 0, static_cast<int>(scene_.materials.size()) - 1);
+    std::vector<std::string> labels;
+    for (size_t i = 0; i < scene_.materials.size(); ++i)
+        labels.push_back(fmt::format("{}{}", scene_.materials[i].name.empty() ? fmt::format("material {}", i)
+                                                                              : scene_.materials[i].name,
+                                     scene_.materials[i].skin ? " (skin)" : ""));
+    std::vector<const char*> names;
+    for (const std::string& l : labels) names.push_back(l.c_str());
+    ImGui::Combo("Material", &selectedMaterial_, names.data(), static_cast<int>(names.size()));
+
+    Material& material = scene_.materials[size_t(selectedMaterial_)];
+    bool rebuild = false;
+    if (!material.skin) {
+        ImGui::TextDisabled("shaded as a standard material");
+        if (ImGui::Button("Shade as skin")) {
+            material.skin = SkinMaterial{};
+            rebuild = true;
+        }
+        ImGui::SameLine();
+        if (ImGui::Button("Every material as skin")) {
+            scene_.makeSkin("all");
+            rebuild = true;
+        }
+    } else {
+        SkinMaterial& skin = *material.skin;
+        const char* sources[] = {"Per vertex (from the mesh)", "Texture", "Screen-space derivatives"};
+        int source = static_cast<int>(skin.curvatureSource);
+        if (ImGui::Combo("Curvature source", &source, sources, 3)) {
+            if (static_cast<CurvatureSource>(source) == CurvatureSource::Texture && !skin.curvatureTexture.valid()) {
+                error(fmt::format("material '{}' has no curvature texture; curvature source unchanged", material.name));
+            } else {
+                skin.curvatureSource = static_cast<CurvatureSource>(source);
+                rebuild = true;
+            }
+        }
+        ImGui::SliderFloat("Scatter scale", &skin.scatterScale, 0.05f, 20.0f, "%.2f", ImGuiSliderFlags_Logarithmic);
+        tooltip("Profile millimetres per world millimetre: scales curvature, penumbra width and thickness "
+                "(1 for a life-size head in metres)");
+        rebuild |= ImGui::IsItemDeactivatedAfterEdit();
+        if (skin.curvatureSource == CurvatureSource::Texture) {
+            ImGui::SliderFloat("Curvature texture scale", &skin.curvatureTextureScalePerM, 1.0f, 2000.0f, "%.0f 1/m",
+                               ImGuiSliderFlags_Logarithmic);
+            tooltip("Curvature (1/m) that a texture value of 1 stands for");
+            rebuild |= ImGui::IsItemDeactivatedAfterEdit();
+        }
+        bool overrideBias = skin.normalLodBias.has_value();
+        if (ImGui::Checkbox("Override normal-map LOD biases", &overrideBias)) {
+            if (overrideBias) skin.normalLodBias = glm::vec3(2.0f, 1.0f, 0.5f);
+            else skin.normalLodBias.reset();
+            rebuild = true;
+        }
+        tooltip("Per-channel mip bias of the prefiltered normal (red blurred most). Unset: derived from the "
+                "profile's per-channel width and the normal map's texel density");
+        if (skin.normalLodBias) {
+            ImGui::SliderFloat3("LOD bias R G B", &skin.normalLodBias->x, 0.0f, 8.0f, "%.2f");
+            rebuild |= ImGui::IsItemDeactivatedAfterEdit();
+        } else {
+            ImGui::TextDisabled("LOD biases derived from the profile");
+        }
+        ImGui::SliderFloat("Transmission##material", &skin.transmission, 0.0f, 1.0f, "%.2f");
+        rebuild |= ImGui::IsItemDeactivatedAfterEdit();
+        ImGui::SliderFloat("Thickness scale", &skin.thicknessScale, 0.05f, 20.0f, "%.2f", ImGuiSliderFlags_Logarithmic);
+        rebuild |= ImGui::IsItemDeactivatedAfterEdit();
+        ImGui::SliderFloat("Specular intensity", &skin.specularIntensity, 0.0f, 3.0f, "%.2f");
+        rebuild |= ImGui::IsItemDeactivatedAfterEdit();
+    }
+    if (ImGui::Button("Reset material edits")) {
+        scene_.materials = loadedMaterials_;
+        rebuild = true;
+    }
+    tooltip("Material edits rebuild the renderer when a control is released");
+    if (rebuild) rebuildRenderer("material edited");
+}
+
+void Viewer::panelProfile() {
+    if (!ImGui::CollapsingHeader("Diffusion profile", ImGuiTreeNodeFlags_DefaultOpen)) return;
+    int choice = static_cast<int>(profileChoice_);
+    bool changed = ImGui::RadioButton(fmt::format("As loaded: {}", lutsName_).c_str(), &choice, 0);
+    changed |= ImGui::RadioButton("d'Eon & Luebke (sum of Gaussians)", &choice, 1);
+    changed |= ImGui::RadioButton("Christensen & Burley (normalized diffusion)", &choice, 2);
+    profileChoice_ = static_cast<ProfileChoice>(choice);
+    if (profileChoice_ == ProfileChoice::Burley) {
+        changed |= ImGui::SliderFloat3("Albedo", burleyAlbedo_.data(), 0.01f, 1.0f, "%.2f");
+        tooltip("Surface albedo per channel (R, G, B)");
+        changed |= ImGui::SliderFloat3("Mean free path", burleyMfpMm_.data(), 0.01f, 10.0f, "%.2f mm",
+                                       ImGuiSliderFlags_Logarithmic);
+        tooltip("Mean free path per channel in millimetres (R, G, B)");
+    }
+    if (profileChoice_ != ProfileChoice::Loaded) {
+        const int sizes[] = {64, 128, 256, 512};
+        int index = static_cast<int>(std::find(std::begin(sizes), std::end(sizes), lutSize_) - std::begin(sizes));
+        const char* labels[] = {"64", "128", "256 (default)", "512"};
+        if (ImGui::Combo("LUT size", &index, labels, 4)) {
+            lutSize_ = sizes[std::clamp(index, 0, 3)];
+            changed = true;
+        }
+    }
+    if (changed) requestBake();
+    if (baker_.busy()) {
+        ImGui::ProgressBar(static_cast<float>(baker_.progress()), ImVec2(-1.0f, 0.0f), "baking LUTs");
+    } else if (!lutStatus_.empty()) {
+        ImGui::TextDisabled("%s", lutStatus_.c_str());
+    }
+    if (luts_) {
+        const glm::dvec3 w = luts_->profile().widthMm();
+        ImGui::TextDisabled("Scattering width R %.2f G %.2f B %.2f mm", w.x, w.y, w.z);
+    }
+}
+
+void Viewer::panelLights() {
+    if (!ImGui::CollapsingHeader("Lights", ImGuiTreeNodeFlags_DefaultOpen)) return;
+    bool changed = false;
+    if (keyLight_ >= 0 && size_t(keyLight_) < sceneLights_.size()) {
+        Light& key = sceneLights_[size_t(keyLight_)];
+        ImGui::Text("Key light: %s", key.name.empty() ? "(unnamed)" : key.name.c_str());
+        const glm::vec3 toLight =
+            glm::length(key.directionWs) > 0.0f ? -glm::normalize(key.directionWs) : glm::vec3(0.0f, 0.0f, 1.0f);
+        float azimuthDeg = glm::degrees(std::atan2(toLight.x, toLight.z));
+        float elevationDeg = glm::degrees(std::asin(std::clamp(toLight.y, -1.0f, 1.0f)));
+        bool direction = ImGui::SliderFloat("Azimuth", &azimuthDeg, -180.0f, 180.0f, "%.0f deg");
+        tooltip("Where the light comes from, around +Y; 0 is the front (+Z)");
+        direction |= ImGui::SliderFloat("Elevation", &elevationDeg, -89.0f, 89.0f, "%.0f deg");
+        if (direction) {
+            const float az = glm::radians(azimuthDeg);
+            const float el = glm::radians(elevationDeg);
+            key.directionWs = -glm::vec3(std::cos(el) * std::sin(az), std::sin(el), std::cos(el) * std::cos(az));
+            changed = true;
+        }
+        changed |= ImGui::ColorEdit3("Colour", &key.color.x, ImGuiColorEditFlags_Float);
+        changed |= ImGui::SliderFloat("Intensity", &key.intensity, 0.01f, 100.0f, "%.2f lux",
+                                      ImGuiSliderFlags_Logarithmic);
+        changed |= ImGui::Checkbox("Casts shadow", &key.castsShadow);
+    } else {
+        ImGui::TextDisabled("no directional light in the scene");
+        if (ImGui::Button("Add a key light")) {
+            Light light;
+            light.name = "key";
+            light.type = LightType::Directional;
+            light.directionWs = glm::normalize(glm::vec3(0.5f, -0.6f, -0.65f));
+            light.intensity = 3.0f;
+            light.castsShadow = true;
+            sceneLights_.push_back(light);
+            keyLight_ = static_cast<int>(sceneLights_.size()) - 1;
+            changed = true;
+        }
+    }
+    ImGui::Checkbox("Shadows", &settings_.shadows);
+    ImGui::SliderFloat("Shadow softness", &settings_.shadowSoftnessTexels, 0.25f, 2.0f, "%.2f texels");
+    tooltip("Gaussian sigma of the shadow filter in shadow-map texels; the penumbra LUT follows it");
+    const uint32_t mapSizes[] = {512, 1024, 2048, 4096};
+    const char* mapLabels[] = {"512", "1024", "2048", "4096"};
+    int mapIndex = 2;
+    for (int i = 0; i < 4; ++i)
+        if (mapSizes[i] == settings_.shadowMapSize) mapIndex = i;
+    if (ImGui::Combo("Shadow map", &mapIndex, mapLabels, 4)) settings_.shadowMapSize = mapSizes[mapIndex];
+
+    ImGui::Separator();
+    int scattered = static_cast<int>(scatteredLights_);
+    if (ImGui::SliderInt("Clustered lights", &scattered, 0, 1024, "%d", ImGuiSliderFlags_Logarithmic)) {
+        scatteredLights_ = static_cast<uint32_t>(std::max(scattered, 0));
+        changed = true;
+    }
+    tooltip("Coloured point and spot lights scattered around the scene (preskin::scatterLights)");
+    int seed = static_cast<int>(scatterSeed_);
+    if (ImGui::InputInt("Seed", &seed)) {
+        scatterSeed_ = static_cast<uint32_t>(std::max(seed, 0));
+        changed = true;
+    }
+    int loop = settings_.lightLoop == LightLoop::Clustered ? 0 : 1;
+    ImGui::RadioButton("Clustered", &loop, 0);
+    ImGui::SameLine();
+    ImGui::RadioButton("Every light (brute force)", &loop, 1);
+    settings_.lightLoop = loop == 0 ? LightLoop::Clustered : LightLoop::All;
+    if (settings_.lightLoop == LightLoop::Clustered) {
+        int tile = static_cast<int>(settings_.clusters.tileSizePx);
+        if (ImGui::SliderInt("Tile size", &tile, 16, 256, "%d px")) settings_.clusters.tileSizePx = uint32_t(tile);
+        int slices = static_cast<int>(settings_.clusters.depthSlices);
+        if (ImGui::SliderInt("Depth slices", &slices, 1, 64)) settings_.clusters.depthSlices = uint32_t(slices);
+    }
+    ImGui::TextDisabled("%u lights in the frame, %u clusters overflowed", lastStats_.lightCount,
+                        lastStats_.clusterOverflows);
+    if (lastStats_.clusterBuildCpuMs > 0.0) ImGui::TextDisabled("light grid build %.2f ms (cpu)", lastStats_.clusterBuildCpuMs);
+    if (changed) applyLights();
+}
+
+void Viewer::panelDebug() {
+    if (!ImGui::CollapsingHeader("Debug view", ImGuiTreeNodeFlags_DefaultOpen)) return;
+    const char* views[] = {"None (final image)",  "Curvature",           "Normals (per channel)",
+                           "Shadow",              "Penumbra",            "Cluster heat map (lights per pixel)",
+                           "SH ambient alone",    "Transmission"};
+    int view = static_cast<int>(settings_.debugView);
+    if (ImGui::Combo("Show", &view, views, static_cast<int>(std::size(views))))
+        settings_.debugView = static_cast<DebugView>(view);
+}
+
+void Viewer::panelShaders() {
+    if (!ImGui::CollapsingHeader("Shader hot reload")) return;
+    if (!shaders_->enabled()) {
+        ImGui::TextWrapped("Off: %s does not exist. Set PRESKIN_DATA_DIR to a preskin source tree.",
+                           shaders_->directory().string().c_str());
+        return;
+    }
+    ImGui::TextWrapped("Shaders from %s", shaders_->directory().string().c_str());
+    bool watching = shaders_->watching();
+    if (ImGui::Checkbox("Reload when files change", &watching)) shaders_->setWatching(watching);
+    if (ImGui::Button("Reload now (F5)")) shaders_->requestBuild();
+    ImGui::SameLine();
+    ImGui::BeginDisabled(shaderOverrides_.empty());
+    if (ImGui::Button("Use built-in shaders")) {
+        try {
+            if (renderer_) renderer_->setShaderOverrides({});
+            shaderOverrides_.clear();
+            shaderLog_.clear();
+            shaderLogIsError_ = false;
+            info("built-in shaders restored");
+        } catch (const std::exception& e) {
+            error(fmt::format("built-in shaders: {}", e.what()));
+        }
+    }
+    ImGui::EndDisabled();
+    if (shaders_->compiling()) ImGui::TextColored(kWarnColor, "compiling...");
+    ImGui::TextDisabled("%s", shaderOverrides_.empty() ? "running the built-in shaders"
+                                                       : fmt::format("running reloaded shaders ({} stages)",
+                                                                     shaderOverrides_.size())
+                                                             .c_str());
+    if (!shaderLog_.empty()) {
+        ImGui::BeginChild("shaderlog", ImVec2(0.0f, 160.0f), true, ImGuiWindowFlags_HorizontalScrollbar);
+        if (shaderLogIsError_) ImGui::PushStyleColor(ImGuiCol_Text, kErrorColor);
+        ImGui::TextUnformatted(shaderLog_.c_str());
+        if (shaderLogIsError_) ImGui::PopStyleColor();
+        ImGui::EndChild();
+    }
+}
+
+void Viewer::panelTiming() {
+    ImGui::Text("%s", context_->deviceName().c_str());
+    ImGui::TextDisabled("%ux%u, %s", swapchain_->extent().width, swapchain_->extent().height,
+                        presentModeName(swapchain_->presentMode()));
+    bool vsync = vsync_;
+    ImGui::BeginDisabled(!swapchain_->canDisableVsync());
+    if (ImGui::Checkbox("Vsync (V)", &vsync)) {
+        vsync_ = vsync;
+        swapchainDirty_ = true;
+    }
+    ImGui::EndDisabled();
+
+    double interval = 0.0, cpu = 0.0, wait = 0.0, present = 0.0;
+    size_t n = 0;
+    for (auto it = timings_.rbegin(); it != timings_.rend() && n < 30; ++it) {
+        if (it->intervalMs <= 0.0) continue;
+        interval += it->intervalMs;
+        cpu += it->cpuMs;
+        wait += it->waitMs;
+        present += it->presentMs;
+        ++n;
+    }
+    if (n > 0) {
+        const double scale = 1.0 / double(n);
+        ImGui::Text("Frame %.2f ms (%.1f fps), mean of %zu", interval * scale, interval > 0.0 ? 1000.0 / (interval * scale) : 0.0, n);
+        ImGui::Text("CPU %.2f ms (panels %.2f ms)", cpu * scale, uiMs_);
+        tooltip("Building the panels, recording the renderer and the overlay, submitting");
+        ImGui::Text("Waiting: frame slot %.2f ms, present %.2f ms", wait * scale, present * scale);
+        tooltip("For the frame two back to finish and a swapchain image; in vkQueuePresentKHR "
+                "(software drivers finish the frame there)");
+    }
+    if (lastStats_.passes.empty()) {
+        ImGui::TextDisabled("GPU timestamps unavailable");
+    } else {
+        ImGui::Text("GPU %.2f ms (timestamps)", lastStats_.gpuMs);
+        for (const PassTime& p : lastStats_.passes) ImGui::BulletText("%s %.2f ms", p.name.c_str(), p.gpuMs);
+    }
+    std::vector<float> history;
+    float highest = 1.0f;
+    for (const Timing& t : timings_) {
+        history.push_back(static_cast<float>(t.intervalMs));
+        highest = std::max(highest, static_cast<float>(t.intervalMs));
+    }
+    if (!history.empty())
+        ImGui::PlotLines("##frames", history.data(), static_cast<int>(history.size()), 0, "frame ms", 0.0f,
+                         highest * 1.2f, ImVec2(-1.0f, 60.0f));
+    if (ImGui::Button("Screenshot (F12)")) requestScreenshot(std::nullopt, screenshotWithUi_);
+    ImGui::SameLine();
+    ImGui::Checkbox("with panels", &screenshotWithUi_);
+}
+
+void Viewer::panelMessages() {
+    if (ImGui::SmallButton("Clear")) messages_.clear();
+    ImGui::BeginChild("messages", ImVec2(0.0f, 0.0f), false);
+    for (const Message& m : messages_) {
+        if (m.error) ImGui::PushStyleColor(ImGuiCol_Text, kErrorColor);
+        ImGui::TextWrapped("[%.1f s] %s", m.timeS, m.text.c_str());
+        if (m.error) ImGui::PopStyleColor();
+    }
+    if (ImGui::GetScrollY() >= ImGui::GetScrollMaxY()) ImGui::SetScrollHereY(1.0f);
+    ImGui::EndChild();
+}
+
+void Viewer::statusBar() {
+    std::vector<std::pair<std::string, bool>> lines;  // text, is error
+    if (sceneJob_.valid()) lines.emplace_back("loading scene...", false);
+    if (environmentJob_.valid()) lines.emplace_back("loading environment...", false);
+    if (baker_.busy()) lines.emplace_back(fmt::format("baking LUTs {:.0f}%", baker_.progress() * 100.0), false);
+    if (shaders_->compiling()) lines.emplace_back("compiling shaders...", false);
+    if (shaderLogIsError_) lines.emplace_back("shader error: the last good pipelines are running (see Shader hot reload)", true);
+    const double nowS = std::chrono::duration<double>(std::chrono::steady_clock::now() - start_).count();
+    if (!messages_.empty() && messages_.back().error && nowS - messages_.back().timeS < 8.0)
+        lines.emplace_back(messages_.back().text, true);
+    if (lines.empty()) return;
+    const ImVec2 display = ImGui::GetIO().DisplaySize;
+    ImGui::SetNextWindowPos(ImVec2(display.x * 0.5f, display.y - 10.0f), ImGuiCond_Always, ImVec2(0.5f, 1.0f));
+    ImGui::SetNextWindowBgAlpha(0.75f);
+    ImGui::SetNextWindowSizeConstraints(ImVec2(0.0f, 0.0f), ImVec2(display.x * 0.6f, display.y * 0.3f));
+    const ImGuiWindowFlags flags = ImGuiWindowFlags_NoDecoration | ImGuiWindowFlags_AlwaysAutoResize |
+                                   ImGuiWindowFlags_NoInputs | ImGuiWindowFlags_NoFocusOnAppearing |
+                                   ImGuiWindowFlags_NoNav | ImGuiWindowFlags_NoSavedSettings;
+    if (ImGui::Begin("##status", nullptr, flags)) {
+        ImGui::PushTextWrapPos(display.x * 0.55f);
+        for (const auto& [text, isError] : lines) {
+            if (isError) ImGui::TextColored(kErrorColor, "%s", text.c_str());
+            else ImGui::TextUnformatted(text.c_str());
+        }
+        ImGui::PopTextWrapPos();
+    }
+    ImGui::End();
+}
+
+}  // namespace preskin::viewer

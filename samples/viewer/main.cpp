@@ -1,0 +1,29 @@
+// preskin-viewer: interactive viewer of glTF scenes with the pre-integrated skin renderer.
+// Usage: preskin-viewer [scene.gltf] [--env FILE.hdr] [options]; --help lists them all.
+// Scripted runs: --frames N --screenshot FILE.png draws N frames, writes the last one (without
+// the panels unless --screenshot-ui) and exits: 0, 1 on an error, 2 on Vulkan validation messages.
+#include "Viewer.h"
+#include "ViewerOptions.h"
+
+#include <CLI/CLI.hpp>
+#include <fmt/core.h>
+
+#include <exception>
+
+int main(int argc, char** argv) {
+    preskin::viewer::ViewerOptions options;
+    CLI::App app{"preskin-viewer: interactive pre-integrated skin viewer (GLFW + Dear ImGui)"};
+    app.footer(
+        "Mouse: drag to orbit (or look, in fly mode), wheel to zoom. Keys: Tab orbit/fly, W/A/S/D/Q/E move, "
+        "Home reset view, F12 or P screenshot, V vsync, F5 reload shaders, F1 panels. Drop .gltf/.glb/.hdr/.exr "
+        "files onto the window to load them.");
+    preskin::viewer::addViewerOptions(app, options);
+    CLI11_PARSE(app, argc, argv);
+    try {
+        preskin::viewer::Viewer viewer(options);
+        return viewer.run();
+    } catch (const std::exception& e) {
+        fmt::print(stderr, "preskin-viewer: {}\n", e.what());
+        return 1;
+    }
+}

@@ -1,0 +1,401 @@
+// preskin-viewer end to end, in a window on a virtual X server (Xvfb, started here on a free
+// display) with the test device (lavapipe in CI) and Vulkan validation on:
+//  - a scripted run (--frames N --screenshot) writes a screenshot that matches `preskin render`
+//    of the same view and size within the golden tolerance (<= 5/255 per channel on >= 99.9% of
+//    the pixels), and exits 0 with no validation message;
+//  - the run-time shader compiler (the hot-reload path) renders the same image as the built-in
+//    SPIR-V, and a shader with an error is reported while the last good pipelines keep running;
+//  - bad input (a missing environment, unloadable files dropped on the window) is reported and
+//    the viewer keeps running (it still renders and writes its screenshot);
+//  - --help works without a display.
+// Skips only when Xvfb is not installed (scripts/install-deps.sh installs it) or the viewer is
+// not part of the build (PRESKIN_BUILD_VIEWER=OFF).
+#include <gtest/gtest.h>
+
+#include <OpenImageIO/imageio.h>
+
+#include <fcntl.h>
+#include <poll.h>
+#include <signal.h>
+#include <spawn.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <chrono>
+#include <cstdlib>
+#include <cstring>
+#include <filesystem>
+#include <fstream>
+#include <memory>
+#include <optional>
+#include <sstream>
+#include <string>
+#include <thread>
+#include <vector>
+
+extern char** environ;
+
+namespace {
+
+namespace fs = std::filesystem;
+
+#ifdef PRESKIN_VIEWER_PATH
+constexpr const char* kViewerPath = PRESKIN_VIEWER_PATH;
+#else
+constexpr const char* kViewerPath = "";
+#endif
+
+struct ProcessResult {
+    int exitCode = -1;  // -1: killed by a signal or by the time limit
+    bool timedOut = false;
+    std::string out;
+    std::string err;
+};
+
+std::string readFile(const fs::path& p) {
+    std::ifstream f(p);
+    std::stringstream ss;
+    ss << f.rdbuf();
+    return ss.str();
+}
+
+std::optional<fs::path> findInPath(const std::string& name) {
+    const char* path = std::getenv("PATH");
+    std::stringstream dirs(path ? path : "/usr/bin:/bin");
+    std::string dir;
+    while (std::getline(dirs, dir, ':')) {
+        const fs::path candidate = fs::path(dir.empty() ? "." : dir) / name;
+        if (::access(candidate.c_str(), X_OK) == 0) return candidate;
+    }
+    return std::nullopt;
+}
+
+std::string testDevice() {
+    const char* device = std::getenv("PRESKIN_TEST_DEVICE");
+    return device && *device ? device : "llvmpipe";
+}
+
+// Runs `program args...` with extra environment entries, stdout and stderr into files, and a
+// time limit (the process is killed when it runs over).
+ProcessResult runProcess(const fs::path& program, const std::vector<std::string>& args,
+                         const std::vector<std::string>& extraEnv, const fs::path& dir, double limitS) {
+    std::vector<std::string> argStore{program.string()};
+    argStore.insert(argStore.end(), args.begin(), args.end());
+    std::vector<char*> argv;
+    for (std::string& a : argStore) argv.push_back(a.data());
+    argv.push_back(nullptr);
+
+    std::vector<std::string> envStore;
+    for (char** e = environ; *e; ++e) {
+        const std::string entry(*e);
+        bool replaced = false;
+        for (const std::string& extra : extraEnv)
+            if (entry.substr(0, entry.find('=') + 1) == extra.substr(0, extra.find('=') + 1)) replaced = true;
+        if (!replaced) envStore.push_back(entry);
+    }
+    envStore.insert(envStore.end(), extraEnv.begin(), extraEnv.end());
+    std::vector<char*> envp;
+    for (std::string& e : envStore) envp.push_back(e.data());
+    envp.push_back(nullptr);
+
+    const fs::path outPath = dir / "stdout.txt";
+    const fs::path errPath = dir / "stderr.txt";
+    posix_spawn_file_actions_t actions;
+    posix_spawn_file_actions_init(&actions);
+    posix_spawn_file_actions_addopen(&actions, STDIN_FILENO, "/dev/null", O_RDONLY, 0);
+    posix_spawn_file_actions_addopen(&actions, STDOUT_FILENO, outPath.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
+    posix_spawn_file_actions_addopen(&actions, STDERR_FILENO, errPath.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
+    pid_t pid = 0;
+    const int spawned = posix_spawn(&pid, program.c_str(), &actions, nullptr, argv.data(), envp.data());
+    posix_spawn_file_actions_destroy(&actions);
+    ProcessResult result;
+    if (spawned != 0) {
+        result.err = std::string("cannot start ") + program.string() + ": " + std::strerror(spawned);
+        return result;
+    }
+    const auto deadline = std::chrono::steady_clock::now() + std::chrono::duration<double>(limitS);
+    int status = 0;
+    while (true) {
+        const pid_t done = ::waitpid(pid, &status, WNOHANG);
+        if (done == pid) break;
+        if (std::chrono::steady_clock::now() > deadline) {
+            ::kill(pid, SIGKILL);
+            ::waitpid(pid, &status, 0);
+            result.timedOut = true;
+            break;
+        }
+        std::this_thread::sleep_for(std::chrono::milliseconds(20));
+    }
+    result.exitCode = !result.timedOut && WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+    result.out = readFile(outPath);
+    result.err = readFile(errPath);
+    return result;
+}
+
+// An Xvfb server on a display number it picks itself (-displayfd), stopped on destruction.
+class VirtualDisplay {
+public:
+    // Starts Xvfb; on failure returns null and says why in `why`.
+    static std::unique_ptr<VirtualDisplay> start(const fs::path& xvfb, std::string& why) {
+        int fds[2];
+        if (::pipe(fds) != 0) {
+            why = "pipe() failed";
+            return nullptr;
+        }
+        const std::string fdText = std::to_string(fds[1]);
+        std::vector<std::string> argStore{xvfb.string(), "-displayfd", fdText,   "-screen", "0", "1024x768x24",
+                                          "-nolisten",   "tcp",        "-noreset"};
+        std::vector<char*> argv;
+        for (std::string& a : argStore) argv.push_back(a.data());
+        argv.push_back(nullptr);
+        posix_spawn_file_actions_t actions;
+        posix_spawn_file_actions_init(&actions);
+        posix_spawn_file_actions_addclose(&actions, fds[0]);
+        posix_spawn_file_actions_addopen(&actions, STDIN_FILENO, "/dev/null", O_RDONLY, 0);
+        posix_spawn_file_actions_addopen(&actions, STDOUT_FILENO, "/dev/null", O_WRONLY, 0);
+        posix_spawn_file_actions_addopen(&actions, STDERR_FILENO, "/dev/null", O_WRONLY, 0);
+        pid_t pid = 0;
+        const int spawned = posix_spawn(&pid, xvfb.c_str(), &actions, nullptr, argv.data(), environ);
+        posix_spawn_file_actions_destroy(&actions);
+        ::close(fds[1]);
+        if (spawned != 0) {
+            ::close(fds[0]);
+            why = std::string("cannot start Xvfb: ") + std::strerror(spawned);
+            return nullptr;
+        }
+        auto display = std::unique_ptr<VirtualDisplay>(new VirtualDisplay(pid));
+        // Xvfb writes the display number followed by a newline once it accepts connections.
+        std::string number;
+        const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(20);
+        while (number.find('\n') == std::string::npos && std::chrono::steady_clock::now() < deadline) {
+            pollfd p{fds[0], POLLIN, 0};
+            if (::poll(&p, 1, 100) <= 0) continue;
+            char buffer[32];
+            const ssize_t n = ::read(fds[0], buffer, sizeof buffer);
+            if (n <= 0) break;  // Xvfb exited without a display
+            number.append(buffer, size_t(n));
+        }
+        ::close(fds[0]);
+        const size_t end = number.find('\n');
+        if (end == std::string::npos || end == 0) {
+            why = "Xvfb did not report a display within 20 s";
+            return nullptr;
+        }
+        display->display_ = ":" + number.substr(0, end);
+        return display;
+    }
+
+    ~VirtualDisplay() {
+        ::kill(pid_, SIGTERM);
+        int status = 0;
+        ::waitpid(pid_, &status, 0);
+    }
+    VirtualDisplay(const VirtualDisplay&) = delete;
+    VirtualDisplay& operator=(const VirtualDisplay&) = delete;
+
+    const std::string& display() const { return display_; }
+
+private:
+    explicit VirtualDisplay(pid_t pid) : pid_(pid) {}
+    pid_t pid_;
+    std::string display_;
+};
+
+struct Rgba8 {
+    int width = 0;
+    int height = 0;
+    std::vector<unsigned char> pixels;  // RGBA
+};
+
+std::optional<Rgba8> readPng(const fs::path& path) {
+    auto in = OIIO::ImageInput::open(path.string());
+    if (!in) return std::nullopt;
+    const OIIO::ImageSpec& spec = in->spec();
+    Rgba8 image;
+    image.width = spec.width;
+    image.height = spec.height;
+    image.pixels.assign(size_t(spec.width) * size_t(spec.height) * 4, 255);
+    const int channels = std::min(spec.nchannels, 4);
+    if (!in->read_image(0, 0, 0, channels, OIIO::TypeDesc::UINT8, image.pixels.data(), 4)) return std::nullopt;
+    return image;
+}
+
+// Fraction of pixels where some channel differs by more than `tolerance` (out of 255).
+double differingFraction(const Rgba8& a, const Rgba8& b, int tolerance) {
+    size_t differing = 0;
+    for (size_t i = 0; i < a.pixels.size(); i += 4)
+        for (size_t c = 0; c < 4; ++c)
+            if (std::abs(int(a.pixels[i + c]) - int(b.pixels[i + c])) > tolerance) {
+                ++differing;
+                break;
+            }
+    return double(differing) / double(a.pixels.size() / 4);
+}
+
+bool mentionsValidation(const ProcessResult& r) {
+    return r.out.find("validation") != std::string::npos || r.err.find("validation") != std::string::npos;
+}
+
+class Viewer : public ::testing::Test {
+protected:
+    static void SetUpTestSuite() {
+        if (!*kViewerPath || !fs::exists(kViewerPath)) return;
+        const auto xvfb = findInPath("Xvfb");
+        if (!xvfb) return;
+        display_ = VirtualDisplay::start(*xvfb, startError_).release();
+    }
+    static void TearDownTestSuite() {
+        delete display_;
+        display_ = nullptr;
+    }
+
+    void SetUp() override {
+        if (!*kViewerPath || !fs::exists(kViewerPath))
+            GTEST_SKIP() << "preskin-viewer is not built (PRESKIN_BUILD_VIEWER=OFF)";
+        std::ostringstream name;
+        name << "preskin_viewer_" << ::getpid() << "_" << ::testing::UnitTest::GetInstance()->current_test_info()->name();
+        dir_ = fs::temp_directory_path() / name.str();
+        fs::remove_all(dir_);
+        fs::create_directories(dir_);
+    }
+    void TearDown() override {
+        std::error_code ec;
+        if (!HasFailure()) fs::remove_all(dir_, ec);
+    }
+
+    // Skips when Xvfb is not installed; fails when it is but does not start.
+    void requireDisplay() {
+        if (!findInPath("Xvfb")) GTEST_SKIP() << "Xvfb is not installed (scripts/install-deps.sh installs xvfb)";
+        ASSERT_NE(display_, nullptr) << "Xvfb is installed but did not start: " << startError_;
+    }
+
+    ProcessResult viewer(const std::vector<std::string>& args, const std::vector<std::string>& env = {}) {
+        std::vector<std::string> fullEnv{"DISPLAY=" + (display_ ? display_->display() : std::string())};
+        fullEnv.insert(fullEnv.end(), env.begin(), env.end());
+        return runProcess(kViewerPath, args, fullEnv, dir_, 120.0);
+    }
+
+    ProcessResult headlessRender(const fs::path& out, int width, int height) {
+        return runProcess(PRESKIN_CLI_PATH,
+                          {"render", "--out", out.string(), "--width", std::to_string(width), "--height",
+                           std::to_string(height), "--device", testDevice(), "--validation"},
+                          {}, dir_, 120.0);
+    }
+
+    static std::string describe(const ProcessResult& r) {
+        return "exit " + std::to_string(r.exitCode) + (r.timedOut ? " (timed out)" : "") + "\nstdout:\n" + r.out +
+               "\nstderr:\n" + r.err;
+    }
+
+    void expectMatchesHeadless(const fs::path& screenshot, int width, int height) {
+        const fs::path reference = dir_ / "headless.png";
+        const ProcessResult cli = headlessRender(reference, width, height);
+        ASSERT_EQ(cli.exitCode, 0) << describe(cli);
+        const auto a = readPng(screenshot);
+        const auto b = readPng(reference);
+        ASSERT_TRUE(a) << "cannot read " << screenshot;
+        ASSERT_TRUE(b) << "cannot read " << reference;
+        ASSERT_EQ(a->width, width);
+        ASSERT_EQ(a->height, height);
+        ASSERT_EQ(b->width, width);
+        ASSERT_EQ(b->height, height);
+        // Not trivially equal: the head covers a good part of the frame (the background is flat).
+        size_t unlike = 0;
+        for (size_t i = 0; i < a->pixels.size(); i += 4)
+            unlike += std::abs(int(a->pixels[i]) - int(a->pixels[0])) > 20 ? 1 : 0;
+        EXPECT_GT(double(unlike) / double(width * height), 0.1) << "the screenshot shows (almost) no scene";
+        const double fraction = differingFraction(*a, *b, 5);
+        EXPECT_LE(fraction, 0.001) << fraction * 100.0 << "% of the pixels differ by more than 5/255 (kept in "
+                                   << dir_ << ")";
+    }
+
+    static VirtualDisplay* display_;
+    static std::string startError_;
+    fs::path dir_;
+};
+
+VirtualDisplay* Viewer::display_ = nullptr;
+std::string Viewer::startError_;
+
+constexpr int kWidth = 200;
+constexpr int kHeight = 150;
+
+std::vector<std::string> scriptedArgs(const fs::path& screenshot, int frames) {
+    return {"--width", std::to_string(kWidth), "--height", std::to_string(kHeight), "--frames", std::to_string(frames),
+            "--screenshot", screenshot.string(), "--device", testDevice(), "--validation", "--no-shader-reload"};
+}
+
+TEST_F(Viewer, ScreenshotMatchesHeadlessRender) {
+    requireDisplay();
+    const fs::path shot = dir_ / "viewer.png";
+    const ProcessResult r = viewer(scriptedArgs(shot, 6));
+    ASSERT_EQ(r.exitCode, 0) << describe(r);
+    EXPECT_FALSE(mentionsValidation(r)) << describe(r);
+    EXPECT_NE(r.out.find("screenshot written"), std::string::npos) << describe(r);
+    EXPECT_NE(r.out.find("frames at 200x150"), std::string::npos) << describe(r);
+    ASSERT_TRUE(fs::exists(shot)) << describe(r);
+    expectMatchesHeadless(shot, kWidth, kHeight);
+}
+
+TEST_F(Viewer, RunTimeCompiledShadersRenderLikeBuiltIn) {
+    requireDisplay();
+    const fs::path shot = dir_ / "compiled.png";
+    std::vector<std::string> args = scriptedArgs(shot, 3);
+    args.push_back("--compile-shaders");
+    const ProcessResult r = viewer(args, {std::string("PRESKIN_DATA_DIR=") + PRESKIN_SOURCE_DIR});
+    ASSERT_EQ(r.exitCode, 0) << describe(r);
+    EXPECT_NE(r.out.find("shaders reloaded"), std::string::npos) << describe(r);
+    EXPECT_FALSE(mentionsValidation(r)) << describe(r);
+    expectMatchesHeadless(shot, kWidth, kHeight);
+}
+
+TEST_F(Viewer, ShaderErrorIsReportedAndLastGoodPipelinesKeepRunning) {
+    requireDisplay();
+    // A copy of the shader sources whose forward pass does not compile.
+    const fs::path data = dir_ / "data";
+    fs::create_directories(data);
+    fs::copy(fs::path(PRESKIN_SOURCE_DIR) / "shaders", data / "shaders", fs::copy_options::recursive);
+    {
+        std::ofstream broken(data / "shaders" / "forward.frag", std::ios::app);
+        broken << "\nthis line is not GLSL;\n";
+    }
+    const fs::path shot = dir_ / "broken.png";
+    std::vector<std::string> args = scriptedArgs(shot, 3);
+    args.insert(args.begin(), (fs::path(PRESKIN_SOURCE_DIR) / "samples/assets/head/head.gltf").string());
+    args.insert(args.end(), {"--compile-shaders", "--luts", (fs::path(PRESKIN_SOURCE_DIR) / "luts").string()});
+    const ProcessResult r = viewer(args, {"PRESKIN_DATA_DIR=" + data.string()});
+    EXPECT_EQ(r.exitCode, 1) << "a scripted run with an error exits 1\n" << describe(r);
+    EXPECT_NE(r.err.find("did not compile; the last good pipelines keep running"), std::string::npos) << describe(r);
+    EXPECT_FALSE(mentionsValidation(r)) << describe(r);
+    ASSERT_TRUE(fs::exists(shot)) << describe(r);
+    expectMatchesHeadless(shot, kWidth, kHeight);  // still the built-in shaders
+}
+
+TEST_F(Viewer, BadInputIsReportedAndViewerKeepsRunning) {
+    requireDisplay();
+    const fs::path notes = dir_ / "notes.txt";
+    std::ofstream(notes) << "not a scene\n";
+    const fs::path shot = dir_ / "bad.png";
+    std::vector<std::string> args = scriptedArgs(shot, 3);
+    args.insert(args.end(), {"--env", (dir_ / "missing.hdr").string(), "--drop",
+                             (fs::path(PRESKIN_SOURCE_DIR) / "tests/data/gltf/truncated.glb").string(), "--drop",
+                             notes.string(), "--drop", (dir_ / "missing.exr").string()});
+    const ProcessResult r = viewer(args);
+    EXPECT_EQ(r.exitCode, 1) << "a scripted run with an error exits 1\n" << describe(r);
+    EXPECT_NE(r.err.find("environment not loaded"), std::string::npos) << describe(r);
+    EXPECT_NE(r.err.find("scene not loaded, keeping the current one"), std::string::npos) << describe(r);
+    EXPECT_NE(r.err.find("truncated.glb"), std::string::npos) << describe(r);
+    EXPECT_NE(r.err.find("notes.txt: not a scene"), std::string::npos) << describe(r);
+    EXPECT_NE(r.err.find("missing.exr"), std::string::npos) << describe(r);
+    EXPECT_FALSE(mentionsValidation(r)) << describe(r);
+    EXPECT_TRUE(fs::exists(shot)) << "the viewer kept running and rendered\n" << describe(r);
+}
+
+TEST_F(Viewer, HelpListsTheScriptedOptions) {
+    const ProcessResult r = runProcess(kViewerPath, {"--help"}, {}, dir_, 30.0);
+    EXPECT_EQ(r.exitCode, 0) << describe(r);
+    for (const char* option : {"--frames", "--screenshot", "--env", "--no-vsync", "--drop", "--validation"})
+        EXPECT_NE(r.out.find(option), std::string::npos) << option << "\n" << describe(r);
+}
+
+}  // namespace
