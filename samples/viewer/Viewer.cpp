@@ -14,6 +14,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <ctime>
 #include <exception>
 #include <utility>
@@ -255,6 +256,7 @@ float Viewer::aspect() const {
 
 void Viewer::info(std::string text) {
     fmt::print("preskin-viewer: {}\n", text);
+    std::fflush(stdout);  // scripts and tests follow the log while the viewer runs
     messages_.push_back({std::move(text), false, std::chrono::duration<double>(Clock::now() - start_).count()});
     while (messages_.size() > 200) messages_.pop_front();
 }
@@ -498,13 +500,18 @@ bool Viewer::jobsPending() const {
 int Viewer::run() {
     auto last = Clock::now();
     for (const std::string& file : options_.drops) dropped_.emplace_back(file);
-    while (!glfwWindowShouldClose(window_)) {
+    while (true) {
         glfwPollEvents();
+        // Without --frames, --screenshot is taken from one more frame drawn once the window closes.
+        const bool closing = glfwWindowShouldClose(window_);
+        const bool closingShot = closing && options_.frames == 0 && !options_.screenshot.empty();
+        if (closing && !closingShot) break;
         handleDrops();
         int w = 0;
         int h = 0;
         glfwGetFramebufferSize(window_, &w, &h);
-        if (w == 0 || h == 0) {  // minimised: nothing to draw into
+        if (w == 0 || h == 0 || glfwGetWindowAttrib(window_, GLFW_ICONIFIED)) {  // minimised: nothing to show
+            if (closing) break;
             pollJobs();
             glfwWaitEventsTimeout(0.1);
             continue;
@@ -525,13 +532,13 @@ int Viewer::run() {
         ImGui::Render();
         uiMs_ = msSince(uiBegin);
 
-        const bool lastScripted = options_.frames > 0 && framesDrawn_ + 1 >= options_.frames && !jobsPending();
-        const bool firstFrame = framesDrawn_ == 0;
-        if (!options_.screenshot.empty() && (lastScripted || (options_.frames == 0 && firstFrame)) && !captureNext_)
+        const bool lastFrame =
+            (options_.frames > 0 && framesDrawn_ + 1 >= options_.frames && !jobsPending()) || closingShot;
+        if (!options_.screenshot.empty() && lastFrame && !captureNext_)
             requestScreenshot(std::filesystem::path(options_.screenshot), options_.screenshotUi);
         if (!drawFrame()) continue;
         ++framesDrawn_;
-        if (lastScripted) break;
+        if (lastFrame) break;
     }
 
     vk_.vkDeviceWaitIdle(vk_.device);
@@ -569,9 +576,11 @@ void Viewer::recreateSwapchain() {
             finishSlot(s);
             frames_[s].submitted = false;
         }
+    const VkPresentModeKHR before = swapchain_->presentMode();
     swapchain_->recreate({uint32_t(w), uint32_t(h)}, vsync_);
     overlay_->onSwapchainRecreated();
     swapchainDirty_ = false;
+    if (swapchain_->presentMode() != before) info(fmt::format("present mode: {}", presentModeName(swapchain_->presentMode())));
 }
 
 void Viewer::handleInput(float dtS) {

@@ -14,7 +14,8 @@
 //  - Bad input (a file that does not load, a missing environment, a shader that does not
 //    compile) is shown in the Messages panel and the viewer keeps running with what it had.
 // Scripted runs (--frames N) draw N frames and then on until no load, bake or shader build is
-// pending; the screenshot (--screenshot) is taken from the last frame.
+// pending; the screenshot (--screenshot) is taken from the last frame. Without --frames, the
+// screenshot is taken from one more frame drawn when the window is closed.
 // Exit status: 0; 1 on a start-up error or, in scripted runs, any error reported on the way
 // (load, shader, screenshot); 2 when Vulkan validation reported anything.
 #pragma once

@@ -19,7 +19,8 @@ void addViewerOptions(CLI::App& app, ViewerOptions& o) {
                    "then exit (0: run until closed)")
         ->check(CLI::Range(0u, 1u << 24));
     app.add_option("--screenshot", o.screenshot,
-                   "Write the last frame (of --frames, else the first) as PNG, without the panels");
+                   "Write the last frame as PNG, without the panels: the last of --frames, else the one drawn when "
+                   "the window closes");
     app.add_flag("--screenshot-ui", o.screenshotUi, "The screenshot includes the panels");
     app.add_flag("--hide-ui", o.hideUi, "Start with the panels hidden (F1 shows them)");
     app.add_flag("--no-shader-reload", o.noShaderReload,

@@ -22,7 +22,7 @@ struct ViewerOptions {
     std::string camera;  // a glTF camera's name
     std::string orbit;   // YAW,PITCH,DIST (degrees, degrees, metres; DIST 0 fits)
     uint32_t frames = 0;  // > 0: draw this many frames, then exit
-    std::string screenshot;  // written from frame `frames` (or the first frame when frames is 0)
+    std::string screenshot;  // from the last of `frames`; without frames, from a frame drawn at closing
     bool screenshotUi = false;  // the screenshot includes the panels
     bool hideUi = false;
     bool noShaderReload = false;

@@ -21,6 +21,8 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include <dlfcn.h>
+
 #include <chrono>
 #include <cstdlib>
 #include <cstring>
@@ -31,7 +33,12 @@
 #include <sstream>
 #include <string>
 #include <thread>
+#include <type_traits>
 #include <vector>
+
+// Xlib's types and constants only (its functions are looked up at run time); last, since its
+// macros (None, Bool, Status, ...) would clash with names in the headers above.
+#include <X11/Xlib.h>
 
 extern char** environ;
 
@@ -75,61 +82,99 @@ std::string testDevice() {
     return device && *device ? device : "llvmpipe";
 }
 
-// Runs `program args...` with extra environment entries, stdout and stderr into files, and a
-// time limit (the process is killed when it runs over).
-ProcessResult runProcess(const fs::path& program, const std::vector<std::string>& args,
-                         const std::vector<std::string>& extraEnv, const fs::path& dir, double limitS) {
-    std::vector<std::string> argStore{program.string()};
-    argStore.insert(argStore.end(), args.begin(), args.end());
-    std::vector<char*> argv;
-    for (std::string& a : argStore) argv.push_back(a.data());
-    argv.push_back(nullptr);
+// A child process with extra environment entries, run in `dir` with stdout and stderr into files
+// there; wait() applies a time limit (the process is killed when it runs over).
+class Process {
+public:
+    Process(const fs::path& program, const std::vector<std::string>& args, const std::vector<std::string>& extraEnv,
+            const fs::path& dir)
+        : dir_(dir) {
+        std::vector<std::string> argStore{program.string()};
+        argStore.insert(argStore.end(), args.begin(), args.end());
+        std::vector<char*> argv;
+        for (std::string& a : argStore) argv.push_back(a.data());
+        argv.push_back(nullptr);
 
-    std::vector<std::string> envStore;
-    for (char** e = environ; *e; ++e) {
-        const std::string entry(*e);
-        bool replaced = false;
-        for (const std::string& extra : extraEnv)
-            if (entry.substr(0, entry.find('=') + 1) == extra.substr(0, extra.find('=') + 1)) replaced = true;
-        if (!replaced) envStore.push_back(entry);
+        std::vector<std::string> envStore;
+        for (char** e = environ; *e; ++e) {
+            const std::string entry(*e);
+            bool replaced = false;
+            for (const std::string& extra : extraEnv)
+                if (entry.substr(0, entry.find('=') + 1) == extra.substr(0, extra.find('=') + 1)) replaced = true;
+            if (!replaced) envStore.push_back(entry);
+        }
+        envStore.insert(envStore.end(), extraEnv.begin(), extraEnv.end());
+        std::vector<char*> envp;
+        for (std::string& e : envStore) envp.push_back(e.data());
+        envp.push_back(nullptr);
+
+        posix_spawn_file_actions_t actions;
+        posix_spawn_file_actions_init(&actions);
+        posix_spawn_file_actions_addchdir_np(&actions, dir.c_str());
+        posix_spawn_file_actions_addopen(&actions, STDIN_FILENO, "/dev/null", O_RDONLY, 0);
+        posix_spawn_file_actions_addopen(&actions, STDOUT_FILENO, outPath().c_str(), O_WRONLY | O_CREAT | O_TRUNC,
+                                         0644);
+        posix_spawn_file_actions_addopen(&actions, STDERR_FILENO, errPath().c_str(), O_WRONLY | O_CREAT | O_TRUNC,
+                                         0644);
+        const int spawned = posix_spawn(&pid_, program.c_str(), &actions, nullptr, argv.data(), envp.data());
+        posix_spawn_file_actions_destroy(&actions);
+        if (spawned != 0) {
+            pid_ = -1;
+            startError_ = std::string("cannot start ") + program.string() + ": " + std::strerror(spawned);
+        }
     }
-    envStore.insert(envStore.end(), extraEnv.begin(), extraEnv.end());
-    std::vector<char*> envp;
-    for (std::string& e : envStore) envp.push_back(e.data());
-    envp.push_back(nullptr);
+    ~Process() {
+        if (pid_ > 0) wait(0.0);
+    }
+    Process(const Process&) = delete;
+    Process& operator=(const Process&) = delete;
 
-    const fs::path outPath = dir / "stdout.txt";
-    const fs::path errPath = dir / "stderr.txt";
-    posix_spawn_file_actions_t actions;
-    posix_spawn_file_actions_init(&actions);
-    posix_spawn_file_actions_addopen(&actions, STDIN_FILENO, "/dev/null", O_RDONLY, 0);
-    posix_spawn_file_actions_addopen(&actions, STDOUT_FILENO, outPath.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
-    posix_spawn_file_actions_addopen(&actions, STDERR_FILENO, errPath.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
-    pid_t pid = 0;
-    const int spawned = posix_spawn(&pid, program.c_str(), &actions, nullptr, argv.data(), envp.data());
-    posix_spawn_file_actions_destroy(&actions);
-    ProcessResult result;
-    if (spawned != 0) {
-        result.err = std::string("cannot start ") + program.string() + ": " + std::strerror(spawned);
+    bool running() const {
+        if (pid_ <= 0) return false;
+        siginfo_t info{};
+        return ::waitid(P_PID, id_t(pid_), &info, WEXITED | WNOHANG | WNOWAIT) == 0 && info.si_pid == 0;
+    }
+    std::string output() const { return readFile(outPath()); }
+
+    ProcessResult wait(double limitS) {
+        ProcessResult result;
+        if (pid_ <= 0) {
+            result.err = startError_;
+            return result;
+        }
+        const auto deadline = std::chrono::steady_clock::now() + std::chrono::duration<double>(limitS);
+        int status = 0;
+        while (true) {
+            const pid_t done = ::waitpid(pid_, &status, WNOHANG);
+            if (done == pid_) break;
+            if (std::chrono::steady_clock::now() > deadline) {
+                ::kill(pid_, SIGKILL);
+                ::waitpid(pid_, &status, 0);
+                result.timedOut = true;
+                break;
+            }
+            std::this_thread::sleep_for(std::chrono::milliseconds(20));
+        }
+        pid_ = -1;
+        result.exitCode = !result.timedOut && WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+        result.out = readFile(outPath());
+        result.err = readFile(errPath());
         return result;
     }
-    const auto deadline = std::chrono::steady_clock::now() + std::chrono::duration<double>(limitS);
-    int status = 0;
-    while (true) {
-        const pid_t done = ::waitpid(pid, &status, WNOHANG);
-        if (done == pid) break;
-        if (std::chrono::steady_clock::now() > deadline) {
-            ::kill(pid, SIGKILL);
-            ::waitpid(pid, &status, 0);
-            result.timedOut = true;
-            break;
-        }
-        std::this_thread::sleep_for(std::chrono::milliseconds(20));
-    }
-    result.exitCode = !result.timedOut && WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-    result.out = readFile(outPath);
-    result.err = readFile(errPath);
-    return result;
+
+private:
+    fs::path outPath() const { return dir_ / "stdout.txt"; }
+    fs::path errPath() const { return dir_ / "stderr.txt"; }
+
+    fs::path dir_;
+    pid_t pid_ = -1;
+    std::string startError_;
+};
+
+ProcessResult runProcess(const fs::path& program, const std::vector<std::string>& args,
+                         const std::vector<std::string>& extraEnv, const fs::path& dir, double limitS) {
+    Process process(program, args, extraEnv, dir);
+    return process.wait(limitS);
 }
 
 // An Xvfb server on a display number it picks itself (-displayfd), stopped on destruction.
@@ -199,6 +244,122 @@ private:
     explicit VirtualDisplay(pid_t pid) : pid_(pid) {}
     pid_t pid_;
     std::string display_;
+};
+
+// A minimal X client for driving the viewer's window like a user and a window manager would:
+// find it by title, resize it, press keys and ask it to close. libX11 is loaded at run time
+// (GLFW's X11 backend needs it anyway), so the test binary does not link it.
+class XClient {
+public:
+    static std::unique_ptr<XClient> open(const std::string& displayName, std::string& why) {
+        auto x = std::unique_ptr<XClient>(new XClient());
+        x->lib_ = ::dlopen("libX11.so.6", RTLD_NOW | RTLD_LOCAL);
+        if (!x->lib_) {
+            why = "cannot load libX11.so.6";
+            return nullptr;
+        }
+        bool ok = true;
+        auto load = [&](auto& fn, const char* name) {
+            fn = reinterpret_cast<std::remove_reference_t<decltype(fn)>>(::dlsym(x->lib_, name));
+            ok = ok && fn;
+        };
+        load(x->openDisplay_, "XOpenDisplay");
+        load(x->closeDisplay_, "XCloseDisplay");
+        load(x->defaultRoot_, "XDefaultRootWindow");
+        load(x->queryTree_, "XQueryTree");
+        load(x->fetchName_, "XFetchName");
+        load(x->free_, "XFree");
+        load(x->resizeWindow_, "XResizeWindow");
+        load(x->internAtom_, "XInternAtom");
+        load(x->sendEvent_, "XSendEvent");
+        load(x->sync_, "XSync");
+        load(x->keysymToKeycode_, "XKeysymToKeycode");
+        load(x->stringToKeysym_, "XStringToKeysym");
+        if (!ok) {
+            why = "libX11.so.6 lacks a function the test needs";
+            return nullptr;
+        }
+        x->display_ = x->openDisplay_(displayName.c_str());
+        if (!x->display_) {
+            why = "cannot connect to " + displayName;
+            return nullptr;
+        }
+        return x;
+    }
+    ~XClient() {
+        if (display_) closeDisplay_(display_);
+        if (lib_) ::dlclose(lib_);
+    }
+    XClient(const XClient&) = delete;
+    XClient& operator=(const XClient&) = delete;
+
+    // The top-level window titled `title`, or 0.
+    unsigned long findWindow(const std::string& title) {
+        Window root = defaultRoot_(display_), parent = 0, *children = nullptr;
+        unsigned int count = 0;
+        unsigned long found = 0;
+        if (!queryTree_(display_, root, &root, &parent, &children, &count)) return 0;
+        for (unsigned int i = 0; i < count && !found; ++i) {
+            char* name = nullptr;
+            if (fetchName_(display_, children[i], &name) && name) {
+                if (title == name) found = children[i];
+                free_(name);
+            }
+        }
+        if (children) free_(children);
+        return found;
+    }
+    void resize(unsigned long window, unsigned width, unsigned height) {
+        resizeWindow_(display_, window, width, height);
+        sync_(display_, False);
+    }
+    // Presses and, `holdMs` later, releases a key (by X keysym name, e.g. "v", "F12").
+    void tapKey(unsigned long window, const char* keysymName, int holdMs) {
+        XEvent event{};
+        XKeyEvent& key = event.xkey;
+        key.display = display_;
+        key.window = window;
+        key.root = defaultRoot_(display_);
+        key.same_screen = True;
+        key.keycode = keysymToKeycode_(display_, stringToKeysym_(keysymName));
+        key.type = KeyPress;
+        sendEvent_(display_, window, True, KeyPressMask, &event);
+        sync_(display_, False);
+        std::this_thread::sleep_for(std::chrono::milliseconds(holdMs));
+        key.type = KeyRelease;
+        sendEvent_(display_, window, True, KeyReleaseMask, &event);
+        sync_(display_, False);
+    }
+    // What a window manager sends when the user closes the window.
+    void requestClose(unsigned long window) {
+        XEvent event{};
+        event.xclient.type = ClientMessage;
+        event.xclient.window = window;
+        event.xclient.message_type = internAtom_(display_, "WM_PROTOCOLS", False);
+        event.xclient.format = 32;
+        event.xclient.data.l[0] = long(internAtom_(display_, "WM_DELETE_WINDOW", False));
+        event.xclient.data.l[1] = CurrentTime;
+        sendEvent_(display_, window, False, NoEventMask, &event);
+        sync_(display_, False);
+    }
+
+private:
+    XClient() = default;
+
+    void* lib_ = nullptr;
+    Display* display_ = nullptr;
+    decltype(&XOpenDisplay) openDisplay_ = nullptr;
+    decltype(&XCloseDisplay) closeDisplay_ = nullptr;
+    decltype(&XDefaultRootWindow) defaultRoot_ = nullptr;
+    decltype(&XQueryTree) queryTree_ = nullptr;
+    decltype(&XFetchName) fetchName_ = nullptr;
+    decltype(&XFree) free_ = nullptr;
+    decltype(&XResizeWindow) resizeWindow_ = nullptr;
+    decltype(&XInternAtom) internAtom_ = nullptr;
+    decltype(&XSendEvent) sendEvent_ = nullptr;
+    decltype(&XSync) sync_ = nullptr;
+    decltype(&XKeysymToKeycode) keysymToKeycode_ = nullptr;
+    decltype(&XStringToKeysym) stringToKeysym_ = nullptr;
 };
 
 struct Rgba8 {
@@ -396,6 +557,61 @@ TEST_F(Viewer, HelpListsTheScriptedOptions) {
     EXPECT_EQ(r.exitCode, 0) << describe(r);
     for (const char* option : {"--frames", "--screenshot", "--env", "--no-vsync", "--drop", "--validation"})
         EXPECT_NE(r.out.find(option), std::string::npos) << option << "\n" << describe(r);
+}
+
+TEST_F(Viewer, SurvivesResizeVsyncToggleScreenshotKeyAndClose) {
+    requireDisplay();
+    std::string why;
+    const auto x = XClient::open(display_->display(), why);
+    ASSERT_TRUE(x) << why;
+    const fs::path shot = dir_ / "closed.png";
+    Process process(kViewerPath,
+                    {"--width", "200", "--height", "150", "--screenshot", shot.string(), "--device", testDevice(),
+                     "--validation", "--no-shader-reload"},
+                    {"DISPLAY=" + display_->display()}, dir_);
+    // The window opens before the scene is loaded: wait until the renderer is up.
+    unsigned long window = 0;
+    const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(30);
+    while (std::chrono::steady_clock::now() < deadline && process.running()) {
+        if (!window) window = x->findWindow("preskin-viewer");
+        if (window && process.output().find("renderer built") != std::string::npos) break;
+        std::this_thread::sleep_for(std::chrono::milliseconds(50));
+    }
+    ASSERT_NE(window, 0ul) << "no viewer window\n" << describe(process.wait(10.0));
+    // Each step is held long enough for a few frames, so the viewer sees every state.
+    const auto settle = [] { std::this_thread::sleep_for(std::chrono::milliseconds(400)); };
+    settle();
+    x->tapKey(window, "v", 300);  // vsync off
+    settle();
+    x->resize(window, 320, 200);
+    settle();
+    x->resize(window, 1, 1);
+    settle();
+    x->resize(window, 90, 300);
+    settle();
+    x->tapKey(window, "F12", 300);  // the screenshot key
+    settle();
+    x->resize(window, 160, 120);
+    settle();
+    x->tapKey(window, "v", 300);  // vsync on again
+    settle();
+    x->requestClose(window);
+    const ProcessResult r = process.wait(60.0);
+    ASSERT_EQ(r.exitCode, 0) << describe(r);
+    EXPECT_FALSE(mentionsValidation(r)) << describe(r);
+    const bool vsyncOff = r.out.find("present mode: MAILBOX") != std::string::npos ||
+                          r.out.find("present mode: IMMEDIATE") != std::string::npos;
+    EXPECT_TRUE(vsyncOff) << "V did not switch vsync off\n" << describe(r);
+    EXPECT_NE(r.out.find("present mode: FIFO"), std::string::npos) << "V did not switch vsync on\n" << describe(r);
+    // The screenshot key wrote a timestamped PNG into the working folder.
+    std::optional<fs::path> keyShot;
+    for (const auto& entry : fs::directory_iterator(dir_))
+        if (entry.path().filename().string().rfind("preskin-viewer-", 0) == 0) keyShot = entry.path();
+    ASSERT_TRUE(keyShot) << "F12 wrote no screenshot\n" << describe(r);
+    EXPECT_TRUE(readPng(*keyShot)) << *keyShot;
+    // The frame drawn at closing, at the last size, is the headless render of that size.
+    ASSERT_TRUE(fs::exists(shot)) << describe(r);
+    expectMatchesHeadless(shot, 160, 120);
 }
 
 }  // namespace
