@@ -255,9 +255,17 @@ void main() {
     if (kDebugView == kDebugShadow) debugColor = vec3(shadow.visibility);
     else if (kDebugView == kDebugShAmbient) debugColor = ambientDiffuse;
     else if (kDebugView == kDebugLightCount) {
-        float t = clamp(float(lightTotal) / 32.0, 0.0, 1.0);
-        debugColor = vec3(smoothstep(0.3, 0.7, t), sin(t * PRESKIN_PI), smoothstep(0.6, 0.2, t)) *
-                     (lightTotal > 0u ? 1.0 : 0.1);
+        if (kOutputMode == kOutputLinear) {
+            // Raw values for tools (preskin bench): local lights in this fragment's list, all
+            // lights evaluated (directional ones included), view depth in metres.
+            float viewDepthM = -(frame.viewFromWorld * vec4(inPositionWs, 1.0)).z;
+            debugColor = vec3(float(count), float(lightTotal), viewDepthM);
+        } else {
+            // Heat map on a log scale: 1 light 0.14, 7 lights 0.43, 31 lights 0.71, 127 or more 1.
+            float t = clamp(log2(1.0 + float(lightTotal)) / 7.0, 0.0, 1.0);
+            debugColor = vec3(smoothstep(0.3, 0.7, t), sin(t * PRESKIN_PI), smoothstep(0.6, 0.2, t)) *
+                         (lightTotal > 0u ? 1.0 : 0.1);
+        }
     }
     if (kDebugView != kDebugNone) color = debugColor;
 

@@ -8,5 +8,6 @@ namespace preskin::cli {
 
 void addRenderCommand(CLI::App& app);
 void addBakeCommand(CLI::App& app);
+void addBenchCommand(CLI::App& app);
 
 }  // namespace preskin::cli

@@ -14,6 +14,7 @@ int main(int argc, char** argv) {
     app.set_help_all_flag("--help-all", "Show help for every subcommand");
     preskin::cli::addRenderCommand(app);
     preskin::cli::addBakeCommand(app);
+    preskin::cli::addBenchCommand(app);
     try {
         app.parse(argc, argv);
     } catch (const CLI::ParseError& e) {

@@ -4,6 +4,7 @@
 // Skin adds no pass: all skin work happens in the forward pass's fragment shader.
 #pragma once
 
+#include <preskin/ClusterGrid.h>  // ClusterSettings: the light grid
 #include <preskin/Context.h>
 #include <preskin/Environment.h>
 #include <preskin/Export.h>
@@ -43,14 +44,6 @@ enum class DebugView { None, Curvature, Normals, Shadow, Penumbra, LightCount, S
 // How the forward pass finds the local (point and spot) lights of a fragment.
 enum class LightLoop { Clustered, All };
 
-// Light clustering grid (froxels): screen tiles times depth slices.
-struct ClusterSettings {
-    uint32_t tileSizePx = 64;
-    uint32_t depthSlices = 24;
-    float nearSliceM = 0.05f;            // the first slice ends here; slices are logarithmic beyond
-    uint32_t maxLightsPerCluster = 256;  // overflow rule: see README ("Light clustering")
-};
-
 struct RenderSettings {
     SkinFeatures skin;
     DebugView debugView = DebugView::None;
@@ -85,8 +78,9 @@ struct FrameStats {
     double gpuMs = 0.0;            // first to last timestamp
     double wallMs = 0.0;           // CPU wall clock of record + submit + wait (headless only)
     uint32_t lightCount = 0;
-    uint32_t clusterOverflows = 0;  // clusters whose list was truncated (see ClusterSettings)
-    double clusterBuildCpuMs = 0.0;  // CPU time of the light-list build (part of wallMs)
+    uint32_t clusterOverflows = 0;  // clusters whose list was truncated (<preskin/ClusterGrid.h>)
+    double clusterBuildCpuMs = 0.0;  // CPU time of the light-list build or its compute setup (part of wallMs)
+    bool clusterBuildGpu = false;    // the light lists came from the compute pass (ClusterSettings::build)
 };
 
 // Where `record` draws: the host's colour image, in `layoutBefore` on entry and left in

@@ -1,161 +1,278 @@
+// The renderer's light grid per frame slot (see ClusterBuilder.h): CPU build and upload, or the
+// compute build's inputs, passes and barriers.
 #include "lights/ClusterBuilder.h"
+
+#include <preskin/Error.h>
+
+#include "shared/cluster_build.h"
+#include "vk/Check.h"
+#include "vk/Pipeline.h"
+
+#include <fmt/core.h>
 
 #include <algorithm>
 #include <chrono>
-#include <cmath>
-#include <limits>
+#include <cstring>
+
+namespace preskin::shaders {
+std::span<const uint32_t> spirv(std::string_view fileName);
+}
 
 namespace preskin {
 
 namespace {
 
-// View depth d (metres, > 0) -> NDC depth of the view's projection.
-float ndcDepth(const glm::mat4& clipFromView, float d) {
-    const glm::vec4 clip = clipFromView * glm::vec4(0.0f, 0.0f, -d, 1.0f);
-    return clip.z / clip.w;
+constexpr VkBufferUsageFlags kStorage = VK_BUFFER_USAGE_STORAGE_BUFFER_BIT;
+
+// Grows `buffer` to at least `bytes` (with headroom) when it is smaller.
+void ensureBuffer(const vk::Device& device, vk::Buffer& buffer, VkDeviceSize bytes, VkBufferUsageFlags usage,
+                  bool hostVisible) {
+    bytes = std::max<VkDeviceSize>(bytes, 16);
+    if (buffer && buffer.size() >= bytes) return;
+    buffer = vk::Buffer(device, bytes + bytes / 2, usage, hostVisible);
 }
 
-float sliceNear(const ClusterGridShape& s, uint32_t z, float nearM) {
-    if (z == 0) return nearM;
-    return std::exp2((float(z) - s.sliceBias) / s.sliceScale);
-}
-
-bool sphereIntersectsBox(const glm::vec3& c, float r, const glm::vec3& lo, const glm::vec3& hi) {
-    const glm::vec3 q = glm::clamp(c, lo, hi);
-    const glm::vec3 d = c - q;
-    return glm::dot(d, d) <= r * r;
-}
-
-// Cone (apex, unit axis, half angle, range) against a sphere; false only when disjoint.
-bool coneIntersectsSphere(const glm::vec3& apex, const glm::vec3& axis, float cosAngle, float sinAngle, float range,
-                          const glm::vec3& center, float radius) {
-    const glm::vec3 v = center - apex;
-    const float lenSq = glm::dot(v, v);
-    const float along = glm::dot(v, axis);
-    const float closest = cosAngle * std::sqrt(std::max(lenSq - along * along, 0.0f)) - along * sinAngle;
-    const bool angleCull = closest > radius;
-    const bool frontCull = along > radius + range;
-    const bool backCull = along < -radius;
-    return !(angleCull || frontCull || backCull);
+ClusterLight fromGpu(const gpu::GpuLight& g, uint32_t index) {
+    ClusterLight c;
+    c.positionWs = glm::vec3(g.positionRange);
+    c.rangeM = g.positionRange.w;
+    c.directionWs = glm::vec3(g.directionType);
+    c.spot = static_cast<uint32_t>(g.directionType.w) == gpu::kLightSpot;
+    // The shader's cone attenuation saturate(cd * scale + offset) is zero from cd = -offset / scale.
+    c.cosOuter = c.spot ? -g.spotScaleOffset.y / g.spotScaleOffset.x : -1.0f;
+    c.index = index;
+    return c;
 }
 
 }  // namespace
 
-ClusterGridShape clusterGridShape(const ClusterSettings& settings, const View& view, VkExtent2D extent) {
-    ClusterGridShape s;
-    s.tileSizePx = std::clamp<uint32_t>(settings.tileSizePx, 8, 1024);
-    s.dims.x = (extent.width + s.tileSizePx - 1) / s.tileSizePx;
-    s.dims.y = (extent.height + s.tileSizePx - 1) / s.tileSizePx;
-    s.dims.z = std::clamp<uint32_t>(settings.depthSlices, 2, 128);
-    s.farM = std::max(view.farM, view.nearM * 4.0f);
-    s.nearSliceM = std::clamp(settings.nearSliceM, view.nearM * 1.001f, s.farM * 0.5f);
-    // Slice 1 starts at nearSliceM, slice dims.z ends at farM.
-    s.sliceScale = float(s.dims.z - 1) / std::log2(s.farM / s.nearSliceM);
-    s.sliceBias = 1.0f - std::log2(s.nearSliceM) * s.sliceScale;
-    return s;
+ClusterBuilder::ClusterBuilder(const vk::Device& device) : device_(device) {}
+
+ClusterBuilder::~ClusterBuilder() {
+    const VkDevice d = device_.device();
+    if (volumePipeline_) vkDestroyPipeline(d, volumePipeline_, nullptr);
+    if (assignPipeline_) vkDestroyPipeline(d, assignPipeline_, nullptr);
+    if (pool_) vkDestroyDescriptorPool(d, pool_, nullptr);
+    if (pipelineLayout_) vkDestroyPipelineLayout(d, pipelineLayout_, nullptr);
+    if (setLayout_) vkDestroyDescriptorSetLayout(d, setLayout_, nullptr);
 }
 
-void froxelBounds(const ClusterGridShape& s, const View& view, VkExtent2D extent, glm::uvec3 f, glm::vec3& minVs,
-                  glm::vec3& maxVs) {
-    const glm::mat4 viewFromClip = glm::inverse(view.clipFromView);
-    const float x0 = float(f.x * s.tileSizePx) / float(extent.width) * 2.0f - 1.0f;
-    const float x1 = std::min(float((f.x + 1) * s.tileSizePx) / float(extent.width), 1.0f) * 2.0f - 1.0f;
-    const float y0 = float(f.y * s.tileSizePx) / float(extent.height) * 2.0f - 1.0f;
-    const float y1 = std::min(float((f.y + 1) * s.tileSizePx) / float(extent.height), 1.0f) * 2.0f - 1.0f;
-    const float d0 = sliceNear(s, f.z, view.nearM);
-    // The last slice reaches to infinity: fragments beyond farM are clamped into it.
-    const float d1 = f.z + 1 >= s.dims.z ? std::numeric_limits<float>::infinity() : sliceNear(s, f.z + 1, view.nearM);
-    minVs = glm::vec3(std::numeric_limits<float>::max());
-    maxVs = glm::vec3(-std::numeric_limits<float>::max());
-    for (float d : {d0, std::min(d1, s.farM * 1e3f)}) {
-        const float z = ndcDepth(view.clipFromView, d);
-        for (float x : {x0, x1})
-            for (float y : {y0, y1}) {
-                glm::vec4 p = viewFromClip * glm::vec4(x, y, z, 1.0f);
-                p /= p.w;
-                minVs = glm::min(minVs, glm::vec3(p));
-                maxVs = glm::max(maxVs, glm::vec3(p));
-            }
-    }
-    if (std::isinf(d1)) minVs.z = -std::numeric_limits<float>::max();
+bool ClusterBuilder::useGpu(const ClusterSettings& settings) const {
+    if (settings.build == ClusterBuild::Gpu) return true;
+    if (settings.build == ClusterBuild::Cpu) return false;
+    return device_.properties().deviceType != VK_PHYSICAL_DEVICE_TYPE_CPU;
 }
 
-ClusterLists buildClusters(const ClusterSettings& settings, const View& view, VkExtent2D extent,
-                           std::span<const gpu::GpuLight> lights, uint32_t firstLocal) {
-    ClusterLists out;
-    const ClusterGridShape s = clusterGridShape(settings, view, extent);
-    out.shape = s;
-    const uint32_t count = s.dims.x * s.dims.y * s.dims.z;
-    std::vector<glm::vec3> boxMin(count), boxMax(count), sphereCenter(count);
-    std::vector<float> sphereRadius(count);
-    for (uint32_t z = 0; z < s.dims.z; ++z)
-        for (uint32_t y = 0; y < s.dims.y; ++y)
-            for (uint32_t x = 0; x < s.dims.x; ++x) {
-                const uint32_t i = (z * s.dims.y + y) * s.dims.x + x;
-                froxelBounds(s, view, extent, {x, y, z}, boxMin[i], boxMax[i]);
-                sphereCenter[i] = 0.5f * (boxMin[i] + boxMax[i]);
-                sphereRadius[i] = 0.5f * glm::length(boxMax[i] - boxMin[i]);
-            }
-
-    std::vector<std::vector<uint32_t>> lists(count);
-    const glm::mat3 viewRot(view.viewFromWorld);
-    for (uint32_t li = firstLocal; li < lights.size(); ++li) {
-        const gpu::GpuLight& light = lights[li];
-        const float range = light.positionRange.w;
-        const glm::vec3 centerVs = glm::vec3(view.viewFromWorld * glm::vec4(glm::vec3(light.positionRange), 1.0f));
-        const bool spot = uint32_t(light.directionType.w) == gpu::kLightSpot;
-        const glm::vec3 axisVs = glm::normalize(viewRot * glm::vec3(light.directionType));
-        // Half angle of the cone from the attenuation scale/offset: zero at cos(outer) = -offset/scale.
-        const float cosOuter = std::clamp(-light.spotScaleOffset.y / light.spotScaleOffset.x, -1.0f, 1.0f);
-        const float sinOuter = std::sqrt(std::max(1.0f - cosOuter * cosOuter, 0.0f));
-        for (uint32_t i = 0; i < count; ++i) {
-            if (range > 0.0f) {
-                if (!sphereIntersectsBox(centerVs, range, boxMin[i], boxMax[i])) continue;
-                if (spot && !coneIntersectsSphere(centerVs, axisVs, cosOuter, sinOuter, range, sphereCenter[i],
-                                                  sphereRadius[i]))
-                    continue;
-            }
-            lists[i].push_back(li);
-        }
-    }
-    out.ranges.resize(count);
-    const uint32_t cap = std::max<uint32_t>(settings.maxLightsPerCluster, 1);
-    for (uint32_t i = 0; i < count; ++i) {
-        const uint32_t n = std::min<uint32_t>(static_cast<uint32_t>(lists[i].size()), cap);
-        if (lists[i].size() > cap) ++out.overflows;
-        out.ranges[i] = glm::uvec2(static_cast<uint32_t>(out.indices.size()), n);
-        out.indices.insert(out.indices.end(), lists[i].begin(), lists[i].begin() + n);
-    }
-    return out;
-}
-
-void ClusterBuilder::build(uint32_t slot, const ClusterSettings& settings, const View& view, VkExtent2D extent,
-                           std::span<const gpu::GpuLight> lights, uint32_t firstLocal, gpu::FrameUniforms& frame) {
-    const auto start = std::chrono::steady_clock::now();
-    const ClusterLists lists = buildClusters(settings, view, extent, lights, firstLocal);
-    auto upload = [&](vk::Buffer& buffer, const void* data, size_t bytes) {
-        if (!buffer || buffer.size() < std::max<size_t>(bytes, 16))
-            buffer = vk::Buffer(device_, std::max<size_t>(bytes, 16) * 2, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, true);
-        buffer.upload(data, bytes);
+void ClusterBuilder::createPipelines() {
+    if (assignPipeline_) return;
+    const VkShaderStageFlags cs = VK_SHADER_STAGE_COMPUTE_BIT;
+    const vk::Binding bindings[] = {
+        {gpu::kClusterBindingParams, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, cs},
+        {gpu::kClusterBindingLights, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, cs},
+        {gpu::kClusterBindingGeometry, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, cs},
+        {gpu::kClusterBindingVolumes, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, cs},
+        {gpu::kClusterBindingRanges, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, cs},
+        {gpu::kClusterBindingIndices, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, cs},
+        {gpu::kClusterBindingCounters, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, cs},
     };
-    upload(ranges_[slot], lists.ranges.data(), lists.ranges.size() * sizeof(glm::uvec2));
-    upload(indices_[slot], lists.indices.data(), lists.indices.size() * sizeof(uint32_t));
-    overflows_[slot] = lists.overflows;
-    const ClusterGridShape& s = lists.shape;
-    frame.clusterScale = glm::vec4(1.0f / float(s.tileSizePx), 1.0f / float(s.tileSizePx), s.sliceScale, s.sliceBias);
-    frame.clusterDims = glm::uvec4(s.dims, std::max<uint32_t>(settings.maxLightsPerCluster, 1));
-    frame.lightCounts.z = static_cast<uint32_t>(lists.indices.size());
-    buildMs_[slot] = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+    setLayout_ = vk::createSetLayout(device_, bindings);
+    pipelineLayout_ = vk::createPipelineLayout(device_, std::span(&setLayout_, 1), 0, 0);
+    const VkDescriptorPoolSize sizes[] = {{VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, kSlots},
+                                          {VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 6 * kSlots}};
+    VkDescriptorPoolCreateInfo poolInfo{VK_STRUCTURE_TYPE_DESCRIPTOR_POOL_CREATE_INFO};
+    poolInfo.maxSets = kSlots;
+    poolInfo.poolSizeCount = 2;
+    poolInfo.pPoolSizes = sizes;
+    PRESKIN_VK(vkCreateDescriptorPool(device_.device(), &poolInfo, nullptr, &pool_));
+    for (Slot& s : slots_) {
+        VkDescriptorSetAllocateInfo alloc{VK_STRUCTURE_TYPE_DESCRIPTOR_SET_ALLOCATE_INFO};
+        alloc.descriptorPool = pool_;
+        alloc.descriptorSetCount = 1;
+        alloc.pSetLayouts = &setLayout_;
+        PRESKIN_VK(vkAllocateDescriptorSets(device_.device(), &alloc, &s.set));
+    }
+    const auto code = shaders::spirv("cluster_build.comp");
+    if (code.empty()) throw Error("internal: shader cluster_build.comp is not compiled into the library");
+    vk::Specialization spec;
+    spec.values = {gpu::kClusterPassVolumes};
+    volumePipeline_ = vk::createComputePipeline(device_, code, pipelineLayout_, spec);
+    spec.values = {gpu::kClusterPassAssign};
+    assignPipeline_ = vk::createComputePipeline(device_, code, pipelineLayout_, spec);
+}
+
+void ClusterBuilder::prepare(uint32_t slot, const ClusterSettings& settings, const View& view, VkExtent2D extent,
+                             const Bounds& sceneBounds, std::span<const gpu::GpuLight> lights, uint32_t firstLocal,
+                             const vk::Buffer& lightBuffer, gpu::FrameUniforms& frame) {
+    const auto start = std::chrono::steady_clock::now();
+    Slot& s = slots_[slot];
+    const ClusterGeometry geometry =
+        clusterGeometry(clusterGridShape(settings, view, extent.width, extent.height, sceneBounds), view);
+    const uint32_t localCount = static_cast<uint32_t>(lights.size()) - std::min<uint32_t>(firstLocal, uint32_t(lights.size()));
+    s.shape = geometry.shape;
+    s.localLights = localCount;
+    s.gpu = useGpu(settings);
+    s.pending = false;
+    if (s.gpu) {
+        prepareGpu(s, settings, geometry, view, firstLocal, localCount, lightBuffer);
+        frame.lightCounts.z = s.indexCapacity;
+    } else {
+        local_.clear();
+        for (uint32_t i = firstLocal; i < lights.size(); ++i) local_.push_back(fromGpu(lights[i], i));
+        assigner_.build(settings, geometry, view.viewFromWorld, local_, cpuGrid_);
+        ensureBuffer(device_, s.cpuRanges, cpuGrid_.ranges.size() * sizeof(glm::uvec2), kStorage, true);
+        ensureBuffer(device_, s.cpuIndices, cpuGrid_.indices.size() * sizeof(uint32_t), kStorage, true);
+        s.cpuRanges.upload(cpuGrid_.ranges.data(), cpuGrid_.ranges.size() * sizeof(glm::uvec2));
+        s.cpuIndices.upload(cpuGrid_.indices.data(), cpuGrid_.indices.size() * sizeof(uint32_t));
+        s.overflows = cpuGrid_.overflowedClusters;
+        s.indexCapacity = static_cast<uint32_t>(cpuGrid_.indices.size());
+        frame.lightCounts.z = s.indexCapacity;
+    }
+    const ClusterGridShape& shape = geometry.shape;
+    const float perTile = 1.0f / float(shape.tileSizePx);
+    frame.clusterScale = glm::vec4(perTile, perTile, shape.sliceScale, shape.sliceBias);
+    frame.clusterDims = glm::uvec4(shape.dims, std::max<uint32_t>(settings.maxLightsPerCluster, 1));
+    s.buildMs = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+}
+
+void ClusterBuilder::prepareGpu(Slot& s, const ClusterSettings& settings, const ClusterGeometry& g, const View& view,
+                                uint32_t firstLocal, uint32_t localCount, const vk::Buffer& lightBuffer) {
+    createPipelines();
+    const ClusterGridShape& shape = g.shape;
+    const uint64_t froxels = shape.froxelCount();
+    const uint64_t perCluster = std::max<uint32_t>(settings.maxLightsPerCluster, 1);
+    // The index list never needs more than every froxel full.
+    const uint64_t needed = froxels * std::min<uint64_t>(perCluster, localCount);
+    s.indexCapacity = static_cast<uint32_t>(std::max<uint64_t>(std::min<uint64_t>(settings.maxLightIndices, needed), 1));
+
+    // Geometry: column planes, row planes, slice starts, corner lines (origin, direction).
+    std::vector<glm::vec4> data;
+    data.reserve(g.xPlanes.size() + g.yPlanes.size() + g.sliceStartM.size() + 2 * g.cornerOrigin.size());
+    gpu::ClusterBuildParams p{};
+    p.geometryOffsets.x = static_cast<uint32_t>(data.size());
+    data.insert(data.end(), g.xPlanes.begin(), g.xPlanes.end());
+    p.geometryOffsets.y = static_cast<uint32_t>(data.size());
+    data.insert(data.end(), g.yPlanes.begin(), g.yPlanes.end());
+    p.geometryOffsets.z = static_cast<uint32_t>(data.size());
+    for (float d : g.sliceStartM) data.emplace_back(std::min(d, 3.0e38f), 0.0f, 0.0f, 0.0f);
+    p.geometryOffsets.w = static_cast<uint32_t>(data.size());
+    for (size_t i = 0; i < g.cornerOrigin.size(); ++i) {
+        data.push_back(g.cornerOrigin[i]);
+        data.push_back(g.cornerDir[i]);
+    }
+    p.viewFromWorld = view.viewFromWorld;
+    p.dims = glm::uvec4(shape.dims, static_cast<uint32_t>(perCluster));
+    p.lightInfo = glm::uvec4(firstLocal, localCount, s.indexCapacity, 0u);
+    p.slack = glm::vec4(kClusterDepthSlack, kClusterRadiusSlack, kClusterConeSlack, shape.nearM);
+    p.slicing = glm::vec4(shape.sliceScale, shape.sliceBias, 0.0f, 0.0f);
+
+    ensureBuffer(device_, s.params, sizeof(p), VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT, true);
+    ensureBuffer(device_, s.geometry, data.size() * sizeof(glm::vec4), kStorage, true);
+    ensureBuffer(device_, s.counters, sizeof(gpu::ClusterCounters), kStorage | VK_BUFFER_USAGE_TRANSFER_DST_BIT, true);
+    ensureBuffer(device_, s.volumes, VkDeviceSize(std::max(localCount, 1u)) * sizeof(gpu::ClusterLightVolume), kStorage,
+                 false);
+    ensureBuffer(device_, s.gpuRanges, froxels * sizeof(glm::uvec2), kStorage | VK_BUFFER_USAGE_TRANSFER_SRC_BIT, false);
+    ensureBuffer(device_, s.gpuIndices, VkDeviceSize(s.indexCapacity) * sizeof(uint32_t),
+                 kStorage | VK_BUFFER_USAGE_TRANSFER_SRC_BIT, false);
+    s.params.upload(&p, sizeof(p));
+    s.geometry.upload(data.data(), data.size() * sizeof(glm::vec4));
+
+    const VkDescriptorBufferInfo infos[] = {
+        {s.params.handle(), 0, sizeof(p)},          {lightBuffer.handle(), 0, VK_WHOLE_SIZE},
+        {s.geometry.handle(), 0, VK_WHOLE_SIZE},    {s.volumes.handle(), 0, VK_WHOLE_SIZE},
+        {s.gpuRanges.handle(), 0, VK_WHOLE_SIZE},   {s.gpuIndices.handle(), 0, VK_WHOLE_SIZE},
+        {s.counters.handle(), 0, VK_WHOLE_SIZE},
+    };
+    const uint32_t bindings[] = {gpu::kClusterBindingParams,  gpu::kClusterBindingLights,  gpu::kClusterBindingGeometry,
+                                 gpu::kClusterBindingVolumes, gpu::kClusterBindingRanges,  gpu::kClusterBindingIndices,
+                                 gpu::kClusterBindingCounters};
+    std::array<VkWriteDescriptorSet, 7> writes{};
+    for (size_t i = 0; i < writes.size(); ++i) {
+        writes[i] = {VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET};
+        writes[i].dstSet = s.set;
+        writes[i].dstBinding = bindings[i];
+        writes[i].descriptorCount = 1;
+        writes[i].descriptorType = i == 0 ? VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER : VK_DESCRIPTOR_TYPE_STORAGE_BUFFER;
+        writes[i].pBufferInfo = &infos[i];
+    }
+    vkUpdateDescriptorSets(device_.device(), static_cast<uint32_t>(writes.size()), writes.data(), 0, nullptr);
+    s.pending = true;
+}
+
+void ClusterBuilder::record(VkCommandBuffer cmd, uint32_t slot) {
+    Slot& s = slots_[slot];
+    if (!s.gpu || !s.pending) return;
+    s.pending = false;
+    vkCmdFillBuffer(cmd, s.counters.handle(), 0, sizeof(gpu::ClusterCounters), 0);
+    // The counters' reset, and the previous frame's reads of this slot's lists, before the build.
+    vk::memoryBarrier(cmd, VK_PIPELINE_STAGE_2_ALL_TRANSFER_BIT | VK_PIPELINE_STAGE_2_FRAGMENT_SHADER_BIT,
+                      VK_ACCESS_2_TRANSFER_WRITE_BIT, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT,
+                      VK_ACCESS_2_SHADER_STORAGE_READ_BIT | VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT);
+    vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, pipelineLayout_, 0, 1, &s.set, 0, nullptr);
+    if (s.localLights > 0) {
+        vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, volumePipeline_);
+        vkCmdDispatch(cmd, (s.localLights + gpu::kClusterAssignGroupSize - 1) / gpu::kClusterAssignGroupSize, 1, 1);
+        vk::memoryBarrier(cmd, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT,
+                          VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_ACCESS_2_SHADER_STORAGE_READ_BIT);
+    }
+    vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, assignPipeline_);
+    vkCmdDispatch(cmd, s.shape.dims.x, s.shape.dims.y, 1);
+    vk::memoryBarrier(cmd, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT,
+                      VK_PIPELINE_STAGE_2_FRAGMENT_SHADER_BIT | VK_PIPELINE_STAGE_2_COPY_BIT | VK_PIPELINE_STAGE_2_HOST_BIT,
+                      VK_ACCESS_2_SHADER_STORAGE_READ_BIT | VK_ACCESS_2_TRANSFER_READ_BIT | VK_ACCESS_2_HOST_READ_BIT);
 }
 
 const vk::Buffer& ClusterBuilder::ranges(uint32_t slot) {
-    if (!ranges_[slot]) ranges_[slot] = vk::Buffer(device_, 16, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, true);
-    return ranges_[slot];
+    Slot& s = slots_[slot];
+    vk::Buffer& b = s.gpu ? s.gpuRanges : s.cpuRanges;
+    if (!b) ensureBuffer(device_, b, 16, kStorage, true);
+    return b;
 }
 
 const vk::Buffer& ClusterBuilder::indices(uint32_t slot) {
-    if (!indices_[slot]) indices_[slot] = vk::Buffer(device_, 16, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, true);
-    return indices_[slot];
+    Slot& s = slots_[slot];
+    vk::Buffer& b = s.gpu ? s.gpuIndices : s.cpuIndices;
+    if (!b) ensureBuffer(device_, b, 16, kStorage, true);
+    return b;
+}
+
+uint32_t ClusterBuilder::overflows(uint32_t slot) const {
+    const Slot& s = slots_[slot];
+    if (!s.gpu) return s.overflows;
+    if (!s.counters) return 0;
+    gpu::ClusterCounters c{};
+    std::memcpy(&c, s.counters.mapped(), sizeof(c));
+    return c.values.y;
+}
+
+ClusterGrid ClusterBuilder::readBack(uint32_t slot) {
+    Slot& s = slots_[slot];
+    ClusterGrid grid;
+    grid.shape = s.shape;
+    if (!s.gpu) {
+        grid = cpuGrid_;
+        return grid;
+    }
+    vkDeviceWaitIdle(device_.device());
+    gpu::ClusterCounters c{};
+    std::memcpy(&c, s.counters.mapped(), sizeof(c));
+    grid.overflowedClusters = c.values.y;
+    grid.requestedIndices = c.values.z;
+    const VkDeviceSize rangeBytes = VkDeviceSize(s.shape.froxelCount()) * sizeof(glm::uvec2);
+    const VkDeviceSize indexBytes = VkDeviceSize(s.indexCapacity) * sizeof(uint32_t);
+    vk::Buffer host(device_, rangeBytes + indexBytes, VK_BUFFER_USAGE_TRANSFER_DST_BIT, true);
+    device_.submitAndWait([&](VkCommandBuffer cmd) {
+        const VkBufferCopy rangeCopy{0, 0, rangeBytes};
+        vkCmdCopyBuffer(cmd, s.gpuRanges.handle(), host.handle(), 1, &rangeCopy);
+        const VkBufferCopy indexCopy{0, rangeBytes, indexBytes};
+        vkCmdCopyBuffer(cmd, s.gpuIndices.handle(), host.handle(), 1, &indexCopy);
+        vk::memoryBarrier(cmd, VK_PIPELINE_STAGE_2_COPY_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT, VK_PIPELINE_STAGE_2_HOST_BIT,
+                          VK_ACCESS_2_HOST_READ_BIT);
+    });
+    grid.ranges.resize(s.shape.froxelCount());
+    std::memcpy(grid.ranges.data(), host.mapped(), rangeBytes);
+    grid.indices.resize(s.indexCapacity);
+    std::memcpy(grid.indices.data(), static_cast<const char*>(host.mapped()) + rangeBytes, indexBytes);
+    return grid;
 }
 
 }  // namespace preskin

@@ -1,16 +1,14 @@
-// Light clustering (froxels): the view frustum is cut into screen tiles times depth slices
-// (the first slice ends at nearSliceM, the rest are logarithmic up to the view's far distance).
-// Each local light (point, spot) is assigned to every froxel its volume may touch: its range
-// sphere against the froxel's view-space bounding box (conservative), then, for spots, the cone
-// against the froxel's bounding sphere (Wronski, "Cull that cone!", 2017). Lights with
-// unlimited range go to every froxel. Per froxel: (offset, count) into one index list.
-// Overflow rule: a froxel keeps at most maxLightsPerCluster lights, the lowest light indices
-// first; the froxels that dropped lights are counted (FrameStats::clusterOverflows).
-// The build runs on the CPU; see the README ("Light clustering") for why and the figures.
+// The renderer's light grid per frame slot: builds the froxel lists on the CPU (ClusterAssigner,
+// uploaded into host-visible buffers) or records the compute build (shaders/cluster_build.comp,
+// device-local buffers), per ClusterSettings::build; Auto picks the CPU on CPU devices such as
+// lavapipe, where it measured faster (docs/clustering.md), and the compute pass elsewhere.
+// Grid rules and the overflow rule: <preskin/ClusterGrid.h>.
 #pragma once
 
-#include <preskin/Renderer.h>
+#include <preskin/ClusterGrid.h>
 
+#include "lights/ClusterAssign.h"
+#include "lights/ClusterGeometry.h"
 #include "shared/gpu_types.h"
 #include "vk/Resources.h"
 
@@ -20,49 +18,67 @@
 
 namespace preskin {
 
-struct ClusterGridShape {
-    glm::uvec3 dims{1u};
-    uint32_t tileSizePx = 64;
-    float nearSliceM = 0.05f;
-    float farM = 100.0f;
-    // Slice of a view depth d: floor(log2(d) * sliceScale + sliceBias), clamped to [0, dims.z).
-    float sliceScale = 1.0f;
-    float sliceBias = 0.0f;
-};
-
-struct ClusterLists {
-    ClusterGridShape shape;
-    std::vector<glm::uvec2> ranges;  // per froxel (offset, count), x fastest, then y, then z
-    std::vector<uint32_t> indices;   // light indices into the full light array
-    uint32_t overflows = 0;
-};
-
-ClusterGridShape clusterGridShape(const ClusterSettings& settings, const View& view, VkExtent2D extent);
-// View-space bounding box of one froxel.
-void froxelBounds(const ClusterGridShape& shape, const View& view, VkExtent2D extent, glm::uvec3 froxel,
-                  glm::vec3& minVs, glm::vec3& maxVs);
-// Lights [firstLocal, lights.size()) are clustered; directional ones before firstLocal are not.
-ClusterLists buildClusters(const ClusterSettings& settings, const View& view, VkExtent2D extent,
-                           std::span<const gpu::GpuLight> lights, uint32_t firstLocal);
-
 class ClusterBuilder {
 public:
-    explicit ClusterBuilder(const vk::Device& device) : device_(device) {}
-    // Builds the lists for this frame and uploads them into the slot's buffers; fills the
-    // cluster fields of `frame`.
-    void build(uint32_t slot, const ClusterSettings& settings, const View& view, VkExtent2D extent,
-               std::span<const gpu::GpuLight> lights, uint32_t firstLocal, gpu::FrameUniforms& frame);
+    static constexpr uint32_t kSlots = 2;
+
+    explicit ClusterBuilder(const vk::Device& device);
+    ~ClusterBuilder();
+    ClusterBuilder(const ClusterBuilder&) = delete;
+    ClusterBuilder& operator=(const ClusterBuilder&) = delete;
+
+    // This frame's lists for `slot`: the CPU build runs (and uploads) here; the compute build's
+    // inputs are written here and its passes recorded by record(). `lights` is the frame's light
+    // array (directional ones first, [firstLocal, size) local), `lightBuffer` its GPU copy.
+    // Fills the cluster fields of `frame`.
+    void prepare(uint32_t slot, const ClusterSettings& settings, const View& view, VkExtent2D extent,
+                 const Bounds& sceneBounds, std::span<const gpu::GpuLight> lights, uint32_t firstLocal,
+                 const vk::Buffer& lightBuffer, gpu::FrameUniforms& frame);
+    // Records the compute build of the last prepare() of this slot (nothing for a CPU build),
+    // ending with a barrier that makes the lists visible to fragment shaders.
+    void record(VkCommandBuffer cmd, uint32_t slot);
+
     const vk::Buffer& ranges(uint32_t slot);
     const vk::Buffer& indices(uint32_t slot);
-    uint32_t overflows(uint32_t slot) const { return overflows_[slot]; }
-    double buildMs(uint32_t slot) const { return buildMs_[slot]; }
+    bool usesGpu(uint32_t slot) const { return slots_[slot].gpu; }
+    // Froxels that lost lights in the slot's last frame (the compute build's counter is read
+    // back, so call it once that frame has finished).
+    uint32_t overflows(uint32_t slot) const;
+    // CPU time of the last prepare() of the slot (the whole build, or the compute build's setup).
+    double buildMs(uint32_t slot) const { return slots_[slot].buildMs; }
+    // The slot's last lists, read back from whichever build made them (waits for the device).
+    ClusterGrid readBack(uint32_t slot);
 
 private:
+    struct Slot {
+        bool gpu = false;
+        bool pending = false;  // a compute build to record
+        double buildMs = 0.0;
+        uint32_t overflows = 0;  // CPU build
+        ClusterGridShape shape;
+        uint32_t localLights = 0;
+        uint32_t indexCapacity = 0;
+        vk::Buffer cpuRanges, cpuIndices;  // host-visible, CPU build
+        vk::Buffer params, geometry, counters;  // host-visible, compute build
+        vk::Buffer volumes, gpuRanges, gpuIndices;  // device-local, compute build
+        VkDescriptorSet set = VK_NULL_HANDLE;
+    };
+
+    bool useGpu(const ClusterSettings& settings) const;
+    void createPipelines();
+    void prepareGpu(Slot& s, const ClusterSettings& settings, const ClusterGeometry& geometry, const View& view,
+                    uint32_t firstLocal, uint32_t localCount, const vk::Buffer& lightBuffer);
+
     const vk::Device& device_;
-    std::array<vk::Buffer, 2> ranges_;
-    std::array<vk::Buffer, 2> indices_;
-    std::array<uint32_t, 2> overflows_{};
-    std::array<double, 2> buildMs_{};
+    ClusterAssigner assigner_;
+    ClusterGrid cpuGrid_;
+    std::vector<ClusterLight> local_;
+    std::array<Slot, kSlots> slots_;
+    VkDescriptorSetLayout setLayout_ = VK_NULL_HANDLE;
+    VkPipelineLayout pipelineLayout_ = VK_NULL_HANDLE;
+    VkDescriptorPool pool_ = VK_NULL_HANDLE;
+    VkPipeline volumePipeline_ = VK_NULL_HANDLE;
+    VkPipeline assignPipeline_ = VK_NULL_HANDLE;
 };
 
 }  // namespace preskin

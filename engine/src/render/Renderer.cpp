@@ -390,7 +390,7 @@ struct Renderer::Impl {
         u.lightCounts = glm::uvec4(slot.lightCount, directional, 0u, 0u);
         u.lut = luts->mapping();
         if (settings.lightLoop == LightLoop::Clustered)
-            clusters->build(slotIndex, settings.clusters, view, extent, gpuLights, directional, u);
+            clusters->prepare(slotIndex, settings.clusters, view, extent, bounds, gpuLights, directional, slot.lights, u);
         slot.frameUniforms.upload(&u, sizeof(u));
         return shadowLight >= 0;
     }
@@ -572,7 +572,8 @@ struct Renderer::Impl {
         timestamp(cmd, slot, 0);
         if (shadow) recordShadowPass(cmd, slot);
         timestamp(cmd, slot, 1);
-        timestamp(cmd, slot, 2);  // light lists are built on the CPU in prepareFrame
+        clusters->record(cmd, slotIndex);  // the compute build, when this frame uses it
+        timestamp(cmd, slot, 2);
         recordForwardPass(cmd, slot, target, view);
         timestamp(cmd, slot, 3);
         slot.recorded = true;
@@ -587,6 +588,7 @@ struct Renderer::Impl {
         s.lightCount = slot.lightCount;
         s.clusterOverflows = clusters->overflows(slotIndex);
         s.clusterBuildCpuMs = settings.lightLoop == LightLoop::Clustered ? clusters->buildMs(slotIndex) : 0.0;
+        s.clusterBuildGpu = settings.lightLoop == LightLoop::Clustered && clusters->usesGpu(slotIndex);
         if (!slot.recorded || !slot.queries) return s;
         std::array<uint64_t, kQueryCount> ticks{};
         const VkResult r = vkGetQueryPoolResults(dev.device(), slot.queries, 0, kQueryCount, sizeof(ticks), ticks.data(),
@@ -594,7 +596,7 @@ struct Renderer::Impl {
         if (r != VK_SUCCESS) return s;
         const double toMs = double(dev.timestampPeriodNs()) * 1e-6;
         auto ms = [&](int a, int b) { return double(ticks[size_t(b)] - ticks[size_t(a)]) * toMs; };
-        s.passes = {{"shadow", ms(0, 1)}, {"forward", ms(2, 3)}};
+        s.passes = {{"shadow", ms(0, 1)}, {"clusters", ms(1, 2)}, {"forward", ms(2, 3)}};
         s.gpuMs = ms(0, 3);
         return s;
     }

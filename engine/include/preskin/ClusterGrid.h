@@ -1,0 +1,103 @@
+// The clustered light grid ("froxels"): the view frustum cut into screen tiles times depth
+// slices, and per froxel the list of local (point and spot) lights whose volume may touch it.
+// The renderer builds one per frame (on the CPU or in a compute pass, ClusterSettings::build)
+// and the forward pass shades each fragment with its froxel's list only.
+//
+// Depth slicing: slice 0 covers view depths [near, logStartM); slices 1 .. dims.z - 1 split
+// [logStartM, logEndM] logarithmically (every froxel about as deep as it is wide); the last slice
+// also holds everything beyond logEndM. A fragment at view depth d is in slice
+//   clamp(floor(log2(d) * sliceScale + sliceBias), 0, dims.z - 1)
+// and in tile floor(fragCoord.xy / tileSizePx). With fitDepthToScene the logarithmic range is
+// the view-depth range of the scene's bounding box (clamped to [nearSliceM, view farM]), since
+// no fragment lies outside it.
+//
+// Assignment is conservative: a light is listed in every froxel its volume (range sphere, and
+// for spots the cone) touches; it may also be listed in a few it only nearly touches. Lights
+// with unlimited range (range 0) are listed in every froxel (spots: every froxel their cone
+// reaches). Directional lights are not clustered; shaders evaluate them for every fragment.
+//
+// Overflow rule (the same for the CPU and the compute build):
+//  - a froxel keeps at most maxLightsPerCluster lights: the lowest light indices;
+//  - the index list holds at most maxLightIndices entries: a froxel whose list would end past
+//    that keeps only what fits (possibly nothing). The CPU build fills froxels in index order
+//    (x fastest, then y, then z), so the last froxels lose out; the compute build reserves space
+//    in whatever order its workgroups run, so which froxels lose out is unspecified there.
+// Either way every froxel's list is the first entries (lowest indices) of its complete list,
+// and ClusterGrid::overflowedClusters / FrameStats::clusterOverflows counts the froxels that
+// lost lights. Details and figures: docs/clustering.md.
+#pragma once
+
+#include <preskin/Export.h>
+#include <preskin/Scene.h>
+#include <preskin/View.h>
+
+#include <glm/glm.hpp>
+
+#include <cmath>
+#include <cstdint>
+#include <limits>
+#include <span>
+#include <vector>
+
+namespace preskin {
+
+// Where the light lists are built. Auto: on the CPU for CPU devices (lavapipe), where the CPU
+// build measured faster (docs/clustering.md), and in a compute pass on other devices.
+enum class ClusterBuild { Auto, Cpu, Gpu };
+
+struct ClusterSettings {
+    uint32_t tileSizePx = 16;            // screen tile edge, clamped to 4..256
+    uint32_t depthSlices = 32;           // clamped to 2..256
+    float nearSliceM = 0.05f;            // slice 0 ends here at the earliest
+    bool fitDepthToScene = true;         // logarithmic slices span the scene's depth range only
+    uint32_t maxLightsPerCluster = 256;  // per-froxel cap (overflow rule above), >= 1
+    uint32_t maxLightIndices = 1u << 23; // capacity of the index list (overflow rule above), >= 1
+    ClusterBuild build = ClusterBuild::Auto;
+};
+
+struct ClusterGridShape {
+    glm::uvec3 dims{1u};       // tiles across, tiles down, depth slices
+    uint32_t tileSizePx = 16;
+    glm::uvec2 extentPx{1u};   // the image the grid covers
+    float nearM = 0.01f;       // slice 0 starts here (the view's near plane)
+    float logStartM = 0.05f;   // slice 1 starts here
+    float logEndM = 100.0f;    // slice dims.z - 1 ends here (and also holds everything beyond)
+    float sliceScale = 1.0f;
+    float sliceBias = 0.0f;
+
+    uint32_t froxelCount() const { return dims.x * dims.y * dims.z; }
+    uint32_t froxelIndex(uint32_t x, uint32_t y, uint32_t z) const { return (z * dims.y + y) * dims.x + x; }
+    // View depth where slice z begins (z = 0: nearM; z = dims.z: infinity).
+    float sliceStartM(uint32_t z) const {
+        if (z == 0) return nearM;
+        if (z >= dims.z) return std::numeric_limits<float>::infinity();
+        return std::exp2((float(z) - sliceBias) / sliceScale);
+    }
+    // The slice of a view depth, exactly as the forward shader computes it.
+    uint32_t sliceOf(float viewDepthM) const {
+        const float s = std::floor(std::log2(std::max(viewDepthM, 1e-6f)) * sliceScale + sliceBias);
+        if (!(s > 0.0f)) return 0;
+        return s >= float(dims.z - 1) ? dims.z - 1 : static_cast<uint32_t>(s);
+    }
+};
+
+struct ClusterGrid {
+    ClusterGridShape shape;
+    std::vector<glm::uvec2> ranges;  // per froxel (offset, count) into `indices`; x fastest, then y, z
+    std::vector<uint32_t> indices;   // light indices into the array given to the build
+    uint32_t overflowedClusters = 0; // froxels that lost lights to either cap
+    uint64_t requestedIndices = 0;   // entries before either cap applied
+};
+
+// The grid's shape for a view and image size. `sceneBounds` (world space) fits the logarithmic
+// slices when settings.fitDepthToScene is set and the bounds are not empty.
+PRESKIN_API ClusterGridShape clusterGridShape(const ClusterSettings& settings, const View& view, uint32_t widthPx,
+                                              uint32_t heightPx, const Bounds& sceneBounds);
+
+// Builds the light lists on the CPU. List entries are indices into `lights`; directional
+// lights are skipped. This is the CPU build the renderer uses, for hosts that shade with their
+// own forward pass.
+PRESKIN_API ClusterGrid buildClusterGrid(const ClusterSettings& settings, const View& view, uint32_t widthPx,
+                                         uint32_t heightPx, const Bounds& sceneBounds, std::span<const Light> lights);
+
+}  // namespace preskin

@@ -1,0 +1,249 @@
+// CPU light assignment for the froxel grid; the method and its sources are in ClusterAssign.h.
+#include "lights/ClusterAssign.h"
+
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+namespace preskin {
+
+namespace {
+
+constexpr float kInfinity = std::numeric_limits<float>::infinity();
+
+float signedDistance(const glm::vec4& plane, const glm::vec3& p) { return glm::dot(glm::vec3(plane), p) + plane.w; }
+
+// Does a sphere overlap the slab between planes k and k + 1 (a column or a row of tiles)?
+bool slabOverlaps(const std::vector<glm::vec4>& planes, uint32_t k, const glm::vec3& c, float r) {
+    return signedDistance(planes[k], c) >= -r && signedDistance(planes[k + 1], c) <= r;
+}
+
+// The first and last slab in [lo, hi] the sphere overlaps; every overlapped slab lies between
+// them whatever the order of the planes' distances, so scanning inwards is conservative.
+bool slabRange(const std::vector<glm::vec4>& planes, uint32_t lo, uint32_t hi, const glm::vec3& c, float r,
+               uint32_t& first, uint32_t& last) {
+    uint32_t a = lo;
+    while (a <= hi && !slabOverlaps(planes, a, c, r)) ++a;
+    if (a > hi) return false;
+    uint32_t b = hi;
+    while (b > a && !slabOverlaps(planes, b, c, r)) --b;
+    first = a;
+    last = b;
+    return true;
+}
+
+// Replaces the sphere (c, r) by one bounding its part on the inner side of `plane` (the side
+// where the signed distance is >= 0 when `inner` is +1, <= 0 when -1). False when nothing is left.
+bool cutByPlane(const glm::vec4& plane, float inner, glm::vec3& c, float& r) {
+    const float outside = -inner * signedDistance(plane, c);
+    if (outside <= 0.0f) return true;
+    if (outside > r) return false;
+    c += glm::vec3(plane) * (inner * outside);
+    r = std::isinf(r) ? r : std::sqrt(std::max(r * r - outside * outside, 0.0f));
+    return true;
+}
+
+// Cuts the sphere to the depth slab [d0, d1] (view depth = -z). False when nothing is left.
+bool cutByDepth(float d0, float d1, glm::vec3& c, float& r) {
+    const float depth = -c.z;
+    float h = 0.0f;
+    if (depth < d0) {
+        h = d0 - depth;
+        c.z = -d0;
+    } else if (depth > d1) {
+        h = depth - d1;
+        c.z = -d1;
+    }
+    if (h > r) return false;
+    if (h > 0.0f && !std::isinf(r)) r = std::sqrt(std::max(r * r - h * h, 0.0f));
+    return true;
+}
+
+// Bounding sphere (centre, radius) of the part of froxel column (x, y) between view depths dA and dB.
+glm::vec4 froxelSphere(const ClusterGeometry& g, uint32_t x, uint32_t y, float dA, float dB) {
+    glm::vec3 lo(kInfinity);
+    glm::vec3 hi(-kInfinity);
+    for (uint32_t j = y; j <= y + 1; ++j)
+        for (uint32_t i = x; i <= x + 1; ++i) {
+            const uint32_t k = g.cornerIndex(i, j);
+            const glm::vec3 origin(g.cornerOrigin[k]);
+            const glm::vec3 dir(g.cornerDir[k]);
+            for (float d : {dA, dB}) {
+                const glm::vec3 p = origin + dir * d;
+                lo = glm::min(lo, p);
+                hi = glm::max(hi, p);
+            }
+        }
+    return glm::vec4(0.5f * (lo + hi), 0.5f * glm::length(hi - lo) * (1.0f + kClusterRadiusSlack) + 1e-6f);
+}
+
+// Cone of a spot against a froxel's bounding sphere.
+bool coneReachesSphere(const ClusterLightBounds& b, const glm::vec4& sphere) {
+    const glm::vec3 center(sphere);
+    const float radius = sphere.w;
+    const glm::vec3 v = center - b.apexVs;
+    const float along = glm::dot(v, b.axisVs);
+    const float across = std::sqrt(std::max(glm::dot(v, v) - along * along, 0.0f));
+    const float closest = b.cosOuter * across - along * b.sinOuter;
+    return !(closest > radius || along > radius + b.rangeM || along < -radius);
+}
+
+}  // namespace
+
+ClusterLightBounds clusterLightBounds(const ClusterLight& light, const glm::mat4& viewFromWorld,
+                                      const ClusterGeometry& g) {
+    ClusterLightBounds b;
+    b.index = light.index;
+    b.apexVs = glm::vec3(viewFromWorld * glm::vec4(light.positionWs, 1.0f));
+    const bool unlimited = !(light.rangeM > 0.0f) || !std::isfinite(light.rangeM);
+    b.rangeM = unlimited ? kInfinity : light.rangeM;
+    glm::vec3 axis = glm::mat3(viewFromWorld) * light.directionWs;
+    const float axisLength = glm::length(axis);
+    b.axisVs = axisLength > 0.0f ? axis / axisLength : glm::vec3(0.0f, 0.0f, -1.0f);
+    b.centerVs = b.apexVs;
+    b.radiusM = b.rangeM;
+    if (light.spot) {
+        const float cosOuter = std::clamp(light.cosOuter - kClusterConeSlack, -1.0f, 1.0f);
+        // A cone of 90 degrees or more is culled by its range sphere only.
+        if (cosOuter > 0.0f) {
+            b.cone = true;
+            b.cosOuter = cosOuter;
+            b.sinOuter = std::sqrt(std::max(1.0f - cosOuter * cosOuter, 0.0f));
+            if (!unlimited && cosOuter > 0.5f) {
+                const float t = b.rangeM / (2.0f * cosOuter);
+                b.centerVs = b.apexVs + b.axisVs * t;
+                b.radiusM = t;
+            }
+        }
+    }
+    if (!unlimited) b.radiusM = b.radiusM * (1.0f + kClusterRadiusSlack) + 1e-6f;
+
+    const ClusterGridShape& s = g.shape;
+    const float depth = -b.centerVs.z;
+    const float minDepth = depth - b.radiusM;
+    const float maxDepth = depth + b.radiusM;
+    if (maxDepth < s.nearM * (1.0f - 2.0f * kClusterDepthSlack)) return b;  // behind the near plane
+    b.lo.z = s.sliceOf(minDepth * (1.0f - 2.0f * kClusterDepthSlack));
+    b.hi.z = s.sliceOf(maxDepth * (1.0f + 2.0f * kClusterDepthSlack));
+    uint32_t first = 0;
+    uint32_t last = 0;
+    if (!slabRange(g.xPlanes, 0, s.dims.x - 1, b.centerVs, b.radiusM, first, last)) {
+        b.lo = glm::uvec3(1u);
+        b.hi = glm::uvec3(0u);
+        return b;
+    }
+    b.lo.x = first;
+    b.hi.x = last;
+    if (!slabRange(g.yPlanes, 0, s.dims.y - 1, b.centerVs, b.radiusM, first, last)) {
+        b.lo = glm::uvec3(1u);
+        b.hi = glm::uvec3(0u);
+        return b;
+    }
+    b.lo.y = first;
+    b.hi.y = last;
+    return b;
+}
+
+void ClusterAssigner::build(const ClusterSettings& settings, const ClusterGeometry& g, const glm::mat4& viewFromWorld,
+                            std::span<const ClusterLight> lights, ClusterGrid& grid) {
+    const ClusterGridShape& s = g.shape;
+    grid.shape = s;
+    const uint32_t perSlice = s.dims.x * s.dims.y;
+    const uint32_t froxels = s.froxelCount();
+
+    bounds_.resize(lights.size());
+    tbb::parallel_for(tbb::blocked_range<size_t>(0, lights.size(), 64), [&](const tbb::blocked_range<size_t>& r) {
+        for (size_t i = r.begin(); i < r.end(); ++i) bounds_[i] = clusterLightBounds(lights[i], viewFromWorld, g);
+    });
+
+    slices_.resize(s.dims.z);
+    tbb::parallel_for(tbb::blocked_range<uint32_t>(0, s.dims.z, 1), [&](const tbb::blocked_range<uint32_t>& r) {
+        for (uint32_t z = r.begin(); z < r.end(); ++z) {
+            SliceScratch& sc = slices_[z];
+            sc.froxel.clear();
+            sc.light.clear();
+            sc.count.assign(perSlice, 0u);
+            sc.sphere.assign(perSlice, glm::vec4(-1.0f));  // radius < 0: not computed yet
+            const float d0 = g.sliceStartM[z] * (1.0f - kClusterDepthSlack);
+            const float d1 = z + 1 >= s.dims.z ? kInfinity : g.sliceStartM[z + 1] * (1.0f + kClusterDepthSlack);
+            for (const ClusterLightBounds& b : bounds_) {
+                if (z < b.lo.z || z > b.hi.z || b.lo.x > b.hi.x || b.lo.y > b.hi.y) continue;
+                glm::vec3 c1 = b.centerVs;
+                float r1 = b.radiusM;
+                if (!cutByDepth(d0, d1, c1, r1)) continue;
+                uint32_t y0 = 0;
+                uint32_t y1 = 0;
+                if (!slabRange(g.yPlanes, b.lo.y, b.hi.y, c1, r1, y0, y1)) continue;
+                // Depth extent of the light inside this slice, for the spot's froxel spheres.
+                const float coneD0 = std::max(d0, -b.centerVs.z - b.radiusM);
+                const float coneD1 = std::min(d1, -b.centerVs.z + b.radiusM);
+                const bool fullSlice = coneD0 == d0 && coneD1 == d1;
+                for (uint32_t y = y0; y <= y1; ++y) {
+                    glm::vec3 c2 = c1;
+                    float r2 = r1;
+                    if (!cutByPlane(g.yPlanes[y], 1.0f, c2, r2) || !cutByPlane(g.yPlanes[y + 1], -1.0f, c2, r2))
+                        continue;
+                    uint32_t x0 = 0;
+                    uint32_t x1 = 0;
+                    if (!slabRange(g.xPlanes, b.lo.x, b.hi.x, c2, r2, x0, x1)) continue;
+                    for (uint32_t x = x0; x <= x1; ++x) {
+                        if (b.cone && coneD0 <= coneD1 && std::isfinite(coneD1)) {
+                            // The whole froxel's sphere is cached per slice; a light ending inside
+                            // the slice gets the sphere of the part it can reach.
+                            glm::vec4 sphere;
+                            if (fullSlice) {
+                                glm::vec4& cached = sc.sphere[y * s.dims.x + x];
+                                if (!(cached.w >= 0.0f)) cached = froxelSphere(g, x, y, d0, d1);
+                                sphere = cached;
+                            } else {
+                                sphere = froxelSphere(g, x, y, coneD0, coneD1);
+                            }
+                            if (!coneReachesSphere(b, sphere)) continue;
+                        }
+                        const uint32_t local = y * s.dims.x + x;
+                        sc.froxel.push_back(local);
+                        sc.light.push_back(b.index);
+                        ++sc.count[local];
+                    }
+                }
+            }
+        }
+    });
+
+    // Offsets in froxel order, both caps applied (see the overflow rule in ClusterGrid.h).
+    grid.ranges.resize(froxels);
+    const uint64_t perCluster = std::max<uint32_t>(settings.maxLightsPerCluster, 1);
+    const uint64_t capacity = std::max<uint32_t>(settings.maxLightIndices, 1);
+    uint64_t running = 0;
+    grid.overflowedClusters = 0;
+    grid.requestedIndices = 0;
+    for (uint32_t z = 0; z < s.dims.z; ++z) {
+        const SliceScratch& sc = slices_[z];
+        for (uint32_t local = 0; local < perSlice; ++local) {
+            const uint64_t n = sc.count[local];
+            const uint64_t kept = std::min({n, perCluster, capacity - running});
+            if (kept < n) ++grid.overflowedClusters;
+            grid.ranges[z * perSlice + local] = glm::uvec2(static_cast<uint32_t>(running), static_cast<uint32_t>(kept));
+            running += kept;
+            grid.requestedIndices += n;
+        }
+    }
+    grid.indices.resize(running);
+    tbb::parallel_for(tbb::blocked_range<uint32_t>(0, s.dims.z, 1), [&](const tbb::blocked_range<uint32_t>& r) {
+        for (uint32_t z = r.begin(); z < r.end(); ++z) {
+            SliceScratch& sc = slices_[z];
+            std::fill(sc.count.begin(), sc.count.end(), 0u);  // now: entries written per froxel
+            const glm::uvec2* ranges = grid.ranges.data() + size_t(z) * perSlice;
+            for (size_t e = 0; e < sc.froxel.size(); ++e) {
+                const uint32_t local = sc.froxel[e];
+                uint32_t& written = sc.count[local];
+                if (written < ranges[local].y) grid.indices[ranges[local].x + written++] = sc.light[e];
+            }
+        }
+    });
+}
+
+}  // namespace preskin

@@ -1,0 +1,77 @@
+// CPU light assignment for the froxel grid (see <preskin/ClusterGrid.h> for the rules).
+//
+// Per light: a view-space bounding sphere (the range sphere; for spots narrower than 60 degrees
+// the smallest sphere around the cone's spherical sector, centre apex + axis * range / (2 cos),
+// radius range / (2 cos)). Per depth slice the sphere is cut down to one bounding the part
+// inside the slice (centre moved onto the nearer slice plane, radius sqrt(r^2 - h^2)), then per
+// row of tiles likewise against the row's boundary planes, and the columns whose slab the
+// remaining sphere overlaps are the light's froxels in that row (the refinement of E. Persson,
+// "Practical Clustered Shading", SIGGRAPH 2015). Each step bounds the light's volume inside
+// the froxel from outside, so no touched froxel is missed. Spots then test their cone against
+// each froxel's bounding sphere (B. Wronski, "Cull that cone!", 2017), which only rejects
+// froxels the cone cannot reach.
+//
+// Work is split by depth slice (TBB): a slice's froxels are disjoint from every other slice's,
+// so the result does not depend on the thread count. Lists hold ascending light indices.
+#pragma once
+
+#include "lights/ClusterGeometry.h"
+
+#include <preskin/ClusterGrid.h>
+
+#include <glm/glm.hpp>
+
+#include <cstdint>
+#include <span>
+#include <vector>
+
+namespace preskin {
+
+// One local light, world space, as the renderer shades it.
+struct ClusterLight {
+    glm::vec3 positionWs{0.0f};
+    float rangeM = 0.0f;  // <= 0: unlimited
+    glm::vec3 directionWs{0.0f, 0.0f, -1.0f};
+    float cosOuter = -1.0f;  // spot: cosine of the outer cone angle (the attenuation's zero)
+    bool spot = false;
+    uint32_t index = 0;  // the value written into the lists
+};
+
+// A light in view space with its bounding sphere and the box of froxels it may touch.
+struct ClusterLightBounds {
+    glm::vec3 centerVs{0.0f};
+    float radiusM = 0.0f;  // infinity for unlimited lights
+    glm::vec3 apexVs{0.0f};
+    float rangeM = 0.0f;   // infinity for unlimited lights
+    glm::vec3 axisVs{0.0f, 0.0f, -1.0f};
+    float cosOuter = -1.0f;
+    float sinOuter = 0.0f;
+    bool cone = false;     // spot with a cone narrower than a half space
+    uint32_t index = 0;
+    glm::uvec3 lo{1u};     // inclusive froxel box; empty when any lo > hi
+    glm::uvec3 hi{0u};
+};
+
+// Bounds of one light for this grid (view transform and geometry).
+ClusterLightBounds clusterLightBounds(const ClusterLight& light, const glm::mat4& viewFromWorld,
+                                      const ClusterGeometry& geometry);
+
+// Keeps its scratch memory between builds.
+class ClusterAssigner {
+public:
+    // Fills grid.ranges / indices / overflow counts; grid.shape must equal geometry.shape.
+    void build(const ClusterSettings& settings, const ClusterGeometry& geometry, const glm::mat4& viewFromWorld,
+               std::span<const ClusterLight> lights, ClusterGrid& grid);
+
+private:
+    struct SliceScratch {
+        std::vector<uint32_t> froxel;  // froxel within the slice (y * dims.x + x), per entry
+        std::vector<uint32_t> light;   // light index, per entry
+        std::vector<uint32_t> count;   // entries per froxel of the slice
+        std::vector<glm::vec4> sphere; // bounding sphere per froxel of the slice, for spots
+    };
+    std::vector<ClusterLightBounds> bounds_;
+    std::vector<SliceScratch> slices_;
+};
+
+}  // namespace preskin

@@ -1,0 +1,131 @@
+// The grid's shape (tiles, logarithmic slices fitted to the scene's depth range) and its view-space
+// geometry; see ClusterGeometry.h and <preskin/ClusterGrid.h>.
+#include "lights/ClusterGeometry.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+namespace preskin {
+
+namespace {
+
+// Normalised device depth of view depth d (> 0) for this projection.
+double ndcDepth(const glm::dmat4& clipFromView, double viewDepthM) {
+    const glm::dvec4 clip = clipFromView * glm::dvec4(0.0, 0.0, -viewDepthM, 1.0);
+    return clip.z / clip.w;
+}
+
+struct Unprojector {
+    glm::dmat4 clipFromView;
+    glm::dmat4 viewFromClip;
+    glm::dvec2 extent;
+
+    // View-space point at pixel position (px, py) (pixel edges at integers) and view depth d.
+    glm::dvec3 point(double px, double py, double viewDepthM) const {
+        const glm::dvec4 ndc(px / extent.x * 2.0 - 1.0, py / extent.y * 2.0 - 1.0, ndcDepth(clipFromView, viewDepthM),
+                             1.0);
+        const glm::dvec4 p = viewFromClip * ndc;
+        return glm::dvec3(p) / p.w;
+    }
+};
+
+// Plane through a, b, c, oriented so that `higher` lies on its positive side.
+glm::vec4 orientedPlane(const glm::dvec3& a, const glm::dvec3& b, const glm::dvec3& c, const glm::dvec3& higher) {
+    glm::dvec3 n = glm::cross(b - a, c - a);
+    const double len = glm::length(n);
+    n = len > 0.0 ? n / len : glm::dvec3(1.0, 0.0, 0.0);
+    double w = -glm::dot(n, a);
+    if (glm::dot(n, higher) + w < 0.0) {
+        n = -n;
+        w = -w;
+    }
+    return glm::vec4(glm::vec3(n), float(w));
+}
+
+}  // namespace
+
+ClusterGridShape clusterGridShape(const ClusterSettings& settings, const View& view, uint32_t widthPx,
+                                  uint32_t heightPx, const Bounds& sceneBounds) {
+    ClusterGridShape s;
+    s.tileSizePx = std::clamp<uint32_t>(settings.tileSizePx, 4, 256);
+    s.extentPx = glm::uvec2(std::max(widthPx, 1u), std::max(heightPx, 1u));
+    s.dims.x = (s.extentPx.x + s.tileSizePx - 1) / s.tileSizePx;
+    s.dims.y = (s.extentPx.y + s.tileSizePx - 1) / s.tileSizePx;
+    s.dims.z = std::clamp<uint32_t>(settings.depthSlices, 2, 256);
+    s.nearM = std::isfinite(view.nearM) && view.nearM > 0.0f ? view.nearM : 1e-3f;
+    const float farM = std::isfinite(view.farM) ? std::max(view.farM, s.nearM * 4.0f) : s.nearM * 1e6f;
+    float start = std::isfinite(settings.nearSliceM) ? settings.nearSliceM : 0.0f;
+    start = std::max(start, s.nearM * 1.001f);
+    float end = farM;
+    if (settings.fitDepthToScene && !sceneBounds.empty()) {
+        float minDepth = std::numeric_limits<float>::max();
+        float maxDepth = -std::numeric_limits<float>::max();
+        for (int i = 0; i < 8; ++i) {
+            const glm::vec3 corner((i & 1) ? sceneBounds.max.x : sceneBounds.min.x,
+                                   (i & 2) ? sceneBounds.max.y : sceneBounds.min.y,
+                                   (i & 4) ? sceneBounds.max.z : sceneBounds.min.z);
+            const float depth = -(view.viewFromWorld * glm::vec4(corner, 1.0f)).z;
+            minDepth = std::min(minDepth, depth);
+            maxDepth = std::max(maxDepth, depth);
+        }
+        start = std::max(start, minDepth);
+        end = std::min(end, maxDepth);
+    }
+    end = std::max(end, start * 1.01f);
+    s.logStartM = start;
+    s.logEndM = end;
+    s.sliceScale = float(s.dims.z - 1) / std::log2(end / start);
+    s.sliceBias = 1.0f - std::log2(start) * s.sliceScale;
+    return s;
+}
+
+ClusterGeometry clusterGeometry(const ClusterGridShape& shape, const View& view) {
+    ClusterGeometry g;
+    g.shape = shape;
+    const glm::uvec3 dims = shape.dims;
+    Unprojector u{glm::dmat4(view.clipFromView), glm::inverse(glm::dmat4(view.clipFromView)),
+                  glm::dvec2(shape.extentPx)};
+    const double d1 = shape.logStartM;
+    const double d2 = shape.logEndM;
+    const double width = shape.extentPx.x;
+    const double height = shape.extentPx.y;
+    auto edgeX = [&](uint32_t i) { return std::min(double(i) * shape.tileSizePx, width); };
+    auto edgeY = [&](uint32_t j) { return std::min(double(j) * shape.tileSizePx, height); };
+
+    g.xPlanes.resize(dims.x + 1);
+    for (uint32_t i = 0; i <= dims.x; ++i) {
+        const double x = edgeX(i);
+        // A point of the neighbouring column on the higher side (or the lower side for the last).
+        const double probe = i < dims.x ? x + 0.5 : x - 0.5;
+        glm::vec4 plane = orientedPlane(u.point(x, 0.0, d1), u.point(x, 0.0, d2), u.point(x, height, d1),
+                                        u.point(probe, 0.5 * height, d1));
+        if (i == dims.x) plane = -plane;
+        g.xPlanes[i] = plane;
+    }
+    g.yPlanes.resize(dims.y + 1);
+    for (uint32_t j = 0; j <= dims.y; ++j) {
+        const double y = edgeY(j);
+        const double probe = j < dims.y ? y + 0.5 : y - 0.5;
+        glm::vec4 plane = orientedPlane(u.point(0.0, y, d1), u.point(0.0, y, d2), u.point(width, y, d1),
+                                        u.point(0.5 * width, probe, d1));
+        if (j == dims.y) plane = -plane;
+        g.yPlanes[j] = plane;
+    }
+    g.sliceStartM.resize(dims.z + 1);
+    for (uint32_t z = 0; z <= dims.z; ++z) g.sliceStartM[z] = shape.sliceStartM(z);
+
+    g.cornerOrigin.resize(size_t(dims.x + 1) * (dims.y + 1));
+    g.cornerDir.resize(g.cornerOrigin.size());
+    for (uint32_t j = 0; j <= dims.y; ++j)
+        for (uint32_t i = 0; i <= dims.x; ++i) {
+            const glm::dvec3 a = u.point(edgeX(i), edgeY(j), d1);
+            const glm::dvec3 b = u.point(edgeX(i), edgeY(j), d2);
+            const glm::dvec3 dir = (b - a) / (d2 - d1);
+            g.cornerOrigin[g.cornerIndex(i, j)] = glm::vec4(glm::vec3(a - dir * d1), 0.0f);
+            g.cornerDir[g.cornerIndex(i, j)] = glm::vec4(glm::vec3(dir), 0.0f);
+        }
+    return g;
+}
+
+}  // namespace preskin

@@ -1,0 +1,41 @@
+// Geometry of the froxel grid in view space, shared by the CPU build and (uploaded) the compute
+// build: the tile boundary planes, the slice boundary depths and the tile corner lines.
+//   - Column boundary i (i = 0 .. dims.x) is the plane through the pixel edge x = min(i * tile,
+//     width) for every depth; row boundaries likewise. Planes are stored as (n, w), |n| = 1,
+//     with n . p + w > 0 on the side of the higher tile index. Pixel edges (not centres) make
+//     every tile half a pixel wider on each side than the fragments the shader puts into it.
+//   - Corner lines: the view-space point of grid vertex (i, j) at view depth d is
+//     origin + direction * d (exact for perspective and orthographic projections).
+// Computed in double precision from the inverse projection, so any projection matrix of the
+// usual form (no x/y terms in its depth row) works, off-centre and orthographic ones included.
+#pragma once
+
+#include <preskin/ClusterGrid.h>
+
+#include <glm/glm.hpp>
+
+#include <vector>
+
+namespace preskin {
+
+struct ClusterGeometry {
+    ClusterGridShape shape;
+    std::vector<glm::vec4> xPlanes;      // dims.x + 1
+    std::vector<glm::vec4> yPlanes;      // dims.y + 1
+    std::vector<float> sliceStartM;      // dims.z + 1; the last entry is +infinity
+    std::vector<glm::vec4> cornerOrigin; // (dims.x + 1) * (dims.y + 1), x fastest; w unused
+    std::vector<glm::vec4> cornerDir;    // same layout
+
+    uint32_t cornerIndex(uint32_t i, uint32_t j) const { return j * (shape.dims.x + 1) + i; }
+};
+
+ClusterGeometry clusterGeometry(const ClusterGridShape& shape, const View& view);
+
+// Relative growth applied to slice boundaries and light bounds so that float rounding (here and
+// in the shader's slice formula) never drops a light at a boundary. Used by both builds.
+inline constexpr float kClusterDepthSlack = 1e-4f;
+inline constexpr float kClusterRadiusSlack = 1e-4f;
+// Spot cones are widened by this much in cosine, for the same reason.
+inline constexpr float kClusterConeSlack = 1e-4f;
+
+}  // namespace preskin

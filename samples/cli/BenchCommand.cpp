@@ -1,0 +1,916 @@
+// `preskin bench`: measures the renderer side by side in one run and writes JSON (stdout or
+// --out) and optionally a PNG plot of frame time against light count (--plot).
+//
+// What it measures, on the bundled head scene (or the scene given) framed as `preskin render`
+// frames it, with the scene's lights plus N scattered ones (scatterLights, --seed):
+//   - clustered light loop vs brute force (LightLoop::All) at each --counts N;
+//   - the cluster build: its CPU time and its compute pass, its share of the frame, and the
+//     other build (CPU vs compute) at each N for comparison;
+//   - lights listed per pixel (the fragment's cluster list) vs the exact number of lights whose
+//     volume (range sphere, spot cone) contains the pixel's surface point: the light-count debug
+//     view in linear output gives the list length and view depth per pixel; the point is
+//     rebuilt from the depth on the pixel centre's ray and tested against every light on the
+//     CPU (a world-space grid of the lights only narrows the candidates);
+//   - the skin material vs the standard glTF metal-rough material on the same mesh, textures and
+//     lights (the scene copied with its skin extension removed), plus the skin shader with every
+//     technique off (SkinFeatures::none()) as a third column;
+//   - the bake time of the default LUT set (LutSet::bake of d'Eon & Luebke's profile).
+// Each frame is one Renderer::render (record, submit, wait, readback). Timing: warm-up frames,
+// then the median of --reps frames of wall time (CPU clock around the whole frame) and of the
+// GPU timestamps per pass. Slow points (brute force at many lights) get fewer frames: when the
+// frame time predicted from the previous counts times the frames planned exceeds --budget-s,
+// the warm-up is dropped and the repetitions cut (at least one); the JSON records what ran.
+// Goals (docs/clustering.md) are evaluated on the wall-time medians.
+// Limits: timings on a shared machine are noisy; compare numbers from one run.
+#include "Commands.h"
+#include "Options.h"  // samples/common
+
+#include <preskin/Context.h>
+#include <preskin/DiffusionProfile.h>
+#include <preskin/Environment.h>
+#include <preskin/Error.h>
+#include <preskin/LightScatter.h>
+#include <preskin/LutSet.h>
+#include <preskin/Renderer.h>
+#include <preskin/Scene.h>
+#include <preskin/View.h>
+
+#include <fmt/core.h>
+
+#include <algorithm>
+#include <array>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <limits>
+#include <map>
+#include <memory>
+#include <optional>
+#include <string>
+#include <vector>
+
+namespace preskin::cli {
+
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+double secondsSince(Clock::time_point start) { return std::chrono::duration<double>(Clock::now() - start).count(); }
+
+// ---- JSON output -----------------------------------------------------------------------------
+
+class JsonWriter {
+public:
+    void beginObject() { open('{'); }
+    void endObject() { close('}'); }
+    void beginArray() { open('['); }
+    void endArray() { close(']'); }
+    void key(std::string_view k) {
+        separate();
+        text_ += quote(k) + ": ";
+        afterKey_ = true;
+    }
+    void number(double v) {
+        separate();
+        text_ += std::isfinite(v) ? fmt::format("{:.6g}", v) : "null";
+    }
+    void integer(uint64_t v) {
+        separate();
+        text_ += fmt::format("{}", v);
+    }
+    void boolean(bool v) {
+        separate();
+        text_ += v ? "true" : "false";
+    }
+    void string(std::string_view v) {
+        separate();
+        text_ += quote(v);
+    }
+    template <typename T>
+    void field(std::string_view k, T v) {
+        key(k);
+        if constexpr (std::is_same_v<T, bool>) boolean(v);
+        else if constexpr (std::is_integral_v<T>) integer(static_cast<uint64_t>(v));
+        else if constexpr (std::is_floating_point_v<T>) number(double(v));
+        else string(v);
+    }
+    const std::string& text() const { return text_; }
+
+private:
+    static std::string quote(std::string_view s) {
+        std::string out = "\"";
+        for (char c : s) {
+            if (c == '"' || c == '\\') out += '\\', out += c;
+            else if (static_cast<unsigned char>(c) < 0x20) out += fmt::format("\\u{:04x}", int(c));
+            else out += c;
+        }
+        return out + "\"";
+    }
+    void separate() {
+        if (afterKey_) {
+            afterKey_ = false;
+            return;
+        }
+        if (!first_.empty()) {
+            if (!first_.back()) text_ += ",";
+            first_.back() = false;
+            text_ += "\n" + std::string(2 * first_.size(), ' ');
+        }
+    }
+    void open(char c) {
+        separate();
+        text_ += c;
+        first_.push_back(true);
+    }
+    void close(char c) {
+        const bool empty = first_.back();
+        first_.pop_back();
+        if (!empty) text_ += "\n" + std::string(2 * first_.size(), ' ');
+        text_ += c;
+    }
+    std::string text_;
+    std::vector<bool> first_;
+    bool afterKey_ = false;
+};
+
+// ---- measurement -----------------------------------------------------------------------------
+
+struct BenchOptions {
+    std::string scene;
+    std::string out;
+    std::string plot;
+    uint32_t width = 1280;
+    uint32_t height = 720;
+    std::string counts = "16,64,256,1024,4096";
+    std::string skinCounts = "256,1024";
+    uint32_t seed = 1;
+    uint32_t warmup = 1;
+    uint32_t reps = 5;
+    double budgetS = 15.0;
+    ClusterSettings clusters;
+    std::string build = "auto";
+    bool noBuildCompare = false;
+    bool noBrute = false;
+    bool noSkin = false;
+    bool noPerPixel = false;
+    bool noLutBake = false;
+    std::string device;
+    bool validation = false;
+};
+
+double median(std::vector<double> v) {
+    if (v.empty()) return std::numeric_limits<double>::quiet_NaN();
+    std::sort(v.begin(), v.end());
+    const size_t n = v.size();
+    return n % 2 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]);
+}
+
+struct Measurement {
+    uint32_t warmup = 0;
+    std::vector<FrameStats> frames;
+
+    double wallMs() const { return medianOf([](const FrameStats& s) { return s.wallMs; }); }
+    double gpuMs() const { return medianOf([](const FrameStats& s) { return s.gpuMs; }); }
+    double buildCpuMs() const { return medianOf([](const FrameStats& s) { return s.clusterBuildCpuMs; }); }
+    double passMs(const std::string& name) const {
+        return medianOf([&](const FrameStats& s) {
+            for (const PassTime& p : s.passes)
+                if (p.name == name) return p.gpuMs;
+            return std::numeric_limits<double>::quiet_NaN();
+        });
+    }
+    // The whole light-list build: its CPU part plus its compute pass.
+    double buildMs() const {
+        return medianOf([](const FrameStats& s) {
+            double ms = s.clusterBuildCpuMs;
+            for (const PassTime& p : s.passes)
+                if (p.name == "clusters") ms += p.gpuMs;
+            return ms;
+        });
+    }
+    bool buildGpu() const { return !frames.empty() && frames.back().clusterBuildGpu; }
+    uint32_t overflows() const { return frames.empty() ? 0 : frames.back().clusterOverflows; }
+
+    template <typename F>
+    double medianOf(F f) const {
+        std::vector<double> v;
+        for (const FrameStats& s : frames) v.push_back(f(s));
+        return median(v);
+    }
+};
+
+void writeMeasurement(JsonWriter& j, const Measurement& m) {
+    j.beginObject();
+    j.field("warmup_frames", m.warmup);
+    j.field("frames", m.frames.size());
+    j.field("wall_ms", m.wallMs());
+    j.field("gpu_ms", m.gpuMs());
+    j.key("gpu_pass_ms");
+    j.beginObject();
+    if (!m.frames.empty())
+        for (const PassTime& p : m.frames.front().passes) j.field(p.name, m.passMs(p.name));
+    j.endObject();
+    j.field("cluster_build_cpu_ms", m.buildCpuMs());
+    j.field("cluster_build_ms", m.buildMs());
+    j.field("cluster_build", m.buildGpu() ? "gpu" : "cpu");
+    j.field("overflowed_clusters", m.overflows());
+    j.key("wall_ms_each");
+    j.beginArray();
+    for (const FrameStats& s : m.frames) j.number(s.wallMs);
+    j.endArray();
+    j.endObject();
+}
+
+class Bench {
+public:
+    Bench(const BenchOptions& o, Context& context, const View& view) : o_(o), context_(context), view_(view) {}
+
+    // Frames planned for one point: the full warm-up and repetitions unless the predicted
+    // frame time (ms, <= 0: unknown) says they would take longer than the budget.
+    std::pair<uint32_t, uint32_t> plan(double predictedMs) const {
+        uint32_t warmup = o_.warmup;
+        uint32_t reps = std::max<uint32_t>(o_.reps, 1);
+        if (predictedMs <= 0.0) return {warmup, reps};
+        const double budgetMs = o_.budgetS * 1000.0;
+        if (predictedMs * double(warmup + reps) <= budgetMs) return {warmup, reps};
+        reps = std::clamp<uint32_t>(static_cast<uint32_t>(budgetMs / predictedMs), 1, reps);
+        warmup = predictedMs * double(reps + warmup) <= budgetMs ? warmup : 0;
+        return {warmup, reps};
+    }
+
+    Measurement measure(Renderer& renderer, const RenderSettings& settings, const std::vector<Light>& lights,
+                        double predictedMs, const char* label) {
+        renderer.setSettings(settings);
+        renderer.setLights(lights);
+        const auto [warmup, reps] = plan(predictedMs);
+        fmt::print(stderr, "preskin bench: {} ({} warm-up, {} measured)...", label, warmup, reps);
+        std::fflush(stderr);
+        const auto start = Clock::now();
+        Measurement m;
+        m.warmup = warmup;
+        for (uint32_t i = 0; i < warmup; ++i) renderer.render(view_, o_.width, o_.height, OutputEncoding::DisplaySrgb8);
+        for (uint32_t i = 0; i < reps; ++i) {
+            renderer.render(view_, o_.width, o_.height, OutputEncoding::DisplaySrgb8);
+            m.frames.push_back(renderer.frameStats());
+        }
+        fmt::print(stderr, " {:.1f} ms median wall ({:.1f} s)\n", m.wallMs(), secondsSince(start));
+        reportValidation(context_);
+        return m;
+    }
+
+private:
+    const BenchOptions& o_;
+    Context& context_;
+    const View& view_;
+};
+
+// Linear fit (a + b n) through the last two (n, ms) points, for planning the next one.
+double predictFrameMs(const std::vector<std::pair<double, double>>& points, double n) {
+    if (points.empty()) return 0.0;
+    if (points.size() == 1) return points.back().second * std::max(1.0, n / std::max(points.back().first, 1.0));
+    const auto [n0, t0] = points[points.size() - 2];
+    const auto [n1, t1] = points.back();
+    const double slope = n1 > n0 ? std::max((t1 - t0) / (n1 - n0), 0.0) : 0.0;
+    return t1 + slope * (n - n1);
+}
+
+// ---- lights per pixel --------------------------------------------------------------------------
+
+struct PerPixel {
+    uint64_t pixels = 0;
+    double listedMean = 0.0;
+    double exactMean = 0.0;
+    uint32_t listedMax = 0;
+    uint32_t exactMax = 0;
+    uint64_t listedBelowExact = 0;  // pixels whose list is shorter than the exact count (a bug)
+};
+
+// Does the light's volume contain p? Range sphere (the attenuation window is zero at the range)
+// and, for spots, the outer cone (the cone attenuation is zero at its edge).
+bool lightTouches(const Light& l, const glm::dvec3& p) {
+    const glm::dvec3 toPoint = p - glm::dvec3(l.positionWs);
+    const double d2 = glm::dot(toPoint, toPoint);
+    if (l.range > 0.0f && d2 >= double(l.range) * double(l.range)) return false;
+    if (l.type != LightType::Spot) return true;
+    const double d = std::sqrt(d2);
+    if (d <= 0.0) return true;
+    const glm::dvec3 dir = glm::length(l.directionWs) > 0.0f ? glm::normalize(glm::dvec3(l.directionWs))
+                                                             : glm::dvec3(0.0, 0.0, -1.0);
+    return glm::dot(dir, toPoint) / d > std::cos(double(l.outerConeAngle));
+}
+
+// `image`: the light-count debug view in linear output (r: lights listed, b: view depth in m).
+PerPixel countPerPixel(const RenderedImage& image, const View& view, const std::vector<Light>& lights) {
+    const glm::dmat4 clipFromView(view.clipFromView);
+    const glm::dmat4 viewFromClip = glm::inverse(clipFromView);
+    const glm::dmat4 worldFromView = glm::inverse(glm::dmat4(view.viewFromWorld));
+    struct Sample {
+        glm::dvec3 positionWs;
+        uint32_t listed;
+    };
+    std::vector<Sample> samples;
+    glm::dvec3 lo(std::numeric_limits<double>::max());
+    glm::dvec3 hi(-std::numeric_limits<double>::max());
+    for (uint32_t y = 0; y < image.height; ++y)
+        for (uint32_t x = 0; x < image.width; ++x) {
+            const float* px = &image.rgba32f[(size_t(y) * image.width + x) * 4];
+            const double depth = px[2];
+            if (!(depth > 0.5 * double(view.nearM))) continue;  // background (clear colour)
+            const glm::dvec4 clip = clipFromView * glm::dvec4(0.0, 0.0, -depth, 1.0);
+            const glm::dvec4 ndc((x + 0.5) / image.width * 2.0 - 1.0, (y + 0.5) / image.height * 2.0 - 1.0,
+                                 clip.z / clip.w, 1.0);
+            glm::dvec4 p = viewFromClip * ndc;
+            p /= p.w;
+            const glm::dvec3 world(worldFromView * p);
+            samples.push_back({world, static_cast<uint32_t>(std::lround(px[0]))});
+            lo = glm::min(lo, world);
+            hi = glm::max(hi, world);
+        }
+    PerPixel out;
+    if (samples.empty()) return out;
+
+    // Candidate lights per cell of a grid over the surface points.
+    const int n = 32;
+    const glm::dvec3 cell = glm::max((hi - lo) / double(n), glm::dvec3(1e-6));
+    std::vector<std::vector<uint32_t>> cells(size_t(n) * n * n);
+    std::vector<uint32_t> everywhere;
+    auto cellOf = [&](const glm::dvec3& p) {
+        return glm::clamp(glm::ivec3(glm::floor((p - lo) / cell)), glm::ivec3(0), glm::ivec3(n - 1));
+    };
+    for (uint32_t i = 0; i < lights.size(); ++i) {
+        const Light& l = lights[i];
+        if (l.type == LightType::Directional) continue;
+        if (!(l.range > 0.0f)) {
+            everywhere.push_back(i);
+            continue;
+        }
+        const glm::dvec3 c(l.positionWs);
+        const double r = l.range;
+        if (glm::any(glm::lessThan(c + r, lo)) || glm::any(glm::greaterThan(c - r, hi))) continue;
+        const glm::ivec3 a = cellOf(c - r);
+        const glm::ivec3 b = cellOf(c + r);
+        for (int z = a.z; z <= b.z; ++z)
+            for (int y = a.y; y <= b.y; ++y)
+                for (int x = a.x; x <= b.x; ++x) cells[(size_t(z) * n + size_t(y)) * n + size_t(x)].push_back(i);
+    }
+    double listedSum = 0.0;
+    double exactSum = 0.0;
+    for (const Sample& s : samples) {
+        const glm::ivec3 c = cellOf(s.positionWs);
+        uint32_t exact = 0;
+        for (uint32_t i : cells[(size_t(c.z) * n + size_t(c.y)) * n + size_t(c.x)])
+            if (lightTouches(lights[i], s.positionWs)) ++exact;
+        for (uint32_t i : everywhere)
+            if (lightTouches(lights[i], s.positionWs)) ++exact;
+        listedSum += s.listed;
+        exactSum += exact;
+        out.listedMax = std::max(out.listedMax, s.listed);
+        out.exactMax = std::max(out.exactMax, exact);
+        if (s.listed < exact) ++out.listedBelowExact;
+    }
+    out.pixels = samples.size();
+    out.listedMean = listedSum / double(samples.size());
+    out.exactMean = exactSum / double(samples.size());
+    return out;
+}
+
+// ---- plot ----------------------------------------------------------------------------------------
+
+// A 5 x 8 pixel font (rows top to bottom, '#' set; row 7 holds descenders), drawn for this plot.
+const std::map<char, std::array<const char*, 8>>& glyphs() {
+    static const std::map<char, std::array<const char*, 8>> g = {
+        {'0', {" ### ", "#   #", "#  ##", "# # #", "##  #", "#   #", " ### ", "     "}},
+        {'1', {"  #  ", " ##  ", "  #  ", "  #  ", "  #  ", "  #  ", " ### ", "     "}},
+        {'2', {" ### ", "#   #", "    #", "   # ", "  #  ", " #   ", "#####", "     "}},
+        {'3', {"#####", "   # ", "  #  ", "   # ", "    #", "#   #", " ### ", "     "}},
+        {'4', {"   # ", "  ## ", " # # ", "#  # ", "#####", "   # ", "   # ", "     "}},
+        {'5', {"#####", "#    ", "#### ", "    #", "    #", "#   #", " ### ", "     "}},
+        {'6', {"  ## ", " #   ", "#    ", "#### ", "#   #", "#   #", " ### ", "     "}},
+        {'7', {"#####", "    #", "   # ", "  #  ", " #   ", " #   ", " #   ", "     "}},
+        {'8', {" ### ", "#   #", "#   #", " ### ", "#   #", "#   #", " ### ", "     "}},
+        {'9', {" ### ", "#   #", "#   #", " ####", "    #", "   # ", " ##  ", "     "}},
+        {'a', {"     ", "     ", " ### ", "    #", " ####", "#   #", " ####", "     "}},
+        {'b', {"#    ", "#    ", "# ## ", "##  #", "#   #", "#   #", "#### ", "     "}},
+        {'c', {"     ", "     ", " ### ", "#    ", "#    ", "#   #", " ### ", "     "}},
+        {'d', {"    #", "    #", " ## #", "#  ##", "#   #", "#   #", " ####", "     "}},
+        {'e', {"     ", "     ", " ### ", "#   #", "#####", "#    ", " ### ", "     "}},
+        {'f', {"  ## ", " #  #", " #   ", "###  ", " #   ", " #   ", " #   ", "     "}},
+        {'g', {"     ", "     ", " ####", "#   #", "#   #", " ####", "    #", " ### "}},
+        {'h', {"#    ", "#    ", "# ## ", "##  #", "#   #", "#   #", "#   #", "     "}},
+        {'i', {"  #  ", "     ", " ##  ", "  #  ", "  #  ", "  #  ", " ### ", "     "}},
+        {'j', {"   # ", "     ", "  ## ", "   # ", "   # ", "   # ", "#  # ", " ##  "}},
+        {'k', {"#    ", "#    ", "#  # ", "# #  ", "##   ", "# #  ", "#  # ", "     "}},
+        {'l', {" ##  ", "  #  ", "  #  ", "  #  ", "  #  ", "  #  ", " ### ", "     "}},
+        {'m', {"     ", "     ", "## # ", "# # #", "# # #", "#   #", "#   #", "     "}},
+        {'n', {"     ", "     ", "# ## ", "##  #", "#   #", "#   #", "#   #", "     "}},
+        {'o', {"     ", "     ", " ### ", "#   #", "#   #", "#   #", " ### ", "     "}},
+        {'p', {"     ", "     ", "#### ", "#   #", "#   #", "#### ", "#    ", "#    "}},
+        {'q', {"     ", "     ", " ## #", "#  ##", "#   #", " ####", "    #", "    #"}},
+        {'r', {"     ", "     ", "# ## ", "##  #", "#    ", "#    ", "#    ", "     "}},
+        {'s', {"     ", "     ", " ####", "#    ", " ### ", "    #", "#### ", "     "}},
+        {'t', {" #   ", " #   ", "###  ", " #   ", " #   ", " #  #", "  ## ", "     "}},
+        {'u', {"     ", "     ", "#   #", "#   #", "#   #", "#  ##", " ## #", "     "}},
+        {'v', {"     ", "     ", "#   #", "#   #", "#   #", " # # ", "  #  ", "     "}},
+        {'w', {"     ", "     ", "#   #", "#   #", "# # #", "# # #", " # # ", "     "}},
+        {'x', {"     ", "     ", "#   #", " # # ", "  #  ", " # # ", "#   #", "     "}},
+        {'y', {"     ", "     ", "#   #", "#   #", "#   #", " ####", "    #", " ### "}},
+        {'z', {"     ", "     ", "#####", "   # ", "  #  ", " #   ", "#####", "     "}},
+        {'.', {"     ", "     ", "     ", "     ", "     ", " ##  ", " ##  ", "     "}},
+        {',', {"     ", "     ", "     ", "     ", "     ", " ##  ", "  #  ", " #   "}},
+        {':', {"     ", " ##  ", " ##  ", "     ", " ##  ", " ##  ", "     ", "     "}},
+        {'(', {"   # ", "  #  ", " #   ", " #   ", " #   ", "  #  ", "   # ", "     "}},
+        {')', {" #   ", "  #  ", "   # ", "   # ", "   # ", "  #  ", " #   ", "     "}},
+        {'-', {"     ", "     ", "     ", " ### ", "     ", "     ", "     ", "     "}},
+        {'+', {"     ", "  #  ", "  #  ", "#####", "  #  ", "  #  ", "     ", "     "}},
+        {'/', {"    #", "    #", "   # ", "  #  ", " #   ", "#    ", "#    ", "     "}},
+        {'=', {"     ", "     ", "#####", "     ", "#####", "     ", "     ", "     "}},
+        {'%', {"##   ", "##  #", "   # ", "  #  ", " #   ", "#  ##", "   ##", "     "}},
+    };
+    return g;
+}
+
+struct Canvas {
+    uint32_t width;
+    uint32_t height;
+    std::vector<uint8_t> rgba;
+
+    Canvas(uint32_t w, uint32_t h) : width(w), height(h), rgba(size_t(w) * h * 4, 255) {}
+
+    void set(int x, int y, glm::u8vec3 c) {
+        if (x < 0 || y < 0 || x >= int(width) || y >= int(height)) return;
+        uint8_t* p = &rgba[(size_t(y) * width + size_t(x)) * 4];
+        p[0] = c.r;
+        p[1] = c.g;
+        p[2] = c.b;
+        p[3] = 255;
+    }
+    void fill(int x0, int y0, int x1, int y1, glm::u8vec3 c) {
+        for (int y = y0; y <= y1; ++y)
+            for (int x = x0; x <= x1; ++x) set(x, y, c);
+    }
+    // A line `thickness` pixels wide (square brush).
+    void line(double x0, double y0, double x1, double y1, int thickness, glm::u8vec3 c) {
+        const double length = std::max(std::abs(x1 - x0), std::abs(y1 - y0));
+        const int steps = std::max(1, int(std::ceil(length * 2.0)));
+        const int h = thickness / 2;
+        for (int i = 0; i <= steps; ++i) {
+            const double t = double(i) / steps;
+            const int x = int(std::lround(x0 + (x1 - x0) * t));
+            const int y = int(std::lround(y0 + (y1 - y0) * t));
+            fill(x - h, y - h, x - h + thickness - 1, y - h + thickness - 1, c);
+        }
+    }
+    // Text at `scale` pixels per font pixel; returns the width drawn. Unknown characters: a gap.
+    int text(int x, int y, std::string_view s, int scale, glm::u8vec3 c) {
+        const auto& font = glyphs();
+        int cursor = x;
+        for (char ch : s) {
+            auto it = font.find(ch);
+            if (it != font.end())
+                for (int row = 0; row < 8; ++row)
+                    for (int col = 0; col < 5; ++col)
+                        if (it->second[size_t(row)][col] == '#')
+                            fill(cursor + col * scale, y + row * scale, cursor + (col + 1) * scale - 1,
+                                 y + (row + 1) * scale - 1, c);
+            cursor += 6 * scale;
+        }
+        return cursor - x;
+    }
+    static int textWidth(std::string_view s, int scale) { return int(s.size()) * 6 * scale; }
+};
+
+struct Curve {
+    std::string label;
+    glm::u8vec3 color;
+    std::vector<std::pair<double, double>> points;  // (lights, ms)
+};
+
+// Frame time against light count, both axes logarithmic.
+void writePlot(const std::filesystem::path& path, const std::string& title, const std::vector<Curve>& curves) {
+    Canvas c(1000, 640);
+    const int left = 110, right = 40, top = 70, bottom = 90;
+    const int x0 = left, x1 = int(c.width) - right, y0 = int(c.height) - bottom, y1 = top;
+    double nMin = std::numeric_limits<double>::max(), nMax = 0.0, tMin = std::numeric_limits<double>::max(), tMax = 0.0;
+    for (const Curve& curve : curves)
+        for (const auto& [n, t] : curve.points) {
+            nMin = std::min(nMin, n);
+            nMax = std::max(nMax, n);
+            tMin = std::min(tMin, t);
+            tMax = std::max(tMax, t);
+        }
+    if (!(nMax > 0.0) || !(tMax > 0.0)) return;
+    const double lx0 = std::log2(nMin) - 0.25, lx1 = std::log2(std::max(nMax, nMin * 2.0)) + 0.25;
+    const double ly0 = std::floor(std::log10(tMin)), ly1 = std::max(std::ceil(std::log10(tMax)), ly0 + 1.0);
+    auto px = [&](double n) { return x0 + (std::log2(n) - lx0) / (lx1 - lx0) * (x1 - x0); };
+    auto py = [&](double t) { return y0 - (std::log10(t) - ly0) / (ly1 - ly0) * (y0 - y1); };
+    const glm::u8vec3 ink(30, 30, 30), grid(222, 222, 222), minor(238, 238, 238);
+
+    // Grid and ticks: y at 1, 2, 5 per decade; x at every measured count.
+    for (double decade = ly0; decade <= ly1; decade += 1.0)
+        for (double m : {1.0, 2.0, 5.0}) {
+            const double t = m * std::pow(10.0, decade);
+            if (std::log10(t) > ly1 + 1e-9) continue;
+            const int y = int(std::lround(py(t)));
+            c.line(x0, y, x1, y, 1, m == 1.0 ? grid : minor);
+            c.line(x0 - 6, y, x0, y, 1, ink);
+            const std::string label = t >= 1.0 ? fmt::format("{:.0f}", t) : fmt::format("{:g}", t);
+            c.text(x0 - 12 - Canvas::textWidth(label, 2), y - 8, label, 2, ink);
+        }
+    std::vector<double> ticks;
+    for (const Curve& curve : curves)
+        for (const auto& point : curve.points) ticks.push_back(point.first);
+    std::sort(ticks.begin(), ticks.end());
+    ticks.erase(std::unique(ticks.begin(), ticks.end()), ticks.end());
+    for (double n : ticks) {
+        const int x = int(std::lround(px(n)));
+        c.line(x, y0, x, y1, 1, minor);
+        c.line(x, y0, x, y0 + 6, 1, ink);
+        const std::string label = fmt::format("{:.0f}", n);
+        c.text(x - Canvas::textWidth(label, 2) / 2, y0 + 12, label, 2, ink);
+    }
+    c.line(x0, y0, x1, y0, 2, ink);
+    c.line(x0, y0, x0, y1, 2, ink);
+    c.text(x0 + (x1 - x0) / 2 - Canvas::textWidth("lights", 2) / 2, y0 + 44, "lights", 2, ink);
+    c.text(x0 - 90, y1 - 40, "frame time, ms (median wall, log scale)", 2, ink);
+    c.text(x0 + (x1 - x0) / 2 - Canvas::textWidth(title, 2) / 2, 12, title, 2, ink);
+
+    int legendY = y1 + 14;
+    for (const Curve& curve : curves) {
+        for (size_t i = 0; i + 1 < curve.points.size(); ++i)
+            c.line(px(curve.points[i].first), py(curve.points[i].second), px(curve.points[i + 1].first),
+                   py(curve.points[i + 1].second), 3, curve.color);
+        for (const auto& [n, t] : curve.points) {
+            const int x = int(std::lround(px(n))), y = int(std::lround(py(t)));
+            c.fill(x - 4, y - 4, x + 4, y + 4, curve.color);
+        }
+        c.fill(x0 + 20, legendY + 4, x0 + 50, legendY + 9, curve.color);
+        c.text(x0 + 60, legendY, curve.label, 2, ink);
+        legendY += 24;
+    }
+    RenderedImage image;
+    image.width = c.width;
+    image.height = c.height;
+    image.encoding = OutputEncoding::DisplaySrgb8;
+    image.rgba8 = std::move(c.rgba);
+    writeImage(path, image);
+}
+
+// ---- the command ---------------------------------------------------------------------------------
+
+std::vector<uint32_t> parseCounts(const std::string& text, const char* flag) {
+    std::vector<uint32_t> out;
+    for (float v : parseFloats(text, std::count(text.begin(), text.end(), ',') + 1, flag)) {
+        if (v < 0.0f || v > float(1 << 20) || v != std::floor(v))
+            throw Error(fmt::format("{} {}: light counts are whole numbers in 0..{}", flag, text, 1 << 20));
+        out.push_back(static_cast<uint32_t>(v));
+    }
+    return out;
+}
+
+void writeText(const std::filesystem::path& path, const std::string& text) {
+    const std::filesystem::path tmp = path.string() + ".tmp";
+    {
+        std::ofstream f(tmp, std::ios::binary);
+        f << text;
+        if (!f) throw Error(fmt::format("--out {}: cannot write", path.string()));
+    }
+    std::error_code ec;
+    std::filesystem::rename(tmp, path, ec);
+    if (ec) {
+        std::filesystem::remove(tmp, ec);
+        throw Error(fmt::format("--out {}: cannot write", path.string()));
+    }
+}
+
+void run(const BenchOptions& o) {
+    const auto started = Clock::now();
+    const std::vector<uint32_t> counts = parseCounts(o.counts, "--counts");
+    const std::vector<uint32_t> skinCounts = o.noSkin ? std::vector<uint32_t>{} : parseCounts(o.skinCounts, "--skin-counts");
+    if (!o.plot.empty()) checkOutputPath(o.plot, OutputEncoding::DisplaySrgb8);
+    if (!o.out.empty()) {
+        const std::filesystem::path parent = std::filesystem::absolute(o.out).parent_path();
+        std::error_code ec;
+        if (!std::filesystem::is_directory(parent, ec))
+            throw Error(fmt::format("--out {}: folder {} does not exist", o.out, parent.string()));
+    }
+
+    CommonOptions common;
+    common.device = o.device;
+    common.validation = o.validation;
+    const std::filesystem::path scenePath = o.scene.empty() ? defaultScenePath() : std::filesystem::path(o.scene);
+    const Scene scene = Scene::load(scenePath);
+    for (const std::string& warning : scene.warnings) fmt::print(stderr, "preskin: warning: {}\n", warning);
+    Scene standardScene = scene;
+    bool hasSkin = false;
+    for (Material& m : standardScene.materials) {
+        hasSkin = hasSkin || m.skin.has_value();
+        m.skin.reset();
+    }
+    const Environment environment = loadEnvironment(scene, common);
+    auto context = Context::create(contextDesc(common));
+    const LutSet luts = loadLuts(common);
+    const View view = frameBoundsView(scene.worldBounds(), float(o.width) / float(o.height));
+
+    RenderSettings base;
+    base.clusters = o.clusters;
+    base.clusters.build = o.build == "cpu" ? ClusterBuild::Cpu : o.build == "gpu" ? ClusterBuild::Gpu : ClusterBuild::Auto;
+    Renderer renderer(*context, scene, environment, &luts, base);
+    Bench bench(o, *context, view);
+
+    JsonWriter j;
+    j.beginObject();
+    j.field("tool", "preskin bench");
+    j.field("device", context->deviceName());
+    j.field("software_device", context->isSoftwareDevice());
+    j.field("scene", scenePath.string());
+    j.field("width", o.width);
+    j.field("height", o.height);
+    j.field("seed", o.seed);
+    j.field("scene_lights", scene.lights.size());
+    j.key("cluster_settings");
+    j.beginObject();
+    j.field("tile_size_px", base.clusters.tileSizePx);
+    j.field("depth_slices", base.clusters.depthSlices);
+    j.field("near_slice_m", base.clusters.nearSliceM);
+    j.field("fit_depth_to_scene", base.clusters.fitDepthToScene);
+    j.field("max_lights_per_cluster", base.clusters.maxLightsPerCluster);
+    j.field("max_light_indices", base.clusters.maxLightIndices);
+    j.field("build", o.build);
+    j.endObject();
+    j.key("method");
+    j.beginObject();
+    j.field("frame", "Renderer::render at width x height: record, submit, wait, read back");
+    j.field("timing", "warm-up frames, then medians of wall time and GPU timestamps per pass");
+    j.field("reps", o.reps);
+    j.field("warmup", o.warmup);
+    j.field("budget_s_per_point", o.budgetS);
+    j.field("speedup", "brute-force median wall ms / clustered median wall ms");
+    j.field("cluster_build_share", "(build CPU ms + clusters pass GPU ms) / clustered median wall ms");
+    j.field("per_pixel",
+            "listed: the fragment's cluster list length; exact: lights whose range sphere (and spot cone) contains "
+            "the pixel's surface point");
+    j.field("standard_material", "the same scene with the skin extension removed (glTF metal-rough shading)");
+    j.endObject();
+
+    // LUT bake of the default set.
+    if (!o.noLutBake) {
+        fmt::print(stderr, "preskin bench: LUT bake of the default set...");
+        std::fflush(stderr);
+        const auto bakeStart = Clock::now();
+        const LutSet baked = LutSet::bake(DiffusionProfile::deonLuebke());
+        const double bakeMs = secondsSince(bakeStart) * 1000.0;
+        fmt::print(stderr, " {:.0f} ms\n", bakeMs);
+        j.key("lut_bake");
+        j.beginObject();
+        j.field("profile", baked.profile().name());
+        j.field("ms", bakeMs);
+        j.endObject();
+    }
+
+    // Clustered vs brute force, per-pixel counts, and the other build.
+    struct Row {
+        uint32_t lights;
+        Measurement clustered;
+        std::optional<Measurement> brute;
+        std::optional<Measurement> otherBuild;
+        std::optional<PerPixel> perPixel;
+    };
+    std::vector<Row> rows;
+    std::vector<std::pair<double, double>> bruteHistory;
+    std::vector<std::pair<double, double>> clusteredHistory;
+    for (uint32_t n : counts) {
+        CommonOptions withLights = common;
+        withLights.lights = n;
+        withLights.seed = o.seed;
+        const std::vector<Light> lights = sceneLights(scene, withLights);
+        Row row{n, {}, {}, {}, {}};
+        RenderSettings clustered = base;
+        clustered.lightLoop = LightLoop::Clustered;
+        row.clustered = bench.measure(renderer, clustered, lights, predictFrameMs(clusteredHistory, n),
+                                      fmt::format("{} lights, clustered", n).c_str());
+        clusteredHistory.emplace_back(n, row.clustered.wallMs());
+        if (!o.noBuildCompare) {
+            RenderSettings other = clustered;
+            other.clusters.build = row.clustered.buildGpu() ? ClusterBuild::Cpu : ClusterBuild::Gpu;
+            row.otherBuild = bench.measure(renderer, other, lights, row.clustered.wallMs(),
+                                           fmt::format("{} lights, clustered, {} build", n,
+                                                       row.clustered.buildGpu() ? "cpu" : "gpu")
+                                               .c_str());
+        }
+        if (!o.noPerPixel) {
+            RenderSettings debug = clustered;
+            debug.debugView = DebugView::LightCount;
+            renderer.setSettings(debug);
+            renderer.setLights(lights);
+            const RenderedImage counted = renderer.render(view, o.width, o.height, OutputEncoding::LinearFloat);
+            row.perPixel = countPerPixel(counted, view, lights);
+            reportValidation(*context);
+        }
+        if (!o.noBrute) {
+            RenderSettings brute = base;
+            brute.lightLoop = LightLoop::All;
+            row.brute = bench.measure(renderer, brute, lights, predictFrameMs(bruteHistory, n),
+                                      fmt::format("{} lights, brute force", n).c_str());
+            bruteHistory.emplace_back(n, row.brute->wallMs());
+        }
+        rows.push_back(std::move(row));
+    }
+
+    j.key("light_loop");
+    j.beginArray();
+    for (const Row& row : rows) {
+        j.beginObject();
+        j.field("lights", row.lights);
+        j.key("clustered");
+        writeMeasurement(j, row.clustered);
+        if (row.brute) {
+            j.key("brute_force");
+            writeMeasurement(j, *row.brute);
+            j.field("speedup", row.brute->wallMs() / row.clustered.wallMs());
+            j.field("speedup_gpu", row.brute->gpuMs() / row.clustered.gpuMs());
+        }
+        j.field("cluster_build_share", row.clustered.buildMs() / row.clustered.wallMs());
+        if (row.perPixel) {
+            const PerPixel& p = *row.perPixel;
+            j.key("per_pixel");
+            j.beginObject();
+            j.field("pixels", p.pixels);
+            j.field("listed_mean", p.listedMean);
+            j.field("exact_mean", p.exactMean);
+            j.field("listed_over_exact", p.exactMean > 0.0 ? p.listedMean / p.exactMean : std::nan(""));
+            j.field("listed_max", p.listedMax);
+            j.field("exact_max", p.exactMax);
+            j.field("pixels_listed_below_exact", p.listedBelowExact);
+            j.endObject();
+        }
+        j.endObject();
+    }
+    j.endArray();
+
+    if (!o.noBuildCompare) {
+        j.key("cluster_build");
+        j.beginArray();
+        for (const Row& row : rows) {
+            if (!row.otherBuild) continue;
+            const Measurement& cpu = row.clustered.buildGpu() ? *row.otherBuild : row.clustered;
+            const Measurement& gpu = row.clustered.buildGpu() ? row.clustered : *row.otherBuild;
+            j.beginObject();
+            j.field("lights", row.lights);
+            for (const auto& [name, m] : {std::pair<const char*, const Measurement*>{"cpu", &cpu}, {"gpu", &gpu}}) {
+                j.key(name);
+                j.beginObject();
+                j.field("build_ms", m->buildMs());
+                j.field("build_cpu_ms", m->buildCpuMs());
+                j.field("clusters_pass_gpu_ms", m->passMs("clusters"));
+                j.field("frame_wall_ms", m->wallMs());
+                j.field("frames", m->frames.size());
+                j.endObject();
+            }
+            j.endObject();
+        }
+        j.endArray();
+    }
+
+    // Skin vs standard material, same lights.
+    struct SkinRow {
+        uint32_t lights;
+        Measurement skin, standard, featuresOff;
+    };
+    std::vector<SkinRow> skinRows;
+    if (!skinCounts.empty() && hasSkin) {
+        Renderer standardRenderer(*context, standardScene, environment, &luts, base);
+        for (uint32_t n : skinCounts) {
+            CommonOptions withLights = common;
+            withLights.lights = n;
+            withLights.seed = o.seed;
+            const std::vector<Light> lights = sceneLights(scene, withLights);
+            SkinRow row{n, {}, {}, {}};
+            RenderSettings skin = base;
+            row.skin = bench.measure(renderer, skin, lights, 0.0, fmt::format("{} lights, skin", n).c_str());
+            row.standard = bench.measure(standardRenderer, skin, lights, 0.0,
+                                         fmt::format("{} lights, standard material", n).c_str());
+            RenderSettings off = base;
+            off.skin = SkinFeatures::none();
+            row.featuresOff = bench.measure(renderer, off, lights, 0.0,
+                                            fmt::format("{} lights, skin techniques off", n).c_str());
+            skinRows.push_back(std::move(row));
+        }
+        j.key("skin_vs_standard");
+        j.beginArray();
+        for (const SkinRow& row : skinRows) {
+            j.beginObject();
+            j.field("lights", row.lights);
+            j.key("skin");
+            writeMeasurement(j, row.skin);
+            j.key("standard_material");
+            writeMeasurement(j, row.standard);
+            j.key("skin_features_off");
+            writeMeasurement(j, row.featuresOff);
+            j.field("skin_over_standard", row.skin.wallMs() / row.standard.wallMs());
+            j.field("skin_over_standard_gpu", row.skin.gpuMs() / row.standard.gpuMs());
+            j.field("skin_over_features_off", row.skin.wallMs() / row.featuresOff.wallMs());
+            j.endObject();
+        }
+        j.endArray();
+    } else if (!skinCounts.empty()) {
+        fmt::print(stderr, "preskin bench: the scene has no skin material; skipping skin vs standard\n");
+    }
+
+    // Goals (docs/clustering.md), on this run's figures.
+    j.key("goals");
+    j.beginArray();
+    auto goal = [&](const std::string& name, double measured, double target, bool atMost) {
+        j.beginObject();
+        j.field("goal", name);
+        j.field("target", target);
+        j.field("measured", measured);
+        j.field("holds", std::isfinite(measured) && (atMost ? measured <= target : measured >= target));
+        j.endObject();
+    };
+    for (const Row& row : rows) {
+        if (row.brute && (row.lights == 256 || row.lights == 1024))
+            goal(fmt::format("clustered speedup over brute force at {} lights >= {}", row.lights,
+                             row.lights == 256 ? 16 : 30),
+                 row.brute->wallMs() / row.clustered.wallMs(), row.lights == 256 ? 16.0 : 30.0, false);
+    }
+    for (const Row& row : rows)
+        if (row.perPixel && row.perPixel->exactMean > 0.0)
+            goal(fmt::format("lights listed per pixel / exact at {} lights <= 1.5", row.lights),
+                 row.perPixel->listedMean / row.perPixel->exactMean, 1.5, true);
+    for (const Row& row : rows)
+        if (row.lights == 1024)
+            goal("cluster build share of the frame at 1024 lights <= 0.10", row.clustered.buildMs() / row.clustered.wallMs(),
+                 0.10, true);
+    for (const SkinRow& row : skinRows)
+        goal(fmt::format("skin frame / standard frame at {} lights <= 1.10", row.lights),
+             row.skin.wallMs() / row.standard.wallMs(), 1.10, true);
+    j.endArray();
+    j.field("elapsed_s", secondsSince(started));
+    j.endObject();
+
+    const std::string json = j.text() + "\n";
+    if (o.out.empty()) std::fwrite(json.data(), 1, json.size(), stdout);
+    else writeText(o.out, json);
+
+    if (!o.plot.empty()) {
+        std::vector<Curve> curves;
+        Curve clusteredCurve{"clustered", {40, 110, 200}, {}};
+        Curve bruteCurve{"brute force (every light)", {215, 80, 40}, {}};
+        for (const Row& row : rows) {
+            if (row.lights == 0) continue;  // no place on a log axis
+            clusteredCurve.points.emplace_back(row.lights, row.clustered.wallMs());
+            if (row.brute) bruteCurve.points.emplace_back(row.lights, row.brute->wallMs());
+        }
+        curves.push_back(clusteredCurve);
+        if (!bruteCurve.points.empty()) curves.push_back(bruteCurve);
+        std::string title = fmt::format("preskin bench: {}x{}, {}", o.width, o.height, context->deviceName());
+        for (char& ch : title) ch = static_cast<char>(std::tolower(static_cast<unsigned char>(ch)));
+        writePlot(o.plot, title, curves);
+        fmt::print(stderr, "preskin bench: wrote {}\n", o.plot);
+    }
+    if (!o.out.empty()) fmt::print(stderr, "preskin bench: wrote {}\n", o.out);
+}
+
+}  // namespace
+
+void addBenchCommand(CLI::App& app) {
+    auto o = std::make_shared<BenchOptions>();
+    CLI::App* cmd = app.add_subcommand(
+        "bench", "Measure clustered vs brute-force lighting, the light grid, skin vs standard and the LUT bake (JSON)");
+    cmd->add_option("scene", o->scene, "glTF scene; default: the bundled head scene");
+    cmd->add_option("--out,-o", o->out, "Write the JSON here instead of stdout");
+    cmd->add_option("--plot", o->plot, "Also write a PNG plot of frame time against light count");
+    cmd->add_option("--width", o->width, "Image width in pixels")->capture_default_str()->check(CLI::Range(1, 16384));
+    cmd->add_option("--height", o->height, "Image height in pixels")->capture_default_str()->check(CLI::Range(1, 16384));
+    cmd->add_option("--counts", o->counts, "Scattered light counts, comma-separated")->capture_default_str();
+    cmd->add_option("--skin-counts", o->skinCounts, "Light counts for skin vs standard material")->capture_default_str();
+    cmd->add_option("--seed", o->seed, "Seed of the scattered lights")->capture_default_str();
+    cmd->add_option("--warmup", o->warmup, "Warm-up frames per point")->capture_default_str()->check(CLI::Range(0, 100));
+    cmd->add_option("--reps", o->reps, "Measured frames per point (median)")->capture_default_str()->check(CLI::Range(1, 1000));
+    cmd->add_option("--budget-s", o->budgetS, "Seconds per point before warm-up and repetitions are cut (at least one frame)")
+        ->capture_default_str()
+        ->check(CLI::Range(0.0, 1e6));
+    cmd->add_option("--tile", o->clusters.tileSizePx, "Cluster tile size in pixels")->capture_default_str()->check(CLI::Range(4, 256));
+    cmd->add_option("--slices", o->clusters.depthSlices, "Cluster depth slices")->capture_default_str()->check(CLI::Range(2, 256));
+    cmd->add_option("--near-slice", o->clusters.nearSliceM, "Depth where the first slice ends at the earliest (m)")
+        ->capture_default_str()
+        ->check(CLI::Range(0.0f, 1e6f));
+    cmd->add_option("--max-per-cluster", o->clusters.maxLightsPerCluster, "Lights kept per cluster")
+        ->capture_default_str()
+        ->check(CLI::Range(1u, 1u << 20));
+    cmd->add_option("--build", o->build, "Light-list build: auto, cpu or gpu (compute pass)")
+        ->check(CLI::IsMember({"auto", "cpu", "gpu"}))
+        ->capture_default_str();
+    cmd->add_flag("--no-build-compare", o->noBuildCompare, "Skip measuring the other light-list build");
+    cmd->add_flag("--no-brute", o->noBrute, "Skip brute force");
+    cmd->add_flag("--no-skin", o->noSkin, "Skip skin vs standard material");
+    cmd->add_flag("--no-per-pixel", o->noPerPixel, "Skip lights listed per pixel vs exact");
+    cmd->add_flag("--no-lut-bake", o->noLutBake, "Skip timing the LUT bake");
+    cmd->add_option("--device", o->device, "Vulkan device: index or part of its name (default: best GPU, else lavapipe)");
+    cmd->add_flag("--validation", o->validation, "Enable Vulkan validation layers; any message makes the run fail");
+    cmd->callback([o] { run(*o); });
+}
+
+}  // namespace preskin::cli

@@ -1,0 +1,262 @@
+#version 460
+// cluster_build.comp: the compute build of the light grid (froxels), two passes selected by a
+// specialization constant:
+//   pass 0 (kClusterPassVolumes), one invocation per local light: the light in view space, its
+//     bounding sphere (the range sphere, or for spots under 60 degrees the sphere around the
+//     cone's spherical sector) and the box of froxels it may touch;
+//   pass 1 (kClusterPassAssign), one workgroup per screen tile, one invocation per depth slice:
+//     the lights whose box covers the tile are marked in a shared bit mask (batches of
+//     kClusterBatchLights), then each invocation tests them in ascending order against its
+//     froxel: the bounding sphere cut to the slice, then to the row (each cut bounds the light's
+//     part on the froxel's side of a plane), then against the column's slab; spots also test
+//     their cone against the froxel's bounding sphere (Wronski, "Cull that cone!", 2017). The
+//     first sweep counts, an atomic reserves the froxel's range, a second sweep writes.
+// The same tests as the CPU build (engine/src/lights/ClusterAssign.cpp, with its sources), so
+// both give the same lists up to float rounding at boundaries; both are conservative.
+// Overflow rule (<preskin/ClusterGrid.h>): a froxel keeps its lowest light indices up to the
+// per-froxel cap and what fits in the index list; froxels that lose lights are counted.
+// Limits: ranges are reserved in workgroup order, so after an index-list overflow which froxels
+// lost lights varies from run to run; counters are 32-bit.
+#extension GL_GOOGLE_include_directive : require
+#include "shared/gpu_types.h"
+#include "shared/cluster_build.h"
+
+layout(constant_id = kClusterSpecPass) const uint kPass = kClusterPassVolumes;
+layout(local_size_x = kClusterAssignGroupSize) in;
+
+layout(set = 0, binding = kClusterBindingParams) uniform Params { ClusterBuildParams params; };
+layout(std430, set = 0, binding = kClusterBindingLights) readonly buffer Lights { GpuLight lights[]; };
+layout(std430, set = 0, binding = kClusterBindingGeometry) readonly buffer Geometry { vec4 geometry[]; };
+layout(std430, set = 0, binding = kClusterBindingVolumes) buffer Volumes { ClusterLightVolume volumes[]; };
+layout(std430, set = 0, binding = kClusterBindingRanges) writeonly buffer Ranges { uvec2 ranges[]; };
+layout(std430, set = 0, binding = kClusterBindingIndices) writeonly buffer Indices { uint indices[]; };
+layout(std430, set = 0, binding = kClusterBindingCounters) buffer Counters { ClusterCounters counters; };
+
+shared uint candidateMask[kClusterAssignGroupSize];
+
+float planeDistance(vec4 plane, vec3 p) { return dot(plane.xyz, p) + plane.w; }
+vec4 columnPlane(uint i) { return geometry[params.geometryOffsets.x + i]; }
+vec4 rowPlane(uint j) { return geometry[params.geometryOffsets.y + j]; }
+float sliceStart(uint z) { return geometry[params.geometryOffsets.z + z].x; }
+
+uint sliceOf(float depth) {
+    float s = floor(log2(max(depth, 1e-6)) * params.slicing.x + params.slicing.y);
+    return uint(clamp(s, 0.0, float(params.dims.z - 1u)));
+}
+
+// family 0: columns, 1: rows.
+bool slabOverlaps(uint family, uint k, vec3 c, float r) {
+    uint base = family == 0u ? params.geometryOffsets.x : params.geometryOffsets.y;
+    return planeDistance(geometry[base + k], c) >= -r && planeDistance(geometry[base + k + 1u], c) <= r;
+}
+
+// First and last slab the sphere overlaps (scanning inwards from both ends is conservative).
+bool slabRange(uint family, vec3 c, float r, out uint first, out uint last) {
+    uint count = family == 0u ? params.dims.x : params.dims.y;
+    first = 1u;
+    last = 0u;
+    uint a = 0u;
+    while (a < count && !slabOverlaps(family, a, c, r)) ++a;
+    if (a >= count) return false;
+    uint b = count - 1u;
+    while (b > a && !slabOverlaps(family, b, c, r)) --b;
+    first = a;
+    last = b;
+    return true;
+}
+
+void volumePass() {
+    uint i = gl_GlobalInvocationID.x;
+    if (i >= params.lightInfo.y) return;
+    GpuLight light = lights[params.lightInfo.x + i];
+    vec3 apex = (params.viewFromWorld * vec4(light.positionRange.xyz, 1.0)).xyz;
+    vec3 axis = mat3(params.viewFromWorld) * light.directionType.xyz;
+    float axisLength = length(axis);
+    axis = axisLength > 0.0 ? axis / axisLength : vec3(0.0, 0.0, -1.0);
+    float range = light.positionRange.w;
+    bool unlimited = !(range > 0.0);
+    uint flags = unlimited ? kClusterVolumeUnlimited : 0u;
+    vec3 center = apex;
+    float radius = range;
+    float cosOuter = -1.0;
+    if (uint(light.directionType.w) == kLightSpot) {
+        // The attenuation saturate(cd * scale + offset) is zero from cd = -offset / scale down.
+        cosOuter = clamp(-light.spotScaleOffset.y / light.spotScaleOffset.x - params.slack.z, -1.0, 1.0);
+        if (cosOuter > 0.0) {
+            flags |= kClusterVolumeCone;
+            if (!unlimited && cosOuter > 0.5) {
+                float t = range / (2.0 * cosOuter);
+                center = apex + axis * t;
+                radius = t;
+            }
+        }
+    }
+    uvec3 lo = uvec3(0u);
+    uvec3 hi = params.dims.xyz - 1u;
+    bool empty = false;
+    if (!unlimited) {
+        radius = radius * (1.0 + params.slack.y) + 1e-6;
+        float depth = -center.z;
+        float slack = 2.0 * params.slack.x;
+        empty = depth + radius < params.slack.w * (1.0 - slack);
+        lo.z = sliceOf((depth - radius) * (1.0 - slack));
+        hi.z = sliceOf((depth + radius) * (1.0 + slack));
+        empty = empty || !slabRange(0u, center, radius, lo.x, hi.x) || !slabRange(1u, center, radius, lo.y, hi.y);
+    }
+    ClusterLightVolume v;
+    v.centerRadius = vec4(center, radius);
+    v.apexRange = vec4(apex, range);
+    v.axisCos = vec4(axis, cosOuter);
+    v.box = uvec4(lo.x | (hi.x << 16), lo.y | (hi.y << 16), lo.z | (hi.z << 16), flags | (empty ? kClusterVolumeEmpty : 0u));
+    volumes[i] = v;
+}
+
+// Cuts the sphere to the inner side of a plane (inner = +1: distance >= 0, -1: <= 0).
+bool cutByPlane(vec4 plane, float inner, inout vec3 c, inout float r) {
+    float outside = -inner * planeDistance(plane, c);
+    if (outside <= 0.0) return true;
+    if (outside > r) return false;
+    c += plane.xyz * (inner * outside);
+    r = sqrt(max(r * r - outside * outside, 0.0));
+    return true;
+}
+
+// The spot's cone against the bounding sphere of the tile's froxel between depths dA and dB.
+bool coneReachesFroxel(ClusterLightVolume v, uvec2 tile, float dA, float dB) {
+    vec3 lo = vec3(3.0e38);
+    vec3 hi = vec3(-3.0e38);
+    for (uint j = 0u; j < 2u; ++j)
+        for (uint k = 0u; k < 2u; ++k) {
+            uint corner = (tile.y + j) * (params.dims.x + 1u) + tile.x + k;
+            vec3 origin = geometry[params.geometryOffsets.w + 2u * corner].xyz;
+            vec3 dir = geometry[params.geometryOffsets.w + 2u * corner + 1u].xyz;
+            vec3 a = origin + dir * dA;
+            vec3 b = origin + dir * dB;
+            lo = min(lo, min(a, b));
+            hi = max(hi, max(a, b));
+        }
+    vec3 center = 0.5 * (lo + hi);
+    float radius = 0.5 * length(hi - lo) * (1.0 + params.slack.y) + 1e-6;
+    vec3 apexToCenter = center - v.apexRange.xyz;
+    float along = dot(apexToCenter, v.axisCos.xyz);
+    float across = sqrt(max(dot(apexToCenter, apexToCenter) - along * along, 0.0));
+    float cosOuter = v.axisCos.w;
+    float sinOuter = sqrt(max(1.0 - cosOuter * cosOuter, 0.0));
+    bool limited = (v.box.w & kClusterVolumeUnlimited) == 0u;
+    return !(cosOuter * across - along * sinOuter > radius || (limited && along > radius + v.apexRange.w) ||
+             along < -radius);
+}
+
+// Does light i (local index) touch froxel f, whose dilated depth slab is [d0, d1]?
+bool froxelTouched(uint i, uvec3 f, float d0, float d1, bool lastSlice) {
+    ClusterLightVolume v = volumes[i];
+    uint flags = v.box.w;
+    if (f.z < (v.box.z & 0xffffu) || f.z > (v.box.z >> 16)) return false;
+    float coneD0 = d0;
+    float coneD1 = d1;
+    bool coneOpen = lastSlice;
+    if ((flags & kClusterVolumeUnlimited) == 0u) {
+        vec3 c = v.centerRadius.xyz;
+        float r = v.centerRadius.w;
+        float depth = -c.z;
+        float h = 0.0;
+        if (depth < d0) {
+            h = d0 - depth;
+            c.z = -d0;
+        } else if (!lastSlice && depth > d1) {
+            h = depth - d1;
+            c.z = -d1;
+        }
+        if (h > r) return false;
+        r = sqrt(max(r * r - h * h, 0.0));
+        if (!cutByPlane(rowPlane(f.y), 1.0, c, r) || !cutByPlane(rowPlane(f.y + 1u), -1.0, c, r)) return false;
+        if (planeDistance(columnPlane(f.x), c) < -r || planeDistance(columnPlane(f.x + 1u), c) > r) return false;
+        float lightNear = -v.centerRadius.z - v.centerRadius.w;
+        float lightFar = -v.centerRadius.z + v.centerRadius.w;
+        coneD0 = max(d0, lightNear);
+        coneD1 = lastSlice ? lightFar : min(d1, lightFar);
+        coneOpen = false;
+    }
+    if ((flags & kClusterVolumeCone) == 0u || coneOpen || coneD0 > coneD1) return true;
+    return coneReachesFroxel(v, f.xy, coneD0, coneD1);
+}
+
+// Marks, for this workgroup's tile, which lights of [base, base + kClusterBatchLights) have a
+// froxel box covering it. Every invocation calls this (it holds barriers).
+void markCandidates(uint base, uvec2 tile, uint lane) {
+    barrier();
+    uint word = 0u;
+    for (uint b = 0u; b < 32u; ++b) {
+        uint i = base + lane * 32u + b;
+        if (i >= params.lightInfo.y) break;
+        uvec4 box = volumes[i].box;
+        if ((box.w & kClusterVolumeEmpty) == 0u && tile.x >= (box.x & 0xffffu) && tile.x <= (box.x >> 16) &&
+            tile.y >= (box.y & 0xffffu) && tile.y <= (box.y >> 16))
+            word |= 1u << b;
+    }
+    candidateMask[lane] = word;
+    barrier();
+}
+
+void assignPass() {
+    uvec2 tile = gl_WorkGroupID.xy;
+    uint lane = gl_LocalInvocationIndex;
+    uint localCount = params.lightInfo.y;
+    for (uint zBase = 0u; zBase < params.dims.z; zBase += kClusterAssignGroupSize) {
+        uint z = zBase + lane;
+        bool inGrid = z < params.dims.z;
+        bool lastSlice = z + 1u >= params.dims.z;
+        float d0 = inGrid ? sliceStart(z) * (1.0 - params.slack.x) : 0.0;
+        float d1 = inGrid && !lastSlice ? sliceStart(z + 1u) * (1.0 + params.slack.x) : 0.0;
+        uvec3 f = uvec3(tile, z);
+
+        uint found = 0u;
+        for (uint base = 0u; base < localCount; base += kClusterBatchLights) {
+            markCandidates(base, tile, lane);
+            if (!inGrid) continue;
+            for (uint w = 0u; w < kClusterAssignGroupSize; ++w) {
+                uint mask = candidateMask[w];
+                while (mask != 0u) {
+                    uint bit = uint(findLSB(mask));
+                    mask &= mask - 1u;
+                    if (froxelTouched(base + w * 32u + bit, f, d0, d1, lastSlice)) ++found;
+                }
+            }
+        }
+
+        uint keep = 0u;
+        uint offset = 0u;
+        if (inGrid) {
+            keep = min(found, params.dims.w);
+            offset = atomicAdd(counters.values.x, keep);
+            uint capacity = params.lightInfo.z;
+            keep = min(keep, offset < capacity ? capacity - offset : 0u);
+            if (keep < found) atomicAdd(counters.values.y, 1u);
+            atomicAdd(counters.values.z, found);
+            ranges[(z * params.dims.y + tile.y) * params.dims.x + tile.x] = uvec2(min(offset, capacity), keep);
+        }
+
+        uint written = 0u;
+        for (uint base = 0u; base < localCount; base += kClusterBatchLights) {
+            // With one batch the mask from the counting sweep is still in place.
+            if (localCount > kClusterBatchLights) markCandidates(base, tile, lane);
+            for (uint w = 0u; w < kClusterAssignGroupSize && written < keep; ++w) {
+                uint mask = candidateMask[w];
+                while (mask != 0u && written < keep) {
+                    uint bit = uint(findLSB(mask));
+                    mask &= mask - 1u;
+                    uint i = base + w * 32u + bit;
+                    if (froxelTouched(i, f, d0, d1, lastSlice)) {
+                        indices[offset + written] = params.lightInfo.x + i;
+                        ++written;
+                    }
+                }
+            }
+        }
+    }
+}
+
+void main() {
+    if (kPass == kClusterPassVolumes) volumePass();
+    else assignPass();
+}
