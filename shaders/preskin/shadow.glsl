@@ -1,14 +1,19 @@
-// preskin/shadow.glsl: directional shadow map filtered by hand with a Gaussian-weighted PCF
-// kernel. Lavapipe cannot filter depth formats (no LINEAR compare sampler), so each of the 4x4
-// taps gathers the 2x2 nearest depths (textureGather, no filtering), compares them and blends
-// the results bilinearly; tap offsets are fixed around the exact sample point and weighted by a
-// Gaussian of standard deviation sigma, so the result varies continuously (no texel blocks) at a
-// cost of 16 gathers for any sigma. Receiver-plane depth bias (Isidoro, "Shadow Mapping:
-// GPU-based Tips and Techniques", GDC 2006) tilts the compared depth along the surface so wide
-// kernels do not self-shadow sloped receivers. Also gives what skin needs: the occluder depth
-// (thickness) and the filter's width in world units (penumbra LUT).
-// Limits: one orthographic map (no cascades, no contact hardening); for sigma above ~1.5 texels
-// the 4x4 taps under-sample the kernel (each tap is still a smooth bilinear footprint).
+// preskin/shadow.glsl: directional shadow map filtered by hand with a Gaussian PCF kernel.
+// Lavapipe cannot filter depth formats (no LINEAR compare sampler), so 4x4 gathers fetch the
+// 8x8 texels around the sample point (textureGather, no filtering), each is compared with the
+// receiver's depth, and the results are summed with Gaussian weights of the texel centres'
+// distances to the exact sample point. The weights are separable; the kernel's variance is
+// sigma^2 + 1/6 texels^2 (the requested sigma widened like a bilinear tap's tent, so the
+// smallest sigma still blends neighbouring texels) and it is windowed to zero at 4 texels,
+// where texels enter and leave the footprint: the result varies continuously and smoothly with
+// the position (no texel blocks, no plateaus between taps). Receiver-plane depth bias (Isidoro,
+// "Shadow Mapping: GPU-based Tips and Techniques", GDC 2006) tilts the compared depth per texel
+// along the surface so wide kernels do not self-shadow sloped receivers. Also gives what skin
+// needs: the occluder depth (thickness) and the filter's width in world units (penumbra LUT),
+// the standard deviation of the weights actually used.
+// Limits: one orthographic map (no cascades, no contact hardening); the window narrows wide
+// kernels (the reported width is that of the weights used: sigma 1 gives 1.07 texels, 1.5 gives
+// 1.41, 2 gives 1.58), and the shadow map quantises an edge's position to its texels.
 #ifndef PRESKIN_SHADOW_GLSL
 #define PRESKIN_SHADOW_GLSL
 
@@ -56,37 +61,52 @@ PreskinShadowSample preskinSampleShadow(sampler2D shadowMap, mat4 shadowClipFrom
     vec2 dzPerTexel = clamp(-vec2(n0, n1) / n2 * (2.0 / mapSize), vec2(-0.02), vec2(0.02));
     const float bias = 2e-4;
 
-    // 4 x 4 taps at +-0.5 and +-1.5 strides; a stride of 1.1 sigma keeps the Gaussian's shape
-    // and never goes below one texel apart (bilinear taps then overlap).
-    float stride = max(1.1 * sigma, 1.0);
-    vec2 texel = uv * mapSize - 0.5;
+    // Texel coordinates with texel i's centre at t = i. The footprint is the 8 x 8 texels
+    // cell - 3 .. cell + 4 on each axis; their offsets from the sample point lie in (-4, 4].
+    vec2 t = uv * mapSize - 0.5;
+    vec2 cell = floor(t);
+    vec2 f = t - cell;
+    float twoVariance = 2.0 * (sigma * sigma + 1.0 / 6.0);
+    float window = exp(-16.0 / twoVariance);
+    float wx[8];
+    float wy[8];
+    float sumX = 0.0;
+    float sumY = 0.0;
+    float varianceX = 0.0;
+    float varianceY = 0.0;
+    for (int k = 0; k < 8; ++k) {
+        float dx = float(k) - 3.0 - f.x;
+        float dy = float(k) - 3.0 - f.y;
+        wx[k] = max(exp(-dx * dx / twoVariance) - window, 0.0);
+        wy[k] = max(exp(-dy * dy / twoVariance) - window, 0.0);
+        sumX += wx[k];
+        sumY += wy[k];
+        varianceX += wx[k] * dx * dx;
+        varianceY += wy[k] * dy * dy;
+    }
     float sum = 0.0;
-    float weightSum = 0.0;
-    float varianceSum = 0.0;
+    float weightSum = 0.0;  // summed like `sum`, so fully lit gives exactly 1 and fully shadowed 0
     for (int j = 0; j < 4; ++j) {
-        float oy = (float(j) - 1.5) * stride;
+        float y0 = float(2 * j) - 3.0 - f.y;  // offsets of the gathered rows: y0 and y0 + 1
         for (int i = 0; i < 4; ++i) {
-            float ox = (float(i) - 1.5) * stride;
-            float w = exp(-(ox * ox + oy * oy) / (2.0 * sigma * sigma));
-            vec2 t = texel + vec2(ox, oy);
-            vec2 base = floor(t);
-            vec2 f = t - base;
-            // Gather order: (0,1), (1,1), (1,0), (0,0) relative to base.
-            vec4 occluder = textureGather(shadowMap, (base + 1.0) / mapSize, 0);
-            float receiver = z + dot(dzPerTexel, vec2(ox, oy)) - bias;
-            vec4 lit = vec4(greaterThanEqual(occluder, vec4(receiver)));
-            float top = mix(lit.w, lit.z, f.x);
-            float bottom = mix(lit.x, lit.y, f.x);
-            sum += w * mix(top, bottom, f.y);
-            weightSum += w;
-            varianceSum += w * ox * ox;
+            float x0 = float(2 * i) - 3.0 - f.x;
+            // The 2x2 texels cell + (2i - 3, 2j - 3) + (0..1, 0..1); gather order: (0,1), (1,1),
+            // (1,0), (0,0).
+            vec4 occluder = textureGather(shadowMap, (cell + vec2(2 * i - 2, 2 * j - 2)) / mapSize, 0);
+            vec4 receiver = z - bias + dzPerTexel.x * vec4(x0, x0 + 1.0, x0 + 1.0, x0) +
+                            dzPerTexel.y * vec4(y0 + 1.0, y0 + 1.0, y0, y0);
+            vec4 lit = vec4(greaterThanEqual(occluder, receiver));
+            vec4 w = vec4(wx[2 * i] * wy[2 * j + 1], wx[2 * i + 1] * wy[2 * j + 1], wx[2 * i + 1] * wy[2 * j],
+                          wx[2 * i] * wy[2 * j]);
+            sum += dot(w, lit);
+            weightSum += dot(w, vec4(1.0));
         }
     }
     bool inside = all(greaterThanEqual(uv, vec2(0.0))) && all(lessThanEqual(uv, vec2(1.0))) && z <= 1.0;
     result.visibility = inside ? sum / weightSum : 1.0;
     result.thicknessM = preskinShadowThickness(shadowMap, shadowClipFromWorld, params, positionWs);
-    // Per-axis standard deviation of the weighted taps; each bilinear tap's tent adds 1/6 texel^2.
-    result.kernelWidthM = sqrt(varianceSum / weightSum + 1.0 / 6.0) * params.x;
+    // The weights' standard deviation (mean of the two axes), the filter's width across an edge.
+    result.kernelWidthM = sqrt(0.5 * (varianceX / sumX + varianceY / sumY)) * params.x;
     return result;
 }
 

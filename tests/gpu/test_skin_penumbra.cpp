@@ -1,11 +1,18 @@
 // Penumbra scattering: a skin plane behind a floating caster, lit by the shadowed directional
-// light at 45 degrees, seen from above across the shadow's edge. Along each image row the
-// shadow transition of every channel is normalised between its lit and dark plateaus and its
-// 10%-90% width measured. With penumbra scattering on, red's transition must be wider than
-// blue's (red scatters farthest; blue, narrower than the shadow filter, becomes sharper); with
-// it off (plain filtered shadow in every channel) the channels' widths must agree. Far from the
-// edge, where the plain filtered shadow is exactly 0 or 1, turning the technique on must not
-// change the image (within 1/255).
+// light at 45 degrees, seen from above across the shadow's edge (36 mm in 128 pixels, a wide
+// shadow filter so the edge spans many pixels).
+//  - Along each image row the shadow transition of every channel is normalised between its lit
+//    and dark plateaus and its 10%-90% width measured. With penumbra scattering on, red's
+//    transition must be wider than blue's (red scatters farthest; blue, narrower than the shadow
+//    filter, becomes sharper); with it off (plain filtered shadow in every channel) the channels'
+//    widths agree. Far from the edge, where the plain filtered shadow is exactly 0 or 1, turning
+//    the technique on must not change the image (within 1/255).
+//  - The plain filtered shadow (Shadow debug view) must be what the penumbra LUT assumes: a
+//    smooth, strictly monotone Gaussian edge, within 0.02 of Phi(x / sigma) with sigma fitted
+//    from its own 16%/84% points.
+//  - Every pixel's skin shadow per channel, (skin - dark) / (lit - dark), must equal the penumbra
+//    LUT looked up on the CPU at the pixel's filtered visibility and the filter width the shader
+//    should use: the fitted sigma on the receiver, in profile mm (times the scatter scale).
 #include "support/GpuTest.h"
 #include "support/ImageCompare.h"
 #include "support/SkinTestSupport.h"
@@ -76,57 +83,99 @@ Transition measure(const RenderedImage& image, uint32_t firstRow, uint32_t lastR
     return t;
 }
 
-class SkinPenumbra : public GpuTest {};
+// A row's shadow edge fitted as a Gaussian CDF: its 50% point and sigma from the 16%/84% points.
+struct EdgeFit {
+    double center = 0.0;  // pixels
+    double sigma = 0.0;   // pixels
+};
 
+std::optional<EdgeFit> fitEdge(const std::vector<double>& row) {
+    const auto c = crossing(row, 0.5);
+    const auto a = crossing(row, 0.841345);
+    const auto b = crossing(row, 0.158655);
+    if (!c || !a || !b) return std::nullopt;
+    return EdgeFit{*c, 0.5 * (*b - *a)};
+}
+
+double standardNormalCdf(double x) { return 0.5 * std::erfc(-x / std::sqrt(2.0)); }
+
+std::vector<double> visibilityRow(const RenderedImage& visibility, uint32_t y) {
+    std::vector<double> row(visibility.width);
+    for (uint32_t x = 0; x < visibility.width; ++x) row[x] = pixelLinear(visibility, x, y).r;
+    return row;
+}
+
+constexpr uint32_t kSize = 128;
+constexpr double kViewMm = 36.0;  // width of the plane in view
+constexpr float kScatterScale = 0.5f;  // scattering twice as wide in world units as life-size skin
+
+class SkinPenumbra : public GpuTest {
+protected:
+    // Renders the scene with penumbra scattering on, off, and the plain visibility (debug view).
+    void render() {
+        SkinMaterial skin;
+        skin.scatterScale = kScatterScale;
+        skin.specularIntensity = 0.0f;
+        Material receiver;
+        receiver.baseColorFactor = glm::vec4(0.8f, 0.8f, 0.8f, 1.0f);
+        receiver.metallicFactor = 0.0f;
+        receiver.roughnessFactor = 0.7f;
+        receiver.skin = skin;
+        Material caster;
+        caster.baseColorFactor = glm::vec4(0.3f, 0.3f, 0.3f, 1.0f);
+        caster.metallicFactor = 0.0f;
+
+        Primitive plane = makeQuad(0.4f, 4);
+        plane.material = 0;
+        Primitive box = makeBox(glm::vec3(0.2f, 0.5f, 0.01f));
+        box.material = 1;
+        // The caster (10 mm thick) floats 0.1 m above the plane over x in [0.05, 0.25]; with the
+        // light at 45 degrees its top edge's shadow on the plane is at x = -0.055, in mid-view.
+        Scene scene = makeScene({{plane, glm::mat4(1.0f)},
+                                 {box, glm::translate(glm::mat4(1.0f), glm::vec3(0.15f, 0.0f, 0.1f))}},
+                                {receiver, caster});
+        Light light;
+        light.type = LightType::Directional;
+        light.directionWs = glm::normalize(glm::vec3(-1.0f, 0.0f, -1.0f));
+        light.intensity = 2.5f;
+        light.castsShadow = true;
+        scene.lights = {light};
+
+        RenderSettings settings;
+        settings.shadowMapSize = 512;  // a wide filter on the receiver: 1.27 mm texels, sigma 1.5 texels
+        settings.shadowSoftnessTexels = 1.5f;
+        Renderer renderer(context(), scene, Environment::constant(glm::vec3(0.05f)), &LutSet::loadDefault(), settings);
+        // The plane across the edge, seen straight from above.
+        const glm::mat4 worldFromView = glm::inverse(glm::lookAt(
+            glm::vec3(-0.055f, 0.0f, 0.5f), glm::vec3(-0.055f, 0.0f, 0.0f), glm::vec3(0.0f, 1.0f, 0.0f)));
+        const View view =
+            perspectiveView(worldFromView, 2.0f * std::atan(float(kViewMm) * 0.0005f / 0.5f), 1.0f, 0.05f, 2.0f);
+        skinShadow = renderer.render(view, kSize, kSize, OutputEncoding::LinearFloat);
+        RenderSettings plain = settings;
+        plain.skin.penumbra = false;
+        renderer.setSettings(plain);
+        plainShadow = renderer.render(view, kSize, kSize, OutputEncoding::LinearFloat);
+        plain.debugView = DebugView::Shadow;
+        renderer.setSettings(plain);
+        visibility = renderer.render(view, kSize, kSize, OutputEncoding::LinearFloat);
+        dumpImage("skin_penumbra_on", skinShadow);
+        dumpImage("skin_penumbra_off", plainShadow);
+        dumpImage("skin_penumbra_visibility", visibility);
+    }
+
+    RenderedImage skinShadow;
+    RenderedImage plainShadow;
+    RenderedImage visibility;
+};
+
+// The 10%-90% width of each channel's transition differs as the profile's widths do, and
+// nothing changes far from the edge.
 TEST_F(SkinPenumbra, RedTransitionWiderThanBlueAndNoChangeFarFromTheEdge) {
-    SkinMaterial skin;
-    skin.scatterScale = 0.5f;  // scattering twice as wide in world units as life-size skin
-    skin.specularIntensity = 0.0f;
-    Material receiver;
-    receiver.baseColorFactor = glm::vec4(0.8f, 0.8f, 0.8f, 1.0f);
-    receiver.metallicFactor = 0.0f;
-    receiver.roughnessFactor = 0.7f;
-    receiver.skin = skin;
-    Material caster;
-    caster.baseColorFactor = glm::vec4(0.3f, 0.3f, 0.3f, 1.0f);
-    caster.metallicFactor = 0.0f;
-
-    Primitive plane = makeQuad(0.4f, 4);
-    plane.material = 0;
-    Primitive box = makeBox(glm::vec3(0.2f, 0.5f, 0.01f));
-    box.material = 1;
-    // The caster floats 0.1 m above the plane over x in [0.05, 0.25]; with the light at 45
-    // degrees its shadow on the plane spans x in [-0.05, 0.15]: the edge in view is at x = -0.05.
-    Scene scene = makeScene({{plane, glm::mat4(1.0f)},
-                             {box, glm::translate(glm::mat4(1.0f), glm::vec3(0.15f, 0.0f, 0.1f))}},
-                            {receiver, caster});
-    Light light;
-    light.type = LightType::Directional;
-    light.directionWs = glm::normalize(glm::vec3(-1.0f, 0.0f, -1.0f));
-    light.intensity = 2.5f;
-    light.castsShadow = true;
-    scene.lights = {light};
-
-    RenderSettings settings;
-    settings.shadowMapSize = 512;  // a wide filter on the receiver: 1.27 mm texels, sigma 1.5 texels
-    settings.shadowSoftnessTexels = 1.5f;
-    RenderSettings plain = settings;
-    plain.skin.penumbra = false;
-    Renderer renderer(context(), scene, Environment::constant(glm::vec3(0.05f)), &LutSet::loadDefault(), settings);
-    // 30 mm of the plane across the edge, seen straight from above.
-    const uint32_t size = 128;
-    const glm::mat4 worldFromView = glm::inverse(glm::lookAt(glm::vec3(-0.05f, 0.0f, 0.5f), glm::vec3(-0.05f, 0.0f, 0.0f),
-                                                             glm::vec3(0.0f, 1.0f, 0.0f)));
-    const View view = perspectiveView(worldFromView, 2.0f * std::atan(0.015f / 0.5f), 1.0f, 0.05f, 2.0f);
-    const RenderedImage skinShadow = renderer.render(view, size, size, OutputEncoding::LinearFloat);
-    renderer.setSettings(plain);
-    const RenderedImage plainShadow = renderer.render(view, size, size, OutputEncoding::LinearFloat);
-    dumpImage("skin_penumbra_on", skinShadow);
-    dumpImage("skin_penumbra_off", plainShadow);
-
+    render();
+    const uint32_t size = kSize;
     const Transition on = measure(skinShadow, 8, size - 9);
     const Transition off = measure(plainShadow, 8, size - 9);
-    const double pixelMm = 30.0 / size;
+    const double pixelMm = kViewMm / size;
     std::printf("[ skin     ] penumbra 10-90%% widths (mm): on R %.2f G %.2f B %.2f (%d rows); off R %.2f G %.2f "
                 "B %.2f (%d rows)\n",
                 on.width[0] * pixelMm, on.width[1] * pixelMm, on.width[2] * pixelMm, on.rows, off.width[0] * pixelMm,
@@ -140,10 +189,6 @@ TEST_F(SkinPenumbra, RedTransitionWiderThanBlueAndNoChangeFarFromTheEdge) {
 
     // Far from the edge: where the plain filtered visibility (the Shadow debug view) is exactly
     // 1 or 0 over a neighbourhood, the skin shadow must equal the plain one.
-    RenderSettings visibilityView = plain;
-    visibilityView.debugView = DebugView::Shadow;
-    renderer.setSettings(visibilityView);
-    const RenderedImage visibility = renderer.render(view, size, size, OutputEncoding::LinearFloat);
     size_t farLit = 0;
     size_t farDark = 0;
     double farWorst = 0.0;
@@ -165,6 +210,81 @@ TEST_F(SkinPenumbra, RedTransitionWiderThanBlueAndNoChangeFarFromTheEdge) {
     EXPECT_GT(farLit, size_t(size) * 8) << "the view should hold a lit region clear of the edge";
     EXPECT_GT(farDark, size_t(size) * 8) << "the view should hold a dark region clear of the edge";
     EXPECT_LE(farWorst, 1.0) << "penumbra scattering changed the image far from the shadow edge";
+}
+
+// The plain filtered shadow across a straight edge is the smooth Gaussian edge the penumbra LUT
+// is built for: no plateaus or steps between filter taps, and Phi-shaped.
+TEST_F(SkinPenumbra, PlainShadowEdgeIsASmoothGaussian) {
+    render();
+    int rows = 0;
+    size_t steps = 0;  // neighbours inside the transition that do not strictly decrease
+    double worst = 0.0;
+    double sigmaSum = 0.0;
+    for (uint32_t y = 8; y + 8 < kSize; ++y) {
+        const std::vector<double> row = visibilityRow(visibility, y);
+        const auto fit = fitEdge(row);
+        ASSERT_TRUE(fit) << "row " << y << " should cross the shadow edge";
+        for (size_t x = 0; x + 1 < row.size(); ++x) {
+            const bool inside = row[x] < 0.995 && row[x] > 0.005 && row[x + 1] < 0.995 && row[x + 1] > 0.005;
+            if (inside && !(row[x + 1] < row[x])) ++steps;
+            worst = std::max(worst, std::abs(row[x] - standardNormalCdf(-(double(x) - fit->center) / fit->sigma)));
+        }
+        sigmaSum += fit->sigma;
+        ++rows;
+    }
+    const double sigmaMm = sigmaSum / rows * kViewMm / kSize;
+    std::printf("[ skin     ] plain shadow edge: sigma %.3f mm on the receiver, worst deviation from Phi %.4f, %zu "
+                "non-decreasing steps\n",
+                sigmaMm, worst, steps);
+    EXPECT_EQ(steps, 0u) << "the filtered shadow has plateaus or steps across the edge";
+    EXPECT_LE(worst, 0.02) << "the filtered shadow edge is not Gaussian";
+    EXPECT_GT(sigmaMm / (kViewMm / kSize), 4.0) << "the edge should span many pixels, or the check means little";
+}
+
+// Each channel's skin shadow is the penumbra LUT at the pixel's filtered visibility and the
+// filter's width on the receiver in profile units.
+TEST_F(SkinPenumbra, SkinShadowFollowsPenumbraLutAtFilterWidth) {
+    render();
+    const LutSet& luts = LutSet::loadDefault();
+    double sigmaSum = 0.0;
+    int rows = 0;
+    for (uint32_t y = 8; y + 8 < kSize; ++y)
+        if (const auto fit = fitEdge(visibilityRow(visibility, y))) {
+            sigmaSum += fit->sigma;
+            ++rows;
+        }
+    ASSERT_GT(rows, 0);
+    const double sigmaProfileMm = sigmaSum / rows * kViewMm / kSize * double(kScatterScale);
+    size_t compared = 0;
+    size_t within = 0;
+    double worst = 0.0;
+    double worstNoScatter = 0.0;  // the plain visibility in place of the LUT, to show the check can tell
+    for (uint32_t y = 8; y + 8 < kSize; ++y) {
+        glm::dvec3 lit(0.0);
+        glm::dvec3 dark(0.0);
+        for (uint32_t i = 0; i < 6; ++i) {
+            lit += pixelLinear(plainShadow, i, y) / 6.0;
+            dark += pixelLinear(plainShadow, kSize - 1 - i, y) / 6.0;
+        }
+        for (uint32_t x = 0; x < kSize; ++x) {
+            const double v = pixelLinear(visibility, x, y).r;
+            const glm::dvec3 expected(luts.lookupPenumbra(float(v), float(sigmaProfileMm)));
+            const glm::dvec3 got = (pixelLinear(skinShadow, x, y) - dark) / (lit - dark);
+            double error = 0.0;
+            for (int c = 0; c < 3; ++c) {
+                error = std::max(error, std::abs(got[c] - expected[c]));
+                worstNoScatter = std::max(worstNoScatter, std::abs(got[c] - v));
+            }
+            worst = std::max(worst, error);
+            ++compared;
+            if (error <= 0.02) ++within;
+        }
+    }
+    std::printf("[ skin     ] skin shadow vs penumbra LUT at sigma %.3f profile mm: %zu of %zu pixels within 0.02 "
+                "(worst %.4f); plain visibility would be off by %.3f\n",
+                sigmaProfileMm, within, compared, worst, worstNoScatter);
+    EXPECT_EQ(within, compared) << "worst " << worst;
+    EXPECT_GT(worstNoScatter, 0.1) << "the skin shadow should differ from the plain one, or the check means little";
 }
 
 }  // namespace
