@@ -272,6 +272,7 @@ ClusterGrid ClusterBuilder::readBack(uint32_t slot) {
     std::memcpy(grid.ranges.data(), host.mapped(), rangeBytes);
     grid.indices.resize(s.indexCapacity);
     std::memcpy(grid.indices.data(), static_cast<const char*>(host.mapped()) + rangeBytes, indexBytes);
+    grid.indices.resize(std::min(c.values.x, s.indexCapacity));  // the entries reserved, up to the capacity
     return grid;
 }
 
