@@ -34,6 +34,12 @@ void CameraController::setOrbit(float yawDeg, float pitchDeg, float distanceM) {
     distanceM_ = distanceM;
 }
 
+float CameraController::orbitDistanceM(float aspect) const {
+    if (distanceM_ > 0.0f) return distanceM_;
+    const glm::vec3 center = bounds_.empty() ? glm::vec3(0.0f) : bounds_.center();
+    return glm::length(orbitView(bounds_, yawDeg_, pitchDeg_, 0.0f, aspect, kYfov).positionWs - center);
+}
+
 glm::vec3 CameraController::flyForward() const {
     const float yaw = glm::radians(yawDeg_);
     const float pitch = glm::radians(pitchDeg_);
@@ -62,10 +68,7 @@ void CameraController::update(const CameraInput& input, float dtS, float aspect)
     pitchDeg_ = std::clamp(pitchDeg_ + input.dragPx.y * kDegreesPerPx, -89.0f, 89.0f);
     if (mode_ == CameraMode::Orbit) {
         if (input.wheelSteps != 0.0f) {
-            if (distanceM_ <= 0.0f) {  // leave "fit": start from the fitted distance
-                const glm::vec3 center = bounds_.empty() ? glm::vec3(0.0f) : bounds_.center();
-                distanceM_ = glm::length(orbitView(bounds_, yawDeg_, pitchDeg_, 0.0f, aspect, kYfov).positionWs - center);
-            }
+            distanceM_ = orbitDistanceM(aspect);  // leaving "fit" starts from the fitted distance
             distanceM_ = std::clamp(distanceM_ * std::pow(0.9f, input.wheelSteps), radiusM_ * 0.05f, radiusM_ * 100.0f);
         }
         return;

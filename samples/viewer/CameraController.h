@@ -37,6 +37,8 @@ public:
     int sceneCamera() const { return sceneCamera_; }
     // Orbit parameters; distanceM <= 0 means "fit the bounds".
     void setOrbit(float yawDeg, float pitchDeg, float distanceM);
+    // The orbit distance in use: distanceM, or the fitted one.
+    float orbitDistanceM(float aspect) const;
     float& yawDeg() { return yawDeg_; }
     float& pitchDeg() { return pitchDeg_; }
     float& distanceM() { return distanceM_; }

@@ -102,25 +102,26 @@ VkRenderPass Overlay::createRenderPass(VkImageLayout finalLayout, bool clear) co
     subpass.pipelineBindPoint = VK_PIPELINE_BIND_POINT_GRAPHICS;
     subpass.colorAttachmentCount = 1;
     subpass.pColorAttachments = &ref;
+    // The three variants must stay compatible (one framebuffer and one ImGui pipeline serve them
+    // all), so their dependencies are identical; only layouts and load ops differ.
     VkSubpassDependency deps[2]{};
-    // The frame was written as a colour attachment before the pass (the renderer's forward pass,
-    // or a layout transition after a capture copy, both ending in the colour-output stage). When
-    // clearing, the image comes straight from acquisition, whose semaphore wait is at that stage.
+    // Before: the frame was written as a colour attachment (the renderer's forward pass, or a
+    // layout transition after a capture copy, both ending in the colour-output stage); when
+    // clearing, the image comes from acquisition, whose semaphore wait is at that stage.
     deps[0].srcSubpass = VK_SUBPASS_EXTERNAL;
     deps[0].dstSubpass = 0;
     deps[0].srcStageMask = VK_PIPELINE_STAGE_COLOR_ATTACHMENT_OUTPUT_BIT;
-    deps[0].srcAccessMask = clear ? VkAccessFlags(0) : VkAccessFlags(VK_ACCESS_COLOR_ATTACHMENT_WRITE_BIT);
+    deps[0].srcAccessMask = VK_ACCESS_COLOR_ATTACHMENT_WRITE_BIT;
     deps[0].dstStageMask = VK_PIPELINE_STAGE_COLOR_ATTACHMENT_OUTPUT_BIT;
     deps[0].dstAccessMask = VK_ACCESS_COLOR_ATTACHMENT_READ_BIT | VK_ACCESS_COLOR_ATTACHMENT_WRITE_BIT;
-    // After the pass: presentation (ordered by the submit's semaphore) or a copy to the host.
+    // After: a copy to the host (captures with the panels); presentation is ordered by the
+    // submission's semaphore.
     deps[1].srcSubpass = 0;
     deps[1].dstSubpass = VK_SUBPASS_EXTERNAL;
     deps[1].srcStageMask = VK_PIPELINE_STAGE_COLOR_ATTACHMENT_OUTPUT_BIT;
     deps[1].srcAccessMask = VK_ACCESS_COLOR_ATTACHMENT_WRITE_BIT;
-    deps[1].dstStageMask = finalLayout == VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL ? VK_PIPELINE_STAGE_TRANSFER_BIT
-                                                                               : VK_PIPELINE_STAGE_BOTTOM_OF_PIPE_BIT;
-    deps[1].dstAccessMask = finalLayout == VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL ? VkAccessFlags(VK_ACCESS_TRANSFER_READ_BIT)
-                                                                                : VkAccessFlags(0);
+    deps[1].dstStageMask = VK_PIPELINE_STAGE_TRANSFER_BIT;
+    deps[1].dstAccessMask = VK_ACCESS_TRANSFER_READ_BIT;
     VkRenderPassCreateInfo info{VK_STRUCTURE_TYPE_RENDER_PASS_CREATE_INFO};
     info.attachmentCount = 1;
     info.pAttachments = &color;

@@ -8,6 +8,7 @@
 #include <fmt/core.h>
 
 #include <algorithm>
+#include <exception>
 #include <fstream>
 #include <memory>
 #include <sstream>
@@ -186,19 +187,27 @@ void ShaderReloader::start(std::vector<std::string> changed) {
         ShaderBuild build;
         build.changedFiles = changed;
         build.ok = true;
-        std::vector<std::filesystem::path> entries;
-        std::error_code ec;
-        for (const auto& entry : std::filesystem::directory_iterator(dir, ec))
-            if (entry.is_regular_file() && isEntryPoint(entry.path())) entries.push_back(entry.path());
-        std::sort(entries.begin(), entries.end());
-        for (const auto& file : entries) {
-            std::vector<uint32_t> spirv = compileGlsl(file, dir, build.log);
-            if (spirv.empty()) build.ok = false;
-            else build.spirvByFile[file.filename().string()] = std::move(spirv);
-        }
-        if (entries.empty()) {
+        try {
+            std::vector<std::filesystem::path> entries;
+            std::error_code ec;
+            for (auto it = std::filesystem::directory_iterator(dir, ec);
+                 !ec && it != std::filesystem::directory_iterator(); it.increment(ec)) {
+                std::error_code fileEc;
+                if (it->is_regular_file(fileEc) && isEntryPoint(it->path())) entries.push_back(it->path());
+            }
+            std::sort(entries.begin(), entries.end());
+            for (const auto& file : entries) {
+                std::vector<uint32_t> spirv = compileGlsl(file, dir, build.log);
+                if (spirv.empty()) build.ok = false;
+                else build.spirvByFile[file.filename().string()] = std::move(spirv);
+            }
+            if (entries.empty()) {
+                build.ok = false;
+                build.log += fmt::format("{}: no shader entry points (*.vert, *.frag, *.comp)\n", dir.string());
+            }
+        } catch (const std::exception& e) {
             build.ok = false;
-            build.log += fmt::format("{}: no shader entry points (*.vert, *.frag, *.comp)\n", dir.string());
+            build.log += fmt::format("{}: {}\n", dir.string(), e.what());
         }
         build.compileMs = std::chrono::duration<double, std::milli>(Clock::now() - begin).count();
         return build;

@@ -71,30 +71,49 @@ Viewer::Viewer(ViewerOptions options) : options_(std::move(options)) {
     lastGoodSettings_ = settings_;
     scatteredLights_ = options_.common.lights;
     scatterSeed_ = options_.common.seed;
-    createWindow();
-    createVulkan();
-    shaders_ = std::make_unique<ShaderReloader>(cli::dataDir() / "shaders");
-    shaders_->setWatching(!options_.noShaderReload);
-    if (options_.compileShaders) {
-        if (shaders_->enabled()) shaders_->requestBuild();
-        else error("--compile-shaders: no shader sources to compile");
+    const auto albedo = cli::parseFloats(options_.albedo, 3, "--albedo");
+    const auto mfp = cli::parseFloats(options_.mfp, 3, "--mfp");
+    std::copy(albedo.begin(), albedo.end(), burleyAlbedo_.begin());
+    std::copy(mfp.begin(), mfp.end(), burleyMfpMm_.begin());
+    lutSize_ = options_.lutSize;
+    try {
+        createWindow();
+        createVulkan();
+        shaders_ = std::make_unique<ShaderReloader>(cli::dataDir() / "shaders");
+        shaders_->setWatching(!options_.noShaderReload);
+        if (options_.compileShaders) {
+            if (shaders_->enabled()) shaders_->requestBuild();
+            else error("--compile-shaders: no shader sources to compile");
+        }
+        if (!shaders_->enabled())
+            info(fmt::format("shader hot reload is off: {} does not exist (set PRESKIN_DATA_DIR to a source tree)",
+                             shaders_->directory().string()));
+        loadStartupContent();
+        if (!options_.profile.empty()) {
+            profileChoice_ = options_.profile == "burley" ? ProfileChoice::Burley : ProfileChoice::DeonLuebke;
+            requestBake();
+        }
+    } catch (...) {
+        shutdown();
+        throw;
     }
-    if (!shaders_->enabled())
-        info(fmt::format("shader hot reload is off: {} does not exist (set PRESKIN_DATA_DIR to a source tree)",
-                         shaders_->directory().string()));
-    loadStartupContent();
 }
 
-Viewer::~Viewer() {
-    if (context_) vk_.vkDeviceWaitIdle(vk_.device);
+Viewer::~Viewer() { shutdown(); }
+
+void Viewer::shutdown() noexcept {
+    if (context_ && vk_.vkDeviceWaitIdle) vk_.vkDeviceWaitIdle(vk_.device);
+    shaders_.reset();
     renderer_.reset();
     overlay_.reset();
     capture_.reset();
-    destroyFrames();
+    if (vk_.vkDestroyCommandPool) destroyFrames();
     swapchain_.reset();
     if (surface_) vk_.vkDestroySurfaceKHR(vk_.instance, surface_, nullptr);
+    surface_ = VK_NULL_HANDLE;
     context_.reset();
     if (window_) glfwDestroyWindow(window_);
+    window_ = nullptr;
     glfwTerminate();
 }
 
@@ -455,6 +474,7 @@ void Viewer::pollJobs() {
             if (renderer_) renderer_->setLuts(&*luts_);
             lutStatus_ = fmt::format("{}: baked in {:.0f} ms, uploaded in {:.0f} ms", luts_->profile().name(),
                                      baked->bakeMs, msSince(begin));
+            info("LUTs " + lutStatus_);
         } else {
             error(fmt::format("LUT bake failed: {}", baked->error));
         }

@@ -103,6 +103,7 @@ private:
     enum class ProfileChoice { Loaded, DeonLuebke, Burley };
 
     // Set-up and tear-down.
+    void shutdown() noexcept;
     void createWindow();
     void createVulkan();
     void createFrames();
@@ -194,8 +195,8 @@ private:
     bool shaderLogIsError_ = false;
     LutBaker baker_;
     ProfileChoice profileChoice_ = ProfileChoice::Loaded;
-    std::array<float, 3> burleyAlbedo_{0.83f, 0.57f, 0.45f};
-    std::array<float, 3> burleyMfpMm_{1.20f, 0.50f, 0.25f};
+    std::array<float, 3> burleyAlbedo_{};
+    std::array<float, 3> burleyMfpMm_{};
     int lutSize_ = 256;
     std::string lutStatus_;
     std::future<SceneLoad> sceneJob_;

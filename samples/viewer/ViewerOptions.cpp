@@ -28,6 +28,15 @@ void addViewerOptions(CLI::App& app, ViewerOptions& o) {
     app.add_flag("--compile-shaders", o.compileShaders,
                  "Compile shaders/ from source at start and use them, as a hot reload does");
     app.add_option("--drop", o.drops, "Load this file at start as if it was dropped on the window (repeatable)");
+    app.add_option("--profile", o.profile,
+                   "Diffusion profile baked at start (in the background, as the panel does): deon or burley; "
+                   "default: the LUT set of --luts or the bundled one")
+        ->check(CLI::IsMember({"deon", "burley"}));
+    app.add_option("--albedo", o.albedo, "burley: surface albedo per channel, R,G,B in (0, 1]")->capture_default_str();
+    app.add_option("--mfp", o.mfp, "burley: mean free path per channel in mm, R,G,B")->capture_default_str();
+    app.add_option("--lut-size", o.lutSize, "Samples along every LUT axis for --profile and the panel")
+        ->capture_default_str()
+        ->check(CLI::IsMember({64, 128, 256, 512}));
     cli::addCommonOptions(app, o.common);
 }
 

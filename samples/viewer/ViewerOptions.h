@@ -28,6 +28,10 @@ struct ViewerOptions {
     bool noShaderReload = false;
     bool compileShaders = false;     // compile shaders/ at start, as a hot reload would
     std::vector<std::string> drops;  // files loaded at start as if dropped on the window
+    std::string profile;             // "deon" or "burley": re-bake the LUTs at start, as the panel does
+    std::string albedo = "0.83,0.57,0.45";  // burley: R,G,B surface albedo
+    std::string mfp = "1.2,0.5,0.25";       // burley: R,G,B mean free path, mm
+    int lutSize = 256;
     cli::CommonOptions common;
 };
 

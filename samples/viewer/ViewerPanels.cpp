@@ -125,8 +125,10 @@ void Viewer::panelCamera() {
     } else if (camera_.mode() == CameraMode::Orbit) {
         ImGui::SliderFloat("Yaw", &camera_.yawDeg(), -180.0f, 180.0f, "%.1f deg");
         ImGui::SliderFloat("Pitch", &camera_.pitchDeg(), -89.0f, 89.0f, "%.1f deg");
-        ImGui::DragFloat("Distance", &camera_.distanceM(), 0.005f, 0.0f, 1000.0f,
-                         camera_.distanceM() <= 0.0f ? "fit" : "%.3f m");
+        float distanceM = camera_.orbitDistanceM(aspect());
+        if (ImGui::DragFloat("Distance", &distanceM, 0.005f, 0.001f, 1000.0f,
+                             camera_.distanceM() <= 0.0f ? "%.3f m (fit)" : "%.3f m"))
+            camera_.distanceM() = std::max(distanceM, 0.001f);
         ImGui::SameLine();
         if (ImGui::SmallButton("Fit")) camera_.distanceM() = 0.0f;
     } else {
@@ -444,7 +446,7 @@ void Viewer::panelTiming() {
     }
     if (!history.empty())
         ImGui::PlotLines("##frames", history.data(), static_cast<int>(history.size()), 0, "frame ms", 0.0f,
-                         highest * 1.2f, ImVec2(-1.0f, 60.0f));
+                         highest * 1.2f, ImVec2(320.0f, 60.0f));
     if (ImGui::Button("Screenshot (F12)")) requestScreenshot(std::nullopt, screenshotWithUi_);
     ImGui::SameLine();
     ImGui::Checkbox("with panels", &screenshotWithUi_);

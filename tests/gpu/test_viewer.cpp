@@ -436,11 +436,11 @@ protected:
         return runProcess(kViewerPath, args, fullEnv, dir_, 120.0);
     }
 
-    ProcessResult headlessRender(const fs::path& out, int width, int height) {
-        return runProcess(PRESKIN_CLI_PATH,
-                          {"render", "--out", out.string(), "--width", std::to_string(width), "--height",
-                           std::to_string(height), "--device", testDevice(), "--validation"},
-                          {}, dir_, 120.0);
+    ProcessResult headlessRender(const fs::path& out, int width, int height, const std::vector<std::string>& extra) {
+        std::vector<std::string> args{"render", "--out", out.string(), "--width", std::to_string(width), "--height",
+                                      std::to_string(height), "--device", testDevice(), "--validation"};
+        args.insert(args.end(), extra.begin(), extra.end());
+        return runProcess(PRESKIN_CLI_PATH, args, {}, dir_, 120.0);
     }
 
     static std::string describe(const ProcessResult& r) {
@@ -448,9 +448,11 @@ protected:
                "\nstderr:\n" + r.err;
     }
 
-    void expectMatchesHeadless(const fs::path& screenshot, int width, int height) {
+    // `extra`: more `preskin render` options for the same setup as the viewer's.
+    void expectMatchesHeadless(const fs::path& screenshot, int width, int height,
+                               const std::vector<std::string>& extra = {}) {
         const fs::path reference = dir_ / "headless.png";
-        const ProcessResult cli = headlessRender(reference, width, height);
+        const ProcessResult cli = headlessRender(reference, width, height, extra);
         ASSERT_EQ(cli.exitCode, 0) << describe(cli);
         const auto a = readPng(screenshot);
         const auto b = readPng(reference);
@@ -538,7 +540,7 @@ TEST_F(Viewer, BadInputIsReportedAndViewerKeepsRunning) {
     std::ofstream(notes) << "not a scene\n";
     const fs::path shot = dir_ / "bad.png";
     std::vector<std::string> args = scriptedArgs(shot, 3);
-    args.insert(args.end(), {"--env", (dir_ / "missing.hdr").string(), "--drop",
+    args.insert(args.end(), {"--screenshot-ui", "--env", (dir_ / "missing.hdr").string(), "--drop",
                              (fs::path(PRESKIN_SOURCE_DIR) / "tests/data/gltf/truncated.glb").string(), "--drop",
                              notes.string(), "--drop", (dir_ / "missing.exr").string()});
     const ProcessResult r = viewer(args);
@@ -549,7 +551,26 @@ TEST_F(Viewer, BadInputIsReportedAndViewerKeepsRunning) {
     EXPECT_NE(r.err.find("notes.txt: not a scene"), std::string::npos) << describe(r);
     EXPECT_NE(r.err.find("missing.exr"), std::string::npos) << describe(r);
     EXPECT_FALSE(mentionsValidation(r)) << describe(r);
-    EXPECT_TRUE(fs::exists(shot)) << "the viewer kept running and rendered\n" << describe(r);
+    EXPECT_TRUE(readPng(shot)) << "the viewer kept running and rendered (with its panels)\n" << describe(r);
+}
+
+TEST_F(Viewer, LiveBurleyBakeMatchesBakedLutFiles) {
+    requireDisplay();
+    const std::string albedo = "0.8,0.5,0.35";
+    const std::string mfp = "1.0,0.4,0.2";
+    const fs::path luts = dir_ / "burley_luts";
+    const ProcessResult bake = runProcess(
+        PRESKIN_CLI_PATH, {"bake", "--profile", "burley", "--albedo", albedo, "--mfp", mfp, "--out", luts.string()}, {},
+        dir_, 120.0);
+    ASSERT_EQ(bake.exitCode, 0) << describe(bake);
+    const fs::path shot = dir_ / "burley.png";
+    std::vector<std::string> args = scriptedArgs(shot, 2);
+    args.insert(args.end(), {"--profile", "burley", "--albedo", albedo, "--mfp", mfp});
+    const ProcessResult r = viewer(args);
+    ASSERT_EQ(r.exitCode, 0) << describe(r);
+    EXPECT_NE(r.out.find("LUTs Christensen & Burley"), std::string::npos) << describe(r);
+    EXPECT_FALSE(mentionsValidation(r)) << describe(r);
+    expectMatchesHeadless(shot, kWidth, kHeight, {"--luts", luts.string()});
 }
 
 TEST_F(Viewer, HelpListsTheScriptedOptions) {
