@@ -18,6 +18,7 @@
 // screenshot is taken from one more frame drawn when the window is closed.
 // Exit status: 0; 1 on a start-up error or, in scripted runs, any error reported on the way
 // (load, shader, screenshot); 2 when Vulkan validation reported anything.
+// Limits: one window; the scene is static (no animation); loads replace the whole scene.
 #pragma once
 
 #include "CameraController.h"

@@ -2,6 +2,7 @@
 // validation, skin toggles, debug view, lights, LUTs; samples/common/Options.h) plus the window,
 // the starting view and the scripted mode (--frames N --screenshot FILE; --drop and
 // --compile-shaders drive the drag-and-drop and hot-reload paths from scripts and tests).
+// Limits: read once at start; the panels change the live state, not these values.
 #pragma once
 
 #include "Options.h"  // samples/common

@@ -3,6 +3,7 @@
 // views, frame timing, shader hot reload and messages. Edits take effect as follows: render
 // settings and lights at the next frame; profile changes after the background bake; material
 // edits rebuild the Renderer when a control is released (the Renderer reads materials once).
+// Limits: the panel layout is not saved between runs; one material is edited at a time.
 #include "Viewer.h"
 
 #include <preskin/Error.h>

@@ -2,6 +2,8 @@
 // Usage: preskin-viewer [scene.gltf] [--env FILE.hdr] [options]; --help lists them all.
 // Scripted runs: --frames N --screenshot FILE.png draws N frames, writes the last one (without
 // the panels unless --screenshot-ui) and exits: 0, 1 on an error, 2 on Vulkan validation messages.
+// Limits: needs an X11 display (Debian's GLFW 3.3 build; Xvfb works) and a Vulkan 1.3 device
+// that can present to it.
 #include "Viewer.h"
 #include "ViewerOptions.h"
 

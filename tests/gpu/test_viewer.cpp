@@ -135,6 +135,17 @@ public:
         return ::waitid(P_PID, id_t(pid_), &info, WEXITED | WNOHANG | WNOWAIT) == 0 && info.si_pid == 0;
     }
     std::string output() const { return readFile(outPath()); }
+    std::string errors() const { return readFile(errPath()); }
+    // Waits until stdout or stderr contains `text`; false when the time is up or the process ended.
+    bool waitForOutput(const std::string& text, double limitS) const {
+        const auto deadline = std::chrono::steady_clock::now() + std::chrono::duration<double>(limitS);
+        while (std::chrono::steady_clock::now() < deadline) {
+            if (output().find(text) != std::string::npos || errors().find(text) != std::string::npos) return true;
+            if (!running()) return false;
+            std::this_thread::sleep_for(std::chrono::milliseconds(50));
+        }
+        return false;
+    }
 
     ProcessResult wait(double limitS) {
         ProcessResult result;
@@ -532,6 +543,36 @@ TEST_F(Viewer, ShaderErrorIsReportedAndLastGoodPipelinesKeepRunning) {
     EXPECT_FALSE(mentionsValidation(r)) << describe(r);
     ASSERT_TRUE(fs::exists(shot)) << describe(r);
     expectMatchesHeadless(shot, kWidth, kHeight);  // still the built-in shaders
+}
+
+TEST_F(Viewer, EditedShaderFilesReloadAndABrokenEditKeepsTheLastGoodPipelines) {
+    requireDisplay();
+    std::string why;
+    const auto x = XClient::open(display_->display(), why);
+    ASSERT_TRUE(x) << why;
+    const fs::path data = dir_ / "data";
+    fs::create_directories(data);
+    fs::copy(fs::path(PRESKIN_SOURCE_DIR) / "shaders", data / "shaders", fs::copy_options::recursive);
+    Process process(kViewerPath,
+                    {(fs::path(PRESKIN_SOURCE_DIR) / "samples/assets/head/head.gltf").string(), "--luts",
+                     (fs::path(PRESKIN_SOURCE_DIR) / "luts").string(), "--width", "160", "--height", "120",
+                     "--device", testDevice(), "--validation"},
+                    {"DISPLAY=" + display_->display(), "PRESKIN_DATA_DIR=" + data.string()}, dir_);
+    ASSERT_TRUE(process.waitForOutput("renderer built", 30.0)) << describe(process.wait(10.0));
+    // An edit of an include file that still compiles: every entry point is rebuilt and swapped in.
+    std::ofstream(data / "shaders" / "preskin" / "brdf.glsl", std::ios::app) << "\n// edited while running\n";
+    EXPECT_TRUE(process.waitForOutput("shaders reloaded (preskin/brdf.glsl)", 30.0)) << process.output();
+    // An edit that does not compile: reported, the last good pipelines keep drawing.
+    std::ofstream(data / "shaders" / "forward.frag", std::ios::app) << "\nthis line is not GLSL;\n";
+    EXPECT_TRUE(process.waitForOutput("did not compile; the last good pipelines keep running", 30.0))
+        << process.errors();
+    std::this_thread::sleep_for(std::chrono::milliseconds(300));  // a few more frames
+    const unsigned long window = x->findWindow("preskin-viewer");
+    ASSERT_NE(window, 0ul);
+    x->requestClose(window);
+    const ProcessResult r = process.wait(60.0);
+    EXPECT_EQ(r.exitCode, 0) << describe(r);
+    EXPECT_FALSE(mentionsValidation(r)) << describe(r);
 }
 
 TEST_F(Viewer, BadInputIsReportedAndViewerKeepsRunning) {
