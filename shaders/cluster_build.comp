@@ -147,8 +147,24 @@ bool coneReachesFroxel(ClusterLightVolume v, uvec2 tile, float dA, float dB) {
              along < -radius);
 }
 
-// Does light i (local index) touch froxel f, whose dilated depth slab is [d0, d1]?
-bool froxelTouched(uint i, uvec3 f, float d0, float d1, bool lastSlice) {
+// One invocation's froxel: its tile's boundary planes and its dilated depth slab [d0, d1].
+struct Froxel {
+    uvec3 f;
+    vec4 row0;
+    vec4 row1;
+    vec4 column0;
+    vec4 column1;
+    float d0;
+    float d1;
+    bool lastSlice;
+};
+
+// Does light i (local index) touch the froxel?
+bool froxelTouched(uint i, Froxel fr) {
+    uvec3 f = fr.f;
+    float d0 = fr.d0;
+    float d1 = fr.d1;
+    bool lastSlice = fr.lastSlice;
     ClusterLightVolume v = volumes[i];
     uint flags = v.box.w;
     if (f.z < (v.box.z & 0xffffu) || f.z > (v.box.z >> 16)) return false;
@@ -169,8 +185,8 @@ bool froxelTouched(uint i, uvec3 f, float d0, float d1, bool lastSlice) {
         }
         if (h > r) return false;
         r = sqrt(max(r * r - h * h, 0.0));
-        if (!cutByPlane(rowPlane(f.y), 1.0, c, r) || !cutByPlane(rowPlane(f.y + 1u), -1.0, c, r)) return false;
-        if (planeDistance(columnPlane(f.x), c) < -r || planeDistance(columnPlane(f.x + 1u), c) > r) return false;
+        if (!cutByPlane(fr.row0, 1.0, c, r) || !cutByPlane(fr.row1, -1.0, c, r)) return false;
+        if (planeDistance(fr.column0, c) < -r || planeDistance(fr.column1, c) > r) return false;
         float lightNear = -v.centerRadius.z - v.centerRadius.w;
         float lightFar = -v.centerRadius.z + v.centerRadius.w;
         coneD0 = max(d0, lightNear);
@@ -206,9 +222,15 @@ void assignPass() {
         uint z = zBase + lane;
         bool inGrid = z < params.dims.z;
         bool lastSlice = z + 1u >= params.dims.z;
-        float d0 = inGrid ? sliceStart(z) * (1.0 - params.slack.x) : 0.0;
-        float d1 = inGrid && !lastSlice ? sliceStart(z + 1u) * (1.0 + params.slack.x) : 0.0;
-        uvec3 f = uvec3(tile, z);
+        Froxel fr;
+        fr.f = uvec3(tile, z);
+        fr.row0 = rowPlane(tile.y);
+        fr.row1 = rowPlane(tile.y + 1u);
+        fr.column0 = columnPlane(tile.x);
+        fr.column1 = columnPlane(tile.x + 1u);
+        fr.d0 = inGrid ? sliceStart(z) * (1.0 - params.slack.x) : 0.0;
+        fr.d1 = inGrid && !lastSlice ? sliceStart(z + 1u) * (1.0 + params.slack.x) : 0.0;
+        fr.lastSlice = lastSlice;
 
         uint found = 0u;
         for (uint base = 0u; base < localCount; base += kClusterBatchLights) {
@@ -219,7 +241,7 @@ void assignPass() {
                 while (mask != 0u) {
                     uint bit = uint(findLSB(mask));
                     mask &= mask - 1u;
-                    if (froxelTouched(base + w * 32u + bit, f, d0, d1, lastSlice)) ++found;
+                    if (froxelTouched(base + w * 32u + bit, fr)) ++found;
                 }
             }
         }
@@ -246,7 +268,7 @@ void assignPass() {
                     uint bit = uint(findLSB(mask));
                     mask &= mask - 1u;
                     uint i = base + w * 32u + bit;
-                    if (froxelTouched(i, f, d0, d1, lastSlice)) {
+                    if (froxelTouched(i, fr)) {
                         indices[offset + written] = params.lightInfo.x + i;
                         ++written;
                     }
