@@ -557,7 +557,7 @@ int Viewer::run() {
         if (!options_.screenshot.empty() && lastFrame && !captureNext_)
             requestScreenshot(std::filesystem::path(options_.screenshot), options_.screenshotUi);
         if (!drawFrame()) continue;
-        ++framesDrawn_;
+        if (++framesDrawn_ == 1) info(fmt::format("first frame drawn {:.0f} ms after start", msSince(start_)));
         if (lastFrame) break;
     }
 
