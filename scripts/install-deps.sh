@@ -9,7 +9,7 @@ packages=(
   glslang-tools glslang-dev spirv-tools
   libglm-dev libglfw3-dev libtinygltf-dev nlohmann-json3-dev libstb-dev libopenimageio-dev
   libimgui-dev libcli11-dev libfmt-dev libtbb-dev
-  libgtest-dev libbenchmark-dev xvfb xauth
+  libgtest-dev libbenchmark-dev xvfb xauth libx11-dev
 )
 
 missing=()
