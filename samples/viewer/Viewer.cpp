@@ -539,7 +539,11 @@ int Viewer::run() {
         if (swapchainDirty_ || !swapchain_->valid() || swapchain_->extent().width != uint32_t(w) ||
             swapchain_->extent().height != uint32_t(h))
             recreateSwapchain();
-        if (!swapchain_->valid()) continue;
+        if (!swapchain_->valid()) {  // the surface has no area right now
+            if (closing) break;
+            glfwWaitEventsTimeout(0.05);
+            continue;
+        }
         pollJobs();
 
         const auto now = Clock::now();
