@@ -15,9 +15,12 @@
 //     lights (the scene copied with its skin extension removed), plus the skin shader with every
 //     technique off (SkinFeatures::none()) as a third column;
 //   - the bake time of the default LUT set (LutSet::bake of d'Eon & Luebke's profile).
-// Each frame is one Renderer::render (record, submit, wait, readback). Timing: warm-up frames,
-// then the median of --reps frames of wall time (CPU clock around the whole frame) and of the
-// GPU timestamps per pass. Slow points (brute force at many lights) get fewer frames: when the
+// Each frame is one Renderer::render (record, submit, wait, readback). Timing: the
+// configurations compared at one light count (clustered, the other cluster build, brute force;
+// or skin, standard, skin techniques off) are measured together: warm-up frames first, then
+// rounds of one frame each, so a change in machine load hits all of them alike; reported are
+// medians of --reps frames of wall time (CPU clock around the whole frame) and of the GPU
+// timestamps per pass. Slow points (brute force at many lights) get fewer frames: when the
 // frame time predicted from the previous counts times the frames planned exceeds --budget-s,
 // the warm-up is dropped and the repetitions cut (at least one); the JSON records what ran.
 // Goals (docs/clustering.md) are evaluated on the wall-time medians.
@@ -181,12 +184,12 @@ struct Measurement {
             return std::numeric_limits<double>::quiet_NaN();
         });
     }
-    // The whole light-list build: its CPU part plus its compute pass.
+    // The whole light-list build: its CPU part plus, for the compute build, its pass.
     double buildMs() const {
         return medianOf([](const FrameStats& s) {
             double ms = s.clusterBuildCpuMs;
             for (const PassTime& p : s.passes)
-                if (p.name == "clusters") ms += p.gpuMs;
+                if (p.name == "clusters" && s.clusterBuildGpu) ms += p.gpuMs;
             return ms;
         });
     }
@@ -223,12 +226,20 @@ void writeMeasurement(JsonWriter& j, const Measurement& m) {
     j.endObject();
 }
 
+// One configuration measured in a set: a renderer and its settings.
+struct Config {
+    Renderer* renderer = nullptr;
+    RenderSettings settings;
+    std::string label;
+    double predictedMs = 0.0;  // <= 0: unknown
+};
+
 class Bench {
 public:
     Bench(const BenchOptions& o, Context& context, const View& view) : o_(o), context_(context), view_(view) {}
 
-    // Frames planned for one point: the full warm-up and repetitions unless the predicted
-    // frame time (ms, <= 0: unknown) says they would take longer than the budget.
+    // Frames planned for one configuration: the full warm-up and repetitions unless the
+    // predicted frame time (ms, <= 0: unknown) says they would take longer than the budget.
     std::pair<uint32_t, uint32_t> plan(double predictedMs) const {
         uint32_t warmup = o_.warmup;
         uint32_t reps = std::max<uint32_t>(o_.reps, 1);
@@ -240,24 +251,39 @@ public:
         return {warmup, reps};
     }
 
-    Measurement measure(Renderer& renderer, const RenderSettings& settings, const std::vector<Light>& lights,
-                        double predictedMs, const char* label) {
-        renderer.setSettings(settings);
-        renderer.setLights(lights);
-        const auto [warmup, reps] = plan(predictedMs);
-        fmt::print(stderr, "preskin bench: {} ({} warm-up, {} measured)...", label, warmup, reps);
-        std::fflush(stderr);
+    // Measures configurations side by side with the same lights: the warm-ups first, then
+    // rounds in which each configuration renders one frame (one with fewer planned frames takes
+    // part in evenly spread rounds), so drifts in machine load hit all of them alike.
+    std::vector<Measurement> measure(const std::vector<Config>& configs, const std::vector<Light>& lights) {
         const auto start = Clock::now();
-        Measurement m;
-        m.warmup = warmup;
-        for (uint32_t i = 0; i < warmup; ++i) renderer.render(view_, o_.width, o_.height, OutputEncoding::DisplaySrgb8);
-        for (uint32_t i = 0; i < reps; ++i) {
-            renderer.render(view_, o_.width, o_.height, OutputEncoding::DisplaySrgb8);
-            m.frames.push_back(renderer.frameStats());
+        std::vector<Measurement> out(configs.size());
+        std::vector<uint32_t> reps(configs.size());
+        uint32_t rounds = 0;
+        for (size_t i = 0; i < configs.size(); ++i) {
+            const auto [warmup, n] = plan(configs[i].predictedMs);
+            out[i].warmup = warmup;
+            reps[i] = n;
+            rounds = std::max(rounds, n);
+            fmt::print(stderr, "preskin bench: {} ({} warm-up, {} measured)\n", configs[i].label, warmup, n);
         }
-        fmt::print(stderr, " {:.1f} ms median wall ({:.1f} s)\n", m.wallMs(), secondsSince(start));
+        for (const Config& c : configs) c.renderer->setLights(lights);
+        auto frame = [&](const Config& c) {
+            c.renderer->setSettings(c.settings);
+            c.renderer->render(view_, o_.width, o_.height, OutputEncoding::DisplaySrgb8);
+        };
+        for (size_t i = 0; i < configs.size(); ++i)
+            for (uint32_t w = 0; w < out[i].warmup; ++w) frame(configs[i]);
+        for (uint32_t r = 0; r < rounds; ++r)
+            for (size_t i = 0; i < configs.size(); ++i) {
+                if ((uint64_t(r) + 1) * reps[i] / rounds == uint64_t(r) * reps[i] / rounds) continue;
+                frame(configs[i]);
+                out[i].frames.push_back(configs[i].renderer->frameStats());
+            }
+        for (size_t i = 0; i < configs.size(); ++i)
+            fmt::print(stderr, "preskin bench:   {}: {:.1f} ms median wall\n", configs[i].label, out[i].wallMs());
+        fmt::print(stderr, "preskin bench:   ({:.1f} s)\n", secondsSince(start));
         reportValidation(context_);
-        return m;
+        return out;
     }
 
 private:
@@ -642,12 +668,14 @@ void run(const BenchOptions& o) {
     j.key("method");
     j.beginObject();
     j.field("frame", "Renderer::render at width x height: record, submit, wait, read back");
-    j.field("timing", "warm-up frames, then medians of wall time and GPU timestamps per pass");
+    j.field("timing",
+            "configurations compared at one light count are interleaved frame by frame after their warm-up; "
+            "medians of wall time and GPU timestamps per pass");
     j.field("reps", o.reps);
     j.field("warmup", o.warmup);
     j.field("budget_s_per_point", o.budgetS);
     j.field("speedup", "brute-force median wall ms / clustered median wall ms");
-    j.field("cluster_build_share", "(build CPU ms + clusters pass GPU ms) / clustered median wall ms");
+    j.field("cluster_build_share", "(build CPU ms + compute pass GPU ms when built on the GPU) / clustered median wall ms");
     j.field("per_pixel",
             "listed: the fragment's cluster list length; exact: lights whose range sphere (and spot cone) contains "
             "the pixel's surface point");
@@ -680,24 +708,47 @@ void run(const BenchOptions& o) {
     std::vector<Row> rows;
     std::vector<std::pair<double, double>> bruteHistory;
     std::vector<std::pair<double, double>> clusteredHistory;
+    std::vector<std::pair<double, double>> otherHistory;
+    const ClusterBuild otherBuild = [&] {
+        // Which build the main measurement uses shows in its frame stats; the first frame tells.
+        RenderSettings probe = base;
+        renderer.setSettings(probe);
+        renderer.render(view, 16, 16, OutputEncoding::DisplaySrgb8);
+        return renderer.frameStats().clusterBuildGpu ? ClusterBuild::Cpu : ClusterBuild::Gpu;
+    }();
     for (uint32_t n : counts) {
         CommonOptions withLights = common;
         withLights.lights = n;
         withLights.seed = o.seed;
         const std::vector<Light> lights = sceneLights(scene, withLights);
         Row row{n, {}, {}, {}, {}};
+        std::vector<Config> configs;
         RenderSettings clustered = base;
         clustered.lightLoop = LightLoop::Clustered;
-        row.clustered = bench.measure(renderer, clustered, lights, predictFrameMs(clusteredHistory, n),
-                                      fmt::format("{} lights, clustered", n).c_str());
-        clusteredHistory.emplace_back(n, row.clustered.wallMs());
+        configs.push_back({&renderer, clustered, fmt::format("{} lights, clustered", n), predictFrameMs(clusteredHistory, n)});
         if (!o.noBuildCompare) {
             RenderSettings other = clustered;
-            other.clusters.build = row.clustered.buildGpu() ? ClusterBuild::Cpu : ClusterBuild::Gpu;
-            row.otherBuild = bench.measure(renderer, other, lights, row.clustered.wallMs(),
-                                           fmt::format("{} lights, clustered, {} build", n,
-                                                       row.clustered.buildGpu() ? "cpu" : "gpu")
-                                               .c_str());
+            other.clusters.build = otherBuild;
+            configs.push_back({&renderer, other,
+                               fmt::format("{} lights, clustered, {} build", n, otherBuild == ClusterBuild::Gpu ? "gpu" : "cpu"),
+                               predictFrameMs(otherHistory, n)});
+        }
+        if (!o.noBrute) {
+            RenderSettings brute = base;
+            brute.lightLoop = LightLoop::All;
+            configs.push_back({&renderer, brute, fmt::format("{} lights, brute force", n), predictFrameMs(bruteHistory, n)});
+        }
+        std::vector<Measurement> measured = bench.measure(configs, lights);
+        size_t next = 0;
+        row.clustered = std::move(measured[next++]);
+        clusteredHistory.emplace_back(n, row.clustered.wallMs());
+        if (!o.noBuildCompare) {
+            row.otherBuild = std::move(measured[next++]);
+            otherHistory.emplace_back(n, row.otherBuild->wallMs());
+        }
+        if (!o.noBrute) {
+            row.brute = std::move(measured[next++]);
+            bruteHistory.emplace_back(n, row.brute->wallMs());
         }
         if (!o.noPerPixel) {
             RenderSettings debug = clustered;
@@ -707,13 +758,6 @@ void run(const BenchOptions& o) {
             const RenderedImage counted = renderer.render(view, o.width, o.height, OutputEncoding::LinearFloat);
             row.perPixel = countPerPixel(counted, view, lights);
             reportValidation(*context);
-        }
-        if (!o.noBrute) {
-            RenderSettings brute = base;
-            brute.lightLoop = LightLoop::All;
-            row.brute = bench.measure(renderer, brute, lights, predictFrameMs(bruteHistory, n),
-                                      fmt::format("{} lights, brute force", n).c_str());
-            bruteHistory.emplace_back(n, row.brute->wallMs());
         }
         rows.push_back(std::move(row));
     }
@@ -786,16 +830,14 @@ void run(const BenchOptions& o) {
             withLights.lights = n;
             withLights.seed = o.seed;
             const std::vector<Light> lights = sceneLights(scene, withLights);
-            SkinRow row{n, {}, {}, {}};
-            RenderSettings skin = base;
-            row.skin = bench.measure(renderer, skin, lights, 0.0, fmt::format("{} lights, skin", n).c_str());
-            row.standard = bench.measure(standardRenderer, skin, lights, 0.0,
-                                         fmt::format("{} lights, standard material", n).c_str());
             RenderSettings off = base;
             off.skin = SkinFeatures::none();
-            row.featuresOff = bench.measure(renderer, off, lights, 0.0,
-                                            fmt::format("{} lights, skin techniques off", n).c_str());
-            skinRows.push_back(std::move(row));
+            std::vector<Measurement> measured =
+                bench.measure({{&renderer, base, fmt::format("{} lights, skin", n), 0.0},
+                               {&standardRenderer, base, fmt::format("{} lights, standard material", n), 0.0},
+                               {&renderer, off, fmt::format("{} lights, skin techniques off", n), 0.0}},
+                              lights);
+            skinRows.push_back({n, std::move(measured[0]), std::move(measured[1]), std::move(measured[2])});
         }
         j.key("skin_vs_standard");
         j.beginArray();
