@@ -1,0 +1,103 @@
+// `preskin bench` end to end on a tiny image: it writes the JSON (every section, sane numbers,
+// no pixel whose light list is shorter than its exact count, validation on) and the PNG plot,
+// and refuses bad arguments before doing any work.
+#include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
+
+#include <sys/wait.h>
+
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <random>
+#include <sstream>
+#include <string>
+
+namespace preskin {
+namespace {
+
+namespace fs = std::filesystem;
+
+class BenchCli : public ::testing::Test {
+protected:
+    void SetUp() override {
+        if (!fs::exists(PRESKIN_CLI_PATH)) GTEST_SKIP() << PRESKIN_CLI_PATH << " is not built";
+        std::random_device entropy;
+        dir_ = fs::temp_directory_path() / ("preskin_test_bench_cli_" + std::to_string(entropy()));
+        fs::create_directories(dir_);
+    }
+    void TearDown() override {
+        std::error_code ec;
+        if (!dir_.empty()) fs::remove_all(dir_, ec);
+    }
+
+    int bench(const std::string& arguments, std::string& err) const {
+        const char* device = std::getenv("PRESKIN_TEST_DEVICE");
+        const fs::path errPath = dir_ / "stderr.txt";
+        const std::string command = std::string("'") + PRESKIN_CLI_PATH + "' bench --device " +
+                                    (device ? device : "llvmpipe") + " " + arguments + " > '" +
+                                    (dir_ / "stdout.txt").string() + "' 2> '" + errPath.string() + "'";
+        const int status = std::system(command.c_str());
+        std::stringstream e;
+        e << std::ifstream(errPath).rdbuf();
+        err = e.str();
+        return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+    }
+
+    fs::path dir_;
+};
+
+TEST_F(BenchCli, WritesJsonAndPlot) {
+    const fs::path json = dir_ / "bench.json";
+    const fs::path plot = dir_ / "bench.png";
+    std::string err;
+    ASSERT_EQ(bench("--width 96 --height 64 --counts 0,8,32 --skin-counts 8 --reps 2 --warmup 0 --validation --out '" +
+                        json.string() + "' --plot '" + plot.string() + "'",
+                    err),
+              0)
+        << err;
+    const nlohmann::json j = nlohmann::json::parse(std::ifstream(json));
+    EXPECT_EQ(j.at("width"), 96);
+    EXPECT_GT(j.at("lut_bake").at("ms").get<double>(), 0.0);
+    ASSERT_EQ(j.at("light_loop").size(), 3u);
+    for (const auto& row : j.at("light_loop")) {
+        for (const char* loop : {"clustered", "brute_force"}) {
+            const auto& m = row.at(loop);
+            EXPECT_EQ(m.at("frames"), 2) << loop;
+            EXPECT_GT(m.at("wall_ms").get<double>(), 0.0) << loop;
+            EXPECT_TRUE(m.at("gpu_pass_ms").contains("forward")) << loop;
+        }
+        EXPECT_EQ(row.at("clustered").at("overflowed_clusters"), 0);
+        const auto& perPixel = row.at("per_pixel");
+        EXPECT_GT(perPixel.at("pixels").get<int>(), 0);
+        EXPECT_EQ(perPixel.at("pixels_listed_below_exact"), 0) << "a light missing from a list";
+        EXPECT_GE(perPixel.at("listed_mean").get<double>(), perPixel.at("exact_mean").get<double>());
+        if (row.at("lights") == 0) {
+            EXPECT_EQ(perPixel.at("listed_mean").get<double>(), 0.0);
+        }
+    }
+    ASSERT_EQ(j.at("cluster_build").size(), 3u);
+    EXPECT_TRUE(j.at("cluster_build")[0].contains("cpu"));
+    EXPECT_TRUE(j.at("cluster_build")[0].contains("gpu"));
+    ASSERT_EQ(j.at("skin_vs_standard").size(), 1u);
+    EXPECT_GT(j.at("skin_vs_standard")[0].at("skin_over_standard").get<double>(), 0.0);
+    EXPECT_FALSE(j.at("goals").empty());
+    std::ifstream png(plot, std::ios::binary);
+    char signature[8] = {};
+    png.read(signature, 8);
+    EXPECT_EQ(std::string(signature + 1, 3), "PNG");
+}
+
+TEST_F(BenchCli, RefusesBadArgumentsBeforeWork) {
+    std::string err;
+    const fs::path json = dir_ / "bench.json";
+    EXPECT_EQ(bench("--counts 8,x --out '" + json.string() + "'", err), 1);
+    EXPECT_NE(err.find("--counts"), std::string::npos) << err;
+    EXPECT_EQ(bench("--plot '" + (dir_ / "plot.jpg").string() + "' --out '" + json.string() + "'", err), 1);
+    EXPECT_NE(err.find("plot.jpg"), std::string::npos) << err;
+    EXPECT_EQ(bench("--out '" + (dir_ / "missing" / "b.json").string() + "'", err), 1);
+    EXPECT_FALSE(fs::exists(json));
+}
+
+}  // namespace
+}  // namespace preskin
