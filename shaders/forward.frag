@@ -111,14 +111,19 @@ vec3 curvatureHeat(float curvaturePerMm) {
 
 void main() {
     vec2 uvBase = transformUv(material.uv[0], inUv0);
-    vec4 baseColor = material.baseColorFactor * texture(baseColorTexture, uvBase);
+    vec4 baseColor = material.baseColorFactor;
+    if (material.hasTextures.x > 0.5) baseColor *= texture(baseColorTexture, uvBase);
     if (kAlphaMode == 1 && baseColor.a < material.emissiveAlphaCutoff.w) discard;
 
-    vec4 mr = texture(metallicRoughnessTexture, transformUv(material.uv[1], inUv0));
+    vec4 mr = material.hasTextures.y > 0.5 ? texture(metallicRoughnessTexture, transformUv(material.uv[1], inUv0))
+                                           : vec4(1.0);
     float metallic = clamp(material.pbr.x * mr.b, 0.0, 1.0);
     float roughness = clamp(material.pbr.y * mr.g, 0.03, 1.0);
-    float occlusion = 1.0 + material.pbr.w * (texture(occlusionTexture, transformUv(material.uv[3], inUv0)).r - 1.0);
-    vec3 emissive = material.emissiveAlphaCutoff.rgb * texture(emissiveTexture, transformUv(material.uv[4], inUv0)).rgb;
+    float occlusion = 1.0;
+    if (material.hasTextures.z > 0.5)
+        occlusion += material.pbr.w * (texture(occlusionTexture, transformUv(material.uv[3], inUv0)).r - 1.0);
+    vec3 emissive = material.emissiveAlphaCutoff.rgb;
+    if (material.hasTextures.w > 0.5) emissive *= texture(emissiveTexture, transformUv(material.uv[4], inUv0)).rgb;
 
     vec3 geometricN = normalize(inNormalWs);
     if (!gl_FrontFacing) geometricN = -geometricN;
@@ -189,7 +194,7 @@ void main() {
                 // Thickness from a point moved 2 profile-mm inside along the normal (Jimenez et al.
                 // 2010 shrink): the lit side near the terminator is not a zero-thickness slab.
                 float thicknessM = 0.0;
-                if ((features & kSkinTransmission) != 0u)
+                if ((features & kSkinTransmission) != 0u && dot(geometricN, L) < 0.3)  // else no wrap
                     thicknessM = preskinShadowThickness(shadowMap, frame.shadowClipFromWorld, frame.shadowParams,
                                                         inPositionWs - geometricN * (0.002 / max(skin.scatterScale, 1e-6)));
                 transmitted += preskinSkinTransmission(skin, frame.lut, transmittanceLut, L, irradiance, thicknessM,

@@ -97,7 +97,8 @@ vec3 preskinSkinLight(PreskinSkinSurface s, LutMapping m, sampler2D diffuseLut, 
 // filter's width on the receiver (the light-plane width stretched by the receiver's slope).
 vec3 preskinSkinShadow(PreskinSkinSurface s, LutMapping m, sampler2D penumbraLut, float visibility,
                        float filterWidthLightM, vec3 L, uint features) {
-    if ((features & kSkinPenumbra) == 0u) return vec3(visibility);
+    // Fully lit or fully shadowed: the LUT's end columns are exactly 1 and 0, skip the fetch.
+    if ((features & kSkinPenumbra) == 0u || visibility <= 0.0 || visibility >= 1.0) return vec3(visibility);
     float slope = max(abs(dot(s.geometricNormal, L)), 0.2);
     float sigmaProfileMm = filterWidthLightM * 1000.0 / slope * s.scatterScale;
     return preskinPenumbraLut(m, penumbraLut, visibility, sigmaProfileMm);
@@ -107,10 +108,10 @@ vec3 preskinSkinShadow(PreskinSkinSurface s, LutMapping m, sampler2D penumbraLut
 // map (metres), T(thickness) from the profile, wrap saturate(0.3 - NoL) (Jimenez et al. 2010).
 vec3 preskinSkinTransmission(PreskinSkinSurface s, LutMapping m, sampler2D transmittanceLut, vec3 L,
                              vec3 irradiance, float thicknessM, uint features) {
-    if ((features & kSkinTransmission) == 0u) return vec3(0.0);
+    float wrap = preskinSaturate(0.3 - dot(s.geometricNormal, L));
+    if ((features & kSkinTransmission) == 0u || wrap <= 0.0) return vec3(0.0);
     float thicknessMm = thicknessM * 1000.0 * s.thicknessScale * s.scatterScale;
     vec3 T = preskinTransmittanceLut(m, transmittanceLut, thicknessMm);
-    float wrap = preskinSaturate(0.3 - dot(s.geometricNormal, L));
     return T * wrap * s.transmissionTint * s.albedo / PRESKIN_PI * irradiance;
 }
 

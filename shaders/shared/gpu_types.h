@@ -110,9 +110,10 @@ struct MaterialUniforms {
     vec4 skinTransmission;     // rgb transmission colour, w thickness scale
     vec4 skinSpecular;         // x F0 scale, y lobe-0 roughness multiplier, z lobe-1 multiplier, w lobe-1 weight
     vec4 textureFlags;         // x has detail normal, y detail uv scale, z has specular texture, w has normal map
+    vec4 hasTextures;          // 1 where the texture exists: x base colour, y metallic-roughness, z occlusion, w emissive
     GpuUvTransform uv[5];      // base colour, metallic-roughness, normal, occlusion, emissive
 };
-PRESKIN_CHECK_SIZE(MaterialUniforms, 8 * 16 + 5 * 32)
+PRESKIN_CHECK_SIZE(MaterialUniforms, 9 * 16 + 5 * 32)
 
 // Per draw.
 struct DrawPush {

@@ -102,6 +102,7 @@ TEST(GpuLayout, ForwardShaderStructsMatchCpp) {
     PRESKIN_EXPECT_MEMBER(l, MaterialUniforms, skinTransmission);
     PRESKIN_EXPECT_MEMBER(l, MaterialUniforms, skinSpecular);
     PRESKIN_EXPECT_MEMBER(l, MaterialUniforms, textureFlags);
+    PRESKIN_EXPECT_MEMBER(l, MaterialUniforms, hasTextures);
     PRESKIN_EXPECT_MEMBER(l, MaterialUniforms, uv);
 }
 

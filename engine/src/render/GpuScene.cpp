@@ -259,6 +259,9 @@ gpu::MaterialUniforms GpuScene::uniformsFor(const Material& mat, const GpuMateri
     u.emissiveAlphaCutoff = glm::vec4(mat.emissiveFactor, mat.alphaCutoff);
     u.pbr = glm::vec4(mat.metallicFactor, mat.roughnessFactor, mat.normal.scale, mat.occlusion.scale);
     u.textureFlags = glm::vec4(0.0f, 1.0f, 0.0f, mat.normal.valid() ? 1.0f : 0.0f);
+    // Absent textures are not sampled at all (a sample of the 1x1 stand-in costs as much as any).
+    u.hasTextures = glm::vec4(mat.baseColor.valid() ? 1.0f : 0.0f, mat.metallicRoughness.valid() ? 1.0f : 0.0f,
+                              mat.occlusion.valid() ? 1.0f : 0.0f, mat.emissive.valid() ? 1.0f : 0.0f);
     const TextureRef* refs[] = {&mat.baseColor, &mat.metallicRoughness, &mat.normal, &mat.occlusion, &mat.emissive};
     for (size_t i = 0; i < 5; ++i) u.uv[i] = toGpu(*refs[i]);
     if (mat.skin) {
