@@ -84,17 +84,29 @@ void localLightRange(out uint first, out uint count, out bool indirect) {
     }
 }
 
-// Tangent-space normal from the base map plus the optional detail map (whiteout blend),
-// each sampled with a mip LOD bias.
-vec3 skinNormal(vec2 uv, float bias, vec3 N, vec4 T) {
-    vec3 base = texture(normalTexture, uv, bias).rgb * 2.0 - 1.0;
+// Tangent frame of the fragment: tangent, bitangent, normal (glTF: bitangent = cross(N, T) * w).
+mat3 tangentFrame(vec3 N, vec4 T) {
+    vec3 t = T.xyz - N * dot(N, T.xyz);
+    if (dot(t, t) < 1e-12) return mat3(vec3(0.0), vec3(0.0), N);
+    t = normalize(t);
+    return mat3(t, cross(N, t) * (T.w < 0.0 ? -1.0 : 1.0), N);
+}
+
+// Tangent-space normal of the base map plus the optional detail map (whiteout blend). Without
+// explicitLod, the hardware's own level of detail (anisotropic where enabled); with it, level
+// `lod` of the base map and `lod + detailLodOffset` of the detail map.
+vec3 skinNormalTs(vec2 uv, bool explicitLod, float lod, float detailLodOffset) {
+    vec3 base = (explicitLod ? textureLod(normalTexture, uv, lod) : texture(normalTexture, uv)).rgb * 2.0 - 1.0;
     base.xy *= material.pbr.z;
     if (material.textureFlags.x > 0.5) {
-        vec3 detail = texture(detailNormalTexture, uv * material.textureFlags.y, bias).rgb * 2.0 - 1.0;
+        vec2 uvDetail = uv * material.textureFlags.y;
+        vec3 detail = (explicitLod ? textureLod(detailNormalTexture, uvDetail, lod + detailLodOffset)
+                                   : texture(detailNormalTexture, uvDetail)).rgb * 2.0 - 1.0;
         detail.xy *= material.skinNormalLodBias.w;
         base = vec3(base.xy + detail.xy, base.z * detail.z);
     }
-    return perturbNormal(normalize(base) * 0.5 + 0.5, 1.0, N, T);
+    base.z = max(base.z, 1e-4);
+    return base;
 }
 
 float skinCurvaturePerM(vec3 geometricN) {
@@ -157,14 +169,29 @@ void main() {
         PreskinSkinSurface skin;
         skin.albedo = baseColor.rgb;
         skin.geometricNormal = geometricN;
-        skin.normalSpecular = hasNormalMap ? skinNormal(uvNormal, 0.0, geometricN, inTangentWs) : geometricN;
-        skin.normalR = skin.normalSpecular;
-        skin.normalG = skin.normalSpecular;
-        skin.normalB = skin.normalSpecular;
-        if (hasNormalMap && (features & kSkinNormalPrefilter) != 0u) {
-            skin.normalR = skinNormal(uvNormal, material.skinNormalLodBias.r, geometricN, inTangentWs);
-            skin.normalG = skinNormal(uvNormal, material.skinNormalLodBias.g, geometricN, inTangentWs);
-            skin.normalB = skinNormal(uvNormal, material.skinNormalLodBias.b, geometricN, inTangentWs);
+        skin.normalSpecular = geometricN;
+        if (hasNormalMap) {
+            mat3 tbn = tangentFrame(geometricN, inTangentWs);
+            skin.normalSpecular = normalize(tbn * skinNormalTs(uvNormal, false, 0.0, 0.0));
+            if ((features & kSkinNormalPrefilter) != 0u) {
+                // One level-of-detail query, then three explicit levels: the per-channel biases.
+                float lod = textureQueryLod(normalTexture, uvNormal).y;
+                float detailOffset =
+                    material.textureFlags.x > 0.5
+                        ? textureQueryLod(detailNormalTexture, uvNormal * material.textureFlags.y).y - lod
+                        : 0.0;
+                skin.normalR = normalize(tbn * skinNormalTs(uvNormal, true, lod + material.skinNormalLodBias.r, detailOffset));
+                skin.normalG = normalize(tbn * skinNormalTs(uvNormal, true, lod + material.skinNormalLodBias.g, detailOffset));
+                skin.normalB = normalize(tbn * skinNormalTs(uvNormal, true, lod + material.skinNormalLodBias.b, detailOffset));
+            } else {
+                skin.normalR = skin.normalSpecular;
+                skin.normalG = skin.normalSpecular;
+                skin.normalB = skin.normalSpecular;
+            }
+        } else {
+            skin.normalR = geometricN;
+            skin.normalG = geometricN;
+            skin.normalB = geometricN;
         }
         N = skin.normalSpecular;
         NoV = max(dot(N, V), 1e-4);
