@@ -8,7 +8,7 @@
 // units with the material's scatter scale first). Results carry the profile's shape only;
 // multiply by the material's albedo.
 // Limits: bilinear lookups on the baked grid (values clamp at the axis ends); the penumbra
-// table assumes a hard occluder edge seen through a Gaussian shadow filter of standard
+// table takes the shadow as a straight edge blurred by a Gaussian shadow filter of standard
 // deviation filterSigmaMm (see engine/include/preskin/LutSet.h).
 #ifndef PRESKIN_LUT_GLSL
 #define PRESKIN_LUT_GLSL

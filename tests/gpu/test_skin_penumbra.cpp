@@ -3,8 +3,8 @@
 // shadow filter so the edge spans many pixels).
 //  - Along each image row the shadow transition of every channel is normalised between its lit
 //    and dark plateaus and its 10%-90% width measured. With penumbra scattering on, red's
-//    transition must be wider than blue's (red scatters farthest; blue, narrower than the shadow
-//    filter, becomes sharper); with it off (plain filtered shadow in every channel) the channels'
+//    transition must be wider than blue's (red scatters farthest), and no channel's narrower than
+//    the plain shadow's (skin only softens a penumbra); with it off (plain filtered shadow in every channel) the channels'
 //    widths agree. Far from the edge, where the plain filtered shadow is exactly 0 or 1, turning
 //    the technique on must not change the image (within 1/255).
 //  - The plain filtered shadow (Shadow debug view) must be what the penumbra LUT assumes: a
@@ -182,9 +182,10 @@ TEST_F(SkinPenumbra, RedTransitionWiderThanBlueAndNoChangeFarFromTheEdge) {
                 off.width[1] * pixelMm, off.width[2] * pixelMm, off.rows);
     ASSERT_GE(on.rows, int(size) - 20) << "every row should cross the shadow edge";
     ASSERT_GE(off.rows, int(size) - 20);
-    EXPECT_GT(on.width[0], 4.0 * on.width[2]) << "red's transition should be much wider than blue's";
-    EXPECT_GT(on.width[0], 2.0 * on.width[1]) << "red's transition should be wider than green's";
-    EXPECT_LT(on.width[2], off.width[2]) << "blue scatters less than the filter is wide: its edge should sharpen";
+    EXPECT_GT(on.width[0], 1.1 * on.width[2]) << "red's transition should be clearly wider than blue's";
+    EXPECT_GT(on.width[0], on.width[1]) << "red's transition should be wider than green's";
+    for (int c = 0; c < 3; ++c)
+        EXPECT_GE(on.width[c], off.width[c] - 0.05) << "skin scattering must never sharpen the shadow (channel " << c << ")";
     EXPECT_NEAR(off.width[0], off.width[2], 0.1) << "without penumbra scattering every channel has the same edge";
     EXPECT_GT(off.width[1], 3.0) << "the plain edge should span several pixels, or the widths mean little";
 
@@ -285,7 +286,7 @@ TEST_F(SkinPenumbra, SkinShadowFollowsPenumbraLutAtFilterWidth) {
                 "(worst %.4f); plain visibility would be off by %.3f\n",
                 sigmaProfileMm, within, compared, worst, worstNoScatter);
     EXPECT_EQ(within, compared) << "worst " << worst;
-    EXPECT_GT(worstNoScatter, 0.1) << "the skin shadow should differ from the plain one, or the check means little";
+    EXPECT_GT(worstNoScatter, 0.02) << "the skin shadow should differ from the plain one, or the check means little";
 }
 
 }  // namespace

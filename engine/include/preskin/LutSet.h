@@ -9,19 +9,20 @@
 //    y: curvature 1/r in [0, curvatureMaxPerMm] (default 1/mm: radii from 1 mm to flat),
 //    Sqrt mapping, which puts half the rows below a quarter of the range, where faces are
 //    (radii ~2..100 mm, curvature 0.01..0.5 1/mm). Row 0 is exactly flat: D = saturate(NoL).
-//  - penumbra P(shadow, filter width): the skin response to a hard shadow edge seen through the
-//    project's Gaussian shadow filter (shaders/preskin/shadow.glsl). x: the filtered shadow
-//    value s in [0, 1] (Linear). y: w = sigma_f / referenceWidthMm, sigma_f the filter's
-//    standard deviation on the receiver across the edge (mm), referenceWidthMm the profile's
-//    widest channel (DiffusionProfile::maxWidthMm); Rational mapping t = w / (w + 1), last row
-//    w = infinity. Model: the position across the edge is x = sigma_f Phi^-1(s); the skin
-//    receives the hard edge scattered by the profile, E(x) = edgeResponse(x), which keeps
-//    scattering light past the point where the (sharper) shadow reaches zero. The filter only
-//    resolves |x| <= 3 sigma_f, so E is renormalised to that window:
-//    P = (E(x) - E(-3 sigma_f)) / (E(3 sigma_f) - E(-3 sigma_f)); P = 0 for s <= Phi(-3) and
-//    1 for s >= Phi(3). Filters wider than the profile (w >~ 1) show the full scattering;
-//    narrow ones fall back to a ramp over the filter's footprint. Limit rows: w = 0 gives
-//    (Phi^-1(s) / 3 + 1) / 2, w = infinity a step at s = 1/2.
+//  - penumbra P(shadow, filter width): the skin response to a soft shadow edge: the penumbra of
+//    the project's Gaussian shadow filter (shaders/preskin/shadow.glsl) taken as the light that
+//    reaches the skin, scattered by the profile. x: the filtered shadow value s in [0, 1]
+//    (Linear). y: w = sigma_f / referenceWidthMm, sigma_f the filter's standard deviation on the
+//    receiver across the edge (mm), referenceWidthMm the profile's widest channel
+//    (DiffusionProfile::maxWidthMm); Rational mapping t = w / (w + 1), last row w = infinity.
+//    Model: the position across the edge is x = sigma_f Phi^-1(s); the irradiance there is the
+//    Gaussian edge Phi(x / sigma_f), and the skin returns it convolved with the profile,
+//    E_f(x) = int edgeResponse(x - t) phi_sigma_f(t) dt (sums of Gaussians: sum_i w_i
+//    Phi(x / sqrt(v_i + sigma_f^2))), so no channel is ever sharper than the shadow and red is the
+//    softest, reaching further into the dark side. The filter only resolves |x| <= 3 sigma_f, so
+//    E_f is renormalised to that window: P = (E_f(x) - E_f(-3 sigma_f)) / (E_f(3 sigma_f) -
+//    E_f(-3 sigma_f)); P = 0 for s <= Phi(-3) and 1 for s >= Phi(3). Limit rows: w = 0 gives
+//    (Phi^-1(s) / 3 + 1) / 2, w = infinity passes the shadow through (renormalised to the window).
 //  - SH transfer A_l(curvature), l = 0, 1, 2: x: curvature (same range and mapping as diffuse);
 //    y: band l (row l). Stored relative to Lambert: A_l / (pi, 2 pi / 3, pi / 4)_l, so flat
 //    skin stores exactly 1 and the absolute coefficients are the table times Lambert's.
@@ -41,7 +42,7 @@
 // checked before the renames, and on failure the temporary files (and folders save created) are
 // removed, so nothing new is left behind.
 //
-// Limits: see RingScatter.h (ring model), the penumbra model above (hard edges, Gaussian
+// Limits: see RingScatter.h (ring model), the penumbra model above (straight edges, Gaussian
 // filter), and LutTable.h (GPU sub-texel precision).
 #pragma once
 

@@ -7,6 +7,7 @@
 #include "skin/Half.h"
 #include "skin/LutLayout.h"
 #include "skin/RingScatter.h"
+#include "skin/SoftEdge.h"
 #include "skin/SpecialFunctions.h"
 
 #include <preskin/Error.h>
@@ -153,6 +154,7 @@ LutSet LutSet::bake(const DiffusionProfile& profile, const LutBakeSettings& sett
     };
 
     const double windowSigmas = skin::kPenumbraWindowSigmas;
+    const skin::SoftEdge softEdge(profile);
     tbb::parallel_for(0, total, [&](int unit) {
         if (unit < diffuseUnits) {
             const int iy = unit;
@@ -169,21 +171,24 @@ LutSet LutSet::bake(const DiffusionProfile& profile, const LutBakeSettings& sett
             const int iy = unit - diffuseUnits - shUnits;
             const int lastRow = set.penumbra_.height() - 1;
             const double sigmaMm = set.penumbra_.y.valueAt(iy) * set.penumbraReferenceWidthMm_;
-            const glm::dvec3 low = iy == 0 || iy == lastRow ? glm::dvec3(0.0) : profile.edgeResponse(-windowSigmas * sigmaMm);
-            const glm::dvec3 high = iy == 0 || iy == lastRow ? glm::dvec3(1.0) : profile.edgeResponse(windowSigmas * sigmaMm);
+            const bool limitRow = iy == 0 || iy == lastRow;
+            const glm::dvec3 low = limitRow ? glm::dvec3(0.0) : softEdge(-windowSigmas * sigmaMm, sigmaMm);
+            const glm::dvec3 high = limitRow ? glm::dvec3(1.0) : softEdge(windowSigmas * sigmaMm, sigmaMm);
+            const double phiLow = 0.5 * std::erfc(windowSigmas / std::sqrt(2.0));
             for (int ix = 0; ix < set.penumbra_.width(); ++ix) {
                 const double q = shadowQuantile[static_cast<size_t>(ix)];
                 glm::dvec3 value;
-                if (iy == lastRow) {
-                    value = glm::dvec3(q < 0.0 ? 0.0 : (q > 0.0 ? 1.0 : 0.5));  // infinitely wide filter: a step
-                } else if (q <= -windowSigmas) {
+                if (q <= -windowSigmas) {
                     value = glm::dvec3(0.0);
                 } else if (q >= windowSigmas) {
                     value = glm::dvec3(1.0);
+                } else if (iy == lastRow) {
+                    // A penumbra infinitely wider than the profile passes unchanged (renormalised).
+                    value = glm::dvec3((0.5 * std::erfc(-q / std::sqrt(2.0)) - phiLow) / (1.0 - 2.0 * phiLow));
                 } else if (iy == 0) {
                     value = glm::dvec3(0.5 * (q / windowSigmas + 1.0));  // vanishing filter: the linear limit
                 } else {
-                    value = (profile.edgeResponse(sigmaMm * q) - low) / (high - low);
+                    value = (softEdge(sigmaMm * q, sigmaMm) - low) / (high - low);
                 }
                 skin::storeHalf(set.penumbra_, ix, iy, glm::clamp(value, 0.0, 1.0));
             }

@@ -113,8 +113,9 @@ std::string manifestText(const LutSet& set) {
                           "channel's RMS width"},
         {"ringKernel", "diffuse ring integral (Penner & Borshukov 2011) with K(x) = P(2 r sin(|x|/2)), P the profile "
                        "integrated along the cylinder axis (1D-normalised Gaussians for sums of Gaussians)"},
-        {"penumbraModel", "hard edge seen through a Gaussian shadow filter of standard deviation sigma_f; x = sigma_f "
-                          "Phi^-1(shadow); value = edge response of the profile renormalised to |x| <= 3 sigma_f"},
+        {"penumbraModel", "the shadow filter's Gaussian penumbra (standard deviation sigma_f) convolved with the "
+                          "profile; x = sigma_f Phi^-1(shadow); value = that soft-edge response renormalised to "
+                          "|x| <= 3 sigma_f"},
         {"shTransfer", "stored as A_l / (pi, 2 pi / 3, pi / 4)_l, A_l = 2 pi int D(theta) P_l(cos theta) sin theta "
                        "dtheta; flat skin stores 1"},
         {"transmittance", "T(d) = int 2 pi r R(sqrt(r^2 + d^2)) dr / albedo; Gaussians: sum_i w_i exp(-d^2 / 2 v_i) / "

@@ -1,0 +1,21 @@
+#!/usr/bin/env bash
+# Renders docs/skin-vs-standard.png: the bundled head with the standard material (left) and with
+# pre-integrated skin (right), same view and lights: the scene's front camera, then a close-up of
+# the nose's shadow on the cheek and the ear. Needs ImageMagick (convert, montage).
+set -euo pipefail
+cd "$(dirname "$0")/.."
+bin=${PRESKIN_BUILD_DIR:-build}/bin/preskin
+[ -x "$bin" ] || ./scripts/build.sh
+tmp=$(mktemp -d)
+trap 'rm -rf "$tmp"' EXIT
+
+render() { "$bin" render --camera front "$@" >/dev/null; }
+render --width 520 --height 520 --out "$tmp/front_std.png" --standard
+render --width 520 --height 520 --out "$tmp/front_skin.png"
+render --width 1200 --height 1200 --out "$tmp/big_std.png" --standard
+render --width 1200 --height 1200 --out "$tmp/big_skin.png"
+for v in std skin; do convert "$tmp/big_$v.png" -crop 520x520+500+440 +repage "$tmp/close_$v.png"; done
+montage -label "standard material" "$tmp/front_std.png" -label "pre-integrated skin" "$tmp/front_skin.png" \
+  -label "standard, close-up" "$tmp/close_std.png" -label "skin, close-up" "$tmp/close_skin.png" \
+  -tile 2x2 -geometry +4+4 -background '#202022' -fill '#dddddd' -pointsize 16 -depth 8 docs/skin-vs-standard.png
+echo "wrote docs/skin-vs-standard.png"
