@@ -4,7 +4,9 @@
 // within 1/255 for standard and skin materials, with lights straddling froxel edges, at the near
 // plane and beyond the far slices, and spots aimed across clusters; the light-count debug view
 // reports each pixel's list length.
+#include "render/GpuLights.h"
 #include "support/GpuTest.h"
+#include "support/TestLights.h"
 #include "support/ImageCompare.h"
 #include "support/TestScenes.h"
 #include "unit/test_cluster_reference.h"
@@ -28,55 +30,10 @@ namespace {
 constexpr uint32_t kWidth = 160;
 constexpr uint32_t kHeight = 120;
 
-float uniform(std::mt19937& rng, float lo, float hi) { return std::uniform_real_distribution<float>(lo, hi)(rng); }
-
-glm::vec3 randomDirection(std::mt19937& rng) {
-    for (;;) {
-        const glm::vec3 v(uniform(rng, -1, 1), uniform(rng, -1, 1), uniform(rng, -1, 1));
-        const float len = glm::length(v);
-        if (len > 0.1f && len <= 1.0f) return v / len;
-    }
-}
-
-Light pointLight(const glm::vec3& p, float rangeM, const glm::vec3& color = glm::vec3(1.0f), float intensity = 1.0f) {
-    Light l;
-    l.type = LightType::Point;
-    l.positionWs = p;
-    l.range = rangeM;
-    l.color = color;
-    l.intensity = intensity;
-    return l;
-}
-
-Light spotLight(const glm::vec3& p, const glm::vec3& dir, float rangeM, float outerAngle, float intensity = 1.0f) {
-    Light l = pointLight(p, rangeM, glm::vec3(1.0f), intensity);
-    l.type = LightType::Spot;
-    l.directionWs = glm::normalize(dir);
-    l.outerConeAngle = outerAngle;
-    l.innerConeAngle = 0.6f * outerAngle;
-    return l;
-}
-
 View testView() {
     const glm::mat4 worldFromView =
         glm::inverse(glm::lookAt(glm::vec3(0.4f, 1.2f, 3.2f), glm::vec3(0.0f, 0.1f, 0.0f), glm::vec3(0.0f, 1.0f, 0.0f)));
     return perspectiveView(worldFromView, 0.9f, float(kWidth) / float(kHeight), 0.3f, 12.0f);
-}
-
-// The renderer's conversion of a local light (KHR_lights_punctual cone scale and offset).
-gpu::GpuLight toGpuLight(const Light& l) {
-    gpu::GpuLight g{};
-    uint32_t type = gpu::kLightDirectional;
-    if (l.type == LightType::Point) type = gpu::kLightPoint;
-    if (l.type == LightType::Spot) type = gpu::kLightSpot;
-    g.positionRange = glm::vec4(l.positionWs, std::max(l.range, 0.0f));
-    g.directionType = glm::vec4(glm::normalize(l.directionWs), float(type));
-    g.colorIntensity = glm::vec4(l.color * l.intensity, -1.0f);
-    const float cosOuter = std::cos(l.outerConeAngle);
-    const float cosInner = std::cos(std::min(l.innerConeAngle, l.outerConeAngle));
-    const float scale = 1.0f / std::max(1e-3f, cosInner - cosOuter);
-    g.spotScaleOffset = glm::vec4(scale, -cosOuter * scale, 0.0f, 0.0f);
-    return g;
 }
 
 // Lists from the renderer's builder for `lights` (directional ones first, as the renderer orders them).
@@ -86,7 +43,7 @@ ClusterGrid buildLists(Context& context, ClusterSettings settings, ClusterBuild 
     std::vector<gpu::GpuLight> gpuLights;
     uint32_t firstLocal = 0;
     for (const Light& l : lights) {
-        gpuLights.push_back(toGpuLight(l));
+        gpuLights.push_back(toGpuLight(l, false));  // the renderer's own conversion
         if (l.type == LightType::Directional) ++firstLocal;
     }
     vk::Buffer lightBuffer(device, std::max<size_t>(gpuLights.size(), 1) * sizeof(gpu::GpuLight),
@@ -101,19 +58,7 @@ ClusterGrid buildLists(Context& context, ClusterSettings settings, ClusterBuild 
     return builder.readBack(0);
 }
 
-std::vector<Light> randomLights(uint32_t count, uint32_t seed) {
-    std::mt19937 rng(seed);
-    std::vector<Light> lights(1);  // a directional light first
-    lights[0].type = LightType::Directional;
-    lights[0].directionWs = glm::vec3(0.0f, -1.0f, 0.0f);
-    for (uint32_t i = 0; i < count; ++i) {
-        const glm::vec3 p(uniform(rng, -3.0f, 3.0f), uniform(rng, -2.0f, 3.0f), uniform(rng, -7.0f, 3.8f));
-        const float range = uniform(rng, 0.08f, 1.3f);
-        if (rng() % 5 < 2) lights.push_back(spotLight(p, randomDirection(rng), range, uniform(rng, 0.08f, 1.45f)));
-        else lights.push_back(pointLight(p, range));
-    }
-    return lights;
-}
+std::vector<Light> randomLights(uint32_t count, uint32_t seed) { return preskin::test::randomLights(count, seed, 3.8f); }
 
 ClusterSettings gridSettings() {
     ClusterSettings s;

@@ -9,6 +9,7 @@
 // name) instead of comparing.
 #include "support/GpuTest.h"
 #include "support/ImageCompare.h"
+#include "support/Process.h"
 
 #include <preskin/Renderer.h>
 
@@ -63,13 +64,6 @@ RenderedImage readPng(const std::filesystem::path& path, std::string& error) {
     return image;
 }
 
-std::string readText(const std::filesystem::path& path) {
-    std::ifstream in(path);
-    std::stringstream s;
-    s << in.rdbuf();
-    return s.str();
-}
-
 class SkinGolden : public GpuTest {};
 
 TEST_F(SkinGolden, HeadSceneMatchesDriverGolden) {
@@ -88,15 +82,10 @@ TEST_F(SkinGolden, HeadSceneMatchesDriverGolden) {
                                       ("preskin_test_golden_" + std::to_string(::getpid()));
     std::filesystem::create_directories(dir);
     const std::filesystem::path rendered = dir / "head_256.png";
-    const std::filesystem::path log = dir / "render.log";
-    std::string quotedDevice;
-    for (char c : device) quotedDevice += c == '\'' ? std::string("'\\''") : std::string(1, c);
-    const std::string command = std::string("'") + PRESKIN_CLI_PATH + "' render --width 256 --height 256 --validation" +
-                                " --device '" + quotedDevice + "' --out '" + rendered.string() + "' > '" + log.string() +
-                                "' 2>&1";
-    const int status = std::system(command.c_str());
-    const std::string output = readText(log);
-    ASSERT_EQ(status, 0) << command << "\n" << output;
+    const ProcessResult run = runCli({"render", "--width", "256", "--height", "256", "--validation", "--device", device,
+                                      "--out", rendered.string()},
+                                     dir, 120.0);
+    ASSERT_EQ(run.exitCode, 0) << run.out << run.err;
     std::string error;
     const RenderedImage image = readPng(rendered, error);
     std::filesystem::remove_all(dir);

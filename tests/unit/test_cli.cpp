@@ -1,6 +1,8 @@
 // The `preskin` tool end to end: bad input of every kind ends with one clear error line naming
 // the file and the problem, a non-zero exit and no output file; a good render with validation on
 // writes the image and reports its frame time.
+#include "support/Process.h"
+
 #include <gtest/gtest.h>
 
 #include <sys/stat.h>
@@ -18,29 +20,8 @@ namespace {
 
 namespace fs = std::filesystem;
 
-struct CliResult {
-    int exitCode = -1;
-    std::string out;
-    std::string err;
-};
-
-std::string readFile(const fs::path& p) {
-    std::ifstream f(p);
-    std::stringstream ss;
-    ss << f.rdbuf();
-    return ss.str();
-}
-
-std::string quote(const std::string& s) {
-    std::ostringstream q;
-    q << '\'';
-    for (char c : s) {
-        if (c == '\'') q << "'\\''";
-        else q << c;
-    }
-    q << '\'';
-    return q.str();
-}
+using preskin::test::ProcessResult;
+using CliResult = ProcessResult;
 
 class Cli : public ::testing::Test {
 protected:
@@ -57,24 +38,12 @@ protected:
         fs::remove_all(dir_, ec);
     }
 
-    // Runs `preskin <args>` on the test device with a time limit; captures stdout and stderr.
-    CliResult run(const std::vector<std::string>& args) {
-        std::ostringstream cmd;
-        cmd << "timeout 120 " << quote(PRESKIN_CLI_PATH);
-        for (const std::string& a : args) cmd << ' ' << quote(a);
-        cmd << " >" << quote((dir_ / "stdout.txt").string()) << " 2>" << quote((dir_ / "stderr.txt").string());
-        const int status = std::system(cmd.str().c_str());
-        CliResult r;
-        r.exitCode = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-        r.out = readFile(dir_ / "stdout.txt");
-        r.err = readFile(dir_ / "stderr.txt");
-        return r;
-    }
+    // Runs `preskin <args>` with a time limit; captures stdout and stderr.
+    CliResult run(const std::vector<std::string>& args) { return preskin::test::runCli(args, dir_, 120.0); }
 
     std::vector<std::string> renderArgs(const std::string& scene, const fs::path& out) {
-        const char* device = std::getenv("PRESKIN_TEST_DEVICE");
         return {"render", scene, "--out", out.string(), "--width", "32", "--height", "32", "--device",
-                device ? device : "llvmpipe"};
+                preskin::test::testDevice()};
     }
 
     // One line "preskin: error: ..." containing every needle; nothing written.

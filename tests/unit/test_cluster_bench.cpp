@@ -1,6 +1,8 @@
 // `preskin bench` end to end on a tiny image: it writes the JSON (every section, sane numbers,
 // no pixel whose light list is shorter than its exact count, validation on) and the PNG plot,
 // and refuses bad arguments before doing any work.
+#include "support/Process.h"
+
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 
@@ -31,17 +33,12 @@ protected:
         if (!dir_.empty()) fs::remove_all(dir_, ec);
     }
 
-    int bench(const std::string& arguments, std::string& err) const {
-        const char* device = std::getenv("PRESKIN_TEST_DEVICE");
-        const fs::path errPath = dir_ / "stderr.txt";
-        const std::string command = std::string("'") + PRESKIN_CLI_PATH + "' bench --device " +
-                                    (device ? device : "llvmpipe") + " " + arguments + " > '" +
-                                    (dir_ / "stdout.txt").string() + "' 2> '" + errPath.string() + "'";
-        const int status = std::system(command.c_str());
-        std::stringstream e;
-        e << std::ifstream(errPath).rdbuf();
-        err = e.str();
-        return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+    int bench(const std::vector<std::string>& arguments, std::string& err) const {
+        std::vector<std::string> all{std::string("bench"), std::string("--device"), test::testDevice()};
+        all.insert(all.end(), arguments.begin(), arguments.end());
+        const test::ProcessResult run = test::runCli(all, dir_);
+        err = run.err;
+        return run.exitCode;
     }
 
     fs::path dir_;
@@ -51,8 +48,8 @@ TEST_F(BenchCli, WritesJsonAndPlot) {
     const fs::path json = dir_ / "bench.json";
     const fs::path plot = dir_ / "bench.png";
     std::string err;
-    ASSERT_EQ(bench("--width 96 --height 64 --counts 0,8,32 --skin-counts 8 --reps 2 --warmup 0 --validation --out '" +
-                        json.string() + "' --plot '" + plot.string() + "'",
+    ASSERT_EQ(bench({"--width", "96", "--height", "64", "--counts", "0,8,32", "--skin-counts", "8", "--reps", "2", "--warmup",
+                     "0", "--validation", "--out", json.string(), "--plot", plot.string()},
                     err),
               0)
         << err;
@@ -91,11 +88,11 @@ TEST_F(BenchCli, WritesJsonAndPlot) {
 TEST_F(BenchCli, RefusesBadArgumentsBeforeWork) {
     std::string err;
     const fs::path json = dir_ / "bench.json";
-    EXPECT_EQ(bench("--counts 8,x --out '" + json.string() + "'", err), 1);
+    EXPECT_EQ(bench({"--counts", "8,x", "--out", json.string()}, err), 1);
     EXPECT_NE(err.find("--counts"), std::string::npos) << err;
-    EXPECT_EQ(bench("--plot '" + (dir_ / "plot.jpg").string() + "' --out '" + json.string() + "'", err), 1);
+    EXPECT_EQ(bench({"--plot", (dir_ / "plot.jpg").string(), "--out", json.string()}, err), 1);
     EXPECT_NE(err.find("plot.jpg"), std::string::npos) << err;
-    EXPECT_EQ(bench("--out '" + (dir_ / "missing" / "b.json").string() + "'", err), 1);
+    EXPECT_EQ(bench({"--out", (dir_ / "missing" / "b.json").string()}, err), 1);
     EXPECT_FALSE(fs::exists(json));
 }
 

@@ -4,6 +4,7 @@
 // camera and beyond the last slice, spots pointing across clusters, unlimited lights, and
 // perspective, off-centre and orthographic views. Also: the slice formula, the depth fit to the
 // scene, the documented overflow rule for both caps, and more than 255 (and 4096) lights.
+#include "support/TestLights.h"
 #include "unit/test_cluster_reference.h"
 
 #include <preskin/ClusterGrid.h>
@@ -37,49 +38,9 @@ ClusterSettings testSettings() {
     return s;
 }
 
-float uniform(std::mt19937& rng, float lo, float hi) { return std::uniform_real_distribution<float>(lo, hi)(rng); }
-
-glm::vec3 randomDirection(std::mt19937& rng) {
-    for (;;) {
-        const glm::vec3 v(uniform(rng, -1, 1), uniform(rng, -1, 1), uniform(rng, -1, 1));
-        const float len = glm::length(v);
-        if (len > 0.1f && len <= 1.0f) return v / len;
-    }
-}
-
-Light pointLight(const glm::vec3& p, float rangeM) {
-    Light l;
-    l.type = LightType::Point;
-    l.positionWs = p;
-    l.range = rangeM;
-    return l;
-}
-
-Light spotLight(const glm::vec3& p, const glm::vec3& dir, float rangeM, float outerAngle) {
-    Light l = pointLight(p, rangeM);
-    l.type = LightType::Spot;
-    l.directionWs = glm::normalize(dir);
-    l.outerConeAngle = outerAngle;
-    l.innerConeAngle = 0.5f * outerAngle;
-    return l;
-}
-
 // One directional light first (never clustered), then `count` points and spots around and in
 // the view, some behind the camera and beyond the far slices.
-std::vector<Light> randomLights(uint32_t count, uint32_t seed) {
-    std::mt19937 rng(seed);
-    std::vector<Light> lights;
-    Light sun;
-    sun.type = LightType::Directional;
-    lights.push_back(sun);
-    for (uint32_t i = 0; i < count; ++i) {
-        const glm::vec3 p(uniform(rng, -3.0f, 3.0f), uniform(rng, -2.0f, 3.0f), uniform(rng, -7.0f, 4.6f));
-        const float range = uniform(rng, 0.08f, 1.3f);
-        if (rng() % 5 < 2) lights.push_back(spotLight(p, randomDirection(rng), range, uniform(rng, 0.08f, 1.45f)));
-        else lights.push_back(pointLight(p, range));
-    }
-    return lights;
-}
+std::vector<Light> randomLights(uint32_t count, uint32_t seed) { return preskin::test::randomLights(count, seed, 4.6f); }
 
 // Every required light is listed; lists ascend, hold no directional light and no duplicates.
 ConservativeCheck expectConservative(const ClusterGrid& grid, const View& view, const std::vector<Light>& lights,

@@ -5,6 +5,7 @@
 #include <preskin/Renderer.h>
 
 #include "lights/ClusterBuilder.h"
+#include "render/GpuLights.h"
 #include "render/GpuLuts.h"
 #include "render/GpuScene.h"
 #include "shared/gpu_types.h"
@@ -60,24 +61,6 @@ int shadowLightIndex(const std::vector<Light>& lights) {
     for (size_t i = 0; i < lights.size(); ++i)
         if (lights[i].type == LightType::Directional && lights[i].castsShadow) return static_cast<int>(i);
     return -1;
-}
-
-gpu::GpuLight toGpu(const Light& light, bool shadowed) {
-    gpu::GpuLight g{};
-    const glm::vec3 dir = glm::length(light.directionWs) > 0.0f ? glm::normalize(light.directionWs)
-                                                                 : glm::vec3(0.0f, 0.0f, -1.0f);
-    uint32_t type = gpu::kLightDirectional;
-    if (light.type == LightType::Point) type = gpu::kLightPoint;
-    if (light.type == LightType::Spot) type = gpu::kLightSpot;
-    g.positionRange = glm::vec4(light.positionWs, std::max(light.range, 0.0f));
-    g.directionType = glm::vec4(dir, float(type));
-    g.colorIntensity = glm::vec4(light.color * light.intensity, shadowed ? 0.0f : -1.0f);
-    // KHR_lights_punctual cone attenuation: saturate(cd * scale + offset)^2.
-    const float cosOuter = std::cos(light.outerConeAngle);
-    const float cosInner = std::cos(std::min(light.innerConeAngle, light.outerConeAngle));
-    const float scale = 1.0f / std::max(1e-3f, cosInner - cosOuter);
-    g.spotScaleOffset = glm::vec4(scale, -cosOuter * scale, 0.0f, 0.0f);
-    return g;
 }
 
 // Orthographic light matrix around the scene's bounding sphere (depth 0 near .. 1 far).
@@ -357,11 +340,11 @@ struct Renderer::Impl {
         uint32_t directional = 0;
         for (size_t i = 0; i < lights.size(); ++i)
             if (lights[i].type == LightType::Directional) {
-                gpuLights.push_back(toGpu(lights[i], int(i) == shadowLight));
+                gpuLights.push_back(toGpuLight(lights[i], int(i) == shadowLight));
                 ++directional;
             }
         for (const Light& l : lights)
-            if (l.type != LightType::Directional) gpuLights.push_back(toGpu(l, false));
+            if (l.type != LightType::Directional) gpuLights.push_back(toGpuLight(l, false));
         const VkDeviceSize bytes = std::max<size_t>(gpuLights.size(), 1) * sizeof(gpu::GpuLight);
         if (bytes > slot.lights.size())
             slot.lights = vk::Buffer(dev, bytes * 2, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, true);
