@@ -12,6 +12,7 @@ layout(constant_id = kSpecDebugView) const uint kDebugView = kDebugNone;
 layout(constant_id = kSpecAlphaMode) const uint kAlphaMode = 0;
 layout(constant_id = kSpecSkinFeatures) const uint kSkinFeatures = kSkinAll;
 layout(constant_id = kSpecLightLoop) const uint kLightLoop = kLightLoopAll;
+layout(constant_id = kSpecSpecular) const uint kSpecular = 1;
 
 layout(set = 0, binding = kBindingFrame) uniform Frame { FrameUniforms frame; };
 layout(std430, set = 0, binding = kBindingLights) readonly buffer Lights { GpuLight lights[]; };
@@ -200,6 +201,7 @@ void main() {
         skin.roughness = roughness;
         float specularMap = material.textureFlags.z > 0.5 ? texture(specularTexture, uvBase).r : 1.0;
         skin.F0 = vec3(0.028 * material.skinSpecular.x * specularMap);
+        skin.specularWeight = float(kSpecular);
         skin.lobes = material.skinSpecular.yzww;
         skin.transmissionTint = material.skinScatter.w * material.skinTransmission.rgb;
         skin.thicknessScale = material.skinTransmission.w;
@@ -239,7 +241,7 @@ void main() {
         color += transmitted;
         diffuseColor = skin.albedo;
         vec3 ambientIrradiance = preskinSkinAmbientIrradiance(skin, frame.lut, shTransferLut, frame.shRadiance, features);
-        vec3 envBrdf = preskinEnvBrdfApprox(skin.F0, roughness, NoV);
+        vec3 envBrdf = preskinEnvBrdfApprox(skin.F0, roughness, NoV) * skin.specularWeight;
         vec3 R = reflect(-V, skin.normalSpecular);
         vec3 specularSh = max(preskinShEvaluate(frame.shRadiance, R, PRESKIN_SH_LAMBERT), vec3(0.0)) / PRESKIN_PI;
         ambientDiffuse = diffuseColor * ambientIrradiance / PRESKIN_PI * (vec3(1.0) - envBrdf) * occlusion;
@@ -254,6 +256,7 @@ void main() {
         surface.diffuseColor = baseColor.rgb * (1.0 - metallic);
         surface.F0 = mix(vec3(0.04), baseColor.rgb, metallic);
         surface.roughness = roughness;
+        surface.specularWeight = float(kSpecular);
         for (uint i = 0; i < frame.lightCounts.y; ++i) {
             GpuLight light = lights[i];
             vec3 L;
@@ -274,7 +277,7 @@ void main() {
         vec3 irradianceSh = max(preskinShEvaluate(frame.shRadiance, N, PRESKIN_SH_LAMBERT), vec3(0.0));
         vec3 R = reflect(-V, N);
         vec3 specularSh = max(preskinShEvaluate(frame.shRadiance, R, PRESKIN_SH_LAMBERT), vec3(0.0)) / PRESKIN_PI;
-        vec3 envBrdf = preskinEnvBrdfApprox(surface.F0, roughness, NoV);
+        vec3 envBrdf = preskinEnvBrdfApprox(surface.F0, roughness, NoV) * surface.specularWeight;
         diffuseColor = surface.diffuseColor;
         ambientDiffuse = surface.diffuseColor * irradianceSh / PRESKIN_PI * (vec3(1.0) - envBrdf) * occlusion;
         color += ambientDiffuse + specularSh * envBrdf * occlusion;

@@ -25,10 +25,7 @@ namespace {
 struct RenderOptions {
     std::string scene;
     std::string out = "render.png";
-    uint32_t width = 1280;
-    uint32_t height = 720;
-    std::string camera;
-    std::string orbit;
+    ViewOptions view;
     uint32_t frames = 1;
     CommonOptions common;
 };
@@ -48,28 +45,16 @@ void run(const RenderOptions& o) {
     Renderer renderer(*context, scene, environment, &luts, renderSettings(o.common));
     applyLightOptions(renderer, scene, o.common);
 
-    const float aspect = float(o.width) / float(o.height);
-    View view;
-    if (!o.camera.empty()) {
-        const Camera* camera = nullptr;
-        for (const Camera& c : scene.cameras)
-            if (c.name == o.camera) camera = &c;
-        if (!camera) throw Error(fmt::format("--camera {}: {} has no camera of that name", o.camera, scenePath.string()));
-        view = cameraView(*camera, aspect, scene.worldBounds());
-    } else if (!o.orbit.empty()) {
-        const auto v = parseFloats(o.orbit, 3, "--orbit");
-        view = orbitView(scene.worldBounds(), v[0], v[1], v[2], aspect);
-    } else {
-        view = frameBoundsView(scene.worldBounds(), aspect);
-    }
+    const View view = makeView(scene, scenePath, o.view);
+    const uint32_t width = o.view.width, height = o.view.height;
 
     // One warm-up frame (first-use costs), then the measured ones; the frame with the median
     // GPU time is reported (frames are identical, so any of them is the image).
-    renderer.render(view, o.width, o.height, encoding);
+    renderer.render(view, width, height, encoding);
     RenderedImage image;
     std::vector<FrameStats> frames;
     for (uint32_t i = 0; i < o.frames; ++i) {
-        image = renderer.render(view, o.width, o.height, encoding);
+        image = renderer.render(view, width, height, encoding);
         frames.push_back(renderer.frameStats());
     }
     std::sort(frames.begin(), frames.end(),
@@ -90,14 +75,7 @@ void addRenderCommand(CLI::App& app) {
     cmd->add_option("scene", options->scene, "glTF scene (.gltf or .glb); default: the bundled head scene");
     cmd->add_option("--out,-o", options->out, "Output image: .png (tone-mapped) or .exr (linear)")
         ->capture_default_str();
-    cmd->add_option("--width", options->width, "Image width in pixels")->capture_default_str()->check(CLI::Range(1, 16384));
-    cmd->add_option("--height", options->height, "Image height in pixels")
-        ->capture_default_str()
-        ->check(CLI::Range(1, 16384));
-    auto* camera = cmd->add_option("--camera", options->camera, "Use the scene's camera of this name");
-    auto* orbit = cmd->add_option("--orbit", options->orbit,
-                                  "Orbit the scene's centre: YAW,PITCH,DIST in degrees, degrees, metres (DIST 0: fit)");
-    camera->excludes(orbit);
+    addViewOptions(*cmd, options->view);
     cmd->add_option("--frames", options->frames, "Measured frames after one warm-up; the median is reported")
         ->capture_default_str()
         ->check(CLI::Range(1, 1000));

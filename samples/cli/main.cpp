@@ -1,4 +1,4 @@
-// preskin: command-line front end of libpreskin (render, bake, bench).
+// preskin: command-line front end of libpreskin (render, bake, bench, reference).
 #include "Commands.h"
 
 #include <preskin/Error.h>
@@ -15,6 +15,7 @@ int main(int argc, char** argv) {
     preskin::cli::addRenderCommand(app);
     preskin::cli::addBakeCommand(app);
     preskin::cli::addBenchCommand(app);
+    preskin::cli::addReferenceCommand(app);
     try {
         app.parse(argc, argv);
     } catch (const CLI::ParseError& e) {

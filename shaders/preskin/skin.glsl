@@ -45,6 +45,7 @@ struct PreskinSkinSurface {
     float scatterScale;      // profile mm per world mm
     float roughness;         // perceptual
     vec3 F0;                 // 0.028 * intensity * specular map for skin
+    float specularWeight;    // 1: specular with Fresnel; 0: diffuse only (no specular, no Fresnel on diffuse)
     vec4 lobes;              // x lobe-0 roughness multiplier, y lobe-1 multiplier, z lobe-1 weight
     vec3 transmissionTint;   // strength * colour
     float thicknessScale;
@@ -87,9 +88,9 @@ vec3 preskinSkinSpecular(PreskinSkinSurface s, vec3 V, vec3 L, uint features) {
 // filtered shadow in all channels); specularVisibility: the plain filtered shadow.
 vec3 preskinSkinLight(PreskinSkinSurface s, LutMapping m, sampler2D diffuseLut, vec3 V, vec3 L, vec3 irradiance,
                       vec3 shadowRgb, float specularVisibility, uint features) {
-    vec3 F = preskinSchlickF(s.F0, preskinSaturate(dot(V, normalize(L + V))));
+    vec3 F = s.specularWeight * preskinSchlickF(s.F0, preskinSaturate(dot(V, normalize(L + V))));
     vec3 diffuse = (vec3(1.0) - F) * s.albedo / PRESKIN_PI * preskinSkinDiffuseResponse(s, m, diffuseLut, L, features);
-    vec3 specular = preskinSkinSpecular(s, V, L, features);
+    vec3 specular = s.specularWeight * preskinSkinSpecular(s, V, L, features);
     return (diffuse * shadowRgb + specular * specularVisibility) * irradiance;
 }
 

@@ -40,6 +40,7 @@ PRESKIN_CONST(uint, kSpecDebugView, 2)      // kDebug*
 PRESKIN_CONST(uint, kSpecAlphaMode, 3)      // 0 opaque, 1 mask, 2 blend
 PRESKIN_CONST(uint, kSpecSkinFeatures, 4)   // bit mask of kSkin* (shared/skin_features.h)
 PRESKIN_CONST(uint, kSpecLightLoop, 5)      // kLightLoopClustered or kLightLoopAll
+PRESKIN_CONST(uint, kSpecSpecular, 6)       // 1: specular and Fresnel on; 0: diffuse only (RenderSettings::specular)
 
 PRESKIN_CONST(uint, kModelStandard, 0)
 PRESKIN_CONST(uint, kModelSkin, 1)

@@ -55,14 +55,6 @@ bool isDisplayFormat(VkFormat format) {
     }
 }
 
-// Index of the light that gets the shadow map: the first directional light flagged castsShadow
-// (the glTF loader flags the first directional light when a file says nothing); -1 when none.
-int shadowLightIndex(const std::vector<Light>& lights) {
-    for (size_t i = 0; i < lights.size(); ++i)
-        if (lights[i].type == LightType::Directional && lights[i].castsShadow) return static_cast<int>(i);
-    return -1;
-}
-
 // Orthographic light matrix around the scene's bounding sphere (depth 0 near .. 1 far).
 glm::mat4 shadowMatrix(const Bounds& bounds, const glm::vec3& direction, float& radiusOut) {
     const glm::vec3 c = bounds.empty() ? glm::vec3(0.0f) : bounds.center();
@@ -86,8 +78,8 @@ glm::mat4 shadowMatrix(const Bounds& bounds, const glm::vec3& direction, float& 
 }
 
 struct PipelineKey {
-    uint32_t model, alphaMode, doubleSided, format, debugView, skinMask, lightLoop;
-    auto tie() const { return std::tie(model, alphaMode, doubleSided, format, debugView, skinMask, lightLoop); }
+    uint32_t model, alphaMode, doubleSided, format, debugView, skinMask, lightLoop, specular;
+    auto tie() const { return std::tie(model, alphaMode, doubleSided, format, debugView, skinMask, lightLoop, specular); }
     bool operator<(const PipelineKey& o) const { return tie() < o.tie(); }
 };
 
@@ -244,7 +236,8 @@ struct Renderer::Impl {
                            static_cast<uint32_t>(format),
                            static_cast<uint32_t>(settings.debugView),
                            skin ? settings.skin.mask() : 0u,
-                           settings.lightLoop == LightLoop::Clustered ? gpu::kLightLoopClustered : gpu::kLightLoopAll};
+                           settings.lightLoop == LightLoop::Clustered ? gpu::kLightLoopClustered : gpu::kLightLoopAll,
+                           settings.specular ? 1u : 0u};
     }
 
     VkPipeline forwardPipeline(const GpuMaterial& m, VkFormat format) {
@@ -261,7 +254,7 @@ struct Renderer::Impl {
         vk::GraphicsPipelineDesc desc;
         desc.vertexSpirv = shader("forward.vert");
         desc.fragmentSpirv = shader("forward.frag");
-        desc.specialization.values.resize(6);
+        desc.specialization.values.resize(7);
         desc.specialization.values[gpu::kSpecMaterialModel] = key.model;
         desc.specialization.values[gpu::kSpecOutputMode] = isDisplayFormat(format) ? gpu::kOutputTonemapped
                                                                                    : gpu::kOutputLinear;
@@ -269,6 +262,7 @@ struct Renderer::Impl {
         desc.specialization.values[gpu::kSpecAlphaMode] = key.alphaMode;
         desc.specialization.values[gpu::kSpecSkinFeatures] = key.skinMask;
         desc.specialization.values[gpu::kSpecLightLoop] = key.lightLoop;
+        desc.specialization.values[gpu::kSpecSpecular] = key.specular;
         desc.vertexBindings = {{0, sizeof(Vertex), VK_VERTEX_INPUT_RATE_VERTEX}};
         desc.vertexAttributes = {
             {0, 0, VK_FORMAT_R32G32B32_SFLOAT, offsetof(Vertex, positionOs)},

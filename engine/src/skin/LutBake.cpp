@@ -35,21 +35,7 @@ void checkSize(int value, std::string_view source, std::string_view field) {
 // The thickness where the largest channel's transmittance falls to kTransmittanceFloor, rounded
 // up to 0.01 mm (a round number keeps manifests comparable across machines).
 double transmittanceRangeMm(const DiffusionProfile& profile) {
-    auto largest = [&](double d) {
-        const glm::dvec3 t = profile.transmittance(d);
-        return std::max({t.x, t.y, t.z});
-    };
-    double lo = 0.0;
-    double hi = profile.maxWidthMm();
-    while (largest(hi) > kTransmittanceFloor) {
-        lo = hi;
-        hi *= 2.0;
-    }
-    for (int i = 0; i < 200 && hi - lo > 1e-9 * hi; ++i) {
-        const double mid = 0.5 * (lo + hi);
-        (largest(mid) > kTransmittanceFloor ? lo : hi) = mid;
-    }
-    return std::ceil(hi * 100.0) / 100.0;
+    return std::ceil(profile.reachMm(kTransmittanceFloor) * 100.0) / 100.0;
 }
 
 LutAxis axis(std::string quantity, std::string unit, AxisMapping mapping, double min, double max, double scale, int size) {
