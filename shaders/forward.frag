@@ -197,7 +197,7 @@ void main() {
         N = skin.normalSpecular;
         NoV = max(dot(N, V), 1e-4);
         skin.scatterScale = material.skinScatter.x;
-        skin.curvaturePerMm = skinCurvaturePerM(geometricN) * 0.001 / max(skin.scatterScale, 1e-6);
+        skin.curvaturePerMm = abs(skinCurvaturePerM(geometricN)) * 0.001 / max(skin.scatterScale, 1e-6);
         skin.roughness = roughness;
         float specularMap = material.textureFlags.z > 0.5 ? texture(specularTexture, uvBase).r : 1.0;
         skin.F0 = vec3(0.028 * material.skinSpecular.x * specularMap);
@@ -281,7 +281,7 @@ void main() {
         diffuseColor = surface.diffuseColor;
         ambientDiffuse = surface.diffuseColor * irradianceSh / PRESKIN_PI * (vec3(1.0) - envBrdf) * occlusion;
         color += ambientDiffuse + specularSh * envBrdf * occlusion;
-        if (kDebugView == kDebugCurvature) debugColor = curvatureHeat(inCurvaturePerM * 0.001);
+        if (kDebugView == kDebugCurvature) debugColor = curvatureHeat(abs(inCurvaturePerM) * 0.001);
         else if (kDebugView == kDebugNormals) debugColor = N * 0.5 + 0.5;
         else if (kDebugView == kDebugPenumbra) debugColor = vec3(shadow.visibility);
     }

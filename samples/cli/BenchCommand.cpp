@@ -26,6 +26,8 @@
 // Goals (docs/clustering.md) are evaluated on the wall-time medians.
 // Limits: timings on a shared machine are noisy; compare numbers from one run.
 #include "Commands.h"
+#include "Canvas.h"
+#include "JsonWriter.h"
 #include "Options.h"  // samples/common
 
 #include <preskin/Context.h>
@@ -62,81 +64,6 @@ using Clock = std::chrono::steady_clock;
 
 double secondsSince(Clock::time_point start) { return std::chrono::duration<double>(Clock::now() - start).count(); }
 
-// ---- JSON output -----------------------------------------------------------------------------
-
-class JsonWriter {
-public:
-    void beginObject() { open('{'); }
-    void endObject() { close('}'); }
-    void beginArray() { open('['); }
-    void endArray() { close(']'); }
-    void key(std::string_view k) {
-        separate();
-        text_ += quote(k) + ": ";
-        afterKey_ = true;
-    }
-    void number(double v) {
-        separate();
-        text_ += std::isfinite(v) ? fmt::format("{:.6g}", v) : "null";
-    }
-    void integer(uint64_t v) {
-        separate();
-        text_ += fmt::format("{}", v);
-    }
-    void boolean(bool v) {
-        separate();
-        text_ += v ? "true" : "false";
-    }
-    void string(std::string_view v) {
-        separate();
-        text_ += quote(v);
-    }
-    template <typename T>
-    void field(std::string_view k, T v) {
-        key(k);
-        if constexpr (std::is_same_v<T, bool>) boolean(v);
-        else if constexpr (std::is_integral_v<T>) integer(static_cast<uint64_t>(v));
-        else if constexpr (std::is_floating_point_v<T>) number(double(v));
-        else string(v);
-    }
-    const std::string& text() const { return text_; }
-
-private:
-    static std::string quote(std::string_view s) {
-        std::string out = "\"";
-        for (char c : s) {
-            if (c == '"' || c == '\\') out += '\\', out += c;
-            else if (static_cast<unsigned char>(c) < 0x20) out += fmt::format("\\u{:04x}", int(c));
-            else out += c;
-        }
-        return out + "\"";
-    }
-    void separate() {
-        if (afterKey_) {
-            afterKey_ = false;
-            return;
-        }
-        if (!first_.empty()) {
-            if (!first_.back()) text_ += ",";
-            first_.back() = false;
-            text_ += "\n" + std::string(2 * first_.size(), ' ');
-        }
-    }
-    void open(char c) {
-        separate();
-        text_ += c;
-        first_.push_back(true);
-    }
-    void close(char c) {
-        const bool empty = first_.back();
-        first_.pop_back();
-        if (!empty) text_ += "\n" + std::string(2 * first_.size(), ' ');
-        text_ += c;
-    }
-    std::string text_;
-    std::vector<bool> first_;
-    bool afterKey_ = false;
-};
 
 // ---- measurement -----------------------------------------------------------------------------
 
@@ -404,109 +331,6 @@ PerPixel countPerPixel(const RenderedImage& image, const View& view, const std::
 
 // ---- plot ----------------------------------------------------------------------------------------
 
-// A 5 x 8 pixel font (rows top to bottom, '#' set; row 7 holds descenders), drawn for this plot.
-const std::map<char, std::array<const char*, 8>>& glyphs() {
-    static const std::map<char, std::array<const char*, 8>> g = {
-        {'0', {" ### ", "#   #", "#  ##", "# # #", "##  #", "#   #", " ### ", "     "}},
-        {'1', {"  #  ", " ##  ", "  #  ", "  #  ", "  #  ", "  #  ", " ### ", "     "}},
-        {'2', {" ### ", "#   #", "    #", "   # ", "  #  ", " #   ", "#####", "     "}},
-        {'3', {"#####", "   # ", "  #  ", "   # ", "    #", "#   #", " ### ", "     "}},
-        {'4', {"   # ", "  ## ", " # # ", "#  # ", "#####", "   # ", "   # ", "     "}},
-        {'5', {"#####", "#    ", "#### ", "    #", "    #", "#   #", " ### ", "     "}},
-        {'6', {"  ## ", " #   ", "#    ", "#### ", "#   #", "#   #", " ### ", "     "}},
-        {'7', {"#####", "    #", "   # ", "  #  ", " #   ", " #   ", " #   ", "     "}},
-        {'8', {" ### ", "#   #", "#   #", " ### ", "#   #", "#   #", " ### ", "     "}},
-        {'9', {" ### ", "#   #", "#   #", " ####", "    #", "   # ", " ##  ", "     "}},
-        {'a', {"     ", "     ", " ### ", "    #", " ####", "#   #", " ####", "     "}},
-        {'b', {"#    ", "#    ", "# ## ", "##  #", "#   #", "#   #", "#### ", "     "}},
-        {'c', {"     ", "     ", " ### ", "#    ", "#    ", "#   #", " ### ", "     "}},
-        {'d', {"    #", "    #", " ## #", "#  ##", "#   #", "#   #", " ####", "     "}},
-        {'e', {"     ", "     ", " ### ", "#   #", "#####", "#    ", " ### ", "     "}},
-        {'f', {"  ## ", " #  #", " #   ", "###  ", " #   ", " #   ", " #   ", "     "}},
-        {'g', {"     ", "     ", " ####", "#   #", "#   #", " ####", "    #", " ### "}},
-        {'h', {"#    ", "#    ", "# ## ", "##  #", "#   #", "#   #", "#   #", "     "}},
-        {'i', {"  #  ", "     ", " ##  ", "  #  ", "  #  ", "  #  ", " ### ", "     "}},
-        {'j', {"   # ", "     ", "  ## ", "   # ", "   # ", "   # ", "#  # ", " ##  "}},
-        {'k', {"#    ", "#    ", "#  # ", "# #  ", "##   ", "# #  ", "#  # ", "     "}},
-        {'l', {" ##  ", "  #  ", "  #  ", "  #  ", "  #  ", "  #  ", " ### ", "     "}},
-        {'m', {"     ", "     ", "## # ", "# # #", "# # #", "#   #", "#   #", "     "}},
-        {'n', {"     ", "     ", "# ## ", "##  #", "#   #", "#   #", "#   #", "     "}},
-        {'o', {"     ", "     ", " ### ", "#   #", "#   #", "#   #", " ### ", "     "}},
-        {'p', {"     ", "     ", "#### ", "#   #", "#   #", "#### ", "#    ", "#    "}},
-        {'q', {"     ", "     ", " ## #", "#  ##", "#   #", " ####", "    #", "    #"}},
-        {'r', {"     ", "     ", "# ## ", "##  #", "#    ", "#    ", "#    ", "     "}},
-        {'s', {"     ", "     ", " ####", "#    ", " ### ", "    #", "#### ", "     "}},
-        {'t', {" #   ", " #   ", "###  ", " #   ", " #   ", " #  #", "  ## ", "     "}},
-        {'u', {"     ", "     ", "#   #", "#   #", "#   #", "#  ##", " ## #", "     "}},
-        {'v', {"     ", "     ", "#   #", "#   #", "#   #", " # # ", "  #  ", "     "}},
-        {'w', {"     ", "     ", "#   #", "#   #", "# # #", "# # #", " # # ", "     "}},
-        {'x', {"     ", "     ", "#   #", " # # ", "  #  ", " # # ", "#   #", "     "}},
-        {'y', {"     ", "     ", "#   #", "#   #", "#   #", " ####", "    #", " ### "}},
-        {'z', {"     ", "     ", "#####", "   # ", "  #  ", " #   ", "#####", "     "}},
-        {'.', {"     ", "     ", "     ", "     ", "     ", " ##  ", " ##  ", "     "}},
-        {',', {"     ", "     ", "     ", "     ", "     ", " ##  ", "  #  ", " #   "}},
-        {':', {"     ", " ##  ", " ##  ", "     ", " ##  ", " ##  ", "     ", "     "}},
-        {'(', {"   # ", "  #  ", " #   ", " #   ", " #   ", "  #  ", "   # ", "     "}},
-        {')', {" #   ", "  #  ", "   # ", "   # ", "   # ", "  #  ", " #   ", "     "}},
-        {'-', {"     ", "     ", "     ", " ### ", "     ", "     ", "     ", "     "}},
-        {'+', {"     ", "  #  ", "  #  ", "#####", "  #  ", "  #  ", "     ", "     "}},
-        {'/', {"    #", "    #", "   # ", "  #  ", " #   ", "#    ", "#    ", "     "}},
-        {'=', {"     ", "     ", "#####", "     ", "#####", "     ", "     ", "     "}},
-        {'%', {"##   ", "##  #", "   # ", "  #  ", " #   ", "#  ##", "   ##", "     "}},
-    };
-    return g;
-}
-
-struct Canvas {
-    uint32_t width;
-    uint32_t height;
-    std::vector<uint8_t> rgba;
-
-    Canvas(uint32_t w, uint32_t h) : width(w), height(h), rgba(size_t(w) * h * 4, 255) {}
-
-    void set(int x, int y, glm::u8vec3 c) {
-        if (x < 0 || y < 0 || x >= int(width) || y >= int(height)) return;
-        uint8_t* p = &rgba[(size_t(y) * width + size_t(x)) * 4];
-        p[0] = c.r;
-        p[1] = c.g;
-        p[2] = c.b;
-        p[3] = 255;
-    }
-    void fill(int x0, int y0, int x1, int y1, glm::u8vec3 c) {
-        for (int y = y0; y <= y1; ++y)
-            for (int x = x0; x <= x1; ++x) set(x, y, c);
-    }
-    // A line `thickness` pixels wide (square brush).
-    void line(double x0, double y0, double x1, double y1, int thickness, glm::u8vec3 c) {
-        const double length = std::max(std::abs(x1 - x0), std::abs(y1 - y0));
-        const int steps = std::max(1, int(std::ceil(length * 2.0)));
-        const int h = thickness / 2;
-        for (int i = 0; i <= steps; ++i) {
-            const double t = double(i) / steps;
-            const int x = int(std::lround(x0 + (x1 - x0) * t));
-            const int y = int(std::lround(y0 + (y1 - y0) * t));
-            fill(x - h, y - h, x - h + thickness - 1, y - h + thickness - 1, c);
-        }
-    }
-    // Text at `scale` pixels per font pixel; returns the width drawn. Unknown characters: a gap.
-    int text(int x, int y, std::string_view s, int scale, glm::u8vec3 c) {
-        const auto& font = glyphs();
-        int cursor = x;
-        for (char ch : s) {
-            auto it = font.find(ch);
-            if (it != font.end())
-                for (int row = 0; row < 8; ++row)
-                    for (int col = 0; col < 5; ++col)
-                        if (it->second[size_t(row)][col] == '#')
-                            fill(cursor + col * scale, y + row * scale, cursor + (col + 1) * scale - 1,
-                                 y + (row + 1) * scale - 1, c);
-            cursor += 6 * scale;
-        }
-        return cursor - x;
-    }
-    static int textWidth(std::string_view s, int scale) { return int(s.size()) * 6 * scale; }
-};
-
 struct Curve {
     std::string label;
     glm::u8vec3 color;
@@ -575,12 +399,7 @@ void writePlot(const std::filesystem::path& path, const std::string& title, cons
         c.text(x0 + 60, legendY, curve.label, 2, ink);
         legendY += 24;
     }
-    RenderedImage image;
-    image.width = c.width;
-    image.height = c.height;
-    image.encoding = OutputEncoding::DisplaySrgb8;
-    image.rgba8 = std::move(c.rgba);
-    writeImage(path, image);
+    c.writePng(path);
 }
 
 // ---- the command ---------------------------------------------------------------------------------
@@ -593,21 +412,6 @@ std::vector<uint32_t> parseCounts(const std::string& text, const char* flag) {
         out.push_back(static_cast<uint32_t>(v));
     }
     return out;
-}
-
-void writeText(const std::filesystem::path& path, const std::string& text) {
-    const std::filesystem::path tmp = path.string() + ".tmp";
-    {
-        std::ofstream f(tmp, std::ios::binary);
-        f << text;
-        if (!f) throw Error(fmt::format("--out {}: cannot write", path.string()));
-    }
-    std::error_code ec;
-    std::filesystem::rename(tmp, path, ec);
-    if (ec) {
-        std::filesystem::remove(tmp, ec);
-        throw Error(fmt::format("--out {}: cannot write", path.string()));
-    }
 }
 
 void run(const BenchOptions& o) {
@@ -894,7 +698,7 @@ void run(const BenchOptions& o) {
 
     const std::string json = j.text() + "\n";
     if (o.out.empty()) std::fwrite(json.data(), 1, json.size(), stdout);
-    else writeText(o.out, json);
+    else writeTextFile(o.out, json, "--out");
 
     if (!o.plot.empty()) {
         std::vector<Curve> curves;

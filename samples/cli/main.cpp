@@ -1,4 +1,4 @@
-// preskin: command-line front end of libpreskin (render, bake, bench, reference).
+// preskin: command-line front end of libpreskin (render, bake, bench, reference, compare).
 #include "Commands.h"
 
 #include <preskin/Error.h>
@@ -16,6 +16,7 @@ int main(int argc, char** argv) {
     preskin::cli::addBakeCommand(app);
     preskin::cli::addBenchCommand(app);
     preskin::cli::addReferenceCommand(app);
+    preskin::cli::addCompareCommand(app);
     try {
         app.parse(argc, argv);
     } catch (const CLI::ParseError& e) {
