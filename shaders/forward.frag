@@ -151,8 +151,13 @@ void main() {
     shadow.visibility = 1.0;
     shadow.thicknessM = 0.0;
     shadow.kernelWidthM = 0.0;
+    vec3 shadowPositionWs = inPositionWs;
+    if (kMaterialModel == kModelSkin && (kSkinFeatures & kSkinLutDiffuse) != 0u)
+        shadowPositionWs = preskinSkinShadowPosition(
+            inPositionWs, geometricN, -frame.shadowDirectionWs.xyz,
+            skinCurvaturePerM(geometricN) * 0.001 / max(material.skinScatter.x, 1e-6), material.skinScatter.x, frame.lut);
     if (frame.shadowDirectionWs.w > 0.5)
-        shadow = preskinSampleShadow(shadowMap, frame.shadowClipFromWorld, frame.shadowParams, inPositionWs, geometricN);
+        shadow = preskinSampleShadow(shadowMap, frame.shadowClipFromWorld, frame.shadowParams, shadowPositionWs, geometricN);
 
     uint first;
     uint count;
@@ -220,12 +225,10 @@ void main() {
                 visibility = shadow.visibility;
                 shadowRgb = preskinSkinShadow(skin, frame.lut, penumbraLut, visibility, shadow.kernelWidthM, L, features);
                 penumbra = shadowRgb;
-                // Thickness from a point moved 2 profile-mm inside along the normal (Jimenez et al.
-                // 2010 shrink): the lit side near the terminator is not a zero-thickness slab.
                 float thicknessM = 0.0;
-                if ((features & kSkinTransmission) != 0u && dot(geometricN, L) < 0.3)  // else no wrap
+                if ((features & kSkinTransmission) != 0u && dot(geometricN, L) < 0.0)  // else nothing transmitted
                     thicknessM = preskinShadowThickness(shadowMap, frame.shadowClipFromWorld, frame.shadowParams,
-                                                        inPositionWs - geometricN * (0.002 / max(skin.scatterScale, 1e-6)));
+                                                        preskinSkinThicknessPosition(skin, inPositionWs));
                 transmitted += preskinSkinTransmission(skin, frame.lut, transmittanceLut, L, irradiance, thicknessM,
                                                        features);
             }

@@ -4,6 +4,9 @@
 //  - diffuse: Penner & Borshukov's pre-integrated ring scattering (GPU Pro 2, 2011): per light
 //    and per colour channel D_c(NoL_c, curvature) from the diffuse LUT replaces saturate(NoL);
 //    NoL_c uses that channel's prefiltered normal;
+//  - self-shadowing apart from cast shadows: the shadow map is looked up above the local patch
+//    near the terminator (preskinSkinShadowPosition), so it does not remove the light the diffuse
+//    LUT scatters past the terminator;
 //  - per-channel normal prefiltering (same source; d'Eon & Luebke, GPU Gems 3 ch. 14): the normal
 //    map sampled three times with a mip LOD bias per channel, red blurred most; the bias comes
 //    from the profile's scattering width per channel and the map's texel density (C++ side);
@@ -13,8 +16,9 @@
 //  - ambient: L2 SH radiance convolved per channel with the skin's zonal transfer A_l(curvature)
 //    instead of Lambert's (pi, 2pi/3, pi/4);
 //  - transmission through thin parts (Jimenez et al., "Real-Time Realistic Skin Translucency",
-//    IEEE CG&A 2010): thickness from the shadow map, T(thickness) from the profile, times a
-//    saturate(0.3 - NoL) wrap on the side facing away from the light;
+//    IEEE CG&A 2010): thickness from the shadow map, T(thickness) from the profile, times
+//    saturate(-NoL) on the side facing away from the light, less what the diffuse LUT already
+//    holds (the light through the osculating sphere);
 //  - specular: two GGX lobes (roughness multipliers and mix in the material) with F0 = 0.028
 //    (IOR 1.4) times the specular map.
 // Every technique can be switched off (kSkin* bits of shared/skin_features.h in `features`); off falls back to the
@@ -105,15 +109,38 @@ vec3 preskinSkinShadow(PreskinSkinSurface s, LutMapping m, sampler2D penumbraLut
     return preskinPenumbraLut(m, penumbraLut, visibility, sigmaProfileMm);
 }
 
-// Light transmitted through the surface from a light behind it: thicknessM from the shadow
-// map (metres), T(thickness) from the profile, wrap saturate(0.3 - NoL) (Jimenez et al. 2010).
+// Depth (profile mm) below the surface from which transmission measures the thickness: the
+// shadow map's depth bias would otherwise dominate where the light enters at a grazing angle.
+const float kPreskinThicknessShrinkMm = 2.0;
+
+// The point whose shadow-map thickness preskinSkinTransmission expects (preskinShadowThickness).
+vec3 preskinSkinThicknessPosition(PreskinSkinSurface s, vec3 positionWs) {
+    return positionWs - s.geometricNormal * (kPreskinThicknessShrinkMm * 0.001 / max(s.scatterScale, 1e-6));
+}
+
+// Light transmitted through the surface from a light behind it (after Jimenez et al. 2010):
+// thicknessM from the shadow map at preskinSkinThicknessPosition (metres); the thickness from
+// the surface along L is that plus the shrink depth times c = saturate(-NoL); T(thickness) from
+// the profile (its plane integral at that depth, exact for a slab), times c, the far side's
+// cosine for a slab. Only light the diffuse LUT does not already hold is added: the LUT
+// integrates over the osculating sphere of convex skin (radius a = 1/curvature), so T of that
+// sphere's thickness along L (measured the same way: from the shrunk point, (a - d) c +
+// sqrt((a - d)^2 c^2 + 2 a d - d^2), d the shrink) is subtracted. On a sphere the two cancel; a
+// thin sheet (an ear) keeps T of the sheet. Nothing is added where the skin faces the light.
+// Limits: sheets thinner than the shrink read as that thick.
 vec3 preskinSkinTransmission(PreskinSkinSurface s, LutMapping m, sampler2D transmittanceLut, vec3 L,
                              vec3 irradiance, float thicknessM, uint features) {
-    float wrap = preskinSaturate(0.3 - dot(s.geometricNormal, L));
-    if ((features & kSkinTransmission) == 0u || wrap <= 0.0) return vec3(0.0);
-    float thicknessMm = thicknessM * 1000.0 * s.thicknessScale * s.scatterScale;
+    float c = preskinSaturate(-dot(s.geometricNormal, L));
+    if ((features & kSkinTransmission) == 0u || c <= 0.0) return vec3(0.0);
+    float d = kPreskinThicknessShrinkMm;
+    float thicknessMm = thicknessM * 1000.0 * s.thicknessScale * s.scatterScale + d * c;
     vec3 T = preskinTransmittanceLut(m, transmittanceLut, thicknessMm);
-    return T * wrap * s.transmissionTint * s.albedo / PRESKIN_PI * irradiance;
+    if ((features & kSkinLutDiffuse) != 0u && s.curvaturePerMm > 0.0) {
+        float a = 1.0 / s.curvaturePerMm;
+        float sphereMm = (a - d) * c + sqrt(max((a - d) * (a - d) * c * c + 2.0 * a * d - d * d, 0.0)) + d * c;
+        T = max(T - preskinTransmittanceLut(m, transmittanceLut, sphereMm), vec3(0.0));
+    }
+    return T * c * s.transmissionTint * s.albedo / PRESKIN_PI * irradiance;
 }
 
 // Diffuse ambient irradiance per channel from L2 SH radiance (multiply by albedo / pi).
@@ -134,6 +161,24 @@ vec3 preskinSkinAmbientIrradiance(PreskinSkinSurface s, LutMapping m, sampler2D 
     return max(vec3(preskinShEvaluateChannel(sh, s.normalR, bandR, 0), preskinShEvaluateChannel(sh, s.normalG, bandG, 1),
                     preskinShEvaluateChannel(sh, s.normalB, bandB, 2)),
                vec3(0.0));
+}
+
+// Where skin looks up the shadow map for the light towards L: near the terminator, the point
+// lifted along its normal by the sagitta of its osculating sphere (radius 1 / |curvature|) over
+// the local patch (radius rho = m.diffuseCurvature.w profile mm, LutSet::localPatchMm),
+// h = (1 - cos(rho |k|)) / |k|. From there the patch itself cannot occlude the light, so the
+// shadow map carries cast shadows only: on a closed surface the terminator's self-shadowing is
+// left to the diffuse LUT, which already holds it (max(N.L, 0) of every neighbour) together with
+// the light scattered past it. The lift fades out where the patch cannot reach the terminator
+// (N.L above sin(rho |k|)), so shadows cast onto lit skin keep their place; flat skin is not lifted.
+vec3 preskinSkinShadowPosition(vec3 positionWs, vec3 geometricNormalWs, vec3 L, float curvaturePerMm,
+                               float scatterScale, LutMapping m) {
+    float k = abs(curvaturePerMm);
+    float angle = min(m.diffuseCurvature.w * k, PRESKIN_PI);
+    float liftMm = angle < 1e-3 ? 0.5 * m.diffuseCurvature.w * angle : (1.0 - cos(angle)) / k;
+    float reach = sin(min(angle, 0.5 * PRESKIN_PI));
+    float fade = reach > 0.0 ? preskinSaturate(1.0 - dot(geometricNormalWs, L) / reach) : 0.0;
+    return positionWs + geometricNormalWs * (fade * liftMm * 0.001 / max(scatterScale, 1e-6));
 }
 
 // Curvature in 1/m from screen-space derivatives (Penner's fallback: constant per triangle).

@@ -27,7 +27,8 @@ PRESKIN_GPU_BEGIN
 
 struct LutMapping {
     vec4 diffuseNoL;        // x: u at NoL = 0; y: du/dNoL for NoL < 0; z: du/dNoL for NoL >= 0
-    vec4 diffuseCurvature;  // x: 1 / curvatureMaxPerMm; y: (N-1)/N; z: 0.5/N  (v = z + y sqrt(saturate(c x)))
+    vec4 diffuseCurvature;  // x: 1 / curvatureMaxPerMm; y: (N-1)/N; z: 0.5/N  (v = z + y sqrt(saturate(c x)));
+                            // w: local patch radius, profile mm (LutSet::localPatchMm)
     vec4 penumbraShadow;    // x: (N-1)/N; y: 0.5/N  (u = y + x saturate(shadow))
     vec4 penumbraWidth;     // x: 1 / referenceWidthMm; y: (N-1)/N; z: 0.5/N  (w = sigma x; v = z + y w / (w + 1))
     vec4 shCurvature;       // as diffuseCurvature, for the SH table's width

@@ -107,6 +107,9 @@ public:
     const LutTable& shTransfer() const { return shTransfer_; }
     const LutTable& transmittance() const { return transmittance_; }
     double penumbraReferenceWidthMm() const { return penumbraReferenceWidthMm_; }
+    // Radius of the local patch (profile mm): the surface around a shaded point whose own
+    // shadowing the diffuse LUT models; skin looks the shadow map up above it.
+    double localPatchMm() const;
     double transmittanceMaxMm() const { return transmittance_.x.max; }
 
     // Texture coordinates and bilinear CPU lookups, identical to lut.glsl.

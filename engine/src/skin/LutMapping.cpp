@@ -5,6 +5,8 @@
 
 #include <preskin/LutSet.h>
 
+#include "skin/LutLayout.h"
+
 #include <cmath>
 #include <numbers>
 
@@ -30,7 +32,7 @@ gpu::LutMapping lutMapping(const LutSet& luts) {
 
     const LutAxis& curvature = luts.diffuse().y;  // Sqrt on [0, max]
     const glm::vec2 curvatureTexel = texelScaleOffset(curvature.size);
-    m.diffuseCurvature = glm::vec4(f(1.0 / curvature.max), curvatureTexel.x, curvatureTexel.y, 0.0f);
+    m.diffuseCurvature = glm::vec4(f(1.0 / curvature.max), curvatureTexel.x, curvatureTexel.y, f(luts.localPatchMm()));
 
     const glm::vec2 shadowTexel = texelScaleOffset(luts.penumbra().x.size);  // Linear on [0, 1]
     m.penumbraShadow = glm::vec4(shadowTexel.x, shadowTexel.y, 0.0f, 0.0f);
@@ -51,6 +53,8 @@ gpu::LutMapping lutMapping(const LutSet& luts) {
         glm::vec4(f(1.0 / thickness.scale), f(1.0 / std::log1p(thickness.max / thickness.scale)), thicknessTexel.x, thicknessTexel.y);
     return m;
 }
+
+double LutSet::localPatchMm() const { return skin::kLocalPatchWidths * profile_.maxWidthMm(); }
 
 glm::vec2 LutSet::diffuseUv(float NoL, float curvaturePerMm) const {
     return gpu::preskinDiffuseLutUv(lutMapping(*this), NoL, curvaturePerMm);
