@@ -202,7 +202,7 @@ void main() {
         N = skin.normalSpecular;
         NoV = max(dot(N, V), 1e-4);
         skin.scatterScale = material.skinScatter.x;
-        skin.curvaturePerMm = abs(skinCurvaturePerM(geometricN)) * 0.001 / max(skin.scatterScale, 1e-6);
+        skin.curvaturePerMm = skinCurvaturePerM(geometricN) * 0.001 / max(skin.scatterScale, 1e-6);
         skin.roughness = roughness;
         float specularMap = material.textureFlags.z > 0.5 ? texture(specularTexture, uvBase).r : 1.0;
         skin.F0 = vec3(0.028 * material.skinSpecular.x * specularMap);
@@ -249,7 +249,7 @@ void main() {
         vec3 specularSh = max(preskinShEvaluate(frame.shRadiance, R, PRESKIN_SH_LAMBERT), vec3(0.0)) / PRESKIN_PI;
         ambientDiffuse = diffuseColor * ambientIrradiance / PRESKIN_PI * (vec3(1.0) - envBrdf) * occlusion;
         color += ambientDiffuse + specularSh * envBrdf * occlusion;
-        if (kDebugView == kDebugCurvature) debugColor = curvatureHeat(skin.curvaturePerMm);
+        if (kDebugView == kDebugCurvature) debugColor = curvatureHeat(abs(skin.curvaturePerMm));
         else if (kDebugView == kDebugNormals)
             debugColor = vec3(skin.normalR.x, skin.normalG.y, skin.normalB.z) * 0.5 + 0.5;
         else if (kDebugView == kDebugPenumbra) debugColor = penumbra;

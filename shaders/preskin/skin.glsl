@@ -1,9 +1,11 @@
 // preskin/skin.glsl: pre-integrated skin shading for one fragment of a forward pass.
 //
 // Models (sources in DESIGN notes and README):
-//  - diffuse: Penner & Borshukov's pre-integrated ring scattering (GPU Pro 2, 2011): per light
+//  - diffuse: pre-integrated scattering after Penner & Borshukov (GPU Pro 2, 2011), integrated
+//    over the sphere of the signed mean curvature (engine/src/skin/SphereScatter.h): per light
 //    and per colour channel D_c(NoL_c, curvature) from the diffuse LUT replaces saturate(NoL);
-//    NoL_c uses that channel's prefiltered normal;
+//    NoL_c uses that channel's prefiltered normal; concave skin (negative curvature) reads the
+//    LUT's concave half, where the local patch shadows itself and no light passes the terminator;
 //  - self-shadowing apart from cast shadows: the shadow map is looked up above the local patch
 //    near the terminator (preskinSkinShadowPosition), so it does not remove the light the diffuse
 //    LUT scatters past the terminator;
@@ -28,7 +30,9 @@
 // converts them to profile millimetres. Needs: preskin/brdf.glsl, preskin/lut.glsl,
 // preskin/sh.glsl and the four LUT samplers (see README, "Skin in your own forward shader").
 // Limits: curvature and thickness are scalar per fragment; transmission only for the light that
-// owns the shadow map; the ring model assumes locally spherical geometry (Penner).
+// owns the shadow map; the diffuse LUT assumes locally spherical geometry of the mean curvature
+// (a cylinder reads as a sphere of twice its radius); the concave patch's extent is a model
+// constant (LutSet::localPatchMm).
 #ifndef PRESKIN_SKIN_GLSL
 #define PRESKIN_SKIN_GLSL
 
@@ -45,7 +49,7 @@ struct PreskinSkinSurface {
     vec3 normalB;
     vec3 normalSpecular;     // unbiased normal for specular
     vec3 geometricNormal;    // interpolated vertex normal, facing the viewer
-    float curvaturePerMm;    // profile units: world curvature (1/mm) / scatter scale
+    float curvaturePerMm;    // signed mean curvature in profile units (world 1/mm / scatter scale), < 0 concave
     float scatterScale;      // profile mm per world mm
     float roughness;         // perceptual
     vec3 F0;                 // 0.028 * intensity * specular map for skin
@@ -151,7 +155,7 @@ vec3 preskinSkinAmbientIrradiance(PreskinSkinSurface s, LutMapping m, sampler2D 
     vec3 bandB = PRESKIN_SH_LAMBERT;
     if ((features & kSkinShAmbient) != 0u) {
         vec3 a0, a1, a2;
-        preskinShTransferLut(m, shTransferLut, s.curvaturePerMm, a0, a1, a2);
+        preskinShTransferLut(m, shTransferLut, abs(s.curvaturePerMm), a0, a1, a2);  // unshadowed: either sign
         bandR = vec3(a0.r, a1.r, a2.r);
         bandG = vec3(a0.g, a1.g, a2.g);
         bandB = vec3(a0.b, a1.b, a2.b);
@@ -165,7 +169,7 @@ vec3 preskinSkinAmbientIrradiance(PreskinSkinSurface s, LutMapping m, sampler2D 
 
 // Where skin looks up the shadow map for the light towards L: near the terminator, the point
 // lifted along its normal by the sagitta of its osculating sphere (radius 1 / |curvature|) over
-// the local patch (radius rho = m.diffuseCurvature.w profile mm, LutSet::localPatchMm),
+// the local patch (radius rho = m.diffuseNoL.w profile mm, LutSet::localPatchMm),
 // h = (1 - cos(rho |k|)) / |k|. From there the patch itself cannot occlude the light, so the
 // shadow map carries cast shadows only: on a closed surface the terminator's self-shadowing is
 // left to the diffuse LUT, which already holds it (max(N.L, 0) of every neighbour) together with
@@ -174,8 +178,8 @@ vec3 preskinSkinAmbientIrradiance(PreskinSkinSurface s, LutMapping m, sampler2D 
 vec3 preskinSkinShadowPosition(vec3 positionWs, vec3 geometricNormalWs, vec3 L, float curvaturePerMm,
                                float scatterScale, LutMapping m) {
     float k = abs(curvaturePerMm);
-    float angle = min(m.diffuseCurvature.w * k, PRESKIN_PI);
-    float liftMm = angle < 1e-3 ? 0.5 * m.diffuseCurvature.w * angle : (1.0 - cos(angle)) / k;
+    float angle = min(m.diffuseNoL.w * k, PRESKIN_PI);
+    float liftMm = angle < 1e-3 ? 0.5 * m.diffuseNoL.w * angle : (1.0 - cos(angle)) / k;
     float reach = sin(min(angle, 0.5 * PRESKIN_PI));
     float fade = reach > 0.0 ? preskinSaturate(1.0 - dot(geometricNormalWs, L) / reach) : 0.0;
     return positionWs + geometricNormalWs * (fade * liftMm * 0.001 / max(scatterScale, 1e-6));

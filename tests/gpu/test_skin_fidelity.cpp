@@ -7,7 +7,9 @@
 //    already holds that light), and through a 3 mm slab lit from behind it must give what the
 //    reference gives (the profile's plane integral at the slab's depth).
 // Pixels are the sphere's interior pixels (analytic ray-sphere hits); the reference is traced
-// through the same pixel centres.
+// through the same pixel centres. And the inside of a bowl (a hemisphere seen from inside, its
+// normals inwards, so its mesh curvature is negative) must be shaded with the diffuse LUT's
+// concave response: D(NoL, -1/r), no light past the terminator, not the convex D(NoL, 1/r).
 #include "support/GpuTest.h"
 #include "support/ImageCompare.h"
 #include "support/SkinTestSupport.h"
@@ -149,6 +151,89 @@ TEST_F(SkinFidelity, ThinSlabTransmissionMatchesTheReference) {
                 skin.g, sample->radiance.r, sample->radiance.g);
     EXPECT_NEAR(skin.r, sample->radiance.r, 0.05 * sample->radiance.r);
     EXPECT_NEAR(skin.g, sample->radiance.g, 0.05 * sample->radiance.r);
+}
+
+TEST_F(SkinFidelity, InsideOfABowlIsShadedWithTheConcaveResponse) {
+    // A 1 m bowl scattering like one of 5 mm radius (profile curvature -0.2 / mm).
+    const double radiusM = 1.0;
+    SkinMaterial skin;
+    skin.scatterScale = 0.005f;
+    const double curvaturePerMm = -1.0 / radiusM * 0.001 / double(skin.scatterScale);
+    Material material;
+    material.baseColorFactor = glm::vec4(0.8f, 0.6f, 0.5f, 1.0f);
+    material.metallicFactor = 0.0f;
+    material.skin = skin;
+    // The lower hemisphere of a UV sphere turned inside out: normals inwards, winding reversed.
+    const Primitive sphere = makeSphere(float(radiusM), 192, 96);
+    Primitive bowl;
+    std::vector<uint32_t> remap(sphere.vertices.size(), UINT32_MAX);
+    for (size_t t = 0; t + 2 < sphere.indices.size(); t += 3) {
+        const uint32_t tri[3] = {sphere.indices[t], sphere.indices[t + 2], sphere.indices[t + 1]};
+        bool lower = true;
+        for (uint32_t i : tri) lower = lower && sphere.vertices[i].positionOs.y <= 1e-6f;
+        if (!lower) continue;
+        for (uint32_t i : tri) {
+            if (remap[i] == UINT32_MAX) {
+                Vertex v = sphere.vertices[i];
+                v.normalOs = -v.normalOs;
+                remap[i] = uint32_t(bowl.vertices.size());
+                bowl.vertices.push_back(v);
+                bowl.boundsOs.extend(v.positionOs);
+            }
+            bowl.indices.push_back(remap[i]);
+        }
+    }
+    recomputeCurvature(bowl);
+    bowl.material = 0;
+    Scene scene = makeScene({{bowl, glm::mat4(1.0f)}}, {material});
+    Light light;
+    light.type = LightType::Directional;
+    light.directionWs = glm::normalize(glm::vec3(0.75f, -0.66f, 0.0f));  // grazes the wall nearest the light
+    light.intensity = 3.0f;
+    scene.lights = {light};
+    const glm::dvec3 L = -glm::normalize(glm::dvec3(light.directionWs));
+
+    RenderSettings settings;
+    settings.specular = false;
+    settings.shadows = false;  // the LUT's response alone
+    const LutSet& luts = LutSet::loadDefault();
+    Renderer renderer(context(), scene, Environment::constant(glm::vec3(0.0f)), &luts, settings);
+    const uint32_t size = 96;
+    const View view = perspectiveView(glm::inverse(glm::lookAt(glm::vec3(0.0f, 3.0f, 0.3f), glm::vec3(0.0f, -0.3f, 0.0f),
+                                                               glm::vec3(0.0f, 0.0f, -1.0f))),
+                                      0.6f, 1.0f, 0.1f, 10.0f);
+    const RenderedImage image = renderer.render(view, size, size, OutputEncoding::LinearFloat);
+
+    // The far intersection of each pixel's ray with the sphere: the inside of the bowl.
+    const glm::dmat4 worldFromClip = glm::inverse(glm::dmat4(view.clipFromWorld()));
+    size_t compared = 0, concaveMisses = 0, convexMisses = 0, pastTerminator = 0;
+    for (uint32_t y = 0; y < size; ++y)
+        for (uint32_t x = 0; x < size; ++x) {
+            const glm::dvec2 ndc((x + 0.5) / size * 2.0 - 1.0, (y + 0.5) / size * 2.0 - 1.0);
+            const glm::dvec4 a = worldFromClip * glm::dvec4(ndc, 1.0, 1.0), b = worldFromClip * glm::dvec4(ndc, 0.5, 1.0);
+            const glm::dvec3 o = glm::dvec3(a) / a.w, d = glm::normalize(glm::dvec3(b) / b.w - o);
+            const double half = glm::dot(o, d), disc = half * half - (glm::dot(o, o) - radiusM * radiusM);
+            if (disc <= 0.0) continue;
+            const glm::dvec3 p = o + d * (-half + std::sqrt(disc));
+            if (p.y > -0.3 * radiusM) continue;  // away from the open rim (curvature estimate, silhouette)
+            const glm::dvec3 N = -glm::normalize(p);
+            const double NoL = glm::dot(N, L);
+            const glm::dvec3 scale = glm::dvec3(material.baseColorFactor) / 3.14159265358979323846 * double(light.intensity);
+            const glm::dvec3 concave = scale * glm::dvec3(luts.lookupDiffuse(float(NoL), float(curvaturePerMm)));
+            const glm::dvec3 convex = scale * glm::dvec3(luts.lookupDiffuse(float(NoL), float(-curvaturePerMm)));
+            const glm::dvec3 got = pixelLinear(image, x, y);
+            ++compared;
+            pastTerminator += NoL < 0.0;
+            concaveMisses += srgbDifference(got, concave) > 2.0;
+            convexMisses += srgbDifference(got, convex) > 2.0;
+        }
+    std::printf("[ fidelity ] bowl: %zu pixels (%zu past the terminator); off the concave response by > 2/255: %zu, "
+                "off the convex one: %zu\n",
+                compared, pastTerminator, concaveMisses, convexMisses);
+    ASSERT_GT(compared, 1000u);
+    ASSERT_GT(pastTerminator, 50u);
+    EXPECT_LE(concaveMisses, compared / 200);
+    EXPECT_GT(convexMisses, compared / 20) << "the test must tell the two responses apart";
 }
 
 }  // namespace
