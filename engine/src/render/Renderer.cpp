@@ -8,6 +8,7 @@
 #include "render/GpuLights.h"
 #include "render/GpuLuts.h"
 #include "render/GpuScene.h"
+#include "render/ShadowFit.h"
 #include "shared/gpu_types.h"
 #include "vk/Check.h"
 #include "vk/Pipeline.h"
@@ -55,28 +56,6 @@ bool isDisplayFormat(VkFormat format) {
     }
 }
 
-// Orthographic light matrix around the scene's bounding sphere (depth 0 near .. 1 far).
-glm::mat4 shadowMatrix(const Bounds& bounds, const glm::vec3& direction, float& radiusOut) {
-    const glm::vec3 c = bounds.empty() ? glm::vec3(0.0f) : bounds.center();
-    const float r = bounds.empty() ? 1.0f : std::max(0.5f * glm::length(bounds.extent()), 1e-4f);
-    const glm::vec3 d = glm::normalize(direction);
-    const glm::vec3 helper = std::abs(d.y) < 0.99f ? glm::vec3(0.0f, 1.0f, 0.0f) : glm::vec3(1.0f, 0.0f, 0.0f);
-    const glm::vec3 right = glm::normalize(glm::cross(helper, d));
-    const glm::vec3 up = glm::cross(d, right);
-    glm::mat4 m(0.0f);  // m[col][row]
-    for (int i = 0; i < 3; ++i) {
-        m[i][0] = right[i] / r;
-        m[i][1] = up[i] / r;
-        m[i][2] = d[i] / (2.0f * r);
-    }
-    m[3][0] = -glm::dot(c, right) / r;
-    m[3][1] = -glm::dot(c, up) / r;
-    m[3][2] = (r - glm::dot(c, d)) / (2.0f * r);
-    m[3][3] = 1.0f;
-    radiusOut = r;
-    return m;
-}
-
 struct PipelineKey {
     uint32_t model, alphaMode, doubleSided, format, debugView, skinMask, lightLoop, specular;
     auto tie() const { return std::tie(model, alphaMode, doubleSided, format, debugView, skinMask, lightLoop, specular); }
@@ -108,6 +87,7 @@ struct Renderer::Impl {
     RenderSettings settings;
     std::vector<Light> lights;
     Bounds bounds;
+    Bounds receivers;  // the skin: what the shadow map is fitted to (render/ShadowFit.h)
     ShRgb radianceSh;
     std::unique_ptr<GpuScene> scene;
     std::unique_ptr<GpuLuts> luts;
@@ -130,6 +110,7 @@ struct Renderer::Impl {
 
     Impl(Context& ctx, const Scene& s, const Environment& env, const LutSet* lutSet, const RenderSettings& rs)
         : context(ctx), dev(ctx.core()), settings(rs), lights(s.lights), bounds(s.worldBounds()),
+          receivers(skinReceiverBounds(s)),
           radianceSh(env.radianceSh()) {
         scene = std::make_unique<GpuScene>(dev, s);
         luts = std::make_unique<GpuLuts>(dev, lutSet);
@@ -351,18 +332,21 @@ struct Renderer::Impl {
         u.cameraPositionWs = glm::vec4(view.positionWs, settings.exposure);
         u.viewport = glm::vec4(float(extent.width), float(extent.height), 1.0f / float(extent.width),
                                1.0f / float(extent.height));
-        float radius = 1.0f;
         const uint32_t mapSize = shadowMap.desc().width;
+        ShadowFit fit;  // without a shadow light: unit values, never sampled
+        fit.texelSizeM = 2.0f / float(mapSize);
+        fit.depthRangeM = 2.0f;
         if (shadowLight >= 0) {
             const glm::vec3 dir = glm::length(lights[size_t(shadowLight)].directionWs) > 0.0f
                                       ? glm::normalize(lights[size_t(shadowLight)].directionWs)
                                       : glm::vec3(0.0f, 0.0f, -1.0f);
-            shadowClipFromWorld = shadowMatrix(bounds, dir, radius);
+            fit = fitDirectionalShadow(bounds, settings.fitShadowToSkin ? receivers : Bounds{}, view, dir, mapSize);
+            shadowClipFromWorld = fit.clipFromWorld;
             u.shadowClipFromWorld = shadowClipFromWorld;
             u.shadowDirectionWs = glm::vec4(dir, 1.0f);
         }
-        u.shadowParams = glm::vec4(2.0f * radius / float(mapSize), std::max(settings.shadowSoftnessTexels, 0.25f),
-                                   2.0f * radius, float(mapSize));
+        u.shadowParams = glm::vec4(fit.texelSizeM, std::max(settings.shadowSoftnessTexels, 0.25f), fit.depthRangeM,
+                                   float(mapSize));
         for (int i = 0; i < 9; ++i) u.shRadiance[i] = glm::vec4(radianceSh.c[size_t(i)], 0.0f);
         u.lightCounts = glm::uvec4(slot.lightCount, directional, 0u, 0u);
         u.lut = luts->mapping();
