@@ -1,7 +1,9 @@
 #version 460
-// forward.vert: transforms one mesh instance for the forward pass; passes the world-space
-// tangent frame, TEXCOORD_0 and per-vertex curvature (object units -> 1/m in world space).
+// forward.vert: transforms one mesh instance for the forward pass into the eye of this
+// multiview view (gl_ViewIndex); passes the world-space tangent frame, TEXCOORD_0 and per-vertex
+// curvature (object units -> 1/m in world space), which are the same for every eye.
 #extension GL_GOOGLE_include_directive : require
+#extension GL_EXT_multiview : require
 #include "shared/gpu_types.h"
 
 layout(set = 0, binding = kBindingFrame) uniform Frame { FrameUniforms frame; };
@@ -28,5 +30,5 @@ void main() {
     outTangentWs = vec4(mat3(instance.worldFromObject) * inTangentOs.xyz, inTangentOs.w);
     outUv0 = inUv0;
     outCurvaturePerM = inCurvature * instance.params.x;
-    gl_Position = frame.clipFromWorld * positionWs;
+    gl_Position = frame.eyes[gl_ViewIndex].clipFromWorld * positionWs;
 }

@@ -328,7 +328,7 @@ bool lightTouches(const Light& l, const glm::dvec3& p) {
 }
 
 // `image`: the light-count debug view in linear output (r: lights listed, b: view depth in m).
-PerPixel countPerPixel(const RenderedImage& image, const View& view, const std::vector<Light>& lights) {
+PerPixel countPerPixel(const RenderedImage& image, const Eye& view, const std::vector<Light>& lights) {
     const glm::dmat4 clipFromView(view.clipFromView);
     const glm::dmat4 viewFromClip = glm::inverse(clipFromView);
     const glm::dmat4 worldFromView = glm::inverse(glm::dmat4(view.viewFromWorld));
@@ -756,7 +756,7 @@ void run(const BenchOptions& o) {
             renderer.setSettings(debug);
             renderer.setLights(lights);
             const RenderedImage counted = renderer.render(view, o.width, o.height, OutputEncoding::LinearFloat);
-            row.perPixel = countPerPixel(counted, view, lights);
+            row.perPixel = countPerPixel(counted, view.eye(), lights);
             reportValidation(*context);
         }
         rows.push_back(std::move(row));

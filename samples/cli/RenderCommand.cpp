@@ -1,5 +1,6 @@
 // `preskin render`: loads a glTF scene (the bundled head by default), renders one frame
-// headless and writes it as PNG (tone-mapped) or EXR (linear), printing the frame time.
+// headless (mono, or both eyes of a stereo pair side by side) and writes it as PNG (tone-mapped)
+// or EXR (linear), printing the frame time.
 #include "Commands.h"
 #include "Options.h"  // samples/common
 
@@ -30,6 +31,7 @@ struct RenderOptions {
     std::string camera;
     std::string orbit;
     uint32_t frames = 1;
+    StereoOptions stereo;
     CommonOptions common;
 };
 
@@ -62,6 +64,7 @@ void run(const RenderOptions& o) {
     } else {
         view = frameBoundsView(scene.worldBounds(), aspect);
     }
+    view = applyStereoOptions(view, o.stereo);
 
     // One warm-up frame (first-use costs), then the measured ones; the frame with the median
     // GPU time is reported (frames are identical, so any of them is the image).
@@ -77,7 +80,8 @@ void run(const RenderOptions& o) {
     const FrameStats stats = frames[frames.size() / 2];
     writeImage(outPath, image);
     reportValidation(*context);
-    fmt::print("preskin: wrote {} ({}x{})\n", outPath.string(), image.width, image.height);
+    fmt::print("preskin: wrote {} ({}x{}{})\n", outPath.string(), image.width * image.eyes, image.height,
+               image.eyes > 1 ? fmt::format(", {} eyes side by side", image.eyes) : "");
     fmt::print("preskin: frame time on {}{}: {}\n", context->deviceName(),
                o.frames > 1 ? fmt::format(" (median of {} frames)", o.frames) : "", formatStats(stats));
 }
@@ -101,6 +105,7 @@ void addRenderCommand(CLI::App& app) {
     cmd->add_option("--frames", options->frames, "Measured frames after one warm-up; the median is reported")
         ->capture_default_str()
         ->check(CLI::Range(1, 1000));
+    addStereoOptions(*cmd, options->stereo);
     addCommonOptions(*cmd, options->common);
     cmd->callback([options] { run(*options); });
 }

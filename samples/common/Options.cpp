@@ -52,7 +52,26 @@ void addCommonOptions(CLI::App& cmd, CommonOptions& o) {
         ->check(CLI::Range(16u, 8192u))
         ->capture_default_str();
     cmd.add_flag("--no-shadows", o.noShadows, "Disable the shadow map");
+    cmd.add_option("--msaa", o.msaa, "Samples per pixel (1, 2, 4 or 8, as the device offers; lavapipe: 1 or 4)")
+        ->check(CLI::IsMember({1u, 2u, 4u, 8u}))
+        ->capture_default_str();
     cmd.add_option("--luts", o.luts, "Skin LUT set folder (from `preskin bake`); default: the bundled d'Eon set");
+}
+
+void addStereoOptions(CLI::App& cmd, StereoOptions& o) {
+    cmd.add_flag("--stereo", o.stereo, "Render a stereo pair (one multiview pass), eyes side by side, left eye left");
+    cmd.add_option("--ipd", o.ipdM, "Interpupillary distance of --stereo and --eye, metres")
+        ->check(CLI::Range(0.0f, 1.0f))
+        ->capture_default_str();
+    cmd.add_option("--eye", o.eye, "Render only this eye of the stereo pair (mono): left or right")
+        ->check(CLI::IsMember({"left", "right"}));
+}
+
+View applyStereoOptions(const View& mono, const StereoOptions& o) {
+    if (!o.stereo && o.eye.empty()) return mono;
+    View stereo = stereoFromMono(mono, o.ipdM);
+    if (o.eye.empty()) return stereo;
+    return View(stereo.eyes[o.eye == "left" ? 0 : 1]);
 }
 
 std::filesystem::path dataDir() {
@@ -128,6 +147,7 @@ RenderSettings renderSettings(const CommonOptions& o) {
     s.shadowSoftnessTexels = o.shadowSoftness;
     s.shadowMapSize = o.shadowMapSize;
     s.shadows = !o.noShadows;
+    s.msaaSamples = o.msaa;
     return s;
 }
 

@@ -40,6 +40,7 @@ struct CommonOptions {
     float shadowSoftness = 1.5f;
     uint32_t shadowMapSize = 2048;
     bool noShadows = false;
+    uint32_t msaa = 1;
     std::string luts;  // LUT set folder; default: the committed luts/ (d'Eon)
 };
 
@@ -51,6 +52,16 @@ std::filesystem::path dataDir();
 std::filesystem::path defaultScenePath();
 OutputEncoding encodingFor(const std::filesystem::path& out);
 std::vector<float> parseFloats(const std::string& text, size_t count, const char* flag);
+
+// Stereo camera options: --stereo, --ipd, --eye.
+struct StereoOptions {
+    bool stereo = false;
+    float ipdM = 0.063f;
+    std::string eye;  // "", "left" or "right"
+};
+void addStereoOptions(CLI::App& cmd, StereoOptions& o);
+// The view to draw from a mono view: itself, its stereo pair, or one eye of the pair.
+View applyStereoOptions(const View& mono, const StereoOptions& o);
 
 ContextDesc contextDesc(const CommonOptions& o);
 // --luts DIR, else the committed default set (luts/ of the data folder), else a fresh bake.

@@ -2,6 +2,9 @@
 //   shadow pass (one directional light) -> light clustering (compute) -> one forward pass
 // either headless into an image it reads back, or into a host's command buffer and target.
 // Skin adds no pass: all skin work happens in the forward pass's fragment shader.
+// A frame draws every eye of its View (<preskin/View.h>): one shadow pass and one light grid
+// serve all eyes, and the forward pass draws them all with multiview (each draw recorded once),
+// optionally with MSAA resolved into the target.
 #pragma once
 
 #include <preskin/ClusterGrid.h>  // ClusterSettings: the light grid
@@ -53,6 +56,10 @@ struct RenderSettings {
     uint32_t shadowMapSize = 2048;
     float shadowSoftnessTexels = 1.5f;  // Gaussian sigma of the PCF kernel, in shadow-map texels
     bool shadows = true;
+    // Samples per pixel of the forward pass (any count of Renderer::msaaSampleCounts()), resolved
+    // into the target by averaging. Shading stays per pixel; alpha-mask materials use
+    // alpha-to-coverage when this is above 1.
+    uint32_t msaaSamples = 1;
 };
 
 enum class OutputEncoding {
@@ -60,13 +67,20 @@ enum class OutputEncoding {
     LinearFloat,   // scene-referred linear radiance times exposure (EXR)
 };
 
+// One image per eye, eye after eye (eye e's rows start at pixel e * width * height).
 struct RenderedImage {
-    uint32_t width = 0;
-    uint32_t height = 0;
+    uint32_t width = 0;   // per eye
+    uint32_t height = 0;  // per eye
+    uint32_t eyes = 1;
     OutputEncoding encoding = OutputEncoding::DisplaySrgb8;
     std::vector<uint8_t> rgba8;  // DisplaySrgb8
     std::vector<float> rgba32f;  // LinearFloat
 };
+
+// Eye `eye` of an image, as a one-eye image.
+PRESKIN_API RenderedImage eyeImage(const RenderedImage& image, uint32_t eye);
+// Every eye side by side in one image, eye 0 (left) on the left.
+PRESKIN_API RenderedImage sideBySide(const RenderedImage& image);
 
 struct PassTime {
     std::string name;
@@ -80,11 +94,16 @@ struct FrameStats {
     uint32_t lightCount = 0;
     uint32_t clusterOverflows = 0;  // clusters whose list was truncated (<preskin/ClusterGrid.h>)
     double clusterBuildCpuMs = 0.0;  // CPU time of the light-list build or its compute setup (part of wallMs)
+    double recordCpuMs = 0.0;        // CPU time of Renderer::record without the light-list build
     bool clusterBuildGpu = false;    // the light lists came from the compute pass (ClusterSettings::build)
 };
 
 // Where `record` draws: the host's colour image, in `layoutBefore` on entry and left in
 // `layoutAfter`. An 8-bit UNORM/SRGB format gets tone-mapped output, a float one linear.
+// Eye e of the view lands in array layer e: the image has at least as many layers as the view
+// has eyes and `view` covers layers 0 .. eyes - 1 (a 2D_ARRAY view; a 2D view for one eye), as
+// an OpenXR multiview swapchain image does. With MSAA, preskin renders into its own
+// multisampled image and resolves into this one.
 struct RenderTarget {
     VkImage image = VK_NULL_HANDLE;
     VkImageView view = VK_NULL_HANDLE;
@@ -116,7 +135,12 @@ public:
     // previous code and pipelines (so a host can hot-reload shaders and survive bad edits).
     void setShaderOverrides(const std::map<std::string, std::vector<uint32_t>>& spirvByFile);
 
-    // Headless: renders one frame and reads it back.
+    // The most eyes a view may have on this device (kMaxEyes or the device's multiview limit).
+    uint32_t maxEyes() const;
+    // The MSAA sample counts this device offers for the forward pass, ascending (1 first).
+    std::vector<uint32_t> msaaSampleCounts() const;
+
+    // Headless: renders one frame of every eye (width x height each) and reads it back.
     RenderedImage render(const View& view, uint32_t width, uint32_t height, OutputEncoding encoding);
     // Embedded: records one frame into the host's command buffer. `frameSlot` (0 or 1) selects
     // the per-frame buffers; the host must not reuse a slot before its previous frame finished.
@@ -131,7 +155,8 @@ private:
 };
 
 // Writes an image atomically (a temporary file renamed into place): .png for DisplaySrgb8,
-// .exr (half float) for LinearFloat. Throws preskin::Error naming the path on failure.
+// .exr (half float) for LinearFloat; several eyes side by side (sideBySide). Throws
+// preskin::Error naming the path on failure.
 PRESKIN_API void writeImage(const std::filesystem::path& path, const RenderedImage& image);
 // Throws preskin::Error unless `path` has a supported extension for the encoding and its
 // folder exists and is writable; call before expensive work.

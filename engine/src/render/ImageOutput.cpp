@@ -9,6 +9,7 @@
 #include <unistd.h>
 
 #include <algorithm>
+#include <cstring>
 #include <cctype>
 #include <filesystem>
 #include <system_error>
@@ -41,8 +42,45 @@ void checkOutputPath(const std::filesystem::path& path, OutputEncoding encoding)
         throw Error(fmt::format("{}: output folder {} is not writable", path.string(), dir.string()));
 }
 
-void writeImage(const std::filesystem::path& path, const RenderedImage& image) {
-    checkOutputPath(path, image.encoding);
+RenderedImage eyeImage(const RenderedImage& image, uint32_t eye) {
+    if (eye >= image.eyes) throw Error(fmt::format("image: eye {} of an image of {} eye(s)", eye, image.eyes));
+    RenderedImage out;
+    out.width = image.width;
+    out.height = image.height;
+    out.encoding = image.encoding;
+    const size_t count = size_t(image.width) * image.height * 4;
+    auto slice = [&](const auto& all, auto& part) {
+        if (all.size() < count * image.eyes) return;
+        part.assign(all.data() + count * eye, all.data() + count * (eye + 1));
+    };
+    slice(image.rgba8, out.rgba8);
+    slice(image.rgba32f, out.rgba32f);
+    return out;
+}
+
+RenderedImage sideBySide(const RenderedImage& image) {
+    if (image.eyes <= 1) return image;
+    RenderedImage out;
+    out.width = image.width * image.eyes;
+    out.height = image.height;
+    out.encoding = image.encoding;
+    const size_t row = size_t(image.width) * 4;
+    auto place = [&](const auto& all, auto& joined) {
+        if (all.size() != row * image.height * image.eyes) return;
+        joined = all;  // sized like the source; every byte is overwritten below
+        for (uint32_t e = 0; e < image.eyes; ++e)
+            for (uint32_t y = 0; y < image.height; ++y)
+                std::memcpy(joined.data() + size_t(y) * row * image.eyes + e * row,
+                            all.data() + (size_t(e) * image.height + y) * row, row * sizeof(all[0]));
+    };
+    place(image.rgba8, out.rgba8);
+    place(image.rgba32f, out.rgba32f);
+    return out;
+}
+
+void writeImage(const std::filesystem::path& path, const RenderedImage& eyes) {
+    checkOutputPath(path, eyes.encoding);
+    const RenderedImage image = sideBySide(eyes);
     const bool display = image.encoding == OutputEncoding::DisplaySrgb8;
     const size_t expected = size_t(image.width) * image.height * 4;
     if (image.width == 0 || image.height == 0 || (display ? image.rgba8.size() : image.rgba32f.size()) != expected)

@@ -4,6 +4,8 @@
 // keep one frame in flight while recording the next.
 #include <preskin/Renderer.h>
 
+#include <preskin/ClusterGrid.h>
+
 #include "lights/ClusterBuilder.h"
 #include "render/GpuLights.h"
 #include "render/GpuLuts.h"
@@ -14,6 +16,9 @@
 #include "vk/Resources.h"
 
 #include <fmt/core.h>
+#include <glm/gtc/matrix_access.hpp>
+#include <fmt/format.h>
+#include <fmt/ranges.h>
 
 #include <algorithm>
 #include <array>
@@ -86,12 +91,23 @@ glm::mat4 shadowMatrix(const Bounds& bounds, const glm::vec3& direction, float& 
 }
 
 struct PipelineKey {
-    uint32_t model, alphaMode, doubleSided, format, debugView, skinMask, lightLoop;
-    auto tie() const { return std::tie(model, alphaMode, doubleSided, format, debugView, skinMask, lightLoop); }
+    uint32_t model, alphaMode, doubleSided, format, debugView, skinMask, lightLoop, eyes, samples;
+    auto tie() const {
+        return std::tie(model, alphaMode, doubleSided, format, debugView, skinMask, lightLoop, eyes, samples);
+    }
     bool operator<(const PipelineKey& o) const { return tie() < o.tie(); }
 };
 
 }  // namespace
+
+static_assert(gpu::kMaxEyes == kMaxEyes, "shaders/shared and <preskin/View.h> disagree on the eye limit");
+
+bool finite(const glm::mat4& m) {
+    for (int c = 0; c < 4; ++c)
+        for (int r = 0; r < 4; ++r)
+            if (!std::isfinite(m[c][r])) return false;
+    return true;
+}
 
 uint32_t SkinFeatures::mask() const {
     return (lutDiffuse ? gpu::kSkinLutDiffuse : 0u) | (normalPrefilter ? gpu::kSkinNormalPrefilter : 0u) |
@@ -108,6 +124,7 @@ struct Renderer::Impl {
         bool recorded = false;
         bool shadowRecorded = false;
         double wallMs = 0.0;
+        double recordMs = 0.0;  // CPU time of record(), light-grid build included
         uint32_t lightCount = 0;
     };
 
@@ -128,7 +145,8 @@ struct Renderer::Impl {
     VkSampler shadowSampler = VK_NULL_HANDLE;
     std::array<Slot, kSlotCount> slots;
     vk::Image shadowMap;
-    vk::Image depth;
+    vk::Image depth;        // one layer per eye, msaaSamples samples
+    vk::Image msaaColor;    // MSAA only: one layer per eye, resolved into the target
     std::map<PipelineKey, VkPipeline> pipelines;
     VkPipeline shadowPipeline = VK_NULL_HANDLE;
     std::map<std::string, std::vector<uint32_t>> shaderOverrides;
@@ -236,7 +254,9 @@ struct Renderer::Impl {
         return it != shaderOverrides.end() ? std::span<const uint32_t>(it->second) : builtinShader(name);
     }
 
-    PipelineKey pipelineKey(const GpuMaterial& m, VkFormat format) const {
+    VkSampleCountFlagBits samples() const { return static_cast<VkSampleCountFlagBits>(settings.msaaSamples); }
+
+    PipelineKey pipelineKey(const GpuMaterial& m, VkFormat format, uint32_t eyes) const {
         const bool skin = m.skin && luts->valid();
         return PipelineKey{skin ? gpu::kModelSkin : gpu::kModelStandard,
                            static_cast<uint32_t>(m.alphaMode),
@@ -244,11 +264,13 @@ struct Renderer::Impl {
                            static_cast<uint32_t>(format),
                            static_cast<uint32_t>(settings.debugView),
                            skin ? settings.skin.mask() : 0u,
-                           settings.lightLoop == LightLoop::Clustered ? gpu::kLightLoopClustered : gpu::kLightLoopAll};
+                           settings.lightLoop == LightLoop::Clustered ? gpu::kLightLoopClustered : gpu::kLightLoopAll,
+                           eyes,
+                           settings.msaaSamples};
     }
 
-    VkPipeline forwardPipeline(const GpuMaterial& m, VkFormat format) {
-        const PipelineKey key = pipelineKey(m, format);
+    VkPipeline forwardPipeline(const GpuMaterial& m, VkFormat format, uint32_t eyes) {
+        const PipelineKey key = pipelineKey(m, format, eyes);
         auto it = pipelines.find(key);
         if (it != pipelines.end()) return it->second;
         VkPipeline p = createForwardPipeline(key);
@@ -261,7 +283,7 @@ struct Renderer::Impl {
         vk::GraphicsPipelineDesc desc;
         desc.vertexSpirv = shader("forward.vert");
         desc.fragmentSpirv = shader("forward.frag");
-        desc.specialization.values.resize(6);
+        desc.specialization.values.resize(7);
         desc.specialization.values[gpu::kSpecMaterialModel] = key.model;
         desc.specialization.values[gpu::kSpecOutputMode] = isDisplayFormat(format) ? gpu::kOutputTonemapped
                                                                                    : gpu::kOutputLinear;
@@ -269,6 +291,9 @@ struct Renderer::Impl {
         desc.specialization.values[gpu::kSpecAlphaMode] = key.alphaMode;
         desc.specialization.values[gpu::kSpecSkinFeatures] = key.skinMask;
         desc.specialization.values[gpu::kSpecLightLoop] = key.lightLoop;
+        const AlphaMode alphaMode = static_cast<AlphaMode>(key.alphaMode);
+        const bool alphaToCoverage = key.samples > 1 && alphaMode == AlphaMode::Mask;
+        desc.specialization.values[gpu::kSpecAlphaToCoverage] = alphaToCoverage ? 1u : 0u;
         desc.vertexBindings = {{0, sizeof(Vertex), VK_VERTEX_INPUT_RATE_VERTEX}};
         desc.vertexAttributes = {
             {0, 0, VK_FORMAT_R32G32B32_SFLOAT, offsetof(Vertex, positionOs)},
@@ -279,7 +304,10 @@ struct Renderer::Impl {
         };
         desc.colorFormats = {format};
         desc.depthFormat = kDepthFormat;
-        const AlphaMode alphaMode = static_cast<AlphaMode>(key.alphaMode);
+        desc.viewMask = (1u << key.eyes) - 1u;
+        desc.samples = static_cast<VkSampleCountFlagBits>(key.samples);
+        desc.alphaToCoverage = alphaToCoverage;
+        desc.alphaToOne = alphaToCoverage && dev.alphaToOne();
         desc.cullMode = key.doubleSided ? VK_CULL_MODE_NONE : VK_CULL_MODE_BACK_BIT;
         desc.depthWrite = alphaMode != AlphaMode::Blend;
         desc.alphaBlend = alphaMode == AlphaMode::Blend;
@@ -324,16 +352,32 @@ struct Renderer::Impl {
         return shadowPipeline;
     }
 
-    void ensureDepth(VkExtent2D extent) {
-        if (depth && depth.desc().width == extent.width && depth.desc().height == extent.height) return;
+    // The forward pass's own attachments: depth, and with MSAA the multisampled colour.
+    void ensureAttachments(VkExtent2D extent, uint32_t eyes, VkFormat colorFormat) {
+        const auto matches = [&](const vk::Image& image, VkFormat format) {
+            const vk::ImageDesc& d = image.desc();
+            return image && d.width == extent.width && d.height == extent.height && d.layers == eyes &&
+                   d.samples == samples() && d.format == format;
+        };
+        const bool msaa = settings.msaaSamples > 1;
+        if (matches(depth, kDepthFormat) && (!msaa || matches(msaaColor, colorFormat))) return;
         vkDeviceWaitIdle(dev.device());
-        depth = vk::Image(dev, {kDepthFormat, extent.width, extent.height, 1,
-                                VK_IMAGE_USAGE_DEPTH_STENCIL_ATTACHMENT_BIT, VK_IMAGE_ASPECT_DEPTH_BIT});
+        vk::ImageDesc d{kDepthFormat, extent.width, extent.height, 1, VK_IMAGE_USAGE_DEPTH_STENCIL_ATTACHMENT_BIT,
+                        VK_IMAGE_ASPECT_DEPTH_BIT, eyes, samples()};
+        depth = vk::Image(dev, d);
+        msaaColor = vk::Image();
+        if (msaa) {
+            d.format = colorFormat;
+            d.usage = VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT | VK_IMAGE_USAGE_TRANSIENT_ATTACHMENT_BIT;
+            d.aspect = VK_IMAGE_ASPECT_COLOR_BIT;
+            msaaColor = vk::Image(dev, d);
+        }
     }
 
     // Fills the slot's uniforms and light list; returns whether a shadow map is rendered.
     bool prepareFrame(Slot& slot, uint32_t slotIndex, const View& view, VkExtent2D extent,
                       glm::mat4& shadowClipFromWorld) {
+        const ClusterCamera clusterView = clusterCamera(view, extent.width, extent.height);
         const int shadowLight = settings.shadows ? shadowLightIndex(lights) : -1;
         std::vector<gpu::GpuLight> gpuLights;
         gpuLights.reserve(lights.size());
@@ -352,9 +396,14 @@ struct Renderer::Impl {
         slot.lightCount = static_cast<uint32_t>(gpuLights.size());
 
         gpu::FrameUniforms u{};
-        u.clipFromWorld = view.clipFromWorld();
-        u.viewFromWorld = view.viewFromWorld;
-        u.cameraPositionWs = glm::vec4(view.positionWs, settings.exposure);
+        for (uint32_t e = 0; e < view.eyeCount(); ++e) {
+            const Eye& eye = view.eyes[e];
+            u.eyes[e].clipFromWorld = eye.clipFromWorld();
+            u.eyes[e].positionWs = glm::vec4(eye.positionWs, 1.0f);
+            u.eyes[e].viewDepthFromWorld = -glm::row(eye.viewFromWorld, 2);
+        }
+        u.clusterFromWorld = clusterView.clusterFromWorld();
+        u.params = glm::vec4(settings.exposure, float(view.eyeCount()), 0.0f, 0.0f);
         u.viewport = glm::vec4(float(extent.width), float(extent.height), 1.0f / float(extent.width),
                                1.0f / float(extent.height));
         float radius = 1.0f;
@@ -373,7 +422,7 @@ struct Renderer::Impl {
         u.lightCounts = glm::uvec4(slot.lightCount, directional, 0u, 0u);
         u.lut = luts->mapping();
         if (settings.lightLoop == LightLoop::Clustered)
-            clusters->prepare(slotIndex, settings.clusters, view, extent, bounds, gpuLights, directional, slot.lights, u);
+            clusters->prepare(slotIndex, settings.clusters, clusterView, bounds, gpuLights, directional, slot.lights, u);
         slot.frameUniforms.upload(&u, sizeof(u));
         return shadowLight >= 0;
     }
@@ -466,23 +515,36 @@ struct Renderer::Impl {
     }
 
     void recordForwardPass(VkCommandBuffer cmd, Slot& slot, const RenderTarget& target, const View& view) {
+        const uint32_t eyes = view.eyeCount();
+        const bool msaa = settings.msaaSamples > 1;
+        constexpr VkPipelineStageFlags2 kDepthStages =
+            VK_PIPELINE_STAGE_2_EARLY_FRAGMENT_TESTS_BIT | VK_PIPELINE_STAGE_2_LATE_FRAGMENT_TESTS_BIT;
+        constexpr VkAccessFlags2 kColorAccess = VK_ACCESS_2_COLOR_ATTACHMENT_READ_BIT | VK_ACCESS_2_COLOR_ATTACHMENT_WRITE_BIT;
         vk::imageBarrier(cmd, target.image, VK_IMAGE_ASPECT_COLOR_BIT, target.layoutBefore,
                          VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL, VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT,
                          VK_ACCESS_2_MEMORY_READ_BIT | VK_ACCESS_2_MEMORY_WRITE_BIT,
-                         VK_PIPELINE_STAGE_2_COLOR_ATTACHMENT_OUTPUT_BIT,
-                         VK_ACCESS_2_COLOR_ATTACHMENT_READ_BIT | VK_ACCESS_2_COLOR_ATTACHMENT_WRITE_BIT);
+                         VK_PIPELINE_STAGE_2_COLOR_ATTACHMENT_OUTPUT_BIT, kColorAccess, eyes);
+        if (msaa)
+            vk::imageBarrier(cmd, msaaColor.handle(), VK_IMAGE_ASPECT_COLOR_BIT, VK_IMAGE_LAYOUT_UNDEFINED,
+                             VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL, VK_PIPELINE_STAGE_2_COLOR_ATTACHMENT_OUTPUT_BIT,
+                             VK_ACCESS_2_COLOR_ATTACHMENT_WRITE_BIT, VK_PIPELINE_STAGE_2_COLOR_ATTACHMENT_OUTPUT_BIT,
+                             kColorAccess, eyes);
         vk::imageBarrier(cmd, depth.handle(), VK_IMAGE_ASPECT_DEPTH_BIT, VK_IMAGE_LAYOUT_UNDEFINED,
-                         VK_IMAGE_LAYOUT_DEPTH_ATTACHMENT_OPTIMAL,
-                         VK_PIPELINE_STAGE_2_EARLY_FRAGMENT_TESTS_BIT | VK_PIPELINE_STAGE_2_LATE_FRAGMENT_TESTS_BIT,
-                         VK_ACCESS_2_DEPTH_STENCIL_ATTACHMENT_WRITE_BIT,
-                         VK_PIPELINE_STAGE_2_EARLY_FRAGMENT_TESTS_BIT | VK_PIPELINE_STAGE_2_LATE_FRAGMENT_TESTS_BIT,
-                         VK_ACCESS_2_DEPTH_STENCIL_ATTACHMENT_READ_BIT | VK_ACCESS_2_DEPTH_STENCIL_ATTACHMENT_WRITE_BIT);
+                         VK_IMAGE_LAYOUT_DEPTH_ATTACHMENT_OPTIMAL, kDepthStages,
+                         VK_ACCESS_2_DEPTH_STENCIL_ATTACHMENT_WRITE_BIT, kDepthStages,
+                         VK_ACCESS_2_DEPTH_STENCIL_ATTACHMENT_READ_BIT | VK_ACCESS_2_DEPTH_STENCIL_ATTACHMENT_WRITE_BIT,
+                         eyes);
         VkRenderingAttachmentInfo color{VK_STRUCTURE_TYPE_RENDERING_ATTACHMENT_INFO};
-        color.imageView = target.view;
+        color.imageView = msaa ? msaaColor.view() : target.view;
         color.imageLayout = VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL;
         color.loadOp = VK_ATTACHMENT_LOAD_OP_CLEAR;
-        color.storeOp = VK_ATTACHMENT_STORE_OP_STORE;
+        color.storeOp = msaa ? VK_ATTACHMENT_STORE_OP_DONT_CARE : VK_ATTACHMENT_STORE_OP_STORE;
         color.clearValue.color = {{0.045f, 0.045f, 0.05f, 1.0f}};
+        if (msaa) {
+            color.resolveMode = VK_RESOLVE_MODE_AVERAGE_BIT;
+            color.resolveImageView = target.view;
+            color.resolveImageLayout = VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL;
+        }
         VkRenderingAttachmentInfo depthAttachment{VK_STRUCTURE_TYPE_RENDERING_ATTACHMENT_INFO};
         depthAttachment.imageView = depth.view();
         depthAttachment.imageLayout = VK_IMAGE_LAYOUT_DEPTH_ATTACHMENT_OPTIMAL;
@@ -491,7 +553,7 @@ struct Renderer::Impl {
         depthAttachment.clearValue.depthStencil = {0.0f, 0};  // reversed Z
         VkRenderingInfo info{VK_STRUCTURE_TYPE_RENDERING_INFO};
         info.renderArea = {{0, 0}, target.extent};
-        info.layerCount = 1;
+        info.viewMask = (1u << eyes) - 1u;  // every eye in one pass; mono is view 0 alone
         info.colorAttachmentCount = 1;
         info.pColorAttachments = &color;
         info.pDepthAttachment = &depthAttachment;
@@ -503,20 +565,22 @@ struct Renderer::Impl {
         bindGeometry(cmd);
         vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, forwardLayout, 0, 1, &slot.set, 0, nullptr);
 
-        // Opaque and masked first, then blended ones back to front.
+        // Opaque and masked first, then blended ones back to front (from the eyes' mean position).
+        glm::vec3 eyeCenter(0.0f);
+        for (const Eye& e : view.eyes) eyeCenter += e.positionWs / float(eyes);
         std::vector<const DrawItem*> order;
         for (const DrawItem& d : scene->draws) order.push_back(&d);
         auto blended = [&](const DrawItem* d) { return scene->materials[d->material].alphaMode == AlphaMode::Blend; };
         std::stable_sort(order.begin(), order.end(), [&](const DrawItem* a, const DrawItem* b) {
             if (blended(a) != blended(b)) return !blended(a);
             if (!blended(a)) return a->material < b->material;
-            return glm::distance(a->centerWs, view.positionWs) > glm::distance(b->centerWs, view.positionWs);
+            return glm::distance(a->centerWs, eyeCenter) > glm::distance(b->centerWs, eyeCenter);
         });
         VkPipeline bound = VK_NULL_HANDLE;
         uint32_t boundMaterial = UINT32_MAX;
         for (const DrawItem* d : order) {
             const GpuMaterial& m = scene->materials[d->material];
-            VkPipeline p = forwardPipeline(m, target.format);
+            VkPipeline p = forwardPipeline(m, target.format, eyes);
             if (p != bound) {
                 vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, p);
                 bound = p;
@@ -534,7 +598,32 @@ struct Renderer::Impl {
         vk::imageBarrier(cmd, target.image, VK_IMAGE_ASPECT_COLOR_BIT, VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL,
                          target.layoutAfter, VK_PIPELINE_STAGE_2_COLOR_ATTACHMENT_OUTPUT_BIT,
                          VK_ACCESS_2_COLOR_ATTACHMENT_WRITE_BIT, VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT,
-                         VK_ACCESS_2_MEMORY_READ_BIT | VK_ACCESS_2_MEMORY_WRITE_BIT);
+                         VK_ACCESS_2_MEMORY_READ_BIT | VK_ACCESS_2_MEMORY_WRITE_BIT, eyes);
+    }
+
+    // Throws preskin::Error unless the view and settings can be drawn on this device.
+    void checkFrame(const View& view) const {
+        if (view.eyes.empty() || view.eyeCount() > maxEyes())
+            throw Error(fmt::format("view: {} eye(s); this device draws 1 to {} per view", view.eyeCount(), maxEyes()));
+        for (uint32_t e = 0; e < view.eyeCount(); ++e) {
+            const Eye& eye = view.eyes[e];
+            if (!finite(eye.viewFromWorld) || !finite(eye.clipFromView) || !std::isfinite(eye.positionWs.x) ||
+                !std::isfinite(eye.positionWs.y) || !std::isfinite(eye.positionWs.z))
+                throw Error(fmt::format("view: eye {}: its matrices and position must be finite", e));
+        }
+        const uint32_t n = settings.msaaSamples;
+        if (n == 0 || (n & (n - 1)) != 0 || (dev.msaaSampleCounts() & n) == 0)
+            throw Error(fmt::format("RenderSettings: msaaSamples {} is not offered by {} (offered: {})", n,
+                                    dev.properties().deviceName, fmt::join(msaaSampleCounts(), ", ")));
+    }
+
+    uint32_t maxEyes() const { return std::min(kMaxEyes, dev.maxMultiviewViews()); }
+
+    std::vector<uint32_t> msaaSampleCounts() const {
+        std::vector<uint32_t> counts;
+        for (uint32_t n = 1; n <= 64; n *= 2)
+            if (dev.msaaSampleCounts() & n) counts.push_back(n);
+        return counts;
     }
 
     void timestamp(VkCommandBuffer cmd, Slot& slot, uint32_t query) {
@@ -542,12 +631,14 @@ struct Renderer::Impl {
     }
 
     void record(VkCommandBuffer cmd, const RenderTarget& target, const View& view, uint32_t slotIndex) {
+        const auto start = std::chrono::steady_clock::now();
         if (slotIndex >= kSlotCount) throw Error(fmt::format("Renderer::record: frame slot {} (0 or 1)", slotIndex));
         if (target.extent.width == 0 || target.extent.height == 0)
             throw Error("Renderer::record: target extent is empty");
+        checkFrame(view);
         Slot& slot = slots[slotIndex];
         createShadowMap();
-        ensureDepth(target.extent);
+        ensureAttachments(target.extent, view.eyeCount(), target.format);
         glm::mat4 shadowClipFromWorld(1.0f);
         const bool shadow = prepareFrame(slot, slotIndex, view, target.extent, shadowClipFromWorld);
         updateFrameSet(slot, slotIndex);
@@ -561,6 +652,7 @@ struct Renderer::Impl {
         timestamp(cmd, slot, 3);
         slot.recorded = true;
         slot.shadowRecorded = shadow;
+        slot.recordMs = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
     }
 
     FrameStats stats(uint32_t slotIndex) const {
@@ -572,6 +664,7 @@ struct Renderer::Impl {
         s.clusterOverflows = clusters->overflows(slotIndex);
         s.clusterBuildCpuMs = settings.lightLoop == LightLoop::Clustered ? clusters->buildMs(slotIndex) : 0.0;
         s.clusterBuildGpu = settings.lightLoop == LightLoop::Clustered && clusters->usesGpu(slotIndex);
+        s.recordCpuMs = std::max(slot.recordMs - s.clusterBuildCpuMs, 0.0);
         if (!slot.recorded || !slot.queries) return s;
         std::array<uint64_t, kQueryCount> ticks{};
         const VkResult r = vkGetQueryPoolResults(dev.device(), slot.queries, 0, kQueryCount, sizeof(ticks), ticks.data(),
@@ -619,6 +712,10 @@ void Renderer::record(VkCommandBuffer cmd, const RenderTarget& target, const Vie
 
 FrameStats Renderer::frameStats(uint32_t frameSlot) const { return impl_->stats(frameSlot); }
 
+uint32_t Renderer::maxEyes() const { return impl_->maxEyes(); }
+
+std::vector<uint32_t> Renderer::msaaSampleCounts() const { return impl_->msaaSampleCounts(); }
+
 RenderedImage Renderer::render(const View& view, uint32_t width, uint32_t height, OutputEncoding encoding) {
     Impl& im = *impl_;
     const uint32_t maxDim = std::min<uint32_t>(im.dev.properties().limits.maxImageDimension2D, 16384);
@@ -626,15 +723,17 @@ RenderedImage Renderer::render(const View& view, uint32_t width, uint32_t height
         throw Error(fmt::format("image size: {}x{} is outside 1..{} pixels per side", width, height, maxDim));
     const VkFormat format =
         encoding == OutputEncoding::DisplaySrgb8 ? VK_FORMAT_R8G8B8A8_SRGB : VK_FORMAT_R32G32B32A32_SFLOAT;
+    im.checkFrame(view);
+    const uint32_t eyes = view.eyeCount();
     const VkDeviceSize pixelBytes = encoding == OutputEncoding::DisplaySrgb8 ? 4 : 16;
     if (!im.colorTarget || im.colorTarget.desc().width != width || im.colorTarget.desc().height != height ||
-        im.colorTarget.desc().format != format) {
+        im.colorTarget.desc().format != format || im.colorTarget.desc().layers != eyes) {
         vkDeviceWaitIdle(im.dev.device());
         im.colorTarget = vk::Image(im.dev, {format, width, height, 1,
                                             VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT,
-                                            VK_IMAGE_ASPECT_COLOR_BIT});
-        im.readback = vk::Buffer(im.dev, VkDeviceSize(width) * height * pixelBytes, VK_BUFFER_USAGE_TRANSFER_DST_BIT,
-                                 true);
+                                            VK_IMAGE_ASPECT_COLOR_BIT, eyes});
+        im.readback = vk::Buffer(im.dev, VkDeviceSize(width) * height * pixelBytes * eyes,
+                                 VK_BUFFER_USAGE_TRANSFER_DST_BIT, true);
     }
     RenderTarget target;
     target.image = im.colorTarget.handle();
@@ -648,7 +747,7 @@ RenderedImage Renderer::render(const View& view, uint32_t width, uint32_t height
     im.dev.submitAndWait([&](VkCommandBuffer cmd) {
         im.record(cmd, target, view, 0);
         VkBufferImageCopy region{};
-        region.imageSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, 1};
+        region.imageSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, eyes};
         region.imageExtent = {width, height, 1};
         vkCmdCopyImageToBuffer(cmd, target.image, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, im.readback.handle(), 1,
                                &region);
@@ -660,8 +759,9 @@ RenderedImage Renderer::render(const View& view, uint32_t width, uint32_t height
     RenderedImage out;
     out.width = width;
     out.height = height;
+    out.eyes = eyes;
     out.encoding = encoding;
-    const size_t count = size_t(width) * height * 4;
+    const size_t count = size_t(width) * height * 4 * eyes;
     if (encoding == OutputEncoding::DisplaySrgb8) {
         out.rgba8.resize(count);
         std::memcpy(out.rgba8.data(), im.readback.mapped(), count);

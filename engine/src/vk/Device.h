@@ -32,6 +32,14 @@ public:
     const VkPhysicalDeviceProperties& properties() const { return properties_; }
     bool timestampsSupported() const { return timestampValidBits_ > 0; }
     float timestampPeriodNs() const { return properties_.limits.timestampPeriod; }
+    // Views one multiview render pass may draw (VkPhysicalDeviceMultiviewProperties).
+    uint32_t maxMultiviewViews() const { return maxMultiviewViews_; }
+    // Sample counts usable for a colour target together with D32 depth.
+    VkSampleCountFlags msaaSampleCounts() const {
+        return properties_.limits.framebufferColorSampleCounts & properties_.limits.framebufferDepthSampleCounts;
+    }
+    // The alphaToOne feature is enabled (never on a host's device: its features are unknown).
+    bool alphaToOne() const { return alphaToOne_; }
 
     // A memory type that has every `required` flag (and `preferred` ones when possible).
     uint32_t findMemoryType(uint32_t typeBits, VkMemoryPropertyFlags required,
@@ -58,6 +66,8 @@ private:
     VkDevice device_ = VK_NULL_HANDLE;
     VkQueue queue_ = VK_NULL_HANDLE;
     uint32_t queueFamily_ = 0;
+    uint32_t maxMultiviewViews_ = 1;
+    bool alphaToOne_ = false;
     uint32_t timestampValidBits_ = 0;
     VkPhysicalDeviceProperties properties_{};
     VkPhysicalDeviceMemoryProperties memoryProperties_{};
