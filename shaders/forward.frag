@@ -2,13 +2,12 @@
 // forward.frag: the one forward pass. Standard glTF metal-rough materials and (kModelSkin)
 // pre-integrated skin, for every light of the fragment's light list, plus L2 SH ambient and
 // emissive; tone-mapped here when the target is an 8-bit display format. Everything skin needs
-// happens in this shader: no extra passes, no extra render targets. With multiview, each eye
-// (gl_ViewIndex) has its own camera position (view vector, specular); the light grid is shared
+// happens in this shader: no extra passes, no extra render targets. Each eye (inEye, from the
+// vertex stage) has its own camera position (view vector, specular); the light grid is shared
 // by all eyes and found by projecting the fragment's world position with the grid's camera.
 // The derivative curvature fallback (preskinCurvatureFromDerivatives) is per eye: screen-space
 // derivatives differ between the eyes, per-vertex and texture curvature do not.
 #extension GL_GOOGLE_include_directive : require
-#extension GL_EXT_multiview : require
 #include "shared/gpu_types.h"
 
 layout(constant_id = kSpecMaterialModel) const uint kMaterialModel = kModelStandard;
@@ -51,6 +50,7 @@ layout(location = 1) in vec3 inNormalWs;
 layout(location = 2) in vec4 inTangentWs;
 layout(location = 3) in vec2 inUv0;
 layout(location = 4) in float inCurvaturePerM;
+layout(location = 5) flat in uint inEye;
 
 layout(location = 0) out vec4 outColor;
 
@@ -159,7 +159,7 @@ void main() {
     bool hasNormalMap = material.textureFlags.w > 0.5;
     vec3 N = hasNormalMap ? perturbNormal(texture(normalTexture, uvNormal).rgb, material.pbr.z, geometricN, inTangentWs)
                           : geometricN;
-    vec3 V = normalize(frame.eyes[gl_ViewIndex].positionWs.xyz - inPositionWs);
+    vec3 V = normalize(frame.eyes[inEye].positionWs.xyz - inPositionWs);
     float NoV = max(dot(N, V), 1e-4);
 
     PreskinShadowSample shadow;
@@ -306,7 +306,7 @@ void main() {
         if (kOutputMode == kOutputLinear) {
             // Raw values for tools (preskin bench): local lights in this fragment's list, all
             // lights evaluated (directional ones included), view depth in metres.
-            float viewDepthM = dot(frame.eyes[gl_ViewIndex].viewDepthFromWorld, vec4(inPositionWs, 1.0));
+            float viewDepthM = dot(frame.eyes[inEye].viewDepthFromWorld, vec4(inPositionWs, 1.0));
             debugColor = vec3(float(count), float(lightTotal), viewDepthM);
         } else {
             // Heat map on a log scale: 1 light 0.14, 7 lights 0.43, 31 lights 0.71, 127 or more 1.

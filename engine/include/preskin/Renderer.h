@@ -44,6 +44,15 @@ struct SkinFeatures {
 
 enum class DebugView { None, Curvature, Normals, Shadow, Penumbra, LightCount, ShAmbient, Transmission };
 
+// How the one forward pass draws several eyes; either way each draw is recorded once.
+//  - Multiview: the pass has one view per eye (viewMask), the vertex stage reads gl_ViewIndex.
+//  - InstancedLayers: one instance per eye, the vertex stage writes gl_Layer (needs the Vulkan
+//    1.2 shaderOutputLayer feature).
+//  - Auto: Multiview, unless the device fails the multiview clipping probe (Mesa lavapipe 22.3
+//    loses clipped triangles in the second view; render/MultiviewProbe.h) and offers
+//    shaderOutputLayer.
+enum class EyeDrawing { Auto, Multiview, InstancedLayers };
+
 // How the forward pass finds the local (point and spot) lights of a fragment.
 enum class LightLoop { Clustered, All };
 
@@ -60,6 +69,7 @@ struct RenderSettings {
     // into the target by averaging. Shading stays per pixel; alpha-mask materials use
     // alpha-to-coverage when this is above 1.
     uint32_t msaaSamples = 1;
+    EyeDrawing eyeDrawing = EyeDrawing::Auto;
 };
 
 enum class OutputEncoding {
@@ -95,6 +105,8 @@ struct FrameStats {
     uint32_t clusterOverflows = 0;  // clusters whose list was truncated (<preskin/ClusterGrid.h>)
     double clusterBuildCpuMs = 0.0;  // CPU time of the light-list build or its compute setup (part of wallMs)
     double recordCpuMs = 0.0;        // CPU time of Renderer::record without the light-list build
+    uint32_t eyes = 0;               // eyes drawn
+    EyeDrawing eyeDrawing = EyeDrawing::Multiview;  // how (never Auto)
     bool clusterBuildGpu = false;    // the light lists came from the compute pass (ClusterSettings::build)
 };
 
@@ -129,7 +141,7 @@ public:
     const std::vector<Light>& lights() const;
     void setEnvironment(const Environment& environment);
     void setLuts(const LutSet* luts);
-    // Replaces the SPIR-V of built-in shader stages by file name ("forward.vert", "forward.frag",
+    // Replaces the SPIR-V of built-in shader stages by file name ("forward.vert", "forward_layers.vert", "forward.frag",
     // "shadow.vert"); stages missing from the map use the code built into the library. Every
     // pipeline in use is rebuilt at once; when that fails, throws preskin::Error and keeps the
     // previous code and pipelines (so a host can hot-reload shaders and survive bad edits).

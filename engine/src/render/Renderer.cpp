@@ -10,6 +10,7 @@
 #include "render/GpuLights.h"
 #include "render/GpuLuts.h"
 #include "render/GpuScene.h"
+#include "render/MultiviewProbe.h"
 #include "shared/gpu_types.h"
 #include "vk/Check.h"
 #include "vk/Pipeline.h"
@@ -91,9 +92,9 @@ glm::mat4 shadowMatrix(const Bounds& bounds, const glm::vec3& direction, float& 
 }
 
 struct PipelineKey {
-    uint32_t model, alphaMode, doubleSided, format, debugView, skinMask, lightLoop, eyes, samples;
+    uint32_t model, alphaMode, doubleSided, format, debugView, skinMask, lightLoop, eyes, samples, layered;
     auto tie() const {
-        return std::tie(model, alphaMode, doubleSided, format, debugView, skinMask, lightLoop, eyes, samples);
+        return std::tie(model, alphaMode, doubleSided, format, debugView, skinMask, lightLoop, eyes, samples, layered);
     }
     bool operator<(const PipelineKey& o) const { return tie() < o.tie(); }
 };
@@ -125,12 +126,14 @@ struct Renderer::Impl {
         bool shadowRecorded = false;
         double wallMs = 0.0;
         double recordMs = 0.0;  // CPU time of record(), light-grid build included
+        uint32_t eyes = 0;
         uint32_t lightCount = 0;
     };
 
     Context& context;
     const vk::Device& dev;
     RenderSettings settings;
+    EyeDrawing resolvedEyeDrawing = EyeDrawing::Multiview;
     std::vector<Light> lights;
     Bounds bounds;
     ShRgb radianceSh;
@@ -163,6 +166,7 @@ struct Renderer::Impl {
         clusters = std::make_unique<ClusterBuilder>(dev);
         createLayouts();
         createShadowMap();
+        resolveEyeDrawing();
     }
 
     ~Impl() {
@@ -266,7 +270,19 @@ struct Renderer::Impl {
                            skin ? settings.skin.mask() : 0u,
                            settings.lightLoop == LightLoop::Clustered ? gpu::kLightLoopClustered : gpu::kLightLoopAll,
                            eyes,
-                           settings.msaaSamples};
+                           settings.msaaSamples,
+                           eyeDrawing() == EyeDrawing::InstancedLayers ? 1u : 0u};
+    }
+
+    // The settings' EyeDrawing resolved for this device (see <preskin/Renderer.h>); resolved
+    // when settings are set, since the probe submits work of its own.
+    EyeDrawing eyeDrawing() const { return resolvedEyeDrawing; }
+
+    void resolveEyeDrawing() {
+        resolvedEyeDrawing = settings.eyeDrawing;
+        if (resolvedEyeDrawing == EyeDrawing::Auto)
+            resolvedEyeDrawing = dev.shaderOutputLayer() && !multiviewClipsEveryView(dev) ? EyeDrawing::InstancedLayers
+                                                                                           : EyeDrawing::Multiview;
     }
 
     VkPipeline forwardPipeline(const GpuMaterial& m, VkFormat format, uint32_t eyes) {
@@ -281,7 +297,7 @@ struct Renderer::Impl {
     VkPipeline createForwardPipeline(const PipelineKey& key) const {
         const VkFormat format = static_cast<VkFormat>(key.format);
         vk::GraphicsPipelineDesc desc;
-        desc.vertexSpirv = shader("forward.vert");
+        desc.vertexSpirv = shader(key.layered ? "forward_layers.vert" : "forward.vert");
         desc.fragmentSpirv = shader("forward.frag");
         desc.specialization.values.resize(7);
         desc.specialization.values[gpu::kSpecMaterialModel] = key.model;
@@ -304,7 +320,7 @@ struct Renderer::Impl {
         };
         desc.colorFormats = {format};
         desc.depthFormat = kDepthFormat;
-        desc.viewMask = (1u << key.eyes) - 1u;
+        desc.viewMask = key.layered ? 0u : (1u << key.eyes) - 1u;
         desc.samples = static_cast<VkSampleCountFlagBits>(key.samples);
         desc.alphaToCoverage = alphaToCoverage;
         desc.alphaToOne = alphaToCoverage && dev.alphaToOne();
@@ -377,7 +393,6 @@ struct Renderer::Impl {
     // Fills the slot's uniforms and light list; returns whether a shadow map is rendered.
     bool prepareFrame(Slot& slot, uint32_t slotIndex, const View& view, VkExtent2D extent,
                       glm::mat4& shadowClipFromWorld) {
-        const ClusterCamera clusterView = clusterCamera(view, extent.width, extent.height);
         const int shadowLight = settings.shadows ? shadowLightIndex(lights) : -1;
         std::vector<gpu::GpuLight> gpuLights;
         gpuLights.reserve(lights.size());
@@ -402,7 +417,6 @@ struct Renderer::Impl {
             u.eyes[e].positionWs = glm::vec4(eye.positionWs, 1.0f);
             u.eyes[e].viewDepthFromWorld = -glm::row(eye.viewFromWorld, 2);
         }
-        u.clusterFromWorld = clusterView.clusterFromWorld();
         u.params = glm::vec4(settings.exposure, float(view.eyeCount()), 0.0f, 0.0f);
         u.viewport = glm::vec4(float(extent.width), float(extent.height), 1.0f / float(extent.width),
                                1.0f / float(extent.height));
@@ -422,7 +436,8 @@ struct Renderer::Impl {
         u.lightCounts = glm::uvec4(slot.lightCount, directional, 0u, 0u);
         u.lut = luts->mapping();
         if (settings.lightLoop == LightLoop::Clustered)
-            clusters->prepare(slotIndex, settings.clusters, clusterView, bounds, gpuLights, directional, slot.lights, u);
+            clusters->prepare(slotIndex, settings.clusters, clusterCamera(view, extent.width, extent.height), bounds,
+                              gpuLights, directional, slot.lights, u);
         slot.frameUniforms.upload(&u, sizeof(u));
         return shadowLight >= 0;
     }
@@ -553,7 +568,10 @@ struct Renderer::Impl {
         depthAttachment.clearValue.depthStencil = {0.0f, 0};  // reversed Z
         VkRenderingInfo info{VK_STRUCTURE_TYPE_RENDERING_INFO};
         info.renderArea = {{0, 0}, target.extent};
-        info.viewMask = (1u << eyes) - 1u;  // every eye in one pass; mono is view 0 alone
+        // Every eye in one pass: one view per eye, or one layer per eye drawn by instances.
+        const bool layered = eyeDrawing() == EyeDrawing::InstancedLayers;
+        info.viewMask = layered ? 0u : (1u << eyes) - 1u;
+        info.layerCount = layered ? eyes : 1u;
         info.colorAttachmentCount = 1;
         info.pColorAttachments = &color;
         info.pDepthAttachment = &depthAttachment;
@@ -592,7 +610,7 @@ struct Renderer::Impl {
             const gpu::DrawPush push{glm::uvec4(d->instance, d->material, 0, 0)};
             vkCmdPushConstants(cmd, forwardLayout, VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_FRAGMENT_BIT, 0,
                                sizeof(push), &push);
-            vkCmdDrawIndexed(cmd, d->indexCount, 1, d->firstIndex, d->vertexOffset, 0);
+            vkCmdDrawIndexed(cmd, d->indexCount, layered ? eyes : 1u, d->firstIndex, d->vertexOffset, 0);
         }
         vkCmdEndRendering(cmd);
         vk::imageBarrier(cmd, target.image, VK_IMAGE_ASPECT_COLOR_BIT, VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL,
@@ -611,6 +629,8 @@ struct Renderer::Impl {
                 !std::isfinite(eye.positionWs.y) || !std::isfinite(eye.positionWs.z))
                 throw Error(fmt::format("view: eye {}: its matrices and position must be finite", e));
         }
+        if (settings.eyeDrawing == EyeDrawing::InstancedLayers && !dev.shaderOutputLayer())
+            throw Error("RenderSettings: instanced layered eyes need the device's shaderOutputLayer feature");
         const uint32_t n = settings.msaaSamples;
         if (n == 0 || (n & (n - 1)) != 0 || (dev.msaaSampleCounts() & n) == 0)
             throw Error(fmt::format("RenderSettings: msaaSamples {} is not offered by {} (offered: {})", n,
@@ -652,6 +672,7 @@ struct Renderer::Impl {
         timestamp(cmd, slot, 3);
         slot.recorded = true;
         slot.shadowRecorded = shadow;
+        slot.eyes = view.eyeCount();
         slot.recordMs = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
     }
 
@@ -665,6 +686,8 @@ struct Renderer::Impl {
         s.clusterBuildCpuMs = settings.lightLoop == LightLoop::Clustered ? clusters->buildMs(slotIndex) : 0.0;
         s.clusterBuildGpu = settings.lightLoop == LightLoop::Clustered && clusters->usesGpu(slotIndex);
         s.recordCpuMs = std::max(slot.recordMs - s.clusterBuildCpuMs, 0.0);
+        s.eyes = slot.eyes;
+        s.eyeDrawing = eyeDrawing();
         if (!slot.recorded || !slot.queries) return s;
         std::array<uint64_t, kQueryCount> ticks{};
         const VkResult r = vkGetQueryPoolResults(dev.device(), slot.queries, 0, kQueryCount, sizeof(ticks), ticks.data(),
@@ -690,6 +713,7 @@ void Renderer::setSettings(const RenderSettings& settings) {
     if (!std::isfinite(settings.exposure) || !std::isfinite(settings.shadowSoftnessTexels))
         throw Error("RenderSettings: exposure and shadowSoftnessTexels must be finite");
     impl_->settings = settings;
+    impl_->resolveEyeDrawing();
 }
 
 void Renderer::setLights(const std::vector<Light>& lights) { impl_->lights = lights; }

@@ -260,7 +260,14 @@ void Device::initializeDevice(const ContextDesc& desc) {
     // Required by Vulkan 1.3; lets compute shaders size workgroups with specialization constants.
     f13.maintenance4 = supported13.maintenance4;
     // Every eye of a view is drawn in one multiview pass (mono too, as one view).
-    VkPhysicalDeviceVulkan11Features f11{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_VULKAN_1_1_FEATURES, &f13};
+    // Or, where multiview is unsound, as instances writing gl_Layer (render/MultiviewProbe.h).
+    VkPhysicalDeviceVulkan12Features supported12{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_VULKAN_1_2_FEATURES};
+    VkPhysicalDeviceFeatures2 query12{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_FEATURES_2, &supported12, {}};
+    vkGetPhysicalDeviceFeatures2(chosen, &query12);
+    VkPhysicalDeviceVulkan12Features f12{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_VULKAN_1_2_FEATURES, &f13};
+    f12.shaderOutputLayer = supported12.shaderOutputLayer;
+    shaderOutputLayer_ = supported12.shaderOutputLayer == VK_TRUE;
+    VkPhysicalDeviceVulkan11Features f11{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_VULKAN_1_1_FEATURES, &f12};
     f11.multiview = VK_TRUE;
     VkPhysicalDeviceFeatures2 features{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_FEATURES_2, &f11, {}};
     features.features.samplerAnisotropy = supported.samplerAnisotropy;
@@ -300,6 +307,7 @@ std::unique_ptr<Device> Device::wrap(const HostVulkan& host) {
     self->device_ = host.device;
     self->queue_ = host.queue;
     self->queueFamily_ = host.queueFamilyIndex;
+    self->shaderOutputLayer_ = host.shaderOutputLayerEnabled;
     self->loadProperties();
     return self;
 }

@@ -10,6 +10,7 @@
 #include <functional>
 #include <memory>
 #include <mutex>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -40,6 +41,18 @@ public:
     }
     // The alphaToOne feature is enabled (never on a host's device: its features are unknown).
     bool alphaToOne() const { return alphaToOne_; }
+    // Vertex shaders may write gl_Layer (the Vulkan 1.2 shaderOutputLayer feature is enabled;
+    // on a host's device when the host says so in HostVulkan).
+    bool shaderOutputLayer() const { return shaderOutputLayer_; }
+    // The multiview clipping probe's result, once it ran (render/MultiviewProbe.h).
+    std::optional<bool> multiviewClipping() const {
+        std::lock_guard lock(probeMutex_);
+        return multiviewClipping_;
+    }
+    void setMultiviewClipping(bool works) const {
+        std::lock_guard lock(probeMutex_);
+        multiviewClipping_ = works;
+    }
 
     // A memory type that has every `required` flag (and `preferred` ones when possible).
     uint32_t findMemoryType(uint32_t typeBits, VkMemoryPropertyFlags required,
@@ -68,6 +81,9 @@ private:
     uint32_t queueFamily_ = 0;
     uint32_t maxMultiviewViews_ = 1;
     bool alphaToOne_ = false;
+    bool shaderOutputLayer_ = false;
+    mutable std::mutex probeMutex_;
+    mutable std::optional<bool> multiviewClipping_;
     uint32_t timestampValidBits_ = 0;
     VkPhysicalDeviceProperties properties_{};
     VkPhysicalDeviceMemoryProperties memoryProperties_{};
