@@ -69,6 +69,8 @@ void addStereoOptions(CLI::App& cmd, StereoOptions& o) {
 
 View applyStereoOptions(const View& mono, const StereoOptions& o) {
     if (!o.stereo && o.eye.empty()) return mono;
+    if (!std::isfinite(o.ipdM) || o.ipdM < 0.0f || o.ipdM > 1.0f)
+        throw Error(fmt::format("--ipd {}: the interpupillary distance must be a finite 0..1 metres", o.ipdM));
     View stereo = stereoFromMono(mono, o.ipdM);
     if (o.eye.empty()) return stereo;
     return View(stereo.eyes[o.eye == "left" ? 0 : 1]);

@@ -68,7 +68,7 @@ struct ClusterCamera {
 
     // Rows: clip x, clip y, view depth, clip w of the camera. A world point p maps to
     // c = clusterFromWorld() * p: tile from (c.xy / c.w + 1) / 2 * extentPx, slice from c.z.
-    glm::mat4 clusterFromWorld() const;
+    PRESKIN_API glm::mat4 clusterFromWorld() const;
 };
 
 // The cluster camera of a view whose eyes each draw eyeWidthPx x eyeHeightPx pixels.
@@ -121,7 +121,7 @@ struct ClusterGrid {
 
     // The froxel whose list a fragment at this world position reads, computed as the forward
     // shader computes it (out-of-grid positions clamp to the nearest froxel).
-    uint32_t froxelAt(const glm::vec3& positionWs) const;
+    PRESKIN_API uint32_t froxelAt(const glm::vec3& positionWs) const;
 };
 
 // The grid's shape for a cluster camera. `sceneBounds` (world space) fits the logarithmic
