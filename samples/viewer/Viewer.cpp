@@ -68,6 +68,10 @@ Viewer::Viewer(ViewerOptions options) : options_(std::move(options)) {
     vsync_ = !options_.noVsync;
     showUi_ = !options_.hideUi;
     settings_ = cli::renderSettings(options_.common);  // throws on a bad --debug before any window opens
+    stereo_ = options_.stereo.stereo;
+    ipdM_ = options_.stereo.ipdM;
+    if (!std::isfinite(ipdM_) || ipdM_ < 0.0f || ipdM_ > 1.0f)
+        throw Error(fmt::format("--ipd {}: the interpupillary distance must be a finite 0..1 metres", ipdM_));
     lastGoodSettings_ = settings_;
     scatteredLights_ = options_.common.lights;
     scatterSeed_ = options_.common.seed;
@@ -107,6 +111,7 @@ void Viewer::shutdown() noexcept {
     renderer_.reset();
     overlay_.reset();
     capture_.reset();
+    stereoPreview_.reset();
     if (vk_.vkDestroyCommandPool) destroyFrames();
     swapchain_.reset();
     if (surface_) vk_.vkDestroySurfaceKHR(vk_.instance, surface_, nullptr);
@@ -154,6 +159,7 @@ void Viewer::createVulkan() {
         error("the window offers no 8-bit sRGB format: colours are shown without display encoding (too dark)");
     if (!swapchain_->transferSource()) error("the window's images cannot be copied: screenshots are unavailable");
     capture_ = std::make_unique<ImageCapture>(vk_, kFramesInFlight);
+    stereoPreview_ = std::make_unique<StereoPreview>(vk_);
     createFrames();
     overlay_ = std::make_unique<Overlay>(vk_, window_, context_->queue(), context_->queueFamilyIndex(), *swapchain_,
                                          kFramesInFlight);
@@ -270,7 +276,17 @@ void Viewer::loadStartupContent() {
 
 float Viewer::aspect() const {
     if (!swapchain_ || !swapchain_->valid()) return 1.0f;
-    return float(swapchain_->extent().width) / float(swapchain_->extent().height);
+    const VkExtent2D extent = stereo_ ? StereoPreview::eyeExtent(swapchain_->extent()) : swapchain_->extent();
+    return float(extent.width) / float(extent.height);
+}
+
+View Viewer::frameView() const {
+    const View mono = camera_.view(aspect());
+    if (stereo_) return stereoFromMono(mono, ipdM_);
+    cli::StereoOptions eye = options_.stereo;
+    eye.stereo = false;
+    eye.ipdM = ipdM_;
+    return cli::applyStereoOptions(mono, eye);
 }
 
 void Viewer::info(std::string text) {
@@ -696,18 +712,32 @@ void Viewer::recordFrame(Frame& frame, uint32_t imageIndex) {
     bool captureScene = captureNext_ && !captureNextUi_;
     bool captureUi = captureNext_ && captureNextUi_;
 
+    if (stereo_ && !swapchain_->transferDestination()) {
+        error("stereo preview: the window's images cannot be copied into on this system");
+        stereo_ = false;
+    }
+    const VkImageLayout windowLayout =
+        captureScene ? VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL : VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL;
     RenderTarget target;
     target.image = image;
     target.view = swapchain_->view(imageIndex);
     target.format = swapchain_->format();
     target.extent = swapchain_->extent();
     target.layoutBefore = VK_IMAGE_LAYOUT_UNDEFINED;
-    target.layoutAfter = captureScene ? VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL : VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL;
+    target.layoutAfter = windowLayout;
+    if (stereo_) {  // both eyes into the preview's layers, copied side by side below
+        target.extent = StereoPreview::eyeExtent(swapchain_->extent());
+        stereoPreview_->ensure(target.extent, target.format);
+        target.image = stereoPreview_->image();
+        target.view = stereoPreview_->view();
+        target.layoutAfter = VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL;
+    }
     bool rendered = false;
     if (renderer_) {
         try {
             renderer_->setSettings(settings_);
-            renderer_->record(frame.cmd, target, camera_.view(aspect()), slot_);
+            renderer_->record(frame.cmd, target, frameView(), slot_);
+            if (stereo_) stereoPreview_->copyToWindow(frame.cmd, image, swapchain_->extent(), windowLayout);
             rendered = true;
             lastGoodSettings_ = settings_;
         } catch (const std::exception& e) {
@@ -721,14 +751,14 @@ void Viewer::recordFrame(Frame& frame, uint32_t imageIndex) {
     if (!rendered) captureScene = captureUi = false;  // keep the request for a frame that renders
 
     if (captureScene) {
-        capture_->record(frame.cmd, slot_, image, target.format, target.extent, *captureNext_, false);
+        capture_->record(frame.cmd, slot_, image, target.format, swapchain_->extent(), *captureNext_, false);
         imageBarrier(vk_, frame.cmd, image, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL,
                      VK_PIPELINE_STAGE_2_COPY_BIT, VK_ACCESS_2_NONE, VK_PIPELINE_STAGE_2_COLOR_ATTACHMENT_OUTPUT_BIT,
                      VK_ACCESS_2_COLOR_ATTACHMENT_READ_BIT | VK_ACCESS_2_COLOR_ATTACHMENT_WRITE_BIT);
     }
     overlay_->record(frame.cmd, imageIndex, captureUi, !rendered);
     if (captureUi) {
-        capture_->record(frame.cmd, slot_, image, target.format, target.extent, *captureNext_, true);
+        capture_->record(frame.cmd, slot_, image, target.format, swapchain_->extent(), *captureNext_, true);
         imageBarrier(vk_, frame.cmd, image, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, VK_IMAGE_LAYOUT_PRESENT_SRC_KHR,
                      VK_PIPELINE_STAGE_2_COPY_BIT, VK_ACCESS_2_NONE, VK_PIPELINE_STAGE_2_NONE, VK_ACCESS_2_NONE);
     }

@@ -18,6 +18,8 @@
 // screenshot is taken from one more frame drawn when the window is closed.
 // Exit status: 0; 1 on a start-up error or, in scripted runs, any error reported on the way
 // (load, shader, screenshot); 2 when Vulkan validation reported anything.
+// Stereo: --stereo (or the Camera panel) shows a stereo pair around the camera side by side,
+// drawn in the renderer's one multi-eye pass (see StereoPreview.h); --eye shows one eye alone.
 // Limits: one window; the scene is static (no animation); loads replace the whole scene.
 #pragma once
 
@@ -26,6 +28,7 @@
 #include "LutBaker.h"
 #include "Overlay.h"
 #include "ShaderReloader.h"
+#include "StereoPreview.h"
 #include "Swapchain.h"
 #include "ViewerOptions.h"
 #include "VulkanFunctions.h"
@@ -122,7 +125,8 @@ private:
     void handleInput(float dtS);
     void handleDrops();
     void pollJobs();
-    float aspect() const;
+    float aspect() const;       // of the window, or of one eye in the stereo preview
+    View frameView() const;     // the camera's view, its stereo pair, or one eye of the pair
     bool jobsPending() const;
     void printSummary() const;
 
@@ -162,6 +166,9 @@ private:
     std::unique_ptr<Swapchain> swapchain_;
     std::unique_ptr<Overlay> overlay_;
     std::unique_ptr<ImageCapture> capture_;
+    std::unique_ptr<StereoPreview> stereoPreview_;
+    bool stereo_ = false;  // side-by-side preview of a stereo pair around the camera
+    float ipdM_ = 0.063f;
     std::array<Frame, kFramesInFlight> frames_{};
     uint32_t slot_ = 0;
     bool swapchainDirty_ = false;

@@ -37,6 +37,7 @@ void addViewerOptions(CLI::App& app, ViewerOptions& o) {
     app.add_option("--lut-size", o.lutSize, "Samples along every LUT axis for --profile and the panel")
         ->capture_default_str()
         ->check(CLI::IsMember({64, 128, 256, 512}));
+    cli::addStereoOptions(app, o.stereo);
     cli::addCommonOptions(app, o.common);
 }
 

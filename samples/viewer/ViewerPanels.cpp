@@ -137,6 +137,24 @@ void Viewer::panelCamera() {
         ImGui::DragFloat3("Position", &camera_.flyPositionWs().x, 0.01f, 0.0f, 0.0f, "%.3f");
     }
     if (ImGui::Button("Reset view (Home)")) camera_.reset(scene_.worldBounds(), scene_.cameras);
+    ImGui::Checkbox("Stereo preview (side by side)", &stereo_);
+    tooltip("Both eyes of a stereo pair around the camera, drawn in one pass; left eye on the left.");
+    if (stereo_) {
+        float ipdMm = ipdM_ * 1000.0f;
+        if (ImGui::SliderFloat("IPD", &ipdMm, 0.0f, 200.0f, "%.1f mm")) ipdM_ = ipdMm * 0.001f;
+    }
+    if (renderer_) {
+        const std::vector<uint32_t> counts = renderer_->msaaSampleCounts();
+        std::vector<std::string> labels;
+        int current = 0;
+        for (size_t i = 0; i < counts.size(); ++i) {
+            labels.push_back(counts[i] == 1 ? std::string("off") : fmt::format("{}x", counts[i]));
+            if (counts[i] == settings_.msaaSamples) current = int(i);
+        }
+        std::vector<const char*> names;
+        for (const std::string& l : labels) names.push_back(l.c_str());
+        if (ImGui::Combo("MSAA", &current, names.data(), int(names.size()))) settings_.msaaSamples = counts[size_t(current)];
+    }
     ImGui::TextDisabled("Orbit: drag to turn, wheel to zoom.");
     ImGui::TextDisabled("Fly: drag to look, W/A/S/D move, Q/E down/up,");
     ImGui::TextDisabled("Shift faster, wheel sets speed. Tab: orbit/fly.");
@@ -439,6 +457,10 @@ void Viewer::panelTiming() {
         ImGui::Text("GPU %.2f ms (timestamps)", lastStats_.gpuMs);
         for (const PassTime& p : lastStats_.passes) ImGui::BulletText("%s %.2f ms", p.name.c_str(), p.gpuMs);
     }
+    if (lastStats_.eyes > 0)
+        ImGui::TextDisabled("%u eye(s), %s, MSAA %ux", lastStats_.eyes,
+                            lastStats_.eyeDrawing == EyeDrawing::InstancedLayers ? "instanced layers" : "multiview",
+                            settings_.msaaSamples);
     std::vector<float> history;
     float highest = 1.0f;
     for (const Timing& t : timings_) {
