@@ -4,6 +4,8 @@
 
 #include <preskin/Error.h>
 
+#include "render/Projection.h"
+
 #include <fmt/core.h>
 #include <glm/gtc/matrix_transform.hpp>
 
@@ -14,21 +16,9 @@ namespace preskin {
 
 namespace {
 
-// Off-centre perspective from the tangents of the edge angles: ndc x = (2 x/d - (r + l)) / (r - l)
-// at view depth d = -z, ndc y likewise but flipped (Vulkan clip space: +Y down).
-glm::mat4 reversedInfinitePerspective(const FovAngles& fov, float nearM) {
-    const float l = std::tan(fov.left);
-    const float r = std::tan(fov.right);
-    const float u = std::tan(fov.up);
-    const float d = std::tan(fov.down);
-    glm::mat4 m(0.0f);
-    m[0][0] = 2.0f / (r - l);
-    m[2][0] = (r + l) / (r - l);
-    m[1][1] = -2.0f / (u - d);
-    m[2][1] = -(u + d) / (u - d);
-    m[2][3] = -1.0f;
-    m[3][2] = nearM;  // depth = near / viewDepth
-    return m;
+glm::mat4 perspectiveFromFov(const FovAngles& fov, float nearM) {
+    return reversedInfinitePerspective(std::tan(fov.left), std::tan(fov.right), std::tan(fov.up), std::tan(fov.down),
+                                       nearM);
 }
 
 void checkFov(const FovAngles& fov, const char* what) {
@@ -55,7 +45,7 @@ Eye perspectiveEye(const glm::mat4& worldFromView, const FovAngles& fov, float n
     checkFov(fov, "perspective eye");
     Eye eye;
     eye.viewFromWorld = glm::inverse(worldFromView);
-    eye.clipFromView = reversedInfinitePerspective(fov, nearM);
+    eye.clipFromView = perspectiveFromFov(fov, nearM);
     eye.positionWs = glm::vec3(worldFromView[3]);
     eye.nearM = nearM;
     eye.farM = farM;
@@ -70,14 +60,8 @@ FovAngles symmetricFov(float yfov, float aspect) {
 
 FovAngles fovOf(const Eye& eye) {
     if (eye.orthographic()) throw Error("view: an orthographic eye has no field-of-view angles");
-    const glm::mat4& m = eye.clipFromView;
-    // Inverse of reversedInfinitePerspective: r - l = 2 / m00, r + l = m20 (r - l).
-    const float spanX = 2.0f / m[0][0];
-    const float sumX = m[2][0] * spanX;
-    const float spanY = -2.0f / m[1][1];
-    const float sumY = -m[2][1] * spanY;
-    return FovAngles{std::atan(0.5f * (sumX - spanX)), std::atan(0.5f * (sumX + spanX)),
-                     std::atan(0.5f * (sumY + spanY)), std::atan(0.5f * (sumY - spanY))};
+    const glm::vec4 t = perspectiveTangents(eye.clipFromView);
+    return FovAngles{std::atan(t.x), std::atan(t.y), std::atan(t.z), std::atan(t.w)};
 }
 
 View stereoView(const glm::mat4& worldFromHead, float ipdM, const FovAngles& leftFov, const FovAngles& rightFov,
