@@ -8,8 +8,10 @@
 // and docs/gltf-extensions.md. In short: triangle lists, strips and fans (points and lines are
 // skipped with a warning), TEXCOORD_0 only, no skins, morph targets or animation (the static
 // pose is loaded). Every primitive gets an index list (generated for non-indexed ones).
+// Skins, morph targets, animations and the node hierarchy: <preskin/Animation.h>.
 #pragma once
 
+#include <preskin/Animation.h>
 #include <preskin/Export.h>
 #include <preskin/SkinMaterial.h>
 
@@ -45,22 +47,43 @@ struct Vertex {
     float curvaturePerM = 0.0f;  // mean curvature magnitude 1/radius in object-space units, >= 0
 };
 
+// One morph target of a primitive: per-vertex deltas, each either empty (the target does not
+// move that attribute) or one per vertex. Tangent deltas move the tangent's xyz only.
+struct MorphTarget {
+    std::vector<glm::vec3> positionDeltas;
+    std::vector<glm::vec3> normalDeltas;
+    std::vector<glm::vec3> tangentDeltas;
+};
+
+// The joints a skinned vertex follows (JOINTS_0/WEIGHTS_0 and JOINTS_1/WEIGHTS_1): indices into
+// the skin's joint list and weights summing to 1 (unused slots: weight 0).
+struct JointInfluences {
+    glm::uvec4 joints[2]{glm::uvec4(0u), glm::uvec4(0u)};
+    glm::vec4 weights[2]{glm::vec4(0.0f), glm::vec4(0.0f)};
+};
+
 struct Primitive {
     std::vector<Vertex> vertices;
     std::vector<uint32_t> indices;  // triangle list
     int material = -1;              // -1: the default material
     Bounds boundsOs;
+    std::vector<MorphTarget> targets;        // morph targets (Mesh::weights are their defaults)
+    std::vector<JointInfluences> influences;  // empty, or one per vertex for a skinned primitive
 };
 
 struct Mesh {
     std::string name;
     std::vector<Primitive> primitives;
+    std::vector<float> weights;            // default morph weights, one per target (0 when absent)
+    std::vector<std::string> targetNames;  // from the mesh's extras.targetNames, when given
 };
 
 struct MeshInstance {
     int mesh = 0;
-    glm::mat4 worldFromObject{1.0f};
+    glm::mat4 worldFromObject{1.0f};  // in the rest pose
     std::string nodeName;
+    int node = -1;  // Scene::nodes index (-1 for scenes built in code without nodes)
+    int skin = -1;  // Scene::skins index when the instance is skinned
 
     // Object-to-world length scale (cube root of |det| of the 3x3 part): world-space curvature is
     // Vertex::curvaturePerM / curvatureScale() (exact for uniform scale, a mean otherwise).
@@ -168,6 +191,9 @@ struct Scene {
     std::vector<Sampler> samplers;
     std::vector<Light> lights;
     std::vector<Camera> cameras;
+    std::vector<Node> nodes;             // the hierarchy (<preskin/Animation.h>)
+    std::vector<Skin> skins;
+    std::vector<Animation> animations;
     // Scene-level environment from the PRESKIN_environment extension (a file next to the scene).
     std::optional<std::filesystem::path> environmentPath;  // absolute; the file exists at load
     float environmentIntensity = 1.0f;
