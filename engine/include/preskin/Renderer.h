@@ -7,6 +7,7 @@
 // optionally with MSAA resolved into the target.
 #pragma once
 
+#include <preskin/Animation.h>
 #include <preskin/ClusterGrid.h>  // ClusterSettings: the light grid
 #include <preskin/Context.h>
 #include <preskin/Environment.h>
@@ -136,6 +137,14 @@ public:
 
     const RenderSettings& settings() const;
     void setSettings(const RenderSettings& settings);
+    // The pose drawn from the next frame on (<preskin/Animation.h>): per mesh instance its
+    // transform, morph weights and joint matrices, from an animation (animationNodePose +
+    // posedScene) or a host's own animation system. Skinned and morphed instances are deformed on
+    // the GPU every frame (compute pass "deform"); nothing is rebuilt. The initial pose is
+    // restPose(scene). Throws preskin::Error when the pose does not fit the scene (counts,
+    // non-finite values); the previous pose is kept then.
+    void setPose(const ScenePose& pose);
+    const ScenePose& pose() const;
     // Replaces the lights (the scene's lights are the initial set).
     void setLights(const std::vector<Light>& lights);
     const std::vector<Light>& lights() const;

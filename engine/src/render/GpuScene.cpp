@@ -35,6 +35,16 @@ gpu::GpuUvTransform toGpu(const TextureRef& ref) {
 
 }  // namespace
 
+gpu::GpuInstance toGpuInstance(const glm::mat4& worldFromObject) {
+    gpu::GpuInstance g{};
+    g.worldFromObject = worldFromObject;
+    g.normalWorldFromObject = glm::mat4(glm::inverseTranspose(glm::mat3(worldFromObject)));
+    // Object curvature -> world curvature: 1 / the length scale (cube root of |det|).
+    const float scale = std::cbrt(std::abs(glm::determinant(glm::mat3(worldFromObject))));
+    g.params = glm::vec4(scale > 0.0f ? 1.0f / scale : 1.0f, 0.0f, 0.0f, 0.0f);
+    return g;
+}
+
 GpuScene::GpuScene(const vk::Device& device, const Scene& scene)
     : device_(device), sceneMaterials_(scene.materials) {
     const VkDevice dev = device.device();
@@ -47,6 +57,7 @@ GpuScene::GpuScene(const vk::Device& device, const Scene& scene)
     };
     std::vector<std::vector<PrimitiveRange>> meshRanges(scene.meshes.size());
     for (size_t m = 0; m < scene.meshes.size(); ++m) {
+        meshFirstVertex.push_back(static_cast<uint32_t>(allVertices.size()));
         for (const Primitive& p : scene.meshes[m].primitives) {
             meshRanges[m].push_back({static_cast<uint32_t>(allIndices.size()), static_cast<uint32_t>(p.indices.size()),
                                      static_cast<int32_t>(allVertices.size())});
@@ -67,15 +78,10 @@ GpuScene::GpuScene(const vk::Device& device, const Scene& scene)
     std::vector<double> uvArea(scene.materials.size() + 1, 0.0);
     std::vector<double> worldArea(scene.materials.size() + 1, 0.0);
     for (const MeshInstance& inst : scene.instances) {
-        if (inst.mesh < 0 || size_t(inst.mesh) >= scene.meshes.size()) continue;
-        const glm::mat3 m3(inst.worldFromObject);
-        gpu::GpuInstance g{};
-        g.worldFromObject = inst.worldFromObject;
-        g.normalWorldFromObject = glm::mat4(glm::inverseTranspose(m3));
-        const float curvatureScale = inst.curvatureScale();
-        g.params = glm::vec4(curvatureScale > 0.0f ? 1.0f / curvatureScale : 1.0f, 0.0f, 0.0f, 0.0f);
+        // One GPU instance per scene instance, so that poses index both alike.
         const uint32_t instanceIndex = static_cast<uint32_t>(instanceData.size());
-        instanceData.push_back(g);
+        instanceData.push_back(toGpuInstance(inst.worldFromObject));
+        if (inst.mesh < 0 || size_t(inst.mesh) >= scene.meshes.size()) continue;
         const Mesh& mesh = scene.meshes[size_t(inst.mesh)];
         for (size_t p = 0; p < mesh.primitives.size(); ++p) {
             const Primitive& prim = mesh.primitives[p];
@@ -90,9 +96,7 @@ GpuScene::GpuScene(const vk::Device& device, const Scene& scene)
             accumulateTexelDensity(prim, inst.worldFromObject, uvArea[material], worldArea[material]);
         }
     }
-    instances = vk::Buffer(device, std::max<size_t>(instanceData.size(), 1) * sizeof(gpu::GpuInstance),
-                           VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, false);
-    instances.upload(instanceData.data(), instanceData.size() * sizeof(gpu::GpuInstance));
+    restInstances = std::move(instanceData);
 
     // Default textures.
     const uint8_t whitePixel[4] = {255, 255, 255, 255};

@@ -36,6 +36,9 @@ struct ProfileWidths {
     glm::vec3 widthMm{0.0f};
 };
 
+// An instance's transforms as the vertex stage reads them.
+gpu::GpuInstance toGpuInstance(const glm::mat4& worldFromObject);
+
 class GpuScene {
 public:
     GpuScene(const vk::Device& device, const Scene& scene);
@@ -49,7 +52,8 @@ public:
 
     vk::Buffer vertices;
     vk::Buffer indices;
-    vk::Buffer instances;
+    std::vector<uint32_t> meshFirstVertex;  // where each mesh's vertices start in `vertices`
+    std::vector<gpu::GpuInstance> restInstances;  // per scene instance (the rest pose), for the renderer
     std::vector<DrawItem> draws;
     std::vector<GpuMaterial> materials;  // scene materials, then the default material
 

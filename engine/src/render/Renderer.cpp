@@ -7,10 +7,12 @@
 #include <preskin/ClusterGrid.h>
 
 #include "lights/ClusterBuilder.h"
+#include "render/GpuDeformer.h"
 #include "render/GpuLights.h"
 #include "render/GpuLuts.h"
 #include "render/GpuScene.h"
 #include "render/MultiviewProbe.h"
+#include "render/PoseBounds.h"
 #include "shared/gpu_types.h"
 #include "vk/Check.h"
 #include "vk/Pipeline.h"
@@ -41,7 +43,7 @@ namespace {
 
 constexpr VkFormat kDepthFormat = VK_FORMAT_D32_SFLOAT;
 constexpr uint32_t kSlotCount = 2;
-constexpr uint32_t kQueryCount = 4;  // start, after shadow, after clustering, after forward
+constexpr uint32_t kQueryCount = 5;  // start, after deformation, after shadow, after clustering, after forward
 
 std::span<const uint32_t> builtinShader(const char* name) {
     auto code = shaders::spirv(name);
@@ -120,6 +122,7 @@ struct Renderer::Impl {
     struct Slot {
         vk::Buffer frameUniforms;
         vk::Buffer lights;
+        vk::Buffer instances;  // GpuInstance per scene instance, from the pose
         VkDescriptorSet set = VK_NULL_HANDLE;
         VkQueryPool queries = VK_NULL_HANDLE;
         bool recorded = false;
@@ -135,9 +138,12 @@ struct Renderer::Impl {
     RenderSettings settings;
     EyeDrawing resolvedEyeDrawing = EyeDrawing::Multiview;
     std::vector<Light> lights;
-    Bounds bounds;
+    Bounds bounds;  // of the scene in the current pose
     ShRgb radianceSh;
     std::unique_ptr<GpuScene> scene;
+    ScenePose pose;
+    std::unique_ptr<PoseBounds> poseBounds;
+    std::unique_ptr<GpuDeformer> deformer;
     std::unique_ptr<GpuLuts> luts;
     std::unique_ptr<ClusterBuilder> clusters;
 
@@ -161,6 +167,9 @@ struct Renderer::Impl {
         : context(ctx), dev(ctx.core()), settings(rs), lights(s.lights), bounds(s.worldBounds()),
           radianceSh(env.radianceSh()) {
         scene = std::make_unique<GpuScene>(dev, s);
+        poseBounds = std::make_unique<PoseBounds>(s);
+        deformer = std::make_unique<GpuDeformer>(dev, s, scene->vertices, scene->meshFirstVertex);
+        setPose(restPose(s));
         luts = std::make_unique<GpuLuts>(dev, lutSet);
         scene->updateMaterials(luts->profileWidths());
         clusters = std::make_unique<ClusterBuilder>(dev);
@@ -220,6 +229,8 @@ struct Renderer::Impl {
             PRESKIN_VK(vkAllocateDescriptorSets(d, &alloc, &s.set));
             s.frameUniforms = vk::Buffer(dev, sizeof(gpu::FrameUniforms), VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT, true);
             s.lights = vk::Buffer(dev, 64 * sizeof(gpu::GpuLight), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, true);
+            s.instances = vk::Buffer(dev, std::max<size_t>(scene->restInstances.size(), 1) * sizeof(gpu::GpuInstance),
+                                     VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, true);
             if (dev.timestampsSupported()) {
                 VkQueryPoolCreateInfo q{VK_STRUCTURE_TYPE_QUERY_POOL_CREATE_INFO};
                 q.queryType = VK_QUERY_TYPE_TIMESTAMP;
@@ -363,6 +374,18 @@ struct Renderer::Impl {
         shadowPipeline = rebuiltShadow;
     }
 
+    void setPose(ScenePose p) {
+        if (p.instances.size() != scene->restInstances.size())
+            throw Error(fmt::format("pose: {} instances for a scene of {}", p.instances.size(),
+                                    scene->restInstances.size()));
+        for (size_t i = 0; i < p.instances.size(); ++i)
+            if (!finite(p.instances[i].worldFromObject))
+                throw Error(fmt::format("pose: instance {}: its transform is not finite", i));
+        deformer->check(p);
+        bounds = poseBounds->worldBounds(p);
+        pose = std::move(p);
+    }
+
     VkPipeline depthOnlyPipeline() {
         if (!shadowPipeline) shadowPipeline = createShadowPipeline();
         return shadowPipeline;
@@ -393,6 +416,11 @@ struct Renderer::Impl {
     // Fills the slot's uniforms and light list; returns whether a shadow map is rendered.
     bool prepareFrame(Slot& slot, uint32_t slotIndex, const View& view, VkExtent2D extent,
                       glm::mat4& shadowClipFromWorld) {
+        // The pose: instance transforms, and the deformation's weights and joint matrices.
+        auto* instances = static_cast<gpu::GpuInstance*>(slot.instances.mapped());
+        for (size_t i = 0; i < scene->restInstances.size(); ++i)
+            instances[i] = toGpuInstance(pose.instances[i].worldFromObject);
+        deformer->prepare(slotIndex, pose);
         const int shadowLight = settings.shadows ? shadowLightIndex(lights) : -1;
         std::vector<gpu::GpuLight> gpuLights;
         gpuLights.reserve(lights.size());
@@ -445,7 +473,7 @@ struct Renderer::Impl {
     void updateFrameSet(Slot& slot, uint32_t slotIndex) {
         const VkDescriptorBufferInfo frameInfo{slot.frameUniforms.handle(), 0, sizeof(gpu::FrameUniforms)};
         const VkDescriptorBufferInfo lightInfo{slot.lights.handle(), 0, VK_WHOLE_SIZE};
-        const VkDescriptorBufferInfo instanceInfo{scene->instances.handle(), 0, VK_WHOLE_SIZE};
+        const VkDescriptorBufferInfo instanceInfo{slot.instances.handle(), 0, VK_WHOLE_SIZE};
         const VkDescriptorBufferInfo rangesInfo{clusters->ranges(slotIndex).handle(), 0, VK_WHOLE_SIZE};
         const VkDescriptorBufferInfo indicesInfo{clusters->indices(slotIndex).handle(), 0, VK_WHOLE_SIZE};
         const VkDescriptorImageInfo shadowInfo{shadowSampler, shadowMap.view(), VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL};
@@ -482,14 +510,26 @@ struct Renderer::Impl {
         vkUpdateDescriptorSets(dev.device(), static_cast<uint32_t>(writes.size()), writes.data(), 0, nullptr);
     }
 
-    void bindGeometry(VkCommandBuffer cmd) {
-        const VkDeviceSize offset = 0;
-        const VkBuffer vb = scene->vertices.handle();
-        vkCmdBindVertexBuffers(cmd, 0, 1, &vb, &offset);
+    // Binds the index buffer; vertex buffers are bound per draw (bindDrawVertices).
+    void bindGeometry(VkCommandBuffer cmd, VkBuffer& boundVertices) {
         vkCmdBindIndexBuffer(cmd, scene->indices.handle(), 0, VK_INDEX_TYPE_UINT32);
+        boundVertices = VK_NULL_HANDLE;
     }
 
-    void recordShadowPass(VkCommandBuffer cmd, Slot& slot) {
+    // Binds the vertices a draw reads (the scene's rest vertices, or this frame's deformed ones of
+    // its instance) and returns its vertex offset.
+    int32_t bindDrawVertices(VkCommandBuffer cmd, uint32_t slotIndex, const DrawItem& d, VkBuffer& bound) {
+        const bool deformed = deformer->deforms(d.instance);
+        const VkBuffer vb = deformed ? deformer->output(slotIndex).handle() : scene->vertices.handle();
+        if (vb != bound) {
+            const VkDeviceSize offset = 0;
+            vkCmdBindVertexBuffers(cmd, 0, 1, &vb, &offset);
+            bound = vb;
+        }
+        return d.vertexOffset + (deformed ? deformer->vertexShift(d.instance) : 0);
+    }
+
+    void recordShadowPass(VkCommandBuffer cmd, Slot& slot, uint32_t slotIndex) {
         const uint32_t size = shadowMap.desc().width;
         vk::imageBarrier(cmd, shadowMap.handle(), VK_IMAGE_ASPECT_DEPTH_BIT, VK_IMAGE_LAYOUT_UNDEFINED,
                          VK_IMAGE_LAYOUT_DEPTH_ATTACHMENT_OPTIMAL, VK_PIPELINE_STAGE_2_FRAGMENT_SHADER_BIT,
@@ -514,13 +554,15 @@ struct Renderer::Impl {
         vkCmdSetDepthBias(cmd, 1.0f, 0.0f, 1.5f);
         vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, depthOnlyPipeline());
         vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, shadowLayout, 0, 1, &slot.set, 0, nullptr);
-        bindGeometry(cmd);
+        VkBuffer boundVertices = VK_NULL_HANDLE;
+        bindGeometry(cmd, boundVertices);
         for (const DrawItem& d : scene->draws) {
             if (scene->materials[d.material].alphaMode == AlphaMode::Blend) continue;
+            const int32_t vertexOffset = bindDrawVertices(cmd, slotIndex, d, boundVertices);
             const gpu::DrawPush push{glm::uvec4(d.instance, d.material, 0, 0)};
             vkCmdPushConstants(cmd, shadowLayout, VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_FRAGMENT_BIT, 0,
                                sizeof(push), &push);
-            vkCmdDrawIndexed(cmd, d.indexCount, 1, d.firstIndex, d.vertexOffset, 0);
+            vkCmdDrawIndexed(cmd, d.indexCount, 1, d.firstIndex, vertexOffset, 0);
         }
         vkCmdEndRendering(cmd);
         vk::imageBarrier(cmd, shadowMap.handle(), VK_IMAGE_ASPECT_DEPTH_BIT, VK_IMAGE_LAYOUT_DEPTH_ATTACHMENT_OPTIMAL,
@@ -529,7 +571,8 @@ struct Renderer::Impl {
                          VK_ACCESS_2_SHADER_SAMPLED_READ_BIT);
     }
 
-    void recordForwardPass(VkCommandBuffer cmd, Slot& slot, const RenderTarget& target, const View& view) {
+    void recordForwardPass(VkCommandBuffer cmd, Slot& slot, uint32_t slotIndex, const RenderTarget& target,
+                           const View& view) {
         const uint32_t eyes = view.eyeCount();
         const bool msaa = settings.msaaSamples > 1;
         constexpr VkPipelineStageFlags2 kDepthStages =
@@ -580,7 +623,8 @@ struct Renderer::Impl {
         const VkRect2D scissor{{0, 0}, target.extent};
         vkCmdSetViewport(cmd, 0, 1, &viewport);
         vkCmdSetScissor(cmd, 0, 1, &scissor);
-        bindGeometry(cmd);
+        VkBuffer boundVertices = VK_NULL_HANDLE;
+        bindGeometry(cmd, boundVertices);
         vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, forwardLayout, 0, 1, &slot.set, 0, nullptr);
 
         // Opaque and masked first, then blended ones back to front (from the eyes' mean position).
@@ -610,7 +654,8 @@ struct Renderer::Impl {
             const gpu::DrawPush push{glm::uvec4(d->instance, d->material, 0, 0)};
             vkCmdPushConstants(cmd, forwardLayout, VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_FRAGMENT_BIT, 0,
                                sizeof(push), &push);
-            vkCmdDrawIndexed(cmd, d->indexCount, layered ? eyes : 1u, d->firstIndex, d->vertexOffset, 0);
+            const int32_t vertexOffset = bindDrawVertices(cmd, slotIndex, *d, boundVertices);
+            vkCmdDrawIndexed(cmd, d->indexCount, layered ? eyes : 1u, d->firstIndex, vertexOffset, 0);
         }
         vkCmdEndRendering(cmd);
         vk::imageBarrier(cmd, target.image, VK_IMAGE_ASPECT_COLOR_BIT, VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL,
@@ -664,12 +709,14 @@ struct Renderer::Impl {
         updateFrameSet(slot, slotIndex);
         if (slot.queries) vkCmdResetQueryPool(cmd, slot.queries, 0, kQueryCount);
         timestamp(cmd, slot, 0);
-        if (shadow) recordShadowPass(cmd, slot);
+        deformer->record(cmd, slotIndex);  // animated instances into this frame's vertices
         timestamp(cmd, slot, 1);
-        clusters->record(cmd, slotIndex);  // the compute build, when this frame uses it
+        if (shadow) recordShadowPass(cmd, slot, slotIndex);
         timestamp(cmd, slot, 2);
-        recordForwardPass(cmd, slot, target, view);
+        clusters->record(cmd, slotIndex);  // the compute build, when this frame uses it
         timestamp(cmd, slot, 3);
+        recordForwardPass(cmd, slot, slotIndex, target, view);
+        timestamp(cmd, slot, 4);
         slot.recorded = true;
         slot.shadowRecorded = shadow;
         slot.eyes = view.eyeCount();
@@ -695,8 +742,8 @@ struct Renderer::Impl {
         if (r != VK_SUCCESS) return s;
         const double toMs = double(dev.timestampPeriodNs()) * 1e-6;
         auto ms = [&](int a, int b) { return double(ticks[size_t(b)] - ticks[size_t(a)]) * toMs; };
-        s.passes = {{"shadow", ms(0, 1)}, {"clusters", ms(1, 2)}, {"forward", ms(2, 3)}};
-        s.gpuMs = ms(0, 3);
+        s.passes = {{"deform", ms(0, 1)}, {"shadow", ms(1, 2)}, {"clusters", ms(2, 3)}, {"forward", ms(3, 4)}};
+        s.gpuMs = ms(0, 4);
         return s;
     }
 };
@@ -715,6 +762,10 @@ void Renderer::setSettings(const RenderSettings& settings) {
     impl_->settings = settings;
     impl_->resolveEyeDrawing();
 }
+
+void Renderer::setPose(const ScenePose& pose) { impl_->setPose(pose); }
+
+const ScenePose& Renderer::pose() const { return impl_->pose; }
 
 void Renderer::setLights(const std::vector<Light>& lights) { impl_->lights = lights; }
 const std::vector<Light>& Renderer::lights() const { return impl_->lights; }
