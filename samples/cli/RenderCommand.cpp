@@ -1,7 +1,8 @@
 // `preskin render`: loads a glTF scene (the bundled head by default), renders one frame
 // headless and writes it as PNG (tone-mapped) or EXR (linear), printing the frame time.
 #include "Commands.h"
-#include "Options.h"  // samples/common
+#include "CommandLine.h"  // samples/common
+#include "Options.h"
 
 #include <preskin/Context.h>
 #include <preskin/Environment.h>
@@ -39,7 +40,7 @@ void run(const RenderOptions& o) {
     checkOutputPath(outPath, encoding);
     const std::filesystem::path scenePath = o.scene.empty() ? defaultScenePath() : std::filesystem::path(o.scene);
 
-    Scene scene = Scene::load(scenePath);
+    Scene scene = loadScene(scenePath, o.common);
     for (const std::string& warning : scene.warnings) fmt::print(stderr, "preskin: warning: {}\n", warning);
     applySkinOption(scene, o.common);
     const Environment environment = loadEnvironment(scene, o.common);
@@ -90,17 +91,17 @@ void addRenderCommand(CLI::App& app) {
     cmd->add_option("scene", options->scene, "glTF scene (.gltf or .glb); default: the bundled head scene");
     cmd->add_option("--out,-o", options->out, "Output image: .png (tone-mapped) or .exr (linear)")
         ->capture_default_str();
-    cmd->add_option("--width", options->width, "Image width in pixels")->capture_default_str()->check(CLI::Range(1, 16384));
+    cmd->add_option("--width", options->width, "Image width in pixels")->capture_default_str()->check(wholeNumberIn(1, 16384));
     cmd->add_option("--height", options->height, "Image height in pixels")
         ->capture_default_str()
-        ->check(CLI::Range(1, 16384));
+        ->check(wholeNumberIn(1, 16384));
     auto* camera = cmd->add_option("--camera", options->camera, "Use the scene's camera of this name");
     auto* orbit = cmd->add_option("--orbit", options->orbit,
                                   "Orbit the scene's centre: YAW,PITCH,DIST in degrees, degrees, metres (DIST 0: fit)");
     camera->excludes(orbit);
     cmd->add_option("--frames", options->frames, "Measured frames after one warm-up; the median is reported")
         ->capture_default_str()
-        ->check(CLI::Range(1, 1000));
+        ->check(wholeNumberIn(1, 1000));
     addCommonOptions(*cmd, options->common);
     cmd->callback([options] { run(*options); });
 }
