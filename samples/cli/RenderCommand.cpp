@@ -39,6 +39,8 @@ void run(const RenderOptions& o) {
     const OutputEncoding encoding = encodingFor(outPath);
     checkOutputPath(outPath, encoding);
     const std::filesystem::path scenePath = o.scene.empty() ? defaultScenePath() : std::filesystem::path(o.scene);
+    // Every option is checked before anything is loaded.
+    const std::vector<float> orbit = o.orbit.empty() ? std::vector<float>{} : parseFloats(o.orbit, 3, "--orbit");
 
     Scene scene = loadScene(scenePath, o.common);
     for (const std::string& warning : scene.warnings) fmt::print(stderr, "preskin: warning: {}\n", warning);
@@ -58,8 +60,7 @@ void run(const RenderOptions& o) {
         if (!camera) throw Error(fmt::format("--camera {}: {} has no camera of that name", o.camera, scenePath.string()));
         view = cameraView(*camera, aspect, scene.worldBounds());
     } else if (!o.orbit.empty()) {
-        const auto v = parseFloats(o.orbit, 3, "--orbit");
-        view = orbitView(scene.worldBounds(), v[0], v[1], v[2], aspect);
+        view = orbitView(scene.worldBounds(), orbit[0], orbit[1], orbit[2], aspect);
     } else {
         view = frameBoundsView(scene.worldBounds(), aspect);
     }

@@ -35,6 +35,7 @@ std::string oneLine(const std::string& text) {
 }
 
 std::string number(double value) {
+    if (value == std::floor(value) && std::abs(value) < 1e15) return std::to_string(static_cast<int64_t>(value));
     char buffer[32];
     const auto [end, ec] = std::to_chars(buffer, buffer + sizeof(buffer), value);
     return ec == std::errc() ? std::string(buffer, end) : std::to_string(value);
@@ -91,10 +92,9 @@ CLI::Validator oneOf(std::initializer_list<std::string> words) {
         "one of " + list);
 }
 
-std::string describeParseError(const CLI::ParseError& error) {
-    const std::string kind = error.get_name();
+std::string describeParseError(const CLI::ParseError& error, const CLI::App& app) {
     const std::string what = shown(error.what()).substr(0, 200);
-    if (kind == "ExtrasError") {
+    if (dynamic_cast<const CLI::ExtrasError*>(&error)) {
         // "The following argument was not expected: X" / "The following arguments were not expected: X Y"
         const size_t colon = what.find(": ");
         std::string first = colon == std::string::npos ? what : what.substr(colon + 2);
@@ -102,21 +102,29 @@ std::string describeParseError(const CLI::ParseError& error) {
         if (!first.empty() && first[0] == '-') return first + ": option: unknown here (see --help)";
         return first + ": argument: not expected (see --help)";
     }
-    if (kind == "RequiredError") {
-        if (what.rfind("A subcommand", 0) == 0 || what.find("subcommand") != std::string::npos)
+    if (dynamic_cast<const CLI::RequiredError*>(&error)) {
+        if (what.find("subcommand") != std::string::npos) {
+            const std::vector<std::string> rest = app.remaining();
+            if (!rest.empty() && !rest.front().empty()) {
+                return shown(rest.front()) + (rest.front()[0] == '-' ? ": option: unknown here (see --help)"
+                                                                     : ": command: unknown (see --help)");
+            }
             return "command: subcommand: missing (see --help)";
+        }
         const size_t is = what.find(" is required");
         if (is != std::string::npos) return what.substr(0, is) + ": option: required";
         return "command line: options: " + what;
     }
-    if (kind == "ArgumentMismatch") {
+    if (dynamic_cast<const CLI::ArgumentMismatch*>(&error)) {
         const size_t colon = what.find(": ");
         if (colon != std::string::npos && what.find("missing") != std::string::npos)
             return what.substr(0, colon) + ": value: missing";
+        if (colon != std::string::npos && what.find("At Most 1 required") != std::string::npos)
+            return what.substr(0, colon) + ": option: given more than once";
         if (colon != std::string::npos) return what.substr(0, colon) + ": value: " + what.substr(colon + 2);
         return "command line: values: " + what;
     }
-    if (kind == "ValidationError") {
+    if (dynamic_cast<const CLI::ValidationError*>(&error)) {
         // Our validators word the rest as "<field>: <problem>".
         const size_t colon = what.find(": ");
         const std::string rest = colon == std::string::npos ? what : what.substr(colon + 2);
@@ -124,7 +132,7 @@ std::string describeParseError(const CLI::ParseError& error) {
         return colon == std::string::npos ? "command line: values: " + what
                                           : what.substr(0, colon) + ": value: " + rest;
     }
-    if (kind == "ConversionError") {
+    if (dynamic_cast<const CLI::ConversionError*>(&error)) {
         // "Could not convert: NAME = VALUE"
         const std::string rest = afterPrefix(what, "Could not convert: ");
         const size_t eq = rest.find(" = ");
@@ -132,11 +140,11 @@ std::string describeParseError(const CLI::ParseError& error) {
             return rest.substr(0, eq) + ": value: '" + rest.substr(eq + 3) + "' cannot be read as this option's type";
         return "command line: values: " + what;
     }
-    if (kind == "ExcludesError") {
+    if (dynamic_cast<const CLI::ExcludesError*>(&error)) {
         const size_t at = what.find(" excludes ");
         if (at != std::string::npos) return what.substr(0, at) + ": option: cannot be combined with " + what.substr(at + 10);
     }
-    if (kind == "RequiresError") {
+    if (dynamic_cast<const CLI::RequiresError*>(&error)) {
         const size_t at = what.find(" requires ");
         if (at != std::string::npos) return what.substr(0, at) + ": option: needs " + what.substr(at + 10);
     }
@@ -150,7 +158,7 @@ int runCommandLine(CLI::App& app, int argc, char** argv, const std::function<int
     } catch (const CLI::Success& help) {
         return app.exit(help);  // usage text on stdout, exit 0
     } catch (const CLI::ParseError& e) {
-        fmt::print(stderr, "preskin: error: {}\n", describeParseError(e));
+        fmt::print(stderr, "preskin: error: {}\n", describeParseError(e, app));
     } catch (const Error& e) {
         fmt::print(stderr, "preskin: error: {}\n", oneLine(e.what()));
     } catch (const std::bad_alloc&) {

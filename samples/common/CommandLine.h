@@ -22,8 +22,8 @@ CLI::Validator wholeNumberIn(int64_t min, int64_t max);
 // One of the given words.
 CLI::Validator oneOf(std::initializer_list<std::string> words);
 
-// "<option>: <field>: <problem>" for a CLI11 parse error.
-std::string describeParseError(const CLI::ParseError& error);
+// "<option>: <field>: <problem>" for a CLI11 parse error of `app`.
+std::string describeParseError(const CLI::ParseError& error, const CLI::App& app);
 
 // Parses and runs `app` (its callbacks run the commands); returns the exit status. Prints help
 // for help requests and one "preskin: error: ..." line for every failure.

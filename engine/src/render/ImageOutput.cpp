@@ -33,16 +33,16 @@ void checkOutputPath(const std::filesystem::path& path, OutputEncoding encoding)
     const std::string ext = lowerExtension(path);
     const std::string wanted = encoding == OutputEncoding::DisplaySrgb8 ? ".png" : ".exr";
     if (ext != wanted)
-        throw Error(fmt::format("{}: output type '{}' does not match the encoding (expected {})", path.string(), ext,
+        throw Error(fmt::format("{}: output: type '{}' does not match the encoding (expected {})", path.string(), ext,
                                 wanted));
     std::error_code ec;
     if (std::filesystem::is_directory(path, ec))
-        throw Error(fmt::format("{}: output path is a directory", path.string()));
+        throw Error(fmt::format("{}: output: is a folder, not a file", path.string()));
     const std::filesystem::path dir = path.has_parent_path() ? path.parent_path() : std::filesystem::path(".");
     if (!std::filesystem::is_directory(dir, ec))
-        throw Error(fmt::format("{}: output folder {} does not exist", path.string(), dir.string()));
+        throw Error(fmt::format("{}: output: folder {} does not exist", path.string(), dir.string()));
     if (::access(dir.c_str(), W_OK) != 0)
-        throw Error(fmt::format("{}: output folder {} is not writable", path.string(), dir.string()));
+        throw Error(fmt::format("{}: output: folder {} is not writable", path.string(), dir.string()));
     // An existing file is replaced only when it is a regular file its owner left writable: the
     // rename would otherwise replace a read-only file (or a FIFO, a device) without a word.
     struct stat st {};
