@@ -10,6 +10,7 @@
 #include "render/GpuLights.h"
 #include "render/GpuLuts.h"
 #include "render/GpuScene.h"
+#include "render/InputChecks.h"
 #include "render/MultiviewProbe.h"
 #include "shared/gpu_types.h"
 #include "vk/Check.h"
@@ -160,6 +161,8 @@ struct Renderer::Impl {
     Impl(Context& ctx, const Scene& s, const Environment& env, const LutSet* lutSet, const RenderSettings& rs)
         : context(ctx), dev(ctx.core()), settings(rs), lights(s.lights), bounds(s.worldBounds()),
           radianceSh(env.radianceSh()) {
+        checkRenderSettings(rs);
+        checkLights(s.lights);
         scene = std::make_unique<GpuScene>(dev, s);
         luts = std::make_unique<GpuLuts>(dev, lutSet);
         scene->updateMaterials(luts->profileWidths());
@@ -710,13 +713,15 @@ Renderer::~Renderer() = default;
 const RenderSettings& Renderer::settings() const { return impl_->settings; }
 
 void Renderer::setSettings(const RenderSettings& settings) {
-    if (!std::isfinite(settings.exposure) || !std::isfinite(settings.shadowSoftnessTexels))
-        throw Error("RenderSettings: exposure and shadowSoftnessTexels must be finite");
+    checkRenderSettings(settings);
     impl_->settings = settings;
     impl_->resolveEyeDrawing();
 }
 
-void Renderer::setLights(const std::vector<Light>& lights) { impl_->lights = lights; }
+void Renderer::setLights(const std::vector<Light>& lights) {
+    checkLights(lights);
+    impl_->lights = lights;
+}
 const std::vector<Light>& Renderer::lights() const { return impl_->lights; }
 void Renderer::setEnvironment(const Environment& environment) { impl_->radianceSh = environment.radianceSh(); }
 
