@@ -26,6 +26,7 @@
 // Goals (docs/clustering.md) are evaluated on the wall-time medians.
 // Limits: timings on a shared machine are noisy; compare numbers from one run.
 #include "Commands.h"
+#include "CommandLine.h"
 #include "Options.h"  // samples/common
 
 #include <preskin/ClusterGrid.h>
@@ -639,18 +640,13 @@ void run(const BenchOptions& o) {
     const std::vector<uint32_t> counts = parseCounts(o.counts, "--counts");
     const std::vector<uint32_t> skinCounts = o.noSkin ? std::vector<uint32_t>{} : parseCounts(o.skinCounts, "--skin-counts");
     if (!o.plot.empty()) checkOutputPath(o.plot, OutputEncoding::DisplaySrgb8);
-    if (!o.out.empty()) {
-        const std::filesystem::path parent = std::filesystem::absolute(o.out).parent_path();
-        std::error_code ec;
-        if (!std::filesystem::is_directory(parent, ec))
-            throw Error(fmt::format("--out {}: folder {} does not exist", o.out, parent.string()));
-    }
+    if (!o.out.empty()) checkOutputFile(o.out, "--out");
 
     CommonOptions common;
     common.device = o.device;
     common.validation = o.validation;
     const std::filesystem::path scenePath = o.scene.empty() ? defaultScenePath() : std::filesystem::path(o.scene);
-    const Scene scene = Scene::load(scenePath);
+    const Scene scene = loadScene(scenePath, common);
     for (const std::string& warning : scene.warnings) fmt::print(stderr, "preskin: warning: {}\n", warning);
     Scene standardScene = scene;
     bool hasSkin = false;
@@ -1097,26 +1093,26 @@ void addBenchCommand(CLI::App& app) {
     cmd->add_option("scene", o->scene, "glTF scene; default: the bundled head scene");
     cmd->add_option("--out,-o", o->out, "Write the JSON here instead of stdout");
     cmd->add_option("--plot", o->plot, "Also write a PNG plot of frame time against light count");
-    cmd->add_option("--width", o->width, "Image width in pixels")->capture_default_str()->check(CLI::Range(1, 16384));
-    cmd->add_option("--height", o->height, "Image height in pixels")->capture_default_str()->check(CLI::Range(1, 16384));
+    cmd->add_option("--width", o->width, "Image width in pixels")->capture_default_str()->check(wholeNumberIn(1, 16384));
+    cmd->add_option("--height", o->height, "Image height in pixels")->capture_default_str()->check(wholeNumberIn(1, 16384));
     cmd->add_option("--counts", o->counts, "Scattered light counts, comma-separated")->capture_default_str();
     cmd->add_option("--skin-counts", o->skinCounts, "Light counts for skin vs standard material")->capture_default_str();
-    cmd->add_option("--seed", o->seed, "Seed of the scattered lights")->capture_default_str();
-    cmd->add_option("--warmup", o->warmup, "Warm-up frames per point")->capture_default_str()->check(CLI::Range(0, 100));
-    cmd->add_option("--reps", o->reps, "Measured frames per point (median)")->capture_default_str()->check(CLI::Range(1, 1000));
+    cmd->add_option("--seed", o->seed, "Seed of the scattered lights")->capture_default_str()->check(wholeNumberIn(0, UINT32_MAX));
+    cmd->add_option("--warmup", o->warmup, "Warm-up frames per point")->capture_default_str()->check(wholeNumberIn(0, 100));
+    cmd->add_option("--reps", o->reps, "Measured frames per point (median)")->capture_default_str()->check(wholeNumberIn(1, 1000));
     cmd->add_option("--budget-s", o->budgetS, "Seconds per point before warm-up and repetitions are cut (at least one frame)")
         ->capture_default_str()
-        ->check(CLI::Range(0.0, 1e6));
-    cmd->add_option("--tile", o->clusters.tileSizePx, "Cluster tile size in pixels")->capture_default_str()->check(CLI::Range(4, 256));
-    cmd->add_option("--slices", o->clusters.depthSlices, "Cluster depth slices")->capture_default_str()->check(CLI::Range(2, 256));
+        ->check(numberIn(0.0, 1e6));
+    cmd->add_option("--tile", o->clusters.tileSizePx, "Cluster tile size in pixels")->capture_default_str()->check(wholeNumberIn(4, 256));
+    cmd->add_option("--slices", o->clusters.depthSlices, "Cluster depth slices")->capture_default_str()->check(wholeNumberIn(2, 256));
     cmd->add_option("--near-slice", o->clusters.nearSliceM, "Depth where the first slice ends at the earliest (m)")
         ->capture_default_str()
-        ->check(CLI::Range(0.0f, 1e6f));
+        ->check(numberIn(0.0, 1e6));
     cmd->add_option("--max-per-cluster", o->clusters.maxLightsPerCluster, "Lights kept per cluster")
         ->capture_default_str()
-        ->check(CLI::Range(1u, 1u << 20));
+        ->check(wholeNumberIn(1, 1 << 20));
     cmd->add_option("--build", o->build, "Light-list build: auto, cpu or gpu (compute pass)")
-        ->check(CLI::IsMember({"auto", "cpu", "gpu"}))
+        ->check(oneOf({"auto", "cpu", "gpu"}))
         ->capture_default_str();
     cmd->add_flag("--no-build-compare", o->noBuildCompare, "Skip measuring the other light-list build");
     cmd->add_flag("--no-brute", o->noBrute, "Skip brute force");
@@ -1124,12 +1120,12 @@ void addBenchCommand(CLI::App& app) {
     cmd->add_flag("--no-per-pixel", o->noPerPixel, "Skip lights listed per pixel vs exact");
     cmd->add_flag("--no-lut-bake", o->noLutBake, "Skip timing the LUT bake");
     cmd->add_flag("--no-vr", o->noVr, "Skip stereo vs two mono frames, the stereo light grid and MSAA 4x vs 1x");
-    cmd->add_option("--vr-width", o->vrWidth, "Stereo: width per eye")->capture_default_str()->check(CLI::Range(1, 16384));
-    cmd->add_option("--vr-height", o->vrHeight, "Stereo: height per eye")->capture_default_str()->check(CLI::Range(1, 16384));
+    cmd->add_option("--vr-width", o->vrWidth, "Stereo: width per eye")->capture_default_str()->check(wholeNumberIn(1, 16384));
+    cmd->add_option("--vr-height", o->vrHeight, "Stereo: height per eye")->capture_default_str()->check(wholeNumberIn(1, 16384));
     cmd->add_option("--vr-lights", o->vrLights, "Stereo and MSAA: scattered lights")
         ->capture_default_str()
-        ->check(CLI::Range(0u, 1u << 20));
-    cmd->add_option("--ipd", o->ipdM, "Stereo: interpupillary distance, metres")->capture_default_str()->check(CLI::Range(0.0f, 1.0f));
+        ->check(wholeNumberIn(0, 1 << 20));
+    cmd->add_option("--ipd", o->ipdM, "Stereo: interpupillary distance, metres")->capture_default_str()->check(numberIn(0.0, 1.0));
     cmd->add_option("--device", o->device, "Vulkan device: index or part of its name (default: best GPU, else lavapipe)");
     cmd->add_flag("--validation", o->validation, "Enable Vulkan validation layers; any message makes the run fail");
     cmd->callback([o] { run(*o); });

@@ -2,7 +2,8 @@
 // headless (mono, or both eyes of a stereo pair side by side) and writes it as PNG (tone-mapped)
 // or EXR (linear), printing the frame time.
 #include "Commands.h"
-#include "Options.h"  // samples/common
+#include "CommandLine.h"  // samples/common
+#include "Options.h"
 
 #include <preskin/Context.h>
 #include <preskin/Environment.h>
@@ -40,8 +41,10 @@ void run(const RenderOptions& o) {
     const OutputEncoding encoding = encodingFor(outPath);
     checkOutputPath(outPath, encoding);
     const std::filesystem::path scenePath = o.scene.empty() ? defaultScenePath() : std::filesystem::path(o.scene);
+    // Every option is checked before anything is loaded.
+    const std::vector<float> orbit = o.orbit.empty() ? std::vector<float>{} : parseFloats(o.orbit, 3, "--orbit");
 
-    Scene scene = Scene::load(scenePath);
+    Scene scene = loadScene(scenePath, o.common);
     for (const std::string& warning : scene.warnings) fmt::print(stderr, "preskin: warning: {}\n", warning);
     applySkinOption(scene, o.common);
     const Environment environment = loadEnvironment(scene, o.common);
@@ -59,8 +62,7 @@ void run(const RenderOptions& o) {
         if (!camera) throw Error(fmt::format("--camera {}: {} has no camera of that name", o.camera, scenePath.string()));
         view = cameraView(*camera, aspect, scene.worldBounds());
     } else if (!o.orbit.empty()) {
-        const auto v = parseFloats(o.orbit, 3, "--orbit");
-        view = orbitView(scene.worldBounds(), v[0], v[1], v[2], aspect);
+        view = orbitView(scene.worldBounds(), orbit[0], orbit[1], orbit[2], aspect);
     } else {
         view = frameBoundsView(scene.worldBounds(), aspect);
     }
@@ -94,17 +96,17 @@ void addRenderCommand(CLI::App& app) {
     cmd->add_option("scene", options->scene, "glTF scene (.gltf or .glb); default: the bundled head scene");
     cmd->add_option("--out,-o", options->out, "Output image: .png (tone-mapped) or .exr (linear)")
         ->capture_default_str();
-    cmd->add_option("--width", options->width, "Image width in pixels")->capture_default_str()->check(CLI::Range(1, 16384));
+    cmd->add_option("--width", options->width, "Image width in pixels")->capture_default_str()->check(wholeNumberIn(1, 16384));
     cmd->add_option("--height", options->height, "Image height in pixels")
         ->capture_default_str()
-        ->check(CLI::Range(1, 16384));
+        ->check(wholeNumberIn(1, 16384));
     auto* camera = cmd->add_option("--camera", options->camera, "Use the scene's camera of this name");
     auto* orbit = cmd->add_option("--orbit", options->orbit,
                                   "Orbit the scene's centre: YAW,PITCH,DIST in degrees, degrees, metres (DIST 0: fit)");
     camera->excludes(orbit);
     cmd->add_option("--frames", options->frames, "Measured frames after one warm-up; the median is reported")
         ->capture_default_str()
-        ->check(CLI::Range(1, 1000));
+        ->check(wholeNumberIn(1, 1000));
     addStereoOptions(*cmd, options->stereo);
     addCommonOptions(*cmd, options->common);
     cmd->callback([options] { run(*options); });

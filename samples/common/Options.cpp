@@ -1,9 +1,14 @@
 #include "Options.h"
+#include "CommandLine.h"
 
 #include <preskin/Error.h>
+#include <preskin/Limits.h>
 #include <preskin/LightScatter.h>
 
 #include <fmt/core.h>
+
+#include <sys/stat.h>
+#include <unistd.h>
 
 #include <cmath>
 #include <cstdlib>
@@ -22,9 +27,9 @@ std::string lower(std::string s) {
 
 void addCommonOptions(CLI::App& cmd, CommonOptions& o) {
     cmd.add_option("--env", o.env, "HDR environment (equirectangular .hdr or .exr); default: the scene's");
-    cmd.add_option("--env-intensity", o.envIntensity, "Environment radiance scale")->check(CLI::Range(0.0f, 1e6f));
+    cmd.add_option("--env-intensity", o.envIntensity, "Environment radiance scale")->check(numberIn(0.0, 1e6));
     cmd.add_option("--env-rotation", o.envRotationDeg, "Turn the environment about +Y, degrees")
-        ->check(CLI::Range(-3600.0f, 3600.0f));
+        ->check(numberIn(-3600.0, 3600.0));
     cmd.add_option("--device", o.device, "Vulkan device: index or part of its name (default: best GPU, else lavapipe)");
     cmd.add_flag("--validation", o.validation, "Enable Vulkan validation layers; any message makes the run fail");
     cmd.add_option("--skin", o.skin, "Shade this material (or 'all') as skin with default parameters");
@@ -39,32 +44,40 @@ void addCommonOptions(CLI::App& cmd, CommonOptions& o) {
                    "Debug view: none, curvature, normals, shadow, penumbra, lightcount, shambient, transmission")
         ->capture_default_str();
     cmd.add_option("--lights", o.lights, "Scatter this many coloured point and spot lights (clustered)")
-        ->check(CLI::Range(0u, 1u << 20));
-    cmd.add_option("--seed", o.seed, "Seed for --lights")->capture_default_str();
+        ->check(wholeNumberIn(0, 1 << 20));
+    cmd.add_option("--seed", o.seed, "Seed for --lights")->check(wholeNumberIn(0, UINT32_MAX))->capture_default_str();
     cmd.add_option("--light-loop", o.lightLoop, "clustered (light grid) or all (every light, brute force)")
-        ->check(CLI::IsMember({"clustered", "all"}))
+        ->check(oneOf({"clustered", "all"}))
         ->capture_default_str();
-    cmd.add_option("--exposure", o.exposure, "Exposure multiplier")->check(CLI::Range(0.0f, 1e6f))->capture_default_str();
+    cmd.add_option("--exposure", o.exposure, "Exposure multiplier")->check(numberIn(0.0, 1e6))->capture_default_str();
     cmd.add_option("--shadow-softness", o.shadowSoftness, "Shadow filter sigma in shadow-map texels")
-        ->check(CLI::Range(0.25f, 2.0f))
+        ->check(numberIn(0.25, 2.0))
         ->capture_default_str();
     cmd.add_option("--shadow-map-size", o.shadowMapSize, "Shadow map resolution")
-        ->check(CLI::Range(16u, 8192u))
+        ->check(wholeNumberIn(16, 8192))
         ->capture_default_str();
     cmd.add_flag("--no-shadows", o.noShadows, "Disable the shadow map");
     cmd.add_option("--msaa", o.msaa, "Samples per pixel (1, 2, 4 or 8, as the device offers; lavapipe: 1 or 4)")
-        ->check(CLI::IsMember({1u, 2u, 4u, 8u}))
+        ->check(oneOf({"1", "2", "4", "8"}))
         ->capture_default_str();
     cmd.add_option("--luts", o.luts, "Skin LUT set folder (from `preskin bake`); default: the bundled d'Eon set");
+    cmd.add_flag("--allow-outside-links", o.allowOutsideLinks,
+                 "Follow symbolic links in the scene's folder that lead out of it (refused by default)");
+}
+
+Scene loadScene(const std::filesystem::path& path, const CommonOptions& o) {
+    SceneLoadOptions options;
+    options.allowLinksOutsideFolder = o.allowOutsideLinks;
+    return Scene::load(path, options);
 }
 
 void addStereoOptions(CLI::App& cmd, StereoOptions& o) {
     cmd.add_flag("--stereo", o.stereo, "Render a stereo pair (one multiview pass), eyes side by side, left eye left");
     cmd.add_option("--ipd", o.ipdM, "Interpupillary distance of --stereo and --eye, metres")
-        ->check(CLI::Range(0.0f, 1.0f))
+        ->check(numberIn(0.0, 1.0))
         ->capture_default_str();
     cmd.add_option("--eye", o.eye, "Render only this eye of the stereo pair (mono): left or right")
-        ->check(CLI::IsMember({"left", "right"}));
+        ->check(oneOf({"left", "right"}));
 }
 
 View applyStereoOptions(const View& mono, const StereoOptions& o) {
@@ -96,13 +109,16 @@ std::vector<float> parseFloats(const std::string& text, size_t count, const char
     std::string item;
     while (std::getline(ss, item, ',')) {
         char* end = nullptr;
-        const float v = std::strtof(item.c_str(), &end);
-        if (item.empty() || end == item.c_str() || *end != '\0' || !std::isfinite(v))
-            throw Error(fmt::format("{} {}: '{}' is not a finite number", flag, text, item));
-        values.push_back(v);
+        const double v = std::strtod(item.c_str(), &end);
+        if (item.empty() || end == item.c_str() || *end != '\0' || !std::isfinite(v) ||
+            std::abs(v) > limits::kMaxInputMagnitude)
+            throw Error(fmt::format("{}: value: '{}' is not a finite number of magnitude at most {}", flag, item,
+                                    limits::kMaxInputMagnitude));
+        values.push_back(static_cast<float>(v));
     }
     if (values.size() != count)
-        throw Error(fmt::format("{} {}: expected {} comma-separated numbers, got {}", flag, text, count, values.size()));
+        throw Error(fmt::format("{}: value: expected {} comma-separated numbers, got {} in '{}'", flag, count,
+                                values.size(), text));
     return values;
 }
 
@@ -188,6 +204,20 @@ std::vector<Light> sceneLights(const Scene& scene, const CommonOptions& o) {
 
 void applyLightOptions(Renderer& renderer, const Scene& scene, const CommonOptions& o) {
     renderer.setLights(sceneLights(scene, o));
+}
+
+void checkOutputFile(const std::filesystem::path& path, const char* option) {
+    std::error_code ec;
+    const std::filesystem::path parent = std::filesystem::absolute(path, ec).parent_path();
+    if (!std::filesystem::is_directory(parent, ec))
+        throw Error(fmt::format("{} {}: folder: {} does not exist", option, path.string(), parent.string()));
+    struct stat st {};
+    if (::stat(path.c_str(), &st) == 0) {
+        if (!S_ISREG(st.st_mode))
+            throw Error(fmt::format("{} {}: output: exists and is not a regular file; not replaced", option, path.string()));
+        if ((st.st_mode & (S_IWUSR | S_IWGRP | S_IWOTH)) == 0 || ::access(path.c_str(), W_OK) != 0)
+            throw Error(fmt::format("{} {}: output: exists and is read-only; not replaced", option, path.string()));
+    }
 }
 
 void reportValidation(const Context& context) {

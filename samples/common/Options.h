@@ -42,9 +42,12 @@ struct CommonOptions {
     bool noShadows = false;
     uint32_t msaa = 1;
     std::string luts;  // LUT set folder; default: the committed luts/ (d'Eon)
+    bool allowOutsideLinks = false;  // SceneLoadOptions::allowLinksOutsideFolder
 };
 
 void addCommonOptions(CLI::App& cmd, CommonOptions& o);
+// Scene::load with the options' SceneLoadOptions.
+Scene loadScene(const std::filesystem::path& path, const CommonOptions& o);
 
 // The bundled sample scene (samples/assets/head/head.gltf of the source tree, or of
 // $PRESKIN_DATA_DIR when set).
@@ -73,6 +76,9 @@ Environment loadEnvironment(const Scene& scene, const CommonOptions& o);
 // The scene's lights plus --lights N scattered ones; a scene without any light gets a key light.
 std::vector<Light> sceneLights(const Scene& scene, const CommonOptions& o);
 void applyLightOptions(Renderer& renderer, const Scene& scene, const CommonOptions& o);
+// Refuses an output file `option` names unless its folder exists and the file, if it exists,
+// is a regular file that is not read-only (it would be replaced).
+void checkOutputFile(const std::filesystem::path& path, const char* option);
 // Throws when validation is on and reported anything.
 void reportValidation(const Context& context);
 std::string formatStats(const FrameStats& stats);

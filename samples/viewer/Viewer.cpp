@@ -218,7 +218,7 @@ void Viewer::loadStartupContent() {
     scenePathInput_ = scenePath.string();
     Scene scene;
     try {
-        scene = Scene::load(scenePath);
+        scene = cli::loadScene(scenePath, options_.common);
         for (const std::string& w : scene.warnings) info("warning: " + w);
         cli::applySkinOption(scene, options_.common);
     } catch (const std::exception& e) {
@@ -372,7 +372,7 @@ void Viewer::startSceneLoad(const std::filesystem::path& path) {
         result.path = path;
         const auto begin = Clock::now();
         try {
-            Scene scene = Scene::load(path);
+            Scene scene = cli::loadScene(path, common);
             cli::applySkinOption(scene, common);
             result.scene = std::move(scene);
         } catch (const std::exception& e) {

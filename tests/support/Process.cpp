@@ -123,4 +123,12 @@ ProcessResult runCli(const std::vector<std::string>& args, const fs::path& dir, 
     return runProcess(PRESKIN_CLI_PATH, args, {}, dir, limitS);
 }
 
+ProcessResult runWithMemoryLimit(const fs::path& program, const std::vector<std::string>& args, const fs::path& dir,
+                                 double limitS, uint64_t memoryBytes) {
+    std::vector<std::string> shellArgs{"-c", "ulimit -v " + std::to_string(memoryBytes / 1024) + " && exec \"$0\" \"$@\"",
+                                       program.string()};
+    shellArgs.insert(shellArgs.end(), args.begin(), args.end());
+    return runProcess("/bin/sh", shellArgs, {}, dir, limitS);
+}
+
 }  // namespace preskin::test

@@ -176,11 +176,13 @@ private:
 };
 
 // Writes an image atomically (a temporary file renamed into place): .png for DisplaySrgb8,
-// .exr (half float) for LinearFloat; several eyes side by side (sideBySide). Throws
-// preskin::Error naming the path on failure.
+// .exr (half float) for LinearFloat, where radiance above the half range saturates at 65504;
+// several eyes side by side (sideBySide). Throws preskin::Error naming the path on failure, and
+// refuses (writes nothing) an image that holds a non-finite value.
 PRESKIN_API void writeImage(const std::filesystem::path& path, const RenderedImage& image);
-// Throws preskin::Error unless `path` has a supported extension for the encoding and its
-// folder exists and is writable; call before expensive work.
+// Throws preskin::Error unless `path` has a supported extension for the encoding, its folder
+// exists and is writable, and it is not an existing file that is read-only or not a regular
+// file (never replaced); call before expensive work.
 PRESKIN_API void checkOutputPath(const std::filesystem::path& path, OutputEncoding encoding);
 
 }  // namespace preskin

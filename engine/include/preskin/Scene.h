@@ -182,6 +182,14 @@ struct Camera {
     float zfar = 0.0f;  // 0: infinite (perspective only)
 };
 
+// How Scene::load treats the files a scene refers to.
+struct SceneLoadOptions {
+    // Buffers, images and the environment must lie in the scene file's folder or below it. A
+    // symbolic link there that leads out of the folder is refused unless this is set (a scene
+    // unpacked from an archive can carry such links).
+    bool allowLinksOutsideFolder = false;
+};
+
 struct Scene {
     std::filesystem::path sourcePath;
     std::vector<Mesh> meshes;
@@ -201,8 +209,9 @@ struct Scene {
     // Non-fatal problems found while loading ("file: field: what was ignored"), for the host to show.
     std::vector<std::string> warnings;
 
-    // Loads .gltf or .glb. Throws preskin::Error naming the file and the field on bad input.
-    PRESKIN_API static Scene load(const std::filesystem::path& path);
+    // Loads .gltf or .glb. Throws preskin::Error naming the file and the field on bad input,
+    // including input beyond the limits of <preskin/Limits.h>.
+    PRESKIN_API static Scene load(const std::filesystem::path& path, const SceneLoadOptions& options = {});
 
     PRESKIN_API Bounds worldBounds() const;
     // Marks materials as skin: every material for "all", else the materials with that name

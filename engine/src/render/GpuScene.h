@@ -1,6 +1,8 @@
-// A Scene on the GPU: one vertex and one index buffer for all primitives, the instance table,
-// textures (sRGB or linear per use, full mip chains), samplers, and one descriptor set per
-// material (uniforms + textures; no descriptor indexing, which lavapipe lacks).
+// A Scene on the GPU: one vertex and one index buffer for all primitives (indices rebased to the
+// shared vertex buffer), the instance table, textures (sRGB or linear per use, full mip chains),
+// samplers, and one descriptor set per material (uniforms + textures; no descriptor indexing,
+// which lavapipe lacks). Draws: one per run of consecutive primitives of an instance that share
+// a material (blended primitives one each), since each draw call has a fixed cost.
 #pragma once
 
 #include <preskin/Scene.h>
@@ -20,7 +22,7 @@ struct DrawItem {
     int32_t vertexOffset = 0;
     uint32_t instance = 0;
     uint32_t material = 0;  // index into GpuScene::materials
-    glm::vec3 centerWs{0.0f};
+    glm::vec3 centerWs{0.0f};  // of the (first) primitive; sorts blended draws, which are never merged
 };
 
 struct GpuMaterial {

@@ -6,9 +6,11 @@
 
 #include <OpenImageIO/imageio.h>
 #include <fmt/core.h>
+#include <sys/stat.h>
 #include <unistd.h>
 
 #include <algorithm>
+#include <cmath>
 #include <cstring>
 #include <cctype>
 #include <filesystem>
@@ -17,6 +19,8 @@
 namespace preskin {
 
 namespace {
+
+constexpr float kHalfMax = 65504.0f;
 
 std::string lowerExtension(const std::filesystem::path& path) {
     std::string ext = path.extension().string();
@@ -30,16 +34,25 @@ void checkOutputPath(const std::filesystem::path& path, OutputEncoding encoding)
     const std::string ext = lowerExtension(path);
     const std::string wanted = encoding == OutputEncoding::DisplaySrgb8 ? ".png" : ".exr";
     if (ext != wanted)
-        throw Error(fmt::format("{}: output type '{}' does not match the encoding (expected {})", path.string(), ext,
+        throw Error(fmt::format("{}: output: type '{}' does not match the encoding (expected {})", path.string(), ext,
                                 wanted));
     std::error_code ec;
     if (std::filesystem::is_directory(path, ec))
-        throw Error(fmt::format("{}: output path is a directory", path.string()));
+        throw Error(fmt::format("{}: output: is a folder, not a file", path.string()));
     const std::filesystem::path dir = path.has_parent_path() ? path.parent_path() : std::filesystem::path(".");
     if (!std::filesystem::is_directory(dir, ec))
-        throw Error(fmt::format("{}: output folder {} does not exist", path.string(), dir.string()));
+        throw Error(fmt::format("{}: output: folder {} does not exist", path.string(), dir.string()));
     if (::access(dir.c_str(), W_OK) != 0)
-        throw Error(fmt::format("{}: output folder {} is not writable", path.string(), dir.string()));
+        throw Error(fmt::format("{}: output: folder {} is not writable", path.string(), dir.string()));
+    // An existing file is replaced only when it is a regular file its owner left writable: the
+    // rename would otherwise replace a read-only file (or a FIFO, a device) without a word.
+    struct stat st {};
+    if (::stat(path.c_str(), &st) == 0) {
+        if (!S_ISREG(st.st_mode))
+            throw Error(fmt::format("{}: output: exists and is not a regular file; not replaced", path.string()));
+        if ((st.st_mode & (S_IWUSR | S_IWGRP | S_IWOTH)) == 0 || ::access(path.c_str(), W_OK) != 0)
+            throw Error(fmt::format("{}: output: exists and is read-only; not replaced", path.string()));
+    }
 }
 
 RenderedImage eyeImage(const RenderedImage& image, uint32_t eye) {
@@ -86,6 +99,19 @@ void writeImage(const std::filesystem::path& path, const RenderedImage& eyes) {
     if (image.width == 0 || image.height == 0 || (display ? image.rgba8.size() : image.rgba32f.size()) != expected)
         throw Error(fmt::format("{}: image data does not match its size {}x{}", path.string(), image.width,
                                 image.height));
+    // Half floats end at 65504: brighter radiance saturates there instead of becoming infinite.
+    std::vector<float> linear;
+    if (!display) {
+        linear = image.rgba32f;
+        size_t nonFinite = 0;
+        for (float& v : linear) {
+            if (!std::isfinite(v)) ++nonFinite;
+            v = std::clamp(v, -kHalfMax, kHalfMax);
+        }
+        if (nonFinite > 0)
+            throw Error(fmt::format("{}: pixels: {} values of the rendered image are not finite; nothing written",
+                                    path.string(), nonFinite));
+    }
     const std::filesystem::path dir = path.has_parent_path() ? path.parent_path() : std::filesystem::path(".");
     const std::filesystem::path temp =
         dir / fmt::format(".{}.{}.partial{}", path.filename().string(), ::getpid(), lowerExtension(path));
@@ -102,7 +128,7 @@ void writeImage(const std::filesystem::path& path, const RenderedImage& eyes) {
     };
     if (!out->open(temp.string(), spec)) fail("cannot create file: " + out->geterror());
     const bool ok = display ? out->write_image(OIIO::TypeDesc::UINT8, image.rgba8.data())
-                            : out->write_image(OIIO::TypeDesc::FLOAT, image.rgba32f.data());
+                            : out->write_image(OIIO::TypeDesc::FLOAT, linear.data());
     if (!ok) {
         const std::string error = out->geterror();
         out->close();

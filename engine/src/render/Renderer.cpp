@@ -11,6 +11,7 @@
 #include "render/GpuLights.h"
 #include "render/GpuLuts.h"
 #include "render/GpuScene.h"
+#include "render/InputChecks.h"
 #include "render/MultiviewProbe.h"
 #include "render/PoseBounds.h"
 #include "shared/gpu_types.h"
@@ -166,6 +167,8 @@ struct Renderer::Impl {
     Impl(Context& ctx, const Scene& s, const Environment& env, const LutSet* lutSet, const RenderSettings& rs)
         : context(ctx), dev(ctx.core()), settings(rs), lights(s.lights), bounds(s.worldBounds()),
           radianceSh(env.radianceSh()) {
+        checkRenderSettings(rs);
+        checkLights(s.lights);
         scene = std::make_unique<GpuScene>(dev, s);
         poseBounds = std::make_unique<PoseBounds>(s);
         deformer = std::make_unique<GpuDeformer>(dev, s, scene->vertices, scene->meshFirstVertex);
@@ -757,8 +760,7 @@ Renderer::~Renderer() = default;
 const RenderSettings& Renderer::settings() const { return impl_->settings; }
 
 void Renderer::setSettings(const RenderSettings& settings) {
-    if (!std::isfinite(settings.exposure) || !std::isfinite(settings.shadowSoftnessTexels))
-        throw Error("RenderSettings: exposure and shadowSoftnessTexels must be finite");
+    checkRenderSettings(settings);
     impl_->settings = settings;
     impl_->resolveEyeDrawing();
 }
@@ -767,7 +769,10 @@ void Renderer::setPose(const ScenePose& pose) { impl_->setPose(pose); }
 
 const ScenePose& Renderer::pose() const { return impl_->pose; }
 
-void Renderer::setLights(const std::vector<Light>& lights) { impl_->lights = lights; }
+void Renderer::setLights(const std::vector<Light>& lights) {
+    checkLights(lights);
+    impl_->lights = lights;
+}
 const std::vector<Light>& Renderer::lights() const { return impl_->lights; }
 void Renderer::setEnvironment(const Environment& environment) { impl_->radianceSh = environment.radianceSh(); }
 

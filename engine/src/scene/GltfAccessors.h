@@ -26,6 +26,11 @@ struct FloatAccessor {
 FloatAccessor readFloatAccessor(const LoadContext& ctx, int index, std::initializer_list<int> componentsAllowed,
                                 const std::string& what);
 
+// The element count of accessor `index` after the same checks as the readers, without reading
+// it: callers check their totals against the limits before anything is allocated.
+enum class AccessorUse { Attribute, Indices };
+size_t accessorCount(const LoadContext& ctx, int index, const std::string& what, AccessorUse use = AccessorUse::Attribute);
+
 // Reads an index accessor (SCALAR, unsigned byte/short/int) and checks every index < vertexCount.
 std::vector<uint32_t> readIndexAccessor(const LoadContext& ctx, int index, size_t vertexCount, const std::string& what);
 

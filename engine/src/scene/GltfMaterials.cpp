@@ -101,7 +101,7 @@ SkinTextureRef skinTextureRef(const LoadContext& ctx, const tinygltf::Value& ski
 }
 
 float clampedFactor(const LoadContext& ctx, double value, double lo, double hi, const std::string& where) {
-    if (!std::isfinite(value)) ctx.fail(where, "not finite");
+    checkedNumber(ctx, value, where);
     if (value < lo || value > hi) {
         ctx.warn(where, number(value) + " is outside [" + number(lo) + ", " + number(hi) + "]; clamped");
         value = std::clamp(value, lo, hi);
@@ -230,8 +230,7 @@ void convertMaterials(const LoadContext& ctx) {
         out.metallicRoughness =
             textureRef(ctx, in.pbrMetallicRoughness.metallicRoughnessTexture, pbr + ".metallicRoughnessTexture");
         out.normal = textureRef(ctx, in.normalTexture, where + ".normalTexture");
-        if (!std::isfinite(in.normalTexture.scale)) ctx.fail(where + ".normalTexture.scale", "not finite");
-        out.normal.scale = static_cast<float>(in.normalTexture.scale);
+        out.normal.scale = static_cast<float>(checkedNumber(ctx, in.normalTexture.scale, where + ".normalTexture.scale"));
         out.occlusion = textureRef(ctx, in.occlusionTexture, where + ".occlusionTexture");
         out.occlusion.scale = clampedFactor(ctx, in.occlusionTexture.strength, 0.0, 1.0, where + ".occlusionTexture.strength");
         out.emissive = textureRef(ctx, in.emissiveTexture, where + ".emissiveTexture");
@@ -245,7 +244,7 @@ void convertMaterials(const LoadContext& ctx) {
         else if (in.alphaMode == "MASK") out.alphaMode = AlphaMode::Mask;
         else if (in.alphaMode == "BLEND") out.alphaMode = AlphaMode::Blend;
         else ctx.fail(where + ".alphaMode", "'" + in.alphaMode + "' (expected OPAQUE, MASK or BLEND)");
-        if (!std::isfinite(in.alphaCutoff) || in.alphaCutoff < 0.0) ctx.fail(where + ".alphaCutoff", "must be finite and >= 0");
+        if (checkedNumber(ctx, in.alphaCutoff, where + ".alphaCutoff") < 0.0) ctx.fail(where + ".alphaCutoff", "must be >= 0");
         out.alphaCutoff = static_cast<float>(in.alphaCutoff);
         out.doubleSided = in.doubleSided;
 
