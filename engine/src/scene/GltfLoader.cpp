@@ -2,10 +2,14 @@
 // OpenImageIO image callback, then meshes, nodes, lights and cameras (see GltfLoader.h).
 #include "scene/GltfLoader.h"
 #include "scene/GltfAccessors.h"
+#include "scene/GltfAnimations.h"
 #include "scene/GltfContext.h"
 #include "scene/GltfFiles.h"
 #include "scene/GltfMaterials.h"
+#include "scene/GltfMorphTargets.h"
+#include "scene/GltfNodes.h"
 #include "scene/GltfPrepass.h"
+#include "scene/GltfSkins.h"
 #include "scene/ImageDecoder.h"
 #include "scene/TangentFrames.h"
 
@@ -185,7 +189,6 @@ void convertMeshes(const LoadContext& ctx) {
                 mode != TINYGLTF_MODE_TRIANGLE_FAN) {
                 ctx.fail(where + ".mode", std::to_string(mode) + " is not a glTF primitive mode");
             }
-            if (!prim.targets.empty()) ctx.warn(where + ".targets", "morph targets are not supported; the base shape is used");
             if (prim.material < -1 || prim.material >= static_cast<int>(model.materials.size())) {
                 ctx.fail(where + ".material", std::to_string(prim.material) + " is out of range: the file has " +
                                                   std::to_string(model.materials.size()) + " materials");
@@ -229,7 +232,8 @@ void convertMeshes(const LoadContext& ctx) {
                 if (uvs) v.uv0 = glm::make_vec2(&uvs->values[i * 2]);
                 if (tangents) v.tangentOs = glm::make_vec4(&tangents->values[i * 4]);
             }
-            if (attribute("JOINTS_0") >= 0) ctx.warn(where + ".attributes.JOINTS_0", "skinning is not supported; ignored");
+            readMorphTargets(ctx, prim, where, vertexCount, out);
+            readJointInfluences(ctx, m, prim, where, vertexCount, out);
 
             std::vector<uint32_t> indices;
             if (prim.indices >= 0) {
@@ -269,6 +273,7 @@ void convertMeshes(const LoadContext& ctx) {
             for (const Vertex& v : out.vertices) out.boundsOs.extend(v.positionOs);
             mesh.primitives.push_back(std::move(out));
         }
+        convertMorphWeights(ctx, m, mesh);
         updateMeshCurvature(mesh);
         ctx.scene->meshes.push_back(std::move(mesh));
     }
@@ -461,13 +466,14 @@ void convertNodes(const LoadContext& ctx) {
         const glm::mat4 world = item.parentWorld * localMatrix(ctx, node, where);
         if (!finite(world)) ctx.fail(where, "its world transform is not finite");
 
-        if (node.skin >= 0) ctx.warn(where + ".skin", "skinning is not supported; the mesh is drawn in its bind pose");
         if (node.mesh >= 0) {
             if (static_cast<size_t>(node.mesh) >= model.meshes.size()) {
                 ctx.fail(where + ".mesh", std::to_string(node.mesh) + " is out of range: the file has " +
                                               std::to_string(model.meshes.size()) + " meshes");
             }
             scene.instances.push_back(MeshInstance{node.mesh, world, nodeName});
+            scene.instances.back().node = item.node;
+            scene.instances.back().skin = node.skin;
         } else if (node.mesh < -1) {
             ctx.fail(where + ".mesh", std::to_string(node.mesh) + " is out of range");
         }
@@ -608,6 +614,9 @@ Scene loadScene(const fs::path& path) {
     convertMaterials(ctx);
     convertMeshes(ctx);
     convertNodes(ctx);
+    convertNodeHierarchy(ctx);
+    convertSkins(ctx);
+    convertAnimations(ctx);
     return scene;
 }
 

@@ -249,6 +249,15 @@ PrepassResult checkDocument(const json& doc, const std::string& file, const fs::
         }
     }
 
+    // skins (tinygltf refuses a skin without joints without naming it)
+    const json& skins = c.array(doc, "skins");
+    for (size_t i = 0; i < skins.size(); ++i) {
+        const json* joints = c.member(c.object(skins, i, "skins"), "joints");
+        if (!joints || !joints->is_array()) {
+            c.error(Checker::indexed("skins", i) + ".joints", "missing or not an array (a skin needs at least one joint)");
+        }
+    }
+
     // PRESKIN_environment
     if (const json* extensions = c.member(doc, "extensions")) {
         if (!extensions->is_object()) c.error("extensions", "not an object");
