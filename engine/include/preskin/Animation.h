@@ -67,6 +67,10 @@ struct AnimationSampler {
     std::vector<float> values;
     uint32_t components = 0;
     Interpolation interpolation = Interpolation::Linear;
+    // The values are unit quaternions (a rotation channel's sampler): LINEAR interpolates them by
+    // slerp over the short arc and every result is normalised. A weights sampler of four morph
+    // targets has 4 components too, so the component count alone cannot tell.
+    bool rotation = false;
 
     // The value at a time (clamped to the keys; rotations normalised), `components` floats.
     PRESKIN_API std::vector<float> sample(float timeS) const;

@@ -43,12 +43,13 @@ int componentCount(int type) {
     case TINYGLTF_TYPE_VEC2: return 2;
     case TINYGLTF_TYPE_VEC3: return 3;
     case TINYGLTF_TYPE_VEC4: return 4;
+    case TINYGLTF_TYPE_MAT4: return 16;  // columns of 4 components: never padded (glTF 2.0, "Data Alignment")
     default: return 0;
     }
 }
 
 std::string typeName(int components) {
-    return components == 1 ? "SCALAR" : "VEC" + std::to_string(components);
+    return components == 1 ? "SCALAR" : components == 16 ? "MAT4" : "VEC" + std::to_string(components);
 }
 
 template <typename T>
@@ -105,7 +106,7 @@ const uint8_t* viewBytes(const LoadContext& ctx, int viewIndex, uint64_t offset,
                                std::to_string(view.byteLength) + " exceeds buffers[" + std::to_string(view.buffer) +
                                "] (" + std::to_string(bufferSize) + " bytes)");
     }
-    // count <= limits::kMaxSceneIndices and stride <= 2^8 (or elementSize <= 16), so no overflow.
+    // count <= limits::kMaxSceneIndices and stride <= 2^8 (or elementSize <= 64), so no overflow.
     const uint64_t span = count == 0 ? 0 : (count - 1) * stride + elementSize;
     if (offset > view.byteLength || span > view.byteLength - offset) {
         ctx.fail(where, "byteOffset " + std::to_string(offset) + " + " + std::to_string(count) + " elements of " +
@@ -134,7 +135,7 @@ CheckedAccessor checkAccessor(const LoadContext& ctx, int index, const std::stri
     c.name = indexed("accessors", static_cast<size_t>(index));
     const tinygltf::Accessor& a = *c.accessor;
     c.components = componentCount(a.type);
-    if (c.components == 0) ctx.fail(c.name + ".type", "a matrix type, " + what + " needs a vector or scalar");
+    if (c.components == 0) ctx.fail(c.name + ".type", "MAT2 or MAT3, " + what + " needs a vector, scalar or MAT4");
     c.componentBytes = componentSize(a.componentType);
     if (c.componentBytes == 0) {
         ctx.fail(c.name + ".componentType", componentName(a.componentType) + " is not allowed for accessors");

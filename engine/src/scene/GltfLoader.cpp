@@ -5,10 +5,14 @@
 #include "io/InputFile.h"
 #include "io/JsonDocument.h"
 #include "scene/GltfAccessors.h"
+#include "scene/GltfAnimations.h"
 #include "scene/GltfContext.h"
 #include "scene/GltfFiles.h"
 #include "scene/GltfMaterials.h"
+#include "scene/GltfMorphTargets.h"
+#include "scene/GltfNodes.h"
 #include "scene/GltfPrepass.h"
+#include "scene/GltfSkins.h"
 #include "scene/ImageDecoder.h"
 #include "scene/TangentFrames.h"
 
@@ -194,7 +198,6 @@ void convertMeshes(const LoadContext& ctx) {
                 mode != TINYGLTF_MODE_TRIANGLE_FAN) {
                 ctx.fail(where + ".mode", std::to_string(mode) + " is not a glTF primitive mode");
             }
-            if (!prim.targets.empty()) ctx.warn(where + ".targets", "morph targets are not supported; the base shape is used");
             if (prim.material < -1 || prim.material >= static_cast<int>(model.materials.size())) {
                 ctx.fail(where + ".material", std::to_string(prim.material) + " is out of range: the file has " +
                                                   std::to_string(model.materials.size()) + " materials");
@@ -258,7 +261,8 @@ void convertMeshes(const LoadContext& ctx) {
                 if (uvs) v.uv0 = glm::make_vec2(&uvs->values[i * 2]);
                 if (tangents) v.tangentOs = glm::make_vec4(&tangents->values[i * 4]);
             }
-            if (attribute("JOINTS_0") >= 0) ctx.warn(where + ".attributes.JOINTS_0", "skinning is not supported; ignored");
+            readMorphTargets(ctx, prim, where, vertexCount, out);
+            readJointInfluences(ctx, m, prim, where, vertexCount, out);
 
             std::vector<uint32_t> indices;
             if (prim.indices >= 0) {
@@ -295,6 +299,7 @@ void convertMeshes(const LoadContext& ctx) {
             for (const Vertex& v : out.vertices) out.boundsOs.extend(v.positionOs);
             mesh.primitives.push_back(std::move(out));
         }
+        convertMorphWeights(ctx, m, mesh);
         updateMeshCurvature(mesh);
         ctx.scene->meshes.push_back(std::move(mesh));
     }
@@ -533,7 +538,6 @@ void convertNodes(const LoadContext& ctx) {
                             "finite or exceeds the limit of " + number(limits::kMaxInputMagnitude) + " in magnitude");
         }
 
-        if (node.skin >= 0) ctx.warn(where + ".skin", "skinning is not supported; the mesh is drawn in its bind pose");
         if (node.mesh >= 0) {
             if (static_cast<size_t>(node.mesh) >= model.meshes.size()) {
                 ctx.fail(where + ".mesh", std::to_string(node.mesh) + " is out of range: the file has " +
@@ -551,6 +555,8 @@ void convertNodes(const LoadContext& ctx) {
                                               std::to_string(limits::kMaxDrawnTriangles) + " triangles (instances included)");
             }
             scene.instances.push_back(MeshInstance{node.mesh, world, nodeName});
+            scene.instances.back().node = item.node;
+            scene.instances.back().skin = node.skin;
         } else if (node.mesh < -1) {
             ctx.fail(where + ".mesh", std::to_string(node.mesh) + " is out of range");
         }
@@ -688,6 +694,9 @@ Scene loadSceneBytes(std::vector<uint8_t> bytes, const fs::path& path, const Sce
     convertMaterials(ctx);
     convertMeshes(ctx);
     convertNodes(ctx);
+    convertNodeHierarchy(ctx);
+    convertSkins(ctx);
+    convertAnimations(ctx);
     return scene;
 }
 

@@ -13,8 +13,10 @@
 // Meshes: POSITION (required), NORMAL (flat normals when missing, as the spec asks), TEXCOORD_0,
 // TANGENT (generated when missing, TangentFrames.h); all index widths and non-indexed primitives;
 // normalized integer attributes; sparse accessors. Triangle strips and fans become lists; points
-// and lines are skipped with a warning. Skins, morph targets and animations are ignored (with a
-// warning): the static pose is loaded. Curvature is computed per mesh (Curvature.h).
+// and lines are skipped with a warning. Curvature is computed per mesh (Curvature.h).
+// Animation data (<preskin/Animation.h>): morph targets (GltfMorphTargets), joint influences and
+// skins (GltfSkins), the node hierarchy (GltfNodes) and animations (GltfAnimations); instances
+// keep the rest pose in MeshInstance::worldFromObject and name their node and skin.
 //
 // Lights: KHR_lights_punctual; a light's extras.castsShadow (boolean) marks shadow casters; when
 // no light of the file has that key, the first directional light casts shadows.

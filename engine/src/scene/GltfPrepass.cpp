@@ -594,6 +594,14 @@ PrepassResult checkDocument(const json& doc, const std::string& file, const fs::
         }
     }
 
+    // skins (tinygltf refuses a skin without joints without naming it)
+    const json& skins = c.array(doc, "skins", "");
+    for (size_t i = 0; i < skins.size(); ++i) {
+        const json* joints = skins[i].is_object() ? Checker::member(skins[i], "joints") : nullptr;
+        if (!joints || !joints->is_array() || joints->empty())
+            c.error(Checker::indexed("skins", i) + ".joints", "missing, empty or not an array (a skin needs at least one joint)");
+    }
+
     // extensions
     const auto& supported = supportedRequiredExtensions();
     const json& required = c.array(doc, "extensionsRequired", "");
