@@ -68,8 +68,9 @@ GpuScene::GpuScene(const vk::Device& device, const Scene& scene)
             for (const uint32_t index : p.indices) allIndices.push_back(base + index);
         }
     }
+    // Also read by the deformation pass (GpuDeformer) as its rest pose.
     vertices = vk::Buffer(device, std::max<size_t>(allVertices.size(), 1) * sizeof(Vertex),
-                          VK_BUFFER_USAGE_VERTEX_BUFFER_BIT, false);
+                          VK_BUFFER_USAGE_VERTEX_BUFFER_BIT | VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, false);
     vertices.upload(allVertices.data(), allVertices.size() * sizeof(Vertex));
     indices = vk::Buffer(device, std::max<size_t>(allIndices.size(), 1) * sizeof(uint32_t),
                          VK_BUFFER_USAGE_INDEX_BUFFER_BIT, false);
