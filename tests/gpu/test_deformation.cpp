@@ -43,7 +43,8 @@ std::vector<Vertex> gpuDeform(Context& context, const Scene& scene, const SceneP
     for (const Primitive& p : scene.meshes[size_t(scene.instances[0].mesh)].primitives) count += p.vertices.size();
     vk::Buffer host(device, count * sizeof(Vertex), VK_BUFFER_USAGE_TRANSFER_DST_BIT, true);
     device.submitAndWait([&](VkCommandBuffer cmd) {
-        deformer.record(cmd, 0);
+        deformer.recordDeformation(cmd, 0);
+        deformer.recordCurvature(cmd, 0);
         const VkBufferCopy region{0, 0, count * sizeof(Vertex)};  // instance 0 is first in the output
         vkCmdCopyBuffer(cmd, deformer.output(0).handle(), host.handle(), 1, &region);
         vk::memoryBarrier(cmd, VK_PIPELINE_STAGE_2_COPY_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT, VK_PIPELINE_STAGE_2_HOST_BIT,

@@ -312,7 +312,7 @@ void GpuDeformer::prepare(uint32_t slotIndex, const ScenePose& pose) {
     }
 }
 
-void GpuDeformer::record(VkCommandBuffer cmd, uint32_t slotIndex) {
+void GpuDeformer::recordDeformation(VkCommandBuffer cmd, uint32_t slotIndex) {
     if (deformed_.empty()) return;
     Slot& slot = slots_[slotIndex];
     // The previous frame's draws from this slot's vertices, and its curvature scratch, are done.
@@ -335,6 +335,11 @@ void GpuDeformer::record(VkCommandBuffer cmd, uint32_t slotIndex) {
             vkCmdDispatch(cmd, groups(r.vertexCount), 1, 1);
         }
     }
+}
+
+void GpuDeformer::recordCurvature(VkCommandBuffer cmd, uint32_t slotIndex) {
+    if (deformed_.empty()) return;
+    Slot& slot = slots_[slotIndex];
     if (curvatureInstances() > 0) {
         vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, curvatureLayout_, 0, 1, &slot.set, 0, nullptr);
         for (uint32_t step = 0; step < 4; ++step) {

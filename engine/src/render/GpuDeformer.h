@@ -52,9 +52,10 @@ public:
     void check(const ScenePose& pose) const;
     // This frame's morph weights and joint matrices for `slot`, from a checked pose.
     void prepare(uint32_t slot, const ScenePose& pose);
-    // Records the deformation (and curvature) dispatches of the slot's last prepare(), ending with
-    // a barrier that makes the vertices visible to vertex input.
-    void record(VkCommandBuffer cmd, uint32_t slot);
+    // Records the deformation dispatches of the slot's last prepare(), then (recordCurvature) the
+    // curvature steps, ending with a barrier that makes the vertices visible to vertex input.
+    void recordDeformation(VkCommandBuffer cmd, uint32_t slot);
+    void recordCurvature(VkCommandBuffer cmd, uint32_t slot);
 
 private:
     struct PrimitiveRange {

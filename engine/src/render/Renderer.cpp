@@ -44,7 +44,8 @@ namespace {
 
 constexpr VkFormat kDepthFormat = VK_FORMAT_D32_SFLOAT;
 constexpr uint32_t kSlotCount = 2;
-constexpr uint32_t kQueryCount = 5;  // start, after deformation, after shadow, after clustering, after forward
+// start, after deformation, after curvature, after shadow, after clustering, after forward
+constexpr uint32_t kQueryCount = 6;
 
 std::span<const uint32_t> builtinShader(const char* name) {
     auto code = shaders::spirv(name);
@@ -124,6 +125,7 @@ struct Renderer::Impl {
         vk::Buffer frameUniforms;
         vk::Buffer lights;
         vk::Buffer instances;  // GpuInstance per scene instance, from the pose
+        uint64_t instancesPose = ~0ull;  // the pose version they hold
         VkDescriptorSet set = VK_NULL_HANDLE;
         VkQueryPool queries = VK_NULL_HANDLE;
         bool recorded = false;
@@ -143,6 +145,7 @@ struct Renderer::Impl {
     ShRgb radianceSh;
     std::unique_ptr<GpuScene> scene;
     ScenePose pose;
+    uint64_t poseVersion = 0;
     std::unique_ptr<PoseBounds> poseBounds;
     std::unique_ptr<GpuDeformer> deformer;
     std::unique_ptr<GpuLuts> luts;
@@ -387,6 +390,7 @@ struct Renderer::Impl {
         deformer->check(p);
         bounds = poseBounds->worldBounds(p);
         pose = std::move(p);
+        ++poseVersion;
     }
 
     VkPipeline depthOnlyPipeline() {
@@ -420,9 +424,12 @@ struct Renderer::Impl {
     bool prepareFrame(Slot& slot, uint32_t slotIndex, const View& view, VkExtent2D extent,
                       glm::mat4& shadowClipFromWorld) {
         // The pose: instance transforms, and the deformation's weights and joint matrices.
-        auto* instances = static_cast<gpu::GpuInstance*>(slot.instances.mapped());
-        for (size_t i = 0; i < scene->restInstances.size(); ++i)
-            instances[i] = toGpuInstance(pose.instances[i].worldFromObject);
+        if (slot.instancesPose != poseVersion) {  // static scenes fill them once per slot
+            auto* instances = static_cast<gpu::GpuInstance*>(slot.instances.mapped());
+            for (size_t i = 0; i < scene->restInstances.size(); ++i)
+                instances[i] = toGpuInstance(pose.instances[i].worldFromObject);
+            slot.instancesPose = poseVersion;
+        }
         deformer->prepare(slotIndex, pose);
         const int shadowLight = settings.shadows ? shadowLightIndex(lights) : -1;
         std::vector<gpu::GpuLight> gpuLights;
@@ -712,14 +719,16 @@ struct Renderer::Impl {
         updateFrameSet(slot, slotIndex);
         if (slot.queries) vkCmdResetQueryPool(cmd, slot.queries, 0, kQueryCount);
         timestamp(cmd, slot, 0);
-        deformer->record(cmd, slotIndex);  // animated instances into this frame's vertices
+        deformer->recordDeformation(cmd, slotIndex);  // animated instances into this frame's vertices
         timestamp(cmd, slot, 1);
-        if (shadow) recordShadowPass(cmd, slot, slotIndex);
+        deformer->recordCurvature(cmd, slotIndex);
         timestamp(cmd, slot, 2);
-        clusters->record(cmd, slotIndex);  // the compute build, when this frame uses it
+        if (shadow) recordShadowPass(cmd, slot, slotIndex);
         timestamp(cmd, slot, 3);
-        recordForwardPass(cmd, slot, slotIndex, target, view);
+        clusters->record(cmd, slotIndex);  // the compute build, when this frame uses it
         timestamp(cmd, slot, 4);
+        recordForwardPass(cmd, slot, slotIndex, target, view);
+        timestamp(cmd, slot, 5);
         slot.recorded = true;
         slot.shadowRecorded = shadow;
         slot.eyes = view.eyeCount();
@@ -745,8 +754,9 @@ struct Renderer::Impl {
         if (r != VK_SUCCESS) return s;
         const double toMs = double(dev.timestampPeriodNs()) * 1e-6;
         auto ms = [&](int a, int b) { return double(ticks[size_t(b)] - ticks[size_t(a)]) * toMs; };
-        s.passes = {{"deform", ms(0, 1)}, {"shadow", ms(1, 2)}, {"clusters", ms(2, 3)}, {"forward", ms(3, 4)}};
-        s.gpuMs = ms(0, 4);
+        s.passes = {{"deform", ms(0, 1)}, {"curvature", ms(1, 2)}, {"shadow", ms(2, 3)}, {"clusters", ms(3, 4)},
+                    {"forward", ms(4, 5)}};
+        s.gpuMs = ms(0, 5);
         return s;
     }
 };

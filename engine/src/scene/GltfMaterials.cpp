@@ -125,7 +125,7 @@ SkinMaterial parseSkinExtension(const LoadContext& ctx, const tinygltf::Value& s
                                 SkinMaterial s) {
     if (!skin.IsObject()) ctx.fail(where, "not an object");
     static const std::set<std::string> known = {
-        "scatterScale",     "curvatureSource",     "curvatureTexture",  "curvatureTextureScalePerM",
+        "scatterScale",     "curvatureSource",     "curvatureTexture",  "curvatureTextureScalePerM", "deformedCurvature",
         "normalLodBias",    "detailNormalTexture", "detailUvScale",     "transmission",
         "transmissionColor", "thicknessScale",     "specularIntensity", "specularTexture",
         "lobeRoughness0",   "lobeRoughness1",      "lobeMix"};
@@ -145,6 +145,11 @@ SkinMaterial parseSkinExtension(const LoadContext& ctx, const tinygltf::Value& s
         ctx.fail(where + ".curvatureSource", "'texture' but there is no usable curvatureTexture");
     }
     skinNumber(ctx, skin, "curvatureTextureScalePerM", where, s.curvatureTextureScalePerM, 0.0, inf);
+    if (auto deformed = stringField(ctx, skin, "deformedCurvature", where)) {
+        if (*deformed == "recomputed") s.deformedCurvature = DeformedCurvature::Recomputed;
+        else if (*deformed == "bindPose") s.deformedCurvature = DeformedCurvature::BindPose;
+        else ctx.fail(where + ".deformedCurvature", "'" + *deformed + "' (expected recomputed or bindPose)");
+    }
     if (auto bias = vec3Field(ctx, skin, "normalLodBias", where)) s.normalLodBias = *bias;
     s.detailNormalTexture = skinTextureRef(ctx, skin, "detailNormalTexture", where, &s.detailNormalScale);
     skinNumber(ctx, skin, "detailUvScale", where, s.detailUvScale, 0.0, inf, true);
