@@ -253,6 +253,17 @@ void Viewer::loadStartupContent() {
     }
 
     adoptScene(std::move(scene), scenePath);
+    if (!options_.animation.empty() || options_.timeS || options_.play) {
+        try {
+            if (scene_.animations.empty()) throw Error("the scene has no animations");
+            const Animation& a = findAnimation(scene_, options_.animation.empty() ? std::string("0") : options_.animation);
+            animation_ = static_cast<int>(&a - scene_.animations.data());
+            animationTimeS_ = options_.timeS.value_or(a.startS());
+            playing_ = options_.play;
+        } catch (const std::exception& e) {
+            error(fmt::format("--animation: {}", e.what()));
+        }
+    }
 
     if (!options_.camera.empty()) {
         int found = -1;
@@ -319,6 +330,10 @@ void Viewer::adoptScene(Scene scene, const std::filesystem::path& path) {
         if (scene_.materials[i].skin) selectedMaterial_ = static_cast<int>(i);
     if (selectedMaterial_ < 0 && !scene_.materials.empty()) selectedMaterial_ = 0;
     camera_.reset(scene_.worldBounds(), scene_.cameras);
+    morphOverrides_.clear();
+    animation_ = scene_.animations.empty() ? -1 : 0;
+    animationTimeS_ = animation_ >= 0 ? scene_.animations[0].startS() : 0.0f;
+    playing_ = false;
     rebuildRenderer("scene loaded");
 }
 
@@ -341,6 +356,28 @@ void Viewer::rebuildRenderer(const char* why) {
         }
     }
     info(fmt::format("renderer built ({}) in {:.0f} ms", why, msSince(begin)));
+}
+
+void Viewer::applyPose(float dtS) {
+    if (!renderer_) return;
+    const Animation* animation =
+        animation_ >= 0 && size_t(animation_) < scene_.animations.size() ? &scene_.animations[size_t(animation_)] : nullptr;
+    if (animation && playing_) {
+        const float start = animation->startS();
+        const float length = animation->endS() - start;
+        animationTimeS_ += dtS * playbackSpeed_;
+        if (length > 0.0f) animationTimeS_ = start + std::fmod(std::fmod(animationTimeS_ - start, length) + length, length);
+        else animationTimeS_ = start;
+    }
+    ScenePose pose = posedScene(scene_, animation ? animationNodePose(scene_, *animation, animationTimeS_) : restNodePose(scene_));
+    for (size_t i = 0; i < pose.instances.size() && i < morphOverrides_.size(); ++i)
+        if (!morphOverrides_[i].empty()) pose.instances[i].morphWeights = morphOverrides_[i];
+    try {
+        renderer_->setPose(pose);
+    } catch (const std::exception& e) {
+        error(fmt::format("pose: {}", e.what()));
+        morphOverrides_.clear();
+    }
 }
 
 void Viewer::applyLights() {
@@ -568,6 +605,7 @@ int Viewer::run() {
         const auto uiBegin = Clock::now();
         overlay_->newFrame();
         handleInput(dtS);
+        applyPose(dtS);
         drawUi();
         ImGui::Render();
         uiMs_ = msSince(uiBegin);

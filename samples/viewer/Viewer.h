@@ -20,7 +20,9 @@
 // (load, shader, screenshot); 2 when Vulkan validation reported anything.
 // Stereo: --stereo (or the Camera panel) shows a stereo pair around the camera side by side,
 // drawn in the renderer's one multi-eye pass (see StereoPreview.h); --eye shows one eye alone.
-// Limits: one window; the scene is static (no animation); loads replace the whole scene.
+// Animation: a timeline (play, pause, scrub, speed) and morph-weight sliders pose the scene every
+// frame through Renderer::setPose (--animation, --time, --play at start).
+// Limits: one window; loads replace the whole scene.
 #pragma once
 
 #include "CameraController.h"
@@ -137,6 +139,7 @@ private:
     void adoptScene(Scene scene, const std::filesystem::path& path);
     void rebuildRenderer(const char* why);
     void applyLights();
+    void applyPose(float dtS);  // advances playback and gives the renderer this frame's pose
     void applyShaderBuild(ShaderBuild build);
     void requestBake();
     void requestScreenshot(std::optional<std::filesystem::path> path, bool withUi);
@@ -145,6 +148,7 @@ private:
     void drawUi();
     void panelScene();
     void panelCamera();
+    void panelAnimation();
     void panelTechniques();
     void panelMaterial();
     void panelProfile();
@@ -169,6 +173,14 @@ private:
     std::unique_ptr<StereoPreview> stereoPreview_;
     bool stereo_ = false;  // side-by-side preview of a stereo pair around the camera
     float ipdM_ = 0.063f;
+
+    // Animation: which one (-1: the rest pose), its time, playback, and morph weights set by hand
+    // (per scene instance; empty: the animation's).
+    int animation_ = -1;
+    float animationTimeS_ = 0.0f;
+    bool playing_ = false;
+    float playbackSpeed_ = 1.0f;
+    std::vector<std::vector<float>> morphOverrides_;
     std::array<Frame, kFramesInFlight> frames_{};
     uint32_t slot_ = 0;
     bool swapchainDirty_ = false;

@@ -39,6 +39,9 @@ void addViewerOptions(CLI::App& app, ViewerOptions& o) {
         ->capture_default_str()
         ->check(cli::oneOf({"64", "128", "256", "512"}));
     cli::addStereoOptions(app, o.stereo);
+    app.add_option("--animation", o.animation, "Start with this animation (name or index)");
+    app.add_option("--time", o.timeS, "Start at this time of the animation, seconds")->check(cli::numberIn(-1e6, 1e6));
+    app.add_flag("--play", o.play, "Start playing the animation");
     cli::addCommonOptions(app, o.common);
 }
 

@@ -426,6 +426,29 @@ TEST_F(Viewer, StereoPreviewMatchesHeadlessStereoRender) {
     EXPECT_GT(unlike, 50u);
 }
 
+// An animation started at a time (--animation, --time) poses the scene as `preskin render` does.
+TEST_F(Viewer, AnimatedSceneMatchesHeadlessRenderAtTheSameTime) {
+    requireDisplay();
+    const std::string tube = std::string(PRESKIN_SOURCE_DIR) + "/samples/assets/tube/tube.gltf";
+    const fs::path shot = dir_ / "tube.png";
+    std::vector<std::string> args = scriptedArgs(shot, 3);
+    args.insert(args.begin(), tube);
+    args.insert(args.end(), {"--animation", "bend", "--time", "0.8"});
+    const ProcessResult r = viewer(args);
+    ASSERT_EQ(r.exitCode, 0) << describe(r);
+    const fs::path reference = dir_ / "headless.png";
+    const ProcessResult cli = headlessRender(reference, kWidth, kHeight, {tube, "--animation", "bend", "--time", "0.8"});
+    ASSERT_EQ(cli.exitCode, 0) << describe(cli);
+    const fs::path rest = dir_ / "rest.png";
+    ASSERT_EQ(headlessRender(rest, kWidth, kHeight, {tube}).exitCode, 0);
+    const auto a = readPng(shot);
+    const auto b = readPng(reference);
+    const auto c = readPng(rest);
+    ASSERT_TRUE(a && b && c);
+    EXPECT_LE(differingFraction(*a, *b, 5), 0.001);
+    EXPECT_GT(differingFraction(*b, *c, 5), 0.01) << "the bend should show";
+}
+
 TEST_F(Viewer, RunTimeCompiledShadersRenderLikeBuiltIn) {
     requireDisplay();
     const fs::path shot = dir_ / "compiled.png";
