@@ -21,6 +21,7 @@ struct SkinUse {
 std::optional<SkinUse> tightestSkin(const LoadContext& ctx, size_t meshIndex) {
     const tinygltf::Model& model = *ctx.model;
     std::optional<SkinUse> tightest;
+    if (model.skins.empty()) return tightest;  // static files skip the walk over the nodes
     for (size_t n = 0; n < model.nodes.size(); ++n) {
         const tinygltf::Node& node = model.nodes[n];
         if (node.mesh != static_cast<int>(meshIndex) || node.skin == -1) continue;
