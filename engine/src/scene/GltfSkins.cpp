@@ -69,7 +69,7 @@ void readJointInfluences(const LoadContext& ctx, size_t meshIndex, const tinyglt
         const std::string& name = entry.first;
         const bool influence = name.rfind("JOINTS_", 0) == 0 || name.rfind("WEIGHTS_", 0) == 0;
         if (influence && name != "JOINTS_0" && name != "WEIGHTS_0" && name != "JOINTS_1" && name != "WEIGHTS_1") {
-            ctx.warn(where + ".attributes." + name, "only two sets of joint influences are used; ignored");
+            ctx.warn(where + ".attributes", "'" + name + "': only two sets of joint influences are used; ignored");
         }
     }
     const std::optional<SkinUse> skin = tightestSkin(ctx, meshIndex);
