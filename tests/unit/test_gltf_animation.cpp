@@ -365,8 +365,10 @@ INSTANTIATE_TEST_SUITE_P(
         BadCase{"skin_inverse_bind_count.gltf", {"skins[0].inverseBindMatrices: ", "1 matrices for 2 joints"}},
         BadCase{"anim_count_mismatch.gltf", {"animations[0].samplers[0]: ", "2 keys", "3 elements", "1 per key"}},
         BadCase{"anim_cubic_count.gltf", {"animations[0].samplers[0]: ", "2 elements", "CUBICSPLINE: 3 per key"}},
-        BadCase{"anim_nan_time.gltf", {"accessors[7]: ", "NaN", "animations[0].samplers[0].input"}},
-        BadCase{"anim_infinite_value.gltf", {"accessors[8]: ", "infinite", "animations[0].samplers[0].output"}},
+        // The element and component named are the NaN and the infinity (the wording of the number
+        // problem itself is the accessor reader's).
+        BadCase{"anim_nan_time.gltf", {"accessors[7]: ", "element 1 (component 0) of animations[0].samplers[0].input"}},
+        BadCase{"anim_infinite_value.gltf", {"accessors[8]: ", "element 1 (component 1) of animations[0].samplers[0].output", "finite"}},
         BadCase{"anim_times_not_increasing.gltf", {"animations[0].samplers[0].input: ", "key 1 is not after", "times must increase"}},
         BadCase{"anim_matrix_node.gltf", {"animations[0].channels[0].target.node: ", "nodes[2] has a matrix"}},
         BadCase{"morph_target_count_mismatch.gltf", {"meshes[0].primitives[1].targets: ", "2 morph targets, primitives[0] has 1"}},
