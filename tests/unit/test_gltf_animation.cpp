@@ -40,17 +40,6 @@ std::vector<std::string> warningsWith(const preskin::Scene& s, const std::string
     return out;
 }
 
-std::string loadError(const fs::path& path) {
-    try {
-        preskin::Scene::load(path);
-    } catch (const preskin::Error& e) {
-        return e.what();
-    } catch (const std::exception& e) {
-        return std::string("unexpected exception type: ") + e.what();
-    }
-    return "no error";
-}
-
 // A triangle (accessors 0..3 as in triangleScene) plus JOINTS_0/WEIGHTS_0 given by the caller,
 // skinned by two joint nodes (1 root, 2 child at y = 1).
 GltfBuilder skinnedTriangle(int jointsAccessorType, const std::vector<uint8_t>& jointBytes, int weightsType,
@@ -219,9 +208,9 @@ TEST(GltfAnimation, MorphTargetsDenseSparseNamedAndWeighted) {
     EXPECT_TRUE(targets[0].normalDeltas.empty());
     EXPECT_EQ(targets[1].positionDeltas, (std::vector<glm::vec3>{{0, 0, 0}, {0, 0, 0}, {0.5f, 0, 0}}));
     EXPECT_EQ(targets[1].normalDeltas, (std::vector<glm::vec3>{{0, 0, 0}, {1, 0, 0}, {0, 0, 0}}));
-    const auto uvWarnings = warningsWith(s, "targets[1].TEXCOORD_0");
+    const auto uvWarnings = warningsWith(s, "TEXCOORD_0");
     ASSERT_EQ(uvWarnings.size(), 1u);
-    EXPECT_EQ(uvWarnings[0].rfind(path.string() + ": meshes[0].primitives[0].targets[1].TEXCOORD_0: ", 0), 0u);
+    EXPECT_EQ(uvWarnings[0].rfind(path.string() + ": meshes[0].primitives[0].targets[1]: 'TEXCOORD_0': ", 0), 0u);
     // The rest pose takes the node's weights over the mesh's.
     EXPECT_EQ(preskin::restPose(s).instances[0].morphWeights, (std::vector<float>{1.0f, 0.0f}));
 }
@@ -354,12 +343,7 @@ struct BadCase {
 class GltfAnimationErrors : public ::testing::TestWithParam<BadCase> {};
 
 TEST_P(GltfAnimationErrors, OneLineNamingFileFieldAndProblem) {
-    const BadCase& c = GetParam();
-    const fs::path path = kData / c.file;
-    const std::string message = loadError(path);
-    EXPECT_EQ(message.rfind(path.string() + ": ", 0), 0u) << message;
-    EXPECT_EQ(message.find('\n'), std::string::npos) << message;
-    for (const char* fragment : c.fragments) EXPECT_NE(message.find(fragment), std::string::npos) << fragment << " | " << message;
+    preskin::test::expectLoadError(kData / GetParam().file, GetParam().fragments);
 }
 
 TEST(GltfAnimation, CommittedSkinnedTriangleLoads) {
@@ -381,8 +365,10 @@ INSTANTIATE_TEST_SUITE_P(
         BadCase{"skin_inverse_bind_count.gltf", {"skins[0].inverseBindMatrices: ", "1 matrices for 2 joints"}},
         BadCase{"anim_count_mismatch.gltf", {"animations[0].samplers[0]: ", "2 keys", "3 elements", "1 per key"}},
         BadCase{"anim_cubic_count.gltf", {"animations[0].samplers[0]: ", "2 elements", "CUBICSPLINE: 3 per key"}},
-        BadCase{"anim_nan_time.gltf", {"accessors[7]: ", "not a finite number", "animations[0].samplers[0].input"}},
-        BadCase{"anim_infinite_value.gltf", {"accessors[8]: ", "infinite", "animations[0].samplers[0].output"}},
+        // The element and component named are the NaN and the infinity (the wording of the number
+        // problem itself is the accessor reader's).
+        BadCase{"anim_nan_time.gltf", {"accessors[7]: ", "element 1 (component 0) of animations[0].samplers[0].input"}},
+        BadCase{"anim_infinite_value.gltf", {"accessors[8]: ", "element 1 (component 1) of animations[0].samplers[0].output", "finite"}},
         BadCase{"anim_times_not_increasing.gltf", {"animations[0].samplers[0].input: ", "key 1 is not after", "times must increase"}},
         BadCase{"anim_matrix_node.gltf", {"animations[0].channels[0].target.node: ", "nodes[2] has a matrix"}},
         BadCase{"morph_target_count_mismatch.gltf", {"meshes[0].primitives[1].targets: ", "2 morph targets, primitives[0] has 1"}},
@@ -391,11 +377,7 @@ INSTANTIATE_TEST_SUITE_P(
 TEST(GltfAnimation, MoreBadCasesGeneratedHere) {
     TempDir dir;
     auto expectError = [&](GltfBuilder b, const std::string& name, std::initializer_list<const char*> fragments) {
-        const fs::path path = b.writeGltf(dir.path(), name);
-        const std::string message = loadError(path);
-        EXPECT_EQ(message.rfind(path.string() + ": ", 0), 0u) << message;
-        EXPECT_EQ(message.find('\n'), std::string::npos) << message;
-        for (const char* fragment : fragments) EXPECT_NE(message.find(fragment), std::string::npos) << fragment << " | " << message;
+        preskin::test::expectLoadError(b.writeGltf(dir.path(), name), fragments);
     };
     const std::vector<uint8_t> joints(12, 0);
     const auto weights = bytesOf(std::vector<float>{1, 0, 0, 0, 1, 0, 0, 0, 1, 0, 0, 0});

@@ -6,9 +6,9 @@
 //
 // What the loader reads and how it treats bad input is described in engine/src/scene/GltfLoader.h
 // and docs/gltf-extensions.md. In short: triangle lists, strips and fans (points and lines are
-// skipped with a warning), TEXCOORD_0 only, no skins, morph targets or animation (the static
-// pose is loaded). Every primitive gets an index list (generated for non-indexed ones).
-// Skins, morph targets, animations and the node hierarchy: <preskin/Animation.h>.
+// skipped with a warning), TEXCOORD_0 only. Every primitive gets an index list (generated for
+// non-indexed ones). Skins, morph targets, animations and the node hierarchy are loaded too
+// (<preskin/Animation.h>, docs/animation.md); MeshInstance::worldFromObject is the rest pose.
 #pragma once
 
 #include <preskin/Animation.h>

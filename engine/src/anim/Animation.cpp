@@ -3,6 +3,8 @@
 #include <preskin/Error.h>
 #include <preskin/Scene.h>
 
+#include "anim/Printable.h"
+
 #include <algorithm>
 #include <limits>
 
@@ -31,14 +33,11 @@ const Animation& findAnimation(const Scene& scene, const std::string& nameOrInde
         const size_t index = std::stoul(nameOrIndex);
         if (index < scene.animations.size()) return scene.animations[index];
     }
-    std::string shown = nameOrIndex.substr(0, 200);  // the message stays one short line
-    for (char& c : shown)
-        if (static_cast<unsigned char>(c) < 0x20) c = '?';
     std::string list;
     for (size_t i = 0; i < scene.animations.size(); ++i) {
-        list += (i == 0 ? "" : ", ") + std::to_string(i) + " '" + scene.animations[i].name + "'";
+        list += (i == 0 ? "" : ", ") + std::to_string(i) + " '" + anim::printable(scene.animations[i].name) + "'";
     }
-    throw Error(scene.sourcePath.string() + ": no animation named '" + shown + "' (" +
+    throw Error(scene.sourcePath.string() + ": no animation named '" + anim::printable(nameOrIndex) + "' (" +
                 (list.empty() ? std::string("the scene has no animations") : "animations: " + list) + ")");
 }
 

@@ -4,6 +4,8 @@
 #include <preskin/Error.h>
 #include <preskin/Scene.h>
 
+#include "anim/Printable.h"
+
 #include <glm/gtc/quaternion.hpp>
 
 #include <string>
@@ -32,7 +34,7 @@ NodePose restNodePose(const Scene& scene) {
 
 NodePose animationNodePose(const Scene& scene, const Animation& animation, float timeS) {
     NodePose pose = restNodePose(scene);
-    const std::string where = "animation '" + animation.name + "'";
+    const std::string where = "animation '" + anim::printable(animation.name) + "'";
     for (size_t c = 0; c < animation.channels.size(); ++c) {
         const AnimationChannel& channel = animation.channels[c];
         const std::string at = where + " channel " + std::to_string(c);

@@ -5,6 +5,8 @@
 #include <preskin/Error.h>
 #include <preskin/Scene.h>
 
+#include "anim/Printable.h"
+
 #include <algorithm>
 #include <cmath>
 #include <string>
@@ -26,7 +28,7 @@ bool finite(const std::vector<float>& values) {
 }
 
 std::string nodeName(const Scene& scene, size_t i) {
-    return "node " + std::to_string(i) + (scene.nodes[i].name.empty() ? "" : " '" + scene.nodes[i].name + "'");
+    return "node " + std::to_string(i) + (scene.nodes[i].name.empty() ? "" : " '" + anim::printable(scene.nodes[i].name) + "'");
 }
 
 // worldFromNode of every node: parents first, each chain followed up to its root once.
@@ -90,7 +92,7 @@ ScenePose posedScene(const Scene& scene, const NodePose& nodes) {
     for (size_t i = 0; i < scene.instances.size(); ++i) {
         const MeshInstance& instance = scene.instances[i];
         InstancePose& pose = out.instances[i];
-        const std::string where = "instance " + std::to_string(i) + " ('" + instance.nodeName + "')";
+        const std::string where = "instance " + std::to_string(i) + " ('" + anim::printable(instance.nodeName) + "')";
         if (instance.mesh < 0 || static_cast<size_t>(instance.mesh) >= scene.meshes.size()) {
             throw Error(where + ": mesh " + std::to_string(instance.mesh) + " is out of range");
         }

@@ -119,7 +119,9 @@ void convertAnimations(const LoadContext& ctx) {
             }
             auto& use = uses[static_cast<size_t>(channel.sampler)];
             const bool rotation = *path == AnimationPath::Rotation;
-            if (use && ((use->path == AnimationPath::Rotation) != rotation || use->components != components)) {
+            const bool weights = *path == AnimationPath::Weights;
+            if (use && ((use->path == AnimationPath::Rotation) != rotation || (use->path == AnimationPath::Weights) != weights ||
+                        use->components != components)) {
                 ctx.fail(at + ".sampler", "samplers[" + std::to_string(channel.sampler) + "] also drives channels[" +
                                               std::to_string(use->channel) + "] (" + pathName(use->path) +
                                               "), whose values differ in kind from " + pathName(*path));
@@ -151,8 +153,8 @@ void convertAnimations(const LoadContext& ctx) {
             if (use) checkOutputType(ctx, sampler.output, path, at + ".output");
             result.components = use ? use->components : static_cast<uint32_t>(output.components);
             result.rotation = use && path == AnimationPath::Rotation;
-            const size_t perKey = (path == AnimationPath::Weights ? result.components : 1) * (cubic ? 3 : 1);
-            const size_t elementsPerKey = path == AnimationPath::Weights ? perKey : (cubic ? 3 : 1);
+            // Output elements per key: one value (a weights element is one target's weight), three for CUBICSPLINE.
+            const size_t elementsPerKey = (path == AnimationPath::Weights ? result.components : 1) * (cubic ? 3 : 1);
             if (output.count != result.times.size() * elementsPerKey) {
                 ctx.fail(at, "input " + indexed("accessors", static_cast<size_t>(sampler.input)) + " has " +
                                  std::to_string(result.times.size()) + " keys, but output " +

@@ -12,15 +12,15 @@ void readMorphTargets(const LoadContext& ctx, const tinygltf::Primitive& in, con
     for (size_t t = 0; t < in.targets.size(); ++t) {
         MorphTarget& target = out.targets[t];
         for (const auto& [name, accessor] : in.targets[t]) {
-            const std::string at = where + indexed(".targets", t) + "." + name;
             std::vector<glm::vec3>* deltas = name == "POSITION" ? &target.positionDeltas
                                            : name == "NORMAL"   ? &target.normalDeltas
                                            : name == "TANGENT"  ? &target.tangentDeltas
                                                                 : nullptr;
             if (!deltas) {
-                ctx.warn(at, "morphing this attribute is not supported; ignored");
+                ctx.warn(where + indexed(".targets", t), "'" + name + "': morphing this attribute is not supported; ignored");
                 continue;
             }
+            const std::string at = where + indexed(".targets", t) + "." + name;
             const FloatAccessor values = readFloatAccessor(ctx, accessor, {3}, at);
             if (values.count != vertexCount) {
                 ctx.fail(at, indexed("accessors", static_cast<size_t>(accessor)) + " has " + std::to_string(values.count) +

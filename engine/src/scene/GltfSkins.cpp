@@ -21,6 +21,7 @@ struct SkinUse {
 std::optional<SkinUse> tightestSkin(const LoadContext& ctx, size_t meshIndex) {
     const tinygltf::Model& model = *ctx.model;
     std::optional<SkinUse> tightest;
+    if (model.skins.empty()) return tightest;  // static files skip the walk over the nodes
     for (size_t n = 0; n < model.nodes.size(); ++n) {
         const tinygltf::Node& node = model.nodes[n];
         if (node.mesh != static_cast<int>(meshIndex) || node.skin == -1) continue;
@@ -68,7 +69,7 @@ void readJointInfluences(const LoadContext& ctx, size_t meshIndex, const tinyglt
         const std::string& name = entry.first;
         const bool influence = name.rfind("JOINTS_", 0) == 0 || name.rfind("WEIGHTS_", 0) == 0;
         if (influence && name != "JOINTS_0" && name != "WEIGHTS_0" && name != "JOINTS_1" && name != "WEIGHTS_1") {
-            ctx.warn(where + ".attributes." + name, "only two sets of joint influences are used; ignored");
+            ctx.warn(where + ".attributes", "'" + name + "': only two sets of joint influences are used; ignored");
         }
     }
     const std::optional<SkinUse> skin = tightestSkin(ctx, meshIndex);
