@@ -17,6 +17,7 @@
 #include <cstdio>
 #include <ctime>
 #include <exception>
+#include <string>
 #include <utility>
 
 namespace preskin::viewer {
@@ -123,13 +124,24 @@ void Viewer::shutdown() noexcept {
 }
 
 void Viewer::createWindow() {
-    glfwSetErrorCallback([](int code, const char* text) { fmt::print(stderr, "preskin-viewer: GLFW {}: {}\n", code, text); });
-    if (!glfwInit()) throw Error("GLFW: cannot open the display (is DISPLAY set? without a display, use xvfb-run)");
-    if (!glfwVulkanSupported()) throw Error("GLFW: no Vulkan loader or driver found");
+    // Until the window exists, GLFW's reason for a failure goes into the one error line that
+    // ends the program; later GLFW errors are reported as they come.
+    static std::string glfwReason;
+    static bool windowOpen = false;
+    glfwSetErrorCallback([](int code, const char* text) {
+        if (windowOpen) fmt::print(stderr, "preskin-viewer: GLFW {}: {}\n", code, text);
+        else glfwReason = text ? text : "";
+    });
+    auto failed = [](const char* field, const char* otherwise, const char* hint) {
+        return Error(fmt::format("GLFW: {}: {}{}", field, glfwReason.empty() ? otherwise : glfwReason, hint));
+    };
+    if (!glfwInit()) throw failed("display", "cannot open it", " (without a display, run under xvfb-run)");
+    if (!glfwVulkanSupported()) throw failed("Vulkan", "no Vulkan loader or driver found", "");
     glfwWindowHint(GLFW_CLIENT_API, GLFW_NO_API);
     window_ = glfwCreateWindow(static_cast<int>(options_.widthPx), static_cast<int>(options_.heightPx), "preskin-viewer",
                                nullptr, nullptr);
-    if (!window_) throw Error("GLFW: cannot create the window");
+    if (!window_) throw failed("window", "cannot create it", "");
+    windowOpen = true;
     glfwSetWindowUserPointer(window_, this);
     glfwSetDropCallback(window_, [](GLFWwindow* w, int count, const char** paths) {
         auto* self = static_cast<Viewer*>(glfwGetWindowUserPointer(w));

@@ -11,6 +11,9 @@
 
 namespace preskin::test {
 
+// True in the sanitizer build (AddressSanitizer): timings mean nothing there.
+bool underAddressSanitizer();
+
 struct ProcessResult {
     int exitCode = -1;  // -1: killed by a signal or by the time limit
     bool timedOut = false;

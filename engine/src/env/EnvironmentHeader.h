@@ -1,8 +1,9 @@
-// The format and the size of an environment image, read from the first bytes of its file before
-// any decoder allocates for it: Radiance RGBE (.hdr: "#?" signature, header lines, then the
-// resolution line "-Y H +X W"; Greg Ward, "Real Pixels", Graphics Gems II) and OpenEXR (magic
-// 76 2f 31 01, version 2, then the header's attributes, of which dataWindow gives the size;
-// "The OpenEXR File Layout"). Only single-part, non-deep EXR files are images here.
+// The format and the size of an environment image (or of any EXR, such as a LUT table), read from
+// the first bytes of its file before any decoder allocates for it: Radiance RGBE (.hdr: "#?"
+// signature, header lines, then the resolution line "-Y H +X W"; Greg Ward, "Real Pixels",
+// Graphics Gems II) and OpenEXR (magic 76 2f 31 01, version 2, then the header's attributes, of
+// which dataWindow gives the size; "The OpenEXR File Layout"). Only single-part, non-deep EXR
+// files are images here.
 // Limits: Radiance files in another orientation than -Y +X are reported as such.
 #pragma once
 

@@ -14,6 +14,7 @@
 #include <preskin/Error.h>
 #include <preskin/Limits.h>
 
+#include "env/EnvironmentHeader.h"
 #include "io/InputFile.h"
 #include "io/JsonDocument.h"
 #include "io/MessageText.h"
@@ -290,9 +291,26 @@ LutTable readTable(const fs::path& dir, const ManifestReader& reader, const nloh
     const std::string hash = reader.string(t, path, "hash");
 
     const fs::path exrPath = dir / file.fileName;
-    io::checkInputFile(exrPath, shown(exrPath), limits::kMaxImageFileBytes);
-    auto in = OIIO::ImageInput::open(exrPath.string());
-    if (!in) throw Error(fmt::format("{}: cannot read: {}", shown(exrPath), io::messageText(OIIO::geterror())));
+    // The size from the file's own header, checked against the manifest before a decoder
+    // allocates; then only the OpenEXR reader (opening by name would try every format).
+    const std::vector<uint8_t> prefix =
+        io::readInputFileStart(exrPath, shown(exrPath), limits::kMaxImageFileBytes, env::kEnvironmentHeaderBytes);
+    try {
+        const env::EnvironmentHeader header = env::readEnvironmentHeader(prefix);
+        if (header.format != env::EnvironmentFormat::OpenExr) throw std::runtime_error("format: not an OpenEXR file");
+        if (header.width != width || header.height != height)
+            throw std::runtime_error(fmt::format("size: {}x{}, but {} {} says {}x{}", header.width, header.height,
+                                                 reader.source, path, width, height));
+    } catch (const std::runtime_error& e) {
+        throw Error(fmt::format("{}: {}", shown(exrPath), e.what()));
+    }
+    auto in = OIIO::ImageInput::create("openexr");
+    OIIO::ImageSpec opened;
+    if (!in || !in->open(exrPath.string(), opened)) {
+        const std::string why = in ? in->geterror() : OIIO::geterror();
+        OIIO::geterror();
+        throw Error(fmt::format("{}: cannot read: {}", shown(exrPath), io::messageText(why)));
+    }
     const OIIO::ImageSpec& spec = in->spec();
     if (spec.width != width || spec.height != height || spec.nchannels != 3)
         throw Error(fmt::format("{}: image is {}x{} with {} channels, but {} {} says {}x{} RGB", shown(exrPath), spec.width,
