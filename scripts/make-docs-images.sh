@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
 # Renders docs/skin-vs-standard.png: the bundled head with the standard material (left) and with
 # pre-integrated skin (right), same view and lights: the scene's front camera, then a close-up of
-# the nose's shadow on the cheek and the ear. Needs ImageMagick (convert, montage).
+# the nose's shadow on the cheek and the ear. Needs ImageMagick (convert, montage). Also
+# docs/stereo-head.png: the head as a stereo pair (README, VR).
 set -euo pipefail
 cd "$(dirname "$0")/.."
 bin=${PRESKIN_BUILD_DIR:-build}/bin/preskin
@@ -19,3 +20,6 @@ montage -label "standard material" "$tmp/front_std.png" -label "pre-integrated s
   -label "standard, close-up" "$tmp/close_std.png" -label "skin, close-up" "$tmp/close_skin.png" \
   -tile 2x2 -geometry +4+4 -background '#202022' -fill '#dddddd' -pointsize 16 -depth 8 docs/skin-vs-standard.png
 echo "wrote docs/skin-vs-standard.png"
+# The stereo pair: both eyes in one multiview pass with 4x MSAA, left eye on the left.
+"$bin" render --stereo --ipd 0.063 --msaa 4 --width 480 --height 540 --out docs/stereo-head.png >/dev/null
+echo "wrote docs/stereo-head.png"

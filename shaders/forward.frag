@@ -2,7 +2,11 @@
 // forward.frag: the one forward pass. Standard glTF metal-rough materials and (kModelSkin)
 // pre-integrated skin, for every light of the fragment's light list, plus L2 SH ambient and
 // emissive; tone-mapped here when the target is an 8-bit display format. Everything skin needs
-// happens in this shader: no extra passes, no extra render targets.
+// happens in this shader: no extra passes, no extra render targets. Each eye (inEye, from the
+// vertex stage) has its own camera position (view vector, specular); the light grid is shared
+// by all eyes and found by projecting the fragment's world position with the grid's camera.
+// The derivative curvature fallback (preskinCurvatureFromDerivatives) is per eye: screen-space
+// derivatives differ between the eyes, per-vertex and texture curvature do not.
 #extension GL_GOOGLE_include_directive : require
 #include "shared/gpu_types.h"
 
@@ -12,6 +16,7 @@ layout(constant_id = kSpecDebugView) const uint kDebugView = kDebugNone;
 layout(constant_id = kSpecAlphaMode) const uint kAlphaMode = 0;
 layout(constant_id = kSpecSkinFeatures) const uint kSkinFeatures = kSkinAll;
 layout(constant_id = kSpecLightLoop) const uint kLightLoop = kLightLoopAll;
+layout(constant_id = kSpecAlphaToCoverage) const uint kAlphaToCoverage = 0;
 layout(constant_id = kSpecSpecular) const uint kSpecular = 1;
 
 layout(set = 0, binding = kBindingFrame) uniform Frame { FrameUniforms frame; };
@@ -46,6 +51,7 @@ layout(location = 1) in vec3 inNormalWs;
 layout(location = 2) in vec4 inTangentWs;
 layout(location = 3) in vec2 inUv0;
 layout(location = 4) in float inCurvaturePerM;
+layout(location = 5) flat in uint inEye;
 
 layout(location = 0) out vec4 outColor;
 
@@ -69,9 +75,10 @@ vec3 perturbNormal(vec3 mapValue, float scale, vec3 N, vec4 T) {
 void localLightRange(out uint first, out uint count, out bool indirect) {
     uint directional = frame.lightCounts.y;
     if (kLightLoop == kLightLoopClustered) {
-        vec2 tile = gl_FragCoord.xy * frame.clusterScale.xy;
-        float viewDepth = max(-(frame.viewFromWorld * vec4(inPositionWs, 1.0)).z, 1e-6);
-        float slice = log2(viewDepth) * frame.clusterScale.z + frame.clusterScale.w;
+        // The grid's camera holds every eye (ClusterGrid::froxelAt is the CPU twin of this).
+        vec4 g = frame.clusterFromWorld * vec4(inPositionWs, 1.0);
+        vec2 tile = (g.xy / g.w + 1.0) * frame.clusterScale.xy;
+        float slice = log2(max(g.z, 1e-6)) * frame.clusterScale.z + frame.clusterScale.w;
         uvec3 c = uvec3(clamp(ivec3(ivec2(tile), int(floor(slice))), ivec3(0), ivec3(frame.clusterDims.xyz) - 1));
         uint cluster = (c.z * frame.clusterDims.y + c.y) * frame.clusterDims.x + c.x;
         uvec2 range = clusterRanges[cluster];
@@ -126,7 +133,16 @@ void main() {
     vec2 uvBase = transformUv(material.uv[0], inUv0);
     vec4 baseColor = material.baseColorFactor;
     if (material.hasTextures.x > 0.5) baseColor *= texture(baseColorTexture, uvBase);
-    if (kAlphaMode == 1 && baseColor.a < material.emissiveAlphaCutoff.w) discard;
+    // Alpha mask: without MSAA, discard below the cutoff. With MSAA, alpha-to-coverage: alpha
+    // sharpened to a one-pixel ramp around the cutoff, so the coverage mask follows the edge.
+    float maskCoverage = 1.0;
+    if (kAlphaMode == 1) {
+        float cutoff = material.emissiveAlphaCutoff.w;
+        if (kAlphaToCoverage != 0u)
+            maskCoverage = clamp((baseColor.a - cutoff) / max(fwidth(baseColor.a), 1e-4) + 0.5, 0.0, 1.0);
+        else if (baseColor.a < cutoff)
+            discard;
+    }
 
     vec4 mr = material.hasTextures.y > 0.5 ? texture(metallicRoughnessTexture, transformUv(material.uv[1], inUv0))
                                            : vec4(1.0);
@@ -144,7 +160,7 @@ void main() {
     bool hasNormalMap = material.textureFlags.w > 0.5;
     vec3 N = hasNormalMap ? perturbNormal(texture(normalTexture, uvNormal).rgb, material.pbr.z, geometricN, inTangentWs)
                           : geometricN;
-    vec3 V = normalize(frame.cameraPositionWs.xyz - inPositionWs);
+    vec3 V = normalize(frame.eyes[inEye].positionWs.xyz - inPositionWs);
     float NoV = max(dot(N, V), 1e-4);
 
     PreskinShadowSample shadow;
@@ -296,7 +312,7 @@ void main() {
         if (kOutputMode == kOutputLinear) {
             // Raw values for tools (preskin bench): local lights in this fragment's list, all
             // lights evaluated (directional ones included), view depth in metres.
-            float viewDepthM = -(frame.viewFromWorld * vec4(inPositionWs, 1.0)).z;
+            float viewDepthM = dot(frame.eyes[inEye].viewDepthFromWorld, vec4(inPositionWs, 1.0));
             debugColor = vec3(float(count), float(lightTotal), viewDepthM);
         } else {
             // Heat map on a log scale: 1 light 0.14, 7 lights 0.43, 31 lights 0.71, 127 or more 1.
@@ -307,7 +323,7 @@ void main() {
     }
     if (kDebugView != kDebugNone) color = debugColor;
 
-    color *= (kDebugView == kDebugNone) ? frame.cameraPositionWs.w : 1.0;
-    float alpha = kAlphaMode == 2 ? baseColor.a : 1.0;
+    color *= (kDebugView == kDebugNone) ? frame.params.x : 1.0;
+    float alpha = kAlphaMode == 2 ? baseColor.a : (kAlphaMode == 1 ? maskCoverage : 1.0);
     outColor = vec4(kOutputMode == kOutputTonemapped ? preskinTonemapNeutral(max(color, vec3(0.0))) : color, alpha);
 }

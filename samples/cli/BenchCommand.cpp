@@ -27,9 +27,11 @@
 // Limits: timings on a shared machine are noisy; compare numbers from one run.
 #include "Commands.h"
 #include "Canvas.h"
+#include "CommandLine.h"
 #include "JsonWriter.h"
 #include "Options.h"  // samples/common
 
+#include <preskin/ClusterGrid.h>
 #include <preskin/Context.h>
 #include <preskin/DiffusionProfile.h>
 #include <preskin/Environment.h>
@@ -86,6 +88,11 @@ struct BenchOptions {
     bool noSkin = false;
     bool noPerPixel = false;
     bool noLutBake = false;
+    bool noVr = false;
+    uint32_t vrWidth = 640;
+    uint32_t vrHeight = 720;
+    uint32_t vrLights = 256;
+    float ipdM = 0.063f;
     std::string device;
     bool validation = false;
 };
@@ -104,6 +111,7 @@ struct Measurement {
     double wallMs() const { return medianOf([](const FrameStats& s) { return s.wallMs; }); }
     double gpuMs() const { return medianOf([](const FrameStats& s) { return s.gpuMs; }); }
     double buildCpuMs() const { return medianOf([](const FrameStats& s) { return s.clusterBuildCpuMs; }); }
+    double recordCpuMs() const { return medianOf([](const FrameStats& s) { return s.recordCpuMs; }); }
     double passMs(const std::string& name) const {
         return medianOf([&](const FrameStats& s) {
             for (const PassTime& p : s.passes)
@@ -145,6 +153,11 @@ void writeMeasurement(JsonWriter& j, const Measurement& m) {
     j.field("cluster_build_cpu_ms", m.buildCpuMs());
     j.field("cluster_build_ms", m.buildMs());
     j.field("cluster_build", m.buildGpu() ? "gpu" : "cpu");
+    j.field("record_cpu_ms", m.recordCpuMs());
+    if (!m.frames.empty()) {
+        j.field("eyes", m.frames.back().eyes);
+        j.field("eye_drawing", m.frames.back().eyeDrawing == EyeDrawing::InstancedLayers ? "instanced layers" : "multiview");
+    }
     j.field("overflowed_clusters", m.overflows());
     j.key("wall_ms_each");
     j.beginArray();
@@ -153,12 +166,16 @@ void writeMeasurement(JsonWriter& j, const Measurement& m) {
     j.endObject();
 }
 
-// One configuration measured in a set: a renderer and its settings.
+// One configuration measured in a set: a renderer and its settings, and optionally its own view
+// and per-eye image size (else the bench's).
 struct Config {
     Renderer* renderer = nullptr;
     RenderSettings settings;
     std::string label;
     double predictedMs = 0.0;  // <= 0: unknown
+    const View* view = nullptr;
+    uint32_t width = 0;
+    uint32_t height = 0;
 };
 
 class Bench {
@@ -196,7 +213,8 @@ public:
         for (const Config& c : configs) c.renderer->setLights(lights);
         auto frame = [&](const Config& c) {
             c.renderer->setSettings(c.settings);
-            c.renderer->render(view_, o_.width, o_.height, OutputEncoding::DisplaySrgb8);
+            c.renderer->render(c.view ? *c.view : view_, c.width ? c.width : o_.width, c.height ? c.height : o_.height,
+                               OutputEncoding::DisplaySrgb8);
         };
         for (size_t i = 0; i < configs.size(); ++i)
             for (uint32_t w = 0; w < out[i].warmup; ++w) frame(configs[i]);
@@ -238,6 +256,7 @@ struct PerPixel {
     uint32_t listedMax = 0;
     uint32_t exactMax = 0;
     uint64_t listedBelowExact = 0;  // pixels whose list is shorter than the exact count (a bug)
+    double otherListedMean = 0.0;   // the list length another grid (countPerPixel's `other`) gives
 };
 
 // Does the light's volume contain p? Range sphere (the attenuation window is zero at the range)
@@ -255,7 +274,10 @@ bool lightTouches(const Light& l, const glm::dvec3& p) {
 }
 
 // `image`: the light-count debug view in linear output (r: lights listed, b: view depth in m).
-PerPixel countPerPixel(const RenderedImage& image, const View& view, const std::vector<Light>& lights) {
+// `other`, when given: a second grid over the same lights, whose list length at each pixel's
+// surface point is averaged too.
+PerPixel countPerPixel(const RenderedImage& image, const Eye& view, const std::vector<Light>& lights,
+                       const ClusterGrid* other = nullptr) {
     const glm::dmat4 clipFromView(view.clipFromView);
     const glm::dmat4 viewFromClip = glm::inverse(clipFromView);
     const glm::dmat4 worldFromView = glm::inverse(glm::dmat4(view.viewFromWorld));
@@ -310,7 +332,9 @@ PerPixel countPerPixel(const RenderedImage& image, const View& view, const std::
     }
     double listedSum = 0.0;
     double exactSum = 0.0;
+    double otherSum = 0.0;
     for (const Sample& s : samples) {
+        if (other) otherSum += other->ranges[other->froxelAt(glm::vec3(s.positionWs))].y;
         const glm::ivec3 c = cellOf(s.positionWs);
         uint32_t exact = 0;
         for (uint32_t i : cells[(size_t(c.z) * n + size_t(c.y)) * n + size_t(c.x)])
@@ -326,6 +350,7 @@ PerPixel countPerPixel(const RenderedImage& image, const View& view, const std::
     out.pixels = samples.size();
     out.listedMean = listedSum / double(samples.size());
     out.exactMean = exactSum / double(samples.size());
+    out.otherListedMean = otherSum / double(samples.size());
     return out;
 }
 
@@ -419,18 +444,13 @@ void run(const BenchOptions& o) {
     const std::vector<uint32_t> counts = parseCounts(o.counts, "--counts");
     const std::vector<uint32_t> skinCounts = o.noSkin ? std::vector<uint32_t>{} : parseCounts(o.skinCounts, "--skin-counts");
     if (!o.plot.empty()) checkOutputPath(o.plot, OutputEncoding::DisplaySrgb8);
-    if (!o.out.empty()) {
-        const std::filesystem::path parent = std::filesystem::absolute(o.out).parent_path();
-        std::error_code ec;
-        if (!std::filesystem::is_directory(parent, ec))
-            throw Error(fmt::format("--out {}: folder {} does not exist", o.out, parent.string()));
-    }
+    if (!o.out.empty()) checkOutputFile(o.out, "--out");
 
     CommonOptions common;
     common.device = o.device;
     common.validation = o.validation;
     const std::filesystem::path scenePath = o.scene.empty() ? defaultScenePath() : std::filesystem::path(o.scene);
-    const Scene scene = Scene::load(scenePath);
+    const Scene scene = loadScene(scenePath, common);
     for (const std::string& warning : scene.warnings) fmt::print(stderr, "preskin: warning: {}\n", warning);
     Scene standardScene = scene;
     bool hasSkin = false;
@@ -560,7 +580,7 @@ void run(const BenchOptions& o) {
             renderer.setSettings(debug);
             renderer.setLights(lights);
             const RenderedImage counted = renderer.render(view, o.width, o.height, OutputEncoding::LinearFloat);
-            row.perPixel = countPerPixel(counted, view, lights);
+            row.perPixel = countPerPixel(counted, view.eye(), lights);
             reportValidation(*context);
         }
         rows.push_back(std::move(row));
@@ -664,6 +684,147 @@ void run(const BenchOptions& o) {
         fmt::print(stderr, "preskin bench: the scene has no skin material; skipping skin vs standard\n");
     }
 
+    // VR: a stereo frame against the two mono frames of its eyes, the light grid built for both
+    // eyes (one grid through the cluster camera) against a grid per eye, and MSAA 4x against 1x.
+    struct VrRun {
+        Measurement stereo, left, right;
+        std::optional<Measurement> msaa1, msaa4;
+        Measurement recordStereo, recordMono;
+        double combinedBuildMs = 0.0, perEyeBuildMs = 0.0;
+        PerPixel perPixel[2];
+    };
+    std::optional<VrRun> vr;
+    if (!o.noVr) {
+        CommonOptions withLights = common;
+        withLights.lights = o.vrLights;
+        withLights.seed = o.seed;
+        const std::vector<Light> lights = sceneLights(scene, withLights);
+        const View stereo =
+            stereoFromMono(frameBoundsView(scene.worldBounds(), float(o.vrWidth) / float(o.vrHeight)), o.ipdM);
+        const View left(stereo.eyes[0]);
+        const View right(stereo.eyes[1]);
+        VrRun run;
+        // One renderer per eye count and sample count, as an application keeps them: a renderer
+        // resizes its attachments when either changes.
+        Renderer stereoRenderer(*context, scene, environment, &luts, base);
+        Renderer monoRenderer(*context, scene, environment, &luts, base);
+        std::vector<Measurement> eyes = bench.measure(
+            {{&stereoRenderer, base, fmt::format("{} lights, stereo {}x{} per eye", o.vrLights, o.vrWidth, o.vrHeight),
+              0.0, &stereo, o.vrWidth, o.vrHeight},
+             {&monoRenderer, base, "left eye mono", 0.0, &left, o.vrWidth, o.vrHeight},
+             {&monoRenderer, base, "right eye mono", 0.0, &right, o.vrWidth, o.vrHeight}},
+            lights);
+        run.stereo = std::move(eyes[0]);
+        run.left = std::move(eyes[1]);
+        run.right = std::move(eyes[2]);
+        // CPU recording alone (Renderer::record without the light-grid build): ~0.1 ms, so many
+        // small interleaved frames; recording does not depend on the image size.
+        {
+            BenchOptions many = o;
+            many.reps = std::max<uint32_t>(o.reps, 1) * 12;
+            many.warmup = 3;
+            Bench recordBench(many, *context, stereo);
+            std::vector<Measurement> recorded =
+                recordBench.measure({{&stereoRenderer, base, "recording: stereo, 32x36 per eye", 0.0, &stereo, 32, 36},
+                                     {&monoRenderer, base, "recording: left eye mono, 32x36", 0.0, &left, 32, 36}},
+                                    lights);
+            run.recordStereo = std::move(recorded[0]);
+            run.recordMono = std::move(recorded[1]);
+        }
+        const std::vector<uint32_t> offered = renderer.msaaSampleCounts();
+        if (std::find(offered.begin(), offered.end(), 4u) != offered.end()) {
+            RenderSettings four = base;
+            four.msaaSamples = 4;
+            Renderer msaaRenderer(*context, scene, environment, &luts, four);
+            std::vector<Measurement> msaa = bench.measure(
+                {{&renderer, base, fmt::format("{} lights, MSAA 1x", o.vrLights), 0.0},
+                 {&msaaRenderer, four, fmt::format("{} lights, MSAA 4x", o.vrLights), 0.0}},
+                lights);
+            run.msaa1 = std::move(msaa[0]);
+            run.msaa4 = std::move(msaa[1]);
+        }
+        // Grid layouts, CPU builds interleaved: one grid for both eyes vs one grid per eye.
+        std::vector<double> combined, perEye;
+        ClusterGrid eyeGrids[2];
+        for (uint32_t r = 0; r < std::max<uint32_t>(o.reps, 1) + 1; ++r) {
+            auto t0 = Clock::now();
+            const ClusterGrid both =
+                buildClusterGrid(base.clusters, stereo, o.vrWidth, o.vrHeight, scene.worldBounds(), lights);
+            auto t1 = Clock::now();
+            for (uint32_t e = 0; e < 2; ++e)
+                eyeGrids[e] = buildClusterGrid(base.clusters, View(stereo.eyes[e]), o.vrWidth, o.vrHeight,
+                                               scene.worldBounds(), lights);
+            auto t2 = Clock::now();
+            if (r == 0) continue;  // warm-up
+            combined.push_back(std::chrono::duration<double, std::milli>(t1 - t0).count());
+            perEye.push_back(std::chrono::duration<double, std::milli>(t2 - t1).count());
+        }
+        run.combinedBuildMs = median(combined);
+        run.perEyeBuildMs = median(perEye);
+        if (!o.noPerPixel) {
+            RenderSettings debug = base;
+            debug.debugView = DebugView::LightCount;
+            stereoRenderer.setSettings(debug);
+            stereoRenderer.setLights(lights);
+            const RenderedImage counted = stereoRenderer.render(stereo, o.vrWidth, o.vrHeight, OutputEncoding::LinearFloat);
+            for (uint32_t e = 0; e < 2; ++e)
+                run.perPixel[e] = countPerPixel(eyeImage(counted, e), stereo.eyes[e], lights, &eyeGrids[e]);
+            reportValidation(*context);
+        }
+        vr = std::move(run);
+
+        j.key("vr");
+        j.beginObject();
+        j.field("lights", o.vrLights);
+        j.field("eye_width", o.vrWidth);
+        j.field("eye_height", o.vrHeight);
+        j.field("ipd_m", o.ipdM);
+        j.key("stereo");
+        writeMeasurement(j, vr->stereo);
+        j.key("left_mono");
+        writeMeasurement(j, vr->left);
+        j.key("right_mono");
+        writeMeasurement(j, vr->right);
+        j.field("stereo_over_two_mono", vr->stereo.wallMs() / (vr->left.wallMs() + vr->right.wallMs()));
+        j.field("stereo_over_two_mono_gpu", vr->stereo.gpuMs() / (vr->left.gpuMs() + vr->right.gpuMs()));
+        j.field("grid_build_stereo_over_mono", vr->stereo.buildMs() / vr->left.buildMs());
+        j.field("record_cpu_stereo_ms", vr->recordStereo.recordCpuMs());
+        j.field("record_cpu_mono_ms", vr->recordMono.recordCpuMs());
+        j.field("record_cpu_frames", vr->recordStereo.frames.size());
+        j.field("record_cpu_stereo_over_mono", vr->recordStereo.recordCpuMs() / vr->recordMono.recordCpuMs());
+        if (vr->msaa1) {
+            j.key("msaa");
+            j.beginObject();
+            j.field("samples", 4);
+            j.key("msaa_1x");
+            writeMeasurement(j, *vr->msaa1);
+            j.key("msaa_4x");
+            writeMeasurement(j, *vr->msaa4);
+            j.field("msaa4_over_msaa1", vr->msaa4->wallMs() / vr->msaa1->wallMs());
+            j.field("msaa4_over_msaa1_gpu", vr->msaa4->gpuMs() / vr->msaa1->gpuMs());
+            j.endObject();
+        }
+        j.key("grid_layout");
+        j.beginObject();
+        j.field("combined_build_cpu_ms", vr->combinedBuildMs);
+        j.field("per_eye_build_cpu_ms", vr->perEyeBuildMs);
+        if (!o.noPerPixel) {
+            const PerPixel& a = vr->perPixel[0];
+            const PerPixel& b = vr->perPixel[1];
+            const double pixels = double(a.pixels + b.pixels);
+            auto mean = [&](double PerPixel::*field) {
+                return pixels > 0.0 ? (a.*field * double(a.pixels) + b.*field * double(b.pixels)) / pixels : std::nan("");
+            };
+            j.field("pixels", a.pixels + b.pixels);
+            j.field("exact_mean", mean(&PerPixel::exactMean));
+            j.field("combined_listed_mean", mean(&PerPixel::listedMean));
+            j.field("per_eye_listed_mean", mean(&PerPixel::otherListedMean));
+            j.field("combined_pixels_listed_below_exact", a.listedBelowExact + b.listedBelowExact);
+        }
+        j.endObject();
+        j.endObject();
+    }
+
     // Goals (docs/clustering.md), on this run's figures.
     j.key("goals");
     j.beginArray();
@@ -692,6 +853,14 @@ void run(const BenchOptions& o) {
     for (const SkinRow& row : skinRows)
         goal(fmt::format("skin frame / standard frame at {} lights <= 1.10", row.lights),
              row.skin.wallMs() / row.standard.wallMs(), 1.10, true);
+    if (vr) {
+        goal("stereo frame / (left mono + right mono frames) <= 0.85",
+             vr->stereo.wallMs() / (vr->left.wallMs() + vr->right.wallMs()), 0.85, true);
+        goal("light-grid build stereo / mono <= 1.3", vr->stereo.buildMs() / vr->left.buildMs(), 1.3, true);
+        goal("CPU recording stereo / mono <= 1.1", vr->recordStereo.recordCpuMs() / vr->recordMono.recordCpuMs(), 1.1,
+             true);
+        if (vr->msaa1) goal("MSAA 4x frame / 1x frame <= 1.6", vr->msaa4->wallMs() / vr->msaa1->wallMs(), 1.6, true);
+    }
     j.endArray();
     j.field("elapsed_s", secondsSince(started));
     j.endObject();
@@ -728,32 +897,39 @@ void addBenchCommand(CLI::App& app) {
     cmd->add_option("scene", o->scene, "glTF scene; default: the bundled head scene");
     cmd->add_option("--out,-o", o->out, "Write the JSON here instead of stdout");
     cmd->add_option("--plot", o->plot, "Also write a PNG plot of frame time against light count");
-    cmd->add_option("--width", o->width, "Image width in pixels")->capture_default_str()->check(CLI::Range(1, 16384));
-    cmd->add_option("--height", o->height, "Image height in pixels")->capture_default_str()->check(CLI::Range(1, 16384));
+    cmd->add_option("--width", o->width, "Image width in pixels")->capture_default_str()->check(wholeNumberIn(1, 16384));
+    cmd->add_option("--height", o->height, "Image height in pixels")->capture_default_str()->check(wholeNumberIn(1, 16384));
     cmd->add_option("--counts", o->counts, "Scattered light counts, comma-separated")->capture_default_str();
     cmd->add_option("--skin-counts", o->skinCounts, "Light counts for skin vs standard material")->capture_default_str();
-    cmd->add_option("--seed", o->seed, "Seed of the scattered lights")->capture_default_str();
-    cmd->add_option("--warmup", o->warmup, "Warm-up frames per point")->capture_default_str()->check(CLI::Range(0, 100));
-    cmd->add_option("--reps", o->reps, "Measured frames per point (median)")->capture_default_str()->check(CLI::Range(1, 1000));
+    cmd->add_option("--seed", o->seed, "Seed of the scattered lights")->capture_default_str()->check(wholeNumberIn(0, UINT32_MAX));
+    cmd->add_option("--warmup", o->warmup, "Warm-up frames per point")->capture_default_str()->check(wholeNumberIn(0, 100));
+    cmd->add_option("--reps", o->reps, "Measured frames per point (median)")->capture_default_str()->check(wholeNumberIn(1, 1000));
     cmd->add_option("--budget-s", o->budgetS, "Seconds per point before warm-up and repetitions are cut (at least one frame)")
         ->capture_default_str()
-        ->check(CLI::Range(0.0, 1e6));
-    cmd->add_option("--tile", o->clusters.tileSizePx, "Cluster tile size in pixels")->capture_default_str()->check(CLI::Range(4, 256));
-    cmd->add_option("--slices", o->clusters.depthSlices, "Cluster depth slices")->capture_default_str()->check(CLI::Range(2, 256));
+        ->check(numberIn(0.0, 1e6));
+    cmd->add_option("--tile", o->clusters.tileSizePx, "Cluster tile size in pixels")->capture_default_str()->check(wholeNumberIn(4, 256));
+    cmd->add_option("--slices", o->clusters.depthSlices, "Cluster depth slices")->capture_default_str()->check(wholeNumberIn(2, 256));
     cmd->add_option("--near-slice", o->clusters.nearSliceM, "Depth where the first slice ends at the earliest (m)")
         ->capture_default_str()
-        ->check(CLI::Range(0.0f, 1e6f));
+        ->check(numberIn(0.0, 1e6));
     cmd->add_option("--max-per-cluster", o->clusters.maxLightsPerCluster, "Lights kept per cluster")
         ->capture_default_str()
-        ->check(CLI::Range(1u, 1u << 20));
+        ->check(wholeNumberIn(1, 1 << 20));
     cmd->add_option("--build", o->build, "Light-list build: auto, cpu or gpu (compute pass)")
-        ->check(CLI::IsMember({"auto", "cpu", "gpu"}))
+        ->check(oneOf({"auto", "cpu", "gpu"}))
         ->capture_default_str();
     cmd->add_flag("--no-build-compare", o->noBuildCompare, "Skip measuring the other light-list build");
     cmd->add_flag("--no-brute", o->noBrute, "Skip brute force");
     cmd->add_flag("--no-skin", o->noSkin, "Skip skin vs standard material");
     cmd->add_flag("--no-per-pixel", o->noPerPixel, "Skip lights listed per pixel vs exact");
     cmd->add_flag("--no-lut-bake", o->noLutBake, "Skip timing the LUT bake");
+    cmd->add_flag("--no-vr", o->noVr, "Skip stereo vs two mono frames, the stereo light grid and MSAA 4x vs 1x");
+    cmd->add_option("--vr-width", o->vrWidth, "Stereo: width per eye")->capture_default_str()->check(wholeNumberIn(1, 16384));
+    cmd->add_option("--vr-height", o->vrHeight, "Stereo: height per eye")->capture_default_str()->check(wholeNumberIn(1, 16384));
+    cmd->add_option("--vr-lights", o->vrLights, "Stereo and MSAA: scattered lights")
+        ->capture_default_str()
+        ->check(wholeNumberIn(0, 1 << 20));
+    cmd->add_option("--ipd", o->ipdM, "Stereo: interpupillary distance, metres")->capture_default_str()->check(numberIn(0.0, 1.0));
     cmd->add_option("--device", o->device, "Vulkan device: index or part of its name (default: best GPU, else lavapipe)");
     cmd->add_flag("--validation", o->validation, "Enable Vulkan validation layers; any message makes the run fail");
     cmd->callback([o] { run(*o); });

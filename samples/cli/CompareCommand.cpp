@@ -7,6 +7,7 @@
 // docs/reference.md), plus a side-by-side PNG with error heat maps. The JSON holds no timings,
 // so a run on the same machine and driver reproduces it exactly.
 #include "Commands.h"
+#include "CommandLine.h"  // samples/common
 #include "CompareMetrics.h"
 #include "ComparePicture.h"
 #include "JsonWriter.h"
@@ -72,19 +73,20 @@ uint32_t removeNormalMaps(Scene& scene) {
 
 void run(const Options& o) {
     const std::filesystem::path jsonPath(o.json), imagePath(o.image);
-    if (jsonPath.extension() != ".json") throw Error(fmt::format("--json {}: the report is written as .json", o.json));
+    if (jsonPath.extension() != ".json") throw Error(fmt::format("{}: --json: the report is written as .json", o.json));
     {
         const std::filesystem::path dir = jsonPath.has_parent_path() ? jsonPath.parent_path() : ".";
         std::error_code ec;
         if (!std::filesystem::is_directory(dir, ec))
-            throw Error(fmt::format("--json {}: output folder {} does not exist", o.json, dir.string()));
+            throw Error(fmt::format("{}: --json: folder {} does not exist", o.json, dir.string()));
         if (::access(dir.c_str(), W_OK) != 0)
-            throw Error(fmt::format("--json {}: output folder {} is not writable", o.json, dir.string()));
+            throw Error(fmt::format("{}: --json: folder {} is not writable", o.json, dir.string()));
     }
-    if (imagePath.extension() != ".png") throw Error(fmt::format("--image {}: the picture is written as .png", o.image));
+    if (imagePath.extension() != ".png") throw Error(fmt::format("{}: --image: the picture is written as .png", o.image));
     checkOutputPath(imagePath, OutputEncoding::DisplaySrgb8);
+    checkViewOptions(o.view);
     const std::filesystem::path scenePath = o.scene.empty() ? defaultScenePath() : std::filesystem::path(o.scene);
-    Scene scene = Scene::load(scenePath);
+    Scene scene = loadScene(scenePath, o.common);
     for (const std::string& warning : scene.warnings) fmt::print(stderr, "preskin: warning: {}\n", warning);
     applySkinOption(scene, o.common);
     const uint32_t normalMapsRemoved = removeNormalMaps(scene);
@@ -183,7 +185,7 @@ void addCompareCommand(CLI::App& app) {
     cmd->add_option("--image", options->image, "Side-by-side picture with error heat maps (.png)")->capture_default_str();
     cmd->add_option("--curvature-class", options->curvatureClassPerMm,
                     "Signed mean curvature (profile 1/mm) beyond which skin counts as convex or concave")
-        ->check(CLI::Range(0.0, 100.0))
+        ->check(numberIn(0.0, 100.0))
         ->capture_default_str();
     addViewOptions(*cmd, options->view);
     addSceneOptions(*cmd, options->common);

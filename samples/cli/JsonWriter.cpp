@@ -15,14 +15,14 @@ void writeTextFile(const std::filesystem::path& path, const std::string& text, c
         if (!f) {
             std::error_code ec;
             std::filesystem::remove(tmp, ec);
-            throw Error(fmt::format("{} {}: cannot write", flag, path.string()));
+            throw Error(fmt::format("{}: output: cannot write ({})", path.string(), flag));
         }
     }
     std::error_code ec;
     std::filesystem::rename(tmp, path, ec);
     if (ec) {
         std::filesystem::remove(tmp, ec);
-        throw Error(fmt::format("{} {}: cannot write", flag, path.string()));
+        throw Error(fmt::format("{}: output: cannot write ({})", path.string(), flag));
     }
 }
 

@@ -29,10 +29,11 @@ struct Options {
 void run(const Options& o) {
     const std::filesystem::path outPath(o.out);
     if (encodingFor(outPath) != OutputEncoding::LinearFloat)
-        throw Error(fmt::format("--out {}: the reference is linear radiance: write it as .exr", o.out));
+        throw Error(fmt::format("{}: --out: the reference is linear radiance: write it as .exr", o.out));
     checkOutputPath(outPath, OutputEncoding::LinearFloat);
+    checkViewOptions(o.view);
     const std::filesystem::path scenePath = o.scene.empty() ? defaultScenePath() : std::filesystem::path(o.scene);
-    Scene scene = Scene::load(scenePath);
+    Scene scene = loadScene(scenePath, o.common);
     for (const std::string& warning : scene.warnings) fmt::print(stderr, "preskin: warning: {}\n", warning);
     applySkinOption(scene, o.common);
     const View view = makeView(scene, scenePath, o.view);

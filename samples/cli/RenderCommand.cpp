@@ -1,7 +1,10 @@
 // `preskin render`: loads a glTF scene (the bundled head by default), renders one frame
-// headless and writes it as PNG (tone-mapped) or EXR (linear), printing the frame time.
+// headless (mono, or both eyes of a stereo pair side by side) and writes it as PNG (tone-mapped)
+// or EXR (linear), printing the frame time. Animated scenes: --animation and --time pose the
+// scene; --sequence renders a range of times into numbered files, with a progress bar.
 #include "Commands.h"
-#include "Options.h"  // samples/common
+#include "CommandLine.h"  // samples/common
+#include "Options.h"
 
 #include <preskin/Context.h>
 #include <preskin/Environment.h>
@@ -12,8 +15,15 @@
 
 #include <fmt/core.h>
 
+#include <unistd.h>
+
 #include <algorithm>
+#include <cctype>
+#include <chrono>
 #include <cmath>
+#include <cstdlib>
+#include <functional>
+#include <optional>
 #include <vector>
 #include <memory>
 #include <string>
@@ -27,26 +37,125 @@ struct RenderOptions {
     std::string out = "render.png";
     ViewOptions view;
     uint32_t frames = 1;
+    std::string animation;  // name or index; "" with --time/--sequence: the scene's first
+    std::optional<float> timeS;
+    std::string sequence;   // START:END:FPS
+    StereoOptions stereo;
     CommonOptions common;
 };
 
+// The times of --sequence START:END:FPS: START, START + 1/FPS, ... up to END.
+std::vector<float> sequenceTimes(const std::string& text) {
+    std::vector<float> v;
+    std::string part;
+    std::string rest = text;
+    for (int i = 0; i < 3; ++i) {
+        const size_t colon = rest.find(':');
+        part = i < 2 ? rest.substr(0, colon) : rest;
+        if ((i < 2 && colon == std::string::npos) || (i == 2 && rest.find(':') != std::string::npos))
+            throw Error(fmt::format("--sequence {}: expected START:END:FPS", text));
+        char* end = nullptr;
+        const float x = std::strtof(part.c_str(), &end);
+        if (part.empty() || *end != '\0' || !std::isfinite(x))
+            throw Error(fmt::format("--sequence {}: '{}' is not a finite number", text, part));
+        v.push_back(x);
+        if (i < 2) rest = rest.substr(colon + 1);
+    }
+    if (!(v[2] > 0.0f) || v[2] > 1000.0f) throw Error(fmt::format("--sequence {}: FPS must be in (0, 1000]", text));
+    if (v[1] < v[0]) throw Error(fmt::format("--sequence {}: END is before START", text));
+    const double frames = std::floor(double(v[1] - v[0]) * double(v[2]) + 1e-6) + 1.0;
+    if (frames > 100000.0) throw Error(fmt::format("--sequence {}: {} frames (at most 100000)", text, frames));
+    std::vector<float> times;
+    for (uint32_t i = 0; i < uint32_t(frames); ++i) times.push_back(v[0] + float(i) / v[2]);
+    return times;
+}
+
+// --out for a sequence: one printf integer field (%d or %0Nd) numbering the frames.
+std::filesystem::path framePath(const std::string& pattern, uint32_t frame) {
+    const size_t percent = pattern.find('%');
+    size_t d = percent == std::string::npos ? std::string::npos : pattern.find('d', percent);
+    bool valid = d != std::string::npos && pattern.find('%', percent + 1) == std::string::npos;
+    for (size_t i = percent + 1; valid && i < d; ++i) valid = std::isdigit(static_cast<unsigned char>(pattern[i])) != 0;
+    if (!valid || d - percent > 3)
+        throw Error(fmt::format("--out {}: a sequence needs one frame-number field such as %04d in the file name",
+                                pattern));
+    const int width = d - percent > 1 ? std::stoi(pattern.substr(percent + 1, d - percent - 1)) : 0;
+    return pattern.substr(0, percent) + fmt::format("{:0{}}", frame, width) + pattern.substr(d + 1);
+}
+
+void renderSequence(Renderer& renderer, Context& context, const View& view, const RenderOptions& o,
+                    const std::vector<float>& times, const std::function<void(float)>& poseAt, OutputEncoding encoding) {
+    std::vector<std::filesystem::path> written;
+    const bool tty = ::isatty(2) != 0;
+    const auto start = std::chrono::steady_clock::now();
+    double gpuMs = 0.0;
+    try {
+        for (uint32_t i = 0; i < times.size(); ++i) {
+            const std::filesystem::path path = framePath(o.out, i);
+            checkOutputPath(path, encoding);
+            poseAt(times[i]);
+            const RenderedImage image = renderer.render(view, o.view.width, o.view.height, encoding);
+            gpuMs += renderer.frameStats().gpuMs;
+            writeImage(path, image);
+            written.push_back(path);
+            const uint32_t done = i + 1;
+            if (tty || done == times.size() || done * 10 / times.size() != i * 10 / times.size()) {
+                const int filled = int(30 * done / times.size());
+                fmt::print(stderr, "{}preskin: frame {}/{} [{}{}] t = {:.3f} s{}", tty ? "\r" : "", done, times.size(),
+                           std::string(size_t(filled), '#'), std::string(size_t(30 - filled), '.'), times[i],
+                           tty && done < times.size() ? "" : "\n");
+                std::fflush(stderr);
+            }
+        }
+        reportValidation(context);
+    } catch (...) {
+        // No partial sequence is left behind.
+        std::error_code ec;
+        for (const auto& path : written) std::filesystem::remove(path, ec);
+        if (tty) fmt::print(stderr, "\n");
+        throw;
+    }
+    const double wallS = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    fmt::print("preskin: wrote {} frames {} .. {} ({}x{})\n", times.size(), written.front().string(),
+               written.back().string(), o.view.width * uint32_t(view.eyeCount()), o.view.height);
+    fmt::print("preskin: {:.2f} s on {}, gpu {:.2f} ms per frame\n", wallS, context.deviceName(),
+               gpuMs / double(times.size()));
+}
+
 void run(const RenderOptions& o) {
-    const std::filesystem::path outPath(o.out);
+    const std::vector<float> times = o.sequence.empty() ? std::vector<float>{} : sequenceTimes(o.sequence);
+    const std::filesystem::path outPath = times.empty() ? std::filesystem::path(o.out) : framePath(o.out, 0);
     const OutputEncoding encoding = encodingFor(outPath);
     checkOutputPath(outPath, encoding);
+    if (!times.empty() && o.frames > 1) throw Error("--frames: not with --sequence (every frame is rendered once)");
     const std::filesystem::path scenePath = o.scene.empty() ? defaultScenePath() : std::filesystem::path(o.scene);
+    // Every option is checked before anything is loaded.
+    checkViewOptions(o.view);
 
-    Scene scene = Scene::load(scenePath);
+    Scene scene = loadScene(scenePath, o.common);
     for (const std::string& warning : scene.warnings) fmt::print(stderr, "preskin: warning: {}\n", warning);
     applySkinOption(scene, o.common);
     const Environment environment = loadEnvironment(scene, o.common);
+    const LutSet luts = loadLuts(o.common);  // every input file is read before any GPU work
     auto context = Context::create(contextDesc(o.common));
-    const LutSet luts = loadLuts(o.common);
     Renderer renderer(*context, scene, environment, &luts, renderSettings(o.common));
     applyLightOptions(renderer, scene, o.common);
 
-    const View view = makeView(scene, scenePath, o.view);
+    const View view = applyStereoOptions(makeView(scene, scenePath, o.view), o.stereo);
     const uint32_t width = o.view.width, height = o.view.height;
+
+    const Animation* animation = nullptr;
+    if (!o.animation.empty() || o.timeS || !times.empty()) {
+        if (scene.animations.empty())
+            throw Error(fmt::format("--animation: {} has no animations", scenePath.string()));
+        animation = &findAnimation(scene, o.animation.empty() ? std::string("0") : o.animation);
+    }
+    auto poseAt = [&](float t) { renderer.setPose(posedScene(scene, animationNodePose(scene, *animation, t))); };
+    if (!times.empty()) {
+        renderSequence(renderer, *context, view, o, times, poseAt, encoding);
+        return;
+    }
+    if (animation) poseAt(o.timeS.value_or(0.0f));
 
     // One warm-up frame (first-use costs), then the measured ones; the frame with the median
     // GPU time is reported (frames are identical, so any of them is the image).
@@ -62,7 +171,8 @@ void run(const RenderOptions& o) {
     const FrameStats stats = frames[frames.size() / 2];
     writeImage(outPath, image);
     reportValidation(*context);
-    fmt::print("preskin: wrote {} ({}x{})\n", outPath.string(), image.width, image.height);
+    fmt::print("preskin: wrote {} ({}x{}{})\n", outPath.string(), image.width * image.eyes, image.height,
+               image.eyes > 1 ? fmt::format(", {} eyes side by side", image.eyes) : "");
     fmt::print("preskin: frame time on {}{}: {}\n", context->deviceName(),
                o.frames > 1 ? fmt::format(" (median of {} frames)", o.frames) : "", formatStats(stats));
 }
@@ -78,7 +188,15 @@ void addRenderCommand(CLI::App& app) {
     addViewOptions(*cmd, options->view);
     cmd->add_option("--frames", options->frames, "Measured frames after one warm-up; the median is reported")
         ->capture_default_str()
-        ->check(CLI::Range(1, 1000));
+        ->check(wholeNumberIn(1, 1000));
+    cmd->add_option("--animation", options->animation,
+                    "Pose the scene with this animation (name or index; default with --time or --sequence: the first)");
+    cmd->add_option("--time", options->timeS, "Time in the animation, seconds (clamped to its keys)")
+        ->check(numberIn(-1e6, 1e6));
+    cmd->add_option("--sequence", options->sequence,
+                    "Render the animation from START to END seconds at FPS frames per second into numbered files: "
+                    "START:END:FPS with --out DIR/name_%04d.png");
+    addStereoOptions(*cmd, options->stereo);
     addCommonOptions(*cmd, options->common);
     cmd->callback([options] { run(*options); });
 }

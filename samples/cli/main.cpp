@@ -1,12 +1,6 @@
 // preskin: command-line front end of libpreskin (render, bake, bench, reference, compare).
+#include "CommandLine.h"  // samples/common
 #include "Commands.h"
-
-#include <preskin/Error.h>
-
-#include <fmt/core.h>
-
-#include <cstdio>
-#include <exception>
 
 int main(int argc, char** argv) {
     CLI::App app{"preskin: pre-integrated skin shading for forward renderers"};
@@ -17,16 +11,6 @@ int main(int argc, char** argv) {
     preskin::cli::addBenchCommand(app);
     preskin::cli::addReferenceCommand(app);
     preskin::cli::addCompareCommand(app);
-    try {
-        app.parse(argc, argv);
-    } catch (const CLI::ParseError& e) {
-        return app.exit(e);
-    } catch (const preskin::Error& e) {
-        fmt::print(stderr, "preskin: error: {}\n", e.what());
-        return 1;
-    } catch (const std::exception& e) {
-        fmt::print(stderr, "preskin: internal error: {}\n", e.what());
-        return 2;
-    }
-    return 0;
+    // Every failure, command-line parsing included: one line "preskin: error: ...", exit 1.
+    return preskin::cli::runCommandLine(app, argc, argv);
 }

@@ -1,9 +1,14 @@
 #include "Options.h"
+#include "CommandLine.h"
 
 #include <preskin/Error.h>
+#include <preskin/Limits.h>
 #include <preskin/LightScatter.h>
 
 #include <fmt/core.h>
+
+#include <sys/stat.h>
+#include <unistd.h>
 
 #include <cmath>
 #include <cstdlib>
@@ -22,16 +27,18 @@ std::string lower(std::string s) {
 
 void addSceneOptions(CLI::App& cmd, CommonOptions& o) {
     cmd.add_option("--env", o.env, "HDR environment (equirectangular .hdr or .exr); default: the scene's");
-    cmd.add_option("--env-intensity", o.envIntensity, "Environment radiance scale")->check(CLI::Range(0.0f, 1e6f));
+    cmd.add_option("--env-intensity", o.envIntensity, "Environment radiance scale")->check(numberIn(0.0, 1e6));
     cmd.add_option("--env-rotation", o.envRotationDeg, "Turn the environment about +Y, degrees")
-        ->check(CLI::Range(-3600.0f, 3600.0f));
+        ->check(numberIn(-3600.0, 3600.0));
     cmd.add_option("--skin", o.skin, "Shade this material (or 'all') as skin with default parameters");
     cmd.add_option("--lights", o.lights, "Scatter this many coloured point and spot lights (clustered)")
-        ->check(CLI::Range(0u, 1u << 20));
-    cmd.add_option("--seed", o.seed, "Seed for --lights")->capture_default_str();
-    cmd.add_option("--exposure", o.exposure, "Exposure multiplier")->check(CLI::Range(0.0f, 1e6f))->capture_default_str();
+        ->check(wholeNumberIn(0, 1 << 20));
+    cmd.add_option("--seed", o.seed, "Seed for --lights")->check(wholeNumberIn(0, UINT32_MAX))->capture_default_str();
+    cmd.add_option("--exposure", o.exposure, "Exposure multiplier")->check(numberIn(0.0, 1e6))->capture_default_str();
     cmd.add_flag("--no-shadows", o.noShadows, "Disable the shadow map");
     cmd.add_option("--luts", o.luts, "Skin LUT set folder (from `preskin bake`); default: the bundled d'Eon set");
+    cmd.add_flag("--allow-outside-links", o.allowOutsideLinks,
+                 "Follow symbolic links in the scene's folder that lead out of it (refused by default)");
 }
 
 void addDeviceOptions(CLI::App& cmd, CommonOptions& o) {
@@ -41,10 +48,10 @@ void addDeviceOptions(CLI::App& cmd, CommonOptions& o) {
 
 void addShadowMapOptions(CLI::App& cmd, CommonOptions& o) {
     cmd.add_option("--shadow-softness", o.shadowSoftness, "Shadow filter sigma in shadow-map texels")
-        ->check(CLI::Range(0.25f, 2.0f))
+        ->check(numberIn(0.25, 2.0))
         ->capture_default_str();
     cmd.add_option("--shadow-map-size", o.shadowMapSize, "Shadow map resolution")
-        ->check(CLI::Range(16u, 8192u))
+        ->check(wholeNumberIn(16, 8192))
         ->capture_default_str();
 }
 
@@ -64,18 +71,31 @@ void addCommonOptions(CLI::App& cmd, CommonOptions& o) {
                    "Debug view: none, curvature, normals, shadow, penumbra, lightcount, shambient, transmission")
         ->capture_default_str();
     cmd.add_option("--light-loop", o.lightLoop, "clustered (light grid) or all (every light, brute force)")
-        ->check(CLI::IsMember({"clustered", "all"}))
+        ->check(oneOf({"clustered", "all"}))
         ->capture_default_str();
     addShadowMapOptions(cmd, o);
+    cmd.add_option("--msaa", o.msaa, "Samples per pixel (1, 2, 4 or 8, as the device offers; lavapipe: 1 or 4)")
+        ->check(oneOf({"1", "2", "4", "8"}))
+        ->capture_default_str();
+}
+
+Scene loadScene(const std::filesystem::path& path, const CommonOptions& o) {
+    SceneLoadOptions options;
+    options.allowLinksOutsideFolder = o.allowOutsideLinks;
+    return Scene::load(path, options);
 }
 
 void addViewOptions(CLI::App& cmd, ViewOptions& o) {
-    cmd.add_option("--width", o.width, "Image width in pixels")->capture_default_str()->check(CLI::Range(1, 16384));
-    cmd.add_option("--height", o.height, "Image height in pixels")->capture_default_str()->check(CLI::Range(1, 16384));
+    cmd.add_option("--width", o.width, "Image width in pixels")->capture_default_str()->check(wholeNumberIn(1, 16384));
+    cmd.add_option("--height", o.height, "Image height in pixels")->capture_default_str()->check(wholeNumberIn(1, 16384));
     auto* camera = cmd.add_option("--camera", o.camera, "Use the scene's camera of this name");
     auto* orbit = cmd.add_option("--orbit", o.orbit,
                                  "Orbit the scene's centre: YAW,PITCH,DIST in degrees, degrees, metres (DIST 0: fit)");
     camera->excludes(orbit);
+}
+
+void checkViewOptions(const ViewOptions& o) {
+    if (!o.orbit.empty()) parseFloats(o.orbit, 3, "--orbit");
 }
 
 View makeView(const Scene& scene, const std::filesystem::path& scenePath, const ViewOptions& o) {
@@ -90,6 +110,24 @@ View makeView(const Scene& scene, const std::filesystem::path& scenePath, const 
         return orbitView(scene.worldBounds(), v[0], v[1], v[2], aspect);
     }
     return frameBoundsView(scene.worldBounds(), aspect);
+}
+
+void addStereoOptions(CLI::App& cmd, StereoOptions& o) {
+    cmd.add_flag("--stereo", o.stereo, "Render a stereo pair (one multiview pass), eyes side by side, left eye left");
+    cmd.add_option("--ipd", o.ipdM, "Interpupillary distance of --stereo and --eye, metres")
+        ->check(numberIn(0.0, 1.0))
+        ->capture_default_str();
+    cmd.add_option("--eye", o.eye, "Render only this eye of the stereo pair (mono): left or right")
+        ->check(oneOf({"left", "right"}));
+}
+
+View applyStereoOptions(const View& mono, const StereoOptions& o) {
+    if (!o.stereo && o.eye.empty()) return mono;
+    if (!std::isfinite(o.ipdM) || o.ipdM < 0.0f || o.ipdM > 1.0f)
+        throw Error(fmt::format("--ipd {}: the interpupillary distance must be a finite 0..1 metres", o.ipdM));
+    View stereo = stereoFromMono(mono, o.ipdM);
+    if (o.eye.empty()) return stereo;
+    return View(stereo.eyes[o.eye == "left" ? 0 : 1]);
 }
 
 std::filesystem::path dataDir() {
@@ -112,13 +150,16 @@ std::vector<float> parseFloats(const std::string& text, size_t count, const char
     std::string item;
     while (std::getline(ss, item, ',')) {
         char* end = nullptr;
-        const float v = std::strtof(item.c_str(), &end);
-        if (item.empty() || end == item.c_str() || *end != '\0' || !std::isfinite(v))
-            throw Error(fmt::format("{} {}: '{}' is not a finite number", flag, text, item));
-        values.push_back(v);
+        const double v = std::strtod(item.c_str(), &end);
+        if (item.empty() || end == item.c_str() || *end != '\0' || !std::isfinite(v) ||
+            std::abs(v) > limits::kMaxInputMagnitude)
+            throw Error(fmt::format("{}: value: '{}' is not a finite number of magnitude at most {}", flag, item,
+                                    limits::kMaxInputMagnitude));
+        values.push_back(static_cast<float>(v));
     }
     if (values.size() != count)
-        throw Error(fmt::format("{} {}: expected {} comma-separated numbers, got {}", flag, text, count, values.size()));
+        throw Error(fmt::format("{}: value: expected {} comma-separated numbers, got {} in '{}'", flag, count,
+                                values.size(), text));
     return values;
 }
 
@@ -166,6 +207,7 @@ RenderSettings renderSettings(const CommonOptions& o) {
     s.shadowSoftnessTexels = o.shadowSoftness;
     s.shadowMapSize = o.shadowMapSize;
     s.shadows = !o.noShadows;
+    s.msaaSamples = o.msaa;
     return s;
 }
 
@@ -204,6 +246,20 @@ std::vector<Light> sceneLights(const Scene& scene, const CommonOptions& o) {
 
 void applyLightOptions(Renderer& renderer, const Scene& scene, const CommonOptions& o) {
     renderer.setLights(sceneLights(scene, o));
+}
+
+void checkOutputFile(const std::filesystem::path& path, const char* option) {
+    std::error_code ec;
+    const std::filesystem::path parent = std::filesystem::absolute(path, ec).parent_path();
+    if (!std::filesystem::is_directory(parent, ec))
+        throw Error(fmt::format("{} {}: folder: {} does not exist", option, path.string(), parent.string()));
+    struct stat st {};
+    if (::stat(path.c_str(), &st) == 0) {
+        if (!S_ISREG(st.st_mode))
+            throw Error(fmt::format("{} {}: output: exists and is not a regular file; not replaced", option, path.string()));
+        if ((st.st_mode & (S_IWUSR | S_IWGRP | S_IWOTH)) == 0 || ::access(path.c_str(), W_OK) != 0)
+            throw Error(fmt::format("{} {}: output: exists and is read-only; not replaced", option, path.string()));
+    }
 }
 
 void reportValidation(const Context& context) {

@@ -42,14 +42,18 @@ struct CommonOptions {
     float shadowSoftness = 1.5f;
     uint32_t shadowMapSize = 2048;
     bool noShadows = false;
+    uint32_t msaa = 1;
     std::string luts;  // LUT set folder; default: the committed luts/ (d'Eon)
+    bool allowOutsideLinks = false;  // SceneLoadOptions::allowLinksOutsideFolder
 };
 
 // Every option below: the scene options plus the renderer's (device, validation, skin
 // techniques, specular, debug view, light loop, shadow map).
 void addCommonOptions(CLI::App& cmd, CommonOptions& o);
+// Scene::load with the options' SceneLoadOptions.
+Scene loadScene(const std::filesystem::path& path, const CommonOptions& o);
 // What defines the lit scene without a renderer (the reference uses only these): environment,
-// --skin, --lights/--seed, --exposure, --no-shadows, --luts (the profile).
+// --skin, --lights/--seed, --exposure, --no-shadows, --luts (the profile), --allow-outside-links.
 void addSceneOptions(CLI::App& cmd, CommonOptions& o);
 // --device, --validation.
 void addDeviceOptions(CLI::App& cmd, CommonOptions& o);
@@ -64,6 +68,8 @@ struct ViewOptions {
     std::string orbit;
 };
 void addViewOptions(CLI::App& cmd, ViewOptions& o);
+// Refuses malformed view options before anything is loaded.
+void checkViewOptions(const ViewOptions& o);
 // --camera NAME (a glTF camera), --orbit YAW,PITCH,DIST, else the default framing of the bounds.
 View makeView(const Scene& scene, const std::filesystem::path& scenePath, const ViewOptions& o);
 
@@ -73,6 +79,16 @@ std::filesystem::path dataDir();
 std::filesystem::path defaultScenePath();
 OutputEncoding encodingFor(const std::filesystem::path& out);
 std::vector<float> parseFloats(const std::string& text, size_t count, const char* flag);
+
+// Stereo camera options: --stereo, --ipd, --eye.
+struct StereoOptions {
+    bool stereo = false;
+    float ipdM = 0.063f;
+    std::string eye;  // "", "left" or "right"
+};
+void addStereoOptions(CLI::App& cmd, StereoOptions& o);
+// The view to draw from a mono view: itself, its stereo pair, or one eye of the pair.
+View applyStereoOptions(const View& mono, const StereoOptions& o);
 
 ContextDesc contextDesc(const CommonOptions& o);
 // --luts DIR, else the committed default set (luts/ of the data folder), else a fresh bake.
@@ -84,6 +100,9 @@ Environment loadEnvironment(const Scene& scene, const CommonOptions& o);
 // The scene's lights plus --lights N scattered ones; a scene without any light gets a key light.
 std::vector<Light> sceneLights(const Scene& scene, const CommonOptions& o);
 void applyLightOptions(Renderer& renderer, const Scene& scene, const CommonOptions& o);
+// Refuses an output file `option` names unless its folder exists and the file, if it exists,
+// is a regular file that is not read-only (it would be replaced).
+void checkOutputFile(const std::filesystem::path& path, const char* option);
 // Throws when validation is on and reported anything.
 void reportValidation(const Context& context);
 std::string formatStats(const FrameStats& stats);

@@ -37,7 +37,7 @@ void CameraController::setOrbit(float yawDeg, float pitchDeg, float distanceM) {
 float CameraController::orbitDistanceM(float aspect) const {
     if (distanceM_ > 0.0f) return distanceM_;
     const glm::vec3 center = bounds_.empty() ? glm::vec3(0.0f) : bounds_.center();
-    return glm::length(orbitView(bounds_, yawDeg_, pitchDeg_, 0.0f, aspect, kYfov).positionWs - center);
+    return glm::length(orbitView(bounds_, yawDeg_, pitchDeg_, 0.0f, aspect, kYfov).eye().positionWs - center);
 }
 
 glm::vec3 CameraController::flyForward() const {
@@ -49,7 +49,7 @@ glm::vec3 CameraController::flyForward() const {
 void CameraController::setMode(CameraMode mode, float aspect) {
     if (mode == mode_) return;
     if (mode == CameraMode::Fly) {
-        const View current = view(aspect);
+        const Eye current = view(aspect).eye();
         flyPositionWs_ = current.positionWs;
         // Direction the current view looks along, as yaw/pitch of the fly camera.
         const glm::vec3 forward = -glm::vec3(glm::inverse(current.viewFromWorld)[2]);

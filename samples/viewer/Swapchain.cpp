@@ -100,6 +100,7 @@ bool Swapchain::recreate(VkExtent2D sizePx, bool vsync) {
     uint32_t imageCount = std::max(caps.minImageCount + 1, 3u);
     if (caps.maxImageCount > 0) imageCount = std::min(imageCount, caps.maxImageCount);
     transferSource_ = (caps.supportedUsageFlags & VK_IMAGE_USAGE_TRANSFER_SRC_BIT) != 0;
+    transferDestination_ = (caps.supportedUsageFlags & VK_IMAGE_USAGE_TRANSFER_DST_BIT) != 0;
 
     VkSwapchainCreateInfoKHR info{VK_STRUCTURE_TYPE_SWAPCHAIN_CREATE_INFO_KHR};
     info.surface = surface_;
@@ -110,6 +111,7 @@ bool Swapchain::recreate(VkExtent2D sizePx, bool vsync) {
     info.imageArrayLayers = 1;
     info.imageUsage = VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT;
     if (transferSource_) info.imageUsage |= VK_IMAGE_USAGE_TRANSFER_SRC_BIT;
+    if (transferDestination_) info.imageUsage |= VK_IMAGE_USAGE_TRANSFER_DST_BIT;  // the stereo preview's copies
     info.imageSharingMode = VK_SHARING_MODE_EXCLUSIVE;
     info.preTransform = (caps.supportedTransforms & VK_SURFACE_TRANSFORM_IDENTITY_BIT_KHR)
                             ? VK_SURFACE_TRANSFORM_IDENTITY_BIT_KHR

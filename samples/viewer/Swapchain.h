@@ -33,6 +33,7 @@ public:
     bool srgb() const { return srgb_; }
     // Whether the images can be copied from (screenshots).
     bool transferSource() const { return transferSource_; }
+    bool transferDestination() const { return transferDestination_; }
     uint32_t imageCount() const { return static_cast<uint32_t>(images_.size()); }
     VkImage image(uint32_t i) const { return images_[i]; }
     VkImageView view(uint32_t i) const { return views_[i]; }
@@ -52,6 +53,7 @@ private:
     VkPresentModeKHR presentMode_ = VK_PRESENT_MODE_FIFO_KHR;
     bool srgb_ = false;
     bool transferSource_ = false;
+    bool transferDestination_ = false;
     std::vector<VkPresentModeKHR> modes_;
     std::vector<VkImage> images_;
     std::vector<VkImageView> views_;

@@ -17,6 +17,7 @@
 #include <cstdio>
 #include <ctime>
 #include <exception>
+#include <string>
 #include <utility>
 
 namespace preskin::viewer {
@@ -68,6 +69,10 @@ Viewer::Viewer(ViewerOptions options) : options_(std::move(options)) {
     vsync_ = !options_.noVsync;
     showUi_ = !options_.hideUi;
     settings_ = cli::renderSettings(options_.common);  // throws on a bad --debug before any window opens
+    stereo_ = options_.stereo.stereo;
+    ipdM_ = options_.stereo.ipdM;
+    if (!std::isfinite(ipdM_) || ipdM_ < 0.0f || ipdM_ > 1.0f)
+        throw Error(fmt::format("--ipd {}: the interpupillary distance must be a finite 0..1 metres", ipdM_));
     lastGoodSettings_ = settings_;
     scatteredLights_ = options_.common.lights;
     scatterSeed_ = options_.common.seed;
@@ -107,6 +112,7 @@ void Viewer::shutdown() noexcept {
     renderer_.reset();
     overlay_.reset();
     capture_.reset();
+    stereoPreview_.reset();
     if (vk_.vkDestroyCommandPool) destroyFrames();
     swapchain_.reset();
     if (surface_) vk_.vkDestroySurfaceKHR(vk_.instance, surface_, nullptr);
@@ -118,13 +124,24 @@ void Viewer::shutdown() noexcept {
 }
 
 void Viewer::createWindow() {
-    glfwSetErrorCallback([](int code, const char* text) { fmt::print(stderr, "preskin-viewer: GLFW {}: {}\n", code, text); });
-    if (!glfwInit()) throw Error("GLFW: cannot open the display (is DISPLAY set? without a display, use xvfb-run)");
-    if (!glfwVulkanSupported()) throw Error("GLFW: no Vulkan loader or driver found");
+    // Until the window exists, GLFW's reason for a failure goes into the one error line that
+    // ends the program; later GLFW errors are reported as they come.
+    static std::string glfwReason;
+    static bool windowOpen = false;
+    glfwSetErrorCallback([](int code, const char* text) {
+        if (windowOpen) fmt::print(stderr, "preskin-viewer: GLFW {}: {}\n", code, text);
+        else glfwReason = text ? text : "";
+    });
+    auto failed = [](const char* field, const char* otherwise, const char* hint) {
+        return Error(fmt::format("GLFW: {}: {}{}", field, glfwReason.empty() ? otherwise : glfwReason, hint));
+    };
+    if (!glfwInit()) throw failed("display", "cannot open it", " (without a display, run under xvfb-run)");
+    if (!glfwVulkanSupported()) throw failed("Vulkan", "no Vulkan loader or driver found", "");
     glfwWindowHint(GLFW_CLIENT_API, GLFW_NO_API);
     window_ = glfwCreateWindow(static_cast<int>(options_.widthPx), static_cast<int>(options_.heightPx), "preskin-viewer",
                                nullptr, nullptr);
-    if (!window_) throw Error("GLFW: cannot create the window");
+    if (!window_) throw failed("window", "cannot create it", "");
+    windowOpen = true;
     glfwSetWindowUserPointer(window_, this);
     glfwSetDropCallback(window_, [](GLFWwindow* w, int count, const char** paths) {
         auto* self = static_cast<Viewer*>(glfwGetWindowUserPointer(w));
@@ -154,6 +171,7 @@ void Viewer::createVulkan() {
         error("the window offers no 8-bit sRGB format: colours are shown without display encoding (too dark)");
     if (!swapchain_->transferSource()) error("the window's images cannot be copied: screenshots are unavailable");
     capture_ = std::make_unique<ImageCapture>(vk_, kFramesInFlight);
+    stereoPreview_ = std::make_unique<StereoPreview>(vk_);
     createFrames();
     overlay_ = std::make_unique<Overlay>(vk_, window_, context_->queue(), context_->queueFamilyIndex(), *swapchain_,
                                          kFramesInFlight);
@@ -212,7 +230,7 @@ void Viewer::loadStartupContent() {
     scenePathInput_ = scenePath.string();
     Scene scene;
     try {
-        scene = Scene::load(scenePath);
+        scene = cli::loadScene(scenePath, options_.common);
         for (const std::string& w : scene.warnings) info("warning: " + w);
         cli::applySkinOption(scene, options_.common);
     } catch (const std::exception& e) {
@@ -247,6 +265,17 @@ void Viewer::loadStartupContent() {
     }
 
     adoptScene(std::move(scene), scenePath);
+    if (!options_.animation.empty() || options_.timeS || options_.play) {
+        try {
+            if (scene_.animations.empty()) throw Error("the scene has no animations");
+            const Animation& a = findAnimation(scene_, options_.animation.empty() ? std::string("0") : options_.animation);
+            animation_ = static_cast<int>(&a - scene_.animations.data());
+            animationTimeS_ = options_.timeS.value_or(a.startS());
+            playing_ = options_.play;
+        } catch (const std::exception& e) {
+            error(fmt::format("--animation: {}", e.what()));
+        }
+    }
 
     if (!options_.camera.empty()) {
         int found = -1;
@@ -270,7 +299,17 @@ void Viewer::loadStartupContent() {
 
 float Viewer::aspect() const {
     if (!swapchain_ || !swapchain_->valid()) return 1.0f;
-    return float(swapchain_->extent().width) / float(swapchain_->extent().height);
+    const VkExtent2D extent = stereo_ ? StereoPreview::eyeExtent(swapchain_->extent()) : swapchain_->extent();
+    return float(extent.width) / float(extent.height);
+}
+
+View Viewer::frameView() const {
+    const View mono = camera_.view(aspect());
+    if (stereo_) return stereoFromMono(mono, ipdM_);
+    cli::StereoOptions eye = options_.stereo;
+    eye.stereo = false;
+    eye.ipdM = ipdM_;
+    return cli::applyStereoOptions(mono, eye);
 }
 
 void Viewer::info(std::string text) {
@@ -303,6 +342,10 @@ void Viewer::adoptScene(Scene scene, const std::filesystem::path& path) {
         if (scene_.materials[i].skin) selectedMaterial_ = static_cast<int>(i);
     if (selectedMaterial_ < 0 && !scene_.materials.empty()) selectedMaterial_ = 0;
     camera_.reset(scene_.worldBounds(), scene_.cameras);
+    morphOverrides_.clear();
+    animation_ = scene_.animations.empty() ? -1 : 0;
+    animationTimeS_ = animation_ >= 0 ? scene_.animations[0].startS() : 0.0f;
+    playing_ = false;
     rebuildRenderer("scene loaded");
 }
 
@@ -325,6 +368,28 @@ void Viewer::rebuildRenderer(const char* why) {
         }
     }
     info(fmt::format("renderer built ({}) in {:.0f} ms", why, msSince(begin)));
+}
+
+void Viewer::applyPose(float dtS) {
+    if (!renderer_) return;
+    const Animation* animation =
+        animation_ >= 0 && size_t(animation_) < scene_.animations.size() ? &scene_.animations[size_t(animation_)] : nullptr;
+    if (animation && playing_) {
+        const float start = animation->startS();
+        const float length = animation->endS() - start;
+        animationTimeS_ += dtS * playbackSpeed_;
+        if (length > 0.0f) animationTimeS_ = start + std::fmod(std::fmod(animationTimeS_ - start, length) + length, length);
+        else animationTimeS_ = start;
+    }
+    ScenePose pose = posedScene(scene_, animation ? animationNodePose(scene_, *animation, animationTimeS_) : restNodePose(scene_));
+    for (size_t i = 0; i < pose.instances.size() && i < morphOverrides_.size(); ++i)
+        if (!morphOverrides_[i].empty()) pose.instances[i].morphWeights = morphOverrides_[i];
+    try {
+        renderer_->setPose(pose);
+    } catch (const std::exception& e) {
+        error(fmt::format("pose: {}", e.what()));
+        morphOverrides_.clear();
+    }
 }
 
 void Viewer::applyLights() {
@@ -356,7 +421,7 @@ void Viewer::startSceneLoad(const std::filesystem::path& path) {
         result.path = path;
         const auto begin = Clock::now();
         try {
-            Scene scene = Scene::load(path);
+            Scene scene = cli::loadScene(path, common);
             cli::applySkinOption(scene, common);
             result.scene = std::move(scene);
         } catch (const std::exception& e) {
@@ -552,6 +617,7 @@ int Viewer::run() {
         const auto uiBegin = Clock::now();
         overlay_->newFrame();
         handleInput(dtS);
+        applyPose(dtS);
         drawUi();
         ImGui::Render();
         uiMs_ = msSince(uiBegin);
@@ -696,18 +762,32 @@ void Viewer::recordFrame(Frame& frame, uint32_t imageIndex) {
     bool captureScene = captureNext_ && !captureNextUi_;
     bool captureUi = captureNext_ && captureNextUi_;
 
+    if (stereo_ && !swapchain_->transferDestination()) {
+        error("stereo preview: the window's images cannot be copied into on this system");
+        stereo_ = false;
+    }
+    const VkImageLayout windowLayout =
+        captureScene ? VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL : VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL;
     RenderTarget target;
     target.image = image;
     target.view = swapchain_->view(imageIndex);
     target.format = swapchain_->format();
     target.extent = swapchain_->extent();
     target.layoutBefore = VK_IMAGE_LAYOUT_UNDEFINED;
-    target.layoutAfter = captureScene ? VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL : VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL;
+    target.layoutAfter = windowLayout;
+    if (stereo_) {  // both eyes into the preview's layers, copied side by side below
+        target.extent = StereoPreview::eyeExtent(swapchain_->extent());
+        stereoPreview_->ensure(target.extent, target.format);
+        target.image = stereoPreview_->image();
+        target.view = stereoPreview_->view();
+        target.layoutAfter = VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL;
+    }
     bool rendered = false;
     if (renderer_) {
         try {
             renderer_->setSettings(settings_);
-            renderer_->record(frame.cmd, target, camera_.view(aspect()), slot_);
+            renderer_->record(frame.cmd, target, frameView(), slot_);
+            if (stereo_) stereoPreview_->copyToWindow(frame.cmd, image, swapchain_->extent(), windowLayout);
             rendered = true;
             lastGoodSettings_ = settings_;
         } catch (const std::exception& e) {
@@ -721,14 +801,14 @@ void Viewer::recordFrame(Frame& frame, uint32_t imageIndex) {
     if (!rendered) captureScene = captureUi = false;  // keep the request for a frame that renders
 
     if (captureScene) {
-        capture_->record(frame.cmd, slot_, image, target.format, target.extent, *captureNext_, false);
+        capture_->record(frame.cmd, slot_, image, target.format, swapchain_->extent(), *captureNext_, false);
         imageBarrier(vk_, frame.cmd, image, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL,
                      VK_PIPELINE_STAGE_2_COPY_BIT, VK_ACCESS_2_NONE, VK_PIPELINE_STAGE_2_COLOR_ATTACHMENT_OUTPUT_BIT,
                      VK_ACCESS_2_COLOR_ATTACHMENT_READ_BIT | VK_ACCESS_2_COLOR_ATTACHMENT_WRITE_BIT);
     }
     overlay_->record(frame.cmd, imageIndex, captureUi, !rendered);
     if (captureUi) {
-        capture_->record(frame.cmd, slot_, image, target.format, target.extent, *captureNext_, true);
+        capture_->record(frame.cmd, slot_, image, target.format, swapchain_->extent(), *captureNext_, true);
         imageBarrier(vk_, frame.cmd, image, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, VK_IMAGE_LAYOUT_PRESENT_SRC_KHR,
                      VK_PIPELINE_STAGE_2_COPY_BIT, VK_ACCESS_2_NONE, VK_PIPELINE_STAGE_2_NONE, VK_ACCESS_2_NONE);
     }

@@ -18,7 +18,11 @@
 // screenshot is taken from one more frame drawn when the window is closed.
 // Exit status: 0; 1 on a start-up error or, in scripted runs, any error reported on the way
 // (load, shader, screenshot); 2 when Vulkan validation reported anything.
-// Limits: one window; the scene is static (no animation); loads replace the whole scene.
+// Stereo: --stereo (or the Camera panel) shows a stereo pair around the camera side by side,
+// drawn in the renderer's one multi-eye pass (see StereoPreview.h); --eye shows one eye alone.
+// Animation: a timeline (play, pause, scrub, speed) and morph-weight sliders pose the scene every
+// frame through Renderer::setPose (--animation, --time, --play at start).
+// Limits: one window; loads replace the whole scene.
 #pragma once
 
 #include "CameraController.h"
@@ -26,6 +30,7 @@
 #include "LutBaker.h"
 #include "Overlay.h"
 #include "ShaderReloader.h"
+#include "StereoPreview.h"
 #include "Swapchain.h"
 #include "ViewerOptions.h"
 #include "VulkanFunctions.h"
@@ -122,7 +127,8 @@ private:
     void handleInput(float dtS);
     void handleDrops();
     void pollJobs();
-    float aspect() const;
+    float aspect() const;       // of the window, or of one eye in the stereo preview
+    View frameView() const;     // the camera's view, its stereo pair, or one eye of the pair
     bool jobsPending() const;
     void printSummary() const;
 
@@ -133,6 +139,7 @@ private:
     void adoptScene(Scene scene, const std::filesystem::path& path);
     void rebuildRenderer(const char* why);
     void applyLights();
+    void applyPose(float dtS);  // advances playback and gives the renderer this frame's pose
     void applyShaderBuild(ShaderBuild build);
     void requestBake();
     void requestScreenshot(std::optional<std::filesystem::path> path, bool withUi);
@@ -141,6 +148,7 @@ private:
     void drawUi();
     void panelScene();
     void panelCamera();
+    void panelAnimation();
     void panelTechniques();
     void panelMaterial();
     void panelProfile();
@@ -162,6 +170,17 @@ private:
     std::unique_ptr<Swapchain> swapchain_;
     std::unique_ptr<Overlay> overlay_;
     std::unique_ptr<ImageCapture> capture_;
+    std::unique_ptr<StereoPreview> stereoPreview_;
+    bool stereo_ = false;  // side-by-side preview of a stereo pair around the camera
+    float ipdM_ = 0.063f;
+
+    // Animation: which one (-1: the rest pose), its time, playback, and morph weights set by hand
+    // (per scene instance; empty: the animation's).
+    int animation_ = -1;
+    float animationTimeS_ = 0.0f;
+    bool playing_ = false;
+    float playbackSpeed_ = 1.0f;
+    std::vector<std::vector<float>> morphOverrides_;
     std::array<Frame, kFramesInFlight> frames_{};
     uint32_t slot_ = 0;
     bool swapchainDirty_ = false;

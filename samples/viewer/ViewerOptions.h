@@ -33,6 +33,10 @@ struct ViewerOptions {
     std::string albedo = "0.83,0.57,0.45";  // burley: R,G,B surface albedo
     std::string mfp = "1.2,0.5,0.25";       // burley: R,G,B mean free path, mm
     int lutSize = 256;
+    cli::StereoOptions stereo;  // --stereo starts the side-by-side preview, --eye shows one eye
+    std::string animation;      // start with this animation (name or index) at --time
+    std::optional<float> timeS;
+    bool play = false;          // start playing it
     cli::CommonOptions common;
 };
 

@@ -50,6 +50,7 @@ void Viewer::drawUi() {
         ImGui::TextDisabled("files on the window to load them.");
         panelScene();
         panelCamera();
+        panelAnimation();
         panelTechniques();
         panelMaterial();
         panelProfile();
@@ -137,9 +138,72 @@ void Viewer::panelCamera() {
         ImGui::DragFloat3("Position", &camera_.flyPositionWs().x, 0.01f, 0.0f, 0.0f, "%.3f");
     }
     if (ImGui::Button("Reset view (Home)")) camera_.reset(scene_.worldBounds(), scene_.cameras);
+    ImGui::Checkbox("Stereo preview (side by side)", &stereo_);
+    tooltip("Both eyes of a stereo pair around the camera, drawn in one pass; left eye on the left.");
+    if (stereo_) {
+        float ipdMm = ipdM_ * 1000.0f;
+        if (ImGui::SliderFloat("IPD", &ipdMm, 0.0f, 200.0f, "%.1f mm")) ipdM_ = ipdMm * 0.001f;
+    }
+    if (renderer_) {
+        const std::vector<uint32_t> counts = renderer_->msaaSampleCounts();
+        std::vector<std::string> labels;
+        int current = 0;
+        for (size_t i = 0; i < counts.size(); ++i) {
+            labels.push_back(counts[i] == 1 ? std::string("off") : fmt::format("{}x", counts[i]));
+            if (counts[i] == settings_.msaaSamples) current = int(i);
+        }
+        std::vector<const char*> names;
+        for (const std::string& l : labels) names.push_back(l.c_str());
+        if (ImGui::Combo("MSAA", &current, names.data(), int(names.size()))) settings_.msaaSamples = counts[size_t(current)];
+    }
     ImGui::TextDisabled("Orbit: drag to turn, wheel to zoom.");
     ImGui::TextDisabled("Fly: drag to look, W/A/S/D move, Q/E down/up,");
     ImGui::TextDisabled("Shift faster, wheel sets speed. Tab: orbit/fly.");
+}
+
+void Viewer::panelAnimation() {
+    if (!ImGui::CollapsingHeader("Animation")) return;
+    std::vector<std::string> names{"(rest pose)"};
+    for (size_t i = 0; i < scene_.animations.size(); ++i)
+        names.push_back(scene_.animations[i].name.empty() ? fmt::format("animation {}", i) : scene_.animations[i].name);
+    std::vector<const char*> labels;
+    for (const std::string& n : names) labels.push_back(n.c_str());
+    int current = animation_ + 1;
+    if (ImGui::Combo("Animation", &current, labels.data(), int(labels.size()))) {
+        animation_ = current - 1;
+        animationTimeS_ = animation_ >= 0 ? scene_.animations[size_t(animation_)].startS() : 0.0f;
+    }
+    if (animation_ >= 0) {
+        const Animation& a = scene_.animations[size_t(animation_)];
+        if (ImGui::Button(playing_ ? "Pause" : "Play")) playing_ = !playing_;
+        ImGui::SameLine();
+        if (ImGui::Button("|<")) animationTimeS_ = a.startS();
+        ImGui::SliderFloat("Time", &animationTimeS_, a.startS(), std::max(a.endS(), a.startS() + 1e-3f), "%.3f s");
+        ImGui::SliderFloat("Speed", &playbackSpeed_, -2.0f, 4.0f, "%.2fx");
+    }
+    // Morph weights by hand, per instance with morph targets (they replace the animation's).
+    morphOverrides_.resize(scene_.instances.size());
+    const ScenePose& pose = renderer_ ? renderer_->pose() : ScenePose{};
+    for (size_t i = 0; i < scene_.instances.size(); ++i) {
+        const MeshInstance& inst = scene_.instances[i];
+        if (inst.mesh < 0 || size_t(inst.mesh) >= scene_.meshes.size() || i >= pose.instances.size()) continue;
+        const Mesh& mesh = scene_.meshes[size_t(inst.mesh)];
+        const size_t targets = pose.instances[i].morphWeights.size();
+        if (targets == 0) continue;
+        ImGui::PushID(int(i));
+        bool byHand = !morphOverrides_[i].empty();
+        if (ImGui::Checkbox(fmt::format("Morph weights of {} by hand", inst.nodeName.empty() ? mesh.name : inst.nodeName).c_str(),
+                            &byHand))
+            morphOverrides_[i] = byHand ? pose.instances[i].morphWeights : std::vector<float>{};
+        if (byHand) {
+            morphOverrides_[i].resize(targets, 0.0f);
+            for (size_t t = 0; t < targets; ++t) {
+                const std::string name = t < mesh.targetNames.size() ? mesh.targetNames[t] : fmt::format("target {}", t);
+                ImGui::SliderFloat(name.c_str(), &morphOverrides_[i][t], 0.0f, 1.0f, "%.2f");
+            }
+        }
+        ImGui::PopID();
+    }
 }
 
 void Viewer::panelTechniques() {
@@ -439,6 +503,10 @@ void Viewer::panelTiming() {
         ImGui::Text("GPU %.2f ms (timestamps)", lastStats_.gpuMs);
         for (const PassTime& p : lastStats_.passes) ImGui::BulletText("%s %.2f ms", p.name.c_str(), p.gpuMs);
     }
+    if (lastStats_.eyes > 0)
+        ImGui::TextDisabled("%u eye(s), %s, MSAA %ux", lastStats_.eyes,
+                            lastStats_.eyeDrawing == EyeDrawing::InstancedLayers ? "instanced layers" : "multiview",
+                            settings_.msaaSamples);
     std::vector<float> history;
     float highest = 1.0f;
     for (const Timing& t : timings_) {

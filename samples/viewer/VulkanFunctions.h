@@ -58,7 +58,13 @@ namespace preskin::viewer {
     X(vkBindBufferMemory)                  \
     X(vkMapMemory)                         \
     X(vkUnmapMemory)                       \
-    X(vkInvalidateMappedMemoryRanges)
+    X(vkInvalidateMappedMemoryRanges)      \
+    X(vkCreateImage)                       \
+    X(vkDestroyImage)                      \
+    X(vkGetImageMemoryRequirements)        \
+    X(vkBindImageMemory)                   \
+    X(vkCmdCopyImage)                      \
+    X(vkCmdClearColorImage)
 
 struct VulkanFunctions {
 #define PRESKIN_VIEWER_DECLARE(name) PFN_##name name = nullptr;

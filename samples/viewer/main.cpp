@@ -7,10 +7,9 @@
 #include "Viewer.h"
 #include "ViewerOptions.h"
 
-#include <CLI/CLI.hpp>
-#include <fmt/core.h>
+#include "CommandLine.h"  // samples/common
 
-#include <exception>
+#include <CLI/CLI.hpp>
 
 int main(int argc, char** argv) {
     preskin::viewer::ViewerOptions options;
@@ -20,12 +19,10 @@ int main(int argc, char** argv) {
         "Home reset view, F12 or P screenshot, V vsync, F5 reload shaders, F1 panels. Drop .gltf/.glb/.hdr/.exr "
         "files onto the window to load them.");
     preskin::viewer::addViewerOptions(app, options);
-    CLI11_PARSE(app, argc, argv);
-    try {
+    // A failure to parse or to start: one line "preskin: error: ...", exit 1. Problems while it
+    // runs go to the Messages panel (and stderr); see Viewer::run for the exit status then.
+    return preskin::cli::runCommandLine(app, argc, argv, [&options] {
         preskin::viewer::Viewer viewer(options);
         return viewer.run();
-    } catch (const std::exception& e) {
-        fmt::print(stderr, "preskin-viewer: {}\n", e.what());
-        return 1;
-    }
+    });
 }

@@ -40,7 +40,8 @@ PRESKIN_CONST(uint, kSpecDebugView, 2)      // kDebug*
 PRESKIN_CONST(uint, kSpecAlphaMode, 3)      // 0 opaque, 1 mask, 2 blend
 PRESKIN_CONST(uint, kSpecSkinFeatures, 4)   // bit mask of kSkin* (shared/skin_features.h)
 PRESKIN_CONST(uint, kSpecLightLoop, 5)      // kLightLoopClustered or kLightLoopAll
-PRESKIN_CONST(uint, kSpecSpecular, 6)       // 1: specular and Fresnel on; 0: diffuse only (RenderSettings::specular)
+PRESKIN_CONST(uint, kSpecAlphaToCoverage, 6)  // 1: alpha-mask coverage from alpha (MSAA), 0: discard
+PRESKIN_CONST(uint, kSpecSpecular, 7)       // 1: specular and Fresnel on; 0: diffuse only (RenderSettings::specular)
 
 PRESKIN_CONST(uint, kModelStandard, 0)
 PRESKIN_CONST(uint, kModelSkin, 1)
@@ -79,21 +80,32 @@ struct GpuInstance {
 };
 PRESKIN_CHECK_SIZE(GpuInstance, 144)
 
-struct FrameUniforms {
+// The most eyes (multiview views) one frame draws; equals preskin::kMaxEyes (<preskin/View.h>).
+PRESKIN_CONST(uint, kMaxEyes, 6)
+
+struct EyeUniforms {
     mat4 clipFromWorld;
-    mat4 viewFromWorld;
+    vec4 positionWs;            // xyz camera position, w unused
+    vec4 viewDepthFromWorld;    // view depth (m, along the view direction) = dot(this, vec4(p, 1))
+};
+PRESKIN_CHECK_SIZE(EyeUniforms, 96)
+
+struct FrameUniforms {
+    EyeUniforms eyes[kMaxEyes]; // indexed by gl_ViewIndex
+    mat4 clusterFromWorld;      // light grid camera (ClusterCamera): rows clip x, clip y, view depth, clip w
     mat4 shadowClipFromWorld;   // directional shadow: orthographic, depth 0 (near) .. 1 (far)
-    vec4 cameraPositionWs;      // xyz, w: exposure
-    vec4 viewport;              // width, height, 1/width, 1/height
+    vec4 params;                // x: exposure, y: eye count
+    vec4 viewport;              // per eye: width, height, 1/width, 1/height
     vec4 shadowParams;          // x texel size (m), y Gaussian sigma (texels), z depth range (m), w map size
     vec4 shadowDirectionWs;     // xyz direction the shadow light travels, w: 1 when a shadow map exists
     vec4 shRadiance[9];         // L2 SH of environment radiance, RGB (environment intensity applied)
     uvec4 lightCounts;          // x: lights, y: directional lights (first y entries), z: cluster index capacity
-    vec4 clusterScale;          // x,y: tiles per pixel, z,w: depth slice = log2(viewDepth) * z + w
+    vec4 clusterScale;          // x,y: tiles per unit of cluster-camera NDC (tile = (ndc + 1) * xy),
+                                // z,w: depth slice = log2(viewDepth) * z + w
     uvec4 clusterDims;          // x, y, z clusters; w: max lights per cluster
     LutMapping lut;             // skin LUT coordinates (shared/lut_mapping.h)
 };
-PRESKIN_CHECK_SIZE(FrameUniforms, 3 * 64 + 4 * 16 + 9 * 16 + 3 * 16 + 128)
+PRESKIN_CHECK_SIZE(FrameUniforms, 6 * 96 + 2 * 64 + 4 * 16 + 9 * 16 + 3 * 16 + 128)
 
 // Per-texture transform rows (KHR_texture_transform): uv' = (dot(r0.xyz, (u,v,1)), dot(r1.xyz, (u,v,1))).
 struct GpuUvTransform {

@@ -52,7 +52,7 @@ ClusterGrid buildLists(Context& context, ClusterSettings settings, ClusterBuild 
     ClusterBuilder builder(device);
     settings.build = build;
     gpu::FrameUniforms frame{};
-    builder.prepare(0, settings, view, {kWidth, kHeight}, Bounds{}, gpuLights, firstLocal, lightBuffer, frame);
+    builder.prepare(0, settings, clusterCamera(view, kWidth, kHeight), Bounds{}, gpuLights, firstLocal, lightBuffer, frame);
     device.submitAndWait([&](VkCommandBuffer cmd) { builder.record(cmd, 0); });
     EXPECT_EQ(builder.usesGpu(0), build == ClusterBuild::Gpu);
     return builder.readBack(0);
@@ -92,7 +92,7 @@ TEST_F(ClusterBuildGpu, ComputeBuildMatchesCpuBuildAndReference) {
         // Both builds run the same tests; float rounding may differ only where a light grazes a froxel.
         EXPECT_LE(double(differing), 1e-3 * double(cpu.indices.size()))
             << differing << " of " << cpu.indices.size() << " entries differ";
-        const ConservativeCheck c = checkConservative(gpu, view, lights);
+        const ConservativeCheck c = checkConservative(gpu, lights);
         EXPECT_EQ(c.missing, 0u) << c.firstProblem;
         EXPECT_EQ(c.badLists, 0u) << c.firstProblem;
         EXPECT_GT(c.required, 2000u);
@@ -173,11 +173,11 @@ std::vector<Light> frameLights(const Scene& scene, const View& view, const Clust
         if (i % 3 == 2) lights.push_back(spotLight(p, randomDirection(rng), uniform(rng, 0.4f, 2.0f), uniform(rng, 0.2f, 1.2f), 3.0f));
         else lights.push_back(pointLight(p, uniform(rng, 0.2f, 0.9f), color, 2.0f));
     }
-    const ClusterGridShape s = clusterGridShape(settings, view, kWidth, kHeight, scene.worldBounds());
-    const glm::mat4 worldFromView = glm::inverse(view.viewFromWorld);
-    const glm::mat4 viewFromClip = glm::inverse(view.clipFromView);
+    const ClusterGridShape s = clusterGridShape(settings, clusterCamera(view, kWidth, kHeight), scene.worldBounds());
+    const glm::mat4 worldFromView = glm::inverse(view.eye().viewFromWorld);
+    const glm::mat4 viewFromClip = glm::inverse(view.eye().clipFromView);
     auto edgePoint = [&](float px, float py, float d) {
-        const glm::vec4 clip = view.clipFromView * glm::vec4(0.0f, 0.0f, -d, 1.0f);
+        const glm::vec4 clip = view.eye().clipFromView * glm::vec4(0.0f, 0.0f, -d, 1.0f);
         glm::vec4 p = viewFromClip * glm::vec4(px / kWidth * 2.0f - 1.0f, py / kHeight * 2.0f - 1.0f, clip.z / clip.w, 1.0f);
         p /= p.w;
         return glm::vec3(worldFromView * p);
@@ -193,7 +193,7 @@ std::vector<Light> frameLights(const Scene& scene, const View& view, const Clust
             }
     // Lights on the floor and the wall where tile edges meet them: they light surfaces on both
     // sides of tile and slice boundaries, so a list missing them shows in the image.
-    const glm::vec3 eye = view.positionWs;
+    const glm::vec3 eye = view.eye().positionWs;
     for (uint32_t py = 4; py < kHeight; py += 9)
         for (uint32_t tx = 1; tx < s.dims.x; tx += 2) {
             const glm::vec3 dir = glm::normalize(edgePoint(float(tx * s.tileSizePx), float(py), 1.0f) - eye);
@@ -296,7 +296,7 @@ TEST_F(ClusterBuildGpu, LightCountViewReportsEachPixelsList) {
     for (uint32_t y = 0; y < kHeight; ++y)
         for (uint32_t x = 0; x < kWidth; ++x) {
             const float* px = &image.rgba32f[(size_t(y) * kWidth + x) * 4];
-            if (!(px[2] > 0.5f * view.nearM)) continue;
+            if (!(px[2] > 0.5f * view.eye().nearM)) continue;
             ++covered;
             const uint32_t z = grid.shape.sliceOf(px[2]);
             const uint32_t froxel = grid.shape.froxelIndex(x / grid.shape.tileSizePx, y / grid.shape.tileSizePx, z);

@@ -73,7 +73,7 @@ double ReferenceGpu::planeDifference(bool textured) {
     Renderer renderer(context(), scene, environment, &luts, settings);
     const RenderedImage lambert = renderer.render(view, size, size, OutputEncoding::LinearFloat);
     const DiffusionReference reference(scene, scene.lights, environment.radianceSh(), luts.profile());
-    const ReferenceImage ref = reference.render(view, size, size, settings.exposure);
+    const ReferenceImage ref = reference.render(view.eye(), size, size, settings.exposure);
 
     double worst = 0.0;
     size_t compared = 0;

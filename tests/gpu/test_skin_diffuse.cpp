@@ -87,7 +87,7 @@ TEST_F(SkinDiffuse, SphereWithVertexCurvatureMatchesLutAtAnalyticCurvature) {
     const std::vector<SphereHit> hits = traceSphere(view, size, size, glm::dvec3(0.0), radiusM);
     const glm::dvec3 L = -glm::normalize(glm::dvec3(light.directionWs));
     const glm::dvec3 E = glm::dvec3(light.color) * double(light.intensity);
-    const glm::dvec3 eye(view.positionWs);
+    const glm::dvec3 eye(view.eye().positionWs);
     const double F0 = 0.028 * double(skin.specularIntensity);
     size_t interior = 0;
     size_t within = 0;

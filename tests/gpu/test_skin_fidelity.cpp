@@ -59,7 +59,7 @@ protected:
 
     // The ray through pixel (x, y)'s centre, as the rasterizer samples it.
     void pixelRay(uint32_t x, uint32_t y, glm::dvec3& origin, glm::dvec3& direction) const {
-        const glm::dmat4 worldFromClip = glm::inverse(glm::dmat4(view_.clipFromWorld()));
+        const glm::dmat4 worldFromClip = glm::inverse(glm::dmat4(view_.eye().clipFromWorld()));
         const glm::dvec2 ndc((x + 0.5) / kSize * 2.0 - 1.0, (y + 0.5) / kSize * 2.0 - 1.0);
         const glm::dvec4 a = worldFromClip * glm::dvec4(ndc, 1.0, 1.0);
         const glm::dvec4 b = worldFromClip * glm::dvec4(ndc, 0.5, 1.0);
@@ -205,7 +205,7 @@ TEST_F(SkinFidelity, InsideOfABowlIsShadedWithTheConcaveResponse) {
     const RenderedImage image = renderer.render(view, size, size, OutputEncoding::LinearFloat);
 
     // The far intersection of each pixel's ray with the sphere: the inside of the bowl.
-    const glm::dmat4 worldFromClip = glm::inverse(glm::dmat4(view.clipFromWorld()));
+    const glm::dmat4 worldFromClip = glm::inverse(glm::dmat4(view.eye().clipFromWorld()));
     size_t compared = 0, concaveMisses = 0, convexMisses = 0, pastTerminator = 0;
     for (uint32_t y = 0; y < size; ++y)
         for (uint32_t x = 0; x < size; ++x) {

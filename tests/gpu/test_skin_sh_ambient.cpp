@@ -158,7 +158,7 @@ TEST_F(SkinShAmbient, SphereMatchesBruteForceIntegrationWithSkinTransfer) {
     for (int c = 0; c < 3; ++c) D[size_t(c)] = sphereScatterTable(luts.profile(), c, curvaturePerMm, 512);
 
     const std::vector<SphereHit> hits = traceSphere(view, size, size, glm::dvec3(0.0), radiusM);
-    const glm::dvec3 eye(view.positionWs);
+    const glm::dvec3 eye(view.eye().positionWs);
     size_t interior = 0;
     size_t within = 0;
     double worst = 0.0;

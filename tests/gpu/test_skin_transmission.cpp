@@ -23,7 +23,7 @@ namespace {
 
 // Mean linear colour of a square of pixels around the projection of a world point.
 glm::dvec3 meanAround(const RenderedImage& image, const View& view, const glm::vec3& pointWs, int halfSize) {
-    const glm::vec4 clip = view.clipFromWorld() * glm::vec4(pointWs, 1.0f);
+    const glm::vec4 clip = view.eye().clipFromWorld() * glm::vec4(pointWs, 1.0f);
     const int cx = static_cast<int>(std::floor((clip.x / clip.w * 0.5f + 0.5f) * float(image.width)));
     const int cy = static_cast<int>(std::floor((clip.y / clip.w * 0.5f + 0.5f) * float(image.height)));
     glm::dvec3 sum(0.0);

@@ -67,8 +67,8 @@ TEST_F(StandardBrdf, SphereMatchesCpuReference) {
     const RenderedImage image = renderer.render(view, size, size, OutputEncoding::LinearFloat);
     dumpImage("standard_brdf_sphere", image);
 
-    const glm::dmat4 worldFromClip = glm::inverse(glm::dmat4(view.clipFromWorld()));
-    const glm::dvec3 eye(view.positionWs);
+    const glm::dmat4 worldFromClip = glm::inverse(glm::dmat4(view.eye().clipFromWorld()));
+    const glm::dvec3 eye(view.eye().positionWs);
     auto hit = [&](double px, double py, glm::dvec3& p) {
         const glm::dvec2 ndc(px / size * 2.0 - 1.0, py / size * 2.0 - 1.0);
         glm::dvec4 farPoint = worldFromClip * glm::dvec4(ndc, 0.5, 1.0);

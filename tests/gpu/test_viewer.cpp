@@ -392,6 +392,63 @@ TEST_F(Viewer, ScreenshotMatchesHeadlessRender) {
     expectMatchesHeadless(shot, kWidth, kHeight);
 }
 
+// The side-by-side stereo preview with MSAA is the headless stereo render (eyes side by side) of
+// the same camera, IPD and sample count.
+TEST_F(Viewer, StereoPreviewMatchesHeadlessStereoRender) {
+    requireDisplay();
+    const fs::path shot = dir_ / "stereo.png";
+    std::vector<std::string> args = scriptedArgs(shot, 4);
+    args.insert(args.end(), {"--stereo", "--ipd", "0.08", "--msaa", "4"});
+    const ProcessResult r = viewer(args);
+    ASSERT_EQ(r.exitCode, 0) << describe(r);
+    EXPECT_FALSE(mentionsValidation(r)) << describe(r);
+    const fs::path reference = dir_ / "headless.png";
+    const ProcessResult cli = headlessRender(reference, kWidth / 2, kHeight, {"--stereo", "--ipd", "0.08", "--msaa", "4"});
+    ASSERT_EQ(cli.exitCode, 0) << describe(cli);
+    const auto a = readPng(shot);
+    const auto b = readPng(reference);
+    ASSERT_TRUE(a && b);
+    ASSERT_EQ(a->width, kWidth);
+    ASSERT_EQ(b->width, kWidth);
+    ASSERT_EQ(a->height, b->height);
+    const double fraction = differingFraction(*a, *b, 5);
+    EXPECT_LE(fraction, 0.001) << fraction * 100.0 << "% of the pixels differ by more than 5/255 (kept in " << dir_ << ")";
+    // The halves are two different eyes of one head.
+    size_t lit = 0, unlike = 0;
+    for (int y = 0; y < kHeight; ++y)
+        for (int x = 0; x < kWidth / 2; ++x) {
+            const size_t l = (size_t(y) * kWidth + size_t(x)) * 4;
+            const size_t rr = l + size_t(kWidth / 2) * 4;
+            lit += std::abs(int(a->pixels[l]) - int(a->pixels[0])) > 20;
+            unlike += std::abs(int(a->pixels[l]) - int(a->pixels[rr])) > 10;
+        }
+    EXPECT_GT(lit, size_t(kWidth / 2 * kHeight / 10));
+    EXPECT_GT(unlike, 50u);
+}
+
+// An animation started at a time (--animation, --time) poses the scene as `preskin render` does.
+TEST_F(Viewer, AnimatedSceneMatchesHeadlessRenderAtTheSameTime) {
+    requireDisplay();
+    const std::string tube = std::string(PRESKIN_SOURCE_DIR) + "/samples/assets/tube/tube.gltf";
+    const fs::path shot = dir_ / "tube.png";
+    std::vector<std::string> args = scriptedArgs(shot, 3);
+    args.insert(args.begin(), tube);
+    args.insert(args.end(), {"--animation", "bend", "--time", "0.8"});
+    const ProcessResult r = viewer(args);
+    ASSERT_EQ(r.exitCode, 0) << describe(r);
+    const fs::path reference = dir_ / "headless.png";
+    const ProcessResult cli = headlessRender(reference, kWidth, kHeight, {tube, "--animation", "bend", "--time", "0.8"});
+    ASSERT_EQ(cli.exitCode, 0) << describe(cli);
+    const fs::path rest = dir_ / "rest.png";
+    ASSERT_EQ(headlessRender(rest, kWidth, kHeight, {tube}).exitCode, 0);
+    const auto a = readPng(shot);
+    const auto b = readPng(reference);
+    const auto c = readPng(rest);
+    ASSERT_TRUE(a && b && c);
+    EXPECT_LE(differingFraction(*a, *b, 5), 0.001);
+    EXPECT_GT(differingFraction(*b, *c, 5), 0.01) << "the bend should show";
+}
+
 TEST_F(Viewer, RunTimeCompiledShadersRenderLikeBuiltIn) {
     requireDisplay();
     const fs::path shot = dir_ / "compiled.png";

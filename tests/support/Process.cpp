@@ -15,9 +15,22 @@
 
 extern char** environ;
 
+#if defined(__SANITIZE_ADDRESS__)
+#define PRESKIN_TESTS_UNDER_ASAN 1
+#elif defined(__has_feature)
+#if __has_feature(address_sanitizer)
+#define PRESKIN_TESTS_UNDER_ASAN 1
+#endif
+#endif
+#ifndef PRESKIN_TESTS_UNDER_ASAN
+#define PRESKIN_TESTS_UNDER_ASAN 0
+#endif
+
 namespace preskin::test {
 
 namespace fs = std::filesystem;
+
+bool underAddressSanitizer() { return PRESKIN_TESTS_UNDER_ASAN != 0; }
 
 std::string readFile(const fs::path& p) {
     std::ifstream f(p);
@@ -121,6 +134,23 @@ ProcessResult runProcess(const fs::path& program, const std::vector<std::string>
 
 ProcessResult runCli(const std::vector<std::string>& args, const fs::path& dir, double limitS) {
     return runProcess(PRESKIN_CLI_PATH, args, {}, dir, limitS);
+}
+
+ProcessResult runWithMemoryLimit(const fs::path& program, const std::vector<std::string>& args, const fs::path& dir,
+                                 double limitS, uint64_t memoryBytes) {
+#if PRESKIN_TESTS_UNDER_ASAN
+    // AddressSanitizer reserves terabytes of address space for its shadow, so an address-space
+    // limit cannot apply; its own resident-memory limit ends the program with a report instead.
+    const char* options = std::getenv("ASAN_OPTIONS");
+    const std::string limit = "hard_rss_limit_mb=" + std::to_string(memoryBytes >> 20);
+    return runProcess(program, args, {"ASAN_OPTIONS=" + (options && *options ? std::string(options) + ":" : "") + limit},
+                      dir, limitS);
+#else
+    std::vector<std::string> shellArgs{"-c", "ulimit -v " + std::to_string(memoryBytes / 1024) + " && exec \"$0\" \"$@\"",
+                                       program.string()};
+    shellArgs.insert(shellArgs.end(), args.begin(), args.end());
+    return runProcess("/bin/sh", shellArgs, {}, dir, limitS);
+#endif
 }
 
 }  // namespace preskin::test

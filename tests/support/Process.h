@@ -3,12 +3,16 @@
 // folder, and a time limit after which the process is killed.
 #pragma once
 
+#include <cstdint>
 #include <filesystem>
 #include <string>
 #include <sys/types.h>
 #include <vector>
 
 namespace preskin::test {
+
+// True in the sanitizer build (AddressSanitizer): timings mean nothing there.
+bool underAddressSanitizer();
 
 struct ProcessResult {
     int exitCode = -1;  // -1: killed by a signal or by the time limit
@@ -49,5 +53,9 @@ ProcessResult runProcess(const std::filesystem::path& program, const std::vector
                          const std::vector<std::string>& extraEnv, const std::filesystem::path& dir, double limitS);
 // `preskin <args>` (the built tool), output files in `dir`.
 ProcessResult runCli(const std::vector<std::string>& args, const std::filesystem::path& dir, double limitS = 300.0);
+// `program <args>` with its address space limited to `memoryBytes` (ulimit -v in /bin/sh, which
+// then execs the program): an allocation beyond it fails inside the program.
+ProcessResult runWithMemoryLimit(const std::filesystem::path& program, const std::vector<std::string>& args,
+                                 const std::filesystem::path& dir, double limitS, uint64_t memoryBytes);
 
 }  // namespace preskin::test

@@ -15,7 +15,7 @@ namespace preskin::test {
 
 std::vector<SphereHit> traceSphere(const View& view, uint32_t width, uint32_t height, const glm::dvec3& centerWs,
                                    double radiusM) {
-    const glm::dmat4 worldFromClip = glm::inverse(glm::dmat4(view.clipFromWorld()));
+    const glm::dmat4 worldFromClip = glm::inverse(glm::dmat4(view.eye().clipFromWorld()));
     // Ray through image position (px, py) in pixels: from the near plane (reversed Z: depth 1)
     // towards depth 0.5, which works for perspective and orthographic projections.
     auto hit = [&](double px, double py, glm::dvec3& p) {

@@ -3,7 +3,11 @@
 // JPEG encoding through OpenImageIO. Used by the glTF loader tests.
 #pragma once
 
+#include <preskin/Error.h>
+#include <preskin/Scene.h>
+
 #include <OpenImageIO/imageio.h>
+#include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 
 #include <cstdint>
@@ -87,6 +91,29 @@ inline std::vector<uint8_t> encodeImage(const fs::path& dir, const std::string& 
     }
     out->close();
     return readBytes(path);
+}
+
+// Loads `path`, expects a preskin::Error, returns its message.
+inline std::string loadError(const fs::path& path) {
+    try {
+        preskin::Scene::load(path);
+    } catch (const preskin::Error& e) {
+        return e.what();
+    } catch (const std::exception& e) {
+        return std::string("unexpected exception type: ") + e.what();
+    }
+    return "no error";
+}
+
+// Expects loading `path` to fail with one line that starts with the file and holds every fragment.
+template <typename Fragments>
+void expectLoadError(const fs::path& path, const Fragments& fragments) {
+    const std::string message = loadError(path);
+    EXPECT_EQ(message.rfind(path.string() + ": ", 0), 0u) << "does not start with the file: " << message;
+    EXPECT_EQ(message.find('\n'), std::string::npos) << "not one line: " << message;
+    for (const char* fragment : fragments) {
+        EXPECT_NE(message.find(fragment), std::string::npos) << "'" << fragment << "' missing in: " << message;
+    }
 }
 
 // A glTF document under construction plus its one binary buffer.

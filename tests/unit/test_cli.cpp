@@ -4,6 +4,7 @@
 #include "support/CliTest.h"
 #include "support/Process.h"
 
+#include <OpenImageIO/imageio.h>
 #include <gtest/gtest.h>
 
 #include <sys/stat.h>
@@ -15,6 +16,7 @@
 #include <fstream>
 #include <sstream>
 #include <string>
+#include <tuple>
 #include <vector>
 
 namespace {
@@ -144,6 +146,84 @@ TEST_F(Cli, RenderWithValidationWritesImageAndFrameTime) {
     EXPECT_NE(r.out.find(out.string()), std::string::npos) << r.out;
     EXPECT_NE(r.out.find("frame time"), std::string::npos) << r.out;
     EXPECT_NE(r.out.find(" ms"), std::string::npos) << r.out;
+}
+
+// 8-bit RGBA pixels of a PNG, with its size.
+std::vector<unsigned char> readPng(const fs::path& path, int& width, int& height) {
+    auto in = OIIO::ImageInput::open(path.string());
+    if (!in) return {};
+    const OIIO::ImageSpec& spec = in->spec();
+    width = spec.width;
+    height = spec.height;
+    std::vector<unsigned char> pixels(size_t(width) * size_t(height) * 4);
+    in->read_image(0, 0, 0, 4, OIIO::TypeDesc::UINT8, pixels.data());
+    return pixels;
+}
+
+TEST_F(Cli, StereoWritesEyesSideBySideAndEyeRendersOneOfThem) {
+    const std::string scene = (kData / "triangle.gltf").string();
+    auto render = [&](const std::string& name, const std::vector<std::string>& extra) {
+        const fs::path out = dir_ / name;
+        auto args = renderArgs(scene, out);
+        args.insert(args.end(), extra.begin(), extra.end());
+        args.push_back("--validation");
+        const CliResult r = run(args);
+        EXPECT_EQ(r.exitCode, 0) << r.err;
+        int w = 0, h = 0;
+        std::vector<unsigned char> pixels = readPng(out, w, h);
+        return std::make_tuple(pixels, w, h);
+    };
+    for (const std::string msaa : {"1", "4"}) {
+        SCOPED_TRACE("MSAA " + msaa);
+        const auto [both, w, h] = render("stereo.png", {"--stereo", "--ipd", "0.3", "--msaa", msaa});
+        ASSERT_EQ(w, 64);
+        ASSERT_EQ(h, 32);
+        const auto [left, lw, lh] = render("left.png", {"--eye", "left", "--ipd", "0.3", "--msaa", msaa});
+        const auto [right, rw, rh] = render("right.png", {"--eye", "right", "--ipd", "0.3", "--msaa", msaa});
+        ASSERT_EQ(lw, 32);
+        ASSERT_EQ(rw, 32);
+        size_t differ = 0, eyesDiffer = 0;
+        for (int y = 0; y < 32; ++y)
+            for (int x = 0; x < 32; ++x)
+                for (int c = 0; c < 4; ++c) {
+                    const size_t i = (size_t(y) * 32 + size_t(x)) * 4 + size_t(c);
+                    const size_t l = (size_t(y) * 64 + size_t(x)) * 4 + size_t(c);
+                    const size_t r = l + 32 * 4;
+                    differ += std::abs(int(both[l]) - int(left[i])) > 1;
+                    differ += std::abs(int(both[r]) - int(right[i])) > 1;
+                    eyesDiffer += left[i] != right[i];
+                }
+        EXPECT_EQ(differ, 0u);
+        EXPECT_GT(eyesDiffer, 20u) << "a 30 cm IPD moves the triangle between the eyes";
+    }
+}
+
+TEST_F(Cli, StereoAndMsaaRefuseWhatCannotBeDrawn) {
+    const std::string scene = (kData / "triangle.gltf").string();
+    const fs::path out = dir_ / "out.png";
+    {
+        // lavapipe offers 1 and 4 samples only.
+        auto args = renderArgs(scene, out);
+        args.insert(args.end(), {"--msaa", "8"});
+        const CliResult r = run(args);
+        if (preskin::test::testDevice() == "llvmpipe") expectError(r, {"msaa", "8"}, out);
+    }
+    for (const char* ipd : {"-0.1", "nan", "2"}) {
+        auto args = renderArgs(scene, out);
+        args.insert(args.end(), {"--stereo", "--ipd", ipd});
+        const CliResult r = run(args);
+        EXPECT_NE(r.exitCode, 0) << ipd;
+        EXPECT_NE(r.err.find("--ipd"), std::string::npos) << r.err;
+        EXPECT_FALSE(fs::exists(out));
+    }
+    {
+        auto args = renderArgs(scene, out);
+        args.insert(args.end(), {"--eye", "middle"});
+        const CliResult r = run(args);
+        EXPECT_NE(r.exitCode, 0);
+        EXPECT_NE(r.err.find("--eye"), std::string::npos) << r.err;
+        EXPECT_FALSE(fs::exists(out));
+    }
 }
 
 TEST_F(Cli, HelpEverywhere) {

@@ -43,9 +43,9 @@ ClusterSettings testSettings() {
 std::vector<Light> randomLights(uint32_t count, uint32_t seed) { return preskin::test::randomLights(count, seed, 4.6f); }
 
 // Every required light is listed; lists ascend, hold no directional light and no duplicates.
-ConservativeCheck expectConservative(const ClusterGrid& grid, const View& view, const std::vector<Light>& lights,
+ConservativeCheck expectConservative(const ClusterGrid& grid, const std::vector<Light>& lights,
                                      const std::string& what) {
-    const ConservativeCheck c = checkConservative(grid, view, lights);
+    const ConservativeCheck c = checkConservative(grid, lights);
     EXPECT_EQ(c.missing, 0u) << what << ": " << c.firstProblem;
     EXPECT_EQ(c.badLists, 0u) << what << ": " << c.firstProblem;
     return c;
@@ -59,7 +59,7 @@ TEST(ClusterGridShape, SliceFormulaMatchesSliceStarts) {
         Bounds bounds;
         bounds.extend(glm::vec3(-1.0f, -1.0f, -1.5f));
         bounds.extend(glm::vec3(1.0f, 1.2f, 1.0f));
-        const ClusterGridShape s = clusterGridShape(settings, view, kWidth, kHeight, bounds);
+        const ClusterGridShape s = clusterGridShape(settings, clusterCamera(view, kWidth, kHeight), bounds);
         EXPECT_EQ(s.dims, glm::uvec3(10, 8, 12));
         EXPECT_EQ(s.sliceOf(s.nearM), 0u);
         EXPECT_EQ(s.sliceOf(1e6f), s.dims.z - 1);
@@ -79,7 +79,7 @@ TEST(ClusterGridShape, SliceFormulaMatchesSliceStarts) {
     // A tile size that does not divide the image: the last tiles are partial.
     ClusterSettings odd = testSettings();
     odd.tileSizePx = 13;
-    EXPECT_EQ(clusterGridShape(odd, view, kWidth, kHeight, {}).dims, glm::uvec3(13, 10, 12));
+    EXPECT_EQ(clusterGridShape(odd, clusterCamera(view, kWidth, kHeight), {}).dims, glm::uvec3(13, 10, 12));
 }
 
 TEST(ClusterGridShape, FitsTheSceneDepthRange) {
@@ -90,22 +90,22 @@ TEST(ClusterGridShape, FitsTheSceneDepthRange) {
     float minDepth = 1e9f, maxDepth = 0.0f;
     for (int i = 0; i < 8; ++i) {
         const glm::vec3 c((i & 1) ? 0.5f : -0.5f, (i & 2) ? 0.5f : -0.5f, (i & 4) ? 0.5f : -0.5f);
-        const float d = -(view.viewFromWorld * glm::vec4(c, 1.0f)).z;
+        const float d = -(view.eye().viewFromWorld * glm::vec4(c, 1.0f)).z;
         minDepth = std::min(minDepth, d);
         maxDepth = std::max(maxDepth, d);
     }
     ClusterSettings settings = testSettings();
     settings.fitDepthToScene = true;
-    const ClusterGridShape fitted = clusterGridShape(settings, view, kWidth, kHeight, bounds);
+    const ClusterGridShape fitted = clusterGridShape(settings, clusterCamera(view, kWidth, kHeight), bounds);
     EXPECT_NEAR(fitted.logStartM, minDepth, 1e-5f);
     EXPECT_NEAR(fitted.logEndM, maxDepth, 1e-5f);
     settings.fitDepthToScene = false;
-    const ClusterGridShape unfitted = clusterGridShape(settings, view, kWidth, kHeight, bounds);
+    const ClusterGridShape unfitted = clusterGridShape(settings, clusterCamera(view, kWidth, kHeight), bounds);
     EXPECT_NEAR(unfitted.logStartM, settings.nearSliceM, 1e-6f);
-    EXPECT_NEAR(unfitted.logEndM, view.farM, 1e-5f);
+    EXPECT_NEAR(unfitted.logEndM, view.eye().farM, 1e-5f);
     // Empty bounds: nothing to fit.
     settings.fitDepthToScene = true;
-    EXPECT_NEAR(clusterGridShape(settings, view, kWidth, kHeight, Bounds{}).logEndM, view.farM, 1e-5f);
+    EXPECT_NEAR(clusterGridShape(settings, clusterCamera(view, kWidth, kHeight), Bounds{}).logEndM, view.eye().farM, 1e-5f);
 }
 
 TEST(ClusterGrid, EveryTouchingLightIsListed) {
@@ -114,7 +114,7 @@ TEST(ClusterGrid, EveryTouchingLightIsListed) {
         const std::vector<Light> lights = randomLights(260, seed);
         const ClusterGrid grid = buildClusterGrid(testSettings(), view, kWidth, kHeight, {}, lights);
         EXPECT_EQ(grid.overflowedClusters, 0u);
-        const ConservativeCheck c = expectConservative(grid, view, lights, "random seed " + std::to_string(seed));
+        const ConservativeCheck c = expectConservative(grid, lights, "random seed " + std::to_string(seed));
         EXPECT_GT(c.required, 2000u) << "the scenario should exercise many froxels";
         // Not only conservative but tight: point lights are listed in few froxels they miss.
         EXPECT_LE(double(c.listedPointEntries), 1.5 * double(c.requiredPointEntries));
@@ -124,12 +124,12 @@ TEST(ClusterGrid, EveryTouchingLightIsListed) {
 TEST(ClusterGrid, LightsStraddlingFroxelEdgesAndCorners) {
     const View view = testView();
     const ClusterSettings settings = testSettings();
-    const ClusterGridShape s = clusterGridShape(settings, view, kWidth, kHeight, {});
-    const glm::mat4 worldFromView = glm::inverse(view.viewFromWorld);
-    const glm::mat4 viewFromClip = glm::inverse(view.clipFromView);
+    const ClusterGridShape s = clusterGridShape(settings, clusterCamera(view, kWidth, kHeight), {});
+    const glm::mat4 worldFromView = glm::inverse(view.eye().viewFromWorld);
+    const glm::mat4 viewFromClip = glm::inverse(view.eye().clipFromView);
     // A point on tile edge (px, py) at depth d, in world space.
     auto edgePoint = [&](float px, float py, float d) {
-        const glm::vec4 clip = view.clipFromView * glm::vec4(0.0f, 0.0f, -d, 1.0f);
+        const glm::vec4 clip = view.eye().clipFromView * glm::vec4(0.0f, 0.0f, -d, 1.0f);
         glm::vec4 p = viewFromClip * glm::vec4(px / kWidth * 2.0f - 1.0f, py / kHeight * 2.0f - 1.0f, clip.z / clip.w, 1.0f);
         p /= p.w;
         return glm::vec3(worldFromView * p);
@@ -157,13 +157,13 @@ TEST(ClusterGrid, LightsStraddlingFroxelEdgesAndCorners) {
                                            uniform(rng, 0.05f, 0.3f)));
             }
     const ClusterGrid grid = buildClusterGrid(settings, view, kWidth, kHeight, {}, lights);
-    const ConservativeCheck c = expectConservative(grid, view, lights, "straddling");
+    const ConservativeCheck c = expectConservative(grid, lights, "straddling");
     EXPECT_GT(c.required, lights.size()) << "straddling lights touch several froxels each";
 }
 
 TEST(ClusterGrid, NearPlaneBehindTheCameraBeyondTheLastSliceAndUnlimited) {
     const View view = testView();
-    const glm::mat4 worldFromView = glm::inverse(view.viewFromWorld);
+    const glm::mat4 worldFromView = glm::inverse(view.eye().viewFromWorld);
     auto at = [&](float x, float y, float depth) { return glm::vec3(worldFromView * glm::vec4(x, y, -depth, 1.0f)); };
     const glm::vec3 forward(worldFromView * glm::vec4(0, 0, -1, 0));
     std::vector<Light> lights = {
@@ -179,7 +179,7 @@ TEST(ClusterGrid, NearPlaneBehindTheCameraBeyondTheLastSliceAndUnlimited) {
         pointLight(at(0.0f, 0.0f, 5.0f), 0.0f),                  // unlimited point: every froxel
     };
     const ClusterGrid grid = buildClusterGrid(testSettings(), view, kWidth, kHeight, {}, lights);
-    expectConservative(grid, view, lights, "near/far");
+    expectConservative(grid, lights, "near/far");
     // The unlimited point light is in every froxel; the light that stays behind the camera in none.
     const auto lists = froxelLists(grid);
     size_t withUnlimited = 0, withHidden = 0;
@@ -193,8 +193,8 @@ TEST(ClusterGrid, NearPlaneBehindTheCameraBeyondTheLastSliceAndUnlimited) {
 
 TEST(ClusterGrid, OffCentreAndOrthographicViews) {
     View offCentre = testView();
-    offCentre.clipFromView[2][0] = 0.35f;  // a shifted (off-axis) frustum
-    offCentre.clipFromView[2][1] = -0.2f;
+    offCentre.eye().clipFromView[2][0] = 0.35f;  // a shifted (off-axis) frustum
+    offCentre.eye().clipFromView[2][1] = -0.2f;
     Camera orthoCamera;
     orthoCamera.orthographic = true;
     orthoCamera.xmag = 2.5f;
@@ -207,7 +207,7 @@ TEST(ClusterGrid, OffCentreAndOrthographicViews) {
     for (const auto& [view, name] : {std::pair<View, const char*>{offCentre, "off-centre"}, {ortho, "orthographic"}}) {
         const std::vector<Light> lights = randomLights(200, 11);
         const ClusterGrid grid = buildClusterGrid(testSettings(), view, kWidth, kHeight, {}, lights);
-        const ConservativeCheck c = expectConservative(grid, view, lights, name);
+        const ConservativeCheck c = expectConservative(grid, lights, name);
         EXPECT_GT(c.required, 1000u) << name;
     }
 }
@@ -265,7 +265,7 @@ TEST(ClusterGrid, MoreThan255LightsPerClusterAnd4096PerView) {
     const View view = testView();
     std::vector<Light> lights = randomLights(4700, 8);
     // 300 lights around one point in view, all reaching it.
-    const glm::vec3 target = glm::vec3(glm::inverse(view.viewFromWorld) * glm::vec4(0.05f, 0.02f, -3.0f, 1.0f));
+    const glm::vec3 target = glm::vec3(glm::inverse(view.eye().viewFromWorld) * glm::vec4(0.05f, 0.02f, -3.0f, 1.0f));
     std::mt19937 rng(9);
     for (int i = 0; i < 300; ++i) lights.push_back(pointLight(target + randomDirection(rng) * 0.2f, 0.5f));
     ClusterSettings settings = testSettings();
@@ -273,7 +273,7 @@ TEST(ClusterGrid, MoreThan255LightsPerClusterAnd4096PerView) {
     const ClusterGrid grid = buildClusterGrid(settings, view, kWidth, kHeight, {}, lights);
     EXPECT_EQ(grid.overflowedClusters, 0u);
     const ClusterGridShape& s = grid.shape;
-    const glm::vec4 clip = view.clipFromWorld() * glm::vec4(target, 1.0f);
+    const glm::vec4 clip = view.eye().clipFromWorld() * glm::vec4(target, 1.0f);
     const glm::vec2 pixel = (glm::vec2(clip) / clip.w * 0.5f + 0.5f) * glm::vec2(kWidth, kHeight);
     const uint32_t froxel = s.froxelIndex(uint32_t(pixel.x) / s.tileSizePx, uint32_t(pixel.y) / s.tileSizePx, s.sliceOf(3.0f));
     const auto lists = froxelLists(grid);

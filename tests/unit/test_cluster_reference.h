@@ -35,7 +35,7 @@ struct ReferenceFroxel {
 };
 
 // `farM` replaces the last slice's infinite end.
-inline ReferenceFroxel referenceFroxel(const ClusterGridShape& shape, const View& view, uint32_t x, uint32_t y,
+inline ReferenceFroxel referenceFroxel(const ClusterGridShape& shape, const Eye& view, uint32_t x, uint32_t y,
                                        uint32_t z, double farM) {
     const glm::dmat4 clipFromView(view.clipFromView);
     const glm::dmat4 viewFromClip = glm::inverse(clipFromView);
@@ -149,7 +149,7 @@ inline std::vector<std::vector<uint32_t>> froxelLists(const ClusterGrid& grid) {
 }
 
 // A depth beyond every light's reach, to close the last slice.
-inline double farEnough(const View& view, const std::vector<Light>& lights) {
+inline double farEnough(const Eye& view, const std::vector<Light>& lights) {
     double farM = view.farM;
     for (const Light& l : lights) {
         const double depth = -(view.viewFromWorld * glm::vec4(l.positionWs, 1.0f)).z;
@@ -168,8 +168,11 @@ struct ConservativeCheck {
     std::string firstProblem;
 };
 
-// Checks every froxel of `grid` (built for `view` from `lights`, whose list entries index `lights`).
-inline ConservativeCheck checkConservative(const ClusterGrid& grid, const View& view, const std::vector<Light>& lights) {
+// Checks every froxel of `grid` (built from `lights`, whose list entries index `lights`), as
+// seen from the grid's camera (grid.camera: for one eye the eye itself; whether a camera of
+// several eyes holds every eye is checked separately, by the eyes' own points).
+inline ConservativeCheck checkConservative(const ClusterGrid& grid, const std::vector<Light>& lights) {
+    const Eye& view = grid.camera.eye;
     const ClusterGridShape& s = grid.shape;
     const double farM = farEnough(view, lights);
     const auto lists = froxelLists(grid);

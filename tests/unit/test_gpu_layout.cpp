@@ -70,10 +70,10 @@ Layouts reflect(std::span<const uint32_t> code) {
 
 TEST(GpuLayout, ForwardShaderStructsMatchCpp) {
     const Layouts l = reflect(preskin::shaders::spirv("forward.frag"));
-    PRESKIN_EXPECT_MEMBER(l, FrameUniforms, clipFromWorld);
-    PRESKIN_EXPECT_MEMBER(l, FrameUniforms, viewFromWorld);
+    PRESKIN_EXPECT_MEMBER(l, FrameUniforms, eyes);
+    PRESKIN_EXPECT_MEMBER(l, FrameUniforms, clusterFromWorld);
     PRESKIN_EXPECT_MEMBER(l, FrameUniforms, shadowClipFromWorld);
-    PRESKIN_EXPECT_MEMBER(l, FrameUniforms, cameraPositionWs);
+    PRESKIN_EXPECT_MEMBER(l, FrameUniforms, params);
     PRESKIN_EXPECT_MEMBER(l, FrameUniforms, viewport);
     PRESKIN_EXPECT_MEMBER(l, FrameUniforms, shadowParams);
     PRESKIN_EXPECT_MEMBER(l, FrameUniforms, shadowDirectionWs);
@@ -82,6 +82,9 @@ TEST(GpuLayout, ForwardShaderStructsMatchCpp) {
     PRESKIN_EXPECT_MEMBER(l, FrameUniforms, clusterScale);
     PRESKIN_EXPECT_MEMBER(l, FrameUniforms, clusterDims);
     PRESKIN_EXPECT_MEMBER(l, FrameUniforms, lut);
+    PRESKIN_EXPECT_MEMBER(l, EyeUniforms, clipFromWorld);
+    PRESKIN_EXPECT_MEMBER(l, EyeUniforms, positionWs);
+    PRESKIN_EXPECT_MEMBER(l, EyeUniforms, viewDepthFromWorld);
     PRESKIN_EXPECT_MEMBER(l, LutMapping, diffuseNoL);
     PRESKIN_EXPECT_MEMBER(l, LutMapping, diffuseCurvature);
     PRESKIN_EXPECT_MEMBER(l, LutMapping, penumbraShadow);
@@ -112,6 +115,7 @@ TEST(GpuLayout, VertexShaderStructsMatchCpp) {
     PRESKIN_EXPECT_MEMBER(l, GpuInstance, normalWorldFromObject);
     PRESKIN_EXPECT_MEMBER(l, GpuInstance, params);
     PRESKIN_EXPECT_MEMBER(l, DrawPush, indices);
+    PRESKIN_EXPECT_MEMBER(l, EyeUniforms, clipFromWorld);
 }
 
 }  // namespace

@@ -67,7 +67,7 @@ TEST_F(BakeCli, BadInputIsRefusedAndNothingIsWritten) {
         {{"--size=-5"}, "--size: must be an integer in [16, 4096], got '-5'"},
         {{"--size", "99999999999"}, "--size: must be an integer in [16, 4096]"},
         {{"--profile", profiles + "bad_negative_weight.json"}, "bad_negative_weight.json: gaussians[1].weights[0]: must be >= 0"},
-        {{"--profile", profiles + "bad_nan_variance.json"}, "bad_nan_variance.json: invalid JSON"},
+        {{"--profile", profiles + "bad_nan_variance.json"}, "bad_nan_variance.json: JSON: parse error"},
         {{"--profile", profiles + "bad_zero_albedo.json"}, "zero albedo"},
         {{"--profile", profiles + "bad_missing_variance.json"}, "gaussians[0].varianceMm2: missing"},
         {{"--profile", "burley"}, "--profile burley: needs --albedo"},

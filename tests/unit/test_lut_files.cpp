@@ -207,9 +207,9 @@ TEST(LutFiles, ManifestProblemsNameTheField) {
         EXPECT_EQ(message.find('\n'), std::string::npos) << message;
     }
     std::ofstream(manifestPath) << "{ not json";
-    EXPECT_NE(errorOf([&] { LutSet::load(tmp.path()); }).find(prefix + "invalid JSON"), std::string::npos);
+    EXPECT_NE(errorOf([&] { LutSet::load(tmp.path()); }).find(prefix + "JSON: parse error"), std::string::npos);
     fs::remove(manifestPath);
-    EXPECT_NE(errorOf([&] { LutSet::load(tmp.path()); }).find(prefix + "cannot open"), std::string::npos);
+    EXPECT_NE(errorOf([&] { LutSet::load(tmp.path()); }).find(prefix + "file: not found"), std::string::npos);
 }
 
 TEST(LutFiles, FailedSaveLeavesNothing) {

@@ -191,7 +191,7 @@ TEST(DiffusionReference, RenderIsBitwiseReproducibleAndThreadIndependent) {
     const View view = orbitView(scene.worldBounds(), 20.0f, 25.0f, 0.0f, 1.0f);
     auto renderWith = [&](int threads) {
         tbb::global_control control(tbb::global_control::max_allowed_parallelism, size_t(threads));
-        return reference.render(view, 32, 32);
+        return reference.render(view.eye(), 32, 32);
     };
     const ReferenceImage one = renderWith(1);
     const ReferenceImage two = renderWith(2);

@@ -37,7 +37,7 @@ TEST(ShadowFit, CoversTheSkinInViewAndTheCastersDepth) {
     int inView = 0;
     for (int i = 0; i < 20000; ++i) {
         const glm::vec3 p = skin.min + glm::vec3(unit(rng), unit(rng), unit(rng)) * skin.extent();
-        const glm::vec4 clip = close.clipFromWorld() * glm::vec4(p, 1.0f);
+        const glm::vec4 clip = close.eye().clipFromWorld() * glm::vec4(p, 1.0f);
         if (std::abs(clip.x) > clip.w || std::abs(clip.y) > clip.w || clip.w <= 0.0f) continue;
         ++inView;
         const glm::vec4 s = fit.clipFromWorld * glm::vec4(p, 1.0f);
@@ -55,6 +55,35 @@ TEST(ShadowFit, CoversTheSkinInViewAndTheCastersDepth) {
         EXPECT_LE(z, 1.0f + 1e-5f);
     }
     EXPECT_NEAR(fit.depthRangeM, glm::length(casters.extent()), 1e-4f);
+}
+
+TEST(ShadowFit, CoversTheSkinSeenByAnyEye) {
+    Bounds casters;
+    casters.extend(glm::vec3(-2.0f));
+    casters.extend(glm::vec3(2.0f));
+    Bounds skin;
+    skin.extend(glm::vec3(-0.15f, 1.0f, -0.15f));
+    skin.extend(glm::vec3(0.15f, 1.3f, 0.15f));
+    const glm::vec3 direction = glm::normalize(glm::vec3(-0.3f, -1.0f, 0.5f));
+    const uint32_t mapSize = 1024;
+    // Eye 0 looks away from the skin, eye 1 at it: the fit must follow eye 1.
+    View view = lookAt(glm::vec3(0.0f, 1.15f, 0.6f), glm::vec3(0.0f, 1.15f, 3.0f), 0.5f);
+    view.eyes.push_back(lookAt(glm::vec3(0.05f, 1.15f, 0.6f), glm::vec3(0.0f, 1.15f, 0.0f), 0.5f).eye());
+    const ShadowFit fit = fitDirectionalShadow(casters, skin, view, direction, mapSize);
+    EXPECT_LT(fit.texelSizeM, 0.1f * (2.0f * 0.5f * glm::length(casters.extent()) / float(mapSize)));
+    std::mt19937 rng(7);
+    std::uniform_real_distribution<float> unit(0.0f, 1.0f);
+    int inView = 0;
+    for (int i = 0; i < 20000; ++i) {
+        const glm::vec3 p = skin.min + glm::vec3(unit(rng), unit(rng), unit(rng)) * skin.extent();
+        const glm::vec4 clip = view.eye(1).clipFromWorld() * glm::vec4(p, 1.0f);
+        if (std::abs(clip.x) > clip.w || std::abs(clip.y) > clip.w || clip.w <= 0.0f) continue;
+        ++inView;
+        const glm::vec4 s = fit.clipFromWorld * glm::vec4(p, 1.0f);
+        EXPECT_LE(std::abs(s.x), 1.0f) << i;
+        EXPECT_LE(std::abs(s.y), 1.0f) << i;
+    }
+    EXPECT_GT(inView, 1000);
 }
 
 TEST(ShadowFit, WithoutSkinInViewTheSceneIsCovered) {
@@ -82,7 +111,7 @@ TEST(ShadowFit, ReceiversAreTheSkinPrimitives) {
     const Scene scene = test::makeScene({{a, glm::translate(glm::mat4(1.0f), glm::vec3(3.0f, 0.0f, 0.0f))},
                                          {b, glm::mat4(1.0f)}},
                                         {skin, other});
-    const Bounds r = skinReceiverBounds(scene);
+    const Bounds r = skinReceiverBounds(scene).worldBounds(restPose(scene));
     EXPECT_NEAR(r.min.x, 2.9f, 1e-5f);
     EXPECT_NEAR(r.max.x, 3.1f, 1e-5f);
     EXPECT_NEAR(r.extent().y, 0.2f, 1e-5f);

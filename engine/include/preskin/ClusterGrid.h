@@ -3,6 +3,12 @@
 // The renderer builds one per frame (on the CPU or in a compute pass, ClusterSettings::build)
 // and the forward pass shades each fragment with its froxel's list only.
 //
+// One grid serves every eye of a view. It is built for a cluster camera (clusterCamera): for
+// one eye that eye itself; for several (stereo), one perspective camera whose frustum holds
+// every eye's frustum. A fragment of any eye finds its froxel by projecting its world position
+// with the cluster camera (ClusterGrid::froxelAt, the same arithmetic as the forward shader),
+// so every light touching that position is in the list it reads, in either eye.
+//
 // Depth slicing: slice 0 covers view depths [near, logStartM); slices 1 .. dims.z - 1 split
 // [logStartM, logEndM] logarithmically (every froxel about as deep as it is wide); the last slice
 // also holds everything beyond logEndM. A fragment at view depth d is in slice
@@ -55,6 +61,30 @@ struct ClusterSettings {
     ClusterBuild build = ClusterBuild::Auto;
 };
 
+// The camera a grid is built for, and the image it covers (see clusterCamera).
+struct ClusterCamera {
+    Eye eye;
+    glm::uvec2 extentPx{1u};
+
+    // Rows: clip x, clip y, view depth, clip w of the camera. A world point p maps to
+    // c = clusterFromWorld() * p: tile from (c.xy / c.w + 1) / 2 * extentPx, slice from c.z.
+    PRESKIN_API glm::mat4 clusterFromWorld() const;
+};
+
+// The cluster camera of a view whose eyes each draw eyeWidthPx x eyeHeightPx pixels.
+//  - One eye: that eye and its image.
+//  - Several eyes (all perspective): a perspective camera looking along the eyes' mean
+//    direction, whose angles are the union of every eye's edge directions (plus a margin of
+//    1e-3 of the span, and always including the mean direction) and whose apex is moved back
+//    along that direction just far enough that every eye's apex lies inside its frustum, so the
+//    frustum holds every eye's whole frustum (a frustum is convex and contains an eye's apex and
+//    every direction of that eye). Merging the eyes' frusta plane by plane would cut off parts
+//    of asymmetric frusta; this does not. Its near plane is the nearest eye near-plane corner,
+//    its image keeps eye 0's pixels per unit of tangent, so tiles keep their angular size.
+// Throws preskin::Error for a view without eyes, or several eyes with an orthographic one or
+// spanning 180 degrees or more together.
+PRESKIN_API ClusterCamera clusterCamera(const View& view, uint32_t eyeWidthPx, uint32_t eyeHeightPx);
+
 struct ClusterGridShape {
     glm::uvec3 dims{1u};       // tiles across, tiles down, depth slices
     uint32_t tileSizePx = 16;
@@ -82,21 +112,26 @@ struct ClusterGridShape {
 };
 
 struct ClusterGrid {
+    ClusterCamera camera;
     ClusterGridShape shape;
     std::vector<glm::uvec2> ranges;  // per froxel (offset, count) into `indices`; x fastest, then y, z
     std::vector<uint32_t> indices;   // light indices into the array given to the build
     uint32_t overflowedClusters = 0; // froxels that lost lights to either cap
     uint64_t requestedIndices = 0;   // entries before either cap applied
+
+    // The froxel whose list a fragment at this world position reads, computed as the forward
+    // shader computes it (out-of-grid positions clamp to the nearest froxel).
+    PRESKIN_API uint32_t froxelAt(const glm::vec3& positionWs) const;
 };
 
-// The grid's shape for a view and image size. `sceneBounds` (world space) fits the logarithmic
+// The grid's shape for a cluster camera. `sceneBounds` (world space) fits the logarithmic
 // slices when settings.fitDepthToScene is set and the bounds are not empty.
-PRESKIN_API ClusterGridShape clusterGridShape(const ClusterSettings& settings, const View& view, uint32_t widthPx,
-                                              uint32_t heightPx, const Bounds& sceneBounds);
+PRESKIN_API ClusterGridShape clusterGridShape(const ClusterSettings& settings, const ClusterCamera& camera,
+                                              const Bounds& sceneBounds);
 
-// Builds the light lists on the CPU. List entries are indices into `lights`; directional
-// lights are skipped. This is the CPU build the renderer uses, for hosts that shade with their
-// own forward pass.
+// Builds the light lists on the CPU for every eye of `view` (each eye widthPx x heightPx).
+// List entries are indices into `lights`; directional lights are skipped. This is the CPU
+// build the renderer uses, for hosts that shade with their own forward pass.
 PRESKIN_API ClusterGrid buildClusterGrid(const ClusterSettings& settings, const View& view, uint32_t widthPx,
                                          uint32_t heightPx, const Bounds& sceneBounds, std::span<const Light> lights);
 

@@ -1,6 +1,6 @@
 // The Vulkan context preskin renders with: either one it creates (instance, device, queue) or
 // one a host engine hands over. Requirements on the device either way: Vulkan 1.3 with
-// dynamicRendering and synchronization2 enabled, and a queue with graphics and compute.
+// dynamicRendering, synchronization2 and multiview enabled, and a queue with graphics and compute.
 #pragma once
 
 #include <preskin/Export.h>
@@ -33,7 +33,8 @@ struct ContextDesc {
 };
 
 // What a host engine hands over when preskin should run on its device. The host keeps
-// ownership; the Context never destroys these handles.
+// ownership; the Context never destroys these handles. The device must have Vulkan 1.3
+// dynamicRendering and synchronization2 and Vulkan 1.1 multiview enabled.
 struct HostVulkan {
     PFN_vkGetInstanceProcAddr getInstanceProcAddr = nullptr;
     VkInstance instance = VK_NULL_HANDLE;
@@ -41,6 +42,9 @@ struct HostVulkan {
     VkDevice device = VK_NULL_HANDLE;
     VkQueue queue = VK_NULL_HANDLE;
     uint32_t queueFamilyIndex = 0;
+    // The host enabled Vulkan 1.2 shaderOutputLayer: stereo can then fall back to instanced
+    // layered drawing on devices whose multiview is unsound (EyeDrawing in <preskin/Renderer.h>).
+    bool shaderOutputLayerEnabled = false;
 };
 
 struct DeviceInfo {

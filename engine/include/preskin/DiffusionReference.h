@@ -102,8 +102,8 @@ public:
     DiffusionReference(const DiffusionReference&) = delete;
     DiffusionReference& operator=(const DiffusionReference&) = delete;
 
-    // Every pixel of the view (pixel centres, like the rasterizer), times `exposure`.
-    ReferenceImage render(const View& view, uint32_t width, uint32_t height, float exposure = 1.0f,
+    // Every pixel of one eye's image (pixel centres, like the rasterizer), times `exposure`.
+    ReferenceImage render(const Eye& eye, uint32_t width, uint32_t height, float exposure = 1.0f,
                           const ReferenceProgress& progress = {}) const;
     // The first visible surface along a ray and its radiance towards the ray's origin (textures
     // at their finest level). Empty when the ray leaves the scene.

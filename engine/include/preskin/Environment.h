@@ -51,8 +51,10 @@ PRESKIN_API glm::vec3 rotateY(const glm::vec3& d, float rotationY);
 
 class PRESKIN_API Environment {
 public:
-    // Reads an equirectangular .hdr or .exr (any format OpenImageIO reads); throws
-    // preskin::Error naming the file on a missing, unreadable, non-2:1 or non-finite image.
+    // Reads an equirectangular Radiance .hdr or OpenEXR file (recognised by its content) of at
+    // most 8192x4096 (<preskin/Limits.h>); throws preskin::Error naming the file on a missing,
+    // unreadable, oversized or non-2:1 image, or a pixel or argument that the input-number rule
+    // refuses (not finite, or beyond 1e6 in magnitude).
     static Environment load(const std::filesystem::path& path, float intensity = 1.0f, float rotationY = 0.0f);
     // Uniform radiance in every direction.
     static Environment constant(const glm::vec3& radiance);

@@ -2,8 +2,12 @@
 //   shadow pass (one directional light) -> light clustering (compute) -> one forward pass
 // either headless into an image it reads back, or into a host's command buffer and target.
 // Skin adds no pass: all skin work happens in the forward pass's fragment shader.
+// A frame draws every eye of its View (<preskin/View.h>): one shadow pass and one light grid
+// serve all eyes, and the forward pass draws them all with multiview (each draw recorded once),
+// optionally with MSAA resolved into the target.
 #pragma once
 
+#include <preskin/Animation.h>
 #include <preskin/ClusterGrid.h>  // ClusterSettings: the light grid
 #include <preskin/Context.h>
 #include <preskin/Environment.h>
@@ -41,6 +45,15 @@ struct SkinFeatures {
 
 enum class DebugView { None, Curvature, Normals, Shadow, Penumbra, LightCount, ShAmbient, Transmission };
 
+// How the one forward pass draws several eyes; either way each draw is recorded once.
+//  - Multiview: the pass has one view per eye (viewMask), the vertex stage reads gl_ViewIndex.
+//  - InstancedLayers: one instance per eye, the vertex stage writes gl_Layer (needs the Vulkan
+//    1.2 shaderOutputLayer feature).
+//  - Auto: Multiview, unless the device fails the multiview clipping probe (Mesa lavapipe 22.3
+//    loses clipped triangles in the second view; render/MultiviewProbe.h) and offers
+//    shaderOutputLayer.
+enum class EyeDrawing { Auto, Multiview, InstancedLayers };
+
 // How the forward pass finds the local (point and spot) lights of a fragment.
 enum class LightLoop { Clustered, All };
 
@@ -59,6 +72,11 @@ struct RenderSettings {
     // false: no specular reflection for any material, and diffuse without the Fresnel factors
     // (1 - F) that specular takes from it: pure diffuse, what DiffusionReference models.
     bool specular = true;
+    // Samples per pixel of the forward pass (any count of Renderer::msaaSampleCounts()), resolved
+    // into the target by averaging. Shading stays per pixel; alpha-mask materials use
+    // alpha-to-coverage when this is above 1.
+    uint32_t msaaSamples = 1;
+    EyeDrawing eyeDrawing = EyeDrawing::Auto;
 };
 
 enum class OutputEncoding {
@@ -66,13 +84,20 @@ enum class OutputEncoding {
     LinearFloat,   // scene-referred linear radiance times exposure (EXR)
 };
 
+// One image per eye, eye after eye (eye e's rows start at pixel e * width * height).
 struct RenderedImage {
-    uint32_t width = 0;
-    uint32_t height = 0;
+    uint32_t width = 0;   // per eye
+    uint32_t height = 0;  // per eye
+    uint32_t eyes = 1;
     OutputEncoding encoding = OutputEncoding::DisplaySrgb8;
     std::vector<uint8_t> rgba8;  // DisplaySrgb8
     std::vector<float> rgba32f;  // LinearFloat
 };
+
+// Eye `eye` of an image, as a one-eye image.
+PRESKIN_API RenderedImage eyeImage(const RenderedImage& image, uint32_t eye);
+// Every eye side by side in one image, eye 0 (left) on the left.
+PRESKIN_API RenderedImage sideBySide(const RenderedImage& image);
 
 struct PassTime {
     std::string name;
@@ -86,11 +111,18 @@ struct FrameStats {
     uint32_t lightCount = 0;
     uint32_t clusterOverflows = 0;  // clusters whose list was truncated (<preskin/ClusterGrid.h>)
     double clusterBuildCpuMs = 0.0;  // CPU time of the light-list build or its compute setup (part of wallMs)
+    double recordCpuMs = 0.0;        // CPU time of Renderer::record without the light-list build
+    uint32_t eyes = 0;               // eyes drawn
+    EyeDrawing eyeDrawing = EyeDrawing::Multiview;  // how (never Auto)
     bool clusterBuildGpu = false;    // the light lists came from the compute pass (ClusterSettings::build)
 };
 
 // Where `record` draws: the host's colour image, in `layoutBefore` on entry and left in
 // `layoutAfter`. An 8-bit UNORM/SRGB format gets tone-mapped output, a float one linear.
+// Eye e of the view lands in array layer e: the image has at least as many layers as the view
+// has eyes and `view` covers layers 0 .. eyes - 1 (a 2D_ARRAY view; a 2D view for one eye), as
+// an OpenXR multiview swapchain image does. With MSAA, preskin renders into its own
+// multisampled image and resolves into this one.
 struct RenderTarget {
     VkImage image = VK_NULL_HANDLE;
     VkImageView view = VK_NULL_HANDLE;
@@ -111,18 +143,31 @@ public:
 
     const RenderSettings& settings() const;
     void setSettings(const RenderSettings& settings);
+    // The pose drawn from the next frame on (<preskin/Animation.h>): per mesh instance its
+    // transform, morph weights and joint matrices, from an animation (animationNodePose +
+    // posedScene) or a host's own animation system. Skinned and morphed instances are deformed on
+    // the GPU every frame (compute pass "deform"); nothing is rebuilt. The initial pose is
+    // restPose(scene). Throws preskin::Error when the pose does not fit the scene (counts,
+    // non-finite values); the previous pose is kept then.
+    void setPose(const ScenePose& pose);
+    const ScenePose& pose() const;
     // Replaces the lights (the scene's lights are the initial set).
     void setLights(const std::vector<Light>& lights);
     const std::vector<Light>& lights() const;
     void setEnvironment(const Environment& environment);
     void setLuts(const LutSet* luts);
-    // Replaces the SPIR-V of built-in shader stages by file name ("forward.vert", "forward.frag",
+    // Replaces the SPIR-V of built-in shader stages by file name ("forward.vert", "forward_layers.vert", "forward.frag",
     // "shadow.vert"); stages missing from the map use the code built into the library. Every
     // pipeline in use is rebuilt at once; when that fails, throws preskin::Error and keeps the
     // previous code and pipelines (so a host can hot-reload shaders and survive bad edits).
     void setShaderOverrides(const std::map<std::string, std::vector<uint32_t>>& spirvByFile);
 
-    // Headless: renders one frame and reads it back.
+    // The most eyes a view may have on this device (kMaxEyes or the device's multiview limit).
+    uint32_t maxEyes() const;
+    // The MSAA sample counts this device offers for the forward pass, ascending (1 first).
+    std::vector<uint32_t> msaaSampleCounts() const;
+
+    // Headless: renders one frame of every eye (width x height each) and reads it back.
     RenderedImage render(const View& view, uint32_t width, uint32_t height, OutputEncoding encoding);
     // Embedded: records one frame into the host's command buffer. `frameSlot` (0 or 1) selects
     // the per-frame buffers; the host must not reuse a slot before its previous frame finished.
@@ -137,10 +182,13 @@ private:
 };
 
 // Writes an image atomically (a temporary file renamed into place): .png for DisplaySrgb8,
-// .exr (half float) for LinearFloat. Throws preskin::Error naming the path on failure.
+// .exr (half float) for LinearFloat, where radiance above the half range saturates at 65504;
+// several eyes side by side (sideBySide). Throws preskin::Error naming the path on failure, and
+// refuses (writes nothing) an image that holds a non-finite value.
 PRESKIN_API void writeImage(const std::filesystem::path& path, const RenderedImage& image);
-// Throws preskin::Error unless `path` has a supported extension for the encoding and its
-// folder exists and is writable; call before expensive work.
+// Throws preskin::Error unless `path` has a supported extension for the encoding, its folder
+// exists and is writable, and it is not an existing file that is read-only or not a regular
+// file (never replaced); call before expensive work.
 PRESKIN_API void checkOutputPath(const std::filesystem::path& path, OutputEncoding encoding);
 
 }  // namespace preskin

@@ -6,10 +6,12 @@
 //
 // What the loader reads and how it treats bad input is described in engine/src/scene/GltfLoader.h
 // and docs/gltf-extensions.md. In short: triangle lists, strips and fans (points and lines are
-// skipped with a warning), TEXCOORD_0 only, no skins, morph targets or animation (the static
-// pose is loaded). Every primitive gets an index list (generated for non-indexed ones).
+// skipped with a warning), TEXCOORD_0 only. Every primitive gets an index list (generated for
+// non-indexed ones). Skins, morph targets, animations and the node hierarchy are loaded too
+// (<preskin/Animation.h>, docs/animation.md); MeshInstance::worldFromObject is the rest pose.
 #pragma once
 
+#include <preskin/Animation.h>
 #include <preskin/Export.h>
 #include <preskin/SkinMaterial.h>
 
@@ -45,22 +47,43 @@ struct Vertex {
     float curvaturePerM = 0.0f;  // signed mean curvature in object-space units (> 0 convex; Curvature.h)
 };
 
+// One morph target of a primitive: per-vertex deltas, each either empty (the target does not
+// move that attribute) or one per vertex. Tangent deltas move the tangent's xyz only.
+struct MorphTarget {
+    std::vector<glm::vec3> positionDeltas;
+    std::vector<glm::vec3> normalDeltas;
+    std::vector<glm::vec3> tangentDeltas;
+};
+
+// The joints a skinned vertex follows (JOINTS_0/WEIGHTS_0 and JOINTS_1/WEIGHTS_1): indices into
+// the skin's joint list and weights summing to 1 (unused slots: weight 0).
+struct JointInfluences {
+    glm::uvec4 joints[2]{glm::uvec4(0u), glm::uvec4(0u)};
+    glm::vec4 weights[2]{glm::vec4(0.0f), glm::vec4(0.0f)};
+};
+
 struct Primitive {
     std::vector<Vertex> vertices;
     std::vector<uint32_t> indices;  // triangle list
     int material = -1;              // -1: the default material
     Bounds boundsOs;
+    std::vector<MorphTarget> targets;        // morph targets (Mesh::weights are their defaults)
+    std::vector<JointInfluences> influences;  // empty, or one per vertex for a skinned primitive
 };
 
 struct Mesh {
     std::string name;
     std::vector<Primitive> primitives;
+    std::vector<float> weights;            // default morph weights, one per target (0 when absent)
+    std::vector<std::string> targetNames;  // from the mesh's extras.targetNames, when given
 };
 
 struct MeshInstance {
     int mesh = 0;
-    glm::mat4 worldFromObject{1.0f};
+    glm::mat4 worldFromObject{1.0f};  // in the rest pose
     std::string nodeName;
+    int node = -1;  // Scene::nodes index (-1 for scenes built in code without nodes)
+    int skin = -1;  // Scene::skins index when the instance is skinned
 
     // Object-to-world length scale (cube root of |det| of the 3x3 part): world-space curvature is
     // Vertex::curvaturePerM / curvatureScale() (exact for uniform scale, a mean otherwise).
@@ -159,6 +182,14 @@ struct Camera {
     float zfar = 0.0f;  // 0: infinite (perspective only)
 };
 
+// How Scene::load treats the files a scene refers to.
+struct SceneLoadOptions {
+    // Buffers, images and the environment must lie in the scene file's folder or below it. A
+    // symbolic link there that leads out of the folder is refused unless this is set (a scene
+    // unpacked from an archive can carry such links).
+    bool allowLinksOutsideFolder = false;
+};
+
 struct Scene {
     std::filesystem::path sourcePath;
     std::vector<Mesh> meshes;
@@ -168,6 +199,9 @@ struct Scene {
     std::vector<Sampler> samplers;
     std::vector<Light> lights;
     std::vector<Camera> cameras;
+    std::vector<Node> nodes;             // the hierarchy (<preskin/Animation.h>)
+    std::vector<Skin> skins;
+    std::vector<Animation> animations;
     // Scene-level environment from the PRESKIN_environment extension (a file next to the scene).
     std::optional<std::filesystem::path> environmentPath;  // absolute; the file exists at load
     float environmentIntensity = 1.0f;
@@ -175,8 +209,9 @@ struct Scene {
     // Non-fatal problems found while loading ("file: field: what was ignored"), for the host to show.
     std::vector<std::string> warnings;
 
-    // Loads .gltf or .glb. Throws preskin::Error naming the file and the field on bad input.
-    PRESKIN_API static Scene load(const std::filesystem::path& path);
+    // Loads .gltf or .glb. Throws preskin::Error naming the file and the field on bad input,
+    // including input beyond the limits of <preskin/Limits.h>.
+    PRESKIN_API static Scene load(const std::filesystem::path& path, const SceneLoadOptions& options = {});
 
     PRESKIN_API Bounds worldBounds() const;
     // Marks materials as skin: every material for "all", else the materials with that name

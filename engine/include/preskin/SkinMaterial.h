@@ -16,6 +16,12 @@ enum class CurvatureSource {
     Derivatives,  // screen-space derivatives length(fwidth(N)) / length(fwidth(P)) (Penner)
 };
 
+// Per-vertex curvature of an animated (skinned or morphed) mesh.
+enum class DeformedCurvature {
+    Recomputed,  // from the deformed mesh every frame on the GPU, with computeVertexCurvature's estimator (default)
+    BindPose,    // the rest pose's, as computed at load (what shipped pre-integrated skin does)
+};
+
 struct SkinTextureRef {
     int image = -1;    // index into Scene::images
     int sampler = -1;  // index into Scene::samplers, -1: default sampler
@@ -29,6 +35,7 @@ struct SkinMaterial {
     CurvatureSource curvatureSource = CurvatureSource::Vertex;
     SkinTextureRef curvatureTexture;
     float curvatureTextureScalePerM = 100.0f;  // texture value 1.0 means this many 1/m
+    DeformedCurvature deformedCurvature = DeformedCurvature::Recomputed;  // with CurvatureSource::Vertex
     // Per-channel mip LOD bias of the normal map (R, G, B). Unset: derived from the profile's
     // per-channel scattering width and the mesh's texel density.
     std::optional<glm::vec3> normalLodBias;

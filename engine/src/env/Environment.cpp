@@ -1,6 +1,12 @@
 // Environment loading (OpenImageIO) and L2 SH projection; see <preskin/Environment.h>.
 #include <preskin/Environment.h>
 #include <preskin/Error.h>
+#include <preskin/Limits.h>
+
+#include "env/EnvironmentHeader.h"
+#include "io/InputFile.h"
+#include "io/MessageText.h"
+#include "io/NumberRule.h"
 
 #include <OpenImageIO/imageio.h>
 #include <fmt/core.h>
@@ -76,37 +82,66 @@ ShRgb projectEquirect(const EquirectImage& image, float rotationY) {
 
 Environment Environment::load(const std::filesystem::path& path, float intensity, float rotationY) {
     const std::string name = path.string();
-    if (!std::isfinite(intensity) || intensity < 0.0f)
-        throw Error(fmt::format("{}: intensity: must be a finite number >= 0, got {}", name, intensity));
-    if (!std::isfinite(rotationY)) throw Error(fmt::format("{}: rotation: must be finite, got {}", name, rotationY));
-    std::error_code ec;
-    if (!std::filesystem::is_regular_file(path, ec))
-        throw Error(fmt::format("{}: environment file not found", name));
-    auto input = OIIO::ImageInput::open(name);
-    if (!input) throw Error(fmt::format("{}: cannot read environment image: {}", name, OIIO::geterror()));
-    const OIIO::ImageSpec& spec = input->spec();
-    if (spec.width <= 0 || spec.height <= 0 || spec.width > 16384 || spec.height > 8192)
-        throw Error(fmt::format("{}: size: {}x{} is not a supported environment size (at most 16384x8192)", name,
-                                spec.width, spec.height));
-    if (spec.width != 2 * spec.height)
+    if (auto problem = io::numberProblem(intensity)) throw Error(fmt::format("{}: intensity: {}", name, *problem));
+    if (intensity < 0.0f) throw Error(fmt::format("{}: intensity: {} is negative", name, intensity));
+    if (auto problem = io::numberProblem(rotationY)) throw Error(fmt::format("{}: rotation: {}", name, *problem));
+
+    // Format and size come from the file's own header, checked before any decoder allocates.
+    const std::vector<uint8_t> prefix =
+        io::readInputFileStart(path, name, limits::kMaxImageFileBytes, env::kEnvironmentHeaderBytes);
+    env::EnvironmentHeader header;
+    try {
+        header = env::readEnvironmentHeader(prefix);
+    } catch (const std::exception& e) {
+        throw Error(fmt::format("{}: {}", name, e.what()));
+    }
+    if (header.width <= 0 || header.height <= 0 || header.width > limits::kMaxEnvironmentWidth ||
+        header.height > limits::kMaxEnvironmentHeight)
+        throw Error(fmt::format("{}: size: {}x{} is not a supported environment size (at most {}x{})", name, header.width,
+                                header.height, limits::kMaxEnvironmentWidth, limits::kMaxEnvironmentHeight));
+    if (header.width != 2 * header.height)
         throw Error(fmt::format("{}: size: {}x{} is not equirectangular (width must be twice the height)", name,
-                                spec.width, spec.height));
+                                header.width, header.height));
+
+    auto input = OIIO::ImageInput::create(header.format == env::EnvironmentFormat::OpenExr ? "openexr" : "hdr");
+    if (!input) throw Error(fmt::format("{}: format: {}", name, io::messageText(OIIO::geterror())));
+    OIIO::ImageSpec spec;
+    if (!input->open(name, spec)) {
+        const std::string why = input->geterror();
+        OIIO::geterror();
+        throw Error(fmt::format("{}: cannot read environment image: {}", name, io::messageText(why)));
+    }
+    if (spec.width != header.width || spec.height != header.height || spec.depth > 1 || spec.deep)
+        throw Error(fmt::format("{}: size: the decoder reads {}x{}, the header says {}x{}", name, spec.width,
+                                spec.height, header.width, header.height));
     if (spec.nchannels < 3)
         throw Error(fmt::format("{}: channels: {} channel(s), RGB needed", name, spec.nchannels));
     Environment env;
     env.intensity_ = intensity;
     env.image_.width = static_cast<uint32_t>(spec.width);
     env.image_.height = static_cast<uint32_t>(spec.height);
-    env.image_.rgb.resize(size_t(spec.width) * spec.height * 3);
-    if (!input->read_image(0, 0, 0, 3, OIIO::TypeDesc::FLOAT, env.image_.rgb.data()))
-        throw Error(fmt::format("{}: cannot decode environment image: {}", name, input->geterror()));
-    for (size_t i = 0; i < env.image_.rgb.size(); ++i) {
-        float& v = env.image_.rgb[i];
-        if (!std::isfinite(v))
-            throw Error(fmt::format("{}: pixel ({}, {}): radiance {} is not finite", name,
-                                    (i / 3) % env.image_.width, (i / 3) / env.image_.width, v));
-        v = std::max(v, 0.0f) * intensity;  // tiny negatives from lossy EXR compression are clamped
+    // Read in bands of rows: a file whose pixels stop early fails before the whole image is
+    // allocated. Every pixel passes the input-number rule.
+    constexpr int kBandRows = 64;
+    const size_t rowFloats = size_t(spec.width) * 3;
+    for (int y0 = 0; y0 < spec.height; y0 += kBandRows) {
+        const int y1 = std::min(spec.height, y0 + kBandRows);
+        const size_t offset = env.image_.rgb.size();
+        env.image_.rgb.resize(offset + rowFloats * size_t(y1 - y0));
+        if (!input->read_scanlines(0, 0, y0, y1, 0, 0, 3, OIIO::TypeDesc::FLOAT, env.image_.rgb.data() + offset)) {
+            const std::string why = input->geterror();
+            throw Error(fmt::format("{}: cannot decode environment image: {}", name,
+                                    io::messageText(why.empty() ? "read failed" : why)));
+        }
+        for (size_t i = offset; i < env.image_.rgb.size(); ++i) {
+            float& v = env.image_.rgb[i];
+            if (auto problem = io::numberProblem(v))
+                throw Error(fmt::format("{}: pixel ({}, {}): radiance {}", name, (i / 3) % env.image_.width,
+                                        (i / 3) / env.image_.width, *problem));
+            v = std::max(v, 0.0f) * intensity;  // tiny negatives from lossy EXR compression are clamped
+        }
     }
+    input->close();
     env.radianceSh_ = projectEquirect(env.image_, rotationY);
     return env;
 }

@@ -100,13 +100,14 @@ void ClusterBuilder::createPipelines() {
     assignPipeline_ = vk::createComputePipeline(device_, code, pipelineLayout_, spec);
 }
 
-void ClusterBuilder::prepare(uint32_t slot, const ClusterSettings& settings, const View& view, VkExtent2D extent,
+void ClusterBuilder::prepare(uint32_t slot, const ClusterSettings& settings, const ClusterCamera& camera,
                              const Bounds& sceneBounds, std::span<const gpu::GpuLight> lights, uint32_t firstLocal,
                              const vk::Buffer& lightBuffer, gpu::FrameUniforms& frame) {
     const auto start = std::chrono::steady_clock::now();
     Slot& s = slots_[slot];
-    const ClusterGeometry geometry =
-        clusterGeometry(clusterGridShape(settings, view, extent.width, extent.height, sceneBounds), view);
+    const Eye& view = camera.eye;
+    const ClusterGeometry geometry = clusterGeometry(clusterGridShape(settings, camera, sceneBounds), view);
+    s.camera = camera;
     const uint32_t localCount = static_cast<uint32_t>(lights.size()) - std::min<uint32_t>(firstLocal, uint32_t(lights.size()));
     s.shape = geometry.shape;
     s.localLights = localCount;
@@ -128,13 +129,14 @@ void ClusterBuilder::prepare(uint32_t slot, const ClusterSettings& settings, con
         frame.lightCounts.z = s.indexCapacity;
     }
     const ClusterGridShape& shape = geometry.shape;
-    const float perTile = 1.0f / float(shape.tileSizePx);
-    frame.clusterScale = glm::vec4(perTile, perTile, shape.sliceScale, shape.sliceBias);
+    const glm::vec2 tilesPerNdc = 0.5f * glm::vec2(shape.extentPx) / float(shape.tileSizePx);
+    frame.clusterFromWorld = camera.clusterFromWorld();
+    frame.clusterScale = glm::vec4(tilesPerNdc, shape.sliceScale, shape.sliceBias);
     frame.clusterDims = glm::uvec4(shape.dims, std::max<uint32_t>(settings.maxLightsPerCluster, 1));
     s.buildMs = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
 }
 
-void ClusterBuilder::prepareGpu(Slot& s, const ClusterSettings& settings, const ClusterGeometry& g, const View& view,
+void ClusterBuilder::prepareGpu(Slot& s, const ClusterSettings& settings, const ClusterGeometry& g, const Eye& view,
                                 uint32_t firstLocal, uint32_t localCount, const vk::Buffer& lightBuffer) {
     createPipelines();
     const ClusterGridShape& shape = g.shape;
@@ -247,11 +249,10 @@ uint32_t ClusterBuilder::overflows(uint32_t slot) const {
 ClusterGrid ClusterBuilder::readBack(uint32_t slot) {
     Slot& s = slots_[slot];
     ClusterGrid grid;
+    if (!s.gpu) grid = cpuGrid_;
+    grid.camera = s.camera;
     grid.shape = s.shape;
-    if (!s.gpu) {
-        grid = cpuGrid_;
-        return grid;
-    }
+    if (!s.gpu) return grid;
     vkDeviceWaitIdle(device_.device());
     gpu::ClusterCounters c{};
     std::memcpy(&c, s.counters.mapped(), sizeof(c));

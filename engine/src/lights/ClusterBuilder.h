@@ -27,11 +27,11 @@ public:
     ClusterBuilder(const ClusterBuilder&) = delete;
     ClusterBuilder& operator=(const ClusterBuilder&) = delete;
 
-    // This frame's lists for `slot`: the CPU build runs (and uploads) here; the compute build's
-    // inputs are written here and its passes recorded by record(). `lights` is the frame's light
-    // array (directional ones first, [firstLocal, size) local), `lightBuffer` its GPU copy.
-    // Fills the cluster fields of `frame`.
-    void prepare(uint32_t slot, const ClusterSettings& settings, const View& view, VkExtent2D extent,
+    // This frame's lists for `slot`, for the cluster camera of the frame's view: the CPU build
+    // runs (and uploads) here; the compute build's inputs are written here and its passes
+    // recorded by record(). `lights` is the frame's light array (directional ones first,
+    // [firstLocal, size) local), `lightBuffer` its GPU copy. Fills the cluster fields of `frame`.
+    void prepare(uint32_t slot, const ClusterSettings& settings, const ClusterCamera& camera,
                  const Bounds& sceneBounds, std::span<const gpu::GpuLight> lights, uint32_t firstLocal,
                  const vk::Buffer& lightBuffer, gpu::FrameUniforms& frame);
     // Records the compute build of the last prepare() of this slot (nothing for a CPU build),
@@ -55,6 +55,7 @@ private:
         bool pending = false;  // a compute build to record
         double buildMs = 0.0;
         uint32_t overflows = 0;  // CPU build
+        ClusterCamera camera;
         ClusterGridShape shape;
         uint32_t localLights = 0;
         uint32_t indexCapacity = 0;
@@ -66,7 +67,7 @@ private:
 
     bool useGpu(const ClusterSettings& settings) const;
     void createPipelines();
-    void prepareGpu(Slot& s, const ClusterSettings& settings, const ClusterGeometry& geometry, const View& view,
+    void prepareGpu(Slot& s, const ClusterSettings& settings, const ClusterGeometry& geometry, const Eye& camera,
                     uint32_t firstLocal, uint32_t localCount, const vk::Buffer& lightBuffer);
 
     const vk::Device& device_;

@@ -45,11 +45,12 @@ glm::vec4 orientedPlane(const glm::dvec3& a, const glm::dvec3& b, const glm::dve
 
 }  // namespace
 
-ClusterGridShape clusterGridShape(const ClusterSettings& settings, const View& view, uint32_t widthPx,
-                                  uint32_t heightPx, const Bounds& sceneBounds) {
+ClusterGridShape clusterGridShape(const ClusterSettings& settings, const ClusterCamera& camera,
+                                  const Bounds& sceneBounds) {
+    const Eye& view = camera.eye;
     ClusterGridShape s;
     s.tileSizePx = std::clamp<uint32_t>(settings.tileSizePx, 4, 256);
-    s.extentPx = glm::uvec2(std::max(widthPx, 1u), std::max(heightPx, 1u));
+    s.extentPx = glm::max(camera.extentPx, glm::uvec2(1u));
     s.dims.x = (s.extentPx.x + s.tileSizePx - 1) / s.tileSizePx;
     s.dims.y = (s.extentPx.y + s.tileSizePx - 1) / s.tileSizePx;
     s.dims.z = std::clamp<uint32_t>(settings.depthSlices, 2, 256);
@@ -80,7 +81,7 @@ ClusterGridShape clusterGridShape(const ClusterSettings& settings, const View& v
     return s;
 }
 
-ClusterGeometry clusterGeometry(const ClusterGridShape& shape, const View& view) {
+ClusterGeometry clusterGeometry(const ClusterGridShape& shape, const Eye& view) {
     ClusterGeometry g;
     g.shape = shape;
     const glm::uvec3 dims = shape.dims;

@@ -29,7 +29,8 @@ struct ClusterGeometry {
     uint32_t cornerIndex(uint32_t i, uint32_t j) const { return j * (shape.dims.x + 1) + i; }
 };
 
-ClusterGeometry clusterGeometry(const ClusterGridShape& shape, const View& view);
+// `camera` is the cluster camera's eye (ClusterCamera::eye).
+ClusterGeometry clusterGeometry(const ClusterGridShape& shape, const Eye& camera);
 
 // Relative growth applied to slice boundaries and light bounds so that float rounding (here and
 // in the shader's slice formula) never drops a light at a boundary. Used by both builds.

@@ -174,12 +174,12 @@ std::optional<ReferenceSample> DiffusionReference::trace(const glm::dvec3& origi
     return impl_->shade(*hit, dir, UvFootprint{impl_->mesh.uv(hit->point), glm::dvec2(0.0), glm::dvec2(0.0)});
 }
 
-ReferenceImage DiffusionReference::render(const View& view, uint32_t width, uint32_t height, float exposure,
+ReferenceImage DiffusionReference::render(const Eye& eye, uint32_t width, uint32_t height, float exposure,
                                           const ReferenceProgress& progress) const {
     if (width == 0 || height == 0 || width > 16384 || height > 16384)
         throw Error(fmt::format("image size: {}x{} is outside 1..16384 pixels per side", width, height));
     const Impl& im = *impl_;
-    const glm::dmat4 worldFromClip = glm::inverse(glm::dmat4(view.clipFromWorld()));
+    const glm::dmat4 worldFromClip = glm::inverse(glm::dmat4(eye.clipFromWorld()));
     auto unproject = [&](double px, double py, double depth) {
         const glm::dvec4 p = worldFromClip * glm::dvec4(2.0 * px / width - 1.0, 2.0 * py / height - 1.0, depth, 1.0);
         return glm::dvec3(p) / p.w;

@@ -35,10 +35,23 @@ gpu::GpuUvTransform toGpu(const TextureRef& ref) {
 
 }  // namespace
 
+gpu::GpuInstance toGpuInstance(const glm::mat4& worldFromObject) {
+    gpu::GpuInstance g{};
+    g.worldFromObject = worldFromObject;
+    g.normalWorldFromObject = glm::mat4(glm::inverseTranspose(glm::mat3(worldFromObject)));
+    // Object curvature -> world curvature: 1 / the length scale (cube root of |det|).
+    const float scale = std::cbrt(std::abs(glm::determinant(glm::mat3(worldFromObject))));
+    g.params = glm::vec4(scale > 0.0f ? 1.0f / scale : 1.0f, 0.0f, 0.0f, 0.0f);
+    return g;
+}
+
 GpuScene::GpuScene(const vk::Device& device, const Scene& scene)
     : device_(device), sceneMaterials_(scene.materials) {
     const VkDevice dev = device.device();
-    // Geometry: one buffer each; draws keep their offsets.
+    // Geometry: one buffer each. Indices are stored rebased to the shared vertex buffer (every
+    // draw has vertexOffset 0), so that consecutive primitives of a mesh that share a material
+    // are one contiguous index range and can be drawn with one call (see below). The scene's
+    // vertex limit keeps every index far below 2^32.
     std::vector<Vertex> allVertices;
     std::vector<uint32_t> allIndices;
     struct PrimitiveRange {
@@ -47,15 +60,17 @@ GpuScene::GpuScene(const vk::Device& device, const Scene& scene)
     };
     std::vector<std::vector<PrimitiveRange>> meshRanges(scene.meshes.size());
     for (size_t m = 0; m < scene.meshes.size(); ++m) {
+        meshFirstVertex.push_back(static_cast<uint32_t>(allVertices.size()));
         for (const Primitive& p : scene.meshes[m].primitives) {
-            meshRanges[m].push_back({static_cast<uint32_t>(allIndices.size()), static_cast<uint32_t>(p.indices.size()),
-                                     static_cast<int32_t>(allVertices.size())});
+            const auto base = static_cast<uint32_t>(allVertices.size());
+            meshRanges[m].push_back({static_cast<uint32_t>(allIndices.size()), static_cast<uint32_t>(p.indices.size()), 0});
             allVertices.insert(allVertices.end(), p.vertices.begin(), p.vertices.end());
-            allIndices.insert(allIndices.end(), p.indices.begin(), p.indices.end());
+            for (const uint32_t index : p.indices) allIndices.push_back(base + index);
         }
     }
+    // Also read by the deformation pass (GpuDeformer) as its rest pose.
     vertices = vk::Buffer(device, std::max<size_t>(allVertices.size(), 1) * sizeof(Vertex),
-                          VK_BUFFER_USAGE_VERTEX_BUFFER_BIT, false);
+                          VK_BUFFER_USAGE_VERTEX_BUFFER_BIT | VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, false);
     vertices.upload(allVertices.data(), allVertices.size() * sizeof(Vertex));
     indices = vk::Buffer(device, std::max<size_t>(allIndices.size(), 1) * sizeof(uint32_t),
                          VK_BUFFER_USAGE_INDEX_BUFFER_BIT, false);
@@ -66,16 +81,12 @@ GpuScene::GpuScene(const vk::Device& device, const Scene& scene)
     std::vector<gpu::GpuInstance> instanceData;
     std::vector<double> uvArea(scene.materials.size() + 1, 0.0);
     std::vector<double> worldArea(scene.materials.size() + 1, 0.0);
+    bool lastBlended = false;
     for (const MeshInstance& inst : scene.instances) {
-        if (inst.mesh < 0 || size_t(inst.mesh) >= scene.meshes.size()) continue;
-        const glm::mat3 m3(inst.worldFromObject);
-        gpu::GpuInstance g{};
-        g.worldFromObject = inst.worldFromObject;
-        g.normalWorldFromObject = glm::mat4(glm::inverseTranspose(m3));
-        const float curvatureScale = inst.curvatureScale();
-        g.params = glm::vec4(curvatureScale > 0.0f ? 1.0f / curvatureScale : 1.0f, 0.0f, 0.0f, 0.0f);
+        // One GPU instance per scene instance, so that poses index both alike.
         const uint32_t instanceIndex = static_cast<uint32_t>(instanceData.size());
-        instanceData.push_back(g);
+        instanceData.push_back(toGpuInstance(inst.worldFromObject));
+        if (inst.mesh < 0 || size_t(inst.mesh) >= scene.meshes.size()) continue;
         const Mesh& mesh = scene.meshes[size_t(inst.mesh)];
         for (size_t p = 0; p < mesh.primitives.size(); ++p) {
             const Primitive& prim = mesh.primitives[p];
@@ -86,13 +97,23 @@ GpuScene::GpuScene(const vk::Device& device, const Scene& scene)
                                           : defaultMaterial;
             const glm::vec3 center = glm::vec3(inst.worldFromObject * glm::vec4(prim.boundsOs.empty() ? glm::vec3(0.0f)
                                                                                     : prim.boundsOs.center(), 1.0f));
-            draws.push_back({r.firstIndex, r.indexCount, r.vertexOffset, instanceIndex, material, center});
+            // Draw submission costs the same per call whatever its size (on lavapipe about 10 us
+            // per draw and pass), so a run of primitives of one instance with one material
+            // becomes one draw. Blended primitives stay apart: they are sorted back to front.
+            const bool blended = material < scene.materials.size() &&
+                                 scene.materials[material].alphaMode == AlphaMode::Blend;
+            DrawItem* last = draws.empty() ? nullptr : &draws.back();
+            if (!blended && last && last->instance == instanceIndex && last->material == material &&
+                last->firstIndex + last->indexCount == r.firstIndex && !lastBlended) {
+                last->indexCount += r.indexCount;
+            } else {
+                draws.push_back({r.firstIndex, r.indexCount, r.vertexOffset, instanceIndex, material, center});
+            }
+            lastBlended = blended;
             accumulateTexelDensity(prim, inst.worldFromObject, uvArea[material], worldArea[material]);
         }
     }
-    instances = vk::Buffer(device, std::max<size_t>(instanceData.size(), 1) * sizeof(gpu::GpuInstance),
-                           VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, false);
-    instances.upload(instanceData.data(), instanceData.size() * sizeof(gpu::GpuInstance));
+    restInstances = std::move(instanceData);
 
     // Default textures.
     const uint8_t whitePixel[4] = {255, 255, 255, 255};

@@ -1,6 +1,8 @@
-// A Scene on the GPU: one vertex and one index buffer for all primitives, the instance table,
-// textures (sRGB or linear per use, full mip chains), samplers, and one descriptor set per
-// material (uniforms + textures; no descriptor indexing, which lavapipe lacks).
+// A Scene on the GPU: one vertex and one index buffer for all primitives (indices rebased to the
+// shared vertex buffer), the instance table, textures (sRGB or linear per use, full mip chains),
+// samplers, and one descriptor set per material (uniforms + textures; no descriptor indexing,
+// which lavapipe lacks). Draws: one per run of consecutive primitives of an instance that share
+// a material (blended primitives one each), since each draw call has a fixed cost.
 #pragma once
 
 #include <preskin/Scene.h>
@@ -20,7 +22,7 @@ struct DrawItem {
     int32_t vertexOffset = 0;
     uint32_t instance = 0;
     uint32_t material = 0;  // index into GpuScene::materials
-    glm::vec3 centerWs{0.0f};
+    glm::vec3 centerWs{0.0f};  // of the (first) primitive; sorts blended draws, which are never merged
 };
 
 struct GpuMaterial {
@@ -36,6 +38,9 @@ struct ProfileWidths {
     glm::vec3 widthMm{0.0f};
 };
 
+// An instance's transforms as the vertex stage reads them.
+gpu::GpuInstance toGpuInstance(const glm::mat4& worldFromObject);
+
 class GpuScene {
 public:
     GpuScene(const vk::Device& device, const Scene& scene);
@@ -49,7 +54,8 @@ public:
 
     vk::Buffer vertices;
     vk::Buffer indices;
-    vk::Buffer instances;
+    std::vector<uint32_t> meshFirstVertex;  // where each mesh's vertices start in `vertices`
+    std::vector<gpu::GpuInstance> restInstances;  // per scene instance (the rest pose), for the renderer
     std::vector<DrawItem> draws;
     std::vector<GpuMaterial> materials;  // scene materials, then the default material
 

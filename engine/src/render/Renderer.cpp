@@ -4,10 +4,16 @@
 // keep one frame in flight while recording the next.
 #include <preskin/Renderer.h>
 
+#include <preskin/ClusterGrid.h>
+
 #include "lights/ClusterBuilder.h"
+#include "render/GpuDeformer.h"
 #include "render/GpuLights.h"
 #include "render/GpuLuts.h"
 #include "render/GpuScene.h"
+#include "render/InputChecks.h"
+#include "render/MultiviewProbe.h"
+#include "render/PoseBounds.h"
 #include "render/ShadowFit.h"
 #include "shared/gpu_types.h"
 #include "vk/Check.h"
@@ -15,6 +21,9 @@
 #include "vk/Resources.h"
 
 #include <fmt/core.h>
+#include <glm/gtc/matrix_access.hpp>
+#include <fmt/format.h>
+#include <fmt/ranges.h>
 
 #include <algorithm>
 #include <array>
@@ -36,7 +45,8 @@ namespace {
 
 constexpr VkFormat kDepthFormat = VK_FORMAT_D32_SFLOAT;
 constexpr uint32_t kSlotCount = 2;
-constexpr uint32_t kQueryCount = 4;  // start, after shadow, after clustering, after forward
+// start, after deformation, after curvature, after shadow, after clustering, after forward
+constexpr uint32_t kQueryCount = 6;
 
 std::span<const uint32_t> builtinShader(const char* name) {
     auto code = shaders::spirv(name);
@@ -57,12 +67,24 @@ bool isDisplayFormat(VkFormat format) {
 }
 
 struct PipelineKey {
-    uint32_t model, alphaMode, doubleSided, format, debugView, skinMask, lightLoop, specular;
-    auto tie() const { return std::tie(model, alphaMode, doubleSided, format, debugView, skinMask, lightLoop, specular); }
+    uint32_t model, alphaMode, doubleSided, format, debugView, skinMask, lightLoop, specular, eyes, samples, layered;
+    auto tie() const {
+        return std::tie(model, alphaMode, doubleSided, format, debugView, skinMask, lightLoop, specular, eyes, samples,
+                        layered);
+    }
     bool operator<(const PipelineKey& o) const { return tie() < o.tie(); }
 };
 
 }  // namespace
+
+static_assert(gpu::kMaxEyes == kMaxEyes, "shaders/shared and <preskin/View.h> disagree on the eye limit");
+
+bool finite(const glm::mat4& m) {
+    for (int c = 0; c < 4; ++c)
+        for (int r = 0; r < 4; ++r)
+            if (!std::isfinite(m[c][r])) return false;
+    return true;
+}
 
 uint32_t SkinFeatures::mask() const {
     return (lutDiffuse ? gpu::kSkinLutDiffuse : 0u) | (normalPrefilter ? gpu::kSkinNormalPrefilter : 0u) |
@@ -74,22 +96,32 @@ struct Renderer::Impl {
     struct Slot {
         vk::Buffer frameUniforms;
         vk::Buffer lights;
+        vk::Buffer instances;  // GpuInstance per scene instance, from the pose
+        uint64_t instancesPose = ~0ull;  // the pose version they hold
         VkDescriptorSet set = VK_NULL_HANDLE;
         VkQueryPool queries = VK_NULL_HANDLE;
         bool recorded = false;
         bool shadowRecorded = false;
         double wallMs = 0.0;
+        double recordMs = 0.0;  // CPU time of record(), light-grid build included
+        uint32_t eyes = 0;
         uint32_t lightCount = 0;
     };
 
     Context& context;
     const vk::Device& dev;
     RenderSettings settings;
+    EyeDrawing resolvedEyeDrawing = EyeDrawing::Multiview;
     std::vector<Light> lights;
-    Bounds bounds;
-    Bounds receivers;  // the skin: what the shadow map is fitted to (render/ShadowFit.h)
+    Bounds bounds;     // of the scene in the current pose
+    Bounds receivers;  // of the skin in the current pose: what the shadow map is fitted to (render/ShadowFit.h)
     ShRgb radianceSh;
     std::unique_ptr<GpuScene> scene;
+    ScenePose pose;
+    uint64_t poseVersion = 0;
+    std::unique_ptr<PoseBounds> poseBounds;
+    std::unique_ptr<PoseBounds> receiverPoseBounds;  // the skin's
+    std::unique_ptr<GpuDeformer> deformer;
     std::unique_ptr<GpuLuts> luts;
     std::unique_ptr<ClusterBuilder> clusters;
 
@@ -100,7 +132,8 @@ struct Renderer::Impl {
     VkSampler shadowSampler = VK_NULL_HANDLE;
     std::array<Slot, kSlotCount> slots;
     vk::Image shadowMap;
-    vk::Image depth;
+    vk::Image depth;        // one layer per eye, msaaSamples samples
+    vk::Image msaaColor;    // MSAA only: one layer per eye, resolved into the target
     std::map<PipelineKey, VkPipeline> pipelines;
     VkPipeline shadowPipeline = VK_NULL_HANDLE;
     std::map<std::string, std::vector<uint32_t>> shaderOverrides;
@@ -110,14 +143,20 @@ struct Renderer::Impl {
 
     Impl(Context& ctx, const Scene& s, const Environment& env, const LutSet* lutSet, const RenderSettings& rs)
         : context(ctx), dev(ctx.core()), settings(rs), lights(s.lights), bounds(s.worldBounds()),
-          receivers(skinReceiverBounds(s)),
           radianceSh(env.radianceSh()) {
+        checkRenderSettings(rs);
+        checkLights(s.lights);
         scene = std::make_unique<GpuScene>(dev, s);
+        poseBounds = std::make_unique<PoseBounds>(s);
+        receiverPoseBounds = std::make_unique<PoseBounds>(skinReceiverBounds(s));
+        deformer = std::make_unique<GpuDeformer>(dev, s, scene->vertices, scene->meshFirstVertex);
+        setPose(restPose(s));
         luts = std::make_unique<GpuLuts>(dev, lutSet);
         scene->updateMaterials(luts->profileWidths());
         clusters = std::make_unique<ClusterBuilder>(dev);
         createLayouts();
         createShadowMap();
+        resolveEyeDrawing();
     }
 
     ~Impl() {
@@ -171,6 +210,8 @@ struct Renderer::Impl {
             PRESKIN_VK(vkAllocateDescriptorSets(d, &alloc, &s.set));
             s.frameUniforms = vk::Buffer(dev, sizeof(gpu::FrameUniforms), VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT, true);
             s.lights = vk::Buffer(dev, 64 * sizeof(gpu::GpuLight), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, true);
+            s.instances = vk::Buffer(dev, std::max<size_t>(scene->restInstances.size(), 1) * sizeof(gpu::GpuInstance),
+                                     VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, true);
             if (dev.timestampsSupported()) {
                 VkQueryPoolCreateInfo q{VK_STRUCTURE_TYPE_QUERY_POOL_CREATE_INFO};
                 q.queryType = VK_QUERY_TYPE_TIMESTAMP;
@@ -209,7 +250,9 @@ struct Renderer::Impl {
         return it != shaderOverrides.end() ? std::span<const uint32_t>(it->second) : builtinShader(name);
     }
 
-    PipelineKey pipelineKey(const GpuMaterial& m, VkFormat format) const {
+    VkSampleCountFlagBits samples() const { return static_cast<VkSampleCountFlagBits>(settings.msaaSamples); }
+
+    PipelineKey pipelineKey(const GpuMaterial& m, VkFormat format, uint32_t eyes) const {
         const bool skin = m.skin && luts->valid();
         return PipelineKey{skin ? gpu::kModelSkin : gpu::kModelStandard,
                            static_cast<uint32_t>(m.alphaMode),
@@ -218,11 +261,25 @@ struct Renderer::Impl {
                            static_cast<uint32_t>(settings.debugView),
                            skin ? settings.skin.mask() : 0u,
                            settings.lightLoop == LightLoop::Clustered ? gpu::kLightLoopClustered : gpu::kLightLoopAll,
-                           settings.specular ? 1u : 0u};
+                           settings.specular ? 1u : 0u,
+                           eyes,
+                           settings.msaaSamples,
+                           eyeDrawing() == EyeDrawing::InstancedLayers ? 1u : 0u};
     }
 
-    VkPipeline forwardPipeline(const GpuMaterial& m, VkFormat format) {
-        const PipelineKey key = pipelineKey(m, format);
+    // The settings' EyeDrawing resolved for this device (see <preskin/Renderer.h>); resolved
+    // when settings are set, since the probe submits work of its own.
+    EyeDrawing eyeDrawing() const { return resolvedEyeDrawing; }
+
+    void resolveEyeDrawing() {
+        resolvedEyeDrawing = settings.eyeDrawing;
+        if (resolvedEyeDrawing == EyeDrawing::Auto)
+            resolvedEyeDrawing = dev.shaderOutputLayer() && !multiviewClipsEveryView(dev) ? EyeDrawing::InstancedLayers
+                                                                                           : EyeDrawing::Multiview;
+    }
+
+    VkPipeline forwardPipeline(const GpuMaterial& m, VkFormat format, uint32_t eyes) {
+        const PipelineKey key = pipelineKey(m, format, eyes);
         auto it = pipelines.find(key);
         if (it != pipelines.end()) return it->second;
         VkPipeline p = createForwardPipeline(key);
@@ -233,9 +290,9 @@ struct Renderer::Impl {
     VkPipeline createForwardPipeline(const PipelineKey& key) const {
         const VkFormat format = static_cast<VkFormat>(key.format);
         vk::GraphicsPipelineDesc desc;
-        desc.vertexSpirv = shader("forward.vert");
+        desc.vertexSpirv = shader(key.layered ? "forward_layers.vert" : "forward.vert");
         desc.fragmentSpirv = shader("forward.frag");
-        desc.specialization.values.resize(7);
+        desc.specialization.values.resize(8);
         desc.specialization.values[gpu::kSpecMaterialModel] = key.model;
         desc.specialization.values[gpu::kSpecOutputMode] = isDisplayFormat(format) ? gpu::kOutputTonemapped
                                                                                    : gpu::kOutputLinear;
@@ -244,6 +301,9 @@ struct Renderer::Impl {
         desc.specialization.values[gpu::kSpecSkinFeatures] = key.skinMask;
         desc.specialization.values[gpu::kSpecLightLoop] = key.lightLoop;
         desc.specialization.values[gpu::kSpecSpecular] = key.specular;
+        const AlphaMode alphaMode = static_cast<AlphaMode>(key.alphaMode);
+        const bool alphaToCoverage = key.samples > 1 && alphaMode == AlphaMode::Mask;
+        desc.specialization.values[gpu::kSpecAlphaToCoverage] = alphaToCoverage ? 1u : 0u;
         desc.vertexBindings = {{0, sizeof(Vertex), VK_VERTEX_INPUT_RATE_VERTEX}};
         desc.vertexAttributes = {
             {0, 0, VK_FORMAT_R32G32B32_SFLOAT, offsetof(Vertex, positionOs)},
@@ -254,7 +314,10 @@ struct Renderer::Impl {
         };
         desc.colorFormats = {format};
         desc.depthFormat = kDepthFormat;
-        const AlphaMode alphaMode = static_cast<AlphaMode>(key.alphaMode);
+        desc.viewMask = key.layered ? 0u : (1u << key.eyes) - 1u;
+        desc.samples = static_cast<VkSampleCountFlagBits>(key.samples);
+        desc.alphaToCoverage = alphaToCoverage;
+        desc.alphaToOne = alphaToCoverage && dev.alphaToOne();
         desc.cullMode = key.doubleSided ? VK_CULL_MODE_NONE : VK_CULL_MODE_BACK_BIT;
         desc.depthWrite = alphaMode != AlphaMode::Blend;
         desc.alphaBlend = alphaMode == AlphaMode::Blend;
@@ -294,21 +357,58 @@ struct Renderer::Impl {
         shadowPipeline = rebuiltShadow;
     }
 
+    void setPose(ScenePose p) {
+        if (p.instances.size() != scene->restInstances.size())
+            throw Error(fmt::format("pose: {} instances for a scene of {}", p.instances.size(),
+                                    scene->restInstances.size()));
+        for (size_t i = 0; i < p.instances.size(); ++i)
+            if (!finite(p.instances[i].worldFromObject))
+                throw Error(fmt::format("pose: instance {}: its transform is not finite", i));
+        deformer->check(p);
+        bounds = poseBounds->worldBounds(p);
+        receivers = receiverPoseBounds->worldBounds(p);
+        pose = std::move(p);
+        ++poseVersion;
+    }
+
     VkPipeline depthOnlyPipeline() {
         if (!shadowPipeline) shadowPipeline = createShadowPipeline();
         return shadowPipeline;
     }
 
-    void ensureDepth(VkExtent2D extent) {
-        if (depth && depth.desc().width == extent.width && depth.desc().height == extent.height) return;
+    // The forward pass's own attachments: depth, and with MSAA the multisampled colour.
+    void ensureAttachments(VkExtent2D extent, uint32_t eyes, VkFormat colorFormat) {
+        const auto matches = [&](const vk::Image& image, VkFormat format) {
+            const vk::ImageDesc& d = image.desc();
+            return image && d.width == extent.width && d.height == extent.height && d.layers == eyes &&
+                   d.samples == samples() && d.format == format;
+        };
+        const bool msaa = settings.msaaSamples > 1;
+        if (matches(depth, kDepthFormat) && (!msaa || matches(msaaColor, colorFormat))) return;
         vkDeviceWaitIdle(dev.device());
-        depth = vk::Image(dev, {kDepthFormat, extent.width, extent.height, 1,
-                                VK_IMAGE_USAGE_DEPTH_STENCIL_ATTACHMENT_BIT, VK_IMAGE_ASPECT_DEPTH_BIT});
+        vk::ImageDesc d{kDepthFormat, extent.width, extent.height, 1, VK_IMAGE_USAGE_DEPTH_STENCIL_ATTACHMENT_BIT,
+                        VK_IMAGE_ASPECT_DEPTH_BIT, eyes, samples()};
+        depth = vk::Image(dev, d);
+        msaaColor = vk::Image();
+        if (msaa) {
+            d.format = colorFormat;
+            d.usage = VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT | VK_IMAGE_USAGE_TRANSIENT_ATTACHMENT_BIT;
+            d.aspect = VK_IMAGE_ASPECT_COLOR_BIT;
+            msaaColor = vk::Image(dev, d);
+        }
     }
 
     // Fills the slot's uniforms and light list; returns whether a shadow map is rendered.
     bool prepareFrame(Slot& slot, uint32_t slotIndex, const View& view, VkExtent2D extent,
                       glm::mat4& shadowClipFromWorld) {
+        // The pose: instance transforms, and the deformation's weights and joint matrices.
+        if (slot.instancesPose != poseVersion) {  // static scenes fill them once per slot
+            auto* instances = static_cast<gpu::GpuInstance*>(slot.instances.mapped());
+            for (size_t i = 0; i < scene->restInstances.size(); ++i)
+                instances[i] = toGpuInstance(pose.instances[i].worldFromObject);
+            slot.instancesPose = poseVersion;
+        }
+        deformer->prepare(slotIndex, pose);
         const int shadowLight = settings.shadows ? shadowLightIndex(lights) : -1;
         std::vector<gpu::GpuLight> gpuLights;
         gpuLights.reserve(lights.size());
@@ -327,9 +427,13 @@ struct Renderer::Impl {
         slot.lightCount = static_cast<uint32_t>(gpuLights.size());
 
         gpu::FrameUniforms u{};
-        u.clipFromWorld = view.clipFromWorld();
-        u.viewFromWorld = view.viewFromWorld;
-        u.cameraPositionWs = glm::vec4(view.positionWs, settings.exposure);
+        for (uint32_t e = 0; e < view.eyeCount(); ++e) {
+            const Eye& eye = view.eyes[e];
+            u.eyes[e].clipFromWorld = eye.clipFromWorld();
+            u.eyes[e].positionWs = glm::vec4(eye.positionWs, 1.0f);
+            u.eyes[e].viewDepthFromWorld = -glm::row(eye.viewFromWorld, 2);
+        }
+        u.params = glm::vec4(settings.exposure, float(view.eyeCount()), 0.0f, 0.0f);
         u.viewport = glm::vec4(float(extent.width), float(extent.height), 1.0f / float(extent.width),
                                1.0f / float(extent.height));
         const uint32_t mapSize = shadowMap.desc().width;
@@ -351,7 +455,8 @@ struct Renderer::Impl {
         u.lightCounts = glm::uvec4(slot.lightCount, directional, 0u, 0u);
         u.lut = luts->mapping();
         if (settings.lightLoop == LightLoop::Clustered)
-            clusters->prepare(slotIndex, settings.clusters, view, extent, bounds, gpuLights, directional, slot.lights, u);
+            clusters->prepare(slotIndex, settings.clusters, clusterCamera(view, extent.width, extent.height), bounds,
+                              gpuLights, directional, slot.lights, u);
         slot.frameUniforms.upload(&u, sizeof(u));
         return shadowLight >= 0;
     }
@@ -359,7 +464,7 @@ struct Renderer::Impl {
     void updateFrameSet(Slot& slot, uint32_t slotIndex) {
         const VkDescriptorBufferInfo frameInfo{slot.frameUniforms.handle(), 0, sizeof(gpu::FrameUniforms)};
         const VkDescriptorBufferInfo lightInfo{slot.lights.handle(), 0, VK_WHOLE_SIZE};
-        const VkDescriptorBufferInfo instanceInfo{scene->instances.handle(), 0, VK_WHOLE_SIZE};
+        const VkDescriptorBufferInfo instanceInfo{slot.instances.handle(), 0, VK_WHOLE_SIZE};
         const VkDescriptorBufferInfo rangesInfo{clusters->ranges(slotIndex).handle(), 0, VK_WHOLE_SIZE};
         const VkDescriptorBufferInfo indicesInfo{clusters->indices(slotIndex).handle(), 0, VK_WHOLE_SIZE};
         const VkDescriptorImageInfo shadowInfo{shadowSampler, shadowMap.view(), VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL};
@@ -396,14 +501,26 @@ struct Renderer::Impl {
         vkUpdateDescriptorSets(dev.device(), static_cast<uint32_t>(writes.size()), writes.data(), 0, nullptr);
     }
 
-    void bindGeometry(VkCommandBuffer cmd) {
-        const VkDeviceSize offset = 0;
-        const VkBuffer vb = scene->vertices.handle();
-        vkCmdBindVertexBuffers(cmd, 0, 1, &vb, &offset);
+    // Binds the index buffer; vertex buffers are bound per draw (bindDrawVertices).
+    void bindGeometry(VkCommandBuffer cmd, VkBuffer& boundVertices) {
         vkCmdBindIndexBuffer(cmd, scene->indices.handle(), 0, VK_INDEX_TYPE_UINT32);
+        boundVertices = VK_NULL_HANDLE;
     }
 
-    void recordShadowPass(VkCommandBuffer cmd, Slot& slot) {
+    // Binds the vertices a draw reads (the scene's rest vertices, or this frame's deformed ones of
+    // its instance) and returns its vertex offset.
+    int32_t bindDrawVertices(VkCommandBuffer cmd, uint32_t slotIndex, const DrawItem& d, VkBuffer& bound) {
+        const bool deformed = deformer->deforms(d.instance);
+        const VkBuffer vb = deformed ? deformer->output(slotIndex).handle() : scene->vertices.handle();
+        if (vb != bound) {
+            const VkDeviceSize offset = 0;
+            vkCmdBindVertexBuffers(cmd, 0, 1, &vb, &offset);
+            bound = vb;
+        }
+        return d.vertexOffset + (deformed ? deformer->vertexShift(d.instance) : 0);
+    }
+
+    void recordShadowPass(VkCommandBuffer cmd, Slot& slot, uint32_t slotIndex) {
         const uint32_t size = shadowMap.desc().width;
         vk::imageBarrier(cmd, shadowMap.handle(), VK_IMAGE_ASPECT_DEPTH_BIT, VK_IMAGE_LAYOUT_UNDEFINED,
                          VK_IMAGE_LAYOUT_DEPTH_ATTACHMENT_OPTIMAL, VK_PIPELINE_STAGE_2_FRAGMENT_SHADER_BIT,
@@ -428,13 +545,15 @@ struct Renderer::Impl {
         vkCmdSetDepthBias(cmd, 1.0f, 0.0f, 1.5f);
         vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, depthOnlyPipeline());
         vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, shadowLayout, 0, 1, &slot.set, 0, nullptr);
-        bindGeometry(cmd);
+        VkBuffer boundVertices = VK_NULL_HANDLE;
+        bindGeometry(cmd, boundVertices);
         for (const DrawItem& d : scene->draws) {
             if (scene->materials[d.material].alphaMode == AlphaMode::Blend) continue;
+            const int32_t vertexOffset = bindDrawVertices(cmd, slotIndex, d, boundVertices);
             const gpu::DrawPush push{glm::uvec4(d.instance, d.material, 0, 0)};
             vkCmdPushConstants(cmd, shadowLayout, VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_FRAGMENT_BIT, 0,
                                sizeof(push), &push);
-            vkCmdDrawIndexed(cmd, d.indexCount, 1, d.firstIndex, d.vertexOffset, 0);
+            vkCmdDrawIndexed(cmd, d.indexCount, 1, d.firstIndex, vertexOffset, 0);
         }
         vkCmdEndRendering(cmd);
         vk::imageBarrier(cmd, shadowMap.handle(), VK_IMAGE_ASPECT_DEPTH_BIT, VK_IMAGE_LAYOUT_DEPTH_ATTACHMENT_OPTIMAL,
@@ -443,24 +562,38 @@ struct Renderer::Impl {
                          VK_ACCESS_2_SHADER_SAMPLED_READ_BIT);
     }
 
-    void recordForwardPass(VkCommandBuffer cmd, Slot& slot, const RenderTarget& target, const View& view) {
+    void recordForwardPass(VkCommandBuffer cmd, Slot& slot, uint32_t slotIndex, const RenderTarget& target,
+                           const View& view) {
+        const uint32_t eyes = view.eyeCount();
+        const bool msaa = settings.msaaSamples > 1;
+        constexpr VkPipelineStageFlags2 kDepthStages =
+            VK_PIPELINE_STAGE_2_EARLY_FRAGMENT_TESTS_BIT | VK_PIPELINE_STAGE_2_LATE_FRAGMENT_TESTS_BIT;
+        constexpr VkAccessFlags2 kColorAccess = VK_ACCESS_2_COLOR_ATTACHMENT_READ_BIT | VK_ACCESS_2_COLOR_ATTACHMENT_WRITE_BIT;
         vk::imageBarrier(cmd, target.image, VK_IMAGE_ASPECT_COLOR_BIT, target.layoutBefore,
                          VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL, VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT,
                          VK_ACCESS_2_MEMORY_READ_BIT | VK_ACCESS_2_MEMORY_WRITE_BIT,
-                         VK_PIPELINE_STAGE_2_COLOR_ATTACHMENT_OUTPUT_BIT,
-                         VK_ACCESS_2_COLOR_ATTACHMENT_READ_BIT | VK_ACCESS_2_COLOR_ATTACHMENT_WRITE_BIT);
+                         VK_PIPELINE_STAGE_2_COLOR_ATTACHMENT_OUTPUT_BIT, kColorAccess, eyes);
+        if (msaa)
+            vk::imageBarrier(cmd, msaaColor.handle(), VK_IMAGE_ASPECT_COLOR_BIT, VK_IMAGE_LAYOUT_UNDEFINED,
+                             VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL, VK_PIPELINE_STAGE_2_COLOR_ATTACHMENT_OUTPUT_BIT,
+                             VK_ACCESS_2_COLOR_ATTACHMENT_WRITE_BIT, VK_PIPELINE_STAGE_2_COLOR_ATTACHMENT_OUTPUT_BIT,
+                             kColorAccess, eyes);
         vk::imageBarrier(cmd, depth.handle(), VK_IMAGE_ASPECT_DEPTH_BIT, VK_IMAGE_LAYOUT_UNDEFINED,
-                         VK_IMAGE_LAYOUT_DEPTH_ATTACHMENT_OPTIMAL,
-                         VK_PIPELINE_STAGE_2_EARLY_FRAGMENT_TESTS_BIT | VK_PIPELINE_STAGE_2_LATE_FRAGMENT_TESTS_BIT,
-                         VK_ACCESS_2_DEPTH_STENCIL_ATTACHMENT_WRITE_BIT,
-                         VK_PIPELINE_STAGE_2_EARLY_FRAGMENT_TESTS_BIT | VK_PIPELINE_STAGE_2_LATE_FRAGMENT_TESTS_BIT,
-                         VK_ACCESS_2_DEPTH_STENCIL_ATTACHMENT_READ_BIT | VK_ACCESS_2_DEPTH_STENCIL_ATTACHMENT_WRITE_BIT);
+                         VK_IMAGE_LAYOUT_DEPTH_ATTACHMENT_OPTIMAL, kDepthStages,
+                         VK_ACCESS_2_DEPTH_STENCIL_ATTACHMENT_WRITE_BIT, kDepthStages,
+                         VK_ACCESS_2_DEPTH_STENCIL_ATTACHMENT_READ_BIT | VK_ACCESS_2_DEPTH_STENCIL_ATTACHMENT_WRITE_BIT,
+                         eyes);
         VkRenderingAttachmentInfo color{VK_STRUCTURE_TYPE_RENDERING_ATTACHMENT_INFO};
-        color.imageView = target.view;
+        color.imageView = msaa ? msaaColor.view() : target.view;
         color.imageLayout = VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL;
         color.loadOp = VK_ATTACHMENT_LOAD_OP_CLEAR;
-        color.storeOp = VK_ATTACHMENT_STORE_OP_STORE;
+        color.storeOp = msaa ? VK_ATTACHMENT_STORE_OP_DONT_CARE : VK_ATTACHMENT_STORE_OP_STORE;
         color.clearValue.color = {{0.045f, 0.045f, 0.05f, 1.0f}};
+        if (msaa) {
+            color.resolveMode = VK_RESOLVE_MODE_AVERAGE_BIT;
+            color.resolveImageView = target.view;
+            color.resolveImageLayout = VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL;
+        }
         VkRenderingAttachmentInfo depthAttachment{VK_STRUCTURE_TYPE_RENDERING_ATTACHMENT_INFO};
         depthAttachment.imageView = depth.view();
         depthAttachment.imageLayout = VK_IMAGE_LAYOUT_DEPTH_ATTACHMENT_OPTIMAL;
@@ -469,7 +602,10 @@ struct Renderer::Impl {
         depthAttachment.clearValue.depthStencil = {0.0f, 0};  // reversed Z
         VkRenderingInfo info{VK_STRUCTURE_TYPE_RENDERING_INFO};
         info.renderArea = {{0, 0}, target.extent};
-        info.layerCount = 1;
+        // Every eye in one pass: one view per eye, or one layer per eye drawn by instances.
+        const bool layered = eyeDrawing() == EyeDrawing::InstancedLayers;
+        info.viewMask = layered ? 0u : (1u << eyes) - 1u;
+        info.layerCount = layered ? eyes : 1u;
         info.colorAttachmentCount = 1;
         info.pColorAttachments = &color;
         info.pDepthAttachment = &depthAttachment;
@@ -478,23 +614,26 @@ struct Renderer::Impl {
         const VkRect2D scissor{{0, 0}, target.extent};
         vkCmdSetViewport(cmd, 0, 1, &viewport);
         vkCmdSetScissor(cmd, 0, 1, &scissor);
-        bindGeometry(cmd);
+        VkBuffer boundVertices = VK_NULL_HANDLE;
+        bindGeometry(cmd, boundVertices);
         vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, forwardLayout, 0, 1, &slot.set, 0, nullptr);
 
-        // Opaque and masked first, then blended ones back to front.
+        // Opaque and masked first, then blended ones back to front (from the eyes' mean position).
+        glm::vec3 eyeCenter(0.0f);
+        for (const Eye& e : view.eyes) eyeCenter += e.positionWs / float(eyes);
         std::vector<const DrawItem*> order;
         for (const DrawItem& d : scene->draws) order.push_back(&d);
         auto blended = [&](const DrawItem* d) { return scene->materials[d->material].alphaMode == AlphaMode::Blend; };
         std::stable_sort(order.begin(), order.end(), [&](const DrawItem* a, const DrawItem* b) {
             if (blended(a) != blended(b)) return !blended(a);
             if (!blended(a)) return a->material < b->material;
-            return glm::distance(a->centerWs, view.positionWs) > glm::distance(b->centerWs, view.positionWs);
+            return glm::distance(a->centerWs, eyeCenter) > glm::distance(b->centerWs, eyeCenter);
         });
         VkPipeline bound = VK_NULL_HANDLE;
         uint32_t boundMaterial = UINT32_MAX;
         for (const DrawItem* d : order) {
             const GpuMaterial& m = scene->materials[d->material];
-            VkPipeline p = forwardPipeline(m, target.format);
+            VkPipeline p = forwardPipeline(m, target.format, eyes);
             if (p != bound) {
                 vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, p);
                 bound = p;
@@ -506,13 +645,41 @@ struct Renderer::Impl {
             const gpu::DrawPush push{glm::uvec4(d->instance, d->material, 0, 0)};
             vkCmdPushConstants(cmd, forwardLayout, VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_FRAGMENT_BIT, 0,
                                sizeof(push), &push);
-            vkCmdDrawIndexed(cmd, d->indexCount, 1, d->firstIndex, d->vertexOffset, 0);
+            const int32_t vertexOffset = bindDrawVertices(cmd, slotIndex, *d, boundVertices);
+            vkCmdDrawIndexed(cmd, d->indexCount, layered ? eyes : 1u, d->firstIndex, vertexOffset, 0);
         }
         vkCmdEndRendering(cmd);
         vk::imageBarrier(cmd, target.image, VK_IMAGE_ASPECT_COLOR_BIT, VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL,
                          target.layoutAfter, VK_PIPELINE_STAGE_2_COLOR_ATTACHMENT_OUTPUT_BIT,
                          VK_ACCESS_2_COLOR_ATTACHMENT_WRITE_BIT, VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT,
-                         VK_ACCESS_2_MEMORY_READ_BIT | VK_ACCESS_2_MEMORY_WRITE_BIT);
+                         VK_ACCESS_2_MEMORY_READ_BIT | VK_ACCESS_2_MEMORY_WRITE_BIT, eyes);
+    }
+
+    // Throws preskin::Error unless the view and settings can be drawn on this device.
+    void checkFrame(const View& view) const {
+        if (view.eyes.empty() || view.eyeCount() > maxEyes())
+            throw Error(fmt::format("view: {} eye(s); this device draws 1 to {} per view", view.eyeCount(), maxEyes()));
+        for (uint32_t e = 0; e < view.eyeCount(); ++e) {
+            const Eye& eye = view.eyes[e];
+            if (!finite(eye.viewFromWorld) || !finite(eye.clipFromView) || !std::isfinite(eye.positionWs.x) ||
+                !std::isfinite(eye.positionWs.y) || !std::isfinite(eye.positionWs.z))
+                throw Error(fmt::format("view: eye {}: its matrices and position must be finite", e));
+        }
+        if (settings.eyeDrawing == EyeDrawing::InstancedLayers && !dev.shaderOutputLayer())
+            throw Error("RenderSettings: instanced layered eyes need the device's shaderOutputLayer feature");
+        const uint32_t n = settings.msaaSamples;
+        if (n == 0 || (n & (n - 1)) != 0 || (dev.msaaSampleCounts() & n) == 0)
+            throw Error(fmt::format("RenderSettings: msaaSamples {} is not offered by {} (offered: {})", n,
+                                    dev.properties().deviceName, fmt::join(msaaSampleCounts(), ", ")));
+    }
+
+    uint32_t maxEyes() const { return std::min(kMaxEyes, dev.maxMultiviewViews()); }
+
+    std::vector<uint32_t> msaaSampleCounts() const {
+        std::vector<uint32_t> counts;
+        for (uint32_t n = 1; n <= 64; n *= 2)
+            if (dev.msaaSampleCounts() & n) counts.push_back(n);
+        return counts;
     }
 
     void timestamp(VkCommandBuffer cmd, Slot& slot, uint32_t query) {
@@ -520,25 +687,33 @@ struct Renderer::Impl {
     }
 
     void record(VkCommandBuffer cmd, const RenderTarget& target, const View& view, uint32_t slotIndex) {
+        const auto start = std::chrono::steady_clock::now();
         if (slotIndex >= kSlotCount) throw Error(fmt::format("Renderer::record: frame slot {} (0 or 1)", slotIndex));
         if (target.extent.width == 0 || target.extent.height == 0)
             throw Error("Renderer::record: target extent is empty");
+        checkFrame(view);
         Slot& slot = slots[slotIndex];
         createShadowMap();
-        ensureDepth(target.extent);
+        ensureAttachments(target.extent, view.eyeCount(), target.format);
         glm::mat4 shadowClipFromWorld(1.0f);
         const bool shadow = prepareFrame(slot, slotIndex, view, target.extent, shadowClipFromWorld);
         updateFrameSet(slot, slotIndex);
         if (slot.queries) vkCmdResetQueryPool(cmd, slot.queries, 0, kQueryCount);
         timestamp(cmd, slot, 0);
-        if (shadow) recordShadowPass(cmd, slot);
+        deformer->recordDeformation(cmd, slotIndex);  // animated instances into this frame's vertices
         timestamp(cmd, slot, 1);
-        clusters->record(cmd, slotIndex);  // the compute build, when this frame uses it
+        deformer->recordCurvature(cmd, slotIndex);
         timestamp(cmd, slot, 2);
-        recordForwardPass(cmd, slot, target, view);
+        if (shadow) recordShadowPass(cmd, slot, slotIndex);
         timestamp(cmd, slot, 3);
+        clusters->record(cmd, slotIndex);  // the compute build, when this frame uses it
+        timestamp(cmd, slot, 4);
+        recordForwardPass(cmd, slot, slotIndex, target, view);
+        timestamp(cmd, slot, 5);
         slot.recorded = true;
         slot.shadowRecorded = shadow;
+        slot.eyes = view.eyeCount();
+        slot.recordMs = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
     }
 
     FrameStats stats(uint32_t slotIndex) const {
@@ -550,6 +725,9 @@ struct Renderer::Impl {
         s.clusterOverflows = clusters->overflows(slotIndex);
         s.clusterBuildCpuMs = settings.lightLoop == LightLoop::Clustered ? clusters->buildMs(slotIndex) : 0.0;
         s.clusterBuildGpu = settings.lightLoop == LightLoop::Clustered && clusters->usesGpu(slotIndex);
+        s.recordCpuMs = std::max(slot.recordMs - s.clusterBuildCpuMs, 0.0);
+        s.eyes = slot.eyes;
+        s.eyeDrawing = eyeDrawing();
         if (!slot.recorded || !slot.queries) return s;
         std::array<uint64_t, kQueryCount> ticks{};
         const VkResult r = vkGetQueryPoolResults(dev.device(), slot.queries, 0, kQueryCount, sizeof(ticks), ticks.data(),
@@ -557,8 +735,9 @@ struct Renderer::Impl {
         if (r != VK_SUCCESS) return s;
         const double toMs = double(dev.timestampPeriodNs()) * 1e-6;
         auto ms = [&](int a, int b) { return double(ticks[size_t(b)] - ticks[size_t(a)]) * toMs; };
-        s.passes = {{"shadow", ms(0, 1)}, {"clusters", ms(1, 2)}, {"forward", ms(2, 3)}};
-        s.gpuMs = ms(0, 3);
+        s.passes = {{"deform", ms(0, 1)}, {"curvature", ms(1, 2)}, {"shadow", ms(2, 3)}, {"clusters", ms(3, 4)},
+                    {"forward", ms(4, 5)}};
+        s.gpuMs = ms(0, 5);
         return s;
     }
 };
@@ -572,12 +751,19 @@ Renderer::~Renderer() = default;
 const RenderSettings& Renderer::settings() const { return impl_->settings; }
 
 void Renderer::setSettings(const RenderSettings& settings) {
-    if (!std::isfinite(settings.exposure) || !std::isfinite(settings.shadowSoftnessTexels))
-        throw Error("RenderSettings: exposure and shadowSoftnessTexels must be finite");
+    checkRenderSettings(settings);
     impl_->settings = settings;
+    impl_->resolveEyeDrawing();
 }
 
-void Renderer::setLights(const std::vector<Light>& lights) { impl_->lights = lights; }
+void Renderer::setPose(const ScenePose& pose) { impl_->setPose(pose); }
+
+const ScenePose& Renderer::pose() const { return impl_->pose; }
+
+void Renderer::setLights(const std::vector<Light>& lights) {
+    checkLights(lights);
+    impl_->lights = lights;
+}
 const std::vector<Light>& Renderer::lights() const { return impl_->lights; }
 void Renderer::setEnvironment(const Environment& environment) { impl_->radianceSh = environment.radianceSh(); }
 
@@ -597,6 +783,10 @@ void Renderer::record(VkCommandBuffer cmd, const RenderTarget& target, const Vie
 
 FrameStats Renderer::frameStats(uint32_t frameSlot) const { return impl_->stats(frameSlot); }
 
+uint32_t Renderer::maxEyes() const { return impl_->maxEyes(); }
+
+std::vector<uint32_t> Renderer::msaaSampleCounts() const { return impl_->msaaSampleCounts(); }
+
 RenderedImage Renderer::render(const View& view, uint32_t width, uint32_t height, OutputEncoding encoding) {
     Impl& im = *impl_;
     const uint32_t maxDim = std::min<uint32_t>(im.dev.properties().limits.maxImageDimension2D, 16384);
@@ -604,15 +794,17 @@ RenderedImage Renderer::render(const View& view, uint32_t width, uint32_t height
         throw Error(fmt::format("image size: {}x{} is outside 1..{} pixels per side", width, height, maxDim));
     const VkFormat format =
         encoding == OutputEncoding::DisplaySrgb8 ? VK_FORMAT_R8G8B8A8_SRGB : VK_FORMAT_R32G32B32A32_SFLOAT;
+    im.checkFrame(view);
+    const uint32_t eyes = view.eyeCount();
     const VkDeviceSize pixelBytes = encoding == OutputEncoding::DisplaySrgb8 ? 4 : 16;
     if (!im.colorTarget || im.colorTarget.desc().width != width || im.colorTarget.desc().height != height ||
-        im.colorTarget.desc().format != format) {
+        im.colorTarget.desc().format != format || im.colorTarget.desc().layers != eyes) {
         vkDeviceWaitIdle(im.dev.device());
         im.colorTarget = vk::Image(im.dev, {format, width, height, 1,
                                             VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT,
-                                            VK_IMAGE_ASPECT_COLOR_BIT});
-        im.readback = vk::Buffer(im.dev, VkDeviceSize(width) * height * pixelBytes, VK_BUFFER_USAGE_TRANSFER_DST_BIT,
-                                 true);
+                                            VK_IMAGE_ASPECT_COLOR_BIT, eyes});
+        im.readback = vk::Buffer(im.dev, VkDeviceSize(width) * height * pixelBytes * eyes,
+                                 VK_BUFFER_USAGE_TRANSFER_DST_BIT, true);
     }
     RenderTarget target;
     target.image = im.colorTarget.handle();
@@ -626,7 +818,7 @@ RenderedImage Renderer::render(const View& view, uint32_t width, uint32_t height
     im.dev.submitAndWait([&](VkCommandBuffer cmd) {
         im.record(cmd, target, view, 0);
         VkBufferImageCopy region{};
-        region.imageSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, 1};
+        region.imageSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, eyes};
         region.imageExtent = {width, height, 1};
         vkCmdCopyImageToBuffer(cmd, target.image, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, im.readback.handle(), 1,
                                &region);
@@ -638,8 +830,9 @@ RenderedImage Renderer::render(const View& view, uint32_t width, uint32_t height
     RenderedImage out;
     out.width = width;
     out.height = height;
+    out.eyes = eyes;
     out.encoding = encoding;
-    const size_t count = size_t(width) * height * 4;
+    const size_t count = size_t(width) * height * 4 * eyes;
     if (encoding == OutputEncoding::DisplaySrgb8) {
         out.rgba8.resize(count);
         std::memcpy(out.rgba8.data(), im.readback.mapped(), count);

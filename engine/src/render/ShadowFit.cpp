@@ -41,38 +41,29 @@ Rect projectBounds(const LightAxes& a, const Bounds& b) {
     return r;
 }
 
-// The view frustum's corners, from the near plane to farM (reversed Z: depth 1 is near; a
+// The eyes' frusta corners, from the near plane to farM (reversed Z: depth 1 is near; a
 // perspective projection reaches depth near / far at farM, an orthographic one depth 0).
-Rect projectFrustum(const LightAxes& a, const View& view) {
-    const glm::dmat4 worldFromClip = glm::inverse(glm::dmat4(view.clipFromWorld()));
-    const bool perspective = view.clipFromView[3][3] == 0.0f;
-    const double farDepth = perspective ? double(view.nearM) / std::max(double(view.farM), double(view.nearM)) : 0.0;
+Rect projectFrusta(const LightAxes& a, const View& view) {
     Rect r;
-    for (int i = 0; i < 8; ++i) {
-        const glm::dvec4 p = worldFromClip * glm::dvec4((i & 1) ? 1.0 : -1.0, (i & 2) ? 1.0 : -1.0, (i & 4) ? farDepth : 1.0, 1.0);
-        r.extend(project(a, glm::vec3(glm::dvec3(p) / p.w)));
+    for (const Eye& eye : view.eyes) {
+        const glm::dmat4 worldFromClip = glm::inverse(glm::dmat4(eye.clipFromWorld()));
+        const double farDepth = eye.orthographic() ? 0.0 : double(eye.nearM) / std::max(double(eye.farM), double(eye.nearM));
+        for (int i = 0; i < 8; ++i) {
+            const glm::dvec4 p = worldFromClip * glm::dvec4((i & 1) ? 1.0 : -1.0, (i & 2) ? 1.0 : -1.0,
+                                                            (i & 4) ? farDepth : 1.0, 1.0);
+            r.extend(project(a, glm::vec3(glm::dvec3(p) / p.w)));
+        }
     }
     return r;
 }
 
 }  // namespace
 
-Bounds skinReceiverBounds(const Scene& scene) {
-    Bounds bounds;
-    for (const MeshInstance& instance : scene.instances) {
-        if (instance.mesh < 0 || static_cast<size_t>(instance.mesh) >= scene.meshes.size()) continue;
-        for (const Primitive& primitive : scene.meshes[static_cast<size_t>(instance.mesh)].primitives) {
-            const bool skin = primitive.material >= 0 && static_cast<size_t>(primitive.material) < scene.materials.size() &&
-                              scene.materials[static_cast<size_t>(primitive.material)].skin.has_value();
-            if (!skin || primitive.boundsOs.empty()) continue;
-            const Bounds& b = primitive.boundsOs;
-            for (int corner = 0; corner < 8; ++corner)
-                bounds.extend(glm::vec3(instance.worldFromObject *
-                                        glm::vec4((corner & 1) ? b.max.x : b.min.x, (corner & 2) ? b.max.y : b.min.y,
-                                                  (corner & 4) ? b.max.z : b.min.z, 1.0f)));
-        }
-    }
-    return bounds;
+PoseBounds skinReceiverBounds(const Scene& scene) {
+    return PoseBounds(scene, [&scene](const Primitive& primitive) {
+        return primitive.material >= 0 && static_cast<size_t>(primitive.material) < scene.materials.size() &&
+               scene.materials[static_cast<size_t>(primitive.material)].skin.has_value();
+    });
 }
 
 ShadowFit fitDirectionalShadow(const Bounds& casters, const Bounds& receivers, const View& view,
@@ -85,7 +76,7 @@ ShadowFit fitDirectionalShadow(const Bounds& casters, const Bounds& receivers, c
     glm::vec2 centre = project(a, sphereCentre);
     float half = sphereRadius;
     if (!receivers.empty()) {
-        const Rect r = projectBounds(a, receivers), f = projectFrustum(a, view);
+        const Rect r = projectBounds(a, receivers), f = projectFrusta(a, view);
         Rect overlap;
         overlap.lo = glm::max(r.lo, f.lo);
         overlap.hi = glm::min(r.hi, f.hi);

@@ -1,6 +1,12 @@
-// View construction: reversed-Z projections and the default framings (see <preskin/View.h>).
+// View construction: reversed-Z projections, stereo pairs and the default framings (see
+// <preskin/View.h>).
 #include <preskin/View.h>
 
+#include <preskin/Error.h>
+
+#include "render/Projection.h"
+
+#include <fmt/core.h>
 #include <glm/gtc/matrix_transform.hpp>
 
 #include <algorithm>
@@ -10,14 +16,18 @@ namespace preskin {
 
 namespace {
 
-glm::mat4 reversedInfinitePerspective(float yfov, float aspect, float nearM) {
-    const float f = 1.0f / std::tan(0.5f * yfov);
-    glm::mat4 m(0.0f);
-    m[0][0] = f / aspect;
-    m[1][1] = -f;  // Vulkan clip space: +Y down
-    m[2][3] = -1.0f;
-    m[3][2] = nearM;  // depth = near / viewDepth
-    return m;
+glm::mat4 perspectiveFromFov(const FovAngles& fov, float nearM) {
+    return reversedInfinitePerspective(std::tan(fov.left), std::tan(fov.right), std::tan(fov.up), std::tan(fov.down),
+                                       nearM);
+}
+
+void checkFov(const FovAngles& fov, const char* what) {
+    const float limit = 0.5f * glm::pi<float>() - 1e-3f;
+    for (float a : {fov.left, fov.right, fov.up, fov.down})
+        if (!std::isfinite(a) || std::abs(a) > limit)
+            throw Error(fmt::format("{}: field-of-view angles must be finite and within +-90 degrees", what));
+    if (!(fov.left < fov.right) || !(fov.down < fov.up))
+        throw Error(fmt::format("{}: field of view needs left < right and down < up", what));
 }
 
 glm::mat4 reversedOrthographic(float xmag, float ymag, float nearM, float farM) {
@@ -31,14 +41,52 @@ glm::mat4 reversedOrthographic(float xmag, float ymag, float nearM, float farM) 
 
 }  // namespace
 
-View perspectiveView(const glm::mat4& worldFromView, float yfov, float aspect, float nearM, float farM) {
+Eye perspectiveEye(const glm::mat4& worldFromView, const FovAngles& fov, float nearM, float farM) {
+    checkFov(fov, "perspective eye");
+    Eye eye;
+    eye.viewFromWorld = glm::inverse(worldFromView);
+    eye.clipFromView = perspectiveFromFov(fov, nearM);
+    eye.positionWs = glm::vec3(worldFromView[3]);
+    eye.nearM = nearM;
+    eye.farM = farM;
+    return eye;
+}
+
+FovAngles symmetricFov(float yfov, float aspect) {
+    const float halfY = 0.5f * yfov;
+    const float halfX = std::atan(std::tan(halfY) * aspect);
+    return FovAngles{-halfX, halfX, halfY, -halfY};
+}
+
+FovAngles fovOf(const Eye& eye) {
+    if (eye.orthographic()) throw Error("view: an orthographic eye has no field-of-view angles");
+    const glm::vec4 t = perspectiveTangents(eye.clipFromView);
+    return FovAngles{std::atan(t.x), std::atan(t.y), std::atan(t.z), std::atan(t.w)};
+}
+
+View stereoView(const glm::mat4& worldFromHead, float ipdM, const FovAngles& leftFov, const FovAngles& rightFov,
+                float nearM, float farM) {
+    if (!std::isfinite(ipdM) || ipdM < 0.0f || ipdM > 1.0f)
+        throw Error(fmt::format("stereo view: IPD {} m is outside 0..1 m", ipdM));
+    checkFov(leftFov, "stereo view: left eye");
+    checkFov(rightFov, "stereo view: right eye");
     View view;
-    view.viewFromWorld = glm::inverse(worldFromView);
-    view.clipFromView = reversedInfinitePerspective(yfov, aspect, nearM);
-    view.positionWs = glm::vec3(worldFromView[3]);
-    view.nearM = nearM;
-    view.farM = farM;
+    for (int side : {-1, 1}) {
+        glm::mat4 worldFromEye = worldFromHead;
+        worldFromEye[3] = worldFromHead * glm::vec4(0.5f * ipdM * float(side), 0.0f, 0.0f, 1.0f);
+        view.eyes.push_back(perspectiveEye(worldFromEye, side < 0 ? leftFov : rightFov, nearM, farM));
+    }
     return view;
+}
+
+View stereoFromMono(const View& mono, float ipdM) {
+    const Eye& eye = mono.eye(0);
+    const FovAngles fov = fovOf(eye);
+    return stereoView(glm::inverse(eye.viewFromWorld), ipdM, fov, fov, eye.nearM, eye.farM);
+}
+
+View perspectiveView(const glm::mat4& worldFromView, float yfov, float aspect, float nearM, float farM) {
+    return View(perspectiveEye(worldFromView, symmetricFov(yfov, aspect), nearM, farM));
 }
 
 View orbitView(const Bounds& bounds, float yawDeg, float pitchDeg, float distanceM, float aspect, float yfov) {
@@ -86,13 +134,13 @@ View cameraView(const Camera& camera, float aspect, const Bounds& sceneBounds) {
     farM = std::max(farM, nearM * 2.0f);
     const float a = camera.aspectRatio > 0.0f ? camera.aspectRatio : aspect;
     if (!camera.orthographic) return perspectiveView(camera.worldFromView, camera.yfov, a, nearM, farM);
-    View view;
-    view.viewFromWorld = glm::inverse(camera.worldFromView);
-    view.clipFromView = reversedOrthographic(camera.xmag, camera.ymag, nearM, farM);
-    view.positionWs = eye;
-    view.nearM = nearM;
-    view.farM = farM;
-    return view;
+    Eye ortho;
+    ortho.viewFromWorld = glm::inverse(camera.worldFromView);
+    ortho.clipFromView = reversedOrthographic(camera.xmag, camera.ymag, nearM, farM);
+    ortho.positionWs = eye;
+    ortho.nearM = nearM;
+    ortho.farM = farM;
+    return View(ortho);
 }
 
 }  // namespace preskin

@@ -5,43 +5,18 @@
 #include <preskin/Error.h>
 #include <preskin/Scene.h>
 
+#include "scene/Weld.h"
+
 #include <algorithm>
 #include <array>
-#include <bit>
 #include <cmath>
 #include <string>
-#include <unordered_map>
 #include <utility>
 
 namespace preskin {
 namespace {
 
 using dvec3 = glm::dvec3;
-
-struct PositionKey {
-    std::array<uint32_t, 3> bits;
-    bool operator==(const PositionKey&) const = default;
-};
-
-struct PositionKeyHash {
-    size_t operator()(const PositionKey& k) const {
-        uint64_t h = 1469598103934665603ull;
-        for (uint32_t b : k.bits) {
-            h ^= b;
-            h *= 1099511628211ull;
-        }
-        return static_cast<size_t>(h);
-    }
-};
-
-PositionKey keyOf(const glm::vec3& p) {
-    PositionKey k{};
-    for (int i = 0; i < 3; ++i) {
-        const float c = p[i] == 0.0f ? 0.0f : p[i];  // -0 and +0 weld
-        k.bits[static_cast<size_t>(i)] = std::bit_cast<uint32_t>(c);
-    }
-    return k;
-}
 
 // Solves the symmetric 3x3 system m x = r by Cramer's rule; false when (nearly) singular.
 bool solve3(const std::array<std::array<double, 3>, 3>& m, const std::array<double, 3>& r,
@@ -85,35 +60,19 @@ std::vector<float> computeVertexCurvature(std::span<const glm::vec3> positions,
         }
     }
 
-    // 1. Weld: one id per (position, normal hemisphere).
-    std::vector<uint32_t> weldedOf(vertexCount);
-    std::vector<dvec3> weldedPosition;
-    std::vector<dvec3> weldedNormalSum;
-    {
-        std::unordered_map<PositionKey, std::vector<uint32_t>, PositionKeyHash> groups;
-        groups.reserve(vertexCount);
-        for (size_t i = 0; i < vertexCount; ++i) {
-            dvec3 n(normals[i]);
-            const double len = glm::length(n);
-            n = (std::isfinite(len) && len > 1e-12) ? n / len : dvec3(0.0);
-            auto& ids = groups[keyOf(positions[i])];
-            uint32_t id = UINT32_MAX;
-            for (uint32_t candidate : ids) {
-                const dvec3& sum = weldedNormalSum[candidate];
-                if (glm::dot(sum, n) > 0.0 || n == dvec3(0.0) || sum == dvec3(0.0)) {
-                    id = candidate;
-                    break;
-                }
-            }
-            if (id == UINT32_MAX) {
-                id = static_cast<uint32_t>(weldedPosition.size());
-                ids.push_back(id);
-                weldedPosition.emplace_back(positions[i]);
-                weldedNormalSum.emplace_back(0.0);
-            }
-            weldedNormalSum[id] += n;
-            weldedOf[i] = id;
-        }
+    // 1. Weld: one id per (position, normal hemisphere) (scene/Weld.h).
+    const WeldedVertices weld = weldVertices(positions, normals);
+    const std::vector<uint32_t>& weldedOf = weld.weldedOf;
+    std::vector<dvec3> weldedPosition(weld.weldedCount);
+    std::vector<dvec3> weldedNormalSum(weld.weldedCount, dvec3(0.0));
+    std::vector<bool> placed(weld.weldedCount, false);
+    for (size_t i = 0; i < vertexCount; ++i) {
+        const uint32_t id = weldedOf[i];
+        if (!placed[id]) weldedPosition[id] = dvec3(positions[i]);
+        placed[id] = true;
+        dvec3 n(normals[i]);
+        const double len = glm::length(n);
+        weldedNormalSum[id] += (std::isfinite(len) && len > 1e-12) ? n / len : dvec3(0.0);
     }
     const size_t weldedCount = weldedPosition.size();
 

@@ -1,6 +1,8 @@
 // Range-checked accessor reads (see GltfAccessors.h).
 #include "scene/GltfAccessors.h"
 
+#include <preskin/Limits.h>
+
 #include <algorithm>
 #include <cmath>
 #include <cstring>
@@ -41,12 +43,13 @@ int componentCount(int type) {
     case TINYGLTF_TYPE_VEC2: return 2;
     case TINYGLTF_TYPE_VEC3: return 3;
     case TINYGLTF_TYPE_VEC4: return 4;
+    case TINYGLTF_TYPE_MAT4: return 16;  // columns of 4 components: never padded (glTF 2.0, "Data Alignment")
     default: return 0;
     }
 }
 
 std::string typeName(int components) {
-    return components == 1 ? "SCALAR" : "VEC" + std::to_string(components);
+    return components == 1 ? "SCALAR" : components == 16 ? "MAT4" : "VEC" + std::to_string(components);
 }
 
 template <typename T>
@@ -103,7 +106,7 @@ const uint8_t* viewBytes(const LoadContext& ctx, int viewIndex, uint64_t offset,
                                std::to_string(view.byteLength) + " exceeds buffers[" + std::to_string(view.buffer) +
                                "] (" + std::to_string(bufferSize) + " bytes)");
     }
-    // count <= kMaxAccessorCount and stride <= 2^8 (or elementSize <= 16), so no overflow.
+    // count <= limits::kMaxSceneIndices and stride <= 2^8 (or elementSize <= 64), so no overflow.
     const uint64_t span = count == 0 ? 0 : (count - 1) * stride + elementSize;
     if (offset > view.byteLength || span > view.byteLength - offset) {
         ctx.fail(where, "byteOffset " + std::to_string(offset) + " + " + std::to_string(count) + " elements of " +
@@ -132,15 +135,28 @@ CheckedAccessor checkAccessor(const LoadContext& ctx, int index, const std::stri
     c.name = indexed("accessors", static_cast<size_t>(index));
     const tinygltf::Accessor& a = *c.accessor;
     c.components = componentCount(a.type);
-    if (c.components == 0) ctx.fail(c.name + ".type", "a matrix type, " + what + " needs a vector or scalar");
+    if (c.components == 0) ctx.fail(c.name + ".type", "MAT2 or MAT3, " + what + " needs a vector, scalar or MAT4");
     c.componentBytes = componentSize(a.componentType);
     if (c.componentBytes == 0) {
         ctx.fail(c.name + ".componentType", componentName(a.componentType) + " is not allowed for accessors");
     }
     if (a.count == 0) ctx.fail(c.name + ".count", "0 (must be at least 1)");
-    if (a.count > kMaxAccessorCount) {
-        ctx.fail(c.name + ".count", std::to_string(a.count) + " exceeds the limit of " + std::to_string(kMaxAccessorCount));
+    if (a.count > limits::kMaxSceneIndices) {
+        ctx.fail(c.name + ".count", std::to_string(a.count) + " exceeds the limit of " +
+                                        std::to_string(limits::kMaxSceneIndices) + " elements");
     }
+    return c;
+}
+
+CheckedAccessor checkIndexAccessor(const LoadContext& ctx, int index, const std::string& what) {
+    const CheckedAccessor c = checkAccessor(ctx, index, what);
+    const int type = c.accessor->componentType;
+    if (c.components != 1) ctx.fail(c.name + ".type", typeName(c.components) + ", but " + what + " needs SCALAR");
+    if (type != TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE && type != TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT &&
+        type != TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT) {
+        ctx.fail(c.name + ".componentType", componentName(type) + ", but " + what + " needs an unsigned integer type");
+    }
+    if (c.accessor->normalized) ctx.fail(c.name + ".normalized", "true, but " + what + " must not be normalized");
     return c;
 }
 
@@ -151,20 +167,34 @@ uint32_t loadUnsigned(const uint8_t* p, size_t bytes) {
 // Calls store(element, component, bytes) for every component of a checked accessor: first the
 // bufferView's data (none when it has no bufferView: the caller's zeros stay), then the sparse
 // substitutions.
+struct ViewRange {
+    const uint8_t* base = nullptr;  // nullptr: no bufferView
+    uint64_t stride = 0;
+};
+
+// The checked range of an accessor's bufferView data (element size and stride against the view).
+ViewRange viewRange(const LoadContext& ctx, const CheckedAccessor& c) {
+    const tinygltf::Accessor& a = *c.accessor;
+    if (a.bufferView < 0) return {};
+    const uint64_t elementSize = c.componentBytes * static_cast<size_t>(c.components);
+    const tinygltf::BufferView& view = ctx.model->bufferViews.at(static_cast<size_t>(a.bufferView));
+    const uint64_t stride = view.byteStride != 0 ? view.byteStride : elementSize;
+    if (stride < elementSize) {
+        ctx.fail(indexed("bufferViews", static_cast<size_t>(a.bufferView)) + ".byteStride",
+                 std::to_string(stride) + " is smaller than the element size " + std::to_string(elementSize) +
+                     " of " + c.name);
+    }
+    return {viewBytes(ctx, a.bufferView, a.byteOffset, a.count, elementSize, stride, c.name), stride};
+}
+
 template <typename Store>
 void readComponents(const LoadContext& ctx, const CheckedAccessor& c, Store&& store) {
     const tinygltf::Accessor& a = *c.accessor;
     const auto components = static_cast<size_t>(c.components);
     const uint64_t elementSize = c.componentBytes * components;
-    if (a.bufferView >= 0) {
-        const tinygltf::BufferView& view = ctx.model->bufferViews.at(static_cast<size_t>(a.bufferView));
-        const uint64_t stride = view.byteStride != 0 ? view.byteStride : elementSize;
-        if (stride < elementSize) {
-            ctx.fail(indexed("bufferViews", static_cast<size_t>(a.bufferView)) + ".byteStride",
-                     std::to_string(stride) + " is smaller than the element size " + std::to_string(elementSize) +
-                         " of " + c.name);
-        }
-        const uint8_t* base = viewBytes(ctx, a.bufferView, a.byteOffset, a.count, elementSize, stride, c.name);
+    if (const ViewRange range = viewRange(ctx, c); range.base) {
+        const uint8_t* base = range.base;
+        const uint64_t stride = range.stride;
         for (size_t i = 0; i < a.count; ++i) {
             const uint8_t* element = base + i * stride;
             for (size_t k = 0; k < components; ++k) store(i, k, element + k * c.componentBytes);
@@ -213,6 +243,12 @@ void readComponents(const LoadContext& ctx, const CheckedAccessor& c, Store&& st
 
 }  // namespace
 
+size_t accessorCount(const LoadContext& ctx, int index, const std::string& what, AccessorUse use) {
+    const CheckedAccessor c = use == AccessorUse::Indices ? checkIndexAccessor(ctx, index, what) : checkAccessor(ctx, index, what);
+    viewRange(ctx, c);
+    return c.accessor->count;
+}
+
 FloatAccessor readFloatAccessor(const LoadContext& ctx, int index, std::initializer_list<int> componentsAllowed,
                                 const std::string& what) {
     const CheckedAccessor c = checkAccessor(ctx, index, what);
@@ -232,25 +268,18 @@ FloatAccessor readFloatAccessor(const LoadContext& ctx, int index, std::initiali
         out.values[element * components + component] = convert(p, type, normalized);
     });
     for (size_t i = 0; i < out.values.size(); ++i) {
-        if (!std::isfinite(out.values[i])) {
+        if (auto problem = io::numberProblem(out.values[i])) {
             const size_t element = i / static_cast<size_t>(c.components);
-            ctx.fail(c.name, std::string(std::isnan(out.values[i]) ? "NaN" : "infinite") + " value in element " +
-                                 std::to_string(element) + " (component " +
-                                 std::to_string(i % static_cast<size_t>(c.components)) + ") of " + what);
+            ctx.fail(c.name, "element " + std::to_string(element) + " (component " +
+                                 std::to_string(i % static_cast<size_t>(c.components)) + ") of " + what + ": " +
+                                 *problem);
         }
     }
     return out;
 }
 
 std::vector<uint32_t> readIndexAccessor(const LoadContext& ctx, int index, size_t vertexCount, const std::string& what) {
-    const CheckedAccessor c = checkAccessor(ctx, index, what);
-    const int type = c.accessor->componentType;
-    if (c.components != 1) ctx.fail(c.name + ".type", typeName(c.components) + ", but " + what + " needs SCALAR");
-    if (type != TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE && type != TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT &&
-        type != TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT) {
-        ctx.fail(c.name + ".componentType", componentName(type) + ", but " + what + " needs an unsigned integer type");
-    }
-    if (c.accessor->normalized) ctx.fail(c.name + ".normalized", "true, but " + what + " must not be normalized");
+    const CheckedAccessor c = checkIndexAccessor(ctx, index, what);
     std::vector<uint32_t> indices(c.accessor->count, 0);
     readComponents(ctx, c, [&](size_t element, size_t, const uint8_t* p) {
         indices[element] = loadUnsigned(p, c.componentBytes);

@@ -3,7 +3,8 @@
 // indices increasing and below count), so no read ever leaves the loaded data.
 // Integer components are converted as glTF 2.0 specifies: normalized ones to [0, 1] or [-1, 1]
 // (signed: max(c / (2^(n-1) - 1), -1)), others to their value. An accessor without bufferView
-// reads as zeros (plus its sparse values). Matrix types are not read (no attribute needs them).
+// reads as zeros (plus its sparse values). Of the matrix types only MAT4 is read (inverse bind
+// matrices), as 16 column-major components.
 #pragma once
 
 #include "scene/GltfContext.h"
@@ -16,7 +17,7 @@ namespace preskin::gltf {
 
 struct FloatAccessor {
     size_t count = 0;
-    int components = 0;          // 1..4
+    int components = 0;          // 1..4, or 16 (MAT4, column-major)
     std::vector<float> values;   // count * components
 };
 
@@ -25,6 +26,11 @@ struct FloatAccessor {
 // "meshes[0].primitives[0].attributes.POSITION". Non-finite values are an error.
 FloatAccessor readFloatAccessor(const LoadContext& ctx, int index, std::initializer_list<int> componentsAllowed,
                                 const std::string& what);
+
+// The element count of accessor `index` after the same checks as the readers, without reading
+// it: callers check their totals against the limits before anything is allocated.
+enum class AccessorUse { Attribute, Indices };
+size_t accessorCount(const LoadContext& ctx, int index, const std::string& what, AccessorUse use = AccessorUse::Attribute);
 
 // Reads an index accessor (SCALAR, unsigned byte/short/int) and checks every index < vertexCount.
 std::vector<uint32_t> readIndexAccessor(const LoadContext& ctx, int index, size_t vertexCount, const std::string& what);

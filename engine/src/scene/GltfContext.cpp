@@ -14,9 +14,7 @@ const tinygltf::Value* find(const tinygltf::Value& object, const char* key) {
 
 double finiteNumber(const LoadContext& ctx, const tinygltf::Value& v, const std::string& where) {
     if (!v.IsNumber()) ctx.fail(where, "not a number");
-    const double d = v.GetNumberAsDouble();
-    if (!std::isfinite(d)) ctx.fail(where, "not finite");
-    return d;
+    return checkedNumber(ctx, v.GetNumberAsDouble(), where);
 }
 
 template <int N>
@@ -85,9 +83,7 @@ std::optional<std::vector<double>> fixedArray(const LoadContext& ctx, const std:
     if (values.size() != length) {
         ctx.fail(where, std::to_string(values.size()) + " numbers, expected " + std::to_string(length));
     }
-    for (size_t i = 0; i < values.size(); ++i) {
-        if (!std::isfinite(values[i])) ctx.fail(where + "[" + std::to_string(i) + "]", "not finite");
-    }
+    for (size_t i = 0; i < values.size(); ++i) checkedNumber(ctx, values[i], where + "[" + std::to_string(i) + "]");
     return values;
 }
 

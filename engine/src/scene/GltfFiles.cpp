@@ -1,53 +1,23 @@
 // File access for the glTF loader: limits, whole-file reads, .glb chunks, the URI policy.
 // See GltfFiles.h for the policy and its limits.
 #include "scene/GltfFiles.h"
+#include "io/FolderConfinement.h"
+#include "io/MessageText.h"
 #include "scene/TinyGltf.h"
 
 #include <preskin/Error.h>
 
 #include <cctype>
 #include <cstring>
-#include <fstream>
 #include <system_error>
 
 namespace preskin::gltf {
 
 namespace fs = std::filesystem;
 
-std::string oneLine(const std::string& text) {
-    std::string out;
-    for (char c : text) {
-        if (c == '\n' || c == '\r') {
-            if (!out.empty() && out.back() != ' ') out += "; ";
-        } else {
-            out += c;
-        }
-    }
-    while (!out.empty() && (out.back() == ' ' || out.back() == ';')) out.pop_back();
-    return out;
-}
-
 void fail(const std::string& file, const std::string& where, const std::string& what) {
-    throw Error(where.empty() ? file + ": " + oneLine(what) : file + ": " + where + ": " + oneLine(what));
-}
-
-std::vector<uint8_t> readRegularFile(const fs::path& path, const std::string& label) {
-    std::error_code ec;
-    const fs::file_status status = fs::status(path, ec);
-    if (ec || !fs::exists(status)) throw Error(label + ": file not found");
-    if (!fs::is_regular_file(status)) throw Error(label + ": not a regular file");
-    const uintmax_t size = fs::file_size(path, ec);
-    if (ec) throw Error(label + ": cannot read the file size: " + ec.message());
-    if (size > kMaxFileBytes) {
-        throw Error(label + ": " + std::to_string(size) + " bytes exceeds the limit of " +
-                    std::to_string(kMaxFileBytes) + " bytes");
-    }
-    std::ifstream in(path, std::ios::binary);
-    if (!in) throw Error(label + ": cannot open the file");
-    std::vector<uint8_t> bytes(static_cast<size_t>(size));
-    if (size > 0) in.read(reinterpret_cast<char*>(bytes.data()), static_cast<std::streamsize>(size));
-    if (!in || static_cast<uintmax_t>(in.gcount()) != size) throw Error(label + ": read failed");
-    return bytes;
+    const std::string text = io::messageText(what, 4 * io::kMessageExcerptChars);
+    throw Error(where.empty() ? file + ": " + text : file + ": " + where + ": " + text);
 }
 
 namespace {
@@ -115,6 +85,27 @@ GlbChunks splitGlb(std::span<const uint8_t> bytes, const std::string& file) {
 }
 
 bool isDecodableDataUri(const std::string& uri) { return tinygltf::IsDataURI(uri); }
+
+std::string base64Problem(const std::string& uri) {
+    const size_t comma = uri.find(";base64,");
+    if (comma == std::string::npos) return "not base64";
+    const std::string_view payload = std::string_view(uri).substr(comma + 8);
+    if (payload.size() % 4 != 0) {
+        return "base64 length " + std::to_string(payload.size()) + " is not a multiple of 4";
+    }
+    size_t padding = 0;
+    for (size_t i = 0; i < payload.size(); ++i) {
+        const auto c = static_cast<unsigned char>(payload[i]);
+        if (c == '=') {
+            ++padding;
+            continue;
+        }
+        if (padding > 0) return "base64 padding '=' before the end, at character " + std::to_string(i - padding);
+        if (!std::isalnum(c) && c != '+' && c != '/') return "character " + std::to_string(i) + " is not base64";
+    }
+    if (padding > 2) return "base64 ends in " + std::to_string(padding) + " padding characters (at most 2)";
+    return "";
+}
 
 std::string decodeUriLikeTinygltf(const std::string& uri) {
     auto hex = [](char c) -> unsigned {
@@ -184,7 +175,7 @@ void checkRelativePath(const std::string& path, const std::string& raw, const st
 }  // namespace
 
 fs::path resolveUri(const std::string& uri, const fs::path& sceneFolder, const std::string& file,
-                    const std::string& where) {
+                    const std::string& where, bool allowOutsideLinks) {
     if (uri.rfind("data:", 0) == 0) {
         fail(file, where, "unsupported data URI (only base64 with a media type tinygltf knows)");
     }
@@ -193,30 +184,13 @@ fs::path resolveUri(const std::string& uri, const fs::path& sceneFolder, const s
     checkRelativePath(decoded, uri, file, where, " after percent-decoding");
     const fs::path resolved = (sceneFolder / fs::path(decoded)).lexically_normal();
     if (!isInsideFolder(resolved, sceneFolder)) fail(file, where, "'" + uri + "' leaves the scene's folder");
-    return resolved;
-}
-
-int jsonNestingDepth(std::span<const uint8_t> text, int limit) {
-    int depth = 0;
-    int deepest = 0;
-    bool inString = false;
-    for (size_t i = 0; i < text.size(); ++i) {
-        const uint8_t c = text[i];
-        if (inString) {
-            if (c == '\\') ++i;
-            else if (c == '"') inString = false;
-            continue;
-        }
-        if (c == '"') {
-            inString = true;
-        } else if (c == '[' || c == '{') {
-            if (++depth > deepest) deepest = depth;
-            if (deepest > limit) return deepest;
-        } else if (c == ']' || c == '}') {
-            --depth;
-        }
+    if (allowOutsideLinks) return resolved;
+    const io::ConfinedPath confined = io::resolveInsideFolder(sceneFolder, fs::path(decoded));
+    if (!confined.inside) {
+        fail(file, where, "'" + uri + "' leads out of the scene's folder through a symbolic link (refused unless "
+                          "links out of the folder are allowed)");
     }
-    return deepest;
+    return confined.path;
 }
 
 }  // namespace preskin::gltf

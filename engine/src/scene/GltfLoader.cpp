@@ -1,20 +1,27 @@
 // glTF 2.0 loading: file and container checks, tinygltf with confined file access and an
 // OpenImageIO image callback, then meshes, nodes, lights and cameras (see GltfLoader.h).
 #include "scene/GltfLoader.h"
+#include "io/FolderConfinement.h"
+#include "io/InputFile.h"
+#include "io/JsonDocument.h"
 #include "scene/GltfAccessors.h"
+#include "scene/GltfAnimations.h"
 #include "scene/GltfContext.h"
 #include "scene/GltfFiles.h"
 #include "scene/GltfMaterials.h"
+#include "scene/GltfMorphTargets.h"
+#include "scene/GltfNodes.h"
 #include "scene/GltfPrepass.h"
+#include "scene/GltfSkins.h"
 #include "scene/ImageDecoder.h"
 #include "scene/TangentFrames.h"
 
 #include <preskin/Curvature.h>
 #include <preskin/Error.h>
+#include <preskin/Limits.h>
 
 #include <glm/gtc/quaternion.hpp>
 #include <glm/gtc/type_ptr.hpp>
-#include <nlohmann/json.hpp>
 
 #include <algorithm>
 #include <cctype>
@@ -32,36 +39,45 @@ using scene::orthonormalizeTangents;
 
 namespace {
 
-constexpr uint64_t kMaxSceneVertices = 1ull << 26;
-constexpr uint64_t kMaxSceneIndices = 1ull << 28;
-constexpr uint64_t kMaxScenePixels = 1ull << 29;
-
 // ---- tinygltf callbacks -------------------------------------------------------------------
 
 struct FsState {
     fs::path folder;
+    bool allowOutsideLinks = false;
 };
 
-bool insideAndRegular(const std::string& path, const FsState& state) {
+// The file tinygltf asks for, when it lies inside the scene's folder (links resolved under the
+// same policy as the prepass) and is a regular file.
+std::optional<fs::path> insideAndRegular(const std::string& path, const FsState& state) {
     const fs::path p = fs::path(path).lexically_normal();
-    if (!p.is_absolute() || !isInsideFolder(p, state.folder)) return false;
+    if (!p.is_absolute() || !isInsideFolder(p, state.folder)) return std::nullopt;
+    fs::path resolved = p;
+    if (!state.allowOutsideLinks) {
+        const io::ConfinedPath confined = io::resolveInsideFolder(state.folder, p.lexically_relative(state.folder));
+        if (!confined.inside) return std::nullopt;
+        resolved = confined.path;
+    }
     std::error_code ec;
-    return fs::is_regular_file(p, ec);
+    if (!fs::is_regular_file(resolved, ec)) return std::nullopt;
+    return resolved;
 }
 
 bool fileExists(const std::string& path, void* user) {
-    return insideAndRegular(path, *static_cast<const FsState*>(user));
+    return insideAndRegular(path, *static_cast<const FsState*>(user)).has_value();
 }
 
 std::string expandFilePath(const std::string& path, void*) { return path; }  // no ~ or $VAR expansion
 
 bool readWholeFile(std::vector<unsigned char>* out, std::string* err, const std::string& path, void* user) {
-    if (!insideAndRegular(path, *static_cast<const FsState*>(user))) {
-        if (err) *err += "'" + path + "' is not a file inside the scene's folder";
+    const auto& state = *static_cast<const FsState*>(user);
+    const std::optional<fs::path> resolved = insideAndRegular(path, state);
+    const std::string label = fs::path(path).lexically_relative(state.folder).string();
+    if (!resolved) {
+        if (err) *err += "'" + label + "' is not a file inside the scene's folder";
         return false;
     }
     try {
-        *out = readRegularFile(path, path);
+        *out = io::readInputFile(*resolved, label, limits::kMaxSceneFileBytes);
         return true;
     } catch (const std::exception& e) {
         if (err) *err += e.what();
@@ -96,11 +112,8 @@ bool loadImage(tinygltf::Image* image, const int index, std::string* err, std::s
             image->image.clear();
             return true;
         }
-        DecodedImage decoded = decodeImageRgba8(data, format);
+        DecodedImage decoded = decodeImageRgba8(data, format, limits::kMaxSceneImagePixels - state.totalPixels);
         state.totalPixels += uint64_t(decoded.width) * decoded.height;
-        if (state.totalPixels > kMaxScenePixels) {
-            throw std::runtime_error("the scene's images exceed " + std::to_string(kMaxScenePixels) + " pixels in total");
-        }
         image->width = static_cast<int>(decoded.width);
         image->height = static_cast<int>(decoded.height);
         image->component = 4;
@@ -185,7 +198,6 @@ void convertMeshes(const LoadContext& ctx) {
                 mode != TINYGLTF_MODE_TRIANGLE_FAN) {
                 ctx.fail(where + ".mode", std::to_string(mode) + " is not a glTF primitive mode");
             }
-            if (!prim.targets.empty()) ctx.warn(where + ".targets", "morph targets are not supported; the base shape is used");
             if (prim.material < -1 || prim.material >= static_cast<int>(model.materials.size())) {
                 ctx.fail(where + ".material", std::to_string(prim.material) + " is out of range: the file has " +
                                                   std::to_string(model.materials.size()) + " materials");
@@ -196,12 +208,32 @@ void convertMeshes(const LoadContext& ctx) {
             };
             const int positionIndex = attribute("POSITION");
             if (positionIndex < 0) ctx.fail(where + ".attributes", "no POSITION");
-            const FloatAccessor positions = readFloatAccessor(ctx, positionIndex, {3}, where + ".attributes.POSITION");
-            const size_t vertexCount = positions.count;
+            // Counts first: every total is checked before the memory it needs is allocated.
+            const size_t vertexCount = accessorCount(ctx, positionIndex, where + ".attributes.POSITION");
             totalVertices += vertexCount;
-            if (totalVertices > kMaxSceneVertices) {
-                ctx.fail(where, "the scene exceeds the limit of " + std::to_string(kMaxSceneVertices) + " vertices");
+            if (totalVertices > limits::kMaxSceneVertices) {
+                ctx.fail(where + ".attributes.POSITION",
+                         indexed("accessors", static_cast<size_t>(positionIndex)) + " brings the scene to " +
+                             std::to_string(totalVertices) + " vertices, over the limit of " +
+                             std::to_string(limits::kMaxSceneVertices));
             }
+            for (const char* name : {"NORMAL", "TEXCOORD_0", "TANGENT"}) {
+                const int index = attribute(name);
+                if (index < 0) continue;
+                const std::string at = where + ".attributes." + name;
+                if (const size_t count = accessorCount(ctx, index, at); count != vertexCount) {
+                    ctx.fail(at, "accessors[" + std::to_string(index) + "] has " + std::to_string(count) +
+                                     " elements, POSITION has " + std::to_string(vertexCount));
+                }
+            }
+            const size_t indexCount = prim.indices >= 0 ? accessorCount(ctx, prim.indices, where + ".indices", AccessorUse::Indices) : vertexCount;
+            const size_t listCount = mode == TINYGLTF_MODE_TRIANGLES ? indexCount : indexCount < 3 ? 0 : (indexCount - 2) * 3;
+            if (totalIndices + listCount > limits::kMaxSceneIndices) {
+                ctx.fail(prim.indices >= 0 ? where + ".indices" : where,
+                         std::to_string(listCount) + " triangle-list indices bring the scene over the limit of " +
+                             std::to_string(limits::kMaxSceneIndices));
+            }
+            const FloatAccessor positions = readFloatAccessor(ctx, positionIndex, {3}, where + ".attributes.POSITION");
 
             Primitive out;
             out.material = prim.material;
@@ -229,7 +261,8 @@ void convertMeshes(const LoadContext& ctx) {
                 if (uvs) v.uv0 = glm::make_vec2(&uvs->values[i * 2]);
                 if (tangents) v.tangentOs = glm::make_vec4(&tangents->values[i * 4]);
             }
-            if (attribute("JOINTS_0") >= 0) ctx.warn(where + ".attributes.JOINTS_0", "skinning is not supported; ignored");
+            readMorphTargets(ctx, prim, where, vertexCount, out);
+            readJointInfluences(ctx, m, prim, where, vertexCount, out);
 
             std::vector<uint32_t> indices;
             if (prim.indices >= 0) {
@@ -240,9 +273,6 @@ void convertMeshes(const LoadContext& ctx) {
             }
             out.indices = toTriangleList(ctx, indices, mode, prim.indices >= 0, prim.indices >= 0 ? where + ".indices" : where);
             totalIndices += out.indices.size();
-            if (totalIndices > kMaxSceneIndices) {
-                ctx.fail(where, "the scene exceeds the limit of " + std::to_string(kMaxSceneIndices) + " indices");
-            }
             if (out.indices.empty()) {
                 ctx.warn(where, "no triangles; primitive skipped");
                 continue;
@@ -269,6 +299,7 @@ void convertMeshes(const LoadContext& ctx) {
             for (const Vertex& v : out.vertices) out.boundsOs.extend(v.positionOs);
             mesh.primitives.push_back(std::move(out));
         }
+        convertMorphWeights(ctx, m, mesh);
         updateMeshCurvature(mesh);
         ctx.scene->meshes.push_back(std::move(mesh));
     }
@@ -276,10 +307,10 @@ void convertMeshes(const LoadContext& ctx) {
 
 // ---- nodes --------------------------------------------------------------------------------
 
-bool finite(const glm::mat4& m) {
+bool withinInputRange(const glm::mat4& m) {
     for (int c = 0; c < 4; ++c)
         for (int r = 0; r < 4; ++r)
-            if (!std::isfinite(m[c][r])) return false;
+            if (!io::acceptedNumber(m[c][r])) return false;
     return true;
 }
 
@@ -329,9 +360,9 @@ Light convertLight(const LoadContext& ctx, int lightIndex, const glm::mat4& worl
         out.color = glm::vec3(static_cast<float>((*c)[0]), static_cast<float>((*c)[1]), static_cast<float>((*c)[2]));
         if (glm::any(glm::lessThan(out.color, glm::vec3(0.0f)))) ctx.fail(where + ".color", "negative component");
     }
-    if (!std::isfinite(in.intensity) || in.intensity < 0.0) ctx.fail(where + ".intensity", "must be finite and >= 0");
+    if (checkedNumber(ctx, in.intensity, where + ".intensity") < 0.0) ctx.fail(where + ".intensity", "must be >= 0");
     out.intensity = static_cast<float>(in.intensity);
-    if (!std::isfinite(in.range) || in.range < 0.0) ctx.fail(where + ".range", "must be finite and > 0");
+    if (checkedNumber(ctx, in.range, where + ".range") < 0.0) ctx.fail(where + ".range", "must be > 0");
     out.range = static_cast<float>(in.range);
     if (out.type == LightType::Spot) {
         const double inner = in.spot.innerConeAngle, outer = in.spot.outerConeAngle;
@@ -367,6 +398,10 @@ Camera convertCamera(const LoadContext& ctx, int cameraIndex, const glm::mat4& w
     out.name = in.name.empty() ? nodeName : in.name;
     if (in.type == "perspective") {
         const auto& p = in.perspective;
+        for (const auto& [value, name] : {std::pair{p.yfov, "yfov"}, std::pair{p.znear, "znear"},
+                                          std::pair{p.zfar, "zfar"}, std::pair{p.aspectRatio, "aspectRatio"}}) {
+            checkedNumber(ctx, value, where + ".perspective." + name);
+        }
         if (!(p.yfov > 0.0 && p.yfov < std::numbers::pi)) ctx.fail(where + ".perspective.yfov", "must be in (0, pi)");
         if (!(p.znear > 0.0) || !std::isfinite(p.znear)) ctx.fail(where + ".perspective.znear", "must be > 0");
         if (!std::isfinite(p.zfar) || (p.zfar != 0.0 && !(p.zfar > p.znear))) {
@@ -379,6 +414,10 @@ Camera convertCamera(const LoadContext& ctx, int cameraIndex, const glm::mat4& w
         out.aspectRatio = static_cast<float>(p.aspectRatio);
     } else if (in.type == "orthographic") {
         const auto& o = in.orthographic;
+        for (const auto& [value, name] : {std::pair{o.xmag, "xmag"}, std::pair{o.ymag, "ymag"},
+                                          std::pair{o.znear, "znear"}, std::pair{o.zfar, "zfar"}}) {
+            checkedNumber(ctx, value, where + ".orthographic." + name);
+        }
         if (!std::isfinite(o.xmag) || o.xmag == 0.0) ctx.fail(where + ".orthographic.xmag", "must be finite and non-zero");
         if (!std::isfinite(o.ymag) || o.ymag == 0.0) ctx.fail(where + ".orthographic.ymag", "must be finite and non-zero");
         if (!(o.znear >= 0.0) || !std::isfinite(o.znear)) ctx.fail(where + ".orthographic.znear", "must be >= 0");
@@ -406,7 +445,9 @@ Camera convertCamera(const LoadContext& ctx, int cameraIndex, const glm::mat4& w
 void convertNodes(const LoadContext& ctx) {
     const tinygltf::Model& model = *ctx.model;
     const size_t nodeCount = model.nodes.size();
-    std::vector<uint8_t> hasParent(nodeCount, 0);
+    // The node graph must be a forest (glTF 2.0, "Nodes and Hierarchy"): one parent per node and
+    // no cycles, whether or not the file has scenes.
+    std::vector<int> parent(nodeCount, -1);
     for (size_t i = 0; i < nodeCount; ++i) {
         const auto& children = model.nodes[i].children;
         for (size_t k = 0; k < children.size(); ++k) {
@@ -414,7 +455,30 @@ void convertNodes(const LoadContext& ctx) {
                 ctx.fail(indexed("nodes", i) + indexed(".children", k),
                          std::to_string(children[k]) + " is out of range: the file has " + std::to_string(nodeCount) + " nodes");
             }
-            hasParent[static_cast<size_t>(children[k])] = 1;
+            int& p = parent[static_cast<size_t>(children[k])];
+            if (p >= 0) {
+                ctx.fail(indexed("nodes", i) + indexed(".children", k),
+                         "nodes[" + std::to_string(children[k]) + "] is already a child of nodes[" + std::to_string(p) +
+                             "] (a node has at most one parent)");
+            }
+            p = static_cast<int>(i);
+        }
+    }
+    {
+        // Follow each node's parents up to a root; meeting the current path again is a cycle.
+        std::vector<uint8_t> state(nodeCount, 0);  // 0 unseen, 1 on the current path, 2 leads to a root
+        std::vector<size_t> path;
+        for (size_t start = 0; start < nodeCount; ++start) {
+            size_t n = start;
+            while (state[n] == 0) {
+                state[n] = 1;
+                path.push_back(n);
+                if (parent[n] < 0) break;
+                n = static_cast<size_t>(parent[n]);
+            }
+            if (state[n] == 1 && parent[n] >= 0) ctx.fail(indexed("nodes", n), "is part of a cycle of children");
+            for (size_t visited : path) state[visited] = 2;
+            path.clear();
         }
     }
 
@@ -431,14 +495,24 @@ void convertNodes(const LoadContext& ctx) {
                 ctx.fail(indexed("scenes", static_cast<size_t>(sceneIndex)) + indexed(".nodes", k),
                          std::to_string(nodes[k]) + " is out of range: the file has " + std::to_string(nodeCount) + " nodes");
             }
+            if (const int p = parent[static_cast<size_t>(nodes[k])]; p >= 0) {
+                ctx.fail(indexed("scenes", static_cast<size_t>(sceneIndex)) + indexed(".nodes", k),
+                         "nodes[" + std::to_string(nodes[k]) + "] is not a root node: it is a child of nodes[" +
+                             std::to_string(p) + "]");
+            }
             roots.push_back(nodes[k]);
         }
     } else {
         for (size_t i = 0; i < nodeCount; ++i)
-            if (!hasParent[i]) roots.push_back(static_cast<int>(i));
+            if (parent[i] < 0) roots.push_back(static_cast<int>(i));
     }
 
     Scene& scene = *ctx.scene;
+    std::vector<uint64_t> meshTriangles(scene.meshes.size(), 0);
+    for (size_t m = 0; m < scene.meshes.size(); ++m)
+        for (const Primitive& p : scene.meshes[m].primitives) meshTriangles[m] += p.indices.size() / 3;
+    uint64_t draws = 0;
+    uint64_t drawnTriangles = 0;
     std::vector<uint8_t> visited(nodeCount, 0);
     std::vector<uint8_t> explicitShadow;
     struct Pending {
@@ -459,15 +533,30 @@ void convertNodes(const LoadContext& ctx) {
         const tinygltf::Node& node = model.nodes[index];
         const std::string nodeName = node.name.empty() ? where : node.name;
         const glm::mat4 world = item.parentWorld * localMatrix(ctx, node, where);
-        if (!finite(world)) ctx.fail(where, "its world transform is not finite");
+        if (!withinInputRange(world)) {
+            ctx.fail(where, "its world transform (the product of its parents' transforms) has an element that is not "
+                            "finite or exceeds the limit of " + number(limits::kMaxInputMagnitude) + " in magnitude");
+        }
 
-        if (node.skin >= 0) ctx.warn(where + ".skin", "skinning is not supported; the mesh is drawn in its bind pose");
         if (node.mesh >= 0) {
             if (static_cast<size_t>(node.mesh) >= model.meshes.size()) {
                 ctx.fail(where + ".mesh", std::to_string(node.mesh) + " is out of range: the file has " +
                                               std::to_string(model.meshes.size()) + " meshes");
             }
+            const auto mesh = static_cast<size_t>(node.mesh);
+            draws += scene.meshes[mesh].primitives.size();
+            drawnTriangles += meshTriangles[mesh];
+            if (draws > limits::kMaxSceneDraws) {
+                ctx.fail(where + ".mesh", "the scene draws more than the limit of " +
+                                              std::to_string(limits::kMaxSceneDraws) + " primitives (instances included)");
+            }
+            if (drawnTriangles > limits::kMaxDrawnTriangles) {
+                ctx.fail(where + ".mesh", "the scene draws more than the limit of " +
+                                              std::to_string(limits::kMaxDrawnTriangles) + " triangles (instances included)");
+            }
             scene.instances.push_back(MeshInstance{node.mesh, world, nodeName});
+            scene.instances.back().node = item.node;
+            scene.instances.back().skin = node.skin;
         } else if (node.mesh < -1) {
             ctx.fail(where + ".mesh", std::to_string(node.mesh) + " is out of range");
         }
@@ -501,25 +590,26 @@ std::string lowercase(std::string s) {
     return s;
 }
 
-std::string jsonError(const std::exception& e) {
-    // nlohmann's messages start with "[json.exception.parse_error.101] "; keep what follows.
-    std::string what = e.what();
-    if (!what.empty() && what[0] == '[') {
-        const size_t end = what.find("] ");
-        if (end != std::string::npos) what = what.substr(end + 2);
+std::string extensionOf(const fs::path& path) {
+    const std::string extension = lowercase(path.extension().string());
+    if (extension != ".gltf" && extension != ".glb") {
+        fail(path.string(), "", "unsupported file type '" + io::messageText(extension) + "' (expected .gltf or .glb)");
     }
-    return what;
+    return extension;
 }
 
 }  // namespace
 
-Scene loadScene(const fs::path& path) {
+Scene loadScene(const fs::path& path, const SceneLoadOptions& options) {
+    const std::string extension = extensionOf(path);
+    return loadSceneBytes(io::readInputFile(path, path.string(),
+                                            extension == ".glb" ? limits::kMaxSceneFileBytes : limits::kMaxGltfJsonBytes),
+                          path, options);
+}
+
+Scene loadSceneBytes(std::vector<uint8_t> bytes, const fs::path& path, const SceneLoadOptions& options) {
     const std::string file = path.string();
-    const std::string extension = lowercase(path.extension().string());
-    if (extension != ".gltf" && extension != ".glb") {
-        fail(file, "", "unsupported file type '" + extension + "' (expected .gltf or .glb)");
-    }
-    std::vector<uint8_t> bytes = readRegularFile(path, file);
+    const std::string extension = extensionOf(path);
     std::error_code ec;
     const fs::path absolute = fs::absolute(path, ec);
     if (ec) fail(file, "", "cannot resolve the path: " + ec.message());
@@ -537,22 +627,17 @@ Scene loadScene(const fs::path& path) {
             fail(file, "", "binary glTF content in a .gltf file (name it .glb)");
         }
     }
-    if (jsonNestingDepth(jsonText, kMaxJsonDepth) > kMaxJsonDepth) {
-        fail(file, "JSON", "nested deeper than " + std::to_string(kMaxJsonDepth) + " levels");
+    if (jsonText.size() > limits::kMaxGltfJsonBytes) {
+        fail(file, "GLB chunk 0 length", std::to_string(jsonText.size()) + " bytes of JSON exceeds the limit of " +
+                                             std::to_string(limits::kMaxGltfJsonBytes));
     }
-    PrepassResult prepass;
-    {
-        nlohmann::json doc;
-        try {
-            doc = nlohmann::json::parse(jsonText.begin(), jsonText.end());
-        } catch (const nlohmann::json::exception& e) {
-            fail(file, "JSON", jsonError(e));
-        }
-        prepass = checkDocument(doc, file, folder, isGlb ? &glb : nullptr);
-    }
+    // The bounded parse comes first: tinygltf parses the same text again, and walks it
+    // recursively, only once depth and size are known to be within the limits.
+    const PrepassResult prepass =
+        checkDocument(io::parseJson(jsonText, file), file, folder, isGlb ? &glb : nullptr, options.allowLinksOutsideFolder);
 
     tinygltf::TinyGLTF loader;
-    FsState fsState{folder};
+    FsState fsState{folder, options.allowLinksOutsideFolder};
     loader.SetFsCallbacks(tinygltf::FsCallbacks{&fileExists, &expandFilePath, &readWholeFile, &writeWholeFile, &fsState});
     ImageState imageState;
     loader.SetImageLoader(&loadImage, &imageState);
@@ -583,6 +668,7 @@ Scene loadScene(const fs::path& path) {
     LoadContext ctx;
     ctx.file = file;
     ctx.folder = folder;
+    ctx.allowOutsideLinks = options.allowLinksOutsideFolder;
     ctx.model = &model;
     ctx.scene = &scene;
     ctx.unsupportedImageFormat = std::move(imageState.unsupported);
@@ -608,6 +694,9 @@ Scene loadScene(const fs::path& path) {
     convertMaterials(ctx);
     convertMeshes(ctx);
     convertNodes(ctx);
+    convertNodeHierarchy(ctx);
+    convertSkins(ctx);
+    convertAnimations(ctx);
     return scene;
 }
 

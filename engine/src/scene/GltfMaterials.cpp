@@ -101,7 +101,7 @@ SkinTextureRef skinTextureRef(const LoadContext& ctx, const tinygltf::Value& ski
 }
 
 float clampedFactor(const LoadContext& ctx, double value, double lo, double hi, const std::string& where) {
-    if (!std::isfinite(value)) ctx.fail(where, "not finite");
+    checkedNumber(ctx, value, where);
     if (value < lo || value > hi) {
         ctx.warn(where, number(value) + " is outside [" + number(lo) + ", " + number(hi) + "]; clamped");
         value = std::clamp(value, lo, hi);
@@ -125,7 +125,7 @@ SkinMaterial parseSkinExtension(const LoadContext& ctx, const tinygltf::Value& s
                                 SkinMaterial s) {
     if (!skin.IsObject()) ctx.fail(where, "not an object");
     static const std::set<std::string> known = {
-        "scatterScale",     "curvatureSource",     "curvatureTexture",  "curvatureTextureScalePerM",
+        "scatterScale",     "curvatureSource",     "curvatureTexture",  "curvatureTextureScalePerM", "deformedCurvature",
         "normalLodBias",    "detailNormalTexture", "detailUvScale",     "transmission",
         "transmissionColor", "thicknessScale",     "specularIntensity", "specularTexture",
         "lobeRoughness0",   "lobeRoughness1",      "lobeMix"};
@@ -145,6 +145,11 @@ SkinMaterial parseSkinExtension(const LoadContext& ctx, const tinygltf::Value& s
         ctx.fail(where + ".curvatureSource", "'texture' but there is no usable curvatureTexture");
     }
     skinNumber(ctx, skin, "curvatureTextureScalePerM", where, s.curvatureTextureScalePerM, 0.0, inf);
+    if (auto deformed = stringField(ctx, skin, "deformedCurvature", where)) {
+        if (*deformed == "recomputed") s.deformedCurvature = DeformedCurvature::Recomputed;
+        else if (*deformed == "bindPose") s.deformedCurvature = DeformedCurvature::BindPose;
+        else ctx.fail(where + ".deformedCurvature", "'" + *deformed + "' (expected recomputed or bindPose)");
+    }
     if (auto bias = vec3Field(ctx, skin, "normalLodBias", where)) s.normalLodBias = *bias;
     s.detailNormalTexture = skinTextureRef(ctx, skin, "detailNormalTexture", where, &s.detailNormalScale);
     skinNumber(ctx, skin, "detailUvScale", where, s.detailUvScale, 0.0, inf, true);
@@ -230,8 +235,7 @@ void convertMaterials(const LoadContext& ctx) {
         out.metallicRoughness =
             textureRef(ctx, in.pbrMetallicRoughness.metallicRoughnessTexture, pbr + ".metallicRoughnessTexture");
         out.normal = textureRef(ctx, in.normalTexture, where + ".normalTexture");
-        if (!std::isfinite(in.normalTexture.scale)) ctx.fail(where + ".normalTexture.scale", "not finite");
-        out.normal.scale = static_cast<float>(in.normalTexture.scale);
+        out.normal.scale = static_cast<float>(checkedNumber(ctx, in.normalTexture.scale, where + ".normalTexture.scale"));
         out.occlusion = textureRef(ctx, in.occlusionTexture, where + ".occlusionTexture");
         out.occlusion.scale = clampedFactor(ctx, in.occlusionTexture.strength, 0.0, 1.0, where + ".occlusionTexture.strength");
         out.emissive = textureRef(ctx, in.emissiveTexture, where + ".emissiveTexture");
@@ -245,7 +249,7 @@ void convertMaterials(const LoadContext& ctx) {
         else if (in.alphaMode == "MASK") out.alphaMode = AlphaMode::Mask;
         else if (in.alphaMode == "BLEND") out.alphaMode = AlphaMode::Blend;
         else ctx.fail(where + ".alphaMode", "'" + in.alphaMode + "' (expected OPAQUE, MASK or BLEND)");
-        if (!std::isfinite(in.alphaCutoff) || in.alphaCutoff < 0.0) ctx.fail(where + ".alphaCutoff", "must be finite and >= 0");
+        if (checkedNumber(ctx, in.alphaCutoff, where + ".alphaCutoff") < 0.0) ctx.fail(where + ".alphaCutoff", "must be >= 0");
         out.alphaCutoff = static_cast<float>(in.alphaCutoff);
         out.doubleSided = in.doubleSided;
 

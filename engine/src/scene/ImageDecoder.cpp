@@ -1,11 +1,16 @@
-// PNG/JPEG decoding to RGBA8 with OpenImageIO from memory (see ImageDecoder.h).
+// PNG (libpng) and JPEG (OpenImageIO) decoding to RGBA8 from memory (see ImageDecoder.h).
 #include "scene/ImageDecoder.h"
-#include "scene/GltfFiles.h"
+
+#include <preskin/Limits.h>
 
 #include <OpenImageIO/filesystem.h>
 #include <OpenImageIO/imageio.h>
+#include <png.h>
 
 #include <unistd.h>
+
+#include <csetjmp>
+#include <optional>
 
 #include <cstdio>
 #include <cstdlib>
@@ -57,6 +62,126 @@ private:
     std::string path_;
 };
 
+// Refuses a size beyond the per-image limits or the scene's remaining pixel budget.
+void checkSize(uint64_t width, uint64_t height, uint64_t scenePixelsLeft) {
+    const std::string size = std::to_string(width) + " x " + std::to_string(height) + " pixels";
+    if (width == 0 || height == 0) throw std::runtime_error("invalid image size " + size);
+    if (width > limits::kMaxImageSide || height > limits::kMaxImageSide) {
+        throw std::runtime_error(size + " exceeds the limit of " + std::to_string(limits::kMaxImageSide) + " per side");
+    }
+    if (width * height > limits::kMaxImagePixels) {
+        throw std::runtime_error(size + " exceeds the limit of " + std::to_string(limits::kMaxImagePixels) +
+                                 " pixels per image");
+    }
+    if (width * height > scenePixelsLeft) {
+        throw std::runtime_error(size + " bring the scene's images over the limit of " +
+                                 std::to_string(limits::kMaxSceneImagePixels) + " pixels");
+    }
+}
+
+// ---- PNG through libpng ---------------------------------------------------------------------
+
+struct PngSource {
+    std::span<const uint8_t> bytes;
+    size_t offset = 0;
+    std::string error;  // libpng's message when it gave up
+};
+
+// libpng's handlers: errors are recorded and unwound with longjmp (libpng's own mechanism);
+// warnings are dropped. Nothing is printed. No object with a destructor lives in these frames.
+void pngError(png_structp png, png_const_charp message) {
+    static_cast<PngSource*>(png_get_error_ptr(png))->error = message ? message : "unknown libpng error";
+    png_longjmp(png, 1);
+}
+void pngWarning(png_structp, png_const_charp) {}
+void pngRead(png_structp png, png_bytep out, size_t length) {
+    auto* source = static_cast<PngSource*>(png_get_io_ptr(png));
+    if (length > source->bytes.size() - source->offset) png_error(png, "truncated PNG data");
+    std::memcpy(out, source->bytes.data() + source->offset, length);
+    source->offset += length;
+}
+
+// The part of the decode that libpng may leave by longjmp: it only touches objects owned by
+// the caller, so no destructor is skipped. Returns false with source.error set, or throws the
+// size refusal after png_read_info (before any pixel memory).
+bool readPng(png_structp png, png_infop info, PngSource& source, uint64_t scenePixelsLeft, DecodedImage& out,
+             std::vector<png_bytep>& rows, std::optional<std::string>& sizeProblem) {
+    if (setjmp(png_jmpbuf(png))) return false;
+    png_set_read_fn(png, &source, &pngRead);
+    png_set_chunk_malloc_max(png, 8u << 20);  // ancillary chunks (text, ICC profiles)
+    png_read_info(png, info);
+    const png_uint_32 width = png_get_image_width(png, info);
+    const png_uint_32 height = png_get_image_height(png, info);
+    try {
+        checkSize(width, height, scenePixelsLeft);
+    } catch (const std::exception& e) {
+        sizeProblem = e.what();
+        return false;
+    }
+    png_set_expand(png);       // palette to RGB, grey below 8 bits to 8, tRNS to alpha
+    png_set_scale_16(png);     // 16 bits to 8, rounded
+    png_set_gray_to_rgb(png);
+    png_set_add_alpha(png, 0xFF, PNG_FILLER_AFTER);
+    png_set_interlace_handling(png);
+    png_read_update_info(png, info);
+    if (png_get_rowbytes(png, info) != size_t(width) * 4) png_error(png, "unexpected row layout after conversion");
+    out.width = width;
+    out.height = height;
+    out.rgba8.resize(size_t(width) * height * 4);
+    rows.resize(height);
+    for (png_uint_32 y = 0; y < height; ++y) rows[y] = out.rgba8.data() + size_t(y) * width * 4;
+    png_read_image(png, rows.data());
+    png_read_end(png, nullptr);
+    return true;
+}
+
+DecodedImage decodePng(std::span<const uint8_t> bytes, uint64_t scenePixelsLeft) {
+    PngSource source{bytes, 0, {}};
+    png_structp png = png_create_read_struct(PNG_LIBPNG_VER_STRING, &source, &pngError, &pngWarning);
+    if (!png) throw std::runtime_error("cannot start the PNG decoder");
+    png_infop info = png_create_info_struct(png);
+    if (!info) {
+        png_destroy_read_struct(&png, nullptr, nullptr);
+        throw std::runtime_error("cannot start the PNG decoder");
+    }
+    DecodedImage out;
+    std::vector<png_bytep> rows;
+    std::optional<std::string> sizeProblem;
+    const bool ok = readPng(png, info, source, scenePixelsLeft, out, rows, sizeProblem);
+    png_destroy_read_struct(&png, &info, nullptr);
+    if (sizeProblem) throw std::runtime_error(*sizeProblem);
+    if (!ok) throw std::runtime_error("cannot decode the PNG data: " + source.error);
+    return out;
+}
+
+// ---- JPEG through OpenImageIO ---------------------------------------------------------------
+
+// Width and height from the first start-of-frame marker (ITU T.81, B.2.2), or nullopt.
+std::optional<std::pair<uint32_t, uint32_t>> jpegSize(std::span<const uint8_t> bytes) {
+    size_t i = 2;  // after SOI
+    while (i + 4 <= bytes.size()) {
+        if (bytes[i] != 0xFF) return std::nullopt;
+        const uint8_t marker = bytes[i + 1];
+        if (marker == 0xFF) {  // fill byte
+            ++i;
+            continue;
+        }
+        const size_t length = (size_t(bytes[i + 2]) << 8) | bytes[i + 3];
+        const bool startOfFrame = marker >= 0xC0 && marker <= 0xCF && marker != 0xC4 && marker != 0xC8 && marker != 0xCC;
+        if (startOfFrame) {
+            if (i + 9 > bytes.size() || length < 7) return std::nullopt;
+            const uint32_t height = (uint32_t(bytes[i + 5]) << 8) | bytes[i + 6];
+            const uint32_t width = (uint32_t(bytes[i + 7]) << 8) | bytes[i + 8];
+            return std::make_pair(width, height);
+        }
+        if (length < 2) return std::nullopt;
+        i += 2 + length;
+    }
+    return std::nullopt;
+}
+
+DecodedImage decodeJpeg(std::span<const uint8_t> bytes, uint64_t scenePixelsLeft);
+
 }  // namespace
 
 ImageFormat sniffImageFormat(std::span<const uint8_t> bytes) {
@@ -81,12 +206,23 @@ std::string describeImageFormat(std::span<const uint8_t> bytes) {
     return "unknown";
 }
 
-DecodedImage decodeImageRgba8(std::span<const uint8_t> bytes, ImageFormat format) {
-    const char* formatName = format == ImageFormat::Png ? "png" : format == ImageFormat::Jpeg ? "jpeg" : nullptr;
-    if (!formatName) throw std::runtime_error("unsupported image format " + describeImageFormat(bytes));
+DecodedImage decodeImageRgba8(std::span<const uint8_t> bytes, ImageFormat format, uint64_t scenePixelsLeft) {
+    if (format == ImageFormat::Png) return decodePng(bytes, scenePixelsLeft);
+    if (format == ImageFormat::Jpeg) return decodeJpeg(bytes, scenePixelsLeft);
+    throw std::runtime_error("unsupported image format " + describeImageFormat(bytes));
+}
 
-    auto input = OIIO::ImageInput::create(formatName);
-    if (!input) throw std::runtime_error(std::string("OpenImageIO has no ") + formatName + " reader");
+namespace {
+
+DecodedImage decodeJpeg(std::span<const uint8_t> bytes, uint64_t scenePixelsLeft) {
+    const auto size = jpegSize(bytes);
+    if (!size) throw std::runtime_error("cannot decode the JPEG data: no frame header");
+    checkSize(size->first, size->second, scenePixelsLeft);
+    auto input = OIIO::ImageInput::create("jpeg");
+    if (!input) {
+        OIIO::geterror();
+        throw std::runtime_error("OpenImageIO has no jpeg reader");
+    }
 
     OIIO::Filesystem::IOMemReader memory(bytes.data(), bytes.size());
     std::unique_ptr<TempFile> temp;
@@ -97,9 +233,9 @@ DecodedImage decodeImageRgba8(std::span<const uint8_t> bytes, ImageFormat format
     if (input->supports("ioproxy")) {
         void* proxy = &memory;
         config.attribute("oiio:ioproxy", OIIO::TypeDesc::PTR, &proxy);
-        openName = format == ImageFormat::Png ? "memory.png" : "memory.jpg";
+        openName = "memory.jpg";
     } else {
-        temp = std::make_unique<TempFile>(bytes, format == ImageFormat::Png ? ".png" : ".jpg");
+        temp = std::make_unique<TempFile>(bytes, ".jpg");
         openName = temp->path();
     }
     OIIO::ImageSpec spec;
@@ -110,18 +246,14 @@ DecodedImage decodeImageRgba8(std::span<const uint8_t> bytes, ImageFormat format
                                  (why.empty() ? "unreadable header" : why));
     }
     const int channels = spec.nchannels;
-    if (spec.width <= 0 || spec.height <= 0 || channels <= 0 || spec.depth > 1) {
+    if (spec.width <= 0 || spec.height <= 0 || channels <= 0 || channels > 4 || spec.depth > 1) {
+        input->geterror();
         throw std::runtime_error("invalid image size " + std::to_string(spec.width) + " x " +
                                  std::to_string(spec.height) + " x " + std::to_string(channels) + " channels");
     }
     const auto width = static_cast<uint64_t>(spec.width);
     const auto height = static_cast<uint64_t>(spec.height);
-    if (width > kMaxImageDimension || height > kMaxImageDimension || width * height > kMaxImagePixels) {
-        throw std::runtime_error(std::to_string(width) + " x " + std::to_string(height) +
-                                 " pixels exceeds the limit (" + std::to_string(kMaxImagePixels) + " pixels, " +
-                                 std::to_string(kMaxImageDimension) + " per side)");
-    }
-    if (channels > 16) throw std::runtime_error(std::to_string(channels) + " channels");
+    checkSize(width, height, scenePixelsLeft);
 
     const auto pixelCount = static_cast<size_t>(width * height);
     std::vector<uint8_t> pixels(pixelCount * static_cast<size_t>(channels));
@@ -154,5 +286,7 @@ DecodedImage decodeImageRgba8(std::span<const uint8_t> bytes, ImageFormat format
     }
     return out;
 }
+
+}  // namespace
 
 }  // namespace preskin::gltf

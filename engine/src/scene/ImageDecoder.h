@@ -1,9 +1,12 @@
 // Decodes an encoded image held in memory (PNG or JPEG, the formats core glTF allows) into 8-bit
-// RGBA, top row first, with OpenImageIO. The bytes are read through an in-memory IOProxy; where
-// the OIIO build cannot read a format from memory, through a private temporary file instead.
-// Grey becomes RGB, missing alpha becomes 255, alpha stays straight (not premultiplied), 16-bit
-// data is rounded to 8 bits; colour profiles are not applied. Sizes are checked before any pixel
-// memory is allocated (at most kMaxImagePixels, kMaxImageDimension per side).
+// RGBA, top row first: PNG with libpng (its error and warning handlers replaced, so it prints
+// nothing), JPEG with OpenImageIO (through an in-memory IOProxy; where the OIIO build cannot
+// read a format from memory, through a private temporary file instead). Grey becomes RGB,
+// palettes are expanded, missing alpha becomes 255, alpha stays straight (not premultiplied),
+// 16-bit data is rounded to 8 bits; gamma and colour profiles are not applied.
+// Limits: the size is read from the header (PNG IHDR, JPEG SOF) and checked before any pixel
+// memory is allocated: limits::kMaxImagePixels per image, kMaxImageSide per side, and the
+// caller's remaining budget of the scene's limits::kMaxSceneImagePixels.
 #pragma once
 
 #include <cstdint>
@@ -26,7 +29,8 @@ struct DecodedImage {
     std::vector<uint8_t> rgba8;
 };
 
-// Throws std::runtime_error with the reason (the caller adds file and field).
-DecodedImage decodeImageRgba8(std::span<const uint8_t> bytes, ImageFormat format);
+// Throws std::runtime_error with the reason (the caller adds file and field). `scenePixelsLeft`
+// is what the scene's pixel limit still allows.
+DecodedImage decodeImageRgba8(std::span<const uint8_t> bytes, ImageFormat format, uint64_t scenePixelsLeft);
 
 }  // namespace preskin::gltf

@@ -23,7 +23,9 @@ glm::mat3 TextureRef::uvTransform() const {
     return m;
 }
 
-Scene Scene::load(const std::filesystem::path& path) { return gltf::loadScene(path); }
+Scene Scene::load(const std::filesystem::path& path, const SceneLoadOptions& options) {
+    return gltf::loadScene(path, options);
+}
 
 Bounds Scene::worldBounds() const {
     Bounds bounds;

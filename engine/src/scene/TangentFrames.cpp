@@ -31,6 +31,20 @@ void makeFlatNormals(Primitive& primitive) {
         }
     }
     primitive.vertices = std::move(flat);
+    // Morph deltas and joint influences follow their vertices (flat vertex i was indices[i]).
+    auto split = [&](auto& perVertex) {
+        if (perVertex.empty()) return;
+        std::remove_reference_t<decltype(perVertex)> out;
+        out.reserve(primitive.indices.size());
+        for (uint32_t source : primitive.indices) out.push_back(perVertex[source]);
+        perVertex = std::move(out);
+    };
+    for (MorphTarget& target : primitive.targets) {
+        split(target.positionDeltas);
+        split(target.normalDeltas);
+        split(target.tangentDeltas);
+    }
+    split(primitive.influences);
     primitive.indices.resize(primitive.vertices.size());
     for (size_t i = 0; i < primitive.indices.size(); ++i) primitive.indices[i] = static_cast<uint32_t>(i);
 }

@@ -1,7 +1,8 @@
 // Normals and tangent frames for loaded primitives.
 //
 // Flat normals: glTF 2.0 says a primitive without NORMAL is shaded flat, so each triangle gets its
-// own three vertices carrying the face normal (the index list becomes 0, 1, 2, ...).
+// own three vertices carrying the face normal (the index list becomes 0, 1, 2, ...); morph deltas
+// and joint influences are copied along with their vertices.
 //
 // Tangents (when TANGENT is missing): per triangle, dP/du and dP/dv from the UV deltas (Lengyel,
 // "Computing Tangent Space Basis Vectors for an Arbitrary Mesh", 2001); each is projected into the
@@ -21,7 +22,8 @@
 
 namespace preskin::scene {
 
-// Splits `primitive` into three vertices per triangle carrying the face normal.
+// Splits `primitive` into three vertices per triangle carrying the face normal (with their
+// morph deltas and joint influences).
 void makeFlatNormals(Primitive& primitive);
 
 // Fills Vertex::tangentOs for all vertices; returns how many got the fallback tangent.

@@ -9,16 +9,20 @@
 #include "skin/SpecialFunctions.h"
 
 #include <preskin/Error.h>
+#include <preskin/Limits.h>
+
+#include "io/InputFile.h"
+#include "io/JsonDocument.h"
+#include "io/MessageText.h"
+#include "io/NumberRule.h"
 
 #include <fmt/core.h>
 
 #include <algorithm>
 #include <array>
 #include <cmath>
-#include <fstream>
 #include <limits>
 #include <numbers>
-#include <sstream>
 
 namespace preskin {
 namespace {
@@ -27,7 +31,7 @@ constexpr double kPi = std::numbers::pi;
 constexpr std::array<const char*, 3> kChannelNames{"R", "G", "B"};
 
 [[noreturn]] void fail(std::string_view source, std::string_view field, std::string_view problem) {
-    throw Error(fmt::format("{}: {}: {}", source, field, problem));
+    throw Error(fmt::format("{}: {}: {}", source, field, io::messageText(problem, 4 * io::kMessageExcerptChars)));
 }
 
 // Burley's searchlight fit of d = l / s(A) (Christensen & Burley 2015, eq. for the
@@ -91,12 +95,14 @@ const nlohmann::json& requireField(const nlohmann::json& object, const char* key
 
 double requireNumber(const nlohmann::json& value, std::string_view source, const std::string& field) {
     if (!value.is_number()) fail(source, field, "must be a number, got " + jsonTypeName(value));
-    return value.get<double>();
+    const double number = value.get<double>();
+    if (auto problem = io::numberProblem(number)) fail(source, field, *problem);
+    return number;
 }
 
 glm::dvec3 requireRgb(const nlohmann::json& value, std::string_view source, const std::string& field) {
     if (!value.is_array() || value.size() != 3)
-        fail(source, field, "must be an array of three numbers [r, g, b], got " + value.dump());
+        fail(source, field, "must be an array of three numbers [r, g, b], got " + io::jsonExcerpt(value));
     glm::dvec3 result;
     for (int c = 0; c < 3; ++c) result[c] = requireNumber(value[static_cast<size_t>(c)], source, fmt::format("{}[{}]", field, c));
     return result;
@@ -106,7 +112,7 @@ void rejectUnknownKeys(const nlohmann::json& object, std::initializer_list<std::
                        const std::string& prefix) {
     for (const auto& item : object.items()) {
         if (std::find(known.begin(), known.end(), item.key()) == known.end())
-            fail(source, prefix + item.key(), "unknown field");
+            fail(source, prefix + io::messageText(item.key()), "unknown field");
     }
 }
 
@@ -280,27 +286,16 @@ double DiffusionProfile::narrowestScaleMm() const {
 std::string DiffusionProfile::toJson() const { return skin::profileToJson(*this).dump(2); }
 
 DiffusionProfile DiffusionProfile::fromJsonText(std::string_view text, std::string_view sourceName) {
-    nlohmann::json json;
-    try {
-        json = nlohmann::json::parse(text.begin(), text.end());
-    } catch (const nlohmann::json::exception& e) {
-        // e.what() is "[json.exception.parse_error.101] parse error at line L, column C: ..." or
-        // "[json.exception.out_of_range.406] number overflow parsing '1e999'"
-        std::string message = e.what();
-        const auto close = message.find("] ");
-        if (close != std::string::npos) message = message.substr(close + 2);
-        throw Error(fmt::format("{}: invalid JSON: {}", sourceName, message));
-    }
-    return skin::parseProfileJson(json, sourceName, "");
+    const std::string source(sourceName);
+    if (text.size() > limits::kMaxProfileBytes)
+        throw Error(fmt::format("{}: file: {} bytes exceeds the limit of {} bytes", source, text.size(),
+                                limits::kMaxProfileBytes));
+    return skin::parseProfileJson(io::parseJson(text, source), sourceName, "");
 }
 
 DiffusionProfile DiffusionProfile::fromJsonFile(const std::filesystem::path& path) {
-    std::ifstream in(path, std::ios::binary);
-    if (!in) throw Error(fmt::format("{}: cannot open the profile file", path.string()));
-    std::ostringstream text;
-    text << in.rdbuf();
-    if (in.bad()) throw Error(fmt::format("{}: cannot read the profile file", path.string()));
-    return fromJsonText(text.str(), path.string());
+    const std::vector<uint8_t> bytes = io::readInputFile(path, path.string(), limits::kMaxProfileBytes);
+    return fromJsonText(std::string_view(reinterpret_cast<const char*>(bytes.data()), bytes.size()), path.string());
 }
 
 namespace skin {
@@ -311,7 +306,7 @@ DiffusionProfile parseProfileJson(const nlohmann::json& json, std::string_view s
     if (!json.is_object()) fail(source, rootName, "must be a JSON object, got " + jsonTypeName(json));
     const nlohmann::json& type = requireField(json, "type", source, prefix + "type");
     if (!type.is_string())
-        fail(source, prefix + "type", "must be \"sumOfGaussians\" or \"normalizedDiffusion\", got " + type.dump());
+        fail(source, prefix + "type", "must be \"sumOfGaussians\" or \"normalizedDiffusion\", got " + io::jsonExcerpt(type));
     std::string name;
     if (const auto it = json.find("name"); it != json.end()) {
         if (!it->is_string()) fail(source, prefix + "name", "must be a string, got " + jsonTypeName(*it));
@@ -344,7 +339,7 @@ DiffusionProfile parseProfileJson(const nlohmann::json& json, std::string_view s
         checkBurley(albedo, mfp, source, prefix);
         return name.empty() ? DiffusionProfile::burley(albedo, mfp) : DiffusionProfile::burley(albedo, mfp, std::move(name));
     }
-    fail(source, prefix + "type", "must be \"sumOfGaussians\" or \"normalizedDiffusion\", got " + type.dump());
+    fail(source, prefix + "type", "must be \"sumOfGaussians\" or \"normalizedDiffusion\", got " + io::jsonExcerpt(type));
 }
 
 nlohmann::ordered_json profileToJson(const DiffusionProfile& profile) {

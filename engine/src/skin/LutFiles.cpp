@@ -12,10 +12,20 @@
 #include "skin/ProfileJson.h"
 
 #include <preskin/Error.h>
+#include <preskin/Limits.h>
+
+#include "env/EnvironmentHeader.h"
+#include "io/InputFile.h"
+#include "io/JsonDocument.h"
+#include "io/MessageText.h"
+#include "io/NumberRule.h"
 
 #include <OpenImageIO/imageio.h>
 #include <fmt/core.h>
 #include <nlohmann/json.hpp>
+
+#include <sys/stat.h>
+#include <unistd.h>
 
 #include <cmath>
 #include <fstream>
@@ -215,7 +225,7 @@ struct ManifestReader {
     std::string source;  // the manifest's path, for messages
 
     [[noreturn]] void fail(const std::string& field, const std::string& problem) const {
-        throw Error(fmt::format("{}: {}: {}", source, field, problem));
+        throw Error(fmt::format("{}: {}: {}", source, io::messageText(field), io::messageText(problem, 4 * io::kMessageExcerptChars)));
     }
     const nlohmann::json& field(const nlohmann::json& object, const std::string& path, const char* key) const {
         const std::string full = path.empty() ? key : path + "." + key;
@@ -227,22 +237,24 @@ struct ManifestReader {
     int integer(const nlohmann::json& object, const std::string& path, const char* key) const {
         const nlohmann::json& v = field(object, path, key);
         const std::string full = path.empty() ? key : path + "." + key;
-        if (!v.is_number_integer()) fail(full, std::string("must be an integer, got ") + v.dump());
+        if (!v.is_number_integer()) fail(full, std::string("must be an integer, got ") + io::jsonExcerpt(v));
         const auto value = v.get<int64_t>();
-        if (value < -1000000000 || value > 1000000000) fail(full, "out of range: " + v.dump());
+        if (value < -1000000000 || value > 1000000000) fail(full, "out of range: " + io::jsonExcerpt(v));
         return static_cast<int>(value);
     }
     double number(const nlohmann::json& object, const std::string& path, const char* key) const {
         const nlohmann::json& v = field(object, path, key);
         const std::string full = path.empty() ? key : path + "." + key;
         if (v.is_string() && v.get<std::string>() == "infinity") return std::numeric_limits<double>::infinity();
-        if (!v.is_number()) fail(full, std::string("must be a number, got ") + v.dump());
-        return v.get<double>();
+        if (!v.is_number()) fail(full, std::string("must be a number, got ") + io::jsonExcerpt(v));
+        const double number = v.get<double>();
+        if (auto problem = io::numberProblem(number)) fail(full, *problem);
+        return number;
     }
     std::string string(const nlohmann::json& object, const std::string& path, const char* key) const {
         const nlohmann::json& v = field(object, path, key);
         const std::string full = path.empty() ? key : path + "." + key;
-        if (!v.is_string()) fail(full, std::string("must be a string, got ") + v.dump());
+        if (!v.is_string()) fail(full, std::string("must be a string, got ") + io::jsonExcerpt(v));
         return v.get<std::string>();
     }
 };
@@ -287,15 +299,33 @@ LutTable readTable(const fs::path& dir, const ManifestReader& reader, const nloh
     const std::string hash = reader.string(t, path, "hash");
 
     const fs::path exrPath = dir / file.fileName;
-    auto in = OIIO::ImageInput::open(exrPath.string());
-    if (!in) throw Error(fmt::format("{}: cannot read: {}", shown(exrPath), OIIO::geterror()));
+    // The size from the file's own header, checked against the manifest before a decoder
+    // allocates; then only the OpenEXR reader (opening by name would try every format).
+    const std::vector<uint8_t> prefix =
+        io::readInputFileStart(exrPath, shown(exrPath), limits::kMaxImageFileBytes, env::kEnvironmentHeaderBytes);
+    try {
+        const env::EnvironmentHeader header = env::readEnvironmentHeader(prefix);
+        if (header.format != env::EnvironmentFormat::OpenExr) throw std::runtime_error("format: not an OpenEXR file");
+        if (header.width != width || header.height != height)
+            throw std::runtime_error(fmt::format("size: {}x{}, but {} {} says {}x{}", header.width, header.height,
+                                                 reader.source, path, width, height));
+    } catch (const std::runtime_error& e) {
+        throw Error(fmt::format("{}: {}", shown(exrPath), e.what()));
+    }
+    auto in = OIIO::ImageInput::create("openexr");
+    OIIO::ImageSpec opened;
+    if (!in || !in->open(exrPath.string(), opened)) {
+        const std::string why = in ? in->geterror() : OIIO::geterror();
+        OIIO::geterror();
+        throw Error(fmt::format("{}: cannot read: {}", shown(exrPath), io::messageText(why)));
+    }
     const OIIO::ImageSpec& spec = in->spec();
     if (spec.width != width || spec.height != height || spec.nchannels != 3)
         throw Error(fmt::format("{}: image is {}x{} with {} channels, but {} {} says {}x{} RGB", shown(exrPath), spec.width,
                                 spec.height, spec.nchannels, reader.source, path, width, height));
     std::vector<uint16_t> half(static_cast<size_t>(width) * static_cast<size_t>(height) * 3);
     if (!in->read_image(0, 0, 0, 3, OIIO::TypeDesc::HALF, half.data()))
-        throw Error(fmt::format("{}: cannot read: {}", shown(exrPath), in->geterror()));
+        throw Error(fmt::format("{}: cannot read: {}", shown(exrPath), io::messageText(in->geterror())));
     in->close();
     expected.rgb.resize(half.size());
     for (size_t i = 0; i < half.size(); ++i) {
@@ -306,7 +336,7 @@ LutTable readTable(const fs::path& dir, const ManifestReader& reader, const nloh
     const std::string actual = expected.contentHash();
     if (actual != hash)
         throw Error(fmt::format("{}: content hash {} does not match {} {}.hash ({}); the file is corrupt or from another bake",
-                                shown(exrPath), actual, reader.source, path, hash));
+                                shown(exrPath), actual, reader.source, path, io::messageText(hash)));
     return expected;
 }
 
@@ -365,8 +395,12 @@ void LutSet::save(const fs::path& dir, const LutSaveOptions& options) const {
     try {
         // Refuse before writing anything if a target cannot be replaced by a rename.
         for (const Pending& file : files) {
-            if (fs::exists(file.finalPath, ec) && !fs::is_regular_file(file.finalPath, ec))
-                throw Error(fmt::format("{}: exists and is not a regular file", shown(file.finalPath)));
+            struct stat st {};
+            if (::stat(file.finalPath.c_str(), &st) != 0) continue;
+            if (!S_ISREG(st.st_mode))
+                throw Error(fmt::format("{}: output: exists and is not a regular file; not replaced", shown(file.finalPath)));
+            if ((st.st_mode & (S_IWUSR | S_IWGRP | S_IWOTH)) == 0 || ::access(file.finalPath.c_str(), W_OK) != 0)
+                throw Error(fmt::format("{}: output: exists and is read-only; not replaced", shown(file.finalPath)));
         }
         for (const Pending& file : files) {
             const fs::path temp = dir / fmt::format(".{}.tmp-{}{}", file.finalPath.stem().string(), tag,
@@ -388,19 +422,8 @@ void LutSet::save(const fs::path& dir, const LutSaveOptions& options) const {
 LutSet LutSetAccess::load(const fs::path& dir) {
     const fs::path manifestPath = dir / kManifestName;
     ManifestReader reader{shown(manifestPath)};
-    std::ifstream in(manifestPath, std::ios::binary);
-    if (!in) throw Error(fmt::format("{}: cannot open the LUT manifest", reader.source));
-    std::ostringstream text;
-    text << in.rdbuf();
-    nlohmann::json j;
-    try {
-        j = nlohmann::json::parse(text.str());
-    } catch (const nlohmann::json::exception& e) {
-        std::string message = e.what();
-        const auto close = message.find("] ");
-        if (close != std::string::npos) message = message.substr(close + 2);
-        throw Error(fmt::format("{}: invalid JSON: {}", reader.source, message));
-    }
+    const nlohmann::json j =
+        io::parseJson(io::readInputFile(manifestPath, reader.source, limits::kMaxManifestBytes), reader.source);
     if (!j.is_object()) reader.fail("(root)", "must be a JSON object");
     if (reader.string(j, "", "format") != kFormat) reader.fail("format", fmt::format("expected \"{}\"", kFormat));
     const int version = reader.integer(j, "", "version");

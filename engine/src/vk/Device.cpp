@@ -92,9 +92,10 @@ bool isSuitable(VkPhysicalDevice physical) {
     vkGetPhysicalDeviceProperties(physical, &props);
     if (props.apiVersion < VK_API_VERSION_1_3) return false;
     VkPhysicalDeviceVulkan13Features f13{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_VULKAN_1_3_FEATURES};
-    VkPhysicalDeviceFeatures2 f2{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_FEATURES_2, &f13, {}};
+    VkPhysicalDeviceVulkan11Features f11{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_VULKAN_1_1_FEATURES, &f13};
+    VkPhysicalDeviceFeatures2 f2{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_FEATURES_2, &f11, {}};
     vkGetPhysicalDeviceFeatures2(physical, &f2);
-    return f13.dynamicRendering && f13.synchronization2 &&
+    return f13.dynamicRendering && f13.synchronization2 && f11.multiview &&
            findQueueFamily(physical) != std::numeric_limits<uint32_t>::max();
 }
 
@@ -258,9 +259,22 @@ void Device::initializeDevice(const ContextDesc& desc) {
     f13.synchronization2 = VK_TRUE;
     // Required by Vulkan 1.3; lets compute shaders size workgroups with specialization constants.
     f13.maintenance4 = supported13.maintenance4;
-    VkPhysicalDeviceFeatures2 features{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_FEATURES_2, &f13, {}};
+    // Every eye of a view is drawn in one multiview pass (mono too, as one view).
+    // Or, where multiview is unsound, as instances writing gl_Layer (render/MultiviewProbe.h).
+    VkPhysicalDeviceVulkan12Features supported12{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_VULKAN_1_2_FEATURES};
+    VkPhysicalDeviceFeatures2 query12{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_FEATURES_2, &supported12, {}};
+    vkGetPhysicalDeviceFeatures2(chosen, &query12);
+    VkPhysicalDeviceVulkan12Features f12{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_VULKAN_1_2_FEATURES, &f13};
+    f12.shaderOutputLayer = supported12.shaderOutputLayer;
+    shaderOutputLayer_ = supported12.shaderOutputLayer == VK_TRUE;
+    VkPhysicalDeviceVulkan11Features f11{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_VULKAN_1_1_FEATURES, &f12};
+    f11.multiview = VK_TRUE;
+    VkPhysicalDeviceFeatures2 features{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_FEATURES_2, &f11, {}};
     features.features.samplerAnisotropy = supported.samplerAnisotropy;
     features.features.fragmentStoresAndAtomics = supported.fragmentStoresAndAtomics;
+    // Alpha-to-coverage writes alpha 1 to the target where the device can.
+    features.features.alphaToOne = supported.alphaToOne;
+    alphaToOne_ = supported.alphaToOne == VK_TRUE;
 
     const float priority = 1.0f;
     VkDeviceQueueCreateInfo queueInfo{VK_STRUCTURE_TYPE_DEVICE_QUEUE_CREATE_INFO};
@@ -284,7 +298,8 @@ std::unique_ptr<Device> Device::wrap(const HostVulkan& host) {
     volkInitializeCustom(host.getInstanceProcAddr);
     volkLoadInstance(host.instance);
     if (!isSuitable(host.physicalDevice))
-        throw Error("HostVulkan: the host's physical device lacks Vulkan 1.3 dynamic rendering / synchronization2");
+        throw Error("HostVulkan: the host's physical device lacks Vulkan 1.3 dynamic rendering / synchronization2 "
+                    "or multiview");
     std::unique_ptr<Device> self(new Device());
     self->ownsHandles_ = false;
     self->instance_ = host.instance;
@@ -292,12 +307,17 @@ std::unique_ptr<Device> Device::wrap(const HostVulkan& host) {
     self->device_ = host.device;
     self->queue_ = host.queue;
     self->queueFamily_ = host.queueFamilyIndex;
+    self->shaderOutputLayer_ = host.shaderOutputLayerEnabled;
     self->loadProperties();
     return self;
 }
 
 void Device::loadProperties() {
-    vkGetPhysicalDeviceProperties(physicalDevice_, &properties_);
+    VkPhysicalDeviceMultiviewProperties multiview{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_MULTIVIEW_PROPERTIES};
+    VkPhysicalDeviceProperties2 properties2{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_PROPERTIES_2, &multiview, {}};
+    vkGetPhysicalDeviceProperties2(physicalDevice_, &properties2);
+    properties_ = properties2.properties;
+    maxMultiviewViews_ = std::max(multiview.maxMultiviewViewCount, 1u);
     vkGetPhysicalDeviceMemoryProperties(physicalDevice_, &memoryProperties_);
     uint32_t count = 0;
     vkGetPhysicalDeviceQueueFamilyProperties(physicalDevice_, &count, nullptr);

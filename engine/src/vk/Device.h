@@ -10,6 +10,7 @@
 #include <functional>
 #include <memory>
 #include <mutex>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -32,6 +33,26 @@ public:
     const VkPhysicalDeviceProperties& properties() const { return properties_; }
     bool timestampsSupported() const { return timestampValidBits_ > 0; }
     float timestampPeriodNs() const { return properties_.limits.timestampPeriod; }
+    // Views one multiview render pass may draw (VkPhysicalDeviceMultiviewProperties).
+    uint32_t maxMultiviewViews() const { return maxMultiviewViews_; }
+    // Sample counts usable for a colour target together with D32 depth.
+    VkSampleCountFlags msaaSampleCounts() const {
+        return properties_.limits.framebufferColorSampleCounts & properties_.limits.framebufferDepthSampleCounts;
+    }
+    // The alphaToOne feature is enabled (never on a host's device: its features are unknown).
+    bool alphaToOne() const { return alphaToOne_; }
+    // Vertex shaders may write gl_Layer (the Vulkan 1.2 shaderOutputLayer feature is enabled;
+    // on a host's device when the host says so in HostVulkan).
+    bool shaderOutputLayer() const { return shaderOutputLayer_; }
+    // The multiview clipping probe's result, once it ran (render/MultiviewProbe.h).
+    std::optional<bool> multiviewClipping() const {
+        std::lock_guard lock(probeMutex_);
+        return multiviewClipping_;
+    }
+    void setMultiviewClipping(bool works) const {
+        std::lock_guard lock(probeMutex_);
+        multiviewClipping_ = works;
+    }
 
     // A memory type that has every `required` flag (and `preferred` ones when possible).
     uint32_t findMemoryType(uint32_t typeBits, VkMemoryPropertyFlags required,
@@ -58,6 +79,11 @@ private:
     VkDevice device_ = VK_NULL_HANDLE;
     VkQueue queue_ = VK_NULL_HANDLE;
     uint32_t queueFamily_ = 0;
+    uint32_t maxMultiviewViews_ = 1;
+    bool alphaToOne_ = false;
+    bool shaderOutputLayer_ = false;
+    mutable std::mutex probeMutex_;
+    mutable std::optional<bool> multiviewClipping_;
     uint32_t timestampValidBits_ = 0;
     VkPhysicalDeviceProperties properties_{};
     VkPhysicalDeviceMemoryProperties memoryProperties_{};

@@ -66,7 +66,9 @@ VkPipeline createGraphicsPipeline(const Device& device, const GraphicsPipelineDe
     raster.depthBiasEnable = desc.depthBias;
     raster.lineWidth = 1.0f;
     VkPipelineMultisampleStateCreateInfo multisample{VK_STRUCTURE_TYPE_PIPELINE_MULTISAMPLE_STATE_CREATE_INFO};
-    multisample.rasterizationSamples = VK_SAMPLE_COUNT_1_BIT;
+    multisample.rasterizationSamples = desc.samples;
+    multisample.alphaToCoverageEnable = desc.alphaToCoverage;
+    multisample.alphaToOneEnable = desc.alphaToOne;
     VkPipelineDepthStencilStateCreateInfo depth{VK_STRUCTURE_TYPE_PIPELINE_DEPTH_STENCIL_STATE_CREATE_INFO};
     depth.depthTestEnable = desc.depthTest;
     depth.depthWriteEnable = desc.depthWrite;
@@ -97,6 +99,7 @@ VkPipeline createGraphicsPipeline(const Device& device, const GraphicsPipelineDe
     rendering.colorAttachmentCount = static_cast<uint32_t>(desc.colorFormats.size());
     rendering.pColorAttachmentFormats = desc.colorFormats.data();
     rendering.depthAttachmentFormat = desc.depthFormat;
+    rendering.viewMask = desc.viewMask;
 
     VkGraphicsPipelineCreateInfo info{VK_STRUCTURE_TYPE_GRAPHICS_PIPELINE_CREATE_INFO};
     info.pNext = &rendering;

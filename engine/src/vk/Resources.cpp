@@ -82,8 +82,8 @@ Image::Image(const Device& device, const ImageDesc& desc) : device_(&device), de
     info.format = desc.format;
     info.extent = {desc.width, desc.height, 1};
     info.mipLevels = desc.mipLevels;
-    info.arrayLayers = 1;
-    info.samples = VK_SAMPLE_COUNT_1_BIT;
+    info.arrayLayers = std::max(desc.layers, 1u);
+    info.samples = desc.samples;
     info.tiling = VK_IMAGE_TILING_OPTIMAL;
     info.usage = desc.usage;
     info.sharingMode = VK_SHARING_MODE_EXCLUSIVE;
@@ -99,9 +99,9 @@ Image::Image(const Device& device, const ImageDesc& desc) : device_(&device), de
         PRESKIN_VK(vkBindImageMemory(device.device(), image_, memory_, 0));
         VkImageViewCreateInfo viewInfo{VK_STRUCTURE_TYPE_IMAGE_VIEW_CREATE_INFO};
         viewInfo.image = image_;
-        viewInfo.viewType = VK_IMAGE_VIEW_TYPE_2D;
+        viewInfo.viewType = desc.layers > 1 ? VK_IMAGE_VIEW_TYPE_2D_ARRAY : VK_IMAGE_VIEW_TYPE_2D;
         viewInfo.format = desc.format;
-        viewInfo.subresourceRange = {desc.aspect, 0, desc.mipLevels, 0, 1};
+        viewInfo.subresourceRange = {desc.aspect, 0, desc.mipLevels, 0, std::max(desc.layers, 1u)};
         PRESKIN_VK(vkCreateImageView(device.device(), &viewInfo, nullptr, &view_));
     } catch (...) {
         release();
@@ -205,7 +205,7 @@ void Image::uploadAndGenerateMips(const void* pixels, size_t bytes) {
 
 void imageBarrier(VkCommandBuffer cmd, VkImage image, VkImageAspectFlags aspect, VkImageLayout oldLayout,
                   VkImageLayout newLayout, VkPipelineStageFlags2 srcStage, VkAccessFlags2 srcAccess,
-                  VkPipelineStageFlags2 dstStage, VkAccessFlags2 dstAccess) {
+                  VkPipelineStageFlags2 dstStage, VkAccessFlags2 dstAccess, uint32_t layerCount) {
     VkImageMemoryBarrier2 barrier{VK_STRUCTURE_TYPE_IMAGE_MEMORY_BARRIER_2};
     barrier.srcStageMask = srcStage;
     barrier.srcAccessMask = srcAccess;
@@ -216,7 +216,7 @@ void imageBarrier(VkCommandBuffer cmd, VkImage image, VkImageAspectFlags aspect,
     barrier.srcQueueFamilyIndex = VK_QUEUE_FAMILY_IGNORED;
     barrier.dstQueueFamilyIndex = VK_QUEUE_FAMILY_IGNORED;
     barrier.image = image;
-    barrier.subresourceRange = {aspect, 0, VK_REMAINING_MIP_LEVELS, 0, 1};
+    barrier.subresourceRange = {aspect, 0, VK_REMAINING_MIP_LEVELS, 0, layerCount};
     VkDependencyInfo dep{VK_STRUCTURE_TYPE_DEPENDENCY_INFO};
     dep.imageMemoryBarrierCount = 1;
     dep.pImageMemoryBarriers = &barrier;

@@ -44,6 +44,8 @@ struct ImageDesc {
     uint32_t mipLevels = 1;
     VkImageUsageFlags usage = VK_IMAGE_USAGE_SAMPLED_BIT;
     VkImageAspectFlags aspect = VK_IMAGE_ASPECT_COLOR_BIT;
+    uint32_t layers = 1;  // > 1: a 2D array image with a 2D_ARRAY view of every layer
+    VkSampleCountFlagBits samples = VK_SAMPLE_COUNT_1_BIT;
 };
 
 class Image {
@@ -77,10 +79,11 @@ private:
 
 uint32_t mipLevelCount(uint32_t width, uint32_t height);
 
-// One image layout transition with a synchronization2 barrier covering all mips.
+// One image layout transition with a synchronization2 barrier covering all mips of layers
+// [0, layerCount).
 void imageBarrier(VkCommandBuffer cmd, VkImage image, VkImageAspectFlags aspect, VkImageLayout oldLayout,
                   VkImageLayout newLayout, VkPipelineStageFlags2 srcStage, VkAccessFlags2 srcAccess,
-                  VkPipelineStageFlags2 dstStage, VkAccessFlags2 dstAccess);
+                  VkPipelineStageFlags2 dstStage, VkAccessFlags2 dstAccess, uint32_t layerCount = 1);
 void memoryBarrier(VkCommandBuffer cmd, VkPipelineStageFlags2 srcStage, VkAccessFlags2 srcAccess,
                    VkPipelineStageFlags2 dstStage, VkAccessFlags2 dstAccess);
 

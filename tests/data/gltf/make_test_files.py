@@ -67,6 +67,91 @@ def glb(doc, blob):
     return struct.pack("<4sII", b"glTF", 2, 12 + len(body)) + body
 
 
+def skinned_triangle(joints=((0, 0, 0, 0), (1, 0, 0, 0), (1, 0, 0, 0)), times=(0.0, 1.0),
+                     translations=(0, 1, 0, 0, 1.5, 0), ibm_count=2):
+    """A triangle skinned to two joints (root, tip), with one morph target, animated by a LINEAR
+    translation of the tip and a weights channel. Returns (doc, buffer) with the buffer embedded."""
+    identity = [1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1]
+    tip_bind = [1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 0, -1, 0, 1]
+    parts = [
+        ("VEC3", 5126, "<9f", [0, 0, 0, 1, 0, 0, 0, 1, 0]),                # 0 POSITION
+        ("VEC3", 5126, "<9f", [0, 0, 1] * 3),                             # 1 NORMAL
+        ("SCALAR", 5123, "<3H", [0, 1, 2]),                               # 2 indices
+        ("VEC4", 5121, "<12B", [c for j in joints for c in j]),           # 3 JOINTS_0
+        ("VEC4", 5126, "<12f", [1, 0, 0, 0] * 3),                         # 4 WEIGHTS_0
+        ("VEC3", 5126, "<9f", [0, 0, 0.1] * 3),                           # 5 target POSITION
+        ("MAT4", 5126, "<%df" % (16 * ibm_count), (identity + tip_bind)[:16 * ibm_count]),  # 6 IBM
+        ("SCALAR", 5126, "<%df" % len(times), list(times)),              # 7 times
+        ("VEC3", 5126, "<%df" % len(translations), list(translations)),  # 8 translations
+        ("SCALAR", 5126, "<2f", [0.0, 1.0]),                              # 9 weights
+    ]
+    blob = b""
+    views, accessors = [], []
+    sizes = {"SCALAR": 1, "VEC3": 3, "VEC4": 4, "MAT4": 16}
+    for index, (type_name, component_type, fmt, values) in enumerate(parts):
+        data = struct.pack(fmt, *values)
+        view = {"buffer": 0, "byteOffset": len(blob), "byteLength": len(data)}
+        if index <= 5:
+            view["target"] = 34963 if index == 2 else 34962
+        views.append(view)
+        n = sizes[type_name]
+        accessor = {"bufferView": len(views) - 1, "componentType": component_type,
+                    "count": len(values) // n, "type": type_name}
+        if index in (0, 5, 7):  # POSITION, its target and the times carry bounds, as glTF requires
+            accessor["min"] = [min(values[k::n]) for k in range(n)]
+            accessor["max"] = [max(values[k::n]) for k in range(n)]
+        accessors.append(accessor)
+        blob += data + b"\0" * (-len(data) % 4)
+    doc = {
+        "asset": {"version": "2.0"},
+        "buffers": [{"uri": data_uri(blob), "byteLength": len(blob)}],
+        "bufferViews": views,
+        "accessors": accessors,
+        "meshes": [{"primitives": [{"attributes": {"POSITION": 0, "NORMAL": 1, "JOINTS_0": 3, "WEIGHTS_0": 4},
+                                    "indices": 2, "targets": [{"POSITION": 5}]}],
+                    "weights": [0.0]}],
+        "nodes": [{"name": "triangle", "mesh": 0, "skin": 0},
+                  {"name": "root", "children": [2]},
+                  {"name": "tip", "translation": [0, 1, 0]}],
+        "skins": [{"joints": [1, 2], "inverseBindMatrices": 6}],
+        "animations": [{"name": "move",
+                        "samplers": [{"input": 7, "output": 8}, {"input": 7, "output": 9}],
+                        "channels": [{"sampler": 0, "target": {"node": 2, "path": "translation"}},
+                                     {"sampler": 1, "target": {"node": 0, "path": "weights"}}]}],
+        "scenes": [{"nodes": [0, 1]}],
+        "scene": 0,
+    }
+    return doc
+
+
+def animation_files():
+    """The valid skinned triangle and one file per bad skin, morph target or animation case."""
+    nan, inf = float("nan"), float("inf")
+    write("skinned_triangle.gltf", dump(skinned_triangle()))
+    write("skin_joint_out_of_range.gltf", dump(skinned_triangle(joints=((0, 0, 0, 0), (2, 0, 0, 0), (1, 0, 0, 0)))))
+    write("skin_no_joints.gltf", dump(dict(skinned_triangle(), skins=[{"joints": []}])))
+    write("skin_joints_missing.gltf", dump(dict(skinned_triangle(), skins=[{"inverseBindMatrices": 6}])))
+    write("skin_inverse_bind_count.gltf", dump(skinned_triangle(ibm_count=1)))
+    write("anim_count_mismatch.gltf", dump(skinned_triangle(translations=(0, 1, 0, 0, 1.5, 0, 0, 2, 0))))
+    doc = skinned_triangle()
+    doc["animations"][0]["samplers"][0]["interpolation"] = "CUBICSPLINE"
+    write("anim_cubic_count.gltf", dump(doc))
+    write("anim_nan_time.gltf", dump(skinned_triangle(times=(0.0, nan))))
+    write("anim_infinite_value.gltf", dump(skinned_triangle(translations=(0, 1, 0, 0, inf, 0))))
+    write("anim_times_not_increasing.gltf", dump(skinned_triangle(times=(1.0, 1.0))))
+    doc = skinned_triangle()
+    doc["nodes"][2] = {"name": "tip", "matrix": [1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 0, 1, 0, 1]}
+    write("anim_matrix_node.gltf", dump(doc))
+    doc = skinned_triangle()
+    second = dict(doc["meshes"][0]["primitives"][0])
+    second["targets"] = [{"POSITION": 5}, {"POSITION": 5}]
+    doc["meshes"][0]["primitives"].append(second)
+    write("morph_target_count_mismatch.gltf", dump(doc))
+    doc = skinned_triangle()
+    doc["meshes"][0]["weights"] = [0.0, 0.5]
+    write("morph_weights_length.gltf", dump(doc))
+
+
 def main():
     blob = triangle_buffer()
     write("triangle.bin", blob)
@@ -127,6 +212,8 @@ def main():
     doc = triangle_doc("triangle.bin")
     doc["nodes"] = [{"mesh": 0, "children": [1]}, {"children": [0]}]
     write("node_cycle.gltf", dump(doc))
+
+    animation_files()
 
 
 if __name__ == "__main__":

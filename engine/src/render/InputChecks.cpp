@@ -1,0 +1,47 @@
+// Checks of host-supplied renderer settings and lights (see InputChecks.h).
+#include "render/InputChecks.h"
+#include "io/NumberRule.h"
+
+#include <preskin/Error.h>
+
+#include <string>
+
+namespace preskin {
+
+namespace {
+
+void check(double value, const std::string& where) {
+    if (auto problem = io::numberProblem(value)) throw Error(where + ": " + *problem);
+}
+
+template <int N>
+void check(const glm::vec<N, float>& v, const std::string& where) {
+    for (int i = 0; i < N; ++i) check(v[i], where + "[" + std::to_string(i) + "]");
+}
+
+}  // namespace
+
+void checkRenderSettings(const RenderSettings& settings) {
+    check(settings.exposure, "RenderSettings: exposure");
+    check(settings.shadowSoftnessTexels, "RenderSettings: shadowSoftnessTexels");
+    if (settings.exposure < 0.0f) throw Error("RenderSettings: exposure: must be >= 0");
+    if (!(settings.shadowSoftnessTexels > 0.0f)) throw Error("RenderSettings: shadowSoftnessTexels: must be > 0");
+}
+
+void checkLights(const std::vector<Light>& lights) {
+    for (size_t i = 0; i < lights.size(); ++i) {
+        const Light& l = lights[i];
+        const std::string at = "lights[" + std::to_string(i) + "].";
+        check(l.color, at + "color");
+        check(l.intensity, at + "intensity");
+        check(l.range, at + "range");
+        check(l.innerConeAngle, at + "innerConeAngle");
+        check(l.outerConeAngle, at + "outerConeAngle");
+        check(l.positionWs, at + "positionWs");
+        check(l.directionWs, at + "directionWs");
+        if (l.intensity < 0.0f || l.range < 0.0f || l.color.r < 0.0f || l.color.g < 0.0f || l.color.b < 0.0f)
+            throw Error(at + "intensity, range, color: must be >= 0");
+    }
+}
+
+}  // namespace preskin

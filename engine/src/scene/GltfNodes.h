@@ -1,0 +1,23 @@
+// The node hierarchy as the file has it (glTF 2.0, "Nodes and Hierarchy"), for animation:
+// Scene::nodes holds every node of the file at its glTF index, with its parent, children, rest
+// transform (TRS; a matrix is kept in Node::matrix and decomposed into Node::transform), mesh,
+// skin and morph weights. The flattened world-space instances, lights and cameras of the default
+// scene are made by GltfLoader.cpp, which links each instance to its node and skin.
+// Errors: a node with two parents or in a cycle, a zero-length rotation, a skin without a mesh
+// on the node, node weights whose count differs from the mesh's morph target count.
+#pragma once
+
+#include "scene/GltfContext.h"
+
+#include <glm/glm.hpp>
+
+namespace preskin::gltf {
+
+// Fills Scene::nodes; runs after the meshes are converted (their target counts).
+void convertNodeHierarchy(const LoadContext& ctx);
+
+// Translation, rotation and scale of a matrix without shear or projection, as glTF requires of
+// node matrices; a negative determinant goes into the x scale. m = T * R * S up to rounding.
+NodeTransform decomposeMatrix(const glm::mat4& m);
+
+}  // namespace preskin::gltf

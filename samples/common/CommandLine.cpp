@@ -1,0 +1,172 @@
+// Command-line validation and error reporting of the sample programs (see CommandLine.h).
+#include "CommandLine.h"
+
+#include <preskin/Error.h>
+#include <preskin/Limits.h>
+
+#include <fmt/core.h>
+
+#include <charconv>
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <new>
+#include <system_error>
+
+namespace preskin::cli {
+
+namespace {
+
+// User text inside a message: one line, at most 80 characters.
+std::string shown(const std::string& text) {
+    std::string out;
+    for (const char c : text) {
+        if (out.size() >= 80) return out + "...";
+        out += static_cast<unsigned char>(c) < 0x20 || c == 0x7f ? '?' : c;
+    }
+    return out;
+}
+
+// A message for stderr on one line (a path may hold a line break).
+std::string oneLine(const std::string& text) {
+    std::string out;
+    for (const char c : text) out += static_cast<unsigned char>(c) < 0x20 || c == 0x7f ? ' ' : c;
+    return out;
+}
+
+std::string number(double value) {
+    if (value == std::floor(value) && std::abs(value) < 1e15) return std::to_string(static_cast<int64_t>(value));
+    char buffer[32];
+    const auto [end, ec] = std::to_chars(buffer, buffer + sizeof(buffer), value);
+    return ec == std::errc() ? std::string(buffer, end) : std::to_string(value);
+}
+
+std::string afterPrefix(const std::string& text, const std::string& prefix) {
+    return text.rfind(prefix, 0) == 0 ? text.substr(prefix.size()) : std::string();
+}
+
+}  // namespace
+
+CLI::Validator numberIn(double min, double max) {
+    const std::string range = "[" + number(min) + ", " + number(max) + "]";
+    return CLI::Validator(
+        [min, max, range](std::string& text) -> std::string {
+            double value = 0.0;
+            const char* end = text.data() + text.size();
+            const auto [last, ec] = std::from_chars(text.data(), end, value);
+            if (text.empty() || ec != std::errc() || last != end || !std::isfinite(value)) {
+                return "value: '" + shown(text) + "' is not a finite number";
+            }
+            if (value < min || value > max) return "value: " + shown(text) + " is outside " + range;
+            return {};
+        },
+        "in " + range);
+}
+
+CLI::Validator wholeNumberIn(int64_t min, int64_t max) {
+    const std::string range = "[" + std::to_string(min) + ", " + std::to_string(max) + "]";
+    return CLI::Validator(
+        [min, max, range](std::string& text) -> std::string {
+            int64_t value = 0;
+            const char* end = text.data() + text.size();
+            const auto [last, ec] = std::from_chars(text.data(), end, value);
+            if (text.empty() || ec != std::errc() || last != end) {
+                return "value: '" + shown(text) + "' is not a whole number in " + range;
+            }
+            if (value < min || value > max) return "value: " + shown(text) + " is outside " + range;
+            return {};
+        },
+        "in " + range);
+}
+
+CLI::Validator oneOf(std::initializer_list<std::string> words) {
+    std::string list;
+    for (const std::string& w : words) list += (list.empty() ? "" : ", ") + w;
+    std::vector<std::string> allowed(words);
+    return CLI::Validator(
+        [allowed, list](std::string& text) -> std::string {
+            for (const std::string& w : allowed)
+                if (text == w) return {};
+            return "value: '" + shown(text) + "' is not one of " + list;
+        },
+        "one of " + list);
+}
+
+std::string describeParseError(const CLI::ParseError& error, const CLI::App& app) {
+    const std::string what = shown(error.what()).substr(0, 200);
+    if (dynamic_cast<const CLI::ExtrasError*>(&error)) {
+        // "The following argument was not expected: X" / "The following arguments were not expected: X Y"
+        const size_t colon = what.find(": ");
+        std::string first = colon == std::string::npos ? what : what.substr(colon + 2);
+        first = first.substr(0, first.find(' '));
+        if (!first.empty() && first[0] == '-') return first + ": option: unknown here (see --help)";
+        return first + ": argument: not expected (see --help)";
+    }
+    if (dynamic_cast<const CLI::RequiredError*>(&error)) {
+        if (what.find("subcommand") != std::string::npos) {
+            const std::vector<std::string> rest = app.remaining();
+            if (!rest.empty() && !rest.front().empty()) {
+                return shown(rest.front()) + (rest.front()[0] == '-' ? ": option: unknown here (see --help)"
+                                                                     : ": command: unknown (see --help)");
+            }
+            return "command: subcommand: missing (see --help)";
+        }
+        const size_t is = what.find(" is required");
+        if (is != std::string::npos) return what.substr(0, is) + ": option: required";
+        return "command line: options: " + what;
+    }
+    if (dynamic_cast<const CLI::ArgumentMismatch*>(&error)) {
+        const size_t colon = what.find(": ");
+        if (colon != std::string::npos && what.find("missing") != std::string::npos)
+            return what.substr(0, colon) + ": value: missing";
+        if (colon != std::string::npos && what.find("At Most 1 required") != std::string::npos)
+            return what.substr(0, colon) + ": option: given more than once";
+        if (colon != std::string::npos) return what.substr(0, colon) + ": value: " + what.substr(colon + 2);
+        return "command line: values: " + what;
+    }
+    if (dynamic_cast<const CLI::ValidationError*>(&error)) {
+        // Our validators word the rest as "<field>: <problem>".
+        const size_t colon = what.find(": ");
+        const std::string rest = colon == std::string::npos ? what : what.substr(colon + 2);
+        if (rest.rfind("value: ", 0) == 0) return what;
+        return colon == std::string::npos ? "command line: values: " + what
+                                          : what.substr(0, colon) + ": value: " + rest;
+    }
+    if (dynamic_cast<const CLI::ConversionError*>(&error)) {
+        // "Could not convert: NAME = VALUE"
+        const std::string rest = afterPrefix(what, "Could not convert: ");
+        const size_t eq = rest.find(" = ");
+        if (eq != std::string::npos)
+            return rest.substr(0, eq) + ": value: '" + rest.substr(eq + 3) + "' cannot be read as this option's type";
+        return "command line: values: " + what;
+    }
+    if (dynamic_cast<const CLI::ExcludesError*>(&error)) {
+        const size_t at = what.find(" excludes ");
+        if (at != std::string::npos) return what.substr(0, at) + ": option: cannot be combined with " + what.substr(at + 10);
+    }
+    if (dynamic_cast<const CLI::RequiresError*>(&error)) {
+        const size_t at = what.find(" requires ");
+        if (at != std::string::npos) return what.substr(0, at) + ": option: needs " + what.substr(at + 10);
+    }
+    return "command line: arguments: " + what;
+}
+
+int runCommandLine(CLI::App& app, int argc, char** argv, const std::function<int()>& afterParse) {
+    try {
+        app.parse(argc, argv);
+        return afterParse ? afterParse() : 0;
+    } catch (const CLI::Success& help) {
+        return app.exit(help);  // usage text on stdout, exit 0
+    } catch (const CLI::ParseError& e) {
+        fmt::print(stderr, "preskin: error: {}\n", describeParseError(e, app));
+    } catch (const Error& e) {
+        fmt::print(stderr, "preskin: error: {}\n", oneLine(e.what()));
+    } catch (const std::bad_alloc&) {
+        fmt::print(stderr, "preskin: error: memory: not enough memory for this input\n");
+    } catch (const std::exception& e) {
+        fmt::print(stderr, "preskin: error: internal: {}\n", shown(e.what()));
+    }
+    return 1;
+}
+
+}  // namespace preskin::cli

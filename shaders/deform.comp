@@ -1,0 +1,74 @@
+#version 460
+// deform.comp: one deformed primitive of a mesh instance per dispatch, one invocation per vertex:
+// morph targets add their weighted deltas to position, normal and tangent, then linear blend
+// skinning applies sum_k w_k J[joint_k] (glTF 2.0, "Skins" and "Morph Targets"): positions by the
+// blended matrix, normals by the inverse transpose of its 3x3 (as its cofactor matrix, which
+// differs by the positive factor |det| and needs no division), tangents by its 3x3, both
+// renormalised. A skinned vertex ends in world space (the joint matrices put it there), an
+// unskinned one stays in object space. uv, tangent.w and curvature are copied (curvature.comp
+// recomputes curvature afterwards where the material asks for it).
+// The CPU reference is deformPrimitive (<preskin/Deformation.h>).
+// Limits: 8 influences per vertex (two JOINTS/WEIGHTS sets); float precision.
+#extension GL_GOOGLE_include_directive : require
+#include "shared/deform.h"
+
+layout(local_size_x = kDeformGroupSize) in;
+
+layout(std430, set = 0, binding = kDeformBindingRest) readonly buffer Rest { float rest[]; };
+layout(std430, set = 0, binding = kDeformBindingDeltas) readonly buffer Deltas { float deltas[]; };
+layout(std430, set = 0, binding = kDeformBindingInfluences) readonly buffer Influences { DeformInfluences influences[]; };
+layout(std430, set = 0, binding = kDeformBindingWeights) readonly buffer Weights { float weights[]; };
+layout(std430, set = 0, binding = kDeformBindingJoints) readonly buffer Joints { mat4 joints[]; };
+layout(std430, set = 0, binding = kDeformBindingOutput) writeonly buffer Output { float outVertices[]; };
+layout(push_constant) uniform Push { DeformPush push; };
+
+vec3 load3(uint i) { return vec3(rest[i], rest[i + 1], rest[i + 2]); }
+vec3 delta3(uint i) { return vec3(deltas[i], deltas[i + 1], deltas[i + 2]); }
+void store3(uint i, vec3 v) {
+    outVertices[i] = v.x;
+    outVertices[i + 1] = v.y;
+    outVertices[i + 2] = v.z;
+}
+
+void main() {
+    uint v = gl_GlobalInvocationID.x;
+    uint count = push.vertices.z;
+    if (v >= count) return;
+    uint src = (push.vertices.x + v) * kVertexFloats;
+    uint dst = (push.vertices.y + v) * kVertexFloats;
+    vec3 position = load3(src + kVertexPosition);
+    vec3 normal = load3(src + kVertexNormal);
+    vec3 tangent = load3(src + kVertexTangent);
+
+    uint targets = push.vertices.w;
+    for (uint t = 0; t < targets; ++t) {
+        float w = weights[push.offsets.z + t];
+        if (w == 0.0) continue;
+        uint d = push.offsets.x + (t * count + v) * kDeltaFloats;
+        position += w * delta3(d);
+        normal += w * delta3(d + 3);
+        tangent += w * delta3(d + 6);
+    }
+
+    if (push.offsets.y != 0xffffffffu) {
+        DeformInfluences inf = influences[push.offsets.y + v];
+        uint jointBase = push.offsets.w;
+        mat4 m = inf.weights0.x * joints[jointBase + inf.joints0.x] + inf.weights0.y * joints[jointBase + inf.joints0.y] +
+                 inf.weights0.z * joints[jointBase + inf.joints0.z] + inf.weights0.w * joints[jointBase + inf.joints0.w];
+        if (inf.weights1 != vec4(0.0))
+            m += inf.weights1.x * joints[jointBase + inf.joints1.x] + inf.weights1.y * joints[jointBase + inf.joints1.y] +
+                 inf.weights1.z * joints[jointBase + inf.joints1.z] + inf.weights1.w * joints[jointBase + inf.joints1.w];
+        position = (m * vec4(position, 1.0)).xyz;
+        mat3 linear = mat3(m);
+        // The inverse transpose up to a positive factor: the cofactor matrix times sign(det).
+        mat3 cofactor = mat3(cross(linear[1], linear[2]), cross(linear[2], linear[0]), cross(linear[0], linear[1]));
+        normal = (determinant(linear) < 0.0 ? -1.0 : 1.0) * (cofactor * normal);
+        tangent = linear * tangent;
+    }
+    float nl = length(normal);
+    float tl = length(tangent);
+    store3(dst + kVertexPosition, position);
+    store3(dst + kVertexNormal, nl > 0.0 ? normal / nl : vec3(0.0, 0.0, 1.0));
+    store3(dst + kVertexTangent, tl > 0.0 ? tangent / tl : vec3(1.0, 0.0, 0.0));
+    for (uint i = kVertexTangent + 3; i < kVertexFloats; ++i) outVertices[dst + i] = rest[src + i];
+}

@@ -1,0 +1,43 @@
+// forward_vertex.glsl: the forward pass's vertex stage, shared by its two entry points, which
+// differ only in where the eye comes from (see <preskin/Renderer.h>, EyeDrawing):
+//   forward.vert         multiview: the eye is gl_ViewIndex (one view per eye);
+//   forward_layers.vert  instanced layers: one instance per eye, the eye is gl_InstanceIndex and
+//                        the vertex is sent to array layer gl_Layer = eye.
+// Transforms one mesh instance into the eye's clip space; passes the world-space tangent frame,
+// TEXCOORD_0, per-vertex curvature (object units -> 1/m in world space), which are the same for
+// every eye, and the eye index for the fragment stage. The including file defines
+// PRESKIN_EYE_INDEX (and PRESKIN_WRITE_LAYER for layered drawing).
+#include "shared/gpu_types.h"
+
+layout(set = 0, binding = kBindingFrame) uniform Frame { FrameUniforms frame; };
+layout(std430, set = 0, binding = kBindingInstances) readonly buffer Instances { GpuInstance instances[]; };
+layout(push_constant) uniform Push { DrawPush draw; };
+
+layout(location = 0) in vec3 inPositionOs;
+layout(location = 1) in vec3 inNormalOs;
+layout(location = 2) in vec4 inTangentOs;
+layout(location = 3) in vec2 inUv0;
+layout(location = 4) in float inCurvature;
+
+layout(location = 0) out vec3 outPositionWs;
+layout(location = 1) out vec3 outNormalWs;
+layout(location = 2) out vec4 outTangentWs;
+layout(location = 3) out vec2 outUv0;
+layout(location = 4) out float outCurvaturePerM;
+layout(location = 5) flat out uint outEye;
+
+void main() {
+    uint eye = uint(PRESKIN_EYE_INDEX);
+    GpuInstance instance = instances[draw.indices.x];
+    vec4 positionWs = instance.worldFromObject * vec4(inPositionOs, 1.0);
+    outPositionWs = positionWs.xyz;
+    outNormalWs = mat3(instance.normalWorldFromObject) * inNormalOs;
+    outTangentWs = vec4(mat3(instance.worldFromObject) * inTangentOs.xyz, inTangentOs.w);
+    outUv0 = inUv0;
+    outCurvaturePerM = inCurvature * instance.params.x;
+    outEye = eye;
+    gl_Position = frame.eyes[eye].clipFromWorld * positionWs;
+#ifdef PRESKIN_WRITE_LAYER
+    gl_Layer = int(eye);
+#endif
+}
