@@ -90,6 +90,17 @@ TEST_F(Cli, BadScenesFailWithOneLineNamingFileAndField) {
         {"uri_absolute.gltf", "uri"},
         {"unsupported_image.gltf", "images[0]"},
         {"huge_count.gltf", "count"},
+        {"skin_joint_out_of_range.gltf", "JOINTS_0"},
+        {"skin_no_joints.gltf", "skins[0].joints"},
+        {"skin_inverse_bind_count.gltf", "inverseBindMatrices"},
+        {"morph_target_count_mismatch.gltf", "targets"},
+        {"morph_weights_length.gltf", "weights"},
+        {"anim_count_mismatch.gltf", "animations[0].samplers[0]"},
+        {"anim_cubic_count.gltf", "animations[0].samplers[0]"},
+        {"anim_nan_time.gltf", "animations[0].samplers[0].input"},
+        {"anim_infinite_value.gltf", "animations[0].samplers[0].output"},
+        {"anim_times_not_increasing.gltf", "animations[0].samplers[0].input"},
+        {"anim_matrix_node.gltf", "target.node"},
     };
     for (const BadScene& c : cases) {
         SCOPED_TRACE(c.file);
