@@ -77,6 +77,7 @@ View makeView(const Scene& scene, const std::filesystem::path& scenePath, const 
 // $PRESKIN_DATA_DIR when set).
 std::filesystem::path dataDir();
 std::filesystem::path defaultScenePath();
+std::filesystem::path defaultAnimatedScenePath();  // the bundled animated head
 OutputEncoding encodingFor(const std::filesystem::path& out);
 std::vector<float> parseFloats(const std::string& text, size_t count, const char* flag);
 
