@@ -2,7 +2,8 @@
 // curvature (SphereScatter.h, after Penner & Borshukov 2011): the library's integrator and the
 // baked, bilinearly sampled table against an independent surface integration
 // (test_lut_reference.h), convex and concave; the flat limit saturate(NoL); monotonicity in NoL;
-// energy bounds; red >= green >= blue wrap at NoL = 0 on convex skin, none on concave skin.
+// energy bounds; red >= green >= blue wrap at NoL = 0 on convex skin, none on concave skin;
+// closed forms of one Gaussian on a small sphere, inside and out, with the patch's shadow.
 #include "test_lut_reference.h"
 
 #include "skin/SphereScatter.h"
@@ -11,6 +12,9 @@
 
 #include <gtest/gtest.h>
 
+#include <cmath>
+#include <cstdio>
+#include <numbers>
 #include <random>
 
 namespace preskin {
@@ -172,6 +176,45 @@ TEST(LutDiffuse, ConcaveSkinShadowsItselfWhereConvexSkinWrapsLight) {
         for (int c = 0; c < 3; ++c)
             EXPECT_NEAR(skin::sphereScatter(luts.profile(), -0.2, 0.0, NoL)[c],
                         skin::sphereScatter(luts.profile(), 0.2, 0.0, NoL)[c], 1e-4);
+}
+
+// One Gaussian of variance v on a sphere of radius a, light along the normal (NoL = +-1): with
+// u = cos(psi) the kernel is exp(kappa u), kappa = a^2 / v, and a neighbour's irradiance is +-u,
+// so D = int e^(kappa u) (+-u) du over the lit and visible u, divided by int_-1^1 e^(kappa u) du.
+// Inside the sphere the patch of arc radius Psi around the point hides the neighbours whose ray
+// to the light leaves the sphere on it (the ray from y along L leaves at y - 2 (y . L) L): with
+// the light along the normal, u < -cos(Psi); against it, u < -cos(Psi) as well, where the facing
+// neighbours (u < 0) lie on the far side and their rays cross the cavity towards the point.
+TEST(LutDiffuse, ConcaveHalfMatchesClosedFormsOfOneGaussian) {
+    const double v = 1.0, a = 2.0, kappa = a * a / v;
+    const DiffusionProfile profile = DiffusionProfile::sumOfGaussians({{v, glm::dvec3(1.0)}}, "one Gaussian");
+    ASSERT_GE(profile.reachMm(1e-4), 2.0 * a) << "the whole sphere must be within the profile's reach";
+    const auto F = [&](double u) { return std::exp(kappa * u) * (u / kappa - 1.0 / (kappa * kappa)); };
+    const double norm = (std::exp(kappa) - std::exp(-kappa)) / kappa;
+    const auto facing = [&](double lo, double hi) { return (F(hi) - F(lo)) / norm; };      // int e^(k u) u du
+    const auto opposite = [&](double lo, double hi) { return -(F(hi) - F(lo)) / norm; };  // int e^(k u) (-u) du
+    struct Case {
+        double curvaturePerMm, patchRadians, NoL, want;
+        const char* what;
+    };
+    const double wide = 0.75 * std::numbers::pi, narrow = std::numbers::pi / 3.0;
+    const std::vector<Case> cases{
+        {1.0 / a, wide, 1.0, facing(0.0, 1.0), "convex, light along the normal"},
+        {1.0 / a, wide, -1.0, opposite(-1.0, 0.0), "convex, light from behind"},
+        {-1.0 / a, narrow, 1.0, facing(0.0, 1.0), "concave, patch too small to shadow"},
+        {-1.0 / a, wide, 1.0, facing(-std::cos(wide), 1.0), "concave, the patch shadows the far neighbours"},
+        {-1.0 / a, narrow, -1.0, opposite(-std::cos(narrow), 0.0),
+         "concave, light from behind: the neighbours whose rays miss the patch"},
+    };
+    for (const Case& c : cases) {
+        const glm::dvec3 got = skin::sphereScatter(profile, c.curvaturePerMm, c.patchRadians * a, c.NoL);
+        std::printf("%s: %.6f (closed form %.6f)\n", c.what, got.r, c.want);
+        // The step where the patch's shadow begins falls inside a quadrature panel (error about 3e-6).
+        for (int ch = 0; ch < 3; ++ch) EXPECT_NEAR(got[ch], c.want, 1e-4) << c.what;
+    }
+    // The concave cases differ from the convex ones by far more than the tolerance.
+    EXPECT_GT(facing(0.0, 1.0) - facing(-std::cos(wide), 1.0), 0.1);
+    EXPECT_GT(opposite(-1.0, 0.0) - opposite(-std::cos(narrow), 0.0), 1e-3);
 }
 
 TEST(LutDiffuse, BurleyProfileBakes) {
