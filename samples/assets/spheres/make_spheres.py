@@ -46,19 +46,20 @@ def quaternion_from_minus_z_to(d):
     return [x / norm for x in q]
 
 
-def write_scene(name, diameter_m):
-    positions, normals, uvs, indices = sphere(0.5 * diameter_m)
+def scene_document(name, positions, normals, uvs, indices, light_direction, albedo=(0.8, 0.6, 0.5)):
+    """A glTF document (dict) of one skin mesh (metres) lit by one shadow-casting directional
+    light travelling along light_direction."""
     count = len(positions) // 3
     blob = struct.pack(f"<{len(positions)}f", *positions)
     blob += struct.pack(f"<{len(normals)}f", *normals)
     blob += struct.pack(f"<{len(uvs)}f", *uvs)
     blob += struct.pack(f"<{len(indices)}I", *indices)
     offsets = [0, 12 * count, 24 * count, 32 * count]
-    r = 0.5 * diameter_m
-    d = (0.8, -0.35, -0.5)
-    length = math.sqrt(sum(x * x for x in d))
-    d = tuple(x / length for x in d)
-    doc = {
+    lo = [min(positions[i::3]) for i in range(3)]
+    hi = [max(positions[i::3]) for i in range(3)]
+    length = math.sqrt(sum(x * x for x in light_direction))
+    d = tuple(x / length for x in light_direction)
+    return {
         "asset": {"version": "2.0", "generator": "preskin make_spheres.py"},
         "extensionsUsed": ["KHR_lights_punctual", "PRESKIN_materials_skin"],
         "extensions": {"KHR_lights_punctual": {"lights": [
@@ -73,29 +74,39 @@ def write_scene(name, diameter_m):
             {"buffer": 0, "byteOffset": offsets[3], "byteLength": 4 * len(indices)},
         ],
         "accessors": [
-            {"bufferView": 0, "componentType": 5126, "count": count, "type": "VEC3",
-             "min": [-r, -r, -r], "max": [r, r, r]},
+            {"bufferView": 0, "componentType": 5126, "count": count, "type": "VEC3", "min": lo, "max": hi},
             {"bufferView": 1, "componentType": 5126, "count": count, "type": "VEC3"},
             {"bufferView": 2, "componentType": 5126, "count": count, "type": "VEC2"},
             {"bufferView": 3, "componentType": 5125, "count": len(indices), "type": "SCALAR"},
         ],
         "materials": [{
             "name": "skin",
-            "pbrMetallicRoughness": {"baseColorFactor": [0.8, 0.6, 0.5, 1.0], "metallicFactor": 0.0,
+            "pbrMetallicRoughness": {"baseColorFactor": [albedo[0], albedo[1], albedo[2], 1.0], "metallicFactor": 0.0,
                                      "roughnessFactor": 0.5},
             "extensions": {"PRESKIN_materials_skin": {}},
         }],
-        "meshes": [{"name": "sphere", "primitives": [
+        "meshes": [{"name": name, "primitives": [
             {"attributes": {"POSITION": 0, "NORMAL": 1, "TEXCOORD_0": 2}, "indices": 3, "material": 0}]}],
-        "nodes": [{"name": "sphere", "mesh": 0},
+        "nodes": [{"name": name, "mesh": 0},
                   {"name": "key", "rotation": quaternion_from_minus_z_to(d),
                    "extensions": {"KHR_lights_punctual": {"light": 0}}}],
         "scenes": [{"name": name, "nodes": [0, 1]}],
         "scene": 0,
     }
-    with open(os.path.join(HERE, name + ".gltf"), "w") as f:
+
+
+def write_document(path, doc):
+    with open(path, "w") as f:
         f.write(json.dumps(doc, indent=1) + "\n")
 
 
-write_scene("sphere_10mm", 0.010)
-write_scene("sphere_40mm", 0.040)
+def write_scene(name, diameter_m):
+    positions, normals, uvs, indices = sphere(0.5 * diameter_m)
+    doc = scene_document("sphere", positions, normals, uvs, indices, (0.8, -0.35, -0.5))
+    doc["scenes"][0]["name"] = name
+    write_document(os.path.join(HERE, name + ".gltf"), doc)
+
+
+if __name__ == "__main__":
+    write_scene("sphere_10mm", 0.010)
+    write_scene("sphere_40mm", 0.040)
