@@ -101,9 +101,9 @@ TEST_F(HostContext, RecordsEveryEyeIntoTheHostsArrayLayers) {
     handles.device = host.device();
     handles.queue = host.queue();
     handles.queueFamilyIndex = host.queueFamilyIndex();
-    handles.shaderOutputLayerEnabled = host.core().shaderOutputLayer();
+    handles.shaderOutputLayerEnabled = ContextAccess::core(host).shaderOutputLayer();
     auto guest = Context::wrap(handles);
-    const vk::Device& device = host.core();
+    const vk::Device& device = ContextAccess::core(host);
 
     for (uint32_t samples : {1u, 4u}) {
         RenderSettings settings;

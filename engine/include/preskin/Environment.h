@@ -9,7 +9,7 @@
 
 #include <preskin/Export.h>
 
-#include <glm/glm.hpp>
+#include <preskin/Glm.h>
 
 #include <array>
 #include <filesystem>

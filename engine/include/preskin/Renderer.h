@@ -169,9 +169,8 @@ public:
     // Timings of the last finished frame of a slot (reads its timestamp queries).
     FrameStats frameStats(uint32_t frameSlot = 0) const;
 
-    struct Impl;
-
 private:
+    struct Impl;
     std::unique_ptr<Impl> impl_;
 };
 

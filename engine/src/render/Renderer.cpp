@@ -16,6 +16,7 @@
 #include "render/PoseBounds.h"
 #include "shared/gpu_types.h"
 #include "vk/Check.h"
+#include "vk/ContextAccess.h"
 #include "vk/Pipeline.h"
 #include "vk/Resources.h"
 
@@ -168,7 +169,7 @@ struct Renderer::Impl {
     vk::Buffer readback;
 
     Impl(Context& ctx, const Scene& s, const Environment& env, const LutSet* lutSet, const RenderSettings& rs)
-        : context(ctx), dev(ctx.core()), settings(rs), lights(s.lights), bounds(s.worldBounds()),
+        : context(ctx), dev(ContextAccess::core(ctx)), settings(rs), lights(s.lights), bounds(s.worldBounds()),
           radianceSh(env.radianceSh()) {
         checkRenderSettings(rs);
         checkLights(s.lights);
