@@ -97,12 +97,22 @@ glm::mat4 shadowMatrix(const Bounds& bounds, const glm::vec3& direction, float& 
 }
 
 struct PipelineKey {
-    uint32_t model, alphaMode, doubleSided, format, debugView, skinMask, lightLoop, eyes, samples, layered;
+    uint32_t model, alphaMode, doubleSided, format, depthFormat, debugView, skinMask, lightLoop, eyes, samples, layered;
     auto tie() const {
-        return std::tie(model, alphaMode, doubleSided, format, debugView, skinMask, lightLoop, eyes, samples, layered);
+        return std::tie(model, alphaMode, doubleSided, format, depthFormat, debugView, skinMask, lightLoop, eyes,
+                        samples, layered);
     }
     bool operator<(const PipelineKey& o) const { return tie() < o.tie(); }
 };
+
+VkImageAspectFlags depthAspect(VkFormat format) {
+    switch (format) {
+    case VK_FORMAT_D16_UNORM_S8_UINT:
+    case VK_FORMAT_D24_UNORM_S8_UINT:
+    case VK_FORMAT_D32_SFLOAT_S8_UINT: return VK_IMAGE_ASPECT_DEPTH_BIT | VK_IMAGE_ASPECT_STENCIL_BIT;
+    default: return VK_IMAGE_ASPECT_DEPTH_BIT;
+    }
+}
 
 }  // namespace
 
@@ -129,7 +139,7 @@ struct Renderer::Impl {
         uint64_t instancesPose = ~0ull;  // the pose version they hold
         VkDescriptorSet set = VK_NULL_HANDLE;
         VkQueryPool queries = VK_NULL_HANDLE;
-        bool recorded = false;
+        bool recorded = false;  // a frame was recorded into this slot (it may still be in flight)
         bool shadowRecorded = false;
         double wallMs = 0.0;
         double recordMs = 0.0;  // CPU time of record(), light-grid build included
@@ -158,6 +168,12 @@ struct Renderer::Impl {
     VkDescriptorPool framePool = VK_NULL_HANDLE;
     VkSampler shadowSampler = VK_NULL_HANDLE;
     std::array<Slot, kSlotCount> slots;
+    // Attachments replaced while recording, kept until no slot's frame in flight can use them.
+    struct Retired {
+        vk::Image image;
+        uint32_t slotsInFlight = 0;  // bit s: slot s's last frame was recorded before the replacement
+    };
+    std::vector<Retired> retired;
     vk::Image shadowMap;
     vk::Image depth;        // one layer per eye, msaaSamples samples
     vk::Image msaaColor;    // MSAA only: one layer per eye, resolved into the target
@@ -181,7 +197,7 @@ struct Renderer::Impl {
         scene->updateMaterials(luts->profileWidths());
         clusters = std::make_unique<ClusterBuilder>(dev);
         createLayouts();
-        createShadowMap();
+        dev.submitAndWait([&](VkCommandBuffer cmd) { createShadowMap(cmd, 0); });
         resolveEyeDrawing();
     }
 
@@ -253,22 +269,37 @@ struct Renderer::Impl {
         PRESKIN_VK(vkCreateSampler(d, &nearest, nullptr, &shadowSampler));
     }
 
-    void createShadowMap() {
+    // Replaces an attachment without waiting: the old image lives on until every other slot
+    // whose last frame was recorded with it has been recorded again (the host's slot contract).
+    void retire(vk::Image& image, uint32_t slotIndex) {
+        uint32_t inFlight = 0;
+        for (uint32_t s = 0; s < kSlotCount; ++s)
+            if (s != slotIndex && slots[s].recorded) inFlight |= 1u << s;
+        if (image && inFlight) retired.push_back({std::move(image), inFlight});
+        image = vk::Image();
+    }
+
+    // Recording into `slotIndex` means its previous frame finished: nothing retired waits on it.
+    void releaseRetired(uint32_t slotIndex) {
+        for (Retired& r : retired) r.slotsInFlight &= ~(1u << slotIndex);
+        std::erase_if(retired, [](const Retired& r) { return r.slotsInFlight == 0; });
+    }
+
+    // The shadow map at the settings' size; a new one starts in the read layout (sampled even
+    // when no light casts a shadow), transitioned in `cmd`.
+    void createShadowMap(VkCommandBuffer cmd, uint32_t slotIndex) {
         const uint32_t size = std::clamp<uint32_t>(settings.shadowMapSize, 16, 8192);
         if (shadowMap && shadowMap.desc().width == size) return;
         if (!dev.supportsFormat(kDepthFormat, VK_FORMAT_FEATURE_2_DEPTH_STENCIL_ATTACHMENT_BIT |
                                                   VK_FORMAT_FEATURE_2_SAMPLED_IMAGE_BIT))
             throw Error("Vulkan: the device cannot render and sample D32_SFLOAT depth");
-        vkDeviceWaitIdle(dev.device());
+        retire(shadowMap, slotIndex);
         shadowMap = vk::Image(dev, {kDepthFormat, size, size, 1,
                                     VK_IMAGE_USAGE_DEPTH_STENCIL_ATTACHMENT_BIT | VK_IMAGE_USAGE_SAMPLED_BIT,
                                     VK_IMAGE_ASPECT_DEPTH_BIT});
-        // Sampled even when no light casts a shadow: start in the read layout.
-        dev.submitAndWait([&](VkCommandBuffer cmd) {
-            vk::imageBarrier(cmd, shadowMap.handle(), VK_IMAGE_ASPECT_DEPTH_BIT, VK_IMAGE_LAYOUT_UNDEFINED,
-                             VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL, VK_PIPELINE_STAGE_2_NONE, VK_ACCESS_2_NONE,
-                             VK_PIPELINE_STAGE_2_FRAGMENT_SHADER_BIT, VK_ACCESS_2_SHADER_SAMPLED_READ_BIT);
-        });
+        vk::imageBarrier(cmd, shadowMap.handle(), VK_IMAGE_ASPECT_DEPTH_BIT, VK_IMAGE_LAYOUT_UNDEFINED,
+                         VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL, VK_PIPELINE_STAGE_2_NONE, VK_ACCESS_2_NONE,
+                         VK_PIPELINE_STAGE_2_FRAGMENT_SHADER_BIT, VK_ACCESS_2_SHADER_SAMPLED_READ_BIT);
     }
 
     std::span<const uint32_t> shader(const char* name) const {
@@ -278,12 +309,13 @@ struct Renderer::Impl {
 
     VkSampleCountFlagBits samples() const { return static_cast<VkSampleCountFlagBits>(settings.msaaSamples); }
 
-    PipelineKey pipelineKey(const GpuMaterial& m, VkFormat format, uint32_t eyes) const {
+    PipelineKey pipelineKey(const GpuMaterial& m, VkFormat format, VkFormat depthFormat, uint32_t eyes) const {
         const bool skin = m.skin && luts->valid();
         return PipelineKey{skin ? gpu::kModelSkin : gpu::kModelStandard,
                            static_cast<uint32_t>(m.alphaMode),
                            m.doubleSided ? 1u : 0u,
                            static_cast<uint32_t>(format),
+                           static_cast<uint32_t>(depthFormat),
                            static_cast<uint32_t>(settings.debugView),
                            skin ? settings.skin.mask() : 0u,
                            settings.lightLoop == LightLoop::Clustered ? gpu::kLightLoopClustered : gpu::kLightLoopAll,
@@ -303,8 +335,8 @@ struct Renderer::Impl {
                                                                                            : EyeDrawing::Multiview;
     }
 
-    VkPipeline forwardPipeline(const GpuMaterial& m, VkFormat format, uint32_t eyes) {
-        const PipelineKey key = pipelineKey(m, format, eyes);
+    VkPipeline forwardPipeline(const GpuMaterial& m, VkFormat format, VkFormat depthFormat, uint32_t eyes) {
+        const PipelineKey key = pipelineKey(m, format, depthFormat, eyes);
         auto it = pipelines.find(key);
         if (it != pipelines.end()) return it->second;
         VkPipeline p = createForwardPipeline(key);
@@ -337,7 +369,7 @@ struct Renderer::Impl {
             {4, 0, VK_FORMAT_R32_SFLOAT, offsetof(Vertex, curvaturePerM)},
         };
         desc.colorFormats = {format};
-        desc.depthFormat = kDepthFormat;
+        desc.depthFormat = static_cast<VkFormat>(key.depthFormat);
         desc.viewMask = key.layered ? 0u : (1u << key.eyes) - 1u;
         desc.samples = static_cast<VkSampleCountFlagBits>(key.samples);
         desc.alphaToCoverage = alphaToCoverage;
@@ -399,20 +431,21 @@ struct Renderer::Impl {
         return shadowPipeline;
     }
 
-    // The forward pass's own attachments: depth, and with MSAA the multisampled colour.
-    void ensureAttachments(VkExtent2D extent, uint32_t eyes, VkFormat colorFormat) {
+    // The forward pass's own attachments: depth (unless the host's is used), and with MSAA the
+    // multisampled colour. Replaced ones are retired, never waited for.
+    void ensureAttachments(VkExtent2D extent, uint32_t eyes, VkFormat colorFormat, bool ownDepth, uint32_t slotIndex) {
         const auto matches = [&](const vk::Image& image, VkFormat format) {
             const vk::ImageDesc& d = image.desc();
             return image && d.width == extent.width && d.height == extent.height && d.layers == eyes &&
                    d.samples == samples() && d.format == format;
         };
         const bool msaa = settings.msaaSamples > 1;
-        if (matches(depth, kDepthFormat) && (!msaa || matches(msaaColor, colorFormat))) return;
-        vkDeviceWaitIdle(dev.device());
+        if ((!ownDepth || matches(depth, kDepthFormat)) && (!msaa || matches(msaaColor, colorFormat))) return;
+        retire(depth, slotIndex);
+        retire(msaaColor, slotIndex);
         vk::ImageDesc d{kDepthFormat, extent.width, extent.height, 1, VK_IMAGE_USAGE_DEPTH_STENCIL_ATTACHMENT_BIT,
                         VK_IMAGE_ASPECT_DEPTH_BIT, eyes, samples()};
-        depth = vk::Image(dev, d);
-        msaaColor = vk::Image();
+        if (ownDepth) depth = vk::Image(dev, d);
         if (msaa) {
             d.format = colorFormat;
             d.usage = VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT | VK_IMAGE_USAGE_TRANSIENT_ATTACHMENT_BIT;
@@ -598,15 +631,23 @@ struct Renderer::Impl {
                              VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL, VK_PIPELINE_STAGE_2_COLOR_ATTACHMENT_OUTPUT_BIT,
                              VK_ACCESS_2_COLOR_ATTACHMENT_WRITE_BIT, VK_PIPELINE_STAGE_2_COLOR_ATTACHMENT_OUTPUT_BIT,
                              kColorAccess, eyes);
-        vk::imageBarrier(cmd, depth.handle(), VK_IMAGE_ASPECT_DEPTH_BIT, VK_IMAGE_LAYOUT_UNDEFINED,
-                         VK_IMAGE_LAYOUT_DEPTH_ATTACHMENT_OPTIMAL, kDepthStages,
-                         VK_ACCESS_2_DEPTH_STENCIL_ATTACHMENT_WRITE_BIT, kDepthStages,
-                         VK_ACCESS_2_DEPTH_STENCIL_ATTACHMENT_READ_BIT | VK_ACCESS_2_DEPTH_STENCIL_ATTACHMENT_WRITE_BIT,
-                         eyes);
+        constexpr VkAccessFlags2 kDepthAccess =
+            VK_ACCESS_2_DEPTH_STENCIL_ATTACHMENT_READ_BIT | VK_ACCESS_2_DEPTH_STENCIL_ATTACHMENT_WRITE_BIT;
+        const bool hostDepth = target.depth.image != VK_NULL_HANDLE;
+        const VkImageLayout depthLayout =
+            hostDepth ? VK_IMAGE_LAYOUT_DEPTH_STENCIL_ATTACHMENT_OPTIMAL : VK_IMAGE_LAYOUT_DEPTH_ATTACHMENT_OPTIMAL;
+        if (hostDepth)
+            vk::imageBarrier(cmd, target.depth.image, depthAspect(target.depth.format), target.depth.layoutBefore,
+                             depthLayout, VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT,
+                             VK_ACCESS_2_MEMORY_READ_BIT | VK_ACCESS_2_MEMORY_WRITE_BIT, kDepthStages, kDepthAccess, eyes);
+        else
+            vk::imageBarrier(cmd, depth.handle(), VK_IMAGE_ASPECT_DEPTH_BIT, VK_IMAGE_LAYOUT_UNDEFINED, depthLayout,
+                             kDepthStages, VK_ACCESS_2_DEPTH_STENCIL_ATTACHMENT_WRITE_BIT, kDepthStages, kDepthAccess,
+                             eyes);
         VkRenderingAttachmentInfo color{VK_STRUCTURE_TYPE_RENDERING_ATTACHMENT_INFO};
         color.imageView = msaa ? msaaColor.view() : target.view;
         color.imageLayout = VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL;
-        color.loadOp = VK_ATTACHMENT_LOAD_OP_CLEAR;
+        color.loadOp = target.loadColor ? VK_ATTACHMENT_LOAD_OP_LOAD : VK_ATTACHMENT_LOAD_OP_CLEAR;
         color.storeOp = msaa ? VK_ATTACHMENT_STORE_OP_DONT_CARE : VK_ATTACHMENT_STORE_OP_STORE;
         color.clearValue.color = {{0.045f, 0.045f, 0.05f, 1.0f}};
         if (msaa) {
@@ -615,10 +656,10 @@ struct Renderer::Impl {
             color.resolveImageLayout = VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL;
         }
         VkRenderingAttachmentInfo depthAttachment{VK_STRUCTURE_TYPE_RENDERING_ATTACHMENT_INFO};
-        depthAttachment.imageView = depth.view();
-        depthAttachment.imageLayout = VK_IMAGE_LAYOUT_DEPTH_ATTACHMENT_OPTIMAL;
-        depthAttachment.loadOp = VK_ATTACHMENT_LOAD_OP_CLEAR;
-        depthAttachment.storeOp = VK_ATTACHMENT_STORE_OP_DONT_CARE;
+        depthAttachment.imageView = hostDepth ? target.depth.view : depth.view();
+        depthAttachment.imageLayout = depthLayout;
+        depthAttachment.loadOp = hostDepth && target.depth.load ? VK_ATTACHMENT_LOAD_OP_LOAD : VK_ATTACHMENT_LOAD_OP_CLEAR;
+        depthAttachment.storeOp = hostDepth ? VK_ATTACHMENT_STORE_OP_STORE : VK_ATTACHMENT_STORE_OP_DONT_CARE;
         depthAttachment.clearValue.depthStencil = {0.0f, 0};  // reversed Z
         VkRenderingInfo info{VK_STRUCTURE_TYPE_RENDERING_INFO};
         info.renderArea = {{0, 0}, target.extent};
@@ -653,7 +694,7 @@ struct Renderer::Impl {
         uint32_t boundMaterial = UINT32_MAX;
         for (const DrawItem* d : order) {
             const GpuMaterial& m = scene->materials[d->material];
-            VkPipeline p = forwardPipeline(m, target.format, eyes);
+            VkPipeline p = forwardPipeline(m, target.format, hostDepth ? target.depth.format : kDepthFormat, eyes);
             if (p != bound) {
                 vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, p);
                 bound = p;
@@ -673,6 +714,11 @@ struct Renderer::Impl {
                          target.layoutAfter, VK_PIPELINE_STAGE_2_COLOR_ATTACHMENT_OUTPUT_BIT,
                          VK_ACCESS_2_COLOR_ATTACHMENT_WRITE_BIT, VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT,
                          VK_ACCESS_2_MEMORY_READ_BIT | VK_ACCESS_2_MEMORY_WRITE_BIT, eyes);
+        if (hostDepth && target.depth.layoutAfter != depthLayout)
+            vk::imageBarrier(cmd, target.depth.image, depthAspect(target.depth.format), depthLayout,
+                             target.depth.layoutAfter, kDepthStages, VK_ACCESS_2_DEPTH_STENCIL_ATTACHMENT_WRITE_BIT,
+                             VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT,
+                             VK_ACCESS_2_MEMORY_READ_BIT | VK_ACCESS_2_MEMORY_WRITE_BIT, eyes);
     }
 
     // Throws preskin::Error unless the view and settings can be drawn on this device.
@@ -691,6 +737,23 @@ struct Renderer::Impl {
         if (n == 0 || (n & (n - 1)) != 0 || (dev.msaaSampleCounts() & n) == 0)
             throw Error(fmt::format("RenderSettings: msaaSamples {} is not offered by {} (offered: {})", n,
                                     dev.properties().deviceName, fmt::join(msaaSampleCounts(), ", ")));
+    }
+
+    // Throws preskin::Error unless `record` can draw into the host's target as described.
+    void checkTarget(const RenderTarget& target) const {
+        if (target.loadColor && settings.msaaSamples > 1)
+            throw Error("RenderTarget: loadColor needs msaaSamples 1 (with MSAA preskin draws into its own "
+                        "multisampled colour and resolves it over the target)");
+        if (target.loadColor && target.layoutBefore == VK_IMAGE_LAYOUT_UNDEFINED)
+            throw Error("RenderTarget: loadColor needs the layout the host's colour is in (layoutBefore is UNDEFINED)");
+        const DepthTarget& d = target.depth;
+        if (!d.image) return;
+        if (!d.view) throw Error("RenderTarget: depth: an image without a view");
+        if (d.load && d.layoutBefore == VK_IMAGE_LAYOUT_UNDEFINED)
+            throw Error("RenderTarget: depth: load needs the layout the host's depth is in (layoutBefore is UNDEFINED)");
+        if (!dev.supportsFormat(d.format, VK_FORMAT_FEATURE_2_DEPTH_STENCIL_ATTACHMENT_BIT))
+            throw Error(fmt::format("RenderTarget: depth: format {} is not a depth format {} can render",
+                                    static_cast<int>(d.format), dev.properties().deviceName));
     }
 
     uint32_t maxEyes() const { return std::min(kMaxEyes, dev.maxMultiviewViews()); }
@@ -712,9 +775,11 @@ struct Renderer::Impl {
         if (target.extent.width == 0 || target.extent.height == 0)
             throw Error("Renderer::record: target extent is empty");
         checkFrame(view);
+        checkTarget(target);
         Slot& slot = slots[slotIndex];
-        createShadowMap();
-        ensureAttachments(target.extent, view.eyeCount(), target.format);
+        releaseRetired(slotIndex);
+        createShadowMap(cmd, slotIndex);
+        ensureAttachments(target.extent, view.eyeCount(), target.format, target.depth.image == VK_NULL_HANDLE, slotIndex);
         glm::mat4 shadowClipFromWorld(1.0f);
         const bool shadow = prepareFrame(slot, slotIndex, view, target.extent, shadowClipFromWorld);
         updateFrameSet(slot, slotIndex);
