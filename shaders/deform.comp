@@ -6,7 +6,8 @@
 // differs by the positive factor |det| and needs no division), tangents by its 3x3, both
 // renormalised. A skinned vertex ends in world space (the joint matrices put it there), an
 // unskinned one stays in object space. uv, tangent.w and curvature are copied (curvature.comp
-// recomputes curvature afterwards where the material asks for it).
+// recomputes curvature afterwards where the material asks for it). A normal or tangent that the
+// deformation collapses to zero length keeps its undeformed value, as on the CPU.
 // The CPU reference is deformPrimitive (<preskin/Deformation.h>).
 // Limits: 8 influences per vertex (two JOINTS/WEIGHTS sets); float precision.
 #extension GL_GOOGLE_include_directive : require
@@ -37,8 +38,10 @@ void main() {
     uint src = (push.vertices.x + v) * kVertexFloats;
     uint dst = (push.vertices.y + v) * kVertexFloats;
     vec3 position = load3(src + kVertexPosition);
-    vec3 normal = load3(src + kVertexNormal);
-    vec3 tangent = load3(src + kVertexTangent);
+    vec3 restNormal = load3(src + kVertexNormal);
+    vec3 restTangent = load3(src + kVertexTangent);
+    vec3 normal = restNormal;
+    vec3 tangent = restTangent;
 
     uint targets = push.vertices.w;
     for (uint t = 0; t < targets; ++t) {
@@ -68,7 +71,8 @@ void main() {
     float nl = length(normal);
     float tl = length(tangent);
     store3(dst + kVertexPosition, position);
-    store3(dst + kVertexNormal, nl > 0.0 ? normal / nl : vec3(0.0, 0.0, 1.0));
-    store3(dst + kVertexTangent, tl > 0.0 ? tangent / tl : vec3(1.0, 0.0, 0.0));
+    // A normal or tangent the deformation collapses to zero keeps its undeformed value.
+    store3(dst + kVertexNormal, nl > 0.0 && !isinf(nl) ? normal / nl : restNormal);
+    store3(dst + kVertexTangent, tl > 0.0 && !isinf(tl) ? tangent / tl : restTangent);
     for (uint i = kVertexTangent + 3; i < kVertexFloats; ++i) outVertices[dst + i] = rest[src + i];
 }

@@ -29,8 +29,11 @@
 #include "CommandLine.h"
 #include "Options.h"  // samples/common
 
+#include <preskin/Animation.h>
 #include <preskin/ClusterGrid.h>
 #include <preskin/Context.h>
+#include <preskin/Curvature.h>
+#include <preskin/Deformation.h>
 #include <preskin/DiffusionProfile.h>
 #include <preskin/Environment.h>
 #include <preskin/Error.h>
@@ -162,6 +165,8 @@ struct BenchOptions {
     bool noPerPixel = false;
     bool noLutBake = false;
     bool noVr = false;
+    bool noAnimation = false;
+    std::string animatedScene;
     uint32_t vrWidth = 640;
     uint32_t vrHeight = 720;
     uint32_t vrLights = 256;
@@ -1021,6 +1026,86 @@ void run(const BenchOptions& o) {
         j.endObject();
     }
 
+    // Animation: the deformation and curvature passes against the whole frame, for an animated
+    // scene at its animation's middle (posed once: both passes run every frame whatever the pose),
+    // and the GPU curvature pass against recomputing curvature on the CPU (updateMeshCurvature of
+    // the CPU-deformed meshes, what a renderer without the pass would do per frame).
+    struct AnimationRun {
+        Measurement frame;
+        double cpuCurvatureMs = 0.0;
+        uint64_t deformedVertices = 0;
+    };
+    std::optional<AnimationRun> animation;
+    if (!o.noAnimation) {
+        const std::filesystem::path animatedPath = !o.animatedScene.empty() ? std::filesystem::path(o.animatedScene)
+                                                   : !scene.animations.empty() ? scenePath
+                                                                               : defaultAnimatedScenePath();
+        const Scene animated = animatedPath == scenePath ? scene : loadScene(animatedPath, common);
+        if (animated.animations.empty()) {
+            fmt::print(stderr, "preskin bench: {} has no animation; skipping animation\n", animatedPath.string());
+        } else {
+            const Animation& clip = animated.animations.front();
+            const float timeS = 0.5f * (clip.startS() + clip.endS());
+            const ScenePose pose = posedScene(animated, animationNodePose(animated, clip, timeS));
+            const View animatedView = frameBoundsView(animated.worldBounds(), float(o.width) / float(o.height));
+            CommonOptions withLights = common;
+            withLights.lights = o.vrLights;
+            withLights.seed = o.seed;
+            Renderer animatedRenderer(*context, animated, environment, &luts, base);
+            animatedRenderer.setPose(pose);
+            Bench animatedBench(o, *context, animatedView);
+            AnimationRun run;
+            run.frame = std::move(animatedBench.measure(
+                {{&animatedRenderer, base,
+                  fmt::format("{} lights, animated ({} at {:.2f} s)", o.vrLights, clip.name, timeS), 0.0}},
+                sceneLights(animated, withLights))[0]);
+            // The CPU recompute over the same deformed meshes, interleaved repetitions.
+            std::vector<Mesh> deformed;
+            for (size_t i = 0; i < animated.instances.size(); ++i) {
+                const MeshInstance& instance = animated.instances[i];
+                Mesh mesh = animated.meshes[size_t(instance.mesh)];
+                bool morphs = false;
+                for (const Primitive& p : mesh.primitives) morphs = morphs || !p.targets.empty();
+                if (instance.skin < 0 && !morphs) continue;
+                for (Primitive& p : mesh.primitives) {
+                    std::vector<Vertex> out;
+                    deformPrimitive(p, pose.instances[i], out);
+                    p.vertices = std::move(out);
+                    run.deformedVertices += p.vertices.size();
+                }
+                deformed.push_back(std::move(mesh));
+            }
+            std::vector<double> cpuMs;
+            for (uint32_t r = 0; r < std::max<uint32_t>(o.reps, 1) + 1; ++r) {
+                const auto t0 = Clock::now();
+                for (Mesh& mesh : deformed) updateMeshCurvature(mesh);
+                if (r > 0) cpuMs.push_back(secondsSince(t0) * 1000.0);  // the first is a warm-up
+            }
+            run.cpuCurvatureMs = median(cpuMs);
+            fmt::print(stderr, "preskin bench:   curvature on the CPU: {:.2f} ms median\n", run.cpuCurvatureMs);
+            animation = std::move(run);
+
+            j.key("animation");
+            j.beginObject();
+            j.field("scene", animatedPath.string());
+            j.field("animation", clip.name);
+            j.field("time_s", timeS);
+            j.field("lights", o.vrLights);
+            j.field("deformed_vertices", animation->deformedVertices);
+            j.key("frame");
+            writeMeasurement(j, animation->frame);
+            const double deformMs = animation->frame.passMs("deform");
+            const double curvatureMs = animation->frame.passMs("curvature");
+            j.field("deform_gpu_ms", deformMs);
+            j.field("curvature_gpu_ms", curvatureMs);
+            j.field("deform_and_curvature_share_gpu", (deformMs + curvatureMs) / animation->frame.gpuMs());
+            j.field("deform_and_curvature_share_wall", (deformMs + curvatureMs) / animation->frame.wallMs());
+            j.field("curvature_cpu_ms", animation->cpuCurvatureMs);
+            j.field("curvature_cpu_over_gpu", animation->cpuCurvatureMs / curvatureMs);
+            j.endObject();
+        }
+    }
+
     // Goals (docs/clustering.md), on this run's figures.
     j.key("goals");
     j.beginArray();
@@ -1056,6 +1141,13 @@ void run(const BenchOptions& o) {
         goal("CPU recording stereo / mono <= 1.1", vr->recordStereo.recordCpuMs() / vr->recordMono.recordCpuMs(), 1.1,
              true);
         if (vr->msaa1) goal("MSAA 4x frame / 1x frame <= 1.6", vr->msaa4->wallMs() / vr->msaa1->wallMs(), 1.6, true);
+    }
+    if (animation) {
+        const double passesMs = animation->frame.passMs("deform") + animation->frame.passMs("curvature");
+        goal("deformation + curvature recompute / animated frame <= 0.10", passesMs / animation->frame.gpuMs(), 0.10,
+             true);
+        goal("CPU curvature recompute / GPU curvature pass >= 10",
+             animation->cpuCurvatureMs / animation->frame.passMs("curvature"), 10.0, false);
     }
     j.endArray();
     j.field("elapsed_s", secondsSince(started));
@@ -1120,6 +1212,10 @@ void addBenchCommand(CLI::App& app) {
     cmd->add_flag("--no-per-pixel", o->noPerPixel, "Skip lights listed per pixel vs exact");
     cmd->add_flag("--no-lut-bake", o->noLutBake, "Skip timing the LUT bake");
     cmd->add_flag("--no-vr", o->noVr, "Skip stereo vs two mono frames, the stereo light grid and MSAA 4x vs 1x");
+    cmd->add_flag("--no-animation", o->noAnimation, "Skip the deformation and curvature passes of an animated scene");
+    cmd->add_option("--animated-scene", o->animatedScene,
+                    "Animated glTF scene for the animation figures; default: the bench scene when it is animated, "
+                    "else the bundled animated head");
     cmd->add_option("--vr-width", o->vrWidth, "Stereo: width per eye")->capture_default_str()->check(wholeNumberIn(1, 16384));
     cmd->add_option("--vr-height", o->vrHeight, "Stereo: height per eye")->capture_default_str()->check(wholeNumberIn(1, 16384));
     cmd->add_option("--vr-lights", o->vrLights, "Stereo and MSAA: scattered lights")

@@ -103,6 +103,10 @@ std::filesystem::path dataDir() {
 
 std::filesystem::path defaultScenePath() { return dataDir() / "samples" / "assets" / "head" / "head.gltf"; }
 
+std::filesystem::path defaultAnimatedScenePath() {
+    return dataDir() / "samples" / "assets" / "head" / "head_animated.gltf";
+}
+
 OutputEncoding encodingFor(const std::filesystem::path& out) {
     const std::string ext = lower(out.extension().string());
     if (ext == ".png") return OutputEncoding::DisplaySrgb8;

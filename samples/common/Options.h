@@ -53,6 +53,7 @@ Scene loadScene(const std::filesystem::path& path, const CommonOptions& o);
 // else <prefix>/share/preskin for an installed tool, else the source tree.
 std::filesystem::path dataDir();
 std::filesystem::path defaultScenePath();
+std::filesystem::path defaultAnimatedScenePath();  // the bundled animated head
 OutputEncoding encodingFor(const std::filesystem::path& out);
 std::vector<float> parseFloats(const std::string& text, size_t count, const char* flag);
 

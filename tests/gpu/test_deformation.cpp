@@ -200,6 +200,39 @@ TEST_F(GpuDeformation, BindPoseCurvatureIsKeptWhenTheMaterialAsks) {
         for (const Vertex& v : p.vertices) EXPECT_EQ(gpu[i++].curvaturePerM, v.curvaturePerM);
 }
 
+// A morph target that cancels the normal and tangent of every other vertex: those keep their
+// undeformed normal and tangent on the GPU, as deformPrimitive does.
+TEST_F(GpuDeformation, CollapsedNormalsAndTangentsKeepTheirRestValues) {
+    Scene scene = Scene::load(kTube);
+    Mesh& mesh = scene.meshes[size_t(scene.instances[0].mesh)];
+    for (Primitive& p : mesh.primitives) {
+        MorphTarget t;
+        for (size_t i = 0; i < p.vertices.size(); ++i) {
+            const bool collapse = i % 2 == 0;
+            t.positionDeltas.push_back(glm::vec3(0.0f));
+            t.normalDeltas.push_back(collapse ? -p.vertices[i].normalOs : glm::vec3(0.0f));
+            t.tangentDeltas.push_back(collapse ? -glm::vec3(p.vertices[i].tangentOs) : glm::vec3(0.0f));
+        }
+        p.targets.push_back(t);
+    }
+    mesh.weights.assign(1, 0.0f);
+    ScenePose pose = restPose(scene);
+    pose.instances[0].morphWeights = {1.0f};
+    const std::vector<Vertex> gpu = gpuDeform(context(), scene, pose);
+    const std::vector<Vertex> cpu = cpuDeform(scene, pose);
+    ASSERT_EQ(gpu.size(), cpu.size());
+    size_t collapsed = 0;
+    for (const Primitive& p : mesh.primitives)
+        for (size_t i = 0; i < p.vertices.size(); ++i, ++collapsed) {
+            if (i % 2 != 0) continue;
+            // The rest transform of a skinned tube is its bind pose: the rest normal comes back.
+            EXPECT_LE(glm::length(gpu[collapsed].normalOs - cpu[collapsed].normalOs), 1e-5f) << collapsed;
+            EXPECT_LE(glm::length(glm::vec3(gpu[collapsed].tangentOs) - glm::vec3(cpu[collapsed].tangentOs)), 1e-5f)
+                << collapsed;
+            EXPECT_LE(glm::length(cpu[collapsed].normalOs - p.vertices[i].normalOs), 1e-5f) << collapsed;
+        }
+}
+
 TEST_F(GpuDeformation, PosesThatDoNotFitAreRefused) {
     const Scene scene = Scene::load(kTube);
     Renderer renderer(context(), scene, Environment::constant(glm::vec3(0.1f)), nullptr);

@@ -90,6 +90,17 @@ TEST_F(Cli, BadScenesFailWithOneLineNamingFileAndField) {
         {"uri_absolute.gltf", "uri"},
         {"unsupported_image.gltf", "images[0]"},
         {"huge_count.gltf", "count"},
+        {"skin_joint_out_of_range.gltf", "JOINTS_0"},
+        {"skin_no_joints.gltf", "skins[0].joints"},
+        {"skin_inverse_bind_count.gltf", "inverseBindMatrices"},
+        {"morph_target_count_mismatch.gltf", "targets"},
+        {"morph_weights_length.gltf", "weights"},
+        {"anim_count_mismatch.gltf", "animations[0].samplers[0]"},
+        {"anim_cubic_count.gltf", "animations[0].samplers[0]"},
+        {"anim_nan_time.gltf", "animations[0].samplers[0].input"},
+        {"anim_infinite_value.gltf", "animations[0].samplers[0].output"},
+        {"anim_times_not_increasing.gltf", "animations[0].samplers[0].input"},
+        {"anim_matrix_node.gltf", "target.node"},
     };
     for (const BadScene& c : cases) {
         SCOPED_TRACE(c.file);
@@ -256,6 +267,76 @@ TEST_F(Cli, StereoAndMsaaRefuseWhatCannotBeDrawn) {
         EXPECT_NE(r.exitCode, 0);
         EXPECT_NE(r.err.find("--eye"), std::string::npos) << r.err;
         EXPECT_FALSE(fs::exists(out));
+    }
+}
+
+const fs::path kTube = fs::path(PRESKIN_SOURCE_DIR) / "samples" / "assets" / "tube" / "tube.gltf";
+
+TEST_F(Cli, AnimationOptionsRefuseBadInput) {
+    const std::string tube = kTube.string();
+    const fs::path out = dir_ / "out.png";
+    const std::vector<std::pair<std::vector<std::string>, std::vector<std::string>>> cases = {
+        {{"--animation", "nosuch"}, {"tube.gltf", "nosuch", "bend"}},
+        {{"--animation", "7"}, {"tube.gltf", "7"}},
+        {{"--time", "nan"}, {"--time", "nan"}},
+        {{"--time", "inf"}, {"--time", "inf"}},
+        {{"--sequence", "0:1"}, {"--sequence", "START:END:FPS"}},
+        {{"--sequence", "1:0:10"}, {"--sequence", "END"}},
+        {{"--sequence", "0:1:0"}, {"--sequence", "FPS"}},
+        {{"--sequence", "0:nan:10"}, {"--sequence", "nan"}},
+        {{"--sequence", "0:1000:1000"}, {"--sequence", "frames"}},
+        {{"--sequence", "0:1:4"}, {"--out", "frame-number"}},  // --out has no %d field
+    };
+    for (const auto& [extra, needles] : cases) {
+        SCOPED_TRACE(extra[0] + " " + extra[1]);
+        auto args = renderArgs(tube, out);
+        args.insert(args.end(), extra.begin(), extra.end());
+        expectError(run(args), needles, out);
+    }
+    auto args = renderArgs((kData / "triangle.gltf").string(), out);
+    args.insert(args.end(), {"--time", "1"});
+    expectError(run(args), {"--animation", "triangle.gltf", "no animations"}, out);
+}
+
+// A sequence writes one numbered file per time, START to END inclusive, and each frame equals the
+// single render at its time (--time): the same pose whichever way it is asked for.
+TEST_F(Cli, SequenceWritesNumberedFramesEqualToSingleRenders) {
+    const std::string tube = kTube.string();
+    const fs::path pattern = dir_ / "frames" / "bend_%03d.png";
+    fs::create_directories(pattern.parent_path());
+    auto args = renderArgs(tube, pattern);
+    args.insert(args.end(), {"--sequence", "0:1:4", "--validation"});
+    const CliResult r = run(args);
+    ASSERT_EQ(r.exitCode, 0) << r.err;
+    EXPECT_NE(r.err.find("frame 5/5"), std::string::npos) << r.err;
+    std::vector<fs::path> written;
+    for (const auto& entry : fs::directory_iterator(pattern.parent_path())) written.push_back(entry.path());
+    ASSERT_EQ(written.size(), 5u);
+    std::vector<unsigned char> first;
+    for (int frame = 0; frame < 5; ++frame) {
+        SCOPED_TRACE(frame);
+        char name[32];
+        std::snprintf(name, sizeof(name), "bend_%03d.png", frame);
+        int w = 0, h = 0;
+        const std::vector<unsigned char> fromSequence = readPng(pattern.parent_path() / name, w, h);
+        ASSERT_EQ(w, 32);
+        ASSERT_EQ(h, 32);
+        const fs::path single = dir_ / "single.png";
+        auto one = renderArgs(tube, single);
+        one.insert(one.end(), {"--time", std::to_string(0.25 * frame)});
+        ASSERT_EQ(run(one).exitCode, 0);
+        int sw = 0, sh = 0;
+        const std::vector<unsigned char> alone = readPng(single, sw, sh);
+        ASSERT_EQ(alone.size(), fromSequence.size());
+        size_t differ = 0;
+        for (size_t i = 0; i < alone.size(); ++i) differ += std::abs(int(alone[i]) - int(fromSequence[i])) > 1;
+        EXPECT_EQ(differ, 0u);
+        if (frame == 0) first = fromSequence;
+        else if (frame == 4) {
+            size_t moved = 0;
+            for (size_t i = 0; i < first.size(); ++i) moved += first[i] != fromSequence[i];
+            EXPECT_GT(moved, 40u) << "the tube bends 90 degrees between the first and the last frame";
+        }
     }
 }
 

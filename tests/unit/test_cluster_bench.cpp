@@ -78,6 +78,14 @@ TEST_F(BenchCli, WritesJsonAndPlot) {
     EXPECT_TRUE(j.at("cluster_build")[0].contains("gpu"));
     ASSERT_EQ(j.at("skin_vs_standard").size(), 1u);
     EXPECT_GT(j.at("skin_vs_standard")[0].at("skin_over_standard").get<double>(), 0.0);
+    // The bundled head is not animated: the animation figures come from the animated head.
+    const auto& animation = j.at("animation");
+    EXPECT_NE(animation.at("scene").get<std::string>().find("head_animated.gltf"), std::string::npos);
+    EXPECT_GT(animation.at("deformed_vertices").get<int>(), 0);
+    EXPECT_GT(animation.at("deform_gpu_ms").get<double>(), 0.0);
+    EXPECT_GT(animation.at("curvature_gpu_ms").get<double>(), 0.0);
+    EXPECT_GT(animation.at("curvature_cpu_ms").get<double>(), 0.0);
+    EXPECT_LT(animation.at("deform_and_curvature_share_gpu").get<double>(), 1.0);
     EXPECT_FALSE(j.at("goals").empty());
     std::ifstream png(plot, std::ios::binary);
     char signature[8] = {};
