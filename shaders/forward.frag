@@ -118,8 +118,9 @@ vec3 skinNormalTs(vec2 uv, bool explicitLod, float lod, float detailLodOffset) {
 
 float skinCurvaturePerM(vec3 geometricN) {
     uint source = uint(material.skinScatter.y);
-    if (source == 1u) return texture(curvatureTexture, transformUv(material.uv[0], inUv0)).r * material.skinScatter.z;
-    if (source == 2u) return preskinCurvatureFromDerivatives(geometricN, inPositionWs);
+    if (source == kCurvatureSourceTexture)
+        return texture(curvatureTexture, transformUv(material.uv[0], inUv0)).r * material.skinScatter.z;
+    if (source == kCurvatureSourceDerivatives) return preskinCurvatureFromDerivatives(geometricN, inPositionWs);
     return inCurvaturePerM;
 }
 
@@ -135,7 +136,7 @@ void main() {
     // Alpha mask: without MSAA, discard below the cutoff. With MSAA, alpha-to-coverage: alpha
     // sharpened to a one-pixel ramp around the cutoff, so the coverage mask follows the edge.
     float maskCoverage = 1.0;
-    if (kAlphaMode == 1) {
+    if (kAlphaMode == kAlphaMask) {
         float cutoff = material.emissiveAlphaCutoff.w;
         if (kAlphaToCoverage != 0u)
             maskCoverage = clamp((baseColor.a - cutoff) / max(fwidth(baseColor.a), 1e-4) + 0.5, 0.0, 1.0);
@@ -215,7 +216,7 @@ void main() {
         skin.curvaturePerMm = skinCurvaturePerM(geometricN) * 0.001 / max(skin.scatterScale, 1e-6);
         skin.roughness = roughness;
         float specularMap = material.textureFlags.z > 0.5 ? texture(specularTexture, uvBase).r : 1.0;
-        skin.F0 = vec3(0.028 * material.skinSpecular.x * specularMap);
+        skin.F0 = vec3(kSkinF0 * material.skinSpecular.x * specularMap);
         skin.lobes = material.skinSpecular.yzww;
         skin.transmissionTint = material.skinScatter.w * material.skinTransmission.rgb;
         skin.thicknessScale = material.skinTransmission.w;
@@ -237,7 +238,7 @@ void main() {
                 // Thickness from a point moved 2 profile-mm inside along the normal (Jimenez et al.
                 // 2010 shrink): the lit side near the terminator is not a zero-thickness slab.
                 float thicknessM = 0.0;
-                if ((features & kSkinTransmission) != 0u && dot(geometricN, L) < 0.3)  // else no wrap
+                if ((features & kSkinTransmission) != 0u && dot(geometricN, L) < kSkinTransmissionWrap)  // else no wrap
                     thicknessM = preskinShadowThickness(shadowMap, frame.shadowClipFromWorld, frame.shadowParams,
                                                         inPositionWs - geometricN * (0.002 / max(skin.scatterScale, 1e-6)));
                 transmitted += preskinSkinTransmission(skin, frame.lut, transmittanceLut, L, irradiance, thicknessM,
@@ -318,6 +319,6 @@ void main() {
     if (kDebugView != kDebugNone) color = debugColor;
 
     color *= (kDebugView == kDebugNone) ? frame.params.x : 1.0;
-    float alpha = kAlphaMode == 2 ? baseColor.a : (kAlphaMode == 1 ? maskCoverage : 1.0);
+    float alpha = kAlphaMode == kAlphaBlend ? baseColor.a : (kAlphaMode == kAlphaMask ? maskCoverage : 1.0);
     outColor = vec4(kOutputMode == kOutputTonemapped ? preskinTonemapNeutral(max(color, vec3(0.0))) : color, alpha);
 }

@@ -108,7 +108,7 @@ vec3 preskinSkinShadow(PreskinSkinSurface s, LutMapping m, sampler2D penumbraLut
 // map (metres), T(thickness) from the profile, wrap saturate(0.3 - NoL) (Jimenez et al. 2010).
 vec3 preskinSkinTransmission(PreskinSkinSurface s, LutMapping m, sampler2D transmittanceLut, vec3 L,
                              vec3 irradiance, float thicknessM, uint features) {
-    float wrap = preskinSaturate(0.3 - dot(s.geometricNormal, L));
+    float wrap = preskinSaturate(kSkinTransmissionWrap - dot(s.geometricNormal, L));
     if ((features & kSkinTransmission) == 0u || wrap <= 0.0) return vec3(0.0);
     float thicknessMm = thicknessM * 1000.0 * s.thicknessScale * s.scatterScale;
     vec3 T = preskinTransmittanceLut(m, transmittanceLut, thicknessMm);

@@ -117,6 +117,18 @@ VkImageAspectFlags depthAspect(VkFormat format) {
 }  // namespace
 
 static_assert(gpu::kMaxEyes == kMaxEyes, "shaders/shared and <preskin/View.h> disagree on the eye limit");
+// The enum codes the shaders branch on (shared/constants.h) are the C++ enums' values.
+static_assert(gpu::kAlphaOpaque == uint32_t(AlphaMode::Opaque) && gpu::kAlphaMask == uint32_t(AlphaMode::Mask) &&
+              gpu::kAlphaBlend == uint32_t(AlphaMode::Blend));
+static_assert(gpu::kCurvatureSourceVertex == uint32_t(CurvatureSource::Vertex) &&
+              gpu::kCurvatureSourceTexture == uint32_t(CurvatureSource::Texture) &&
+              gpu::kCurvatureSourceDerivatives == uint32_t(CurvatureSource::Derivatives));
+static_assert(gpu::kDebugNone == uint32_t(DebugView::None) && gpu::kDebugCurvature == uint32_t(DebugView::Curvature) &&
+              gpu::kDebugNormals == uint32_t(DebugView::Normals) && gpu::kDebugShadow == uint32_t(DebugView::Shadow) &&
+              gpu::kDebugPenumbra == uint32_t(DebugView::Penumbra) &&
+              gpu::kDebugLightCount == uint32_t(DebugView::LightCount) &&
+              gpu::kDebugShAmbient == uint32_t(DebugView::ShAmbient) &&
+              gpu::kDebugTransmission == uint32_t(DebugView::Transmission));
 
 bool finite(const glm::mat4& m) {
     for (int c = 0; c < 4; ++c)
@@ -362,11 +374,11 @@ struct Renderer::Impl {
         desc.specialization.values[gpu::kSpecAlphaToCoverage] = alphaToCoverage ? 1u : 0u;
         desc.vertexBindings = {{0, sizeof(Vertex), VK_VERTEX_INPUT_RATE_VERTEX}};
         desc.vertexAttributes = {
-            {0, 0, VK_FORMAT_R32G32B32_SFLOAT, offsetof(Vertex, positionOs)},
-            {1, 0, VK_FORMAT_R32G32B32_SFLOAT, offsetof(Vertex, normalOs)},
-            {2, 0, VK_FORMAT_R32G32B32A32_SFLOAT, offsetof(Vertex, tangentOs)},
-            {3, 0, VK_FORMAT_R32G32_SFLOAT, offsetof(Vertex, uv0)},
-            {4, 0, VK_FORMAT_R32_SFLOAT, offsetof(Vertex, curvaturePerM)},
+            {gpu::kAttributePosition, 0, VK_FORMAT_R32G32B32_SFLOAT, offsetof(Vertex, positionOs)},
+            {gpu::kAttributeNormal, 0, VK_FORMAT_R32G32B32_SFLOAT, offsetof(Vertex, normalOs)},
+            {gpu::kAttributeTangent, 0, VK_FORMAT_R32G32B32A32_SFLOAT, offsetof(Vertex, tangentOs)},
+            {gpu::kAttributeUv0, 0, VK_FORMAT_R32G32_SFLOAT, offsetof(Vertex, uv0)},
+            {gpu::kAttributeCurvature, 0, VK_FORMAT_R32_SFLOAT, offsetof(Vertex, curvaturePerM)},
         };
         desc.colorFormats = {format};
         desc.depthFormat = static_cast<VkFormat>(key.depthFormat);
@@ -385,7 +397,7 @@ struct Renderer::Impl {
         vk::GraphicsPipelineDesc desc;
         desc.vertexSpirv = shader("shadow.vert");
         desc.vertexBindings = {{0, sizeof(Vertex), VK_VERTEX_INPUT_RATE_VERTEX}};
-        desc.vertexAttributes = {{0, 0, VK_FORMAT_R32G32B32_SFLOAT, offsetof(Vertex, positionOs)}};
+        desc.vertexAttributes = {{gpu::kAttributePosition, 0, VK_FORMAT_R32G32B32_SFLOAT, offsetof(Vertex, positionOs)}};
         desc.depthFormat = kDepthFormat;
         desc.cullMode = VK_CULL_MODE_NONE;  // the nearest surface of either facing: thickness needs it
         desc.depthCompare = VK_COMPARE_OP_LESS_OR_EQUAL;
