@@ -21,8 +21,9 @@
 // standard equivalent, so with no bits set this equals the standard dielectric BRDF.
 //
 // Inputs are in world units (metres) except where named; the material's scatter scale
-// converts them to profile millimetres. Needs: preskin/brdf.glsl, preskin/lut.glsl,
-// preskin/sh.glsl and the four LUT samplers (see README, "Skin in your own forward shader").
+// converts them to profile millimetres. Includes preskin/brdf.glsl, preskin/lut.glsl,
+// preskin/sh.glsl and preskin/skin_surface.glsl (building the surface from a host's textures);
+// needs the four LUT samplers (see README, "Embedding").
 // Limits: curvature and thickness are scalar per fragment; transmission only for the light that
 // owns the shadow map; the ring model assumes locally spherical geometry (Penner).
 #ifndef PRESKIN_SKIN_GLSL
@@ -31,8 +32,8 @@
 #include "preskin/brdf.glsl"
 #include "preskin/lut.glsl"
 #include "preskin/sh.glsl"
+#include "preskin/skin_surface.glsl"
 #include "shared/skin_features.h"
-
 
 struct PreskinSkinSurface {
     vec3 albedo;             // linear diffuse colour
@@ -133,13 +134,6 @@ vec3 preskinSkinAmbientIrradiance(PreskinSkinSurface s, LutMapping m, sampler2D 
     return max(vec3(preskinShEvaluateChannel(sh, s.normalR, bandR, 0), preskinShEvaluateChannel(sh, s.normalG, bandG, 1),
                     preskinShEvaluateChannel(sh, s.normalB, bandB, 2)),
                vec3(0.0));
-}
-
-// Curvature in 1/m from screen-space derivatives (Penner's fallback: constant per triangle).
-float preskinCurvatureFromDerivatives(vec3 normalWs, vec3 positionWs) {
-    float dn = length(fwidth(normalWs));
-    float dp = length(fwidth(positionWs));
-    return dp > 0.0 ? dn / dp : 0.0;
 }
 
 #endif

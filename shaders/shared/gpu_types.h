@@ -5,6 +5,7 @@
 
 #include "shared/common.h"
 #include "shared/constants.h"
+#include "shared/light.h"
 #include "shared/lut_mapping.h"
 #include "shared/skin_features.h"
 
@@ -50,18 +51,6 @@ PRESKIN_CONST(uint, kOutputTonemapped, 1)
 PRESKIN_CONST(uint, kLightLoopAll, 0)
 PRESKIN_CONST(uint, kLightLoopClustered, 1)
 
-PRESKIN_CONST(uint, kLightDirectional, 0)
-PRESKIN_CONST(uint, kLightPoint, 1)
-PRESKIN_CONST(uint, kLightSpot, 2)
-
-// One punctual light. Directional lights are not clustered; they are evaluated for every pixel.
-struct GpuLight {
-    vec4 positionRange;      // xyz position (world, m), w range (m); 0 = unlimited
-    vec4 directionType;      // xyz direction the light travels (world), w type (kLight*)
-    vec4 colorIntensity;     // rgb linear colour * intensity (lux or candela), w shadow index (-1: none)
-    vec4 spotScaleOffset;    // x,y: KHR_lights_punctual cone attenuation scale and offset
-};
-PRESKIN_CHECK_SIZE(GpuLight, 64)
 
 struct GpuInstance {
     mat4 worldFromObject;
