@@ -211,12 +211,9 @@ void main() {
         }
         color += transmitted;
         diffuseColor = skin.albedo;
-        vec3 ambientIrradiance = preskinSkinAmbientIrradiance(skin, frame.lut, shTransferLut, frame.shRadiance, features);
-        vec3 envBrdf = preskinEnvBrdfApprox(skin.F0, roughness, NoV);
-        vec3 R = reflect(-V, skin.normalSpecular);
-        vec3 specularSh = max(preskinShEvaluate(frame.shRadiance, R, PRESKIN_SH_LAMBERT), vec3(0.0)) / PRESKIN_PI;
-        ambientDiffuse = diffuseColor * ambientIrradiance / PRESKIN_PI * (vec3(1.0) - envBrdf) * occlusion;
-        color += ambientDiffuse + specularSh * envBrdf * occlusion;
+        color += preskinSkinAmbient(skin, frame.lut, shTransferLut, frame.shRadiance, V, features, ambientDiffuse) *
+                 occlusion;
+        ambientDiffuse *= occlusion;
         if (kDebugView == kDebugCurvature) debugColor = curvatureHeat(skin.curvaturePerMm);
         else if (kDebugView == kDebugNormals)
             debugColor = vec3(skin.normalR.x, skin.normalG.y, skin.normalB.z) * 0.5 + 0.5;

@@ -136,4 +136,19 @@ vec3 preskinSkinAmbientIrradiance(PreskinSkinSurface s, LutMapping m, sampler2D 
                vec3(0.0));
 }
 
+// Ambient light of the environment's L2 SH radiance: diffuse from the per-channel transfer
+// (preskinSkinAmbientIrradiance times albedo / pi, less what the specular takes) plus specular
+// from the cosine-convolved SH in the reflection direction, weighted by Karis's analytic split-sum
+// environment BRDF. diffuseOut: the diffuse part alone. Multiply both by ambient occlusion.
+vec3 preskinSkinAmbient(PreskinSkinSurface s, LutMapping m, sampler2D shTransferLut, vec4 sh[9], vec3 V, uint features,
+                        out vec3 diffuseOut) {
+    float NoV = max(dot(s.normalSpecular, V), 1e-4);
+    vec3 envBrdf = preskinEnvBrdfApprox(s.F0, s.roughness, NoV);
+    vec3 R = reflect(-V, s.normalSpecular);
+    vec3 specularSh = max(preskinShEvaluate(sh, R, PRESKIN_SH_LAMBERT), vec3(0.0)) / PRESKIN_PI;
+    diffuseOut = s.albedo * preskinSkinAmbientIrradiance(s, m, shTransferLut, sh, features) / PRESKIN_PI *
+                 (vec3(1.0) - envBrdf);
+    return diffuseOut + specularSh * envBrdf;
+}
+
 #endif
