@@ -134,6 +134,7 @@ struct BenchOptions {
     bool noLutBake = false;
     bool noVr = false;
     bool noAnimation = false;
+    bool noTechniques = false;
     std::string animatedScene;
     uint32_t vrWidth = 640;
     uint32_t vrHeight = 720;
@@ -667,6 +668,56 @@ void run(const BenchOptions& o) {
             j.endObject();
         }
         j.endArray();
+
+        // What each technique costs: the skin frame with one technique off at a time, beside the
+        // frame with all on, the standard material and all off, interleaved (first skin count).
+        if (!o.noTechniques) {
+            const uint32_t n = skinCounts.front();
+            CommonOptions withLights = common;
+            withLights.lights = n;
+            withLights.seed = o.seed;
+            const std::vector<Light> lights = sceneLights(scene, withLights);
+            struct Technique {
+                const char* name;
+                bool SkinFeatures::*flag;
+            };
+            const Technique techniques[] = {{"lut_diffuse", &SkinFeatures::lutDiffuse},
+                                            {"normal_prefilter", &SkinFeatures::normalPrefilter},
+                                            {"penumbra", &SkinFeatures::penumbra},
+                                            {"sh_ambient", &SkinFeatures::shAmbient},
+                                            {"transmission", &SkinFeatures::transmission},
+                                            {"dual_specular", &SkinFeatures::dualSpecular}};
+            std::vector<Config> configs{{&renderer, base, fmt::format("{} lights, skin", n), 0.0},
+                                        {&standardRenderer, base, fmt::format("{} lights, standard material", n), 0.0}};
+            for (const Technique& t : techniques) {
+                RenderSettings without = base;
+                without.skin.*t.flag = false;
+                configs.push_back({&renderer, without, fmt::format("{} lights, skin without {}", n, t.name), 0.0});
+            }
+            const std::vector<Measurement> measured = bench.measure(configs, lights);
+            j.key("skin_techniques");
+            j.beginObject();
+            j.field("lights", n);
+            j.field("method",
+                    "each technique's cost: the all-on skin frame minus the frame with that technique off (its "
+                    "standard fallback on), interleaved; wall and forward-pass GPU ms");
+            j.key("skin");
+            writeMeasurement(j, measured[0]);
+            j.key("standard_material");
+            writeMeasurement(j, measured[1]);
+            j.key("cost_ms");
+            j.beginObject();
+            for (size_t i = 0; i < std::size(techniques); ++i) {
+                j.key(techniques[i].name);
+                j.beginObject();
+                j.field("wall", measured[0].wallMs() - measured[2 + i].wallMs());
+                j.field("forward_gpu", measured[0].passMs("forward") - measured[2 + i].passMs("forward"));
+                j.endObject();
+            }
+            j.endObject();
+            j.field("skin_over_standard", measured[0].wallMs() / measured[1].wallMs());
+            j.endObject();
+        }
     } else if (!skinCounts.empty()) {
         fmt::print(stderr, "preskin bench: the scene has no skin material; skipping skin vs standard\n");
     }
@@ -981,6 +1032,7 @@ void addBenchCommand(CLI::App& app) {
     cmd->add_flag("--no-per-pixel", o->noPerPixel, "Skip lights listed per pixel vs exact");
     cmd->add_flag("--no-lut-bake", o->noLutBake, "Skip timing the LUT bake");
     cmd->add_flag("--no-vr", o->noVr, "Skip stereo vs two mono frames, the stereo light grid and MSAA 4x vs 1x");
+    cmd->add_flag("--no-techniques", o->noTechniques, "Skip the skin frame with each technique off in turn");
     cmd->add_flag("--no-animation", o->noAnimation, "Skip the deformation and curvature passes of an animated scene");
     cmd->add_option("--animated-scene", o->animatedScene,
                     "Animated glTF scene for the animation figures; default: the bench scene when it is animated, "
