@@ -1,5 +1,5 @@
 // `preskin bench`: measures the renderer side by side in one run and writes JSON (stdout or
-// --out) and optionally a PNG plot of frame time against light count (--plot).
+// --out); scripts/plot-bench.py draws frame time against light count from it.
 //
 // What it measures, on the bundled head scene (or the scene given) framed as `preskin render`
 // frames it, with the scene's lights plus N scattered ones (scatterLights, --seed):
@@ -26,7 +26,6 @@
 // Goals (docs/clustering.md) are evaluated on the wall-time medians.
 // Limits: timings on a shared machine are noisy; compare numbers from one run.
 #include "Commands.h"
-#include "Canvas.h"
 #include "CommandLine.h"
 #include "JsonWriter.h"
 #include "Options.h"  // samples/common
@@ -46,19 +45,19 @@
 #include <preskin/View.h>
 
 #include <fmt/core.h>
+#include <nlohmann/json.hpp>
 
 #include <algorithm>
-#include <array>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
 #include <limits>
-#include <map>
 #include <memory>
 #include <optional>
 #include <string>
+#include <utility>
 #include <vector>
 
 namespace preskin::cli {
@@ -75,7 +74,6 @@ double secondsSince(Clock::time_point start) { return std::chrono::duration<doub
 struct BenchOptions {
     std::string scene;
     std::string out;
-    std::string plot;
     uint32_t width = 1280;
     uint32_t height = 720;
     std::string counts = "16,64,256,1024,4096";
@@ -93,6 +91,7 @@ struct BenchOptions {
     bool noLutBake = false;
     bool noVr = false;
     bool noAnimation = false;
+    bool noTechniques = false;
     std::string animatedScene;
     uint32_t vrWidth = 640;
     uint32_t vrHeight = 720;
@@ -359,79 +358,6 @@ PerPixel countPerPixel(const RenderedImage& image, const Eye& view, const std::v
     return out;
 }
 
-// ---- plot ----------------------------------------------------------------------------------------
-
-struct Curve {
-    std::string label;
-    glm::u8vec3 color;
-    std::vector<std::pair<double, double>> points;  // (lights, ms)
-};
-
-// Frame time against light count, both axes logarithmic.
-void writePlot(const std::filesystem::path& path, const std::string& title, const std::vector<Curve>& curves) {
-    Canvas c(1000, 640);
-    const int left = 110, right = 40, top = 70, bottom = 90;
-    const int x0 = left, x1 = int(c.width) - right, y0 = int(c.height) - bottom, y1 = top;
-    double nMin = std::numeric_limits<double>::max(), nMax = 0.0, tMin = std::numeric_limits<double>::max(), tMax = 0.0;
-    for (const Curve& curve : curves)
-        for (const auto& [n, t] : curve.points) {
-            nMin = std::min(nMin, n);
-            nMax = std::max(nMax, n);
-            tMin = std::min(tMin, t);
-            tMax = std::max(tMax, t);
-        }
-    if (!(nMax > 0.0) || !(tMax > 0.0)) return;
-    const double lx0 = std::log2(nMin) - 0.25, lx1 = std::log2(std::max(nMax, nMin * 2.0)) + 0.25;
-    const double ly0 = std::floor(std::log10(tMin)), ly1 = std::max(std::ceil(std::log10(tMax)), ly0 + 1.0);
-    auto px = [&](double n) { return x0 + (std::log2(n) - lx0) / (lx1 - lx0) * (x1 - x0); };
-    auto py = [&](double t) { return y0 - (std::log10(t) - ly0) / (ly1 - ly0) * (y0 - y1); };
-    const glm::u8vec3 ink(30, 30, 30), grid(222, 222, 222), minor(238, 238, 238);
-
-    // Grid and ticks: y at 1, 2, 5 per decade; x at every measured count.
-    for (double decade = ly0; decade <= ly1; decade += 1.0)
-        for (double m : {1.0, 2.0, 5.0}) {
-            const double t = m * std::pow(10.0, decade);
-            if (std::log10(t) > ly1 + 1e-9) continue;
-            const int y = int(std::lround(py(t)));
-            c.line(x0, y, x1, y, 1, m == 1.0 ? grid : minor);
-            c.line(x0 - 6, y, x0, y, 1, ink);
-            const std::string label = t >= 1.0 ? fmt::format("{:.0f}", t) : fmt::format("{:g}", t);
-            c.text(x0 - 12 - Canvas::textWidth(label, 2), y - 8, label, 2, ink);
-        }
-    std::vector<double> ticks;
-    for (const Curve& curve : curves)
-        for (const auto& point : curve.points) ticks.push_back(point.first);
-    std::sort(ticks.begin(), ticks.end());
-    ticks.erase(std::unique(ticks.begin(), ticks.end()), ticks.end());
-    for (double n : ticks) {
-        const int x = int(std::lround(px(n)));
-        c.line(x, y0, x, y1, 1, minor);
-        c.line(x, y0, x, y0 + 6, 1, ink);
-        const std::string label = fmt::format("{:.0f}", n);
-        c.text(x - Canvas::textWidth(label, 2) / 2, y0 + 12, label, 2, ink);
-    }
-    c.line(x0, y0, x1, y0, 2, ink);
-    c.line(x0, y0, x0, y1, 2, ink);
-    c.text(x0 + (x1 - x0) / 2 - Canvas::textWidth("lights", 2) / 2, y0 + 44, "lights", 2, ink);
-    c.text(x0 - 90, y1 - 40, "frame time, ms (median wall, log scale)", 2, ink);
-    c.text(x0 + (x1 - x0) / 2 - Canvas::textWidth(title, 2) / 2, 12, title, 2, ink);
-
-    int legendY = y1 + 14;
-    for (const Curve& curve : curves) {
-        for (size_t i = 0; i + 1 < curve.points.size(); ++i)
-            c.line(px(curve.points[i].first), py(curve.points[i].second), px(curve.points[i + 1].first),
-                   py(curve.points[i + 1].second), 3, curve.color);
-        for (const auto& [n, t] : curve.points) {
-            const int x = int(std::lround(px(n))), y = int(std::lround(py(t)));
-            c.fill(x - 4, y - 4, x + 4, y + 4, curve.color);
-        }
-        c.fill(x0 + 20, legendY + 4, x0 + 50, legendY + 9, curve.color);
-        c.text(x0 + 60, legendY, curve.label, 2, ink);
-        legendY += 24;
-    }
-    c.writePng(path);
-}
-
 // ---- the command ---------------------------------------------------------------------------------
 
 std::vector<uint32_t> parseCounts(const std::string& text, const char* flag) {
@@ -448,7 +374,6 @@ void run(const BenchOptions& o) {
     const auto started = Clock::now();
     const std::vector<uint32_t> counts = parseCounts(o.counts, "--counts");
     const std::vector<uint32_t> skinCounts = o.noSkin ? std::vector<uint32_t>{} : parseCounts(o.skinCounts, "--skin-counts");
-    if (!o.plot.empty()) checkOutputPath(o.plot, OutputEncoding::DisplaySrgb8);
     if (!o.out.empty()) checkOutputFile(o.out, "--out");
 
     CommonOptions common;
@@ -685,6 +610,56 @@ void run(const BenchOptions& o) {
             j.endObject();
         }
         j.endArray();
+
+        // What each technique costs: the skin frame with one technique off at a time, beside the
+        // frame with all on, the standard material and all off, interleaved (first skin count).
+        if (!o.noTechniques) {
+            const uint32_t n = skinCounts.front();
+            CommonOptions withLights = common;
+            withLights.lights = n;
+            withLights.seed = o.seed;
+            const std::vector<Light> lights = sceneLights(scene, withLights);
+            struct Technique {
+                const char* name;
+                bool SkinFeatures::*flag;
+            };
+            const Technique techniques[] = {{"lut_diffuse", &SkinFeatures::lutDiffuse},
+                                            {"normal_prefilter", &SkinFeatures::normalPrefilter},
+                                            {"penumbra", &SkinFeatures::penumbra},
+                                            {"sh_ambient", &SkinFeatures::shAmbient},
+                                            {"transmission", &SkinFeatures::transmission},
+                                            {"dual_specular", &SkinFeatures::dualSpecular}};
+            std::vector<Config> configs{{&renderer, base, fmt::format("{} lights, skin", n), 0.0},
+                                        {&standardRenderer, base, fmt::format("{} lights, standard material", n), 0.0}};
+            for (const Technique& t : techniques) {
+                RenderSettings without = base;
+                without.skin.*t.flag = false;
+                configs.push_back({&renderer, without, fmt::format("{} lights, skin without {}", n, t.name), 0.0});
+            }
+            const std::vector<Measurement> measured = bench.measure(configs, lights);
+            j.key("skin_techniques");
+            j.beginObject();
+            j.field("lights", n);
+            j.field("method",
+                    "each technique's cost: the all-on skin frame minus the frame with that technique off (its "
+                    "standard fallback on), interleaved; wall and forward-pass GPU ms");
+            j.key("skin");
+            writeMeasurement(j, measured[0]);
+            j.key("standard_material");
+            writeMeasurement(j, measured[1]);
+            j.key("cost_ms");
+            j.beginObject();
+            for (size_t i = 0; i < std::size(techniques); ++i) {
+                j.key(techniques[i].name);
+                j.beginObject();
+                j.field("wall", measured[0].wallMs() - measured[2 + i].wallMs());
+                j.field("forward_gpu", measured[0].passMs("forward") - measured[2 + i].passMs("forward"));
+                j.endObject();
+            }
+            j.endObject();
+            j.field("skin_over_standard", measured[0].wallMs() / measured[1].wallMs());
+            j.endObject();
+        }
     } else if (!skinCounts.empty()) {
         fmt::print(stderr, "preskin bench: the scene has no skin material; skipping skin vs standard\n");
     }
@@ -961,22 +936,6 @@ void run(const BenchOptions& o) {
     if (o.out.empty()) std::fwrite(json.data(), 1, json.size(), stdout);
     else writeTextFile(o.out, json, "--out");
 
-    if (!o.plot.empty()) {
-        std::vector<Curve> curves;
-        Curve clusteredCurve{"clustered", {40, 110, 200}, {}};
-        Curve bruteCurve{"brute force (every light)", {215, 80, 40}, {}};
-        for (const Row& row : rows) {
-            if (row.lights == 0) continue;  // no place on a log axis
-            clusteredCurve.points.emplace_back(row.lights, row.clustered.wallMs());
-            if (row.brute) bruteCurve.points.emplace_back(row.lights, row.brute->wallMs());
-        }
-        curves.push_back(clusteredCurve);
-        if (!bruteCurve.points.empty()) curves.push_back(bruteCurve);
-        std::string title = fmt::format("preskin bench: {}x{}, {}", o.width, o.height, context->deviceName());
-        for (char& ch : title) ch = static_cast<char>(std::tolower(static_cast<unsigned char>(ch)));
-        writePlot(o.plot, title, curves);
-        fmt::print(stderr, "preskin bench: wrote {}\n", o.plot);
-    }
     if (!o.out.empty()) fmt::print(stderr, "preskin bench: wrote {}\n", o.out);
 }
 
@@ -988,7 +947,6 @@ void addBenchCommand(CLI::App& app) {
         "bench", "Measure clustered vs brute-force lighting, the light grid, skin vs standard and the LUT bake (JSON)");
     cmd->add_option("scene", o->scene, "glTF scene; default: the bundled head scene");
     cmd->add_option("--out,-o", o->out, "Write the JSON here instead of stdout");
-    cmd->add_option("--plot", o->plot, "Also write a PNG plot of frame time against light count");
     cmd->add_option("--width", o->width, "Image width in pixels")->capture_default_str()->check(wholeNumberIn(1, 16384));
     cmd->add_option("--height", o->height, "Image height in pixels")->capture_default_str()->check(wholeNumberIn(1, 16384));
     cmd->add_option("--counts", o->counts, "Scattered light counts, comma-separated")->capture_default_str();
@@ -1016,6 +974,7 @@ void addBenchCommand(CLI::App& app) {
     cmd->add_flag("--no-per-pixel", o->noPerPixel, "Skip lights listed per pixel vs exact");
     cmd->add_flag("--no-lut-bake", o->noLutBake, "Skip timing the LUT bake");
     cmd->add_flag("--no-vr", o->noVr, "Skip stereo vs two mono frames, the stereo light grid and MSAA 4x vs 1x");
+    cmd->add_flag("--no-techniques", o->noTechniques, "Skip the skin frame with each technique off in turn");
     cmd->add_flag("--no-animation", o->noAnimation, "Skip the deformation and curvature passes of an animated scene");
     cmd->add_option("--animated-scene", o->animatedScene,
                     "Animated glTF scene for the animation figures; default: the bench scene when it is animated, "

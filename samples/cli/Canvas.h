@@ -1,5 +1,5 @@
-// Canvas: an 8-bit RGBA picture for the tool's plots and comparison sheets (`preskin bench`,
-// `preskin compare`): filled rectangles, lines with a square brush, and text in a built-in 5 x 8
+// Canvas: an 8-bit RGBA picture for the tool's comparison sheets (`preskin compare`): filled
+// rectangles, lines with a square brush, and text in a built-in 5 x 8
 // pixel font (digits, lower-case letters and a little punctuation; other characters leave a gap).
 #pragma once
 

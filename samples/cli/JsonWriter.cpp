@@ -2,6 +2,8 @@
 
 #include <preskin/Error.h>
 
+#include <fmt/core.h>
+
 #include <fstream>
 #include <system_error>
 

@@ -1,48 +1,32 @@
-// JsonWriter: a small streaming JSON writer for the tool's reports (`preskin bench`, `preskin
-// compare`): two-space indentation, one value per line, numbers with 6 significant digits (so a
-// report is stable when the measured values are), non-finite numbers as null. Also the atomic
-// text-file write the reports use.
+// JsonWriter: a streaming front end over nlohmann::ordered_json for the tool's reports
+// (`preskin bench`, `preskin compare`): values are added in the order they are measured (keys keep
+// that order) and nlohmann serialises them (two-space indentation, doubles in their shortest
+// round-trip form, non-finite numbers as null). Also the atomic text-file write the reports use.
 #pragma once
 
-#include <fmt/core.h>
+#include <nlohmann/json.hpp>
 
-#include <cmath>
 #include <cstdint>
 #include <filesystem>
 #include <string>
 #include <string_view>
 #include <type_traits>
+#include <utility>
 #include <vector>
 
 namespace preskin::cli {
 
 class JsonWriter {
 public:
-    void beginObject() { open('{'); }
-    void endObject() { close('}'); }
-    void beginArray() { open('['); }
-    void endArray() { close(']'); }
-    void key(std::string_view k) {
-        separate();
-        text_ += quote(k) + ": ";
-        afterKey_ = true;
-    }
-    void number(double v) {
-        separate();
-        text_ += std::isfinite(v) ? fmt::format("{:.6g}", v) : "null";
-    }
-    void integer(uint64_t v) {
-        separate();
-        text_ += fmt::format("{}", v);
-    }
-    void boolean(bool v) {
-        separate();
-        text_ += v ? "true" : "false";
-    }
-    void string(std::string_view v) {
-        separate();
-        text_ += quote(v);
-    }
+    void beginObject() { open(nlohmann::ordered_json::object()); }
+    void endObject() { open_.pop_back(); }
+    void beginArray() { open(nlohmann::ordered_json::array()); }
+    void endArray() { open_.pop_back(); }
+    void key(std::string_view k) { key_ = std::string(k); }
+    void number(double v) { add(v); }
+    void integer(uint64_t v) { add(v); }
+    void boolean(bool v) { add(v); }
+    void string(std::string_view v) { add(std::string(v)); }
     template <typename T>
     void field(std::string_view k, T v) {
         key(k);
@@ -51,47 +35,30 @@ public:
         else if constexpr (std::is_floating_point_v<T>) number(double(v));
         else string(v);
     }
-    const std::string& text() const { return text_; }
+    std::string text() const { return root_.dump(2); }
 
 private:
-    static std::string quote(std::string_view s) {
-        std::string out = "\"";
-        for (char c : s) {
-            if (c == '"' || c == '\\') out += '\\', out += c;
-            else if (static_cast<unsigned char>(c) < 0x20) out += fmt::format("\\u{:04x}", int(c));
-            else out += c;
+    nlohmann::ordered_json& add(nlohmann::ordered_json value) {
+        if (open_.empty()) {
+            root_ = std::move(value);
+            return root_;
         }
-        return out + "\"";
-    }
-    void separate() {
-        if (afterKey_) {
-            afterKey_ = false;
-            return;
+        nlohmann::ordered_json& parent = *open_.back();
+        if (parent.is_array()) {
+            parent.push_back(std::move(value));
+            return parent.back();
         }
-        if (!first_.empty()) {
-            if (!first_.back()) text_ += ",";
-            first_.back() = false;
-            text_ += "\n" + std::string(2 * first_.size(), ' ');
-        }
+        return parent[std::exchange(key_, {})] = std::move(value);
     }
-    void open(char c) {
-        separate();
-        text_ += c;
-        first_.push_back(true);
-    }
-    void close(char c) {
-        const bool empty = first_.back();
-        first_.pop_back();
-        if (!empty) text_ += "\n" + std::string(2 * first_.size(), ' ');
-        text_ += c;
-    }
-    std::string text_;
-    std::vector<bool> first_;
-    bool afterKey_ = false;
+    void open(nlohmann::ordered_json value) { open_.push_back(&add(std::move(value))); }
+
+    nlohmann::ordered_json root_;
+    std::vector<nlohmann::ordered_json*> open_;  // objects and arrays being filled, innermost last
+    std::string key_;
 };
 
 // Writes `text` to `path` through a temporary file renamed into place; throws preskin::Error
-// "<flag> <path>: cannot write" on failure (no partial file is left).
+// "<path>: output: cannot write (<flag>)" on failure (no partial file is left).
 void writeTextFile(const std::filesystem::path& path, const std::string& text, const char* flag);
 
 }  // namespace preskin::cli

@@ -73,8 +73,8 @@ void checkViewOptions(const ViewOptions& o);
 // --camera NAME (a glTF camera), --orbit YAW,PITCH,DIST, else the default framing of the bounds.
 View makeView(const Scene& scene, const std::filesystem::path& scenePath, const ViewOptions& o);
 
-// The bundled sample scene (samples/assets/head/head.gltf of the source tree, or of
-// $PRESKIN_DATA_DIR when set).
+// Where the tools find LUTs, shaders and the bundled sample scene: $PRESKIN_DATA_DIR when set,
+// else <prefix>/share/preskin for an installed tool, else the source tree.
 std::filesystem::path dataDir();
 std::filesystem::path defaultScenePath();
 std::filesystem::path defaultAnimatedScenePath();  // the bundled animated head

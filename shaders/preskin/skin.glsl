@@ -27,8 +27,9 @@
 // standard equivalent, so with no bits set this equals the standard dielectric BRDF.
 //
 // Inputs are in world units (metres) except where named; the material's scatter scale
-// converts them to profile millimetres. Needs: preskin/brdf.glsl, preskin/lut.glsl,
-// preskin/sh.glsl and the four LUT samplers (see README, "Skin in your own forward shader").
+// converts them to profile millimetres. Includes preskin/brdf.glsl, preskin/lut.glsl,
+// preskin/sh.glsl and preskin/skin_surface.glsl (building the surface from a host's textures);
+// needs the four LUT samplers (see README, "Embedding").
 // Limits: curvature and thickness are scalar per fragment; transmission only for the light that
 // owns the shadow map; the diffuse LUT assumes locally spherical geometry of the mean curvature
 // (a cylinder reads as a sphere of twice its radius); the concave patch's extent is a model
@@ -39,8 +40,8 @@
 #include "preskin/brdf.glsl"
 #include "preskin/lut.glsl"
 #include "preskin/sh.glsl"
+#include "preskin/skin_surface.glsl"
 #include "shared/skin_features.h"
-
 
 struct PreskinSkinSurface {
     vec3 albedo;             // linear diffuse colour
@@ -113,17 +114,8 @@ vec3 preskinSkinShadow(PreskinSkinSurface s, LutMapping m, sampler2D penumbraLut
     return preskinPenumbraLut(m, penumbraLut, visibility, sigmaProfileMm);
 }
 
-// Depth (profile mm) below the surface from which transmission measures the thickness: the
-// shadow map's depth bias would otherwise dominate where the light enters at a grazing angle.
-const float kPreskinThicknessShrinkMm = 2.0;
-
-// The point whose shadow-map thickness preskinSkinTransmission expects (preskinShadowThickness).
-vec3 preskinSkinThicknessPosition(PreskinSkinSurface s, vec3 positionWs) {
-    return positionWs - s.geometricNormal * (kPreskinThicknessShrinkMm * 0.001 / max(s.scatterScale, 1e-6));
-}
-
 // Light transmitted through the surface from a light behind it (after Jimenez et al. 2010):
-// thicknessM from the shadow map at preskinSkinThicknessPosition (metres); the thickness from
+// thicknessM from the shadow map at preskinThicknessPointWs (metres); the thickness from
 // the surface along L is that plus the shrink depth times c = saturate(-NoL); T(thickness) from
 // the profile (its plane integral at that depth, exact for a slab), times c, the far side's
 // cosine for a slab. Only light the diffuse LUT does not already hold is added: the LUT
@@ -136,7 +128,7 @@ vec3 preskinSkinTransmission(PreskinSkinSurface s, LutMapping m, sampler2D trans
                              vec3 irradiance, float thicknessM, uint features) {
     float c = preskinSaturate(-dot(s.geometricNormal, L));
     if ((features & kSkinTransmission) == 0u || c <= 0.0) return vec3(0.0);
-    float d = kPreskinThicknessShrinkMm;
+    float d = kSkinThicknessShrinkMm;
     float thicknessMm = thicknessM * 1000.0 * s.thicknessScale * s.scatterScale + d * c;
     vec3 T = preskinTransmittanceLut(m, transmittanceLut, thicknessMm);
     if ((features & kSkinLutDiffuse) != 0u && s.curvaturePerMm > 0.0) {
@@ -185,11 +177,20 @@ vec3 preskinSkinShadowPosition(vec3 positionWs, vec3 geometricNormalWs, vec3 L, 
     return positionWs + geometricNormalWs * (fade * liftMm * 0.001 / max(scatterScale, 1e-6));
 }
 
-// Curvature in 1/m from screen-space derivatives (Penner's fallback: constant per triangle).
-float preskinCurvatureFromDerivatives(vec3 normalWs, vec3 positionWs) {
-    float dn = length(fwidth(normalWs));
-    float dp = length(fwidth(positionWs));
-    return dp > 0.0 ? dn / dp : 0.0;
+// Ambient light of the environment's L2 SH radiance: diffuse from the per-channel transfer
+// (preskinSkinAmbientIrradiance times albedo / pi, less what the specular takes) plus specular
+// from the cosine-convolved SH in the reflection direction, weighted by Karis's analytic split-sum
+// environment BRDF (none with specularWeight 0). diffuseOut: the diffuse part alone. Multiply both
+// by ambient occlusion.
+vec3 preskinSkinAmbient(PreskinSkinSurface s, LutMapping m, sampler2D shTransferLut, vec4 sh[9], vec3 V, uint features,
+                        out vec3 diffuseOut) {
+    float NoV = max(dot(s.normalSpecular, V), 1e-4);
+    vec3 envBrdf = preskinEnvBrdfApprox(s.F0, s.roughness, NoV) * s.specularWeight;
+    vec3 R = reflect(-V, s.normalSpecular);
+    vec3 specularSh = max(preskinShEvaluate(sh, R, PRESKIN_SH_LAMBERT), vec3(0.0)) / PRESKIN_PI;
+    diffuseOut = s.albedo * preskinSkinAmbientIrradiance(s, m, shTransferLut, sh, features) / PRESKIN_PI *
+                 (vec3(1.0) - envBrdf);
+    return diffuseOut + specularSh * envBrdf;
 }
 
 #endif

@@ -73,14 +73,4 @@ PRESKIN_LUT_FN vec2 preskinTransmittanceLutUv(LutMapping m, float thicknessMm) {
 
 PRESKIN_GPU_END
 
-#ifdef __cplusplus
-#include <preskin/Export.h>
-
-namespace preskin {
-class LutSet;
-// Fills the mapping for a baked or loaded set (the same numbers its CPU lookups use).
-PRESKIN_API gpu::LutMapping lutMapping(const LutSet& luts);
-}  // namespace preskin
-#endif
-
 #endif

@@ -182,8 +182,8 @@ TEST_F(LutGpu, GlslLookupsMatchCpuLookups) {
         lookups.push_back({kTransmittance, thicknessMax * unit(rng), 0.0f});
     }
 
-    const std::vector<glm::vec3> gpuResults = runOnGpu(context().core(), luts, lookups);
-    const uint32_t bits = context().core().properties().limits.subTexelPrecisionBits;
+    const std::vector<glm::vec3> gpuResults = runOnGpu(ContextAccess::core(context()), luts, lookups);
+    const uint32_t bits = ContextAccess::core(context()).properties().limits.subTexelPrecisionBits;
     ASSERT_GE(bits, 4u) << "Vulkan requires at least 4 sub-texel precision bits";
     const double weightStep = std::ldexp(1.0, -int(bits));
 

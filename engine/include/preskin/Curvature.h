@@ -24,7 +24,7 @@
 
 #include <preskin/Export.h>
 
-#include <glm/glm.hpp>
+#include <preskin/Glm.h>
 
 #include <cstdint>
 #include <span>

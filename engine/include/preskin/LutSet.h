@@ -53,7 +53,11 @@
 #include <preskin/Export.h>
 #include <preskin/LutTable.h>
 
-#include <glm/glm.hpp>
+#include <preskin/Glm.h>
+
+// The LutMapping struct, shared with GLSL: the GLSL include root (shaders/, installed as
+// share/preskin/shaders) is on preskin::preskin's include path.
+#include <shared/lut_mapping.h>
 
 #include <array>
 #include <filesystem>
@@ -138,5 +142,9 @@ private:
     LutTable shTransfer_;
     LutTable transmittance_;
 };
+
+// The LUT coordinate mapping of a set, for the `LutMapping` member of a shader's uniform block
+// (preskin/lut.glsl): the same numbers the set's CPU lookups use.
+PRESKIN_API gpu::LutMapping lutMapping(const LutSet& luts);
 
 }  // namespace preskin

@@ -15,7 +15,7 @@
 #include <preskin/Export.h>
 #include <preskin/SkinMaterial.h>
 
-#include <glm/glm.hpp>
+#include <preskin/Glm.h>
 
 #include <cmath>
 #include <cstdint>
