@@ -6,6 +6,8 @@
 
 #include <preskin/LutSet.h>
 
+#include "skin/LutLayout.h"
+
 #include <cmath>
 
 namespace preskin {
@@ -26,11 +28,14 @@ gpu::LutMapping lutMapping(const LutSet& luts) {
     const LutAxis& nol = luts.diffuse().x;  // SplitLinear on [min < 0, max > 0]
     const int n = nol.size;
     const int zero = n / 2;
-    m.diffuseNoL = glm::vec4(f((zero + 0.5) / n), f(zero / (-nol.min * n)), f((n - 1 - zero) / (nol.max * n)), 0.0f);
+    m.diffuseNoL = glm::vec4(f((zero + 0.5) / n), f(zero / (-nol.min * n)), f((n - 1 - zero) / (nol.max * n)),
+                             f(luts.localPatchMm()));
 
-    const LutAxis& curvature = luts.diffuse().y;  // Sqrt on [0, max]
-    const glm::vec2 curvatureTexel = texelScaleOffset(curvature.size);
-    m.diffuseCurvature = glm::vec4(f(1.0 / curvature.max), curvatureTexel.x, curvatureTexel.y, 0.0f);
+    const LutAxis& curvature = luts.diffuse().y;  // SplitSqrt on [-max, max]
+    const int cn = curvature.size;
+    const int czero = cn / 2;
+    m.diffuseCurvature = glm::vec4(f(1.0 / curvature.max), f((czero + 0.5) / cn), f(double(czero) / cn),
+                                   f(double(cn - 1 - czero) / cn));
 
     const glm::vec2 shadowTexel = texelScaleOffset(luts.penumbra().x.size);  // Linear on [0, 1]
     m.penumbraShadow = glm::vec4(shadowTexel.x, shadowTexel.y, 0.0f, 0.0f);
@@ -50,6 +55,8 @@ gpu::LutMapping lutMapping(const LutSet& luts) {
         glm::vec4(f(1.0 / thickness.scale), f(1.0 / std::log1p(thickness.max / thickness.scale)), thicknessTexel.x, thicknessTexel.y);
     return m;
 }
+
+double LutSet::localPatchMm() const { return skin::kLocalPatchWidths * profile_.maxWidthMm(); }
 
 glm::vec2 LutSet::diffuseUv(float NoL, float curvaturePerMm) const {
     return gpu::preskinDiffuseLutUv(lutMapping(*this), NoL, curvaturePerMm);
