@@ -101,6 +101,13 @@ struct BenchOptions {
     bool validation = false;
 };
 
+// A scene path as the JSON reports it: relative to the data folder for bundled assets, so results
+// do not carry the machine's folders.
+std::string reportedPath(const std::filesystem::path& path) {
+    const std::filesystem::path relative = path.lexically_relative(dataDir());
+    return !relative.empty() && *relative.begin() != ".." ? relative.generic_string() : path.string();
+}
+
 double median(std::vector<double> v) {
     if (v.empty()) return std::numeric_limits<double>::quiet_NaN();
     std::sort(v.begin(), v.end());
@@ -404,7 +411,7 @@ void run(const BenchOptions& o) {
     j.field("tool", "preskin bench");
     j.field("device", context->deviceName());
     j.field("software_device", context->isSoftwareDevice());
-    j.field("scene", scenePath.string());
+    j.field("scene", reportedPath(scenePath));
     j.field("width", o.width);
     j.field("height", o.height);
     j.field("seed", o.seed);
@@ -866,7 +873,7 @@ void run(const BenchOptions& o) {
 
             j.key("animation");
             j.beginObject();
-            j.field("scene", animatedPath.string());
+            j.field("scene", reportedPath(animatedPath));
             j.field("animation", clip.name);
             j.field("time_s", timeS);
             j.field("lights", o.vrLights);
