@@ -216,9 +216,16 @@ struct Scene {
     PRESKIN_API Bounds worldBounds() const;
     // Marks materials as skin: every material for "all", else the materials with that name
     // (throws preskin::Error when no material has it). Existing skin parameters are kept.
-    // Primitives without a material (Primitive::material == -1) are not covered.
-    // A material made skin here gets `defaults`, then the material's KHR transmission / volume values.
+    // "all" covers primitives without a material too: they get glTF's default material first
+    // (addDefaultMaterial). A material made skin here gets `defaults`, then the material's KHR
+    // transmission / volume values.
     PRESKIN_API void makeSkin(const std::string& materialName, const SkinMaterial& defaults = {});
+    // Gives every primitive without a material (Primitive::material == -1, or an index past
+    // `materials`) an explicit copy of glTF's default material (base colour 1, metallic 1,
+    // roughness 1, opaque, single-sided), named kDefaultMaterialName and appended once to
+    // `materials`. Returns its index, or -1 when every primitive already has a material.
+    PRESKIN_API int addDefaultMaterial();
+    static constexpr const char* kDefaultMaterialName = "(default)";
 };
 
 }  // namespace preskin
