@@ -140,8 +140,8 @@ void run(const RenderOptions& o) {
     applySkinOption(scene, o.common);
     const Environment environment = loadEnvironment(scene, o.common);
     auto context = Context::create(contextDesc(o.common));
-    const LutSet luts = loadLuts(o.common);
-    Renderer renderer(*context, scene, environment, &luts, renderSettings(o.common));
+    const ProfileLibrary profiles = loadProfiles(scene, o.common);
+    Renderer renderer(*context, scene, environment, profiles, renderSettings(o.common));
     applyLightOptions(renderer, scene, o.common);
 
     const float aspect = float(o.width) / float(o.height);

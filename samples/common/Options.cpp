@@ -61,6 +61,11 @@ void addCommonOptions(CLI::App& cmd, CommonOptions& o) {
         ->check(oneOf({"1", "2", "4", "8"}))
         ->capture_default_str();
     cmd.add_option("--luts", o.luts, "Skin LUT set folder (from `preskin bake`); default: the bundled d'Eon set");
+    cmd.add_flag("--no-cache", o.noCache, "Bake the scene's diffusion profiles without reading or writing the LUT cache");
+    cmd.add_option("--cache-dir", o.cacheDir, "LUT cache folder (default: $XDG_CACHE_HOME/preskin/luts or ~/.cache/preskin/luts)");
+    cmd.add_option("--profile-lut-size", o.profileLutSize, "Table size of the scene's baked profiles")
+        ->check(wholeNumberIn(LutBakeSettings::kMinSize, LutBakeSettings::kMaxSize))
+        ->capture_default_str();
     cmd.add_flag("--allow-outside-links", o.allowOutsideLinks,
                  "Follow symbolic links in the scene's folder that lead out of it (refused by default)");
 }
@@ -143,6 +148,17 @@ LutSet loadLuts(const CommonOptions& o) {
     std::error_code ec;
     if (std::filesystem::exists(bundled / "manifest.json", ec)) return LutSet::load(bundled);
     return LutSet::loadDefault();
+}
+
+ProfileLibrary loadProfiles(const Scene& scene, const CommonOptions& o, std::shared_ptr<const LutSet> defaultLuts) {
+    ProfileCacheOptions cache;
+    cache.enabled = !o.noCache;
+    cache.folder = o.cacheDir;
+    if (!defaultLuts) defaultLuts = std::make_shared<const LutSet>(loadLuts(o));
+    ProfileLibrary library = ProfileLibrary::forScene(scene, std::move(defaultLuts),
+                                                      LutBakeSettings::withSize(int(o.profileLutSize)), cache);
+    for (const std::string& warning : library.warnings()) fmt::print(stderr, "preskin: warning: {}\n", warning);
+    return library;
 }
 
 RenderSettings renderSettings(const CommonOptions& o) {

@@ -22,7 +22,9 @@
 //
 // Inputs are in world units (metres) except where named; the material's scatter scale
 // converts them to profile millimetres. Needs: preskin/brdf.glsl, preskin/lut.glsl,
-// preskin/sh.glsl and the four LUT samplers (see README, "Skin in your own forward shader").
+// preskin/sh.glsl and the four LUT array samplers with the fragment's profile mix
+// (PreskinProfileMix; preskinSingleProfile for one profile; see README, "Skin in your own
+// forward shader").
 // Limits: curvature and thickness are scalar per fragment; transmission only for the light that
 // owns the shadow map; the ring model assumes locally spherical geometry (Penner).
 #ifndef PRESKIN_SKIN_GLSL
@@ -51,7 +53,7 @@ struct PreskinSkinSurface {
 };
 
 // Diffuse response per channel for one light direction (replaces saturate(NoL)).
-vec3 preskinSkinDiffuseResponse(PreskinSkinSurface s, LutMapping m, sampler2D diffuseLut, vec3 L, uint features) {
+vec3 preskinSkinDiffuseResponse(PreskinSkinSurface s, PreskinProfileMix m, sampler2DArray diffuseLut, vec3 L, uint features) {
     vec3 NoL = vec3(dot(s.normalR, L), dot(s.normalG, L), dot(s.normalB, L));
     if ((features & kSkinLutDiffuse) == 0u) return clamp(NoL, 0.0, 1.0);
     if ((features & kSkinNormalPrefilter) == 0u)
@@ -85,7 +87,7 @@ vec3 preskinSkinSpecular(PreskinSkinSurface s, vec3 V, vec3 L, uint features) {
 
 // Reflected radiance of one light. shadowRgb: per-channel visibility (penumbra LUT, or the plain
 // filtered shadow in all channels); specularVisibility: the plain filtered shadow.
-vec3 preskinSkinLight(PreskinSkinSurface s, LutMapping m, sampler2D diffuseLut, vec3 V, vec3 L, vec3 irradiance,
+vec3 preskinSkinLight(PreskinSkinSurface s, PreskinProfileMix m, sampler2DArray diffuseLut, vec3 V, vec3 L, vec3 irradiance,
                       vec3 shadowRgb, float specularVisibility, uint features) {
     vec3 F = preskinSchlickF(s.F0, preskinSaturate(dot(V, normalize(L + V))));
     vec3 diffuse = (vec3(1.0) - F) * s.albedo / PRESKIN_PI * preskinSkinDiffuseResponse(s, m, diffuseLut, L, features);
@@ -95,7 +97,7 @@ vec3 preskinSkinLight(PreskinSkinSurface s, LutMapping m, sampler2D diffuseLut, 
 
 // Per-channel shadow for skin: the penumbra LUT indexed by the filtered visibility and the
 // filter's width on the receiver (the light-plane width stretched by the receiver's slope).
-vec3 preskinSkinShadow(PreskinSkinSurface s, LutMapping m, sampler2D penumbraLut, float visibility,
+vec3 preskinSkinShadow(PreskinSkinSurface s, PreskinProfileMix m, sampler2DArray penumbraLut, float visibility,
                        float filterWidthLightM, vec3 L, uint features) {
     // Fully lit or fully shadowed: the LUT's end columns are exactly 1 and 0, skip the fetch.
     if ((features & kSkinPenumbra) == 0u || visibility <= 0.0 || visibility >= 1.0) return vec3(visibility);
@@ -106,7 +108,7 @@ vec3 preskinSkinShadow(PreskinSkinSurface s, LutMapping m, sampler2D penumbraLut
 
 // Light transmitted through the surface from a light behind it: thicknessM from the shadow
 // map (metres), T(thickness) from the profile, wrap saturate(0.3 - NoL) (Jimenez et al. 2010).
-vec3 preskinSkinTransmission(PreskinSkinSurface s, LutMapping m, sampler2D transmittanceLut, vec3 L,
+vec3 preskinSkinTransmission(PreskinSkinSurface s, PreskinProfileMix m, sampler2DArray transmittanceLut, vec3 L,
                              vec3 irradiance, float thicknessM, uint features) {
     float wrap = preskinSaturate(0.3 - dot(s.geometricNormal, L));
     if ((features & kSkinTransmission) == 0u || wrap <= 0.0) return vec3(0.0);
@@ -116,7 +118,7 @@ vec3 preskinSkinTransmission(PreskinSkinSurface s, LutMapping m, sampler2D trans
 }
 
 // Diffuse ambient irradiance per channel from L2 SH radiance (multiply by albedo / pi).
-vec3 preskinSkinAmbientIrradiance(PreskinSkinSurface s, LutMapping m, sampler2D shTransferLut, vec4 sh[9],
+vec3 preskinSkinAmbientIrradiance(PreskinSkinSurface s, PreskinProfileMix m, sampler2DArray shTransferLut, vec4 sh[9],
                                   uint features) {
     vec3 bandR = PRESKIN_SH_LAMBERT;
     vec3 bandG = PRESKIN_SH_LAMBERT;

@@ -49,7 +49,7 @@ TEST_F(BenchCli, WritesJsonAndPlot) {
     const fs::path plot = dir_ / "bench.png";
     std::string err;
     ASSERT_EQ(bench({"--width", "96", "--height", "64", "--counts", "0,8,32", "--skin-counts", "8", "--reps", "2", "--warmup",
-                     "0", "--validation", "--out", json.string(), "--plot", plot.string()},
+                     "0", "--validation", "--profile-lut-size", "16", "--out", json.string(), "--plot", plot.string()},
                     err),
               0)
         << err;
@@ -86,6 +86,12 @@ TEST_F(BenchCli, WritesJsonAndPlot) {
     EXPECT_GT(animation.at("curvature_gpu_ms").get<double>(), 0.0);
     EXPECT_GT(animation.at("curvature_cpu_ms").get<double>(), 0.0);
     EXPECT_LT(animation.at("deform_and_curvature_share_gpu").get<double>(), 1.0);
+    // Profiles: 64 baked into a fresh cache, then all 64 read back from it; 8 copies of the head.
+    const auto& profiles = j.at("profiles");
+    EXPECT_EQ(profiles.at("cached_profiles"), 64);
+    EXPECT_GT(profiles.at("load_cached_ms").get<double>(), 0.0);
+    EXPECT_GT(profiles.at("bake_one_ms").get<double>(), 0.0);
+    EXPECT_EQ(profiles.at("frame_eight_profiles").at("frames"), 2);
     EXPECT_FALSE(j.at("goals").empty());
     std::ifstream png(plot, std::ios::binary);
     char signature[8] = {};

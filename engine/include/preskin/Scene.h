@@ -14,6 +14,7 @@
 #include <preskin/Animation.h>
 #include <preskin/Export.h>
 #include <preskin/SkinMaterial.h>
+#include <preskin/SkinProfile.h>
 
 #include <glm/glm.hpp>
 
@@ -195,6 +196,9 @@ struct Scene {
     std::vector<Mesh> meshes;
     std::vector<MeshInstance> instances;
     std::vector<Material> materials;
+    // Diffusion profiles the skin materials name (SkinMaterial::profile); empty: every skin
+    // material uses the renderer's default set.
+    std::vector<SkinProfile> profiles;
     std::vector<Image> images;
     std::vector<Sampler> samplers;
     std::vector<Light> lights;
@@ -225,6 +229,11 @@ struct Scene {
     // roughness 1, opaque, single-sided), named kDefaultMaterialName and appended once to
     // `materials`. Returns its index, or -1 when every primitive already has a material.
     PRESKIN_API int addDefaultMaterial();
+    // Gives the materials named `materialName` ("all": every material, as makeSkin) the
+    // diffusion profile Scene::profiles[profile] (-1: the default set), making them skin first
+    // where they are not. Throws preskin::Error when no material has the name or the profile
+    // index is out of range.
+    PRESKIN_API void setSkinProfile(const std::string& materialName, int profile);
     static constexpr const char* kDefaultMaterialName = "(default)";
 };
 

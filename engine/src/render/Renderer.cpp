@@ -5,6 +5,8 @@
 #include <preskin/Renderer.h>
 
 #include <preskin/ClusterGrid.h>
+#include <preskin/Error.h>
+#include <preskin/ProfileLibrary.h>
 
 #include "lights/ClusterBuilder.h"
 #include "render/GpuDeformer.h"
@@ -143,6 +145,7 @@ struct Renderer::Impl {
     std::vector<Light> lights;
     Bounds bounds;  // of the scene in the current pose
     ShRgb radianceSh;
+    std::string sceneName;  // for messages
     std::unique_ptr<GpuScene> scene;
     ScenePose pose;
     uint64_t poseVersion = 0;
@@ -167,17 +170,17 @@ struct Renderer::Impl {
     vk::Image colorTarget;
     vk::Buffer readback;
 
-    Impl(Context& ctx, const Scene& s, const Environment& env, const LutSet* lutSet, const RenderSettings& rs)
+    Impl(Context& ctx, const Scene& s, const Environment& env, const std::vector<const LutSet*>& lutLayers,
+         const RenderSettings& rs)
         : context(ctx), dev(ctx.core()), settings(rs), lights(s.lights), bounds(s.worldBounds()),
-          radianceSh(env.radianceSh()) {
+          radianceSh(env.radianceSh()), sceneName(s.sourcePath.empty() ? std::string("scene") : s.sourcePath.string()) {
         checkRenderSettings(rs);
         checkLights(s.lights);
         scene = std::make_unique<GpuScene>(dev, s);
         poseBounds = std::make_unique<PoseBounds>(s);
         deformer = std::make_unique<GpuDeformer>(dev, s, scene->vertices, scene->meshFirstVertex);
         setPose(restPose(s));
-        luts = std::make_unique<GpuLuts>(dev, lutSet);
-        scene->updateMaterials(luts->profileWidths());
+        setLutLayers(lutLayers);
         clusters = std::make_unique<ClusterBuilder>(dev);
         createLayouts();
         createShadowMap();
@@ -198,6 +201,31 @@ struct Renderer::Impl {
         if (shadowSampler) vkDestroySampler(d, shadowSampler, nullptr);
     }
 
+    // Every skin material's profiles must have a layer (when there are LUTs at all).
+    void checkProfileLayers(size_t layerCount) const {
+        if (layerCount == 0) return;
+        const std::vector<Material>& materials = scene->sceneMaterials();
+        for (size_t i = 0; i < materials.size(); ++i) {
+            if (!materials[i].skin) continue;
+            std::vector<int> profiles{materials[i].skin->profile};
+            for (int p : materials[i].skin->blendProfiles) profiles.push_back(p);
+            for (int p : profiles) {
+                if (p >= -1 && size_t(p + 1) < layerCount) continue;
+                throw Error(fmt::format("{}: materials[{}] ('{}'): profile {} has no LUT layer: the renderer holds {} "
+                                        "(the default set and {} profiles)",
+                                        sceneName, i, materials[i].name, p, layerCount, layerCount - 1));
+            }
+        }
+    }
+
+    void setLutLayers(const std::vector<const LutSet*>& layers) {
+        checkProfileLayers(layers.size());
+        auto replacement = std::make_unique<GpuLuts>(dev, layers);
+        vkDeviceWaitIdle(dev.device());
+        luts = std::move(replacement);
+        scene->updateMaterials(luts->profileWidths());
+    }
+
     void createLayouts() {
         const VkDevice d = dev.device();
         const VkShaderStageFlags fs = VK_SHADER_STAGE_FRAGMENT_BIT;
@@ -213,6 +241,7 @@ struct Renderer::Impl {
             {gpu::kBindingTransmittanceLut, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, fs},
             {gpu::kBindingClusterRanges, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, fs},
             {gpu::kBindingClusterIndices, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, fs},
+            {gpu::kBindingLutMappings, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, fs},
         };
         frameLayout = vk::createSetLayout(dev, bindings);
         const VkDescriptorSetLayout forwardSets[] = {frameLayout, scene->materialLayout()};
@@ -220,7 +249,7 @@ struct Renderer::Impl {
         shadowLayout = vk::createPipelineLayout(dev, std::span(forwardSets, 1), sizeof(gpu::DrawPush), all);
 
         const VkDescriptorPoolSize sizes[] = {{VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, kSlotCount},
-                                              {VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 4 * kSlotCount},
+                                              {VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 5 * kSlotCount},
                                               {VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 5 * kSlotCount}};
         VkDescriptorPoolCreateInfo poolInfo{VK_STRUCTURE_TYPE_DESCRIPTOR_POOL_CREATE_INFO};
         poolInfo.maxSets = kSlotCount;
@@ -472,7 +501,6 @@ struct Renderer::Impl {
                                    2.0f * radius, float(mapSize));
         for (int i = 0; i < 9; ++i) u.shRadiance[i] = glm::vec4(radianceSh.c[size_t(i)], 0.0f);
         u.lightCounts = glm::uvec4(slot.lightCount, directional, 0u, 0u);
-        u.lut = luts->mapping();
         if (settings.lightLoop == LightLoop::Clustered)
             clusters->prepare(slotIndex, settings.clusters, clusterCamera(view, extent.width, extent.height), bounds,
                               gpuLights, directional, slot.lights, u);
@@ -488,6 +516,7 @@ struct Renderer::Impl {
         const VkDescriptorBufferInfo indicesInfo{clusters->indices(slotIndex).handle(), 0, VK_WHOLE_SIZE};
         const VkDescriptorImageInfo shadowInfo{shadowSampler, shadowMap.view(), VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL};
         const std::array<VkDescriptorImageInfo, 4> lutInfos = luts->descriptors();
+        const VkDescriptorBufferInfo lutMappingInfo = luts->mappingDescriptor();
         std::vector<VkWriteDescriptorSet> writes;
         auto buffer = [&](uint32_t binding, VkDescriptorType type, const VkDescriptorBufferInfo* info) {
             VkWriteDescriptorSet w{VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET};
@@ -512,6 +541,7 @@ struct Renderer::Impl {
         buffer(gpu::kBindingInstances, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, &instanceInfo);
         buffer(gpu::kBindingClusterRanges, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, &rangesInfo);
         buffer(gpu::kBindingClusterIndices, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, &indicesInfo);
+        buffer(gpu::kBindingLutMappings, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, &lutMappingInfo);
         image(gpu::kBindingShadowMap, &shadowInfo);
         image(gpu::kBindingDiffuseLut, &lutInfos[0]);
         image(gpu::kBindingPenumbraLut, &lutInfos[1]);
@@ -761,9 +791,25 @@ struct Renderer::Impl {
     }
 };
 
+namespace {
+
+std::vector<const LutSet*> layersOf(const ProfileLibrary& profiles) {
+    std::vector<const LutSet*> layers;
+    for (size_t i = 0; i < profiles.layerCount(); ++i) layers.push_back(&profiles.layer(i));
+    return layers;
+}
+
+std::vector<const LutSet*> layersOf(const LutSet* luts) { return luts ? std::vector<const LutSet*>{luts} : std::vector<const LutSet*>{}; }
+
+}  // namespace
+
 Renderer::Renderer(Context& context, const Scene& scene, const Environment& environment, const LutSet* luts,
                    const RenderSettings& settings)
-    : impl_(std::make_unique<Impl>(context, scene, environment, luts, settings)) {}
+    : impl_(std::make_unique<Impl>(context, scene, environment, layersOf(luts), settings)) {}
+
+Renderer::Renderer(Context& context, const Scene& scene, const Environment& environment, const ProfileLibrary& profiles,
+                   const RenderSettings& settings)
+    : impl_(std::make_unique<Impl>(context, scene, environment, layersOf(profiles), settings)) {}
 
 Renderer::~Renderer() = default;
 
@@ -786,9 +832,18 @@ void Renderer::setLights(const std::vector<Light>& lights) {
 const std::vector<Light>& Renderer::lights() const { return impl_->lights; }
 void Renderer::setEnvironment(const Environment& environment) { impl_->radianceSh = environment.radianceSh(); }
 
-void Renderer::setLuts(const LutSet* luts) {
+void Renderer::setLuts(const LutSet* luts) { impl_->setLutLayers(layersOf(luts)); }
+
+void Renderer::setProfiles(const ProfileLibrary& profiles) { impl_->setLutLayers(layersOf(profiles)); }
+
+void Renderer::setProfileLayer(size_t layer, const LutSet& luts) {
+    if (layer >= impl_->luts->layerCount())
+        throw Error(fmt::format("Renderer::setProfileLayer: layer {} is out of range (the renderer holds {})", layer,
+                                impl_->luts->layerCount()));
     vkDeviceWaitIdle(impl_->dev.device());
-    impl_->luts = std::make_unique<GpuLuts>(impl_->dev, luts);
+    if (!impl_->luts->replaceLayer(static_cast<uint32_t>(layer), luts))
+        throw Error(fmt::format("Renderer::setProfileLayer: the LUT set is larger than the renderer's LUT arrays; "
+                                "use setProfiles"));
     impl_->scene->updateMaterials(impl_->luts->profileWidths());
 }
 

@@ -76,4 +76,15 @@ void Scene::makeSkin(const std::string& materialName, const SkinMaterial& defaul
     }
 }
 
+void Scene::setSkinProfile(const std::string& materialName, int profile) {
+    if (profile < -1 || profile >= static_cast<int>(profiles.size())) {
+        throw Error(sourcePath.string() + ": profile: " + std::to_string(profile) + " is out of range: the scene has " +
+                    std::to_string(profiles.size()) + " profiles (-1: the default)");
+    }
+    makeSkin(materialName);
+    for (Material& material : materials) {
+        if (materialName == "all" || material.name == materialName) material.skin->profile = profile;
+    }
+}
+
 }  // namespace preskin
