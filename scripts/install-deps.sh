@@ -10,7 +10,7 @@ packages=(
   libglm-dev libglfw3-dev libtinygltf-dev nlohmann-json3-dev libstb-dev libopenimageio-dev libpng-dev
   libimgui-dev libcli11-dev libfmt-dev libtbb-dev
   libgtest-dev libbenchmark-dev xvfb xauth libx11-dev
-  python3-numpy clang libclang-rt-14-dev
+  python3-numpy python3-matplotlib clang libclang-rt-14-dev
 )
 
 missing=()

@@ -65,11 +65,9 @@ vec2 transformUv(GpuUvTransform t, vec2 uv) {
 vec3 perturbNormal(vec3 mapValue, float scale, vec3 N, vec4 T) {
     vec3 n = mapValue * 2.0 - 1.0;
     n.xy *= scale;
-    vec3 t = T.xyz - N * dot(N, T.xyz);
-    if (dot(t, t) < 1e-12) return N;
-    t = normalize(t);
-    vec3 b = cross(N, t) * (T.w < 0.0 ? -1.0 : 1.0);
-    return normalize(t * n.x + b * n.y + N * max(n.z, 1e-4));
+    mat3 tbn = preskinTangentFrame(N, T);
+    if (tbn[0] == vec3(0.0)) return N;
+    return normalize(tbn * vec3(n.xy, max(n.z, 1e-4)));
 }
 
 // Index range of the lights this fragment iterates after the directional ones.
@@ -91,38 +89,6 @@ void localLightRange(out uint first, out uint count, out bool indirect) {
         count = frame.lightCounts.x - directional;
         indirect = false;
     }
-}
-
-// Tangent frame of the fragment: tangent, bitangent, normal (glTF: bitangent = cross(N, T) * w).
-mat3 tangentFrame(vec3 N, vec4 T) {
-    vec3 t = T.xyz - N * dot(N, T.xyz);
-    if (dot(t, t) < 1e-12) return mat3(vec3(0.0), vec3(0.0), N);
-    t = normalize(t);
-    return mat3(t, cross(N, t) * (T.w < 0.0 ? -1.0 : 1.0), N);
-}
-
-// Tangent-space normal of the base map plus the optional detail map (whiteout blend). Without
-// explicitLod, the hardware's own level of detail (anisotropic where enabled); with it, level
-// `lod` of the base map and `lod + detailLodOffset` of the detail map.
-vec3 skinNormalTs(vec2 uv, bool explicitLod, float lod, float detailLodOffset) {
-    vec3 base = (explicitLod ? textureLod(normalTexture, uv, lod) : texture(normalTexture, uv)).rgb * 2.0 - 1.0;
-    base.xy *= material.pbr.z;
-    if (material.textureFlags.x > 0.5) {
-        vec2 uvDetail = uv * material.textureFlags.y;
-        vec3 detail = (explicitLod ? textureLod(detailNormalTexture, uvDetail, lod + detailLodOffset)
-                                   : texture(detailNormalTexture, uvDetail)).rgb * 2.0 - 1.0;
-        detail.xy *= material.skinNormalLodBias.w;
-        base = vec3(base.xy + detail.xy, base.z * detail.z);
-    }
-    base.z = max(base.z, 1e-4);
-    return base;
-}
-
-float skinCurvaturePerM(vec3 geometricN) {
-    uint source = uint(material.skinScatter.y);
-    if (source == 1u) return texture(curvatureTexture, transformUv(material.uv[0], inUv0)).r * material.skinScatter.z;
-    if (source == 2u) return preskinCurvatureFromDerivatives(geometricN, inPositionWs);
-    return inCurvaturePerM;
 }
 
 // One layer's mapping, member by member (glslang stores a buffer struct into a local one of
@@ -170,7 +136,7 @@ void main() {
     // Alpha mask: without MSAA, discard below the cutoff. With MSAA, alpha-to-coverage: alpha
     // sharpened to a one-pixel ramp around the cutoff, so the coverage mask follows the edge.
     float maskCoverage = 1.0;
-    if (kAlphaMode == 1) {
+    if (kAlphaMode == kAlphaMask) {
         float cutoff = material.emissiveAlphaCutoff.w;
         if (kAlphaToCoverage != 0u)
             maskCoverage = clamp((baseColor.a - cutoff) / max(fwidth(baseColor.a), 1e-4) + 0.5, 0.0, 1.0);
@@ -220,26 +186,17 @@ void main() {
         PreskinSkinSurface skin;
         skin.albedo = baseColor.rgb;
         skin.geometricNormal = geometricN;
-        skin.normalSpecular = geometricN;
         if (hasNormalMap) {
-            mat3 tbn = tangentFrame(geometricN, inTangentWs);
-            skin.normalSpecular = normalize(tbn * skinNormalTs(uvNormal, false, 0.0, 0.0));
-            if ((features & kSkinNormalPrefilter) != 0u) {
-                // One level-of-detail query, then three explicit levels: the per-channel biases.
-                float lod = textureQueryLod(normalTexture, uvNormal).y;
-                float detailOffset =
-                    material.textureFlags.x > 0.5
-                        ? textureQueryLod(detailNormalTexture, uvNormal * material.textureFlags.y).y - lod
-                        : 0.0;
-                skin.normalR = normalize(tbn * skinNormalTs(uvNormal, true, lod + material.skinNormalLodBias.r, detailOffset));
-                skin.normalG = normalize(tbn * skinNormalTs(uvNormal, true, lod + material.skinNormalLodBias.g, detailOffset));
-                skin.normalB = normalize(tbn * skinNormalTs(uvNormal, true, lod + material.skinNormalLodBias.b, detailOffset));
-            } else {
-                skin.normalR = skin.normalSpecular;
-                skin.normalG = skin.normalSpecular;
-                skin.normalB = skin.normalSpecular;
-            }
+            PreskinNormalMaps maps;
+            maps.scale = material.pbr.z;
+            maps.hasDetail = material.textureFlags.x > 0.5;
+            maps.detailUvScale = material.textureFlags.y;
+            maps.detailScale = material.skinNormalLodBias.w;
+            maps.lodBias = material.skinNormalLodBias.rgb;
+            preskinSkinNormals(normalTexture, detailNormalTexture, maps, uvNormal, geometricN, inTangentWs, features,
+                               skin.normalSpecular, skin.normalR, skin.normalG, skin.normalB);
         } else {
+            skin.normalSpecular = geometricN;
             skin.normalR = geometricN;
             skin.normalG = geometricN;
             skin.normalB = geometricN;
@@ -247,10 +204,12 @@ void main() {
         N = skin.normalSpecular;
         NoV = max(dot(N, V), 1e-4);
         skin.scatterScale = material.skinScatter.x;
-        skin.curvaturePerMm = skinCurvaturePerM(geometricN) * 0.001 / max(skin.scatterScale, 1e-6);
+        float curvaturePerM = preskinSkinCurvaturePerM(uint(material.skinScatter.y), inCurvaturePerM, curvatureTexture,
+                                                       uvBase, material.skinScatter.z, geometricN, inPositionWs);
+        skin.curvaturePerMm = preskinCurvatureProfilePerMm(curvaturePerM, skin.scatterScale);
         skin.roughness = roughness;
         float specularMap = material.textureFlags.z > 0.5 ? texture(specularTexture, uvBase).r : 1.0;
-        skin.F0 = vec3(0.028 * material.skinSpecular.x * specularMap);
+        skin.F0 = preskinSkinF0(material.skinSpecular.x, specularMap);
         skin.lobes = material.skinSpecular.yzww;
         skin.transmissionTint = material.skinScatter.w * material.skinTransmission.rgb;
         skin.thicknessScale = material.skinTransmission.w;
@@ -270,12 +229,10 @@ void main() {
                 visibility = shadow.visibility;
                 shadowRgb = preskinSkinShadow(skin, profiles, penumbraLut, visibility, shadow.kernelWidthM, L, features);
                 penumbra = shadowRgb;
-                // Thickness from a point moved 2 profile-mm inside along the normal (Jimenez et al.
-                // 2010 shrink): the lit side near the terminator is not a zero-thickness slab.
                 float thicknessM = 0.0;
-                if ((features & kSkinTransmission) != 0u && dot(geometricN, L) < 0.3)  // else no wrap
+                if (preskinTransmissionGate(geometricN, L, features))
                     thicknessM = preskinShadowThickness(shadowMap, frame.shadowClipFromWorld, frame.shadowParams,
-                                                        inPositionWs - geometricN * (0.002 / max(skin.scatterScale, 1e-6)));
+                                                        preskinThicknessPointWs(inPositionWs, geometricN, skin.scatterScale));
                 transmitted += preskinSkinTransmission(skin, profiles, transmittanceLut, L, irradiance, thicknessM,
                                                        features);
             }
@@ -290,12 +247,9 @@ void main() {
         }
         color += transmitted;
         diffuseColor = skin.albedo;
-        vec3 ambientIrradiance = preskinSkinAmbientIrradiance(skin, profiles, shTransferLut, frame.shRadiance, features);
-        vec3 envBrdf = preskinEnvBrdfApprox(skin.F0, roughness, NoV);
-        vec3 R = reflect(-V, skin.normalSpecular);
-        vec3 specularSh = max(preskinShEvaluate(frame.shRadiance, R, PRESKIN_SH_LAMBERT), vec3(0.0)) / PRESKIN_PI;
-        ambientDiffuse = diffuseColor * ambientIrradiance / PRESKIN_PI * (vec3(1.0) - envBrdf) * occlusion;
-        color += ambientDiffuse + specularSh * envBrdf * occlusion;
+        color += preskinSkinAmbient(skin, profiles, shTransferLut, frame.shRadiance, V, features, ambientDiffuse) *
+                 occlusion;
+        ambientDiffuse *= occlusion;
         if (kDebugView == kDebugCurvature) debugColor = curvatureHeat(skin.curvaturePerMm);
         else if (kDebugView == kDebugNormals)
             debugColor = vec3(skin.normalR.x, skin.normalG.y, skin.normalB.z) * 0.5 + 0.5;
@@ -354,6 +308,6 @@ void main() {
     if (kDebugView != kDebugNone) color = debugColor;
 
     color *= (kDebugView == kDebugNone) ? frame.params.x : 1.0;
-    float alpha = kAlphaMode == 2 ? baseColor.a : (kAlphaMode == 1 ? maskCoverage : 1.0);
+    float alpha = kAlphaMode == kAlphaBlend ? baseColor.a : (kAlphaMode == kAlphaMask ? maskCoverage : 1.0);
     outColor = vec4(kOutputMode == kOutputTonemapped ? preskinTonemapNeutral(max(color, vec3(0.0))) : color, alpha);
 }

@@ -13,11 +13,11 @@ layout(set = 0, binding = kBindingFrame) uniform Frame { FrameUniforms frame; };
 layout(std430, set = 0, binding = kBindingInstances) readonly buffer Instances { GpuInstance instances[]; };
 layout(push_constant) uniform Push { DrawPush draw; };
 
-layout(location = 0) in vec3 inPositionOs;
-layout(location = 1) in vec3 inNormalOs;
-layout(location = 2) in vec4 inTangentOs;
-layout(location = 3) in vec2 inUv0;
-layout(location = 4) in float inCurvature;
+layout(location = kAttributePosition) in vec3 inPositionOs;
+layout(location = kAttributeNormal) in vec3 inNormalOs;
+layout(location = kAttributeTangent) in vec4 inTangentOs;
+layout(location = kAttributeUv0) in vec2 inUv0;
+layout(location = kAttributeCurvature) in float inCurvature;
 
 layout(location = 0) out vec3 outPositionWs;
 layout(location = 1) out vec3 outNormalWs;

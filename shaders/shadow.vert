@@ -7,7 +7,7 @@ layout(set = 0, binding = kBindingFrame) uniform Frame { FrameUniforms frame; };
 layout(std430, set = 0, binding = kBindingInstances) readonly buffer Instances { GpuInstance instances[]; };
 layout(push_constant) uniform Push { DrawPush draw; };
 
-layout(location = 0) in vec3 inPositionOs;
+layout(location = kAttributePosition) in vec3 inPositionOs;
 
 void main() {
     vec4 positionWs = instances[draw.indices.x].worldFromObject * vec4(inPositionOs, 1.0);

@@ -1,5 +1,5 @@
 // `preskin bench`: measures the renderer side by side in one run and writes JSON (stdout or
-// --out) and optionally a PNG plot of frame time against light count (--plot).
+// --out); scripts/plot-bench.py draws frame time against light count from it.
 //
 // What it measures, on the bundled head scene (or the scene given) framed as `preskin render`
 // frames it, with the scene's lights plus N scattered ones (scatterLights, --seed):
@@ -49,9 +49,9 @@
 
 #include <fmt/core.h>
 #include <glm/gtc/matrix_transform.hpp>
+#include <nlohmann/json.hpp>
 
 #include <algorithm>
-#include <array>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
@@ -59,10 +59,10 @@
 #include <filesystem>
 #include <fstream>
 #include <limits>
-#include <map>
 #include <memory>
 #include <optional>
 #include <string>
+#include <utility>
 #include <vector>
 
 namespace preskin::cli {
@@ -75,33 +75,19 @@ double secondsSince(Clock::time_point start) { return std::chrono::duration<doub
 
 // ---- JSON output -----------------------------------------------------------------------------
 
+// A streaming front end over nlohmann::ordered_json: the bench writes its results in the order
+// it measures them (keys keep that order); nlohmann serialises them (non-finite numbers: null).
 class JsonWriter {
 public:
-    void beginObject() { open('{'); }
-    void endObject() { close('}'); }
-    void beginArray() { open('['); }
-    void endArray() { close(']'); }
-    void key(std::string_view k) {
-        separate();
-        text_ += quote(k) + ": ";
-        afterKey_ = true;
-    }
-    void number(double v) {
-        separate();
-        text_ += std::isfinite(v) ? fmt::format("{:.6g}", v) : "null";
-    }
-    void integer(uint64_t v) {
-        separate();
-        text_ += fmt::format("{}", v);
-    }
-    void boolean(bool v) {
-        separate();
-        text_ += v ? "true" : "false";
-    }
-    void string(std::string_view v) {
-        separate();
-        text_ += quote(v);
-    }
+    void beginObject() { open(nlohmann::ordered_json::object()); }
+    void endObject() { open_.pop_back(); }
+    void beginArray() { open(nlohmann::ordered_json::array()); }
+    void endArray() { open_.pop_back(); }
+    void key(std::string_view k) { key_ = std::string(k); }
+    void number(double v) { add(v); }
+    void integer(uint64_t v) { add(v); }
+    void boolean(bool v) { add(v); }
+    void string(std::string_view v) { add(std::string(v)); }
     template <typename T>
     void field(std::string_view k, T v) {
         key(k);
@@ -110,43 +96,26 @@ public:
         else if constexpr (std::is_floating_point_v<T>) number(double(v));
         else string(v);
     }
-    const std::string& text() const { return text_; }
+    std::string text() const { return root_.dump(2); }
 
 private:
-    static std::string quote(std::string_view s) {
-        std::string out = "\"";
-        for (char c : s) {
-            if (c == '"' || c == '\\') out += '\\', out += c;
-            else if (static_cast<unsigned char>(c) < 0x20) out += fmt::format("\\u{:04x}", int(c));
-            else out += c;
+    nlohmann::ordered_json& add(nlohmann::ordered_json value) {
+        if (open_.empty()) {
+            root_ = std::move(value);
+            return root_;
         }
-        return out + "\"";
-    }
-    void separate() {
-        if (afterKey_) {
-            afterKey_ = false;
-            return;
+        nlohmann::ordered_json& parent = *open_.back();
+        if (parent.is_array()) {
+            parent.push_back(std::move(value));
+            return parent.back();
         }
-        if (!first_.empty()) {
-            if (!first_.back()) text_ += ",";
-            first_.back() = false;
-            text_ += "\n" + std::string(2 * first_.size(), ' ');
-        }
+        return parent[std::exchange(key_, {})] = std::move(value);
     }
-    void open(char c) {
-        separate();
-        text_ += c;
-        first_.push_back(true);
-    }
-    void close(char c) {
-        const bool empty = first_.back();
-        first_.pop_back();
-        if (!empty) text_ += "\n" + std::string(2 * first_.size(), ' ');
-        text_ += c;
-    }
-    std::string text_;
-    std::vector<bool> first_;
-    bool afterKey_ = false;
+    void open(nlohmann::ordered_json value) { open_.push_back(&add(std::move(value))); }
+
+    nlohmann::ordered_json root_;
+    std::vector<nlohmann::ordered_json*> open_;  // objects and arrays being filled, innermost last
+    std::string key_;
 };
 
 // ---- measurement -----------------------------------------------------------------------------
@@ -154,7 +123,6 @@ private:
 struct BenchOptions {
     std::string scene;
     std::string out;
-    std::string plot;
     uint32_t width = 1280;
     uint32_t height = 720;
     std::string counts = "16,64,256,1024,4096";
@@ -172,6 +140,7 @@ struct BenchOptions {
     bool noLutBake = false;
     bool noVr = false;
     bool noAnimation = false;
+    bool noTechniques = false;
     bool noProfiles = false;
     int profileLutSize = 256;
     std::string animatedScene;
@@ -440,187 +409,6 @@ PerPixel countPerPixel(const RenderedImage& image, const Eye& view, const std::v
     return out;
 }
 
-// ---- plot ----------------------------------------------------------------------------------------
-
-// A 5 x 8 pixel font (rows top to bottom, '#' set; row 7 holds descenders), drawn for this plot.
-const std::map<char, std::array<const char*, 8>>& glyphs() {
-    static const std::map<char, std::array<const char*, 8>> g = {
-        {'0', {" ### ", "#   #", "#  ##", "# # #", "##  #", "#   #", " ### ", "     "}},
-        {'1', {"  #  ", " ##  ", "  #  ", "  #  ", "  #  ", "  #  ", " ### ", "     "}},
-        {'2', {" ### ", "#   #", "    #", "   # ", "  #  ", " #   ", "#####", "     "}},
-        {'3', {"#####", "   # ", "  #  ", "   # ", "    #", "#   #", " ### ", "     "}},
-        {'4', {"   # ", "  ## ", " # # ", "#  # ", "#####", "   # ", "   # ", "     "}},
-        {'5', {"#####", "#    ", "#### ", "    #", "    #", "#   #", " ### ", "     "}},
-        {'6', {"  ## ", " #   ", "#    ", "#### ", "#   #", "#   #", " ### ", "     "}},
-        {'7', {"#####", "    #", "   # ", "  #  ", " #   ", " #   ", " #   ", "     "}},
-        {'8', {" ### ", "#   #", "#   #", " ### ", "#   #", "#   #", " ### ", "     "}},
-        {'9', {" ### ", "#   #", "#   #", " ####", "    #", "   # ", " ##  ", "     "}},
-        {'a', {"     ", "     ", " ### ", "    #", " ####", "#   #", " ####", "     "}},
-        {'b', {"#    ", "#    ", "# ## ", "##  #", "#   #", "#   #", "#### ", "     "}},
-        {'c', {"     ", "     ", " ### ", "#    ", "#    ", "#   #", " ### ", "     "}},
-        {'d', {"    #", "    #", " ## #", "#  ##", "#   #", "#   #", " ####", "     "}},
-        {'e', {"     ", "     ", " ### ", "#   #", "#####", "#    ", " ### ", "     "}},
-        {'f', {"  ## ", " #  #", " #   ", "###  ", " #   ", " #   ", " #   ", "     "}},
-        {'g', {"     ", "     ", " ####", "#   #", "#   #", " ####", "    #", " ### "}},
-        {'h', {"#    ", "#    ", "# ## ", "##  #", "#   #", "#   #", "#   #", "     "}},
-        {'i', {"  #  ", "     ", " ##  ", "  #  ", "  #  ", "  #  ", " ### ", "     "}},
-        {'j', {"   # ", "     ", "  ## ", "   # ", "   # ", "   # ", "#  # ", " ##  "}},
-        {'k', {"#    ", "#    ", "#  # ", "# #  ", "##   ", "# #  ", "#  # ", "     "}},
-        {'l', {" ##  ", "  #  ", "  #  ", "  #  ", "  #  ", "  #  ", " ### ", "     "}},
-        {'m', {"     ", "     ", "## # ", "# # #", "# # #", "#   #", "#   #", "     "}},
-        {'n', {"     ", "     ", "# ## ", "##  #", "#   #", "#   #", "#   #", "     "}},
-        {'o', {"     ", "     ", " ### ", "#   #", "#   #", "#   #", " ### ", "     "}},
-        {'p', {"     ", "     ", "#### ", "#   #", "#   #", "#### ", "#    ", "#    "}},
-        {'q', {"     ", "     ", " ## #", "#  ##", "#   #", " ####", "    #", "    #"}},
-        {'r', {"     ", "     ", "# ## ", "##  #", "#    ", "#    ", "#    ", "     "}},
-        {'s', {"     ", "     ", " ####", "#    ", " ### ", "    #", "#### ", "     "}},
-        {'t', {" #   ", " #   ", "###  ", " #   ", " #   ", " #  #", "  ## ", "     "}},
-        {'u', {"     ", "     ", "#   #", "#   #", "#   #", "#  ##", " ## #", "     "}},
-        {'v', {"     ", "     ", "#   #", "#   #", "#   #", " # # ", "  #  ", "     "}},
-        {'w', {"     ", "     ", "#   #", "#   #", "# # #", "# # #", " # # ", "     "}},
-        {'x', {"     ", "     ", "#   #", " # # ", "  #  ", " # # ", "#   #", "     "}},
-        {'y', {"     ", "     ", "#   #", "#   #", "#   #", " ####", "    #", " ### "}},
-        {'z', {"     ", "     ", "#####", "   # ", "  #  ", " #   ", "#####", "     "}},
-        {'.', {"     ", "     ", "     ", "     ", "     ", " ##  ", " ##  ", "     "}},
-        {',', {"     ", "     ", "     ", "     ", "     ", " ##  ", "  #  ", " #   "}},
-        {':', {"     ", " ##  ", " ##  ", "     ", " ##  ", " ##  ", "     ", "     "}},
-        {'(', {"   # ", "  #  ", " #   ", " #   ", " #   ", "  #  ", "   # ", "     "}},
-        {')', {" #   ", "  #  ", "   # ", "   # ", "   # ", "  #  ", " #   ", "     "}},
-        {'-', {"     ", "     ", "     ", " ### ", "     ", "     ", "     ", "     "}},
-        {'+', {"     ", "  #  ", "  #  ", "#####", "  #  ", "  #  ", "     ", "     "}},
-        {'/', {"    #", "    #", "   # ", "  #  ", " #   ", "#    ", "#    ", "     "}},
-        {'=', {"     ", "     ", "#####", "     ", "#####", "     ", "     ", "     "}},
-        {'%', {"##   ", "##  #", "   # ", "  #  ", " #   ", "#  ##", "   ##", "     "}},
-    };
-    return g;
-}
-
-struct Canvas {
-    uint32_t width;
-    uint32_t height;
-    std::vector<uint8_t> rgba;
-
-    Canvas(uint32_t w, uint32_t h) : width(w), height(h), rgba(size_t(w) * h * 4, 255) {}
-
-    void set(int x, int y, glm::u8vec3 c) {
-        if (x < 0 || y < 0 || x >= int(width) || y >= int(height)) return;
-        uint8_t* p = &rgba[(size_t(y) * width + size_t(x)) * 4];
-        p[0] = c.r;
-        p[1] = c.g;
-        p[2] = c.b;
-        p[3] = 255;
-    }
-    void fill(int x0, int y0, int x1, int y1, glm::u8vec3 c) {
-        for (int y = y0; y <= y1; ++y)
-            for (int x = x0; x <= x1; ++x) set(x, y, c);
-    }
-    // A line `thickness` pixels wide (square brush).
-    void line(double x0, double y0, double x1, double y1, int thickness, glm::u8vec3 c) {
-        const double length = std::max(std::abs(x1 - x0), std::abs(y1 - y0));
-        const int steps = std::max(1, int(std::ceil(length * 2.0)));
-        const int h = thickness / 2;
-        for (int i = 0; i <= steps; ++i) {
-            const double t = double(i) / steps;
-            const int x = int(std::lround(x0 + (x1 - x0) * t));
-            const int y = int(std::lround(y0 + (y1 - y0) * t));
-            fill(x - h, y - h, x - h + thickness - 1, y - h + thickness - 1, c);
-        }
-    }
-    // Text at `scale` pixels per font pixel; returns the width drawn. Unknown characters: a gap.
-    int text(int x, int y, std::string_view s, int scale, glm::u8vec3 c) {
-        const auto& font = glyphs();
-        int cursor = x;
-        for (char ch : s) {
-            auto it = font.find(ch);
-            if (it != font.end())
-                for (int row = 0; row < 8; ++row)
-                    for (int col = 0; col < 5; ++col)
-                        if (it->second[size_t(row)][col] == '#')
-                            fill(cursor + col * scale, y + row * scale, cursor + (col + 1) * scale - 1,
-                                 y + (row + 1) * scale - 1, c);
-            cursor += 6 * scale;
-        }
-        return cursor - x;
-    }
-    static int textWidth(std::string_view s, int scale) { return int(s.size()) * 6 * scale; }
-};
-
-struct Curve {
-    std::string label;
-    glm::u8vec3 color;
-    std::vector<std::pair<double, double>> points;  // (lights, ms)
-};
-
-// Frame time against light count, both axes logarithmic.
-void writePlot(const std::filesystem::path& path, const std::string& title, const std::vector<Curve>& curves) {
-    Canvas c(1000, 640);
-    const int left = 110, right = 40, top = 70, bottom = 90;
-    const int x0 = left, x1 = int(c.width) - right, y0 = int(c.height) - bottom, y1 = top;
-    double nMin = std::numeric_limits<double>::max(), nMax = 0.0, tMin = std::numeric_limits<double>::max(), tMax = 0.0;
-    for (const Curve& curve : curves)
-        for (const auto& [n, t] : curve.points) {
-            nMin = std::min(nMin, n);
-            nMax = std::max(nMax, n);
-            tMin = std::min(tMin, t);
-            tMax = std::max(tMax, t);
-        }
-    if (!(nMax > 0.0) || !(tMax > 0.0)) return;
-    const double lx0 = std::log2(nMin) - 0.25, lx1 = std::log2(std::max(nMax, nMin * 2.0)) + 0.25;
-    const double ly0 = std::floor(std::log10(tMin)), ly1 = std::max(std::ceil(std::log10(tMax)), ly0 + 1.0);
-    auto px = [&](double n) { return x0 + (std::log2(n) - lx0) / (lx1 - lx0) * (x1 - x0); };
-    auto py = [&](double t) { return y0 - (std::log10(t) - ly0) / (ly1 - ly0) * (y0 - y1); };
-    const glm::u8vec3 ink(30, 30, 30), grid(222, 222, 222), minor(238, 238, 238);
-
-    // Grid and ticks: y at 1, 2, 5 per decade; x at every measured count.
-    for (double decade = ly0; decade <= ly1; decade += 1.0)
-        for (double m : {1.0, 2.0, 5.0}) {
-            const double t = m * std::pow(10.0, decade);
-            if (std::log10(t) > ly1 + 1e-9) continue;
-            const int y = int(std::lround(py(t)));
-            c.line(x0, y, x1, y, 1, m == 1.0 ? grid : minor);
-            c.line(x0 - 6, y, x0, y, 1, ink);
-            const std::string label = t >= 1.0 ? fmt::format("{:.0f}", t) : fmt::format("{:g}", t);
-            c.text(x0 - 12 - Canvas::textWidth(label, 2), y - 8, label, 2, ink);
-        }
-    std::vector<double> ticks;
-    for (const Curve& curve : curves)
-        for (const auto& point : curve.points) ticks.push_back(point.first);
-    std::sort(ticks.begin(), ticks.end());
-    ticks.erase(std::unique(ticks.begin(), ticks.end()), ticks.end());
-    for (double n : ticks) {
-        const int x = int(std::lround(px(n)));
-        c.line(x, y0, x, y1, 1, minor);
-        c.line(x, y0, x, y0 + 6, 1, ink);
-        const std::string label = fmt::format("{:.0f}", n);
-        c.text(x - Canvas::textWidth(label, 2) / 2, y0 + 12, label, 2, ink);
-    }
-    c.line(x0, y0, x1, y0, 2, ink);
-    c.line(x0, y0, x0, y1, 2, ink);
-    c.text(x0 + (x1 - x0) / 2 - Canvas::textWidth("lights", 2) / 2, y0 + 44, "lights", 2, ink);
-    c.text(x0 - 90, y1 - 40, "frame time, ms (median wall, log scale)", 2, ink);
-    c.text(x0 + (x1 - x0) / 2 - Canvas::textWidth(title, 2) / 2, 12, title, 2, ink);
-
-    int legendY = y1 + 14;
-    for (const Curve& curve : curves) {
-        for (size_t i = 0; i + 1 < curve.points.size(); ++i)
-            c.line(px(curve.points[i].first), py(curve.points[i].second), px(curve.points[i + 1].first),
-                   py(curve.points[i + 1].second), 3, curve.color);
-        for (const auto& [n, t] : curve.points) {
-            const int x = int(std::lround(px(n))), y = int(std::lround(py(t)));
-            c.fill(x - 4, y - 4, x + 4, y + 4, curve.color);
-        }
-        c.fill(x0 + 20, legendY + 4, x0 + 50, legendY + 9, curve.color);
-        c.text(x0 + 60, legendY, curve.label, 2, ink);
-        legendY += 24;
-    }
-    RenderedImage image;
-    image.width = c.width;
-    image.height = c.height;
-    image.encoding = OutputEncoding::DisplaySrgb8;
-    image.rgba8 = std::move(c.rgba);
-    writeImage(path, image);
-}
-
 // ---- the command ---------------------------------------------------------------------------------
 
 std::vector<uint32_t> parseCounts(const std::string& text, const char* flag) {
@@ -757,7 +545,6 @@ void run(const BenchOptions& o) {
     const auto started = Clock::now();
     const std::vector<uint32_t> counts = parseCounts(o.counts, "--counts");
     const std::vector<uint32_t> skinCounts = o.noSkin ? std::vector<uint32_t>{} : parseCounts(o.skinCounts, "--skin-counts");
-    if (!o.plot.empty()) checkOutputPath(o.plot, OutputEncoding::DisplaySrgb8);
     if (!o.out.empty()) checkOutputFile(o.out, "--out");
 
     CommonOptions common;
@@ -994,6 +781,56 @@ void run(const BenchOptions& o) {
             j.endObject();
         }
         j.endArray();
+
+        // What each technique costs: the skin frame with one technique off at a time, beside the
+        // frame with all on, the standard material and all off, interleaved (first skin count).
+        if (!o.noTechniques) {
+            const uint32_t n = skinCounts.front();
+            CommonOptions withLights = common;
+            withLights.lights = n;
+            withLights.seed = o.seed;
+            const std::vector<Light> lights = sceneLights(scene, withLights);
+            struct Technique {
+                const char* name;
+                bool SkinFeatures::*flag;
+            };
+            const Technique techniques[] = {{"lut_diffuse", &SkinFeatures::lutDiffuse},
+                                            {"normal_prefilter", &SkinFeatures::normalPrefilter},
+                                            {"penumbra", &SkinFeatures::penumbra},
+                                            {"sh_ambient", &SkinFeatures::shAmbient},
+                                            {"transmission", &SkinFeatures::transmission},
+                                            {"dual_specular", &SkinFeatures::dualSpecular}};
+            std::vector<Config> configs{{&renderer, base, fmt::format("{} lights, skin", n), 0.0},
+                                        {&standardRenderer, base, fmt::format("{} lights, standard material", n), 0.0}};
+            for (const Technique& t : techniques) {
+                RenderSettings without = base;
+                without.skin.*t.flag = false;
+                configs.push_back({&renderer, without, fmt::format("{} lights, skin without {}", n, t.name), 0.0});
+            }
+            const std::vector<Measurement> measured = bench.measure(configs, lights);
+            j.key("skin_techniques");
+            j.beginObject();
+            j.field("lights", n);
+            j.field("method",
+                    "each technique's cost: the all-on skin frame minus the frame with that technique off (its "
+                    "standard fallback on), interleaved; wall and forward-pass GPU ms");
+            j.key("skin");
+            writeMeasurement(j, measured[0]);
+            j.key("standard_material");
+            writeMeasurement(j, measured[1]);
+            j.key("cost_ms");
+            j.beginObject();
+            for (size_t i = 0; i < std::size(techniques); ++i) {
+                j.key(techniques[i].name);
+                j.beginObject();
+                j.field("wall", measured[0].wallMs() - measured[2 + i].wallMs());
+                j.field("forward_gpu", measured[0].passMs("forward") - measured[2 + i].passMs("forward"));
+                j.endObject();
+            }
+            j.endObject();
+            j.field("skin_over_standard", measured[0].wallMs() / measured[1].wallMs());
+            j.endObject();
+        }
     } else if (!skinCounts.empty()) {
         fmt::print(stderr, "preskin bench: the scene has no skin material; skipping skin vs standard\n");
     }
@@ -1297,22 +1134,6 @@ void run(const BenchOptions& o) {
     if (o.out.empty()) std::fwrite(json.data(), 1, json.size(), stdout);
     else writeText(o.out, json);
 
-    if (!o.plot.empty()) {
-        std::vector<Curve> curves;
-        Curve clusteredCurve{"clustered", {40, 110, 200}, {}};
-        Curve bruteCurve{"brute force (every light)", {215, 80, 40}, {}};
-        for (const Row& row : rows) {
-            if (row.lights == 0) continue;  // no place on a log axis
-            clusteredCurve.points.emplace_back(row.lights, row.clustered.wallMs());
-            if (row.brute) bruteCurve.points.emplace_back(row.lights, row.brute->wallMs());
-        }
-        curves.push_back(clusteredCurve);
-        if (!bruteCurve.points.empty()) curves.push_back(bruteCurve);
-        std::string title = fmt::format("preskin bench: {}x{}, {}", o.width, o.height, context->deviceName());
-        for (char& ch : title) ch = static_cast<char>(std::tolower(static_cast<unsigned char>(ch)));
-        writePlot(o.plot, title, curves);
-        fmt::print(stderr, "preskin bench: wrote {}\n", o.plot);
-    }
     if (!o.out.empty()) fmt::print(stderr, "preskin bench: wrote {}\n", o.out);
 }
 
@@ -1324,7 +1145,6 @@ void addBenchCommand(CLI::App& app) {
         "bench", "Measure clustered vs brute-force lighting, the light grid, skin vs standard and the LUT bake (JSON)");
     cmd->add_option("scene", o->scene, "glTF scene; default: the bundled head scene");
     cmd->add_option("--out,-o", o->out, "Write the JSON here instead of stdout");
-    cmd->add_option("--plot", o->plot, "Also write a PNG plot of frame time against light count");
     cmd->add_option("--width", o->width, "Image width in pixels")->capture_default_str()->check(wholeNumberIn(1, 16384));
     cmd->add_option("--height", o->height, "Image height in pixels")->capture_default_str()->check(wholeNumberIn(1, 16384));
     cmd->add_option("--counts", o->counts, "Scattered light counts, comma-separated")->capture_default_str();
@@ -1352,6 +1172,7 @@ void addBenchCommand(CLI::App& app) {
     cmd->add_flag("--no-per-pixel", o->noPerPixel, "Skip lights listed per pixel vs exact");
     cmd->add_flag("--no-lut-bake", o->noLutBake, "Skip timing the LUT bake");
     cmd->add_flag("--no-vr", o->noVr, "Skip stereo vs two mono frames, the stereo light grid and MSAA 4x vs 1x");
+    cmd->add_flag("--no-techniques", o->noTechniques, "Skip the skin frame with each technique off in turn");
     cmd->add_flag("--no-animation", o->noAnimation, "Skip the deformation and curvature passes of an animated scene");
     cmd->add_flag("--no-profiles", o->noProfiles,
                   "Skip the diffusion-profile figures (one bake, 64 cached profiles, 8 profiles in view)");

@@ -96,6 +96,13 @@ View applyStereoOptions(const View& mono, const StereoOptions& o) {
 
 std::filesystem::path dataDir() {
     if (const char* env = std::getenv("PRESKIN_DATA_DIR"); env && *env) return env;
+    // An installed tool: <prefix>/bin/preskin finds <prefix>/share/preskin.
+    std::error_code ec;
+    const std::filesystem::path exe = std::filesystem::read_symlink("/proc/self/exe", ec);
+    if (!ec) {
+        const std::filesystem::path installed = (exe.parent_path() / PRESKIN_BIN_TO_DATA).lexically_normal();
+        if (std::filesystem::is_regular_file(installed / "luts" / "manifest.json", ec)) return installed;
+    }
     return PRESKIN_SOURCE_DIR;
 }
 

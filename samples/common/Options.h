@@ -53,8 +53,8 @@ void addCommonOptions(CLI::App& cmd, CommonOptions& o);
 // Scene::load with the options' SceneLoadOptions.
 Scene loadScene(const std::filesystem::path& path, const CommonOptions& o);
 
-// The bundled sample scene (samples/assets/head/head.gltf of the source tree, or of
-// $PRESKIN_DATA_DIR when set).
+// Where the tools find LUTs, shaders and the bundled sample scene: $PRESKIN_DATA_DIR when set,
+// else <prefix>/share/preskin for an installed tool, else the source tree.
 std::filesystem::path dataDir();
 std::filesystem::path defaultScenePath();
 std::filesystem::path defaultAnimatedScenePath();  // the bundled animated head

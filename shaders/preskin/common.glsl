@@ -2,7 +2,9 @@
 #ifndef PRESKIN_COMMON_GLSL
 #define PRESKIN_COMMON_GLSL
 
-const float PRESKIN_PI = 3.14159265358979323846;
+#include "shared/constants.h"
+
+const float PRESKIN_PI = kPi;
 
 float preskinSaturate(float x) { return clamp(x, 0.0, 1.0); }
 vec3 preskinSaturate(vec3 x) { return clamp(x, vec3(0.0), vec3(1.0)); }

@@ -1,9 +1,11 @@
 // preskin/lights.glsl: punctual lights as in KHR_lights_punctual: inverse-square falloff with
-// the extension's recommended smooth range window, and its spot cone attenuation.
+// the extension's recommended smooth range window, and its spot cone attenuation. Stands alone:
+// it needs only the GpuLight struct of shared/light.h, not the renderer's bindings.
+// Limits: no area lights; the range window follows the extension's recommendation, not physics.
 #ifndef PRESKIN_LIGHTS_GLSL
 #define PRESKIN_LIGHTS_GLSL
 
-#include "shared/gpu_types.h"
+#include "shared/light.h"
 
 // Direction to the light (L) and irradiance normal to it at positionWs.
 void preskinLightIncidence(GpuLight light, vec3 positionWs, out vec3 L, out vec3 irradiance) {

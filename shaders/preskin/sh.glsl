@@ -7,18 +7,18 @@
 
 #include "preskin/common.glsl"
 
-const vec3 PRESKIN_SH_LAMBERT = vec3(PRESKIN_PI, 2.0 * PRESKIN_PI / 3.0, PRESKIN_PI / 4.0);
+const vec3 PRESKIN_SH_LAMBERT = vec3(kShLambert0, kShLambert1, kShLambert2);
 
 void preskinShBasis(vec3 d, out float y[9]) {
-    y[0] = 0.282095;
-    y[1] = 0.488603 * d.y;
-    y[2] = 0.488603 * d.z;
-    y[3] = 0.488603 * d.x;
-    y[4] = 1.092548 * d.x * d.y;
-    y[5] = 1.092548 * d.y * d.z;
-    y[6] = 0.315392 * (3.0 * d.z * d.z - 1.0);
-    y[7] = 1.092548 * d.x * d.z;
-    y[8] = 0.546274 * (d.x * d.x - d.y * d.y);
+    y[0] = kShY00;
+    y[1] = kShY1 * d.y;
+    y[2] = kShY1 * d.z;
+    y[3] = kShY1 * d.x;
+    y[4] = kShY2 * d.x * d.y;
+    y[5] = kShY2 * d.y * d.z;
+    y[6] = kShY20 * (3.0 * d.z * d.z - 1.0);
+    y[7] = kShY2 * d.x * d.z;
+    y[8] = kShY22 * (d.x * d.x - d.y * d.y);
 }
 
 // sum_lm bandScale_l * L_lm * Y_lm(d), one scalar band scale per band.

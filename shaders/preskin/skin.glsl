@@ -21,10 +21,10 @@
 // standard equivalent, so with no bits set this equals the standard dielectric BRDF.
 //
 // Inputs are in world units (metres) except where named; the material's scatter scale
-// converts them to profile millimetres. Needs: preskin/brdf.glsl, preskin/lut.glsl,
-// preskin/sh.glsl and the four LUT array samplers with the fragment's profile mix
-// (PreskinProfileMix; preskinSingleProfile for one profile; see README, "Skin in your own
-// forward shader").
+// converts them to profile millimetres. Includes preskin/brdf.glsl, preskin/lut.glsl,
+// preskin/sh.glsl and preskin/skin_surface.glsl (building the surface from a host's textures);
+// needs the four LUT array samplers and the fragment's profile mix (PreskinProfileMix of
+// preskin/lut.glsl; preskinSingleProfile for one profile; see README, "Embedding").
 // Limits: curvature and thickness are scalar per fragment; transmission only for the light that
 // owns the shadow map; the ring model assumes locally spherical geometry (Penner).
 #ifndef PRESKIN_SKIN_GLSL
@@ -33,8 +33,8 @@
 #include "preskin/brdf.glsl"
 #include "preskin/lut.glsl"
 #include "preskin/sh.glsl"
+#include "preskin/skin_surface.glsl"
 #include "shared/skin_features.h"
-
 
 struct PreskinSkinSurface {
     vec3 albedo;             // linear diffuse colour
@@ -110,7 +110,7 @@ vec3 preskinSkinShadow(PreskinSkinSurface s, PreskinProfileMix m, sampler2DArray
 // map (metres), T(thickness) from the profile, wrap saturate(0.3 - NoL) (Jimenez et al. 2010).
 vec3 preskinSkinTransmission(PreskinSkinSurface s, PreskinProfileMix m, sampler2DArray transmittanceLut, vec3 L,
                              vec3 irradiance, float thicknessM, uint features) {
-    float wrap = preskinSaturate(0.3 - dot(s.geometricNormal, L));
+    float wrap = preskinSaturate(kSkinTransmissionWrap - dot(s.geometricNormal, L));
     if ((features & kSkinTransmission) == 0u || wrap <= 0.0) return vec3(0.0);
     float thicknessMm = thicknessM * 1000.0 * s.thicknessScale * s.scatterScale;
     vec3 T = preskinTransmittanceLut(m, transmittanceLut, thicknessMm);
@@ -137,11 +137,19 @@ vec3 preskinSkinAmbientIrradiance(PreskinSkinSurface s, PreskinProfileMix m, sam
                vec3(0.0));
 }
 
-// Curvature in 1/m from screen-space derivatives (Penner's fallback: constant per triangle).
-float preskinCurvatureFromDerivatives(vec3 normalWs, vec3 positionWs) {
-    float dn = length(fwidth(normalWs));
-    float dp = length(fwidth(positionWs));
-    return dp > 0.0 ? dn / dp : 0.0;
+// Ambient light of the environment's L2 SH radiance: diffuse from the per-channel transfer
+// (preskinSkinAmbientIrradiance times albedo / pi, less what the specular takes) plus specular
+// from the cosine-convolved SH in the reflection direction, weighted by Karis's analytic split-sum
+// environment BRDF. diffuseOut: the diffuse part alone. Multiply both by ambient occlusion.
+vec3 preskinSkinAmbient(PreskinSkinSurface s, PreskinProfileMix m, sampler2DArray shTransferLut, vec4 sh[9], vec3 V,
+                        uint features, out vec3 diffuseOut) {
+    float NoV = max(dot(s.normalSpecular, V), 1e-4);
+    vec3 envBrdf = preskinEnvBrdfApprox(s.F0, s.roughness, NoV);
+    vec3 R = reflect(-V, s.normalSpecular);
+    vec3 specularSh = max(preskinShEvaluate(sh, R, PRESKIN_SH_LAMBERT), vec3(0.0)) / PRESKIN_PI;
+    diffuseOut = s.albedo * preskinSkinAmbientIrradiance(s, m, shTransferLut, sh, features) / PRESKIN_PI *
+                 (vec3(1.0) - envBrdf);
+    return diffuseOut + specularSh * envBrdf;
 }
 
 #endif

@@ -4,6 +4,8 @@
 #define PRESKIN_SHARED_GPU_TYPES_H
 
 #include "shared/common.h"
+#include "shared/constants.h"
+#include "shared/light.h"
 #include "shared/lut_mapping.h"
 #include "shared/skin_features.h"
 
@@ -39,8 +41,8 @@ PRESKIN_CONST(uint, kMaterialTextureCount, 9)
 // ---- specialization constants of forward.frag ------------------------------------------------
 PRESKIN_CONST(uint, kSpecMaterialModel, 0)  // kModelStandard or kModelSkin
 PRESKIN_CONST(uint, kSpecOutputMode, 1)     // kOutputLinear or kOutputTonemapped
-PRESKIN_CONST(uint, kSpecDebugView, 2)      // kDebug*
-PRESKIN_CONST(uint, kSpecAlphaMode, 3)      // 0 opaque, 1 mask, 2 blend
+PRESKIN_CONST(uint, kSpecDebugView, 2)      // kDebug* (shared/constants.h)
+PRESKIN_CONST(uint, kSpecAlphaMode, 3)      // kAlphaOpaque, kAlphaMask, kAlphaBlend (shared/constants.h)
 PRESKIN_CONST(uint, kSpecSkinFeatures, 4)   // bit mask of kSkin* (shared/skin_features.h)
 PRESKIN_CONST(uint, kSpecLightLoop, 5)      // kLightLoopClustered or kLightLoopAll
 PRESKIN_CONST(uint, kSpecAlphaToCoverage, 6)  // 1: alpha-mask coverage from alpha (MSAA), 0: discard
@@ -52,28 +54,6 @@ PRESKIN_CONST(uint, kOutputTonemapped, 1)
 PRESKIN_CONST(uint, kLightLoopAll, 0)
 PRESKIN_CONST(uint, kLightLoopClustered, 1)
 
-
-PRESKIN_CONST(uint, kDebugNone, 0)
-PRESKIN_CONST(uint, kDebugCurvature, 1)
-PRESKIN_CONST(uint, kDebugNormals, 2)
-PRESKIN_CONST(uint, kDebugShadow, 3)
-PRESKIN_CONST(uint, kDebugPenumbra, 4)
-PRESKIN_CONST(uint, kDebugLightCount, 5)
-PRESKIN_CONST(uint, kDebugShAmbient, 6)
-PRESKIN_CONST(uint, kDebugTransmission, 7)
-
-PRESKIN_CONST(uint, kLightDirectional, 0)
-PRESKIN_CONST(uint, kLightPoint, 1)
-PRESKIN_CONST(uint, kLightSpot, 2)
-
-// One punctual light. Directional lights are not clustered; they are evaluated for every pixel.
-struct GpuLight {
-    vec4 positionRange;      // xyz position (world, m), w range (m); 0 = unlimited
-    vec4 directionType;      // xyz direction the light travels (world), w type (kLight*)
-    vec4 colorIntensity;     // rgb linear colour * intensity (lux or candela), w shadow index (-1: none)
-    vec4 spotScaleOffset;    // x,y: KHR_lights_punctual cone attenuation scale and offset
-};
-PRESKIN_CHECK_SIZE(GpuLight, 64)
 
 struct GpuInstance {
     mat4 worldFromObject;
@@ -118,7 +98,7 @@ struct MaterialUniforms {
     vec4 baseColorFactor;
     vec4 emissiveAlphaCutoff;  // rgb emissive factor (strength applied), w alpha cutoff
     vec4 pbr;                  // x metallic, y roughness, z normal scale, w occlusion strength
-    vec4 skinScatter;          // x scatter scale, y curvature source (0 vertex,1 texture,2 derivatives),
+    vec4 skinScatter;          // x scatter scale, y curvature source (kCurvatureSource*),
                                // z curvature texture scale (1/m), w transmission strength
     vec4 skinNormalLodBias;    // rgb LOD bias per channel, w detail normal scale
     vec4 skinTransmission;     // rgb transmission colour, w thickness scale

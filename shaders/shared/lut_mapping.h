@@ -69,24 +69,4 @@ PRESKIN_LUT_FN vec2 preskinTransmittanceLutUv(LutMapping m, float thicknessMm) {
 
 PRESKIN_GPU_END
 
-#ifdef __cplusplus
-#include <preskin/Export.h>
-
-namespace preskin {
-class LutSet;
-// Texture extents (texels) that hold a set's tables, per table; 0: the table's own size. A
-// table smaller than its texture sits at texel (0, 0), padded with copies of its edge texels.
-struct LutExtents {
-    glm::ivec2 diffuse{0};
-    glm::ivec2 penumbra{0};
-    glm::ivec2 shTransfer{0};
-    glm::ivec2 transmittance{0};
-};
-// Fills the mapping for a baked or loaded set (the same numbers its CPU lookups use).
-PRESKIN_API gpu::LutMapping lutMapping(const LutSet& luts);
-// The same for the set's tables held in larger (padded) textures.
-PRESKIN_API gpu::LutMapping lutMapping(const LutSet& luts, const LutExtents& extents);
-}  // namespace preskin
-#endif
-
 #endif

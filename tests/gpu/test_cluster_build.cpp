@@ -39,7 +39,7 @@ View testView() {
 // Lists from the renderer's builder for `lights` (directional ones first, as the renderer orders them).
 ClusterGrid buildLists(Context& context, ClusterSettings settings, ClusterBuild build, const View& view,
                        const std::vector<Light>& lights) {
-    const vk::Device& device = context.core();
+    const vk::Device& device = ContextAccess::core(context);
     std::vector<gpu::GpuLight> gpuLights;
     uint32_t firstLocal = 0;
     for (const Light& l : lights) {

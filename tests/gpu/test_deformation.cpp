@@ -34,7 +34,7 @@ const std::string kTube = std::string(PRESKIN_SOURCE_DIR) + "/samples/assets/tub
 
 // The deformer's output for a pose: every deformed vertex of instance 0, in mesh order.
 std::vector<Vertex> gpuDeform(Context& context, const Scene& scene, const ScenePose& pose) {
-    const vk::Device& device = context.core();
+    const vk::Device& device = ContextAccess::core(context);
     GpuScene gpuScene(device, scene);
     GpuDeformer deformer(device, scene, gpuScene.vertices, gpuScene.meshFirstVertex);
     deformer.check(pose);

@@ -52,13 +52,13 @@ TEST_F(DrawMerging, RunsOfOneMaterialAreOneDrawAndLookTheSame) {
     const Scene reference = rowOfQuads(kQuads, {red, blended, red}, [](uint32_t i) { return i == 3 ? 1 : int(i % 2) * 2; });
 
     {
-        const GpuScene gpu(context().core(), merged);
+        const GpuScene gpu(ContextAccess::core(context()), merged);
         ASSERT_EQ(gpu.draws.size(), 6u);  // 3 per instance
         EXPECT_EQ(gpu.draws[0].indexCount, 3u * 24u);
         EXPECT_EQ(gpu.draws[1].indexCount, 24u);
         EXPECT_EQ(gpu.draws[2].indexCount, 2u * 24u);
         EXPECT_EQ(gpu.draws[3].instance, 1u);
-        const GpuScene separate(context().core(), reference);
+        const GpuScene separate(ContextAccess::core(context()), reference);
         EXPECT_EQ(separate.draws.size(), 2u * kQuads);
     }
 

@@ -189,11 +189,12 @@ TEST_F(LutGpu, GlslLookupsMatchCpuLookups) {
 
     const LutSet larger = LutSet::bake(DiffusionProfile::burley({0.8, 0.5, 0.4}, {1.0, 0.4, 0.25}),
                                        LutBakeSettings::withSize(luts.diffuse().width() + 44));
+    const vk::Device& device = ContextAccess::core(context());
     for (const bool padded : {false, true}) {
         SCOPED_TRACE(padded ? "layer 1, padded" : "one layer");
-        const std::vector<glm::vec3> gpuResults = padded ? runOnGpu(context().core(), {&larger, &luts}, 1, lookups)
-                                                         : runOnGpu(context().core(), {&luts}, 0, lookups);
-        const uint32_t bits = context().core().properties().limits.subTexelPrecisionBits;
+        const std::vector<glm::vec3> gpuResults = padded ? runOnGpu(device, {&larger, &luts}, 1, lookups)
+                                                         : runOnGpu(device, {&luts}, 0, lookups);
+        const uint32_t bits = device.properties().limits.subTexelPrecisionBits;
         ASSERT_GE(bits, 4u) << "Vulkan requires at least 4 sub-texel precision bits";
         const double weightStep = std::ldexp(1.0, -int(bits));
 

@@ -13,7 +13,6 @@
 
 #include <preskin/Renderer.h>
 
-#include <OpenImageIO/imageio.h>
 #include <unistd.h>
 
 #include <algorithm>
@@ -39,29 +38,6 @@ std::string driverFolderName(const std::string& deviceName) {
     }
     while (!folder.empty() && folder.back() == '-') folder.pop_back();
     return folder.empty() ? "unknown" : folder;
-}
-
-// Reads an 8-bit RGBA PNG; empty image on failure (with `error` set).
-RenderedImage readPng(const std::filesystem::path& path, std::string& error) {
-    RenderedImage image;
-    auto input = OIIO::ImageInput::open(path.string());
-    if (!input) {
-        error = OIIO::geterror();
-        return image;
-    }
-    const OIIO::ImageSpec& spec = input->spec();
-    image.width = static_cast<uint32_t>(spec.width);
-    image.height = static_cast<uint32_t>(spec.height);
-    image.encoding = OutputEncoding::DisplaySrgb8;
-    image.rgba8.assign(size_t(image.width) * image.height * 4, 255);
-    std::vector<uint8_t> pixels(size_t(image.width) * image.height * size_t(spec.nchannels));
-    if (!input->read_image(0, 0, 0, spec.nchannels, OIIO::TypeDesc::UINT8, pixels.data())) {
-        error = input->geterror();
-        return {};
-    }
-    for (size_t p = 0; p < size_t(image.width) * image.height; ++p)
-        for (int c = 0; c < std::min(spec.nchannels, 4); ++c) image.rgba8[p * 4 + size_t(c)] = pixels[p * size_t(spec.nchannels) + size_t(c)];
-    return image;
 }
 
 class SkinGolden : public GpuTest {};

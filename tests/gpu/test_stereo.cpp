@@ -237,11 +237,11 @@ TEST_F(Stereo, MultiviewProbeMatchesTheDevice) {
         differing += countAbove(pixelDifferences(eyeImage(stereo, e), renderer.render(View(view.eyes[e]), kWidth, kHeight,
                                                                                       OutputEncoding::DisplaySrgb8)),
                                 0);
-    const bool sound = multiviewClipsEveryView(context().core());
+    const bool sound = multiviewClipsEveryView(ContextAccess::core(context()));
     EXPECT_EQ(differing == 0, sound) << differing << " pixels differ; probe: multiview " << (sound ? "sound" : "unsound");
     renderer.setSettings(RenderSettings{});
     renderer.render(view, 16, 16, OutputEncoding::DisplaySrgb8);
-    const bool layered = context().core().shaderOutputLayer() && !sound;
+    const bool layered = ContextAccess::core(context()).shaderOutputLayer() && !sound;
     EXPECT_EQ(renderer.frameStats().eyeDrawing, layered ? EyeDrawing::InstancedLayers : EyeDrawing::Multiview);
 }
 

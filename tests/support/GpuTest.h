@@ -7,6 +7,8 @@
 
 #include <gtest/gtest.h>
 
+#include "vk/ContextAccess.h"  // ContextAccess::core: the tests reach the Vulkan core
+
 namespace preskin::test {
 
 Context& gpuContext();

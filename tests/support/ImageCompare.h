@@ -20,11 +20,19 @@ inline double srgb255(double linear) {
 
 #include <preskin/Renderer.h>
 
+#include <filesystem>
 #include <string>
 
 namespace preskin::test {
 
 // Writes the image as PNG into $PRESKIN_TEST_OUTPUT (when set) for a person to look at.
 void dumpImage(const std::string& name, const RenderedImage& image);
+
+// Reads an 8-bit PNG as RGBA; empty image on failure (with `error` set).
+RenderedImage readPng(const std::filesystem::path& path, std::string& error);
+
+// Pixels of two equally sized 8-bit images that differ by more than `tolerance` in any channel
+// (RGB); `maxDifference` gets the largest channel difference.
+size_t pixelsDifferingBy(const RenderedImage& a, const RenderedImage& b, int tolerance, int& maxDifference);
 
 }  // namespace preskin::test

@@ -1,6 +1,8 @@
 // Reflection test: the member offsets glslang assigned to every shared GPU struct in the
 // compiled shaders (OpMemberDecorate Offset in the SPIR-V) equal the C++ offsets of the same
 // struct in shaders/shared/*.h, so the two sides can never disagree on a layout.
+#include "shared/cluster_build.h"
+#include "shared/deform.h"
 #include "shared/gpu_types.h"
 
 #include <gtest/gtest.h>
@@ -117,6 +119,39 @@ TEST(GpuLayout, VertexShaderStructsMatchCpp) {
     PRESKIN_EXPECT_MEMBER(l, GpuInstance, params);
     PRESKIN_EXPECT_MEMBER(l, DrawPush, indices);
     PRESKIN_EXPECT_MEMBER(l, EyeUniforms, clipFromWorld);
+}
+
+// The light grid's compute build (cluster_build.comp, both passes in one module).
+TEST(GpuLayout, ClusterBuildStructsMatchCpp) {
+    const Layouts l = reflect(preskin::shaders::spirv("cluster_build.comp"));
+    PRESKIN_EXPECT_MEMBER(l, ClusterBuildParams, viewFromWorld);
+    PRESKIN_EXPECT_MEMBER(l, ClusterBuildParams, dims);
+    PRESKIN_EXPECT_MEMBER(l, ClusterBuildParams, lightInfo);
+    PRESKIN_EXPECT_MEMBER(l, ClusterBuildParams, geometryOffsets);
+    PRESKIN_EXPECT_MEMBER(l, ClusterBuildParams, slack);
+    PRESKIN_EXPECT_MEMBER(l, ClusterBuildParams, slicing);
+    PRESKIN_EXPECT_MEMBER(l, ClusterLightVolume, centerRadius);
+    PRESKIN_EXPECT_MEMBER(l, ClusterLightVolume, apexRange);
+    PRESKIN_EXPECT_MEMBER(l, ClusterLightVolume, axisCos);
+    PRESKIN_EXPECT_MEMBER(l, ClusterLightVolume, box);
+    PRESKIN_EXPECT_MEMBER(l, ClusterCounters, values);
+    PRESKIN_EXPECT_MEMBER(l, GpuLight, positionRange);
+    PRESKIN_EXPECT_MEMBER(l, GpuLight, spotScaleOffset);
+}
+
+// The deformation and curvature compute passes.
+TEST(GpuLayout, DeformationStructsMatchCpp) {
+    const Layouts deform = reflect(preskin::shaders::spirv("deform.comp"));
+    PRESKIN_EXPECT_MEMBER(deform, DeformInfluences, joints0);
+    PRESKIN_EXPECT_MEMBER(deform, DeformInfluences, joints1);
+    PRESKIN_EXPECT_MEMBER(deform, DeformInfluences, weights0);
+    PRESKIN_EXPECT_MEMBER(deform, DeformInfluences, weights1);
+    PRESKIN_EXPECT_MEMBER(deform, DeformPush, vertices);
+    PRESKIN_EXPECT_MEMBER(deform, DeformPush, offsets);
+    const Layouts curvature = reflect(preskin::shaders::spirv("curvature.comp"));
+    PRESKIN_EXPECT_MEMBER(curvature, CurvaturePush, counts);
+    PRESKIN_EXPECT_MEMBER(curvature, CurvaturePush, topology);
+    PRESKIN_EXPECT_MEMBER(curvature, CurvaturePush, scratch);
 }
 
 }  // namespace

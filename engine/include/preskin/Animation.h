@@ -17,8 +17,7 @@
 
 #include <preskin/Export.h>
 
-#include <glm/glm.hpp>
-#include <glm/gtc/quaternion.hpp>
+#include <preskin/Glm.h>
 
 #include <cstdint>
 #include <optional>

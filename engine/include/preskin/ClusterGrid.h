@@ -37,7 +37,7 @@
 #include <preskin/Scene.h>
 #include <preskin/View.h>
 
-#include <glm/glm.hpp>
+#include <preskin/Glm.h>
 
 #include <cmath>
 #include <cstdint>

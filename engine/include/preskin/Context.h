@@ -80,10 +80,8 @@ public:
     std::vector<std::string> validationMessages() const;
     void waitIdle() const;
 
-    // Internal: the Vulkan core used by the rest of the library.
-    vk::Device& core() const { return *device_; }
-
 private:
+    friend struct ContextAccess;  // the library's own access to its Vulkan core
     explicit Context(std::unique_ptr<vk::Device> device);
     std::unique_ptr<vk::Device> device_;
 };

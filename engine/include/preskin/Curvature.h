@@ -22,7 +22,7 @@
 
 #include <preskin/Export.h>
 
-#include <glm/glm.hpp>
+#include <preskin/Glm.h>
 
 #include <cstdint>
 #include <span>

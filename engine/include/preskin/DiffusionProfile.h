@@ -25,7 +25,7 @@
 
 #include <preskin/Export.h>
 
-#include <glm/glm.hpp>
+#include <preskin/Glm.h>
 
 #include <filesystem>
 #include <string>

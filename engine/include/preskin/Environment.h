@@ -9,7 +9,9 @@
 
 #include <preskin/Export.h>
 
-#include <glm/glm.hpp>
+#include <preskin/Glm.h>
+
+#include <shared/constants.h>  // pi and the SH constants, shared with GLSL
 
 #include <array>
 #include <filesystem>
@@ -27,8 +29,8 @@ PRESKIN_API std::array<float, 9> shBasis(const glm::vec3& direction);
 // Lambert's (pi, 2pi/3, pi/4): irradiance).
 PRESKIN_API glm::vec3 evaluateSh(const ShRgb& sh, const glm::vec3& direction,
                                  const glm::vec3& bandScale = glm::vec3(1.0f));
-inline constexpr float kPi = 3.14159265358979323846f;
-inline const glm::vec3 kLambertBands{kPi, 2.0f * kPi / 3.0f, kPi / 4.0f};
+inline constexpr float kPi = gpu::kPi;
+inline const glm::vec3 kLambertBands{gpu::kShLambert0, gpu::kShLambert1, gpu::kShLambert2};
 
 // Linear RGB equirectangular image.
 struct EquirectImage {

@@ -14,7 +14,7 @@
 
 #include <preskin/Export.h>
 
-#include <glm/glm.hpp>
+#include <preskin/Glm.h>
 
 #include <cstdint>
 #include <string>

@@ -112,12 +112,29 @@ struct FrameStats {
     bool clusterBuildGpu = false;    // the light lists came from the compute pass (ClusterSettings::build)
 };
 
+// The host's depth attachment, when `record` should test against and write the host's depth
+// (RenderTarget::depth). It must follow preskin's conventions: reversed Z (1 at the near plane, 0
+// at infinity, compare GREATER_OR_EQUAL) with the view's projections (<preskin/View.h>), one
+// layer per eye, and RenderSettings::msaaSamples samples. Any depth or depth-stencil format the
+// device can render; the stencil is neither read nor written.
+struct DepthTarget {
+    VkImage image = VK_NULL_HANDLE;  // VK_NULL_HANDLE: preskin uses its own depth (cleared each frame)
+    VkImageView view = VK_NULL_HANDLE;
+    VkFormat format = VK_FORMAT_UNDEFINED;
+    VkImageLayout layoutBefore = VK_IMAGE_LAYOUT_UNDEFINED;
+    VkImageLayout layoutAfter = VK_IMAGE_LAYOUT_DEPTH_STENCIL_ATTACHMENT_OPTIMAL;
+    bool load = true;  // keep the host's depth (it drew first); false: clear to the far plane (0)
+};
+
 // Where `record` draws: the host's colour image, in `layoutBefore` on entry and left in
 // `layoutAfter`. An 8-bit UNORM/SRGB format gets tone-mapped output, a float one linear.
 // Eye e of the view lands in array layer e: the image has at least as many layers as the view
 // has eyes and `view` covers layers 0 .. eyes - 1 (a 2D_ARRAY view; a 2D view for one eye), as
 // an OpenXR multiview swapchain image does. With MSAA, preskin renders into its own
 // multisampled image and resolves into this one.
+// Inside a host's frame: `loadColor` keeps what the host drew (preskin draws over it instead of
+// clearing; needs msaaSamples 1 and a defined layoutBefore), and `depth` makes preskin's draws
+// test against the host's depth and write it.
 struct RenderTarget {
     VkImage image = VK_NULL_HANDLE;
     VkImageView view = VK_NULL_HANDLE;
@@ -125,6 +142,8 @@ struct RenderTarget {
     VkExtent2D extent{};
     VkImageLayout layoutBefore = VK_IMAGE_LAYOUT_UNDEFINED;
     VkImageLayout layoutAfter = VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL;
+    bool loadColor = false;
+    DepthTarget depth;
 };
 
 class PRESKIN_API Renderer {
@@ -177,13 +196,16 @@ public:
     RenderedImage render(const View& view, uint32_t width, uint32_t height, OutputEncoding encoding);
     // Embedded: records one frame into the host's command buffer. `frameSlot` (0 or 1) selects
     // the per-frame buffers; the host must not reuse a slot before its previous frame finished.
+    // Recording never waits for the device: attachments that change size (target extent, eye
+    // count, MSAA, shadow-map size) are replaced, and the old ones are destroyed once every slot
+    // that may still use them has been recorded again. Throws preskin::Error on a target it
+    // cannot draw (see RenderTarget) before recording anything.
     void record(VkCommandBuffer cmd, const RenderTarget& target, const View& view, uint32_t frameSlot = 0);
     // Timings of the last finished frame of a slot (reads its timestamp queries).
     FrameStats frameStats(uint32_t frameSlot = 0) const;
 
-    struct Impl;
-
 private:
+    struct Impl;
     std::unique_ptr<Impl> impl_;
 };
 

@@ -16,7 +16,7 @@
 #include <preskin/SkinMaterial.h>
 #include <preskin/SkinProfile.h>
 
-#include <glm/glm.hpp>
+#include <preskin/Glm.h>
 
 #include <cmath>
 #include <cstdint>

@@ -3,7 +3,7 @@
 // or set by the host / CLI (--skin). Skin textures use TEXCOORD_0 without KHR_texture_transform.
 #pragma once
 
-#include <glm/glm.hpp>
+#include <preskin/Glm.h>
 
 #include <optional>
 #include <string>

@@ -6,7 +6,7 @@
 #include <preskin/Export.h>
 #include <preskin/Scene.h>
 
-#include <glm/glm.hpp>
+#include <preskin/Glm.h>
 
 namespace preskin {
 

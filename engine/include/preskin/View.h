@@ -10,7 +10,7 @@
 #include <preskin/Export.h>
 #include <preskin/Scene.h>
 
-#include <glm/glm.hpp>
+#include <preskin/Glm.h>
 
 #include <cstdint>
 #include <vector>

@@ -19,15 +19,16 @@
 namespace preskin {
 
 std::array<float, 9> shBasis(const glm::vec3& d) {
-    return {0.282095f,
-            0.488603f * d.y,
-            0.488603f * d.z,
-            0.488603f * d.x,
-            1.092548f * d.x * d.y,
-            1.092548f * d.y * d.z,
-            0.315392f * (3.0f * d.z * d.z - 1.0f),
-            1.092548f * d.x * d.z,
-            0.546274f * (d.x * d.x - d.y * d.y)};
+    using namespace gpu;  // the basis constants of shared/constants.h, as preskin/sh.glsl uses them
+    return {kShY00,
+            kShY1 * d.y,
+            kShY1 * d.z,
+            kShY1 * d.x,
+            kShY2 * d.x * d.y,
+            kShY2 * d.y * d.z,
+            kShY20 * (3.0f * d.z * d.z - 1.0f),
+            kShY2 * d.x * d.z,
+            kShY22 * (d.x * d.x - d.y * d.y)};
 }
 
 glm::vec3 evaluateSh(const ShRgb& sh, const glm::vec3& direction, const glm::vec3& bandScale) {

@@ -1,8 +1,9 @@
 // Frame ordering of the sample renderer (see <preskin/Renderer.h>):
-//   shadow pass (directional light, depth only) -> light clustering (compute) -> forward pass.
+//   deformation -> curvature -> shadow pass (ShadowPass.cpp) -> light clustering (compute)
+//   -> forward pass (ForwardPass.cpp); the per-frame data and the public API.
 // Per-frame data (uniforms, lights, cluster lists, timestamps) lives in two slots so a host can
 // keep one frame in flight while recording the next.
-#include <preskin/Renderer.h>
+#include "render/RendererImpl.h"
 
 #include <preskin/ClusterGrid.h>
 #include <preskin/Error.h>
@@ -18,6 +19,7 @@
 #include "render/PoseBounds.h"
 #include "shared/gpu_types.h"
 #include "vk/Check.h"
+#include "vk/ContextAccess.h"
 #include "vk/Pipeline.h"
 #include "vk/Resources.h"
 
@@ -44,27 +46,10 @@ namespace preskin {
 
 namespace {
 
-constexpr VkFormat kDepthFormat = VK_FORMAT_D32_SFLOAT;
-constexpr uint32_t kSlotCount = 2;
-// start, after deformation, after curvature, after shadow, after clustering, after forward
-constexpr uint32_t kQueryCount = 6;
-
 std::span<const uint32_t> builtinShader(const char* name) {
     auto code = shaders::spirv(name);
     if (code.empty()) throw Error(fmt::format("internal: shader {} is not compiled into the library", name));
     return code;
-}
-
-bool isDisplayFormat(VkFormat format) {
-    switch (format) {
-    case VK_FORMAT_R8G8B8A8_UNORM:
-    case VK_FORMAT_R8G8B8A8_SRGB:
-    case VK_FORMAT_B8G8R8A8_UNORM:
-    case VK_FORMAT_B8G8R8A8_SRGB:
-    case VK_FORMAT_A2B10G10R10_UNORM_PACK32:
-    case VK_FORMAT_A2R10G10B10_UNORM_PACK32: return true;
-    default: return false;
-    }
 }
 
 // Index of the light that gets the shadow map: the first directional light flagged castsShadow
@@ -75,39 +60,21 @@ int shadowLightIndex(const std::vector<Light>& lights) {
     return -1;
 }
 
-// Orthographic light matrix around the scene's bounding sphere (depth 0 near .. 1 far).
-glm::mat4 shadowMatrix(const Bounds& bounds, const glm::vec3& direction, float& radiusOut) {
-    const glm::vec3 c = bounds.empty() ? glm::vec3(0.0f) : bounds.center();
-    const float r = bounds.empty() ? 1.0f : std::max(0.5f * glm::length(bounds.extent()), 1e-4f);
-    const glm::vec3 d = glm::normalize(direction);
-    const glm::vec3 helper = std::abs(d.y) < 0.99f ? glm::vec3(0.0f, 1.0f, 0.0f) : glm::vec3(1.0f, 0.0f, 0.0f);
-    const glm::vec3 right = glm::normalize(glm::cross(helper, d));
-    const glm::vec3 up = glm::cross(d, right);
-    glm::mat4 m(0.0f);  // m[col][row]
-    for (int i = 0; i < 3; ++i) {
-        m[i][0] = right[i] / r;
-        m[i][1] = up[i] / r;
-        m[i][2] = d[i] / (2.0f * r);
-    }
-    m[3][0] = -glm::dot(c, right) / r;
-    m[3][1] = -glm::dot(c, up) / r;
-    m[3][2] = (r - glm::dot(c, d)) / (2.0f * r);
-    m[3][3] = 1.0f;
-    radiusOut = r;
-    return m;
-}
-
-struct PipelineKey {
-    uint32_t model, alphaMode, doubleSided, format, debugView, skinMask, lightLoop, eyes, samples, layered;
-    auto tie() const {
-        return std::tie(model, alphaMode, doubleSided, format, debugView, skinMask, lightLoop, eyes, samples, layered);
-    }
-    bool operator<(const PipelineKey& o) const { return tie() < o.tie(); }
-};
-
 }  // namespace
 
 static_assert(gpu::kMaxEyes == kMaxEyes, "shaders/shared and <preskin/View.h> disagree on the eye limit");
+// The enum codes the shaders branch on (shared/constants.h) are the C++ enums' values.
+static_assert(gpu::kAlphaOpaque == uint32_t(AlphaMode::Opaque) && gpu::kAlphaMask == uint32_t(AlphaMode::Mask) &&
+              gpu::kAlphaBlend == uint32_t(AlphaMode::Blend));
+static_assert(gpu::kCurvatureSourceVertex == uint32_t(CurvatureSource::Vertex) &&
+              gpu::kCurvatureSourceTexture == uint32_t(CurvatureSource::Texture) &&
+              gpu::kCurvatureSourceDerivatives == uint32_t(CurvatureSource::Derivatives));
+static_assert(gpu::kDebugNone == uint32_t(DebugView::None) && gpu::kDebugCurvature == uint32_t(DebugView::Curvature) &&
+              gpu::kDebugNormals == uint32_t(DebugView::Normals) && gpu::kDebugShadow == uint32_t(DebugView::Shadow) &&
+              gpu::kDebugPenumbra == uint32_t(DebugView::Penumbra) &&
+              gpu::kDebugLightCount == uint32_t(DebugView::LightCount) &&
+              gpu::kDebugShAmbient == uint32_t(DebugView::ShAmbient) &&
+              gpu::kDebugTransmission == uint32_t(DebugView::Transmission));
 
 bool finite(const glm::mat4& m) {
     for (int c = 0; c < 4; ++c)
@@ -122,674 +89,381 @@ uint32_t SkinFeatures::mask() const {
            (transmission ? gpu::kSkinTransmission : 0u) | (dualSpecular ? gpu::kSkinDualSpecular : 0u);
 }
 
-struct Renderer::Impl {
-    struct Slot {
-        vk::Buffer frameUniforms;
-        vk::Buffer lights;
-        vk::Buffer instances;  // GpuInstance per scene instance, from the pose
-        uint64_t instancesPose = ~0ull;  // the pose version they hold
-        VkDescriptorSet set = VK_NULL_HANDLE;
-        VkQueryPool queries = VK_NULL_HANDLE;
-        bool recorded = false;
-        bool shadowRecorded = false;
-        double wallMs = 0.0;
-        double recordMs = 0.0;  // CPU time of record(), light-grid build included
-        uint32_t eyes = 0;
-        uint32_t lightCount = 0;
+Renderer::Impl::Impl(Context& ctx, const Scene& s, const Environment& env, const std::vector<const LutSet*>& lutLayers,
+                     const RenderSettings& rs)
+    : context(ctx), dev(ContextAccess::core(ctx)), settings(rs), lights(s.lights), bounds(s.worldBounds()),
+      radianceSh(env.radianceSh()), sceneName(s.sourcePath.empty() ? std::string("scene") : s.sourcePath.string()) {
+    checkRenderSettings(rs);
+    checkLights(s.lights);
+    scene = std::make_unique<GpuScene>(dev, s);
+    poseBounds = std::make_unique<PoseBounds>(s);
+    deformer = std::make_unique<GpuDeformer>(dev, s, scene->vertices, scene->meshFirstVertex);
+    setPose(restPose(s));
+    setLutLayers(lutLayers);
+    clusters = std::make_unique<ClusterBuilder>(dev);
+    createLayouts();
+    dev.submitAndWait([&](VkCommandBuffer cmd) { createShadowMap(cmd, 0); });
+    resolveEyeDrawing();
+}
+
+Renderer::Impl::~Impl() {
+    const VkDevice d = dev.device();
+    vkDeviceWaitIdle(d);
+    for (auto& [key, p] : pipelines) vkDestroyPipeline(d, p, nullptr);
+    if (shadowPipeline) vkDestroyPipeline(d, shadowPipeline, nullptr);
+    for (Slot& s : slots)
+        if (s.queries) vkDestroyQueryPool(d, s.queries, nullptr);
+    if (framePool) vkDestroyDescriptorPool(d, framePool, nullptr);
+    if (forwardLayout) vkDestroyPipelineLayout(d, forwardLayout, nullptr);
+    if (shadowLayout) vkDestroyPipelineLayout(d, shadowLayout, nullptr);
+    if (frameLayout) vkDestroyDescriptorSetLayout(d, frameLayout, nullptr);
+    if (shadowSampler) vkDestroySampler(d, shadowSampler, nullptr);
+}
+
+void Renderer::Impl::createLayouts() {
+    const VkDevice d = dev.device();
+    const VkShaderStageFlags fs = VK_SHADER_STAGE_FRAGMENT_BIT;
+    const VkShaderStageFlags all = VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_FRAGMENT_BIT;
+    const vk::Binding bindings[] = {
+        {gpu::kBindingFrame, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, all},
+        {gpu::kBindingLights, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, fs},
+        {gpu::kBindingInstances, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, VK_SHADER_STAGE_VERTEX_BIT},
+        {gpu::kBindingShadowMap, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, fs},
+        {gpu::kBindingDiffuseLut, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, fs},
+        {gpu::kBindingPenumbraLut, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, fs},
+        {gpu::kBindingShTransferLut, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, fs},
+        {gpu::kBindingTransmittanceLut, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, fs},
+        {gpu::kBindingClusterRanges, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, fs},
+        {gpu::kBindingClusterIndices, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, fs},
+        {gpu::kBindingLutMappings, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, fs},
     };
+    frameLayout = vk::createSetLayout(dev, bindings);
+    const VkDescriptorSetLayout forwardSets[] = {frameLayout, scene->materialLayout()};
+    forwardLayout = vk::createPipelineLayout(dev, forwardSets, sizeof(gpu::DrawPush), all);
+    shadowLayout = vk::createPipelineLayout(dev, std::span(forwardSets, 1), sizeof(gpu::DrawPush), all);
 
-    Context& context;
-    const vk::Device& dev;
-    RenderSettings settings;
-    EyeDrawing resolvedEyeDrawing = EyeDrawing::Multiview;
-    std::vector<Light> lights;
-    Bounds bounds;  // of the scene in the current pose
-    ShRgb radianceSh;
-    std::string sceneName;  // for messages
-    std::unique_ptr<GpuScene> scene;
-    ScenePose pose;
-    uint64_t poseVersion = 0;
-    std::unique_ptr<PoseBounds> poseBounds;
-    std::unique_ptr<GpuDeformer> deformer;
-    std::unique_ptr<GpuLuts> luts;
-    std::unique_ptr<ClusterBuilder> clusters;
-
-    VkDescriptorSetLayout frameLayout = VK_NULL_HANDLE;
-    VkPipelineLayout forwardLayout = VK_NULL_HANDLE;
-    VkPipelineLayout shadowLayout = VK_NULL_HANDLE;
-    VkDescriptorPool framePool = VK_NULL_HANDLE;
-    VkSampler shadowSampler = VK_NULL_HANDLE;
-    std::array<Slot, kSlotCount> slots;
-    vk::Image shadowMap;
-    vk::Image depth;        // one layer per eye, msaaSamples samples
-    vk::Image msaaColor;    // MSAA only: one layer per eye, resolved into the target
-    std::map<PipelineKey, VkPipeline> pipelines;
-    VkPipeline shadowPipeline = VK_NULL_HANDLE;
-    std::map<std::string, std::vector<uint32_t>> shaderOverrides;
-    // Headless render target and readback.
-    vk::Image colorTarget;
-    vk::Buffer readback;
-
-    Impl(Context& ctx, const Scene& s, const Environment& env, const std::vector<const LutSet*>& lutLayers,
-         const RenderSettings& rs)
-        : context(ctx), dev(ctx.core()), settings(rs), lights(s.lights), bounds(s.worldBounds()),
-          radianceSh(env.radianceSh()), sceneName(s.sourcePath.empty() ? std::string("scene") : s.sourcePath.string()) {
-        checkRenderSettings(rs);
-        checkLights(s.lights);
-        scene = std::make_unique<GpuScene>(dev, s);
-        poseBounds = std::make_unique<PoseBounds>(s);
-        deformer = std::make_unique<GpuDeformer>(dev, s, scene->vertices, scene->meshFirstVertex);
-        setPose(restPose(s));
-        setLutLayers(lutLayers);
-        clusters = std::make_unique<ClusterBuilder>(dev);
-        createLayouts();
-        createShadowMap();
-        resolveEyeDrawing();
-    }
-
-    ~Impl() {
-        const VkDevice d = dev.device();
-        vkDeviceWaitIdle(d);
-        for (auto& [key, p] : pipelines) vkDestroyPipeline(d, p, nullptr);
-        if (shadowPipeline) vkDestroyPipeline(d, shadowPipeline, nullptr);
-        for (Slot& s : slots)
-            if (s.queries) vkDestroyQueryPool(d, s.queries, nullptr);
-        if (framePool) vkDestroyDescriptorPool(d, framePool, nullptr);
-        if (forwardLayout) vkDestroyPipelineLayout(d, forwardLayout, nullptr);
-        if (shadowLayout) vkDestroyPipelineLayout(d, shadowLayout, nullptr);
-        if (frameLayout) vkDestroyDescriptorSetLayout(d, frameLayout, nullptr);
-        if (shadowSampler) vkDestroySampler(d, shadowSampler, nullptr);
-    }
-
-    // Every skin material's profiles must have a layer (when there are LUTs at all).
-    void checkProfileLayers(size_t layerCount) const {
-        if (layerCount == 0) return;
-        const std::vector<Material>& materials = scene->sceneMaterials();
-        for (size_t i = 0; i < materials.size(); ++i) {
-            if (!materials[i].skin) continue;
-            std::vector<int> profiles{materials[i].skin->profile};
-            for (int p : materials[i].skin->blendProfiles) profiles.push_back(p);
-            for (int p : profiles) {
-                if (p >= -1 && size_t(p + 1) < layerCount) continue;
-                throw Error(fmt::format("{}: materials[{}] ('{}'): profile {} has no LUT layer: the renderer holds {} "
-                                        "(the default set and {} profiles)",
-                                        sceneName, i, materials[i].name, p, layerCount, layerCount - 1));
-            }
+    const VkDescriptorPoolSize sizes[] = {{VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, kSlotCount},
+                                          {VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 5 * kSlotCount},
+                                          {VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 5 * kSlotCount}};
+    VkDescriptorPoolCreateInfo poolInfo{VK_STRUCTURE_TYPE_DESCRIPTOR_POOL_CREATE_INFO};
+    poolInfo.maxSets = kSlotCount;
+    poolInfo.poolSizeCount = 3;
+    poolInfo.pPoolSizes = sizes;
+    PRESKIN_VK(vkCreateDescriptorPool(d, &poolInfo, nullptr, &framePool));
+    for (Slot& s : slots) {
+        VkDescriptorSetAllocateInfo alloc{VK_STRUCTURE_TYPE_DESCRIPTOR_SET_ALLOCATE_INFO};
+        alloc.descriptorPool = framePool;
+        alloc.descriptorSetCount = 1;
+        alloc.pSetLayouts = &frameLayout;
+        PRESKIN_VK(vkAllocateDescriptorSets(d, &alloc, &s.set));
+        s.frameUniforms = vk::Buffer(dev, sizeof(gpu::FrameUniforms), VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT, true);
+        s.lights = vk::Buffer(dev, 64 * sizeof(gpu::GpuLight), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, true);
+        s.instances = vk::Buffer(dev, std::max<size_t>(scene->restInstances.size(), 1) * sizeof(gpu::GpuInstance),
+                                 VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, true);
+        if (dev.timestampsSupported()) {
+            VkQueryPoolCreateInfo q{VK_STRUCTURE_TYPE_QUERY_POOL_CREATE_INFO};
+            q.queryType = VK_QUERY_TYPE_TIMESTAMP;
+            q.queryCount = kQueryCount;
+            PRESKIN_VK(vkCreateQueryPool(d, &q, nullptr, &s.queries));
         }
     }
+    VkSamplerCreateInfo nearest{VK_STRUCTURE_TYPE_SAMPLER_CREATE_INFO};
+    nearest.magFilter = VK_FILTER_NEAREST;
+    nearest.minFilter = VK_FILTER_NEAREST;
+    nearest.mipmapMode = VK_SAMPLER_MIPMAP_MODE_NEAREST;
+    nearest.addressModeU = nearest.addressModeV = nearest.addressModeW = VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_EDGE;
+    PRESKIN_VK(vkCreateSampler(d, &nearest, nullptr, &shadowSampler));
+}
 
-    void setLutLayers(const std::vector<const LutSet*>& layers) {
-        checkProfileLayers(layers.size());
-        auto replacement = std::make_unique<GpuLuts>(dev, layers);
-        vkDeviceWaitIdle(dev.device());
-        luts = std::move(replacement);
-        scene->updateMaterials(luts->profileWidths());
+// Replaces an attachment without waiting: the old image lives on until every other slot
+// whose last frame was recorded with it has been recorded again (the host's slot contract).
+void Renderer::Impl::retire(vk::Image& image, uint32_t slotIndex) {
+    uint32_t inFlight = 0;
+    for (uint32_t s = 0; s < kSlotCount; ++s)
+        if (s != slotIndex && slots[s].recorded) inFlight |= 1u << s;
+    if (image && inFlight) retired.push_back({std::move(image), inFlight});
+    image = vk::Image();
+}
+
+// Recording into `slotIndex` means its previous frame finished: nothing retired waits on it.
+void Renderer::Impl::releaseRetired(uint32_t slotIndex) {
+    for (Retired& r : retired) r.slotsInFlight &= ~(1u << slotIndex);
+    std::erase_if(retired, [](const Retired& r) { return r.slotsInFlight == 0; });
+}
+
+std::span<const uint32_t> Renderer::Impl::shader(const char* name) const {
+    auto it = shaderOverrides.find(name);
+    return it != shaderOverrides.end() ? std::span<const uint32_t>(it->second) : builtinShader(name);
+}
+
+void Renderer::Impl::resolveEyeDrawing() {
+    resolvedEyeDrawing = settings.eyeDrawing;
+    if (resolvedEyeDrawing == EyeDrawing::Auto)
+        resolvedEyeDrawing = dev.shaderOutputLayer() && !multiviewClipsEveryView(dev) ? EyeDrawing::InstancedLayers
+                                                                                       : EyeDrawing::Multiview;
+}
+
+void Renderer::Impl::setShaderOverrides(const std::map<std::string, std::vector<uint32_t>>& spirv) {
+    vkDeviceWaitIdle(dev.device());
+    auto previous = std::exchange(shaderOverrides, spirv);
+    std::map<PipelineKey, VkPipeline> rebuilt;
+    VkPipeline rebuiltShadow = VK_NULL_HANDLE;
+    try {
+        for (const auto& [key, p] : pipelines) rebuilt.emplace(key, createForwardPipeline(key));
+        rebuiltShadow = createShadowPipeline();
+    } catch (...) {
+        for (auto& [key, p] : rebuilt) vkDestroyPipeline(dev.device(), p, nullptr);
+        shaderOverrides = std::move(previous);
+        throw;
     }
+    for (auto& [key, p] : pipelines) vkDestroyPipeline(dev.device(), p, nullptr);
+    if (shadowPipeline) vkDestroyPipeline(dev.device(), shadowPipeline, nullptr);
+    pipelines = std::move(rebuilt);
+    shadowPipeline = rebuiltShadow;
+}
 
-    void createLayouts() {
-        const VkDevice d = dev.device();
-        const VkShaderStageFlags fs = VK_SHADER_STAGE_FRAGMENT_BIT;
-        const VkShaderStageFlags all = VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_FRAGMENT_BIT;
-        const vk::Binding bindings[] = {
-            {gpu::kBindingFrame, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, all},
-            {gpu::kBindingLights, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, fs},
-            {gpu::kBindingInstances, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, VK_SHADER_STAGE_VERTEX_BIT},
-            {gpu::kBindingShadowMap, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, fs},
-            {gpu::kBindingDiffuseLut, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, fs},
-            {gpu::kBindingPenumbraLut, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, fs},
-            {gpu::kBindingShTransferLut, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, fs},
-            {gpu::kBindingTransmittanceLut, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, fs},
-            {gpu::kBindingClusterRanges, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, fs},
-            {gpu::kBindingClusterIndices, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, fs},
-            {gpu::kBindingLutMappings, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, fs},
-        };
-        frameLayout = vk::createSetLayout(dev, bindings);
-        const VkDescriptorSetLayout forwardSets[] = {frameLayout, scene->materialLayout()};
-        forwardLayout = vk::createPipelineLayout(dev, forwardSets, sizeof(gpu::DrawPush), all);
-        shadowLayout = vk::createPipelineLayout(dev, std::span(forwardSets, 1), sizeof(gpu::DrawPush), all);
+void Renderer::Impl::setPose(ScenePose p) {
+    if (p.instances.size() != scene->restInstances.size())
+        throw Error(fmt::format("pose: {} instances for a scene of {}", p.instances.size(),
+                                scene->restInstances.size()));
+    for (size_t i = 0; i < p.instances.size(); ++i)
+        if (!finite(p.instances[i].worldFromObject))
+            throw Error(fmt::format("pose: instance {}: its transform is not finite", i));
+    deformer->check(p);
+    bounds = poseBounds->worldBounds(p);
+    pose = std::move(p);
+    ++poseVersion;
+}
 
-        const VkDescriptorPoolSize sizes[] = {{VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, kSlotCount},
-                                              {VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 5 * kSlotCount},
-                                              {VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 5 * kSlotCount}};
-        VkDescriptorPoolCreateInfo poolInfo{VK_STRUCTURE_TYPE_DESCRIPTOR_POOL_CREATE_INFO};
-        poolInfo.maxSets = kSlotCount;
-        poolInfo.poolSizeCount = 3;
-        poolInfo.pPoolSizes = sizes;
-        PRESKIN_VK(vkCreateDescriptorPool(d, &poolInfo, nullptr, &framePool));
-        for (Slot& s : slots) {
-            VkDescriptorSetAllocateInfo alloc{VK_STRUCTURE_TYPE_DESCRIPTOR_SET_ALLOCATE_INFO};
-            alloc.descriptorPool = framePool;
-            alloc.descriptorSetCount = 1;
-            alloc.pSetLayouts = &frameLayout;
-            PRESKIN_VK(vkAllocateDescriptorSets(d, &alloc, &s.set));
-            s.frameUniforms = vk::Buffer(dev, sizeof(gpu::FrameUniforms), VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT, true);
-            s.lights = vk::Buffer(dev, 64 * sizeof(gpu::GpuLight), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, true);
-            s.instances = vk::Buffer(dev, std::max<size_t>(scene->restInstances.size(), 1) * sizeof(gpu::GpuInstance),
-                                     VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, true);
-            if (dev.timestampsSupported()) {
-                VkQueryPoolCreateInfo q{VK_STRUCTURE_TYPE_QUERY_POOL_CREATE_INFO};
-                q.queryType = VK_QUERY_TYPE_TIMESTAMP;
-                q.queryCount = kQueryCount;
-                PRESKIN_VK(vkCreateQueryPool(d, &q, nullptr, &s.queries));
-            }
+// Fills the slot's uniforms and light list; returns whether a shadow map is rendered.
+bool Renderer::Impl::prepareFrame(Slot& slot, uint32_t slotIndex, const View& view, VkExtent2D extent,
+                  glm::mat4& shadowClipFromWorld) {
+    // The pose: instance transforms, and the deformation's weights and joint matrices.
+    if (slot.instancesPose != poseVersion) {  // static scenes fill them once per slot
+        auto* instances = static_cast<gpu::GpuInstance*>(slot.instances.mapped());
+        for (size_t i = 0; i < scene->restInstances.size(); ++i)
+            instances[i] = toGpuInstance(pose.instances[i].worldFromObject);
+        slot.instancesPose = poseVersion;
+    }
+    deformer->prepare(slotIndex, pose);
+    const int shadowLight = settings.shadows ? shadowLightIndex(lights) : -1;
+    std::vector<gpu::GpuLight> gpuLights;
+    gpuLights.reserve(lights.size());
+    uint32_t directional = 0;
+    for (size_t i = 0; i < lights.size(); ++i)
+        if (lights[i].type == LightType::Directional) {
+            gpuLights.push_back(toGpuLight(lights[i], int(i) == shadowLight));
+            ++directional;
         }
-        VkSamplerCreateInfo nearest{VK_STRUCTURE_TYPE_SAMPLER_CREATE_INFO};
-        nearest.magFilter = VK_FILTER_NEAREST;
-        nearest.minFilter = VK_FILTER_NEAREST;
-        nearest.mipmapMode = VK_SAMPLER_MIPMAP_MODE_NEAREST;
-        nearest.addressModeU = nearest.addressModeV = nearest.addressModeW = VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_EDGE;
-        PRESKIN_VK(vkCreateSampler(d, &nearest, nullptr, &shadowSampler));
+    for (const Light& l : lights)
+        if (l.type != LightType::Directional) gpuLights.push_back(toGpuLight(l, false));
+    const VkDeviceSize bytes = std::max<size_t>(gpuLights.size(), 1) * sizeof(gpu::GpuLight);
+    if (bytes > slot.lights.size())
+        slot.lights = vk::Buffer(dev, bytes * 2, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, true);
+    slot.lights.upload(gpuLights.data(), gpuLights.size() * sizeof(gpu::GpuLight));
+    slot.lightCount = static_cast<uint32_t>(gpuLights.size());
+
+    gpu::FrameUniforms u{};
+    for (uint32_t e = 0; e < view.eyeCount(); ++e) {
+        const Eye& eye = view.eyes[e];
+        u.eyes[e].clipFromWorld = eye.clipFromWorld();
+        u.eyes[e].positionWs = glm::vec4(eye.positionWs, 1.0f);
+        u.eyes[e].viewDepthFromWorld = -glm::row(eye.viewFromWorld, 2);
     }
-
-    void createShadowMap() {
-        const uint32_t size = std::clamp<uint32_t>(settings.shadowMapSize, 16, 8192);
-        if (shadowMap && shadowMap.desc().width == size) return;
-        if (!dev.supportsFormat(kDepthFormat, VK_FORMAT_FEATURE_2_DEPTH_STENCIL_ATTACHMENT_BIT |
-                                                  VK_FORMAT_FEATURE_2_SAMPLED_IMAGE_BIT))
-            throw Error("Vulkan: the device cannot render and sample D32_SFLOAT depth");
-        vkDeviceWaitIdle(dev.device());
-        shadowMap = vk::Image(dev, {kDepthFormat, size, size, 1,
-                                    VK_IMAGE_USAGE_DEPTH_STENCIL_ATTACHMENT_BIT | VK_IMAGE_USAGE_SAMPLED_BIT,
-                                    VK_IMAGE_ASPECT_DEPTH_BIT});
-        // Sampled even when no light casts a shadow: start in the read layout.
-        dev.submitAndWait([&](VkCommandBuffer cmd) {
-            vk::imageBarrier(cmd, shadowMap.handle(), VK_IMAGE_ASPECT_DEPTH_BIT, VK_IMAGE_LAYOUT_UNDEFINED,
-                             VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL, VK_PIPELINE_STAGE_2_NONE, VK_ACCESS_2_NONE,
-                             VK_PIPELINE_STAGE_2_FRAGMENT_SHADER_BIT, VK_ACCESS_2_SHADER_SAMPLED_READ_BIT);
-        });
+    u.params = glm::vec4(settings.exposure, float(view.eyeCount()), 0.0f, 0.0f);
+    u.viewport = glm::vec4(float(extent.width), float(extent.height), 1.0f / float(extent.width),
+                           1.0f / float(extent.height));
+    float radius = 1.0f;
+    const uint32_t mapSize = shadowMap.desc().width;
+    if (shadowLight >= 0) {
+        const glm::vec3 dir = glm::length(lights[size_t(shadowLight)].directionWs) > 0.0f
+                                  ? glm::normalize(lights[size_t(shadowLight)].directionWs)
+                                  : glm::vec3(0.0f, 0.0f, -1.0f);
+        shadowClipFromWorld = shadowMatrix(bounds, dir, radius);
+        u.shadowClipFromWorld = shadowClipFromWorld;
+        u.shadowDirectionWs = glm::vec4(dir, 1.0f);
     }
+    u.shadowParams = glm::vec4(2.0f * radius / float(mapSize), std::max(settings.shadowSoftnessTexels, 0.25f),
+                               2.0f * radius, float(mapSize));
+    for (int i = 0; i < 9; ++i) u.shRadiance[i] = glm::vec4(radianceSh.c[size_t(i)], 0.0f);
+    u.lightCounts = glm::uvec4(slot.lightCount, directional, 0u, 0u);
+    if (settings.lightLoop == LightLoop::Clustered)
+        clusters->prepare(slotIndex, settings.clusters, clusterCamera(view, extent.width, extent.height), bounds,
+                          gpuLights, directional, slot.lights, u);
+    slot.frameUniforms.upload(&u, sizeof(u));
+    return shadowLight >= 0;
+}
 
-    std::span<const uint32_t> shader(const char* name) const {
-        auto it = shaderOverrides.find(name);
-        return it != shaderOverrides.end() ? std::span<const uint32_t>(it->second) : builtinShader(name);
+void Renderer::Impl::updateFrameSet(Slot& slot, uint32_t slotIndex) {
+    const VkDescriptorBufferInfo frameInfo{slot.frameUniforms.handle(), 0, sizeof(gpu::FrameUniforms)};
+    const VkDescriptorBufferInfo lightInfo{slot.lights.handle(), 0, VK_WHOLE_SIZE};
+    const VkDescriptorBufferInfo instanceInfo{slot.instances.handle(), 0, VK_WHOLE_SIZE};
+    const VkDescriptorBufferInfo rangesInfo{clusters->ranges(slotIndex).handle(), 0, VK_WHOLE_SIZE};
+    const VkDescriptorBufferInfo indicesInfo{clusters->indices(slotIndex).handle(), 0, VK_WHOLE_SIZE};
+    const VkDescriptorImageInfo shadowInfo{shadowSampler, shadowMap.view(), VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL};
+    const std::array<VkDescriptorImageInfo, 4> lutInfos = luts->descriptors();
+    const VkDescriptorBufferInfo lutMappingInfo = luts->mappingDescriptor();
+    std::vector<VkWriteDescriptorSet> writes;
+    auto buffer = [&](uint32_t binding, VkDescriptorType type, const VkDescriptorBufferInfo* info) {
+        VkWriteDescriptorSet w{VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET};
+        w.dstSet = slot.set;
+        w.dstBinding = binding;
+        w.descriptorCount = 1;
+        w.descriptorType = type;
+        w.pBufferInfo = info;
+        writes.push_back(w);
+    };
+    auto image = [&](uint32_t binding, const VkDescriptorImageInfo* info) {
+        VkWriteDescriptorSet w{VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET};
+        w.dstSet = slot.set;
+        w.dstBinding = binding;
+        w.descriptorCount = 1;
+        w.descriptorType = VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER;
+        w.pImageInfo = info;
+        writes.push_back(w);
+    };
+    buffer(gpu::kBindingFrame, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, &frameInfo);
+    buffer(gpu::kBindingLights, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, &lightInfo);
+    buffer(gpu::kBindingInstances, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, &instanceInfo);
+    buffer(gpu::kBindingClusterRanges, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, &rangesInfo);
+    buffer(gpu::kBindingClusterIndices, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, &indicesInfo);
+    buffer(gpu::kBindingLutMappings, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, &lutMappingInfo);
+    image(gpu::kBindingShadowMap, &shadowInfo);
+    image(gpu::kBindingDiffuseLut, &lutInfos[0]);
+    image(gpu::kBindingPenumbraLut, &lutInfos[1]);
+    image(gpu::kBindingShTransferLut, &lutInfos[2]);
+    image(gpu::kBindingTransmittanceLut, &lutInfos[3]);
+    vkUpdateDescriptorSets(dev.device(), static_cast<uint32_t>(writes.size()), writes.data(), 0, nullptr);
+}
+
+// Binds the index buffer; vertex buffers are bound per draw (bindDrawVertices).
+void Renderer::Impl::bindGeometry(VkCommandBuffer cmd, VkBuffer& boundVertices) {
+    vkCmdBindIndexBuffer(cmd, scene->indices.handle(), 0, VK_INDEX_TYPE_UINT32);
+    boundVertices = VK_NULL_HANDLE;
+}
+
+// Binds the vertices a draw reads (the scene's rest vertices, or this frame's deformed ones of
+// its instance) and returns its vertex offset.
+int32_t Renderer::Impl::bindDrawVertices(VkCommandBuffer cmd, uint32_t slotIndex, const DrawItem& d, VkBuffer& bound) {
+    const bool deformed = deformer->deforms(d.instance);
+    const VkBuffer vb = deformed ? deformer->output(slotIndex).handle() : scene->vertices.handle();
+    if (vb != bound) {
+        const VkDeviceSize offset = 0;
+        vkCmdBindVertexBuffers(cmd, 0, 1, &vb, &offset);
+        bound = vb;
     }
+    return d.vertexOffset + (deformed ? deformer->vertexShift(d.instance) : 0);
+}
 
-    VkSampleCountFlagBits samples() const { return static_cast<VkSampleCountFlagBits>(settings.msaaSamples); }
-
-    PipelineKey pipelineKey(const GpuMaterial& m, VkFormat format, uint32_t eyes) const {
-        const bool skin = m.skin && luts->valid();
-        return PipelineKey{skin ? gpu::kModelSkin : gpu::kModelStandard,
-                           static_cast<uint32_t>(m.alphaMode),
-                           m.doubleSided ? 1u : 0u,
-                           static_cast<uint32_t>(format),
-                           static_cast<uint32_t>(settings.debugView),
-                           skin ? settings.skin.mask() : 0u,
-                           settings.lightLoop == LightLoop::Clustered ? gpu::kLightLoopClustered : gpu::kLightLoopAll,
-                           eyes,
-                           settings.msaaSamples,
-                           eyeDrawing() == EyeDrawing::InstancedLayers ? 1u : 0u};
+// Throws preskin::Error unless the view and settings can be drawn on this device.
+void Renderer::Impl::checkFrame(const View& view) const {
+    if (view.eyes.empty() || view.eyeCount() > maxEyes())
+        throw Error(fmt::format("view: {} eye(s); this device draws 1 to {} per view", view.eyeCount(), maxEyes()));
+    for (uint32_t e = 0; e < view.eyeCount(); ++e) {
+        const Eye& eye = view.eyes[e];
+        if (!finite(eye.viewFromWorld) || !finite(eye.clipFromView) || !std::isfinite(eye.positionWs.x) ||
+            !std::isfinite(eye.positionWs.y) || !std::isfinite(eye.positionWs.z))
+            throw Error(fmt::format("view: eye {}: its matrices and position must be finite", e));
     }
+    if (settings.eyeDrawing == EyeDrawing::InstancedLayers && !dev.shaderOutputLayer())
+        throw Error("RenderSettings: instanced layered eyes need the device's shaderOutputLayer feature");
+    const uint32_t n = settings.msaaSamples;
+    if (n == 0 || (n & (n - 1)) != 0 || (dev.msaaSampleCounts() & n) == 0)
+        throw Error(fmt::format("RenderSettings: msaaSamples {} is not offered by {} (offered: {})", n,
+                                dev.properties().deviceName, fmt::join(msaaSampleCounts(), ", ")));
+}
 
-    // The settings' EyeDrawing resolved for this device (see <preskin/Renderer.h>); resolved
-    // when settings are set, since the probe submits work of its own.
-    EyeDrawing eyeDrawing() const { return resolvedEyeDrawing; }
+std::vector<uint32_t> Renderer::Impl::msaaSampleCounts() const {
+    std::vector<uint32_t> counts;
+    for (uint32_t n = 1; n <= 64; n *= 2)
+        if (dev.msaaSampleCounts() & n) counts.push_back(n);
+    return counts;
+}
 
-    void resolveEyeDrawing() {
-        resolvedEyeDrawing = settings.eyeDrawing;
-        if (resolvedEyeDrawing == EyeDrawing::Auto)
-            resolvedEyeDrawing = dev.shaderOutputLayer() && !multiviewClipsEveryView(dev) ? EyeDrawing::InstancedLayers
-                                                                                           : EyeDrawing::Multiview;
-    }
+void Renderer::Impl::timestamp(VkCommandBuffer cmd, Slot& slot, uint32_t query) {
+    if (slot.queries) vkCmdWriteTimestamp2(cmd, VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT, slot.queries, query);
+}
 
-    VkPipeline forwardPipeline(const GpuMaterial& m, VkFormat format, uint32_t eyes) {
-        const PipelineKey key = pipelineKey(m, format, eyes);
-        auto it = pipelines.find(key);
-        if (it != pipelines.end()) return it->second;
-        VkPipeline p = createForwardPipeline(key);
-        pipelines.emplace(key, p);
-        return p;
-    }
+void Renderer::Impl::record(VkCommandBuffer cmd, const RenderTarget& target, const View& view, uint32_t slotIndex) {
+    const auto start = std::chrono::steady_clock::now();
+    if (slotIndex >= kSlotCount) throw Error(fmt::format("Renderer::record: frame slot {} (0 or 1)", slotIndex));
+    if (target.extent.width == 0 || target.extent.height == 0)
+        throw Error("Renderer::record: target extent is empty");
+    checkFrame(view);
+    checkTarget(target);
+    Slot& slot = slots[slotIndex];
+    releaseRetired(slotIndex);
+    createShadowMap(cmd, slotIndex);
+    ensureAttachments(target.extent, view.eyeCount(), target.format, target.depth.image == VK_NULL_HANDLE, slotIndex);
+    glm::mat4 shadowClipFromWorld(1.0f);
+    const bool shadow = prepareFrame(slot, slotIndex, view, target.extent, shadowClipFromWorld);
+    updateFrameSet(slot, slotIndex);
+    if (slot.queries) vkCmdResetQueryPool(cmd, slot.queries, 0, kQueryCount);
+    timestamp(cmd, slot, 0);
+    deformer->recordDeformation(cmd, slotIndex);  // animated instances into this frame's vertices
+    timestamp(cmd, slot, 1);
+    deformer->recordCurvature(cmd, slotIndex);
+    timestamp(cmd, slot, 2);
+    if (shadow) recordShadowPass(cmd, slot, slotIndex);
+    timestamp(cmd, slot, 3);
+    clusters->record(cmd, slotIndex);  // the compute build, when this frame uses it
+    timestamp(cmd, slot, 4);
+    recordForwardPass(cmd, slot, slotIndex, target, view);
+    timestamp(cmd, slot, 5);
+    slot.recorded = true;
+    slot.shadowRecorded = shadow;
+    slot.eyes = view.eyeCount();
+    slot.recordMs = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+}
 
-    VkPipeline createForwardPipeline(const PipelineKey& key) const {
-        const VkFormat format = static_cast<VkFormat>(key.format);
-        vk::GraphicsPipelineDesc desc;
-        desc.vertexSpirv = shader(key.layered ? "forward_layers.vert" : "forward.vert");
-        desc.fragmentSpirv = shader("forward.frag");
-        desc.specialization.values.resize(7);
-        desc.specialization.values[gpu::kSpecMaterialModel] = key.model;
-        desc.specialization.values[gpu::kSpecOutputMode] = isDisplayFormat(format) ? gpu::kOutputTonemapped
-                                                                                   : gpu::kOutputLinear;
-        desc.specialization.values[gpu::kSpecDebugView] = key.debugView;
-        desc.specialization.values[gpu::kSpecAlphaMode] = key.alphaMode;
-        desc.specialization.values[gpu::kSpecSkinFeatures] = key.skinMask;
-        desc.specialization.values[gpu::kSpecLightLoop] = key.lightLoop;
-        const AlphaMode alphaMode = static_cast<AlphaMode>(key.alphaMode);
-        const bool alphaToCoverage = key.samples > 1 && alphaMode == AlphaMode::Mask;
-        desc.specialization.values[gpu::kSpecAlphaToCoverage] = alphaToCoverage ? 1u : 0u;
-        desc.vertexBindings = {{0, sizeof(Vertex), VK_VERTEX_INPUT_RATE_VERTEX}};
-        desc.vertexAttributes = {
-            {0, 0, VK_FORMAT_R32G32B32_SFLOAT, offsetof(Vertex, positionOs)},
-            {1, 0, VK_FORMAT_R32G32B32_SFLOAT, offsetof(Vertex, normalOs)},
-            {2, 0, VK_FORMAT_R32G32B32A32_SFLOAT, offsetof(Vertex, tangentOs)},
-            {3, 0, VK_FORMAT_R32G32_SFLOAT, offsetof(Vertex, uv0)},
-            {4, 0, VK_FORMAT_R32_SFLOAT, offsetof(Vertex, curvaturePerM)},
-        };
-        desc.colorFormats = {format};
-        desc.depthFormat = kDepthFormat;
-        desc.viewMask = key.layered ? 0u : (1u << key.eyes) - 1u;
-        desc.samples = static_cast<VkSampleCountFlagBits>(key.samples);
-        desc.alphaToCoverage = alphaToCoverage;
-        desc.alphaToOne = alphaToCoverage && dev.alphaToOne();
-        desc.cullMode = key.doubleSided ? VK_CULL_MODE_NONE : VK_CULL_MODE_BACK_BIT;
-        desc.depthWrite = alphaMode != AlphaMode::Blend;
-        desc.alphaBlend = alphaMode == AlphaMode::Blend;
-        desc.layout = forwardLayout;
-        return vk::createGraphicsPipeline(dev, desc);
-    }
+FrameStats Renderer::Impl::stats(uint32_t slotIndex) const {
+    FrameStats s;
+    if (slotIndex >= kSlotCount) return s;
+    const Slot& slot = slots[slotIndex];
+    s.wallMs = slot.wallMs;
+    s.lightCount = slot.lightCount;
+    s.clusterOverflows = clusters->overflows(slotIndex);
+    s.clusterBuildCpuMs = settings.lightLoop == LightLoop::Clustered ? clusters->buildMs(slotIndex) : 0.0;
+    s.clusterBuildGpu = settings.lightLoop == LightLoop::Clustered && clusters->usesGpu(slotIndex);
+    s.recordCpuMs = std::max(slot.recordMs - s.clusterBuildCpuMs, 0.0);
+    s.eyes = slot.eyes;
+    s.eyeDrawing = eyeDrawing();
+    if (!slot.recorded || !slot.queries) return s;
+    std::array<uint64_t, kQueryCount> ticks{};
+    const VkResult r = vkGetQueryPoolResults(dev.device(), slot.queries, 0, kQueryCount, sizeof(ticks), ticks.data(),
+                                             sizeof(uint64_t), VK_QUERY_RESULT_64_BIT);
+    if (r != VK_SUCCESS) return s;
+    const double toMs = double(dev.timestampPeriodNs()) * 1e-6;
+    auto ms = [&](int a, int b) { return double(ticks[size_t(b)] - ticks[size_t(a)]) * toMs; };
+    s.passes = {{"deform", ms(0, 1)}, {"curvature", ms(1, 2)}, {"shadow", ms(2, 3)}, {"clusters", ms(3, 4)},
+                {"forward", ms(4, 5)}};
+    s.gpuMs = ms(0, 5);
+    return s;
+}
 
-    VkPipeline createShadowPipeline() const {
-        vk::GraphicsPipelineDesc desc;
-        desc.vertexSpirv = shader("shadow.vert");
-        desc.vertexBindings = {{0, sizeof(Vertex), VK_VERTEX_INPUT_RATE_VERTEX}};
-        desc.vertexAttributes = {{0, 0, VK_FORMAT_R32G32B32_SFLOAT, offsetof(Vertex, positionOs)}};
-        desc.depthFormat = kDepthFormat;
-        desc.cullMode = VK_CULL_MODE_NONE;  // the nearest surface of either facing: thickness needs it
-        desc.depthCompare = VK_COMPARE_OP_LESS_OR_EQUAL;
-        desc.depthBias = true;
-        desc.layout = shadowLayout;
-        return vk::createGraphicsPipeline(dev, desc);
-    }
-
-    void setShaderOverrides(const std::map<std::string, std::vector<uint32_t>>& spirv) {
-        vkDeviceWaitIdle(dev.device());
-        auto previous = std::exchange(shaderOverrides, spirv);
-        std::map<PipelineKey, VkPipeline> rebuilt;
-        VkPipeline rebuiltShadow = VK_NULL_HANDLE;
-        try {
-            for (const auto& [key, p] : pipelines) rebuilt.emplace(key, createForwardPipeline(key));
-            rebuiltShadow = createShadowPipeline();
-        } catch (...) {
-            for (auto& [key, p] : rebuilt) vkDestroyPipeline(dev.device(), p, nullptr);
-            shaderOverrides = std::move(previous);
-            throw;
+void Renderer::Impl::checkProfileLayers(size_t layerCount) const {
+    if (layerCount == 0) return;
+    const std::vector<Material>& materials = scene->sceneMaterials();
+    for (size_t i = 0; i < materials.size(); ++i) {
+        if (!materials[i].skin) continue;
+        std::vector<int> profiles{materials[i].skin->profile};
+        for (int p : materials[i].skin->blendProfiles) profiles.push_back(p);
+        for (int p : profiles) {
+            if (p >= -1 && size_t(p + 1) < layerCount) continue;
+            throw Error(fmt::format("{}: materials[{}] ('{}'): profile {} has no LUT layer: the renderer holds {} "
+                                    "(the default set and {} profiles)",
+                                    sceneName, i, materials[i].name, p, layerCount, layerCount - 1));
         }
-        for (auto& [key, p] : pipelines) vkDestroyPipeline(dev.device(), p, nullptr);
-        if (shadowPipeline) vkDestroyPipeline(dev.device(), shadowPipeline, nullptr);
-        pipelines = std::move(rebuilt);
-        shadowPipeline = rebuiltShadow;
     }
+}
 
-    void setPose(ScenePose p) {
-        if (p.instances.size() != scene->restInstances.size())
-            throw Error(fmt::format("pose: {} instances for a scene of {}", p.instances.size(),
-                                    scene->restInstances.size()));
-        for (size_t i = 0; i < p.instances.size(); ++i)
-            if (!finite(p.instances[i].worldFromObject))
-                throw Error(fmt::format("pose: instance {}: its transform is not finite", i));
-        deformer->check(p);
-        bounds = poseBounds->worldBounds(p);
-        pose = std::move(p);
-        ++poseVersion;
-    }
-
-    VkPipeline depthOnlyPipeline() {
-        if (!shadowPipeline) shadowPipeline = createShadowPipeline();
-        return shadowPipeline;
-    }
-
-    // The forward pass's own attachments: depth, and with MSAA the multisampled colour.
-    void ensureAttachments(VkExtent2D extent, uint32_t eyes, VkFormat colorFormat) {
-        const auto matches = [&](const vk::Image& image, VkFormat format) {
-            const vk::ImageDesc& d = image.desc();
-            return image && d.width == extent.width && d.height == extent.height && d.layers == eyes &&
-                   d.samples == samples() && d.format == format;
-        };
-        const bool msaa = settings.msaaSamples > 1;
-        if (matches(depth, kDepthFormat) && (!msaa || matches(msaaColor, colorFormat))) return;
-        vkDeviceWaitIdle(dev.device());
-        vk::ImageDesc d{kDepthFormat, extent.width, extent.height, 1, VK_IMAGE_USAGE_DEPTH_STENCIL_ATTACHMENT_BIT,
-                        VK_IMAGE_ASPECT_DEPTH_BIT, eyes, samples()};
-        depth = vk::Image(dev, d);
-        msaaColor = vk::Image();
-        if (msaa) {
-            d.format = colorFormat;
-            d.usage = VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT | VK_IMAGE_USAGE_TRANSIENT_ATTACHMENT_BIT;
-            d.aspect = VK_IMAGE_ASPECT_COLOR_BIT;
-            msaaColor = vk::Image(dev, d);
-        }
-    }
-
-    // Fills the slot's uniforms and light list; returns whether a shadow map is rendered.
-    bool prepareFrame(Slot& slot, uint32_t slotIndex, const View& view, VkExtent2D extent,
-                      glm::mat4& shadowClipFromWorld) {
-        // The pose: instance transforms, and the deformation's weights and joint matrices.
-        if (slot.instancesPose != poseVersion) {  // static scenes fill them once per slot
-            auto* instances = static_cast<gpu::GpuInstance*>(slot.instances.mapped());
-            for (size_t i = 0; i < scene->restInstances.size(); ++i)
-                instances[i] = toGpuInstance(pose.instances[i].worldFromObject);
-            slot.instancesPose = poseVersion;
-        }
-        deformer->prepare(slotIndex, pose);
-        const int shadowLight = settings.shadows ? shadowLightIndex(lights) : -1;
-        std::vector<gpu::GpuLight> gpuLights;
-        gpuLights.reserve(lights.size());
-        uint32_t directional = 0;
-        for (size_t i = 0; i < lights.size(); ++i)
-            if (lights[i].type == LightType::Directional) {
-                gpuLights.push_back(toGpuLight(lights[i], int(i) == shadowLight));
-                ++directional;
-            }
-        for (const Light& l : lights)
-            if (l.type != LightType::Directional) gpuLights.push_back(toGpuLight(l, false));
-        const VkDeviceSize bytes = std::max<size_t>(gpuLights.size(), 1) * sizeof(gpu::GpuLight);
-        if (bytes > slot.lights.size())
-            slot.lights = vk::Buffer(dev, bytes * 2, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, true);
-        slot.lights.upload(gpuLights.data(), gpuLights.size() * sizeof(gpu::GpuLight));
-        slot.lightCount = static_cast<uint32_t>(gpuLights.size());
-
-        gpu::FrameUniforms u{};
-        for (uint32_t e = 0; e < view.eyeCount(); ++e) {
-            const Eye& eye = view.eyes[e];
-            u.eyes[e].clipFromWorld = eye.clipFromWorld();
-            u.eyes[e].positionWs = glm::vec4(eye.positionWs, 1.0f);
-            u.eyes[e].viewDepthFromWorld = -glm::row(eye.viewFromWorld, 2);
-        }
-        u.params = glm::vec4(settings.exposure, float(view.eyeCount()), 0.0f, 0.0f);
-        u.viewport = glm::vec4(float(extent.width), float(extent.height), 1.0f / float(extent.width),
-                               1.0f / float(extent.height));
-        float radius = 1.0f;
-        const uint32_t mapSize = shadowMap.desc().width;
-        if (shadowLight >= 0) {
-            const glm::vec3 dir = glm::length(lights[size_t(shadowLight)].directionWs) > 0.0f
-                                      ? glm::normalize(lights[size_t(shadowLight)].directionWs)
-                                      : glm::vec3(0.0f, 0.0f, -1.0f);
-            shadowClipFromWorld = shadowMatrix(bounds, dir, radius);
-            u.shadowClipFromWorld = shadowClipFromWorld;
-            u.shadowDirectionWs = glm::vec4(dir, 1.0f);
-        }
-        u.shadowParams = glm::vec4(2.0f * radius / float(mapSize), std::max(settings.shadowSoftnessTexels, 0.25f),
-                                   2.0f * radius, float(mapSize));
-        for (int i = 0; i < 9; ++i) u.shRadiance[i] = glm::vec4(radianceSh.c[size_t(i)], 0.0f);
-        u.lightCounts = glm::uvec4(slot.lightCount, directional, 0u, 0u);
-        if (settings.lightLoop == LightLoop::Clustered)
-            clusters->prepare(slotIndex, settings.clusters, clusterCamera(view, extent.width, extent.height), bounds,
-                              gpuLights, directional, slot.lights, u);
-        slot.frameUniforms.upload(&u, sizeof(u));
-        return shadowLight >= 0;
-    }
-
-    void updateFrameSet(Slot& slot, uint32_t slotIndex) {
-        const VkDescriptorBufferInfo frameInfo{slot.frameUniforms.handle(), 0, sizeof(gpu::FrameUniforms)};
-        const VkDescriptorBufferInfo lightInfo{slot.lights.handle(), 0, VK_WHOLE_SIZE};
-        const VkDescriptorBufferInfo instanceInfo{slot.instances.handle(), 0, VK_WHOLE_SIZE};
-        const VkDescriptorBufferInfo rangesInfo{clusters->ranges(slotIndex).handle(), 0, VK_WHOLE_SIZE};
-        const VkDescriptorBufferInfo indicesInfo{clusters->indices(slotIndex).handle(), 0, VK_WHOLE_SIZE};
-        const VkDescriptorImageInfo shadowInfo{shadowSampler, shadowMap.view(), VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL};
-        const std::array<VkDescriptorImageInfo, 4> lutInfos = luts->descriptors();
-        const VkDescriptorBufferInfo lutMappingInfo = luts->mappingDescriptor();
-        std::vector<VkWriteDescriptorSet> writes;
-        auto buffer = [&](uint32_t binding, VkDescriptorType type, const VkDescriptorBufferInfo* info) {
-            VkWriteDescriptorSet w{VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET};
-            w.dstSet = slot.set;
-            w.dstBinding = binding;
-            w.descriptorCount = 1;
-            w.descriptorType = type;
-            w.pBufferInfo = info;
-            writes.push_back(w);
-        };
-        auto image = [&](uint32_t binding, const VkDescriptorImageInfo* info) {
-            VkWriteDescriptorSet w{VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET};
-            w.dstSet = slot.set;
-            w.dstBinding = binding;
-            w.descriptorCount = 1;
-            w.descriptorType = VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER;
-            w.pImageInfo = info;
-            writes.push_back(w);
-        };
-        buffer(gpu::kBindingFrame, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, &frameInfo);
-        buffer(gpu::kBindingLights, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, &lightInfo);
-        buffer(gpu::kBindingInstances, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, &instanceInfo);
-        buffer(gpu::kBindingClusterRanges, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, &rangesInfo);
-        buffer(gpu::kBindingClusterIndices, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, &indicesInfo);
-        buffer(gpu::kBindingLutMappings, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, &lutMappingInfo);
-        image(gpu::kBindingShadowMap, &shadowInfo);
-        image(gpu::kBindingDiffuseLut, &lutInfos[0]);
-        image(gpu::kBindingPenumbraLut, &lutInfos[1]);
-        image(gpu::kBindingShTransferLut, &lutInfos[2]);
-        image(gpu::kBindingTransmittanceLut, &lutInfos[3]);
-        vkUpdateDescriptorSets(dev.device(), static_cast<uint32_t>(writes.size()), writes.data(), 0, nullptr);
-    }
-
-    // Binds the index buffer; vertex buffers are bound per draw (bindDrawVertices).
-    void bindGeometry(VkCommandBuffer cmd, VkBuffer& boundVertices) {
-        vkCmdBindIndexBuffer(cmd, scene->indices.handle(), 0, VK_INDEX_TYPE_UINT32);
-        boundVertices = VK_NULL_HANDLE;
-    }
-
-    // Binds the vertices a draw reads (the scene's rest vertices, or this frame's deformed ones of
-    // its instance) and returns its vertex offset.
-    int32_t bindDrawVertices(VkCommandBuffer cmd, uint32_t slotIndex, const DrawItem& d, VkBuffer& bound) {
-        const bool deformed = deformer->deforms(d.instance);
-        const VkBuffer vb = deformed ? deformer->output(slotIndex).handle() : scene->vertices.handle();
-        if (vb != bound) {
-            const VkDeviceSize offset = 0;
-            vkCmdBindVertexBuffers(cmd, 0, 1, &vb, &offset);
-            bound = vb;
-        }
-        return d.vertexOffset + (deformed ? deformer->vertexShift(d.instance) : 0);
-    }
-
-    void recordShadowPass(VkCommandBuffer cmd, Slot& slot, uint32_t slotIndex) {
-        const uint32_t size = shadowMap.desc().width;
-        vk::imageBarrier(cmd, shadowMap.handle(), VK_IMAGE_ASPECT_DEPTH_BIT, VK_IMAGE_LAYOUT_UNDEFINED,
-                         VK_IMAGE_LAYOUT_DEPTH_ATTACHMENT_OPTIMAL, VK_PIPELINE_STAGE_2_FRAGMENT_SHADER_BIT,
-                         VK_ACCESS_2_NONE,
-                         VK_PIPELINE_STAGE_2_EARLY_FRAGMENT_TESTS_BIT | VK_PIPELINE_STAGE_2_LATE_FRAGMENT_TESTS_BIT,
-                         VK_ACCESS_2_DEPTH_STENCIL_ATTACHMENT_READ_BIT | VK_ACCESS_2_DEPTH_STENCIL_ATTACHMENT_WRITE_BIT);
-        VkRenderingAttachmentInfo depthAttachment{VK_STRUCTURE_TYPE_RENDERING_ATTACHMENT_INFO};
-        depthAttachment.imageView = shadowMap.view();
-        depthAttachment.imageLayout = VK_IMAGE_LAYOUT_DEPTH_ATTACHMENT_OPTIMAL;
-        depthAttachment.loadOp = VK_ATTACHMENT_LOAD_OP_CLEAR;
-        depthAttachment.storeOp = VK_ATTACHMENT_STORE_OP_STORE;
-        depthAttachment.clearValue.depthStencil = {1.0f, 0};
-        VkRenderingInfo info{VK_STRUCTURE_TYPE_RENDERING_INFO};
-        info.renderArea = {{0, 0}, {size, size}};
-        info.layerCount = 1;
-        info.pDepthAttachment = &depthAttachment;
-        vkCmdBeginRendering(cmd, &info);
-        const VkViewport viewport{0.0f, 0.0f, float(size), float(size), 0.0f, 1.0f};
-        const VkRect2D scissor{{0, 0}, {size, size}};
-        vkCmdSetViewport(cmd, 0, 1, &viewport);
-        vkCmdSetScissor(cmd, 0, 1, &scissor);
-        vkCmdSetDepthBias(cmd, 1.0f, 0.0f, 1.5f);
-        vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, depthOnlyPipeline());
-        vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, shadowLayout, 0, 1, &slot.set, 0, nullptr);
-        VkBuffer boundVertices = VK_NULL_HANDLE;
-        bindGeometry(cmd, boundVertices);
-        for (const DrawItem& d : scene->draws) {
-            if (scene->materials[d.material].alphaMode == AlphaMode::Blend) continue;
-            const int32_t vertexOffset = bindDrawVertices(cmd, slotIndex, d, boundVertices);
-            const gpu::DrawPush push{glm::uvec4(d.instance, d.material, 0, 0)};
-            vkCmdPushConstants(cmd, shadowLayout, VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_FRAGMENT_BIT, 0,
-                               sizeof(push), &push);
-            vkCmdDrawIndexed(cmd, d.indexCount, 1, d.firstIndex, vertexOffset, 0);
-        }
-        vkCmdEndRendering(cmd);
-        vk::imageBarrier(cmd, shadowMap.handle(), VK_IMAGE_ASPECT_DEPTH_BIT, VK_IMAGE_LAYOUT_DEPTH_ATTACHMENT_OPTIMAL,
-                         VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL, VK_PIPELINE_STAGE_2_LATE_FRAGMENT_TESTS_BIT,
-                         VK_ACCESS_2_DEPTH_STENCIL_ATTACHMENT_WRITE_BIT, VK_PIPELINE_STAGE_2_FRAGMENT_SHADER_BIT,
-                         VK_ACCESS_2_SHADER_SAMPLED_READ_BIT);
-    }
-
-    void recordForwardPass(VkCommandBuffer cmd, Slot& slot, uint32_t slotIndex, const RenderTarget& target,
-                           const View& view) {
-        const uint32_t eyes = view.eyeCount();
-        const bool msaa = settings.msaaSamples > 1;
-        constexpr VkPipelineStageFlags2 kDepthStages =
-            VK_PIPELINE_STAGE_2_EARLY_FRAGMENT_TESTS_BIT | VK_PIPELINE_STAGE_2_LATE_FRAGMENT_TESTS_BIT;
-        constexpr VkAccessFlags2 kColorAccess = VK_ACCESS_2_COLOR_ATTACHMENT_READ_BIT | VK_ACCESS_2_COLOR_ATTACHMENT_WRITE_BIT;
-        vk::imageBarrier(cmd, target.image, VK_IMAGE_ASPECT_COLOR_BIT, target.layoutBefore,
-                         VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL, VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT,
-                         VK_ACCESS_2_MEMORY_READ_BIT | VK_ACCESS_2_MEMORY_WRITE_BIT,
-                         VK_PIPELINE_STAGE_2_COLOR_ATTACHMENT_OUTPUT_BIT, kColorAccess, eyes);
-        if (msaa)
-            vk::imageBarrier(cmd, msaaColor.handle(), VK_IMAGE_ASPECT_COLOR_BIT, VK_IMAGE_LAYOUT_UNDEFINED,
-                             VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL, VK_PIPELINE_STAGE_2_COLOR_ATTACHMENT_OUTPUT_BIT,
-                             VK_ACCESS_2_COLOR_ATTACHMENT_WRITE_BIT, VK_PIPELINE_STAGE_2_COLOR_ATTACHMENT_OUTPUT_BIT,
-                             kColorAccess, eyes);
-        vk::imageBarrier(cmd, depth.handle(), VK_IMAGE_ASPECT_DEPTH_BIT, VK_IMAGE_LAYOUT_UNDEFINED,
-                         VK_IMAGE_LAYOUT_DEPTH_ATTACHMENT_OPTIMAL, kDepthStages,
-                         VK_ACCESS_2_DEPTH_STENCIL_ATTACHMENT_WRITE_BIT, kDepthStages,
-                         VK_ACCESS_2_DEPTH_STENCIL_ATTACHMENT_READ_BIT | VK_ACCESS_2_DEPTH_STENCIL_ATTACHMENT_WRITE_BIT,
-                         eyes);
-        VkRenderingAttachmentInfo color{VK_STRUCTURE_TYPE_RENDERING_ATTACHMENT_INFO};
-        color.imageView = msaa ? msaaColor.view() : target.view;
-        color.imageLayout = VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL;
-        color.loadOp = VK_ATTACHMENT_LOAD_OP_CLEAR;
-        color.storeOp = msaa ? VK_ATTACHMENT_STORE_OP_DONT_CARE : VK_ATTACHMENT_STORE_OP_STORE;
-        color.clearValue.color = {{0.045f, 0.045f, 0.05f, 1.0f}};
-        if (msaa) {
-            color.resolveMode = VK_RESOLVE_MODE_AVERAGE_BIT;
-            color.resolveImageView = target.view;
-            color.resolveImageLayout = VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL;
-        }
-        VkRenderingAttachmentInfo depthAttachment{VK_STRUCTURE_TYPE_RENDERING_ATTACHMENT_INFO};
-        depthAttachment.imageView = depth.view();
-        depthAttachment.imageLayout = VK_IMAGE_LAYOUT_DEPTH_ATTACHMENT_OPTIMAL;
-        depthAttachment.loadOp = VK_ATTACHMENT_LOAD_OP_CLEAR;
-        depthAttachment.storeOp = VK_ATTACHMENT_STORE_OP_DONT_CARE;
-        depthAttachment.clearValue.depthStencil = {0.0f, 0};  // reversed Z
-        VkRenderingInfo info{VK_STRUCTURE_TYPE_RENDERING_INFO};
-        info.renderArea = {{0, 0}, target.extent};
-        // Every eye in one pass: one view per eye, or one layer per eye drawn by instances.
-        const bool layered = eyeDrawing() == EyeDrawing::InstancedLayers;
-        info.viewMask = layered ? 0u : (1u << eyes) - 1u;
-        info.layerCount = layered ? eyes : 1u;
-        info.colorAttachmentCount = 1;
-        info.pColorAttachments = &color;
-        info.pDepthAttachment = &depthAttachment;
-        vkCmdBeginRendering(cmd, &info);
-        const VkViewport viewport{0.0f, 0.0f, float(target.extent.width), float(target.extent.height), 0.0f, 1.0f};
-        const VkRect2D scissor{{0, 0}, target.extent};
-        vkCmdSetViewport(cmd, 0, 1, &viewport);
-        vkCmdSetScissor(cmd, 0, 1, &scissor);
-        VkBuffer boundVertices = VK_NULL_HANDLE;
-        bindGeometry(cmd, boundVertices);
-        vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, forwardLayout, 0, 1, &slot.set, 0, nullptr);
-
-        // Opaque and masked first, then blended ones back to front (from the eyes' mean position).
-        glm::vec3 eyeCenter(0.0f);
-        for (const Eye& e : view.eyes) eyeCenter += e.positionWs / float(eyes);
-        std::vector<const DrawItem*> order;
-        for (const DrawItem& d : scene->draws) order.push_back(&d);
-        auto blended = [&](const DrawItem* d) { return scene->materials[d->material].alphaMode == AlphaMode::Blend; };
-        std::stable_sort(order.begin(), order.end(), [&](const DrawItem* a, const DrawItem* b) {
-            if (blended(a) != blended(b)) return !blended(a);
-            if (!blended(a)) return a->material < b->material;
-            return glm::distance(a->centerWs, eyeCenter) > glm::distance(b->centerWs, eyeCenter);
-        });
-        VkPipeline bound = VK_NULL_HANDLE;
-        uint32_t boundMaterial = UINT32_MAX;
-        for (const DrawItem* d : order) {
-            const GpuMaterial& m = scene->materials[d->material];
-            VkPipeline p = forwardPipeline(m, target.format, eyes);
-            if (p != bound) {
-                vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, p);
-                bound = p;
-            }
-            if (d->material != boundMaterial) {
-                vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, forwardLayout, 1, 1, &m.set, 0, nullptr);
-                boundMaterial = d->material;
-            }
-            const gpu::DrawPush push{glm::uvec4(d->instance, d->material, 0, 0)};
-            vkCmdPushConstants(cmd, forwardLayout, VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_FRAGMENT_BIT, 0,
-                               sizeof(push), &push);
-            const int32_t vertexOffset = bindDrawVertices(cmd, slotIndex, *d, boundVertices);
-            vkCmdDrawIndexed(cmd, d->indexCount, layered ? eyes : 1u, d->firstIndex, vertexOffset, 0);
-        }
-        vkCmdEndRendering(cmd);
-        vk::imageBarrier(cmd, target.image, VK_IMAGE_ASPECT_COLOR_BIT, VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL,
-                         target.layoutAfter, VK_PIPELINE_STAGE_2_COLOR_ATTACHMENT_OUTPUT_BIT,
-                         VK_ACCESS_2_COLOR_ATTACHMENT_WRITE_BIT, VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT,
-                         VK_ACCESS_2_MEMORY_READ_BIT | VK_ACCESS_2_MEMORY_WRITE_BIT, eyes);
-    }
-
-    // Throws preskin::Error unless the view and settings can be drawn on this device.
-    void checkFrame(const View& view) const {
-        if (view.eyes.empty() || view.eyeCount() > maxEyes())
-            throw Error(fmt::format("view: {} eye(s); this device draws 1 to {} per view", view.eyeCount(), maxEyes()));
-        for (uint32_t e = 0; e < view.eyeCount(); ++e) {
-            const Eye& eye = view.eyes[e];
-            if (!finite(eye.viewFromWorld) || !finite(eye.clipFromView) || !std::isfinite(eye.positionWs.x) ||
-                !std::isfinite(eye.positionWs.y) || !std::isfinite(eye.positionWs.z))
-                throw Error(fmt::format("view: eye {}: its matrices and position must be finite", e));
-        }
-        if (settings.eyeDrawing == EyeDrawing::InstancedLayers && !dev.shaderOutputLayer())
-            throw Error("RenderSettings: instanced layered eyes need the device's shaderOutputLayer feature");
-        const uint32_t n = settings.msaaSamples;
-        if (n == 0 || (n & (n - 1)) != 0 || (dev.msaaSampleCounts() & n) == 0)
-            throw Error(fmt::format("RenderSettings: msaaSamples {} is not offered by {} (offered: {})", n,
-                                    dev.properties().deviceName, fmt::join(msaaSampleCounts(), ", ")));
-    }
-
-    uint32_t maxEyes() const { return std::min(kMaxEyes, dev.maxMultiviewViews()); }
-
-    std::vector<uint32_t> msaaSampleCounts() const {
-        std::vector<uint32_t> counts;
-        for (uint32_t n = 1; n <= 64; n *= 2)
-            if (dev.msaaSampleCounts() & n) counts.push_back(n);
-        return counts;
-    }
-
-    void timestamp(VkCommandBuffer cmd, Slot& slot, uint32_t query) {
-        if (slot.queries) vkCmdWriteTimestamp2(cmd, VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT, slot.queries, query);
-    }
-
-    void record(VkCommandBuffer cmd, const RenderTarget& target, const View& view, uint32_t slotIndex) {
-        const auto start = std::chrono::steady_clock::now();
-        if (slotIndex >= kSlotCount) throw Error(fmt::format("Renderer::record: frame slot {} (0 or 1)", slotIndex));
-        if (target.extent.width == 0 || target.extent.height == 0)
-            throw Error("Renderer::record: target extent is empty");
-        checkFrame(view);
-        Slot& slot = slots[slotIndex];
-        createShadowMap();
-        ensureAttachments(target.extent, view.eyeCount(), target.format);
-        glm::mat4 shadowClipFromWorld(1.0f);
-        const bool shadow = prepareFrame(slot, slotIndex, view, target.extent, shadowClipFromWorld);
-        updateFrameSet(slot, slotIndex);
-        if (slot.queries) vkCmdResetQueryPool(cmd, slot.queries, 0, kQueryCount);
-        timestamp(cmd, slot, 0);
-        deformer->recordDeformation(cmd, slotIndex);  // animated instances into this frame's vertices
-        timestamp(cmd, slot, 1);
-        deformer->recordCurvature(cmd, slotIndex);
-        timestamp(cmd, slot, 2);
-        if (shadow) recordShadowPass(cmd, slot, slotIndex);
-        timestamp(cmd, slot, 3);
-        clusters->record(cmd, slotIndex);  // the compute build, when this frame uses it
-        timestamp(cmd, slot, 4);
-        recordForwardPass(cmd, slot, slotIndex, target, view);
-        timestamp(cmd, slot, 5);
-        slot.recorded = true;
-        slot.shadowRecorded = shadow;
-        slot.eyes = view.eyeCount();
-        slot.recordMs = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
-    }
-
-    FrameStats stats(uint32_t slotIndex) const {
-        FrameStats s;
-        if (slotIndex >= kSlotCount) return s;
-        const Slot& slot = slots[slotIndex];
-        s.wallMs = slot.wallMs;
-        s.lightCount = slot.lightCount;
-        s.clusterOverflows = clusters->overflows(slotIndex);
-        s.clusterBuildCpuMs = settings.lightLoop == LightLoop::Clustered ? clusters->buildMs(slotIndex) : 0.0;
-        s.clusterBuildGpu = settings.lightLoop == LightLoop::Clustered && clusters->usesGpu(slotIndex);
-        s.recordCpuMs = std::max(slot.recordMs - s.clusterBuildCpuMs, 0.0);
-        s.eyes = slot.eyes;
-        s.eyeDrawing = eyeDrawing();
-        if (!slot.recorded || !slot.queries) return s;
-        std::array<uint64_t, kQueryCount> ticks{};
-        const VkResult r = vkGetQueryPoolResults(dev.device(), slot.queries, 0, kQueryCount, sizeof(ticks), ticks.data(),
-                                                 sizeof(uint64_t), VK_QUERY_RESULT_64_BIT);
-        if (r != VK_SUCCESS) return s;
-        const double toMs = double(dev.timestampPeriodNs()) * 1e-6;
-        auto ms = [&](int a, int b) { return double(ticks[size_t(b)] - ticks[size_t(a)]) * toMs; };
-        s.passes = {{"deform", ms(0, 1)}, {"curvature", ms(1, 2)}, {"shadow", ms(2, 3)}, {"clusters", ms(3, 4)},
-                    {"forward", ms(4, 5)}};
-        s.gpuMs = ms(0, 5);
-        return s;
-    }
-};
+void Renderer::Impl::setLutLayers(const std::vector<const LutSet*>& layers) {
+    checkProfileLayers(layers.size());
+    auto replacement = std::make_unique<GpuLuts>(dev, layers);
+    vkDeviceWaitIdle(dev.device());
+    luts = std::move(replacement);
+    scene->updateMaterials(luts->profileWidths());
+}
 
 namespace {
 
@@ -799,7 +473,9 @@ std::vector<const LutSet*> layersOf(const ProfileLibrary& profiles) {
     return layers;
 }
 
-std::vector<const LutSet*> layersOf(const LutSet* luts) { return luts ? std::vector<const LutSet*>{luts} : std::vector<const LutSet*>{}; }
+std::vector<const LutSet*> layersOf(const LutSet* luts) {
+    return luts ? std::vector<const LutSet*>{luts} : std::vector<const LutSet*>{};
+}
 
 }  // namespace
 
@@ -842,8 +518,7 @@ void Renderer::setProfileLayer(size_t layer, const LutSet& luts) {
                                 impl_->luts->layerCount()));
     vkDeviceWaitIdle(impl_->dev.device());
     if (!impl_->luts->replaceLayer(static_cast<uint32_t>(layer), luts))
-        throw Error(fmt::format("Renderer::setProfileLayer: the LUT set is larger than the renderer's LUT arrays; "
-                                "use setProfiles"));
+        throw Error("Renderer::setProfileLayer: the LUT set is larger than the renderer's LUT arrays; use setProfiles");
     impl_->scene->updateMaterials(impl_->luts->profileWidths());
 }
 

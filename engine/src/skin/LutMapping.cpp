@@ -1,12 +1,12 @@
 // LutMapping from a LutSet, and the set's CPU lookups. Both go through the mapping functions of
 // shaders/shared/lut_mapping.h, the same code lut.glsl runs, then LutTable::sample (the Vulkan
 // LINEAR + CLAMP_TO_EDGE rule). Limits: see lut_mapping.h.
+#include "shared/constants.h"
 #include "shared/lut_mapping.h"
 
 #include <preskin/LutSet.h>
 
 #include <cmath>
-#include <numbers>
 
 namespace preskin {
 namespace {
@@ -51,8 +51,7 @@ gpu::LutMapping lutMapping(const LutSet& luts, const LutExtents& extents) {
     m.shCurvature = glm::vec4(f(1.0 / shCurvature.max), shTexel.x, shTexel.y, 0.0f);
     const auto bands = static_cast<float>(extentOr(extents.shTransfer.y, luts.shTransfer().y.size));
     m.shBandV = glm::vec4(0.5f / bands, 1.5f / bands, 2.5f / bands, 0.0f);
-    constexpr double pi = std::numbers::pi;
-    m.shLambert = glm::vec4(f(pi), f(2.0 * pi / 3.0), f(pi / 4.0), 0.0f);
+    m.shLambert = glm::vec4(gpu::kShLambert0, gpu::kShLambert1, gpu::kShLambert2, 0.0f);
 
     const LutAxis& thickness = luts.transmittance().x;  // Log1p on [0, max]
     const glm::vec2 thicknessTexel = texelScaleOffset(thickness.size, extentOr(extents.transmittance.x, thickness.size));

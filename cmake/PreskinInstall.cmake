@@ -1,0 +1,40 @@
+# `cmake --install` in GNUInstallDirs places:
+#   lib/libpreskin.so*                      the library (public API only, hidden internals)
+#   include/preskin/*.h                      its public headers
+#   share/preskin/shaders/                   the GLSL include root: preskin/*.glsl (the host library),
+#                                            shared/*.h (structs and constants read by C++ and GLSL),
+#                                            and the renderer's own entry points (forward.frag, ...)
+#   share/preskin/luts/                      the default LUT set and its manifest
+#   share/preskin/samples/assets/head/       the sample scene the tools render by default
+#   bin/preskin, bin/preskin-viewer          the tools (they find share/preskin beside them)
+#   lib/cmake/preskin/                       find_package(preskin CONFIG): preskin::preskin, version file
+#   lib/pkgconfig/preskin.pc                 pkg-config
+include(CMakePackageConfigHelpers)
+set(PRESKIN_INSTALL_CMAKEDIR ${CMAKE_INSTALL_LIBDIR}/cmake/preskin)
+
+install(TARGETS preskin EXPORT preskinTargets
+  LIBRARY DESTINATION ${CMAKE_INSTALL_LIBDIR} NAMELINK_COMPONENT Development)
+install(DIRECTORY ${PROJECT_SOURCE_DIR}/engine/include/preskin DESTINATION ${CMAKE_INSTALL_INCLUDEDIR})
+install(DIRECTORY ${PROJECT_SOURCE_DIR}/shaders/ DESTINATION ${PRESKIN_INSTALL_SHADERDIR}
+  FILES_MATCHING PATTERN "*.glsl" PATTERN "*.h" PATTERN "*.vert" PATTERN "*.frag" PATTERN "*.comp")
+install(DIRECTORY ${PROJECT_SOURCE_DIR}/luts/ DESTINATION ${PRESKIN_INSTALL_DATADIR}/luts
+  FILES_MATCHING PATTERN "manifest.json" PATTERN "*.exr" PATTERN "*.md")
+install(DIRECTORY ${PROJECT_SOURCE_DIR}/samples/assets/head DESTINATION ${PRESKIN_INSTALL_DATADIR}/samples/assets
+  PATTERN "*.py" EXCLUDE)
+install(TARGETS preskin_cli RUNTIME DESTINATION ${CMAKE_INSTALL_BINDIR})
+if(TARGET preskin_viewer)
+  install(TARGETS preskin_viewer RUNTIME DESTINATION ${CMAKE_INSTALL_BINDIR})
+endif()
+
+install(EXPORT preskinTargets NAMESPACE preskin:: DESTINATION ${PRESKIN_INSTALL_CMAKEDIR})
+configure_package_config_file(${PROJECT_SOURCE_DIR}/cmake/preskinConfig.cmake.in
+  ${PROJECT_BINARY_DIR}/preskinConfig.cmake
+  INSTALL_DESTINATION ${PRESKIN_INSTALL_CMAKEDIR}
+  PATH_VARS PRESKIN_INSTALL_SHADERDIR PRESKIN_INSTALL_DATADIR)
+# 0.x: minor versions may break the API.
+write_basic_package_version_file(${PROJECT_BINARY_DIR}/preskinConfigVersion.cmake COMPATIBILITY SameMinorVersion)
+install(FILES ${PROJECT_BINARY_DIR}/preskinConfig.cmake ${PROJECT_BINARY_DIR}/preskinConfigVersion.cmake
+  DESTINATION ${PRESKIN_INSTALL_CMAKEDIR})
+
+configure_file(${PROJECT_SOURCE_DIR}/cmake/preskin.pc.in ${PROJECT_BINARY_DIR}/preskin.pc @ONLY)
+install(FILES ${PROJECT_BINARY_DIR}/preskin.pc DESTINATION ${CMAKE_INSTALL_LIBDIR}/pkgconfig)

@@ -1,0 +1,251 @@
+// The forward pass of the sample renderer: its pipelines (one per material model, alpha mode,
+// sidedness, target and depth format, debug view, skin techniques, light loop, eye count,
+// samples and eye drawing), its own attachments (depth unless the host's, multisampled colour),
+// and the recording of every draw of every eye into the host's or the headless target.
+#include "render/RendererImpl.h"
+
+#include "shared/gpu_types.h"
+#include "vk/Check.h"
+#include "vk/Pipeline.h"
+
+#include <fmt/core.h>
+#include <fmt/format.h>
+#include <fmt/ranges.h>
+
+#include <algorithm>
+
+namespace preskin {
+
+namespace {
+
+bool isDisplayFormat(VkFormat format) {
+    switch (format) {
+    case VK_FORMAT_R8G8B8A8_UNORM:
+    case VK_FORMAT_R8G8B8A8_SRGB:
+    case VK_FORMAT_B8G8R8A8_UNORM:
+    case VK_FORMAT_B8G8R8A8_SRGB:
+    case VK_FORMAT_A2B10G10R10_UNORM_PACK32:
+    case VK_FORMAT_A2R10G10B10_UNORM_PACK32: return true;
+    default: return false;
+    }
+}
+
+VkImageAspectFlags depthAspect(VkFormat format) {
+    switch (format) {
+    case VK_FORMAT_D16_UNORM_S8_UINT:
+    case VK_FORMAT_D24_UNORM_S8_UINT:
+    case VK_FORMAT_D32_SFLOAT_S8_UINT: return VK_IMAGE_ASPECT_DEPTH_BIT | VK_IMAGE_ASPECT_STENCIL_BIT;
+    default: return VK_IMAGE_ASPECT_DEPTH_BIT;
+    }
+}
+
+}  // namespace
+
+PipelineKey Renderer::Impl::pipelineKey(const GpuMaterial& m, VkFormat format, VkFormat depthFormat, uint32_t eyes) const {
+    const bool skin = m.skin && luts->valid();
+    return PipelineKey{skin ? gpu::kModelSkin : gpu::kModelStandard,
+                       static_cast<uint32_t>(m.alphaMode),
+                       m.doubleSided ? 1u : 0u,
+                       static_cast<uint32_t>(format),
+                       static_cast<uint32_t>(depthFormat),
+                       static_cast<uint32_t>(settings.debugView),
+                       skin ? settings.skin.mask() : 0u,
+                       settings.lightLoop == LightLoop::Clustered ? gpu::kLightLoopClustered : gpu::kLightLoopAll,
+                       eyes,
+                       settings.msaaSamples,
+                       eyeDrawing() == EyeDrawing::InstancedLayers ? 1u : 0u};
+}
+
+VkPipeline Renderer::Impl::forwardPipeline(const GpuMaterial& m, VkFormat format, VkFormat depthFormat, uint32_t eyes) {
+    const PipelineKey key = pipelineKey(m, format, depthFormat, eyes);
+    auto it = pipelines.find(key);
+    if (it != pipelines.end()) return it->second;
+    VkPipeline p = createForwardPipeline(key);
+    pipelines.emplace(key, p);
+    return p;
+}
+
+VkPipeline Renderer::Impl::createForwardPipeline(const PipelineKey& key) const {
+    const VkFormat format = static_cast<VkFormat>(key.format);
+    vk::GraphicsPipelineDesc desc;
+    desc.vertexSpirv = shader(key.layered ? "forward_layers.vert" : "forward.vert");
+    desc.fragmentSpirv = shader("forward.frag");
+    desc.specialization.values.resize(7);
+    desc.specialization.values[gpu::kSpecMaterialModel] = key.model;
+    desc.specialization.values[gpu::kSpecOutputMode] = isDisplayFormat(format) ? gpu::kOutputTonemapped
+                                                                               : gpu::kOutputLinear;
+    desc.specialization.values[gpu::kSpecDebugView] = key.debugView;
+    desc.specialization.values[gpu::kSpecAlphaMode] = key.alphaMode;
+    desc.specialization.values[gpu::kSpecSkinFeatures] = key.skinMask;
+    desc.specialization.values[gpu::kSpecLightLoop] = key.lightLoop;
+    const AlphaMode alphaMode = static_cast<AlphaMode>(key.alphaMode);
+    const bool alphaToCoverage = key.samples > 1 && alphaMode == AlphaMode::Mask;
+    desc.specialization.values[gpu::kSpecAlphaToCoverage] = alphaToCoverage ? 1u : 0u;
+    desc.vertexBindings = {{0, sizeof(Vertex), VK_VERTEX_INPUT_RATE_VERTEX}};
+    desc.vertexAttributes = {
+        {gpu::kAttributePosition, 0, VK_FORMAT_R32G32B32_SFLOAT, offsetof(Vertex, positionOs)},
+        {gpu::kAttributeNormal, 0, VK_FORMAT_R32G32B32_SFLOAT, offsetof(Vertex, normalOs)},
+        {gpu::kAttributeTangent, 0, VK_FORMAT_R32G32B32A32_SFLOAT, offsetof(Vertex, tangentOs)},
+        {gpu::kAttributeUv0, 0, VK_FORMAT_R32G32_SFLOAT, offsetof(Vertex, uv0)},
+        {gpu::kAttributeCurvature, 0, VK_FORMAT_R32_SFLOAT, offsetof(Vertex, curvaturePerM)},
+    };
+    desc.colorFormats = {format};
+    desc.depthFormat = static_cast<VkFormat>(key.depthFormat);
+    desc.viewMask = key.layered ? 0u : (1u << key.eyes) - 1u;
+    desc.samples = static_cast<VkSampleCountFlagBits>(key.samples);
+    desc.alphaToCoverage = alphaToCoverage;
+    desc.alphaToOne = alphaToCoverage && dev.alphaToOne();
+    desc.cullMode = key.doubleSided ? VK_CULL_MODE_NONE : VK_CULL_MODE_BACK_BIT;
+    desc.depthWrite = alphaMode != AlphaMode::Blend;
+    desc.alphaBlend = alphaMode == AlphaMode::Blend;
+    desc.layout = forwardLayout;
+    return vk::createGraphicsPipeline(dev, desc);
+}
+
+// The forward pass's own attachments: depth (unless the host's is used), and with MSAA the
+// multisampled colour. Replaced ones are retired, never waited for.
+void Renderer::Impl::ensureAttachments(VkExtent2D extent, uint32_t eyes, VkFormat colorFormat, bool ownDepth, uint32_t slotIndex) {
+    const auto matches = [&](const vk::Image& image, VkFormat format) {
+        const vk::ImageDesc& d = image.desc();
+        return image && d.width == extent.width && d.height == extent.height && d.layers == eyes &&
+               d.samples == samples() && d.format == format;
+    };
+    const bool msaa = settings.msaaSamples > 1;
+    if ((!ownDepth || matches(depth, kDepthFormat)) && (!msaa || matches(msaaColor, colorFormat))) return;
+    retire(depth, slotIndex);
+    retire(msaaColor, slotIndex);
+    vk::ImageDesc d{kDepthFormat, extent.width, extent.height, 1, VK_IMAGE_USAGE_DEPTH_STENCIL_ATTACHMENT_BIT,
+                    VK_IMAGE_ASPECT_DEPTH_BIT, eyes, samples()};
+    if (ownDepth) depth = vk::Image(dev, d);
+    if (msaa) {
+        d.format = colorFormat;
+        d.usage = VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT | VK_IMAGE_USAGE_TRANSIENT_ATTACHMENT_BIT;
+        d.aspect = VK_IMAGE_ASPECT_COLOR_BIT;
+        msaaColor = vk::Image(dev, d);
+    }
+}
+
+void Renderer::Impl::recordForwardPass(VkCommandBuffer cmd, Slot& slot, uint32_t slotIndex, const RenderTarget& target,
+                       const View& view) {
+    const uint32_t eyes = view.eyeCount();
+    const bool msaa = settings.msaaSamples > 1;
+    constexpr VkPipelineStageFlags2 kDepthStages =
+        VK_PIPELINE_STAGE_2_EARLY_FRAGMENT_TESTS_BIT | VK_PIPELINE_STAGE_2_LATE_FRAGMENT_TESTS_BIT;
+    constexpr VkAccessFlags2 kColorAccess = VK_ACCESS_2_COLOR_ATTACHMENT_READ_BIT | VK_ACCESS_2_COLOR_ATTACHMENT_WRITE_BIT;
+    vk::imageBarrier(cmd, target.image, VK_IMAGE_ASPECT_COLOR_BIT, target.layoutBefore,
+                     VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL, VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT,
+                     VK_ACCESS_2_MEMORY_READ_BIT | VK_ACCESS_2_MEMORY_WRITE_BIT,
+                     VK_PIPELINE_STAGE_2_COLOR_ATTACHMENT_OUTPUT_BIT, kColorAccess, eyes);
+    if (msaa)
+        vk::imageBarrier(cmd, msaaColor.handle(), VK_IMAGE_ASPECT_COLOR_BIT, VK_IMAGE_LAYOUT_UNDEFINED,
+                         VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL, VK_PIPELINE_STAGE_2_COLOR_ATTACHMENT_OUTPUT_BIT,
+                         VK_ACCESS_2_COLOR_ATTACHMENT_WRITE_BIT, VK_PIPELINE_STAGE_2_COLOR_ATTACHMENT_OUTPUT_BIT,
+                         kColorAccess, eyes);
+    constexpr VkAccessFlags2 kDepthAccess =
+        VK_ACCESS_2_DEPTH_STENCIL_ATTACHMENT_READ_BIT | VK_ACCESS_2_DEPTH_STENCIL_ATTACHMENT_WRITE_BIT;
+    const bool hostDepth = target.depth.image != VK_NULL_HANDLE;
+    const VkImageLayout depthLayout =
+        hostDepth ? VK_IMAGE_LAYOUT_DEPTH_STENCIL_ATTACHMENT_OPTIMAL : VK_IMAGE_LAYOUT_DEPTH_ATTACHMENT_OPTIMAL;
+    if (hostDepth)
+        vk::imageBarrier(cmd, target.depth.image, depthAspect(target.depth.format), target.depth.layoutBefore,
+                         depthLayout, VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT,
+                         VK_ACCESS_2_MEMORY_READ_BIT | VK_ACCESS_2_MEMORY_WRITE_BIT, kDepthStages, kDepthAccess, eyes);
+    else
+        vk::imageBarrier(cmd, depth.handle(), VK_IMAGE_ASPECT_DEPTH_BIT, VK_IMAGE_LAYOUT_UNDEFINED, depthLayout,
+                         kDepthStages, VK_ACCESS_2_DEPTH_STENCIL_ATTACHMENT_WRITE_BIT, kDepthStages, kDepthAccess,
+                         eyes);
+    VkRenderingAttachmentInfo color{VK_STRUCTURE_TYPE_RENDERING_ATTACHMENT_INFO};
+    color.imageView = msaa ? msaaColor.view() : target.view;
+    color.imageLayout = VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL;
+    color.loadOp = target.loadColor ? VK_ATTACHMENT_LOAD_OP_LOAD : VK_ATTACHMENT_LOAD_OP_CLEAR;
+    color.storeOp = msaa ? VK_ATTACHMENT_STORE_OP_DONT_CARE : VK_ATTACHMENT_STORE_OP_STORE;
+    color.clearValue.color = {{0.045f, 0.045f, 0.05f, 1.0f}};
+    if (msaa) {
+        color.resolveMode = VK_RESOLVE_MODE_AVERAGE_BIT;
+        color.resolveImageView = target.view;
+        color.resolveImageLayout = VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL;
+    }
+    VkRenderingAttachmentInfo depthAttachment{VK_STRUCTURE_TYPE_RENDERING_ATTACHMENT_INFO};
+    depthAttachment.imageView = hostDepth ? target.depth.view : depth.view();
+    depthAttachment.imageLayout = depthLayout;
+    depthAttachment.loadOp = hostDepth && target.depth.load ? VK_ATTACHMENT_LOAD_OP_LOAD : VK_ATTACHMENT_LOAD_OP_CLEAR;
+    depthAttachment.storeOp = hostDepth ? VK_ATTACHMENT_STORE_OP_STORE : VK_ATTACHMENT_STORE_OP_DONT_CARE;
+    depthAttachment.clearValue.depthStencil = {0.0f, 0};  // reversed Z
+    VkRenderingInfo info{VK_STRUCTURE_TYPE_RENDERING_INFO};
+    info.renderArea = {{0, 0}, target.extent};
+    // Every eye in one pass: one view per eye, or one layer per eye drawn by instances.
+    const bool layered = eyeDrawing() == EyeDrawing::InstancedLayers;
+    info.viewMask = layered ? 0u : (1u << eyes) - 1u;
+    info.layerCount = layered ? eyes : 1u;
+    info.colorAttachmentCount = 1;
+    info.pColorAttachments = &color;
+    info.pDepthAttachment = &depthAttachment;
+    vkCmdBeginRendering(cmd, &info);
+    const VkViewport viewport{0.0f, 0.0f, float(target.extent.width), float(target.extent.height), 0.0f, 1.0f};
+    const VkRect2D scissor{{0, 0}, target.extent};
+    vkCmdSetViewport(cmd, 0, 1, &viewport);
+    vkCmdSetScissor(cmd, 0, 1, &scissor);
+    VkBuffer boundVertices = VK_NULL_HANDLE;
+    bindGeometry(cmd, boundVertices);
+    vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, forwardLayout, 0, 1, &slot.set, 0, nullptr);
+
+    // Opaque and masked first, then blended ones back to front (from the eyes' mean position).
+    glm::vec3 eyeCenter(0.0f);
+    for (const Eye& e : view.eyes) eyeCenter += e.positionWs / float(eyes);
+    std::vector<const DrawItem*> order;
+    for (const DrawItem& d : scene->draws) order.push_back(&d);
+    auto blended = [&](const DrawItem* d) { return scene->materials[d->material].alphaMode == AlphaMode::Blend; };
+    std::stable_sort(order.begin(), order.end(), [&](const DrawItem* a, const DrawItem* b) {
+        if (blended(a) != blended(b)) return !blended(a);
+        if (!blended(a)) return a->material < b->material;
+        return glm::distance(a->centerWs, eyeCenter) > glm::distance(b->centerWs, eyeCenter);
+    });
+    VkPipeline bound = VK_NULL_HANDLE;
+    uint32_t boundMaterial = UINT32_MAX;
+    for (const DrawItem* d : order) {
+        const GpuMaterial& m = scene->materials[d->material];
+        VkPipeline p = forwardPipeline(m, target.format, hostDepth ? target.depth.format : kDepthFormat, eyes);
+        if (p != bound) {
+            vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, p);
+            bound = p;
+        }
+        if (d->material != boundMaterial) {
+            vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, forwardLayout, 1, 1, &m.set, 0, nullptr);
+            boundMaterial = d->material;
+        }
+        const gpu::DrawPush push{glm::uvec4(d->instance, d->material, 0, 0)};
+        vkCmdPushConstants(cmd, forwardLayout, VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_FRAGMENT_BIT, 0,
+                           sizeof(push), &push);
+        const int32_t vertexOffset = bindDrawVertices(cmd, slotIndex, *d, boundVertices);
+        vkCmdDrawIndexed(cmd, d->indexCount, layered ? eyes : 1u, d->firstIndex, vertexOffset, 0);
+    }
+    vkCmdEndRendering(cmd);
+    vk::imageBarrier(cmd, target.image, VK_IMAGE_ASPECT_COLOR_BIT, VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL,
+                     target.layoutAfter, VK_PIPELINE_STAGE_2_COLOR_ATTACHMENT_OUTPUT_BIT,
+                     VK_ACCESS_2_COLOR_ATTACHMENT_WRITE_BIT, VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT,
+                     VK_ACCESS_2_MEMORY_READ_BIT | VK_ACCESS_2_MEMORY_WRITE_BIT, eyes);
+    if (hostDepth && target.depth.layoutAfter != depthLayout)
+        vk::imageBarrier(cmd, target.depth.image, depthAspect(target.depth.format), depthLayout,
+                         target.depth.layoutAfter, kDepthStages, VK_ACCESS_2_DEPTH_STENCIL_ATTACHMENT_WRITE_BIT,
+                         VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT,
+                         VK_ACCESS_2_MEMORY_READ_BIT | VK_ACCESS_2_MEMORY_WRITE_BIT, eyes);
+}
+
+// Throws preskin::Error unless `record` can draw into the host's target as described.
+void Renderer::Impl::checkTarget(const RenderTarget& target) const {
+    if (target.loadColor && settings.msaaSamples > 1)
+        throw Error("RenderTarget: loadColor needs msaaSamples 1 (with MSAA preskin draws into its own "
+                    "multisampled colour and resolves it over the target)");
+    if (target.loadColor && target.layoutBefore == VK_IMAGE_LAYOUT_UNDEFINED)
+        throw Error("RenderTarget: loadColor needs the layout the host's colour is in (layoutBefore is UNDEFINED)");
+    const DepthTarget& d = target.depth;
+    if (!d.image) return;
+    if (!d.view) throw Error("RenderTarget: depth: an image without a view");
+    if (d.load && d.layoutBefore == VK_IMAGE_LAYOUT_UNDEFINED)
+        throw Error("RenderTarget: depth: load needs the layout the host's depth is in (layoutBefore is UNDEFINED)");
+    if (!dev.supportsFormat(d.format, VK_FORMAT_FEATURE_2_DEPTH_STENCIL_ATTACHMENT_BIT))
+        throw Error(fmt::format("RenderTarget: depth: format {} is not a depth format {} can render",
+                                static_cast<int>(d.format), dev.properties().deviceName));
+}
+
+}  // namespace preskin

@@ -1,0 +1,182 @@
+// Renderer::Impl: the state of the sample renderer (<preskin/Renderer.h>) and the steps of a
+// frame, split along the frame's seams: the frame orchestration and per-frame data
+// (Renderer.cpp), the shadow pass (ShadowPass.cpp) and the forward pass (ForwardPass.cpp).
+#pragma once
+
+#include <preskin/Renderer.h>
+
+#include "lights/ClusterBuilder.h"
+#include "render/GpuDeformer.h"
+#include "render/GpuLuts.h"
+#include "render/GpuScene.h"
+#include "render/PoseBounds.h"
+#include "vk/Resources.h"
+
+#include <array>
+#include <map>
+#include <memory>
+#include <span>
+#include <string>
+#include <tuple>
+#include <vector>
+
+namespace preskin {
+
+inline constexpr VkFormat kDepthFormat = VK_FORMAT_D32_SFLOAT;
+inline constexpr uint32_t kSlotCount = 2;
+// start, after deformation, after curvature, after shadow, after clustering, after forward
+inline constexpr uint32_t kQueryCount = 6;
+
+// What makes one forward pipeline differ from another.
+struct PipelineKey {
+    uint32_t model, alphaMode, doubleSided, format, depthFormat, debugView, skinMask, lightLoop, eyes, samples, layered;
+    auto tie() const {
+        return std::tie(model, alphaMode, doubleSided, format, depthFormat, debugView, skinMask, lightLoop, eyes,
+                        samples, layered);
+    }
+    bool operator<(const PipelineKey& o) const { return tie() < o.tie(); }
+};
+
+// Orthographic light matrix around the scene's bounding sphere (depth 0 near .. 1 far).
+glm::mat4 shadowMatrix(const Bounds& bounds, const glm::vec3& direction, float& radiusOut);
+
+struct Renderer::Impl {
+    struct Slot {
+        vk::Buffer frameUniforms;
+        vk::Buffer lights;
+        vk::Buffer instances;  // GpuInstance per scene instance, from the pose
+        uint64_t instancesPose = ~0ull;  // the pose version they hold
+        VkDescriptorSet set = VK_NULL_HANDLE;
+        VkQueryPool queries = VK_NULL_HANDLE;
+        bool recorded = false;  // a frame was recorded into this slot (it may still be in flight)
+        bool shadowRecorded = false;
+        double wallMs = 0.0;
+        double recordMs = 0.0;  // CPU time of record(), light-grid build included
+        uint32_t eyes = 0;
+        uint32_t lightCount = 0;
+    };
+
+    Context& context;
+    const vk::Device& dev;
+    RenderSettings settings;
+    EyeDrawing resolvedEyeDrawing = EyeDrawing::Multiview;
+    std::vector<Light> lights;
+    Bounds bounds;  // of the scene in the current pose
+    ShRgb radianceSh;
+    std::string sceneName;  // for messages
+    std::unique_ptr<GpuScene> scene;
+    ScenePose pose;
+    uint64_t poseVersion = 0;
+    std::unique_ptr<PoseBounds> poseBounds;
+    std::unique_ptr<GpuDeformer> deformer;
+    std::unique_ptr<GpuLuts> luts;
+    std::unique_ptr<ClusterBuilder> clusters;
+
+    VkDescriptorSetLayout frameLayout = VK_NULL_HANDLE;
+    VkPipelineLayout forwardLayout = VK_NULL_HANDLE;
+    VkPipelineLayout shadowLayout = VK_NULL_HANDLE;
+    VkDescriptorPool framePool = VK_NULL_HANDLE;
+    VkSampler shadowSampler = VK_NULL_HANDLE;
+    std::array<Slot, kSlotCount> slots;
+    // Attachments replaced while recording, kept until no slot's frame in flight can use them.
+    struct Retired {
+        vk::Image image;
+        uint32_t slotsInFlight = 0;  // bit s: slot s's last frame was recorded before the replacement
+    };
+    std::vector<Retired> retired;
+    vk::Image shadowMap;
+    vk::Image depth;        // one layer per eye, msaaSamples samples
+    vk::Image msaaColor;    // MSAA only: one layer per eye, resolved into the target
+    std::map<PipelineKey, VkPipeline> pipelines;
+    VkPipeline shadowPipeline = VK_NULL_HANDLE;
+    std::map<std::string, std::vector<uint32_t>> shaderOverrides;
+    // Headless render target and readback.
+    vk::Image colorTarget;
+    vk::Buffer readback;
+
+    // lutLayers: the LUT array layers (<preskin/ProfileLibrary.h>); empty: no LUTs.
+    Impl(Context& ctx, const Scene& s, const Environment& env, const std::vector<const LutSet*>& lutLayers,
+         const RenderSettings& rs);
+
+    ~Impl();
+
+    void createLayouts();
+
+    // Every skin material's profiles must have a layer (when there are LUTs at all).
+    void checkProfileLayers(size_t layerCount) const;
+    // Replaces the LUT arrays (after checking the materials against them).
+    void setLutLayers(const std::vector<const LutSet*>& layers);
+
+    // Replaces an attachment without waiting: the old image lives on until every other slot
+    // whose last frame was recorded with it has been recorded again (the host's slot contract).
+    void retire(vk::Image& image, uint32_t slotIndex);
+
+    // Recording into `slotIndex` means its previous frame finished: nothing retired waits on it.
+    void releaseRetired(uint32_t slotIndex);
+
+    // The shadow map at the settings' size; a new one starts in the read layout (sampled even
+    // when no light casts a shadow), transitioned in `cmd`.
+    void createShadowMap(VkCommandBuffer cmd, uint32_t slotIndex);
+
+    std::span<const uint32_t> shader(const char* name) const;
+
+    VkSampleCountFlagBits samples() const { return static_cast<VkSampleCountFlagBits>(settings.msaaSamples); }
+
+    PipelineKey pipelineKey(const GpuMaterial& m, VkFormat format, VkFormat depthFormat, uint32_t eyes) const;
+
+    // The settings' EyeDrawing resolved for this device (see <preskin/Renderer.h>); resolved
+    // when settings are set, since the probe submits work of its own.
+    EyeDrawing eyeDrawing() const { return resolvedEyeDrawing; }
+
+    void resolveEyeDrawing();
+
+    VkPipeline forwardPipeline(const GpuMaterial& m, VkFormat format, VkFormat depthFormat, uint32_t eyes);
+
+    VkPipeline createForwardPipeline(const PipelineKey& key) const;
+
+    VkPipeline createShadowPipeline() const;
+
+    void setShaderOverrides(const std::map<std::string, std::vector<uint32_t>>& spirv);
+
+    void setPose(ScenePose p);
+
+    VkPipeline depthOnlyPipeline();
+
+    // The forward pass's own attachments: depth (unless the host's is used), and with MSAA the
+    // multisampled colour. Replaced ones are retired, never waited for.
+    void ensureAttachments(VkExtent2D extent, uint32_t eyes, VkFormat colorFormat, bool ownDepth, uint32_t slotIndex);
+
+    // Fills the slot's uniforms and light list; returns whether a shadow map is rendered.
+    bool prepareFrame(Slot& slot, uint32_t slotIndex, const View& view, VkExtent2D extent, glm::mat4& shadowClipFromWorld);
+
+    void updateFrameSet(Slot& slot, uint32_t slotIndex);
+
+    // Binds the index buffer; vertex buffers are bound per draw (bindDrawVertices).
+    void bindGeometry(VkCommandBuffer cmd, VkBuffer& boundVertices);
+
+    // Binds the vertices a draw reads (the scene's rest vertices, or this frame's deformed ones of
+    // its instance) and returns its vertex offset.
+    int32_t bindDrawVertices(VkCommandBuffer cmd, uint32_t slotIndex, const DrawItem& d, VkBuffer& bound);
+
+    void recordShadowPass(VkCommandBuffer cmd, Slot& slot, uint32_t slotIndex);
+
+    void recordForwardPass(VkCommandBuffer cmd, Slot& slot, uint32_t slotIndex, const RenderTarget& target, const View& view);
+
+    // Throws preskin::Error unless the view and settings can be drawn on this device.
+    void checkFrame(const View& view) const;
+
+    // Throws preskin::Error unless `record` can draw into the host's target as described.
+    void checkTarget(const RenderTarget& target) const;
+
+    uint32_t maxEyes() const { return std::min(kMaxEyes, dev.maxMultiviewViews()); }
+
+    std::vector<uint32_t> msaaSampleCounts() const;
+
+    void timestamp(VkCommandBuffer cmd, Slot& slot, uint32_t query);
+
+    void record(VkCommandBuffer cmd, const RenderTarget& target, const View& view, uint32_t slotIndex);
+
+    FrameStats stats(uint32_t slotIndex) const;
+};
+
+}  // namespace preskin

@@ -1,0 +1,62 @@
+#version 460
+// host.frag: a host engine's own forward shader with preskin's skin: base colour, normal and
+// specular maps, every light of a small list, L2 SH ambient, tone mapping. All skin work comes
+// from the GLSL library (glslangValidator -I<preskin_SHADER_DIR>).
+// Limits: no shadows (so no penumbra or transmission), no texture transforms, one material.
+#extension GL_GOOGLE_include_directive : require
+#include "preskin/lights.glsl"
+#include "preskin/skin.glsl"
+#include "preskin/tonemap.glsl"
+
+layout(constant_id = 0) const uint kFeatures = kSkinAll;
+
+layout(set = 0, binding = 0) uniform Frame {
+    LutMapping lut;             // preskin::lutMapping(luts)
+    vec4 sh[9];                 // Environment::radianceSh()
+    vec4 cameraPositionWs;
+    vec4 skin;                  // x scatter scale, y roughness, z specular intensity, w normal scale
+    vec4 lodBias;               // rgb: normalLodBias()
+    vec4 lobes;                 // SkinMaterial lobeRoughness0, lobeRoughness1, lobeMix
+    uvec4 lightCount;
+    GpuLight lights[8];
+} frame;
+layout(set = 0, binding = 1) uniform sampler2D baseColorMap;
+layout(set = 0, binding = 2) uniform sampler2D normalMap;
+layout(set = 0, binding = 3) uniform sampler2D specularMap;
+layout(set = 0, binding = 4) uniform sampler2DArray diffuseLut;     // one layer: one diffusion profile
+layout(set = 0, binding = 5) uniform sampler2DArray shTransferLut;
+
+layout(location = 0) in vec3 inPositionWs;
+layout(location = 1) in vec3 inNormalWs;
+layout(location = 2) in vec4 inTangentWs;
+layout(location = 3) in vec2 inUv0;
+layout(location = 4) in float inCurvaturePerM;
+layout(location = 0) out vec4 outColor;
+
+void main() {
+    vec3 geometricN = normalize(inNormalWs) * (gl_FrontFacing ? 1.0 : -1.0);
+    PreskinNormalMaps maps = PreskinNormalMaps(frame.skin.w, false, 1.0, 0.0, frame.lodBias.rgb);
+    PreskinSkinSurface s;
+    preskinSkinNormals(normalMap, normalMap, maps, inUv0, geometricN, inTangentWs, kFeatures, s.normalSpecular,
+                       s.normalR, s.normalG, s.normalB);
+    s.albedo = texture(baseColorMap, inUv0).rgb;
+    s.geometricNormal = geometricN;
+    s.scatterScale = frame.skin.x;
+    s.curvaturePerMm = preskinCurvatureProfilePerMm(inCurvaturePerM, s.scatterScale);
+    s.roughness = frame.skin.y;
+    s.F0 = preskinSkinF0(frame.skin.z, texture(specularMap, inUv0).r);
+    s.lobes = frame.lobes;
+    s.transmissionTint = vec3(0.0);
+    s.thicknessScale = 1.0;
+
+    vec3 V = normalize(frame.cameraPositionWs.xyz - inPositionWs);
+    vec3 ambientDiffuse;
+    PreskinProfileMix profile = preskinSingleProfile(frame.lut, 0.0);
+    vec3 color = preskinSkinAmbient(s, profile, shTransferLut, frame.sh, V, kFeatures, ambientDiffuse);
+    for (uint i = 0; i < frame.lightCount.x; ++i) {
+        vec3 L, irradiance;
+        preskinLightIncidence(frame.lights[i], inPositionWs, L, irradiance);
+        color += preskinSkinLight(s, profile, diffuseLut, V, L, irradiance, vec3(1.0), 1.0, kFeatures);
+    }
+    outColor = vec4(preskinTonemapNeutral(max(color, vec3(0.0))), 1.0);
+}

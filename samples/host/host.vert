@@ -1,0 +1,35 @@
+#version 460
+// host.vert: the host sample's vertex stage. World position, normal and tangent of preskin's
+// interleaved Vertex (<preskin/Scene.h>, locations of shared/constants.h), and the per-vertex
+// curvature scaled from object to world units.
+#extension GL_GOOGLE_include_directive : require
+#include "shared/constants.h"
+
+layout(set = 0, binding = 6) uniform Camera { mat4 clipFromWorld; } camera;
+layout(push_constant) uniform Draw {
+    mat4 worldFromObject;
+    vec4 normalFromObject[3];  // columns of the inverse transpose; [0].w: 1 / the uniform scale
+} draw;
+
+layout(location = kAttributePosition) in vec3 inPositionOs;
+layout(location = kAttributeNormal) in vec3 inNormalOs;
+layout(location = kAttributeTangent) in vec4 inTangentOs;
+layout(location = kAttributeUv0) in vec2 inUv0;
+layout(location = kAttributeCurvature) in float inCurvature;
+
+layout(location = 0) out vec3 outPositionWs;
+layout(location = 1) out vec3 outNormalWs;
+layout(location = 2) out vec4 outTangentWs;
+layout(location = 3) out vec2 outUv0;
+layout(location = 4) out float outCurvaturePerM;
+
+void main() {
+    vec4 positionWs = draw.worldFromObject * vec4(inPositionOs, 1.0);
+    mat3 normalFromObject = mat3(draw.normalFromObject[0].xyz, draw.normalFromObject[1].xyz, draw.normalFromObject[2].xyz);
+    outPositionWs = positionWs.xyz;
+    outNormalWs = normalFromObject * inNormalOs;
+    outTangentWs = vec4(mat3(draw.worldFromObject) * inTangentOs.xyz, inTangentOs.w);
+    outUv0 = inUv0;
+    outCurvaturePerM = inCurvature * draw.normalFromObject[0].w;
+    gl_Position = camera.clipFromWorld * positionWs;
+}

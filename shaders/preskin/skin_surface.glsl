@@ -1,0 +1,114 @@
+// preskin/skin_surface.glsl: the per-fragment set-up of a PreskinSkinSurface (preskin/skin.glsl)
+// from a host's textures and material values, so a host forward shader needs no skin code of
+// its own:
+//  - the tangent frame and tangent-space normal maps (glTF: +Y up, bitangent = cross(N, T) * w),
+//    with an optional detail map blended over the base map (whiteout blend, Barre-Brisebois &
+//    Hill, "Blending in Detail", 2012);
+//  - per-channel normal prefiltering (Penner & Borshukov; d'Eon & Luebke): one level-of-detail
+//    query, then the map at three explicit levels lod + bias per channel (the biases from
+//    normalLodBias() in <preskin/SkinParameters.h>), the unbiased normal for specular;
+//  - the curvature source (per-vertex, texture or screen derivatives) and the unit conversion
+//    to profile 1/mm (world 1/m * 0.001 / scatter scale);
+//  - skin F0 (kSkinF0 of shared/constants.h times the material's intensity and specular map);
+//  - the thickness sample point (2 profile-mm inside along the normal, after Jimenez et al.
+//    2010's shrink) and the gate that skips the shadow-map read where no transmission shows.
+// Limits: the detail map's level follows the base map's (a fixed offset from their texel
+// densities); texture curvature is read at the base colour's coordinates the host passes.
+#ifndef PRESKIN_SKIN_SURFACE_GLSL
+#define PRESKIN_SKIN_SURFACE_GLSL
+
+#include "preskin/common.glsl"
+#include "shared/skin_features.h"
+
+// Tangent frame (tangent, bitangent, normal); a degenerate tangent gives (0, 0, N).
+mat3 preskinTangentFrame(vec3 N, vec4 T) {
+    vec3 t = T.xyz - N * dot(N, T.xyz);
+    if (dot(t, t) < 1e-12) return mat3(vec3(0.0), vec3(0.0), N);
+    t = normalize(t);
+    return mat3(t, cross(N, t) * (T.w < 0.0 ? -1.0 : 1.0), N);
+}
+
+// How a skin material's normal maps are sampled.
+struct PreskinNormalMaps {
+    float scale;         // glTF normalTexture.scale
+    bool hasDetail;      // a detail normal map is bound
+    float detailUvScale; // detail uv = uv * detailUvScale
+    float detailScale;   // strength of the detail map's xy
+    vec3 lodBias;        // per-channel level-of-detail bias (red, green, blue): normalLodBias()
+};
+
+// Tangent-space normal of the base map plus the optional detail map (whiteout blend). Without
+// explicitLod, the hardware's own level of detail; with it, level `lod` of the base map and
+// `lod + detailLodOffset` of the detail map.
+vec3 preskinNormalTs(sampler2D normalMap, sampler2D detailMap, PreskinNormalMaps maps, vec2 uv, bool explicitLod,
+                     float lod, float detailLodOffset) {
+    vec3 base = (explicitLod ? textureLod(normalMap, uv, lod) : texture(normalMap, uv)).rgb * 2.0 - 1.0;
+    base.xy *= maps.scale;
+    if (maps.hasDetail) {
+        vec2 uvDetail = uv * maps.detailUvScale;
+        vec3 detail = (explicitLod ? textureLod(detailMap, uvDetail, lod + detailLodOffset)
+                                   : texture(detailMap, uvDetail)).rgb * 2.0 - 1.0;
+        detail.xy *= maps.detailScale;
+        base = vec3(base.xy + detail.xy, base.z * detail.z);
+    }
+    base.z = max(base.z, 1e-4);
+    return base;
+}
+
+// The surface's four normals from the maps: normalSpecular (unbiased) and normalR/G/B
+// (prefiltered per channel when kSkinNormalPrefilter is set, else equal to normalSpecular).
+// geometricNormal: the interpolated vertex normal facing the viewer; tangentWs: xyz, w sign.
+void preskinSkinNormals(sampler2D normalMap, sampler2D detailMap, PreskinNormalMaps maps, vec2 uv,
+                        vec3 geometricNormal, vec4 tangentWs, uint features, out vec3 normalSpecular,
+                        out vec3 normalR, out vec3 normalG, out vec3 normalB) {
+    mat3 tbn = preskinTangentFrame(geometricNormal, tangentWs);
+    normalSpecular = normalize(tbn * preskinNormalTs(normalMap, detailMap, maps, uv, false, 0.0, 0.0));
+    normalR = normalSpecular;
+    normalG = normalSpecular;
+    normalB = normalSpecular;
+    if ((features & kSkinNormalPrefilter) == 0u) return;
+    float lod = textureQueryLod(normalMap, uv).y;
+    float detailOffset = maps.hasDetail ? textureQueryLod(detailMap, uv * maps.detailUvScale).y - lod : 0.0;
+    normalR = normalize(tbn * preskinNormalTs(normalMap, detailMap, maps, uv, true, lod + maps.lodBias.r, detailOffset));
+    normalG = normalize(tbn * preskinNormalTs(normalMap, detailMap, maps, uv, true, lod + maps.lodBias.g, detailOffset));
+    normalB = normalize(tbn * preskinNormalTs(normalMap, detailMap, maps, uv, true, lod + maps.lodBias.b, detailOffset));
+}
+
+// Curvature in 1/m from screen-space derivatives (Penner's fallback: constant per triangle).
+float preskinCurvatureFromDerivatives(vec3 normalWs, vec3 positionWs) {
+    float dn = length(fwidth(normalWs));
+    float dp = length(fwidth(positionWs));
+    return dp > 0.0 ? dn / dp : 0.0;
+}
+
+// World curvature (1/m) from the material's source (kCurvatureSource* of shared/constants.h):
+// the interpolated per-vertex value, the curvature texture's red channel times its scale (1/m),
+// or the screen derivatives of the geometric normal and position.
+float preskinSkinCurvaturePerM(uint source, float vertexCurvaturePerM, sampler2D curvatureTexture, vec2 uv,
+                               float textureScalePerM, vec3 geometricNormal, vec3 positionWs) {
+    if (source == kCurvatureSourceTexture) return texture(curvatureTexture, uv).r * textureScalePerM;
+    if (source == kCurvatureSourceDerivatives) return preskinCurvatureFromDerivatives(geometricNormal, positionWs);
+    return vertexCurvaturePerM;
+}
+
+// World curvature (1/m) -> the LUTs' profile units (1/mm of the profile).
+float preskinCurvatureProfilePerMm(float curvaturePerM, float scatterScale) {
+    return curvaturePerM * 0.001 / max(scatterScale, 1e-6);
+}
+
+// Skin's specular reflectance at normal incidence.
+vec3 preskinSkinF0(float specularIntensity, float specularMap) { return vec3(kSkinF0 * specularIntensity * specularMap); }
+
+// Where to read the shadow map's thickness: 2 profile-mm inside along the normal, so the lit
+// side near the terminator is not a zero-thickness slab.
+vec3 preskinThicknessPointWs(vec3 positionWs, vec3 geometricNormal, float scatterScale) {
+    return positionWs - geometricNormal * (0.002 / max(scatterScale, 1e-6));
+}
+
+// Whether transmission can show for light direction L (else skip the thickness read): the
+// technique is on and the wrap saturate(kSkinTransmissionWrap - NoL) is above zero.
+bool preskinTransmissionGate(vec3 geometricNormal, vec3 L, uint features) {
+    return (features & kSkinTransmission) != 0u && dot(geometricNormal, L) < kSkinTransmissionWrap;
+}
+
+#endif

@@ -1,0 +1,75 @@
+// samples/host built against an installed preskin, as an engine builds against it: `cmake
+// --install` into a fresh prefix, samples/host configured with CMAKE_PREFIX_PATH (its own
+// find_package(preskin CONFIG), glslang run on its own shader with preskin_SHADER_DIR) and built,
+// its picture of the head compared with the installed `preskin render` of the same view (no
+// shadows: the host sample has no shadow pass) within the golden tolerance: every channel within
+// 5/255 on at least 99.9% of the pixels. The validation layers are on in both programs.
+#include "support/ImageCompare.h"
+#include "support/Process.h"
+
+#include <gtest/gtest.h>
+
+#include <cstdio>
+#include <cstdlib>
+#include <filesystem>
+#include <string>
+
+namespace preskin::test {
+namespace {
+
+namespace fs = std::filesystem;
+
+TEST(HostSample, BuiltAgainstTheInstallRendersLikePreskinRender) {
+    const fs::path work = fs::path(PRESKIN_BINARY_DIR) / "host-sample-test";
+    const fs::path prefix = work / "prefix";
+    const fs::path build = work / "build";  // kept between runs: only what changed is rebuilt
+    std::error_code ec;
+    fs::remove_all(prefix, ec);
+    fs::create_directories(build);
+    auto run = [&](const fs::path& program, const std::vector<std::string>& args, double limitS,
+                   const std::vector<std::string>& env = {}) {
+        const ProcessResult r = runProcess(program, args, env, work, limitS);
+        EXPECT_EQ(r.exitCode, 0) << program.string() << " " << (args.empty() ? "" : args[0]) << "\n" << r.out << r.err;
+        return r;
+    };
+    run(PRESKIN_CMAKE_COMMAND, {"--install", PRESKIN_BINARY_DIR, "--prefix", prefix.string()}, 120.0);
+    run(PRESKIN_CMAKE_COMMAND,
+        {"-S", PRESKIN_SOURCE_DIR "/samples/host", "-B", build.string(), "-G", PRESKIN_CMAKE_GENERATOR,
+         "-DCMAKE_BUILD_TYPE=Release", "-DCMAKE_PREFIX_PATH=" + prefix.string(),
+         "-DCMAKE_CXX_COMPILER_LAUNCHER=" PRESKIN_CXX_LAUNCHER},
+        120.0);
+    run(PRESKIN_CMAKE_COMMAND, {"--build", build.string()}, 300.0);
+    ASSERT_FALSE(HasFailure());
+
+    const std::string size = "96";
+    const ProcessResult host =
+        run(build / "preskin-host", {"--device", testDevice(), "--width", size, "--height", size, "--out", "host.png"},
+            120.0, {"VK_INSTANCE_LAYERS=VK_LAYER_KHRONOS_validation"});
+    EXPECT_EQ((host.out + host.err).find("Validation"), std::string::npos) << host.out << host.err;
+    run(prefix / "bin" / "preskin", {"render", "--device", testDevice(), "--validation", "--no-shadows", "--width", size,
+                                     "--height", size, "--out", "preskin.png"},
+        120.0);
+    ASSERT_FALSE(HasFailure());
+
+    std::string error;
+    const RenderedImage hostImage = readPng(work / "host.png", error);
+    ASSERT_TRUE(error.empty()) << error;
+    const RenderedImage reference = readPng(work / "preskin.png", error);
+    ASSERT_TRUE(error.empty()) << error;
+    ASSERT_EQ(hostImage.width, reference.width);
+    ASSERT_EQ(hostImage.height, reference.height);
+    int maxDifference = 0;
+    const size_t differing = pixelsDifferingBy(hostImage, reference, 5, maxDifference);
+    const size_t pixels = size_t(reference.width) * reference.height;
+    std::printf("host sample vs preskin render: %zu of %zu pixels differ by more than 5/255, largest difference %d/255\n",
+                differing, pixels, maxDifference);
+    EXPECT_LE(double(differing), 0.001 * double(pixels));
+    // The head is in the picture: not just two empty backgrounds that agree.
+    size_t head = 0;
+    for (size_t p = 0; p < pixels; ++p)
+        head += std::abs(int(reference.rgba8[4 * p]) - int(reference.rgba8[0])) > 10 ? 1 : 0;
+    EXPECT_GT(head, pixels / 5);
+}
+
+}  // namespace
+}  // namespace preskin::test
