@@ -7,6 +7,8 @@
 // descriptors valid and skin materials render with the standard model.
 #pragma once
 
+#include <preskin/LutSet.h>
+
 #include "render/GpuScene.h"
 #include "shared/gpu_types.h"
 #include "vk/Resources.h"
@@ -16,7 +18,6 @@
 
 namespace preskin {
 
-class LutSet;
 
 class GpuLuts {
 public:
