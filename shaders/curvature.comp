@@ -1,5 +1,6 @@
 #version 460
-// curvature.comp: per-vertex mean curvature of a deformed mesh instance, the same estimator as
+// curvature.comp: per-vertex signed mean curvature of a deformed mesh instance (> 0 convex, < 0
+// concave, outward normals), the same estimator as
 // computeVertexCurvature (<preskin/Curvature.h>; Rusinkiewicz 2004) over the same welded mesh
 // (vertices welded by position and normal hemisphere at load, so seams stay continuous), in four
 // steps selected by a specialization constant, each one dispatch:
@@ -13,8 +14,8 @@
 //   kCurvatureStepVertices  per welded vertex: the area-weighted mean over incident triangles
 //                           (a gather over an adjacency list built at load: deterministic);
 //   kCurvatureStepSmooth    per welded vertex: half its own value, half its one-ring's mean,
-//                           as a magnitude, written into every member vertex whose material asks
-//                           for deformed curvature.
+//                           signed, written into every member vertex whose material asks for
+//                           deformed curvature.
 // Limits: float precision (the CPU estimator uses double); triangles whose welded corners repeat
 // are left out at load, as the CPU estimator does.
 #extension GL_GOOGLE_include_directive : require
@@ -137,10 +138,9 @@ void stepSmooth(uint w) {
         for (uint i = first; i < end; ++i) sum += scratch[push.scratch.w + neighbour(i)].x;
         h = 0.5 * h + 0.5 * sum / float(end - first);
     }
-    float magnitude = abs(h);
     for (uint i = memberStart(w); i < memberStart(w + 1); ++i) {
         uint m = member(i);
-        if ((m & kCurvatureKeepRest) == 0u) vertices[vertexFloat(m, kVertexCurvature)] = magnitude;
+        if ((m & kCurvatureKeepRest) == 0u) vertices[vertexFloat(m, kVertexCurvature)] = h;
     }
 }
 

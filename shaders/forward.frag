@@ -17,6 +17,7 @@ layout(constant_id = kSpecAlphaMode) const uint kAlphaMode = 0;
 layout(constant_id = kSpecSkinFeatures) const uint kSkinFeatures = kSkinAll;
 layout(constant_id = kSpecLightLoop) const uint kLightLoop = kLightLoopAll;
 layout(constant_id = kSpecAlphaToCoverage) const uint kAlphaToCoverage = 0;
+layout(constant_id = kSpecSpecular) const uint kSpecular = 1;
 
 layout(set = 0, binding = kBindingFrame) uniform Frame { FrameUniforms frame; };
 layout(std430, set = 0, binding = kBindingLights) readonly buffer Lights { GpuLight lights[]; };
@@ -167,8 +168,20 @@ void main() {
     shadow.visibility = 1.0;
     shadow.thicknessM = 0.0;
     shadow.kernelWidthM = 0.0;
+    // Skin's signed curvature in profile 1/mm (the shadow lookup and the skin surface use it).
+    float skinCurvaturePerMm = 0.0;
+    if (kMaterialModel == kModelSkin)
+        skinCurvaturePerMm = preskinCurvatureProfilePerMm(
+            preskinSkinCurvaturePerM(uint(material.skinScatter.y), inCurvaturePerM, curvatureTexture, uvBase,
+                                     material.skinScatter.z, geometricN, inPositionWs),
+            material.skinScatter.x);
+    vec3 shadowPositionWs = inPositionWs;
+    if (kMaterialModel == kModelSkin && (kSkinFeatures & kSkinLutDiffuse) != 0u)
+        shadowPositionWs = preskinSkinShadowPosition(inPositionWs, geometricN, -frame.shadowDirectionWs.xyz,
+                                                     skinCurvaturePerMm, material.skinScatter.x,
+                                                     lutMappingOf(uint(material.skinProfileLayers.x)));
     if (frame.shadowDirectionWs.w > 0.5)
-        shadow = preskinSampleShadow(shadowMap, frame.shadowClipFromWorld, frame.shadowParams, inPositionWs, geometricN);
+        shadow = preskinSampleShadow(shadowMap, frame.shadowClipFromWorld, frame.shadowParams, shadowPositionWs, geometricN);
 
     uint first;
     uint count;
@@ -204,12 +217,11 @@ void main() {
         N = skin.normalSpecular;
         NoV = max(dot(N, V), 1e-4);
         skin.scatterScale = material.skinScatter.x;
-        float curvaturePerM = preskinSkinCurvaturePerM(uint(material.skinScatter.y), inCurvaturePerM, curvatureTexture,
-                                                       uvBase, material.skinScatter.z, geometricN, inPositionWs);
-        skin.curvaturePerMm = preskinCurvatureProfilePerMm(curvaturePerM, skin.scatterScale);
+        skin.curvaturePerMm = skinCurvaturePerMm;
         skin.roughness = roughness;
         float specularMap = material.textureFlags.z > 0.5 ? texture(specularTexture, uvBase).r : 1.0;
         skin.F0 = preskinSkinF0(material.skinSpecular.x, specularMap);
+        skin.specularWeight = float(kSpecular);
         skin.lobes = material.skinSpecular.yzww;
         skin.transmissionTint = material.skinScatter.w * material.skinTransmission.rgb;
         skin.thicknessScale = material.skinTransmission.w;
@@ -250,7 +262,7 @@ void main() {
         color += preskinSkinAmbient(skin, profiles, shTransferLut, frame.shRadiance, V, features, ambientDiffuse) *
                  occlusion;
         ambientDiffuse *= occlusion;
-        if (kDebugView == kDebugCurvature) debugColor = curvatureHeat(skin.curvaturePerMm);
+        if (kDebugView == kDebugCurvature) debugColor = curvatureHeat(abs(skin.curvaturePerMm));
         else if (kDebugView == kDebugNormals)
             debugColor = vec3(skin.normalR.x, skin.normalG.y, skin.normalB.z) * 0.5 + 0.5;
         else if (kDebugView == kDebugPenumbra) debugColor = penumbra;
@@ -260,6 +272,7 @@ void main() {
         surface.diffuseColor = baseColor.rgb * (1.0 - metallic);
         surface.F0 = mix(vec3(0.04), baseColor.rgb, metallic);
         surface.roughness = roughness;
+        surface.specularWeight = float(kSpecular);
         for (uint i = 0; i < frame.lightCounts.y; ++i) {
             GpuLight light = lights[i];
             vec3 L;
@@ -280,11 +293,11 @@ void main() {
         vec3 irradianceSh = max(preskinShEvaluate(frame.shRadiance, N, PRESKIN_SH_LAMBERT), vec3(0.0));
         vec3 R = reflect(-V, N);
         vec3 specularSh = max(preskinShEvaluate(frame.shRadiance, R, PRESKIN_SH_LAMBERT), vec3(0.0)) / PRESKIN_PI;
-        vec3 envBrdf = preskinEnvBrdfApprox(surface.F0, roughness, NoV);
+        vec3 envBrdf = preskinEnvBrdfApprox(surface.F0, roughness, NoV) * surface.specularWeight;
         diffuseColor = surface.diffuseColor;
         ambientDiffuse = surface.diffuseColor * irradianceSh / PRESKIN_PI * (vec3(1.0) - envBrdf) * occlusion;
         color += ambientDiffuse + specularSh * envBrdf * occlusion;
-        if (kDebugView == kDebugCurvature) debugColor = curvatureHeat(inCurvaturePerM * 0.001);
+        if (kDebugView == kDebugCurvature) debugColor = curvatureHeat(abs(inCurvaturePerM) * 0.001);
         else if (kDebugView == kDebugNormals) debugColor = N * 0.5 + 0.5;
         else if (kDebugView == kDebugPenumbra) debugColor = vec3(shadow.visibility);
     }

@@ -30,6 +30,7 @@
 // Limits: timings on a shared machine are noisy; compare numbers from one run.
 #include "Commands.h"
 #include "CommandLine.h"
+#include "JsonWriter.h"
 #include "Options.h"  // samples/common
 
 #include <preskin/Animation.h>
@@ -73,50 +74,6 @@ using Clock = std::chrono::steady_clock;
 
 double secondsSince(Clock::time_point start) { return std::chrono::duration<double>(Clock::now() - start).count(); }
 
-// ---- JSON output -----------------------------------------------------------------------------
-
-// A streaming front end over nlohmann::ordered_json: the bench writes its results in the order
-// it measures them (keys keep that order); nlohmann serialises them (non-finite numbers: null).
-class JsonWriter {
-public:
-    void beginObject() { open(nlohmann::ordered_json::object()); }
-    void endObject() { open_.pop_back(); }
-    void beginArray() { open(nlohmann::ordered_json::array()); }
-    void endArray() { open_.pop_back(); }
-    void key(std::string_view k) { key_ = std::string(k); }
-    void number(double v) { add(v); }
-    void integer(uint64_t v) { add(v); }
-    void boolean(bool v) { add(v); }
-    void string(std::string_view v) { add(std::string(v)); }
-    template <typename T>
-    void field(std::string_view k, T v) {
-        key(k);
-        if constexpr (std::is_same_v<T, bool>) boolean(v);
-        else if constexpr (std::is_integral_v<T>) integer(static_cast<uint64_t>(v));
-        else if constexpr (std::is_floating_point_v<T>) number(double(v));
-        else string(v);
-    }
-    std::string text() const { return root_.dump(2); }
-
-private:
-    nlohmann::ordered_json& add(nlohmann::ordered_json value) {
-        if (open_.empty()) {
-            root_ = std::move(value);
-            return root_;
-        }
-        nlohmann::ordered_json& parent = *open_.back();
-        if (parent.is_array()) {
-            parent.push_back(std::move(value));
-            return parent.back();
-        }
-        return parent[std::exchange(key_, {})] = std::move(value);
-    }
-    void open(nlohmann::ordered_json value) { open_.push_back(&add(std::move(value))); }
-
-    nlohmann::ordered_json root_;
-    std::vector<nlohmann::ordered_json*> open_;  // objects and arrays being filled, innermost last
-    std::string key_;
-};
 
 // ---- measurement -----------------------------------------------------------------------------
 
@@ -419,21 +376,6 @@ std::vector<uint32_t> parseCounts(const std::string& text, const char* flag) {
         out.push_back(static_cast<uint32_t>(v));
     }
     return out;
-}
-
-void writeText(const std::filesystem::path& path, const std::string& text) {
-    const std::filesystem::path tmp = path.string() + ".tmp";
-    {
-        std::ofstream f(tmp, std::ios::binary);
-        f << text;
-        if (!f) throw Error(fmt::format("--out {}: cannot write", path.string()));
-    }
-    std::error_code ec;
-    std::filesystem::rename(tmp, path, ec);
-    if (ec) {
-        std::filesystem::remove(tmp, ec);
-        throw Error(fmt::format("--out {}: cannot write", path.string()));
-    }
 }
 
 struct ProfileFigures {
@@ -1132,7 +1074,7 @@ void run(const BenchOptions& o) {
 
     const std::string json = j.text() + "\n";
     if (o.out.empty()) std::fwrite(json.data(), 1, json.size(), stdout);
-    else writeText(o.out, json);
+    else writeTextFile(o.out, json, "--out");
 
     if (!o.out.empty()) fmt::print(stderr, "preskin bench: wrote {}\n", o.out);
 }

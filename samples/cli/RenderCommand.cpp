@@ -35,10 +35,7 @@ namespace {
 struct RenderOptions {
     std::string scene;
     std::string out = "render.png";
-    uint32_t width = 1280;
-    uint32_t height = 720;
-    std::string camera;
-    std::string orbit;
+    ViewOptions view;
     uint32_t frames = 1;
     std::string animation;  // name or index; "" with --time/--sequence: the scene's first
     std::optional<float> timeS;
@@ -97,7 +94,7 @@ void renderSequence(Renderer& renderer, Context& context, const View& view, cons
             const std::filesystem::path path = framePath(o.out, i);
             checkOutputPath(path, encoding);
             poseAt(times[i]);
-            const RenderedImage image = renderer.render(view, o.width, o.height, encoding);
+            const RenderedImage image = renderer.render(view, o.view.width, o.view.height, encoding);
             gpuMs += renderer.frameStats().gpuMs;
             writeImage(path, image);
             written.push_back(path);
@@ -120,7 +117,7 @@ void renderSequence(Renderer& renderer, Context& context, const View& view, cons
     }
     const double wallS = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     fmt::print("preskin: wrote {} frames {} .. {} ({}x{})\n", times.size(), written.front().string(),
-               written.back().string(), o.width * uint32_t(view.eyeCount()), o.height);
+               written.back().string(), o.view.width * uint32_t(view.eyeCount()), o.view.height);
     fmt::print("preskin: {:.2f} s on {}, gpu {:.2f} ms per frame\n", wallS, context.deviceName(),
                gpuMs / double(times.size()));
 }
@@ -133,31 +130,19 @@ void run(const RenderOptions& o) {
     if (!times.empty() && o.frames > 1) throw Error("--frames: not with --sequence (every frame is rendered once)");
     const std::filesystem::path scenePath = o.scene.empty() ? defaultScenePath() : std::filesystem::path(o.scene);
     // Every option is checked before anything is loaded.
-    const std::vector<float> orbit = o.orbit.empty() ? std::vector<float>{} : parseFloats(o.orbit, 3, "--orbit");
+    checkViewOptions(o.view);
 
     Scene scene = loadScene(scenePath, o.common);
     for (const std::string& warning : scene.warnings) fmt::print(stderr, "preskin: warning: {}\n", warning);
     applySkinOption(scene, o.common);
     const Environment environment = loadEnvironment(scene, o.common);
+    const ProfileLibrary profiles = loadProfiles(scene, o.common);  // every input file is read before any GPU work
     auto context = Context::create(contextDesc(o.common));
-    const ProfileLibrary profiles = loadProfiles(scene, o.common);
     Renderer renderer(*context, scene, environment, profiles, renderSettings(o.common));
     applyLightOptions(renderer, scene, o.common);
 
-    const float aspect = float(o.width) / float(o.height);
-    View view;
-    if (!o.camera.empty()) {
-        const Camera* camera = nullptr;
-        for (const Camera& c : scene.cameras)
-            if (c.name == o.camera) camera = &c;
-        if (!camera) throw Error(fmt::format("--camera {}: {} has no camera of that name", o.camera, scenePath.string()));
-        view = cameraView(*camera, aspect, scene.worldBounds());
-    } else if (!o.orbit.empty()) {
-        view = orbitView(scene.worldBounds(), orbit[0], orbit[1], orbit[2], aspect);
-    } else {
-        view = frameBoundsView(scene.worldBounds(), aspect);
-    }
-    view = applyStereoOptions(view, o.stereo);
+    const View view = applyStereoOptions(makeView(scene, scenePath, o.view), o.stereo);
+    const uint32_t width = o.view.width, height = o.view.height;
 
     const Animation* animation = nullptr;
     if (!o.animation.empty() || o.timeS || !times.empty()) {
@@ -174,11 +159,11 @@ void run(const RenderOptions& o) {
 
     // One warm-up frame (first-use costs), then the measured ones; the frame with the median
     // GPU time is reported (frames are identical, so any of them is the image).
-    renderer.render(view, o.width, o.height, encoding);
+    renderer.render(view, width, height, encoding);
     RenderedImage image;
     std::vector<FrameStats> frames;
     for (uint32_t i = 0; i < o.frames; ++i) {
-        image = renderer.render(view, o.width, o.height, encoding);
+        image = renderer.render(view, width, height, encoding);
         frames.push_back(renderer.frameStats());
     }
     std::sort(frames.begin(), frames.end(),
@@ -200,14 +185,7 @@ void addRenderCommand(CLI::App& app) {
     cmd->add_option("scene", options->scene, "glTF scene (.gltf or .glb); default: the bundled head scene");
     cmd->add_option("--out,-o", options->out, "Output image: .png (tone-mapped) or .exr (linear)")
         ->capture_default_str();
-    cmd->add_option("--width", options->width, "Image width in pixels")->capture_default_str()->check(wholeNumberIn(1, 16384));
-    cmd->add_option("--height", options->height, "Image height in pixels")
-        ->capture_default_str()
-        ->check(wholeNumberIn(1, 16384));
-    auto* camera = cmd->add_option("--camera", options->camera, "Use the scene's camera of this name");
-    auto* orbit = cmd->add_option("--orbit", options->orbit,
-                                  "Orbit the scene's centre: YAW,PITCH,DIST in degrees, degrees, metres (DIST 0: fit)");
-    camera->excludes(orbit);
+    addViewOptions(*cmd, options->view);
     cmd->add_option("--frames", options->frames, "Measured frames after one warm-up; the median is reported")
         ->capture_default_str()
         ->check(wholeNumberIn(1, 1000));

@@ -1,4 +1,4 @@
-// preskin: command-line front end of libpreskin (render, bake, bench).
+// preskin: command-line front end of libpreskin (render, bake, bench, reference, compare).
 #include "CommandLine.h"  // samples/common
 #include "Commands.h"
 
@@ -9,6 +9,8 @@ int main(int argc, char** argv) {
     preskin::cli::addRenderCommand(app);
     preskin::cli::addBakeCommand(app);
     preskin::cli::addBenchCommand(app);
+    preskin::cli::addReferenceCommand(app);
+    preskin::cli::addCompareCommand(app);
     // Every failure, command-line parsing included: one line "preskin: error: ...", exit 1.
     return preskin::cli::runCommandLine(app, argc, argv);
 }

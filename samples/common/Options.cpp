@@ -25,14 +25,39 @@ std::string lower(std::string s) {
 
 }  // namespace
 
-void addCommonOptions(CLI::App& cmd, CommonOptions& o) {
+void addSceneOptions(CLI::App& cmd, CommonOptions& o) {
     cmd.add_option("--env", o.env, "HDR environment (equirectangular .hdr or .exr); default: the scene's");
     cmd.add_option("--env-intensity", o.envIntensity, "Environment radiance scale")->check(numberIn(0.0, 1e6));
     cmd.add_option("--env-rotation", o.envRotationDeg, "Turn the environment about +Y, degrees")
         ->check(numberIn(-3600.0, 3600.0));
+    cmd.add_option("--skin", o.skin, "Shade this material (or 'all') as skin with default parameters");
+    cmd.add_option("--lights", o.lights, "Scatter this many coloured point and spot lights (clustered)")
+        ->check(wholeNumberIn(0, 1 << 20));
+    cmd.add_option("--seed", o.seed, "Seed for --lights")->check(wholeNumberIn(0, UINT32_MAX))->capture_default_str();
+    cmd.add_option("--exposure", o.exposure, "Exposure multiplier")->check(numberIn(0.0, 1e6))->capture_default_str();
+    cmd.add_flag("--no-shadows", o.noShadows, "Disable the shadow map");
+    cmd.add_option("--luts", o.luts, "Skin LUT set folder (from `preskin bake`); default: the bundled d'Eon set");
+    cmd.add_flag("--allow-outside-links", o.allowOutsideLinks,
+                 "Follow symbolic links in the scene's folder that lead out of it (refused by default)");
+}
+
+void addDeviceOptions(CLI::App& cmd, CommonOptions& o) {
     cmd.add_option("--device", o.device, "Vulkan device: index or part of its name (default: best GPU, else lavapipe)");
     cmd.add_flag("--validation", o.validation, "Enable Vulkan validation layers; any message makes the run fail");
-    cmd.add_option("--skin", o.skin, "Shade this material (or 'all') as skin with default parameters");
+}
+
+void addShadowMapOptions(CLI::App& cmd, CommonOptions& o) {
+    cmd.add_option("--shadow-softness", o.shadowSoftness, "Shadow filter sigma in shadow-map texels")
+        ->check(numberIn(0.25, 2.0))
+        ->capture_default_str();
+    cmd.add_option("--shadow-map-size", o.shadowMapSize, "Shadow map resolution")
+        ->check(wholeNumberIn(16, 8192))
+        ->capture_default_str();
+}
+
+void addCommonOptions(CLI::App& cmd, CommonOptions& o) {
+    addSceneOptions(cmd, o);
+    addDeviceOptions(cmd, o);
     cmd.add_flag("--standard", o.standard, "Turn every skin technique off (standard shading, for comparison)");
     cmd.add_flag("--no-lut-diffuse", o.noLutDiffuse, "Skin: Lambert instead of the pre-integrated diffuse LUT");
     cmd.add_flag("--no-normal-prefilter", o.noNormalPrefilter, "Skin: one normal-map sample for all channels");
@@ -40,23 +65,15 @@ void addCommonOptions(CLI::App& cmd, CommonOptions& o) {
     cmd.add_flag("--no-sh-skin", o.noShSkin, "Skin: Lambert SH ambient instead of the skin transfer");
     cmd.add_flag("--no-transmission", o.noTransmission, "Skin: no transmission through thin parts");
     cmd.add_flag("--no-dual-specular", o.noDualSpecular, "Skin: one GGX lobe instead of two");
+    cmd.add_flag("--no-specular", o.noSpecular,
+                 "No specular at all, every material: diffuse without Fresnel (what `preskin reference` models)");
     cmd.add_option("--debug", o.debug,
                    "Debug view: none, curvature, normals, shadow, penumbra, lightcount, shambient, transmission")
         ->capture_default_str();
-    cmd.add_option("--lights", o.lights, "Scatter this many coloured point and spot lights (clustered)")
-        ->check(wholeNumberIn(0, 1 << 20));
-    cmd.add_option("--seed", o.seed, "Seed for --lights")->check(wholeNumberIn(0, UINT32_MAX))->capture_default_str();
     cmd.add_option("--light-loop", o.lightLoop, "clustered (light grid) or all (every light, brute force)")
         ->check(oneOf({"clustered", "all"}))
         ->capture_default_str();
-    cmd.add_option("--exposure", o.exposure, "Exposure multiplier")->check(numberIn(0.0, 1e6))->capture_default_str();
-    cmd.add_option("--shadow-softness", o.shadowSoftness, "Shadow filter sigma in shadow-map texels")
-        ->check(numberIn(0.25, 2.0))
-        ->capture_default_str();
-    cmd.add_option("--shadow-map-size", o.shadowMapSize, "Shadow map resolution")
-        ->check(wholeNumberIn(16, 8192))
-        ->capture_default_str();
-    cmd.add_flag("--no-shadows", o.noShadows, "Disable the shadow map");
+    addShadowMapOptions(cmd, o);
     cmd.add_option("--msaa", o.msaa, "Samples per pixel (1, 2, 4 or 8, as the device offers; lavapipe: 1 or 4)")
         ->check(oneOf({"1", "2", "4", "8"}))
         ->capture_default_str();
@@ -74,6 +91,33 @@ Scene loadScene(const std::filesystem::path& path, const CommonOptions& o) {
     SceneLoadOptions options;
     options.allowLinksOutsideFolder = o.allowOutsideLinks;
     return Scene::load(path, options);
+}
+
+void addViewOptions(CLI::App& cmd, ViewOptions& o) {
+    cmd.add_option("--width", o.width, "Image width in pixels")->capture_default_str()->check(wholeNumberIn(1, 16384));
+    cmd.add_option("--height", o.height, "Image height in pixels")->capture_default_str()->check(wholeNumberIn(1, 16384));
+    auto* camera = cmd.add_option("--camera", o.camera, "Use the scene's camera of this name");
+    auto* orbit = cmd.add_option("--orbit", o.orbit,
+                                 "Orbit the scene's centre: YAW,PITCH,DIST in degrees, degrees, metres (DIST 0: fit)");
+    camera->excludes(orbit);
+}
+
+void checkViewOptions(const ViewOptions& o) {
+    if (!o.orbit.empty()) parseFloats(o.orbit, 3, "--orbit");
+}
+
+View makeView(const Scene& scene, const std::filesystem::path& scenePath, const ViewOptions& o) {
+    const float aspect = float(o.width) / float(o.height);
+    if (!o.camera.empty()) {
+        for (const Camera& c : scene.cameras)
+            if (c.name == o.camera) return cameraView(c, aspect, scene.worldBounds());
+        throw Error(fmt::format("--camera {}: {} has no camera of that name", o.camera, scenePath.string()));
+    }
+    if (!o.orbit.empty()) {
+        const auto v = parseFloats(o.orbit, 3, "--orbit");
+        return orbitView(scene.worldBounds(), v[0], v[1], v[2], aspect);
+    }
+    return frameBoundsView(scene.worldBounds(), aspect);
 }
 
 void addStereoOptions(CLI::App& cmd, StereoOptions& o) {
@@ -177,6 +221,7 @@ RenderSettings renderSettings(const CommonOptions& o) {
     s.skin.transmission = !o.noTransmission;
     s.skin.dualSpecular = !o.noDualSpecular;
     if (o.standard) s.skin = SkinFeatures::none();
+    s.specular = !o.noSpecular;
     const std::string d = lower(o.debug);
     if (d == "none") s.debugView = DebugView::None;
     else if (d == "curvature") s.debugView = DebugView::Curvature;

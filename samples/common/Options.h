@@ -8,6 +8,7 @@
 #include <preskin/ProfileLibrary.h>
 #include <preskin/Renderer.h>
 #include <preskin/Scene.h>
+#include <preskin/View.h>
 
 #include <CLI/CLI.hpp>
 
@@ -33,6 +34,7 @@ struct CommonOptions {
     bool noShSkin = false;
     bool noTransmission = false;
     bool noDualSpecular = false;
+    bool noSpecular = false;
     std::string debug = "none";
     uint32_t lights = 0;
     uint32_t seed = 1;
@@ -49,9 +51,31 @@ struct CommonOptions {
     uint32_t profileLutSize = 256;   // table size the scene's analytic profiles are baked at
 };
 
+// Every option below: the scene options plus the renderer's (device, validation, skin
+// techniques, specular, debug view, light loop, shadow map).
 void addCommonOptions(CLI::App& cmd, CommonOptions& o);
 // Scene::load with the options' SceneLoadOptions.
 Scene loadScene(const std::filesystem::path& path, const CommonOptions& o);
+// What defines the lit scene without a renderer (the reference uses only these): environment,
+// --skin, --lights/--seed, --exposure, --no-shadows, --luts (the profile), --allow-outside-links.
+void addSceneOptions(CLI::App& cmd, CommonOptions& o);
+// --device, --validation.
+void addDeviceOptions(CLI::App& cmd, CommonOptions& o);
+// --shadow-softness, --shadow-map-size.
+void addShadowMapOptions(CLI::App& cmd, CommonOptions& o);
+
+// Image size and camera, shared by `render`, `reference` and `compare`.
+struct ViewOptions {
+    uint32_t width = 1280;
+    uint32_t height = 720;
+    std::string camera;
+    std::string orbit;
+};
+void addViewOptions(CLI::App& cmd, ViewOptions& o);
+// Refuses malformed view options before anything is loaded.
+void checkViewOptions(const ViewOptions& o);
+// --camera NAME (a glTF camera), --orbit YAW,PITCH,DIST, else the default framing of the bounds.
+View makeView(const Scene& scene, const std::filesystem::path& scenePath, const ViewOptions& o);
 
 // Where the tools find LUTs, shaders and the bundled sample scene: $PRESKIN_DATA_DIR when set,
 // else <prefix>/share/preskin for an installed tool, else the source tree.

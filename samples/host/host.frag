@@ -45,6 +45,7 @@ void main() {
     s.curvaturePerMm = preskinCurvatureProfilePerMm(inCurvaturePerM, s.scatterScale);
     s.roughness = frame.skin.y;
     s.F0 = preskinSkinF0(frame.skin.z, texture(specularMap, inUv0).r);
+    s.specularWeight = 1.0;
     s.lobes = frame.lobes;
     s.transmissionTint = vec3(0.0);
     s.thicknessScale = 1.0;

@@ -47,6 +47,7 @@ struct PreskinStandardSurface {
     vec3 diffuseColor;  // baseColor * (1 - metallic)
     vec3 F0;            // mix(0.04, baseColor, metallic)
     float roughness;    // perceptual
+    float specularWeight;  // 1: GGX with Fresnel; 0: Lambert alone (no specular, no Fresnel on diffuse)
 };
 
 // Reflected radiance of one light: f(l, v) * NoL * irradiance (irradiance normal to the light).
@@ -57,7 +58,7 @@ vec3 preskinStandardLight(PreskinStandardSurface s, vec3 N, vec3 V, vec3 L, vec3
     float NoV = max(dot(N, V), 1e-4);
     float NoH = preskinSaturate(dot(N, H));
     float VoH = preskinSaturate(dot(V, H));
-    vec3 F = preskinSchlickF(s.F0, VoH);
+    vec3 F = s.specularWeight * preskinSchlickF(s.F0, VoH);
     float alpha = max(s.roughness * s.roughness, 1e-3);
     vec3 specular = F * preskinGgxD(NoH, alpha) * preskinSmithV(NoL, NoV, alpha);
     vec3 diffuse = (vec3(1.0) - F) * s.diffuseColor / PRESKIN_PI;

@@ -41,13 +41,17 @@ PreskinShadowSample preskinSampleShadow(sampler2D shadowMap, mat4 shadowClipFrom
     PreskinShadowSample result;
     float mapSize = params.w;
     float sigma = max(params.y, 0.25);
-    // Normal offset of one texel, larger at grazing light.
+    // Normal offset: a quarter texel facing the light, growing with sin^2 to 1.75 texels at grazing
+    // light. The receiver-plane bias below handles sloped receivers; a larger offset on surfaces
+    // that face the light moves cast-shadow edges off their place (against the ray-traced
+    // reference on the bundled head, 0.5 + 1.5 sin texels gave a 15 % larger green error, without
+    // changing the spheres' terminators).
     vec3 r0 = vec3(shadowClipFromWorld[0][0], shadowClipFromWorld[1][0], shadowClipFromWorld[2][0]);
     vec3 r1 = vec3(shadowClipFromWorld[0][1], shadowClipFromWorld[1][1], shadowClipFromWorld[2][1]);
     vec3 r2 = vec3(shadowClipFromWorld[0][2], shadowClipFromWorld[1][2], shadowClipFromWorld[2][2]);
     vec3 lightDir = normalize(r2);
     float cosTheta = abs(dot(geometricNormalWs, lightDir));
-    vec3 offsetWs = geometricNormalWs * params.x * (0.5 + 1.5 * sqrt(max(1.0 - cosTheta * cosTheta, 0.0)));
+    vec3 offsetWs = geometricNormalWs * params.x * (0.25 + 1.5 * max(1.0 - cosTheta * cosTheta, 0.0));
     vec4 clip = shadowClipFromWorld * vec4(positionWs + offsetWs, 1.0);
     vec2 uv = clip.xy * 0.5 + 0.5;
     float z = clip.z;

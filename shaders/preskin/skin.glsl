@@ -1,9 +1,14 @@
 // preskin/skin.glsl: pre-integrated skin shading for one fragment of a forward pass.
 //
 // Models (sources in DESIGN notes and README):
-//  - diffuse: Penner & Borshukov's pre-integrated ring scattering (GPU Pro 2, 2011): per light
+//  - diffuse: pre-integrated scattering after Penner & Borshukov (GPU Pro 2, 2011), integrated
+//    over the sphere of the signed mean curvature (engine/src/skin/SphereScatter.h): per light
 //    and per colour channel D_c(NoL_c, curvature) from the diffuse LUT replaces saturate(NoL);
-//    NoL_c uses that channel's prefiltered normal;
+//    NoL_c uses that channel's prefiltered normal; concave skin (negative curvature) reads the
+//    LUT's concave half, where the local patch shadows itself and no light passes the terminator;
+//  - self-shadowing apart from cast shadows: the shadow map is looked up above the local patch
+//    near the terminator (preskinSkinShadowPosition), so it does not remove the light the diffuse
+//    LUT scatters past the terminator;
 //  - per-channel normal prefiltering (same source; d'Eon & Luebke, GPU Gems 3 ch. 14): the normal
 //    map sampled three times with a mip LOD bias per channel, red blurred most; the bias comes
 //    from the profile's scattering width per channel and the map's texel density (C++ side);
@@ -13,8 +18,9 @@
 //  - ambient: L2 SH radiance convolved per channel with the skin's zonal transfer A_l(curvature)
 //    instead of Lambert's (pi, 2pi/3, pi/4);
 //  - transmission through thin parts (Jimenez et al., "Real-Time Realistic Skin Translucency",
-//    IEEE CG&A 2010): thickness from the shadow map, T(thickness) from the profile, times a
-//    saturate(0.3 - NoL) wrap on the side facing away from the light;
+//    IEEE CG&A 2010): thickness from the shadow map, T(thickness) from the profile, times
+//    saturate(-NoL) on the side facing away from the light, less what the diffuse LUT already
+//    holds (the light through the osculating sphere);
 //  - specular: two GGX lobes (roughness multipliers and mix in the material) with F0 = 0.028
 //    (IOR 1.4) times the specular map.
 // Every technique can be switched off (kSkin* bits of shared/skin_features.h in `features`); off falls back to the
@@ -26,7 +32,9 @@
 // needs the four LUT array samplers and the fragment's profile mix (PreskinProfileMix of
 // preskin/lut.glsl; preskinSingleProfile for one profile; see README, "Embedding").
 // Limits: curvature and thickness are scalar per fragment; transmission only for the light that
-// owns the shadow map; the ring model assumes locally spherical geometry (Penner).
+// owns the shadow map; the diffuse LUT assumes locally spherical geometry of the mean curvature
+// (a cylinder reads as a sphere of twice its radius); the concave patch's extent is a model
+// constant (LutSet::localPatchMm).
 #ifndef PRESKIN_SKIN_GLSL
 #define PRESKIN_SKIN_GLSL
 
@@ -43,10 +51,11 @@ struct PreskinSkinSurface {
     vec3 normalB;
     vec3 normalSpecular;     // unbiased normal for specular
     vec3 geometricNormal;    // interpolated vertex normal, facing the viewer
-    float curvaturePerMm;    // profile units: world curvature (1/mm) / scatter scale
+    float curvaturePerMm;    // signed mean curvature in profile units (world 1/mm / scatter scale), < 0 concave
     float scatterScale;      // profile mm per world mm
     float roughness;         // perceptual
     vec3 F0;                 // 0.028 * intensity * specular map for skin
+    float specularWeight;    // 1: specular with Fresnel; 0: diffuse only (no specular, no Fresnel on diffuse)
     vec4 lobes;              // x lobe-0 roughness multiplier, y lobe-1 multiplier, z lobe-1 weight
     vec3 transmissionTint;   // strength * colour
     float thicknessScale;
@@ -89,9 +98,9 @@ vec3 preskinSkinSpecular(PreskinSkinSurface s, vec3 V, vec3 L, uint features) {
 // filtered shadow in all channels); specularVisibility: the plain filtered shadow.
 vec3 preskinSkinLight(PreskinSkinSurface s, PreskinProfileMix m, sampler2DArray diffuseLut, vec3 V, vec3 L, vec3 irradiance,
                       vec3 shadowRgb, float specularVisibility, uint features) {
-    vec3 F = preskinSchlickF(s.F0, preskinSaturate(dot(V, normalize(L + V))));
+    vec3 F = s.specularWeight * preskinSchlickF(s.F0, preskinSaturate(dot(V, normalize(L + V))));
     vec3 diffuse = (vec3(1.0) - F) * s.albedo / PRESKIN_PI * preskinSkinDiffuseResponse(s, m, diffuseLut, L, features);
-    vec3 specular = preskinSkinSpecular(s, V, L, features);
+    vec3 specular = s.specularWeight * preskinSkinSpecular(s, V, L, features);
     return (diffuse * shadowRgb + specular * specularVisibility) * irradiance;
 }
 
@@ -106,15 +115,29 @@ vec3 preskinSkinShadow(PreskinSkinSurface s, PreskinProfileMix m, sampler2DArray
     return preskinPenumbraLut(m, penumbraLut, visibility, sigmaProfileMm);
 }
 
-// Light transmitted through the surface from a light behind it: thicknessM from the shadow
-// map (metres), T(thickness) from the profile, wrap saturate(0.3 - NoL) (Jimenez et al. 2010).
+// Light transmitted through the surface from a light behind it (after Jimenez et al. 2010):
+// thicknessM from the shadow map at preskinThicknessPointWs (metres); the thickness from
+// the surface along L is that plus the shrink depth times c = saturate(-NoL); T(thickness) from
+// the profile (its plane integral at that depth, exact for a slab), times c, the far side's
+// cosine for a slab. Only light the diffuse LUT does not already hold is added: the LUT
+// integrates over the osculating sphere of convex skin (radius a = 1/curvature), so T of that
+// sphere's thickness along L (measured the same way: from the shrunk point, (a - d) c +
+// sqrt((a - d)^2 c^2 + 2 a d - d^2), d the shrink) is subtracted. On a sphere the two cancel; a
+// thin sheet (an ear) keeps T of the sheet. Nothing is added where the skin faces the light.
+// Limits: sheets thinner than the shrink read as that thick.
 vec3 preskinSkinTransmission(PreskinSkinSurface s, PreskinProfileMix m, sampler2DArray transmittanceLut, vec3 L,
                              vec3 irradiance, float thicknessM, uint features) {
-    float wrap = preskinSaturate(kSkinTransmissionWrap - dot(s.geometricNormal, L));
-    if ((features & kSkinTransmission) == 0u || wrap <= 0.0) return vec3(0.0);
-    float thicknessMm = thicknessM * 1000.0 * s.thicknessScale * s.scatterScale;
+    float c = preskinSaturate(-dot(s.geometricNormal, L));
+    if ((features & kSkinTransmission) == 0u || c <= 0.0) return vec3(0.0);
+    float d = kSkinThicknessShrinkMm;
+    float thicknessMm = thicknessM * 1000.0 * s.thicknessScale * s.scatterScale + d * c;
     vec3 T = preskinTransmittanceLut(m, transmittanceLut, thicknessMm);
-    return T * wrap * s.transmissionTint * s.albedo / PRESKIN_PI * irradiance;
+    if ((features & kSkinLutDiffuse) != 0u && s.curvaturePerMm > 0.0) {
+        float a = 1.0 / s.curvaturePerMm;
+        float sphereMm = (a - d) * c + sqrt(max((a - d) * (a - d) * c * c + 2.0 * a * d - d * d, 0.0)) + d * c;
+        T = max(T - preskinTransmittanceLut(m, transmittanceLut, sphereMm), vec3(0.0));
+    }
+    return T * c * s.transmissionTint * s.albedo / PRESKIN_PI * irradiance;
 }
 
 // Diffuse ambient irradiance per channel from L2 SH radiance (multiply by albedo / pi).
@@ -125,7 +148,7 @@ vec3 preskinSkinAmbientIrradiance(PreskinSkinSurface s, PreskinProfileMix m, sam
     vec3 bandB = PRESKIN_SH_LAMBERT;
     if ((features & kSkinShAmbient) != 0u) {
         vec3 a0, a1, a2;
-        preskinShTransferLut(m, shTransferLut, s.curvaturePerMm, a0, a1, a2);
+        preskinShTransferLut(m, shTransferLut, abs(s.curvaturePerMm), a0, a1, a2);  // unshadowed: either sign
         bandR = vec3(a0.r, a1.r, a2.r);
         bandG = vec3(a0.g, a1.g, a2.g);
         bandB = vec3(a0.b, a1.b, a2.b);
@@ -137,14 +160,33 @@ vec3 preskinSkinAmbientIrradiance(PreskinSkinSurface s, PreskinProfileMix m, sam
                vec3(0.0));
 }
 
+// Where skin looks up the shadow map for the light towards L: near the terminator, the point
+// lifted along its normal by the sagitta of its osculating sphere (radius 1 / |curvature|) over
+// the local patch (radius rho = m.diffuseNoL.w profile mm, LutSet::localPatchMm),
+// h = (1 - cos(rho |k|)) / |k|. From there the patch itself cannot occlude the light, so the
+// shadow map carries cast shadows only: on a closed surface the terminator's self-shadowing is
+// left to the diffuse LUT, which already holds it (max(N.L, 0) of every neighbour) together with
+// the light scattered past it. The lift fades out where the patch cannot reach the terminator
+// (N.L above sin(rho |k|)), so shadows cast onto lit skin keep their place; flat skin is not lifted.
+vec3 preskinSkinShadowPosition(vec3 positionWs, vec3 geometricNormalWs, vec3 L, float curvaturePerMm,
+                               float scatterScale, LutMapping m) {
+    float k = abs(curvaturePerMm);
+    float angle = min(m.diffuseNoL.w * k, PRESKIN_PI);
+    float liftMm = angle < 1e-3 ? 0.5 * m.diffuseNoL.w * angle : (1.0 - cos(angle)) / k;
+    float reach = sin(min(angle, 0.5 * PRESKIN_PI));
+    float fade = reach > 0.0 ? preskinSaturate(1.0 - dot(geometricNormalWs, L) / reach) : 0.0;
+    return positionWs + geometricNormalWs * (fade * liftMm * 0.001 / max(scatterScale, 1e-6));
+}
+
 // Ambient light of the environment's L2 SH radiance: diffuse from the per-channel transfer
 // (preskinSkinAmbientIrradiance times albedo / pi, less what the specular takes) plus specular
 // from the cosine-convolved SH in the reflection direction, weighted by Karis's analytic split-sum
-// environment BRDF. diffuseOut: the diffuse part alone. Multiply both by ambient occlusion.
+// environment BRDF (none with specularWeight 0). diffuseOut: the diffuse part alone. Multiply both
+// by ambient occlusion.
 vec3 preskinSkinAmbient(PreskinSkinSurface s, PreskinProfileMix m, sampler2DArray shTransferLut, vec4 sh[9], vec3 V,
                         uint features, out vec3 diffuseOut) {
     float NoV = max(dot(s.normalSpecular, V), 1e-4);
-    vec3 envBrdf = preskinEnvBrdfApprox(s.F0, s.roughness, NoV);
+    vec3 envBrdf = preskinEnvBrdfApprox(s.F0, s.roughness, NoV) * s.specularWeight;
     vec3 R = reflect(-V, s.normalSpecular);
     vec3 specularSh = max(preskinShEvaluate(sh, R, PRESKIN_SH_LAMBERT), vec3(0.0)) / PRESKIN_PI;
     diffuseOut = s.albedo * preskinSkinAmbientIrradiance(s, m, shTransferLut, sh, features) / PRESKIN_PI *

@@ -10,8 +10,9 @@
 //  - the curvature source (per-vertex, texture or screen derivatives) and the unit conversion
 //    to profile 1/mm (world 1/m * 0.001 / scatter scale);
 //  - skin F0 (kSkinF0 of shared/constants.h times the material's intensity and specular map);
-//  - the thickness sample point (2 profile-mm inside along the normal, after Jimenez et al.
-//    2010's shrink) and the gate that skips the shadow-map read where no transmission shows.
+//  - the thickness sample point (kSkinThicknessShrinkMm inside along the normal, after Jimenez
+//    et al. 2010's shrink) and the gate that skips the shadow-map read where no transmission
+//    shows (the skin faces the light: the diffuse LUT holds that light).
 // Limits: the detail map's level follows the base map's (a fixed offset from their texel
 // densities); texture curvature is read at the base colour's coordinates the host passes.
 #ifndef PRESKIN_SKIN_SURFACE_GLSL
@@ -99,16 +100,17 @@ float preskinCurvatureProfilePerMm(float curvaturePerM, float scatterScale) {
 // Skin's specular reflectance at normal incidence.
 vec3 preskinSkinF0(float specularIntensity, float specularMap) { return vec3(kSkinF0 * specularIntensity * specularMap); }
 
-// Where to read the shadow map's thickness: 2 profile-mm inside along the normal, so the lit
-// side near the terminator is not a zero-thickness slab.
+// Where to read the shadow map's thickness (what preskinSkinTransmission expects):
+// kSkinThicknessShrinkMm profile-mm inside along the normal, so the shadow map's depth bias does
+// not dominate where the light enters at a grazing angle.
 vec3 preskinThicknessPointWs(vec3 positionWs, vec3 geometricNormal, float scatterScale) {
-    return positionWs - geometricNormal * (0.002 / max(scatterScale, 1e-6));
+    return positionWs - geometricNormal * (kSkinThicknessShrinkMm * 0.001 / max(scatterScale, 1e-6));
 }
 
 // Whether transmission can show for light direction L (else skip the thickness read): the
-// technique is on and the wrap saturate(kSkinTransmissionWrap - NoL) is above zero.
+// technique is on and the skin faces away from the light.
 bool preskinTransmissionGate(vec3 geometricNormal, vec3 L, uint features) {
-    return (features & kSkinTransmission) != 0u && dot(geometricNormal, L) < kSkinTransmissionWrap;
+    return (features & kSkinTransmission) != 0u && dot(geometricNormal, L) < 0.0;
 }
 
 #endif

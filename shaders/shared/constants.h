@@ -27,10 +27,10 @@ PRESKIN_CONST(float, kShY20, 0.315392f)
 PRESKIN_CONST(float, kShY22, 0.546274f)
 
 // Skin: F0 of a dielectric of IOR 1.4 ((1.4 - 1)^2 / (1.4 + 1)^2), times the material's
-// specular intensity and map; the transmission wrap saturate(kSkinTransmissionWrap - NoL)
-// (Jimenez et al. 2010).
+// specular intensity and map; the depth (profile mm) below the surface from which transmission
+// measures the thickness through the shadow map (after Jimenez et al. 2010's shrink).
 PRESKIN_CONST(float, kSkinF0, 0.028f)
-PRESKIN_CONST(float, kSkinTransmissionWrap, 0.3f)
+PRESKIN_CONST(float, kSkinThicknessShrinkMm, 2.0f)
 
 // Vertex attribute locations of the forward and shadow passes (Vertex of <preskin/Scene.h>).
 PRESKIN_CONST(uint, kAttributePosition, 0)

@@ -46,6 +46,7 @@ PRESKIN_CONST(uint, kSpecAlphaMode, 3)      // kAlphaOpaque, kAlphaMask, kAlphaB
 PRESKIN_CONST(uint, kSpecSkinFeatures, 4)   // bit mask of kSkin* (shared/skin_features.h)
 PRESKIN_CONST(uint, kSpecLightLoop, 5)      // kLightLoopClustered or kLightLoopAll
 PRESKIN_CONST(uint, kSpecAlphaToCoverage, 6)  // 1: alpha-mask coverage from alpha (MSAA), 0: discard
+PRESKIN_CONST(uint, kSpecSpecular, 7)       // 1: specular and Fresnel on; 0: diffuse only (RenderSettings::specular)
 
 PRESKIN_CONST(uint, kModelStandard, 0)
 PRESKIN_CONST(uint, kModelSkin, 1)

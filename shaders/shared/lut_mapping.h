@@ -26,8 +26,10 @@
 PRESKIN_GPU_BEGIN
 
 struct LutMapping {
-    vec4 diffuseNoL;        // x: u at NoL = 0; y: du/dNoL for NoL < 0; z: du/dNoL for NoL >= 0
-    vec4 diffuseCurvature;  // x: 1 / curvatureMaxPerMm; y: (N-1)/N; z: 0.5/N  (v = z + y sqrt(saturate(c x)))
+    vec4 diffuseNoL;        // x: u at NoL = 0; y: du/dNoL for NoL < 0; z: du/dNoL for NoL >= 0;
+                            // w: local patch radius, profile mm (LutSet::localPatchMm)
+    vec4 diffuseCurvature;  // x: 1 / curvatureMaxPerMm; y: v at curvature 0; z: dv/ds for c < 0; w: dv/ds for
+                            // c >= 0, s = sqrt(saturate(|c| x))
     vec4 penumbraShadow;    // x: (N-1)/N; y: 0.5/N  (u = y + x saturate(shadow))
     vec4 penumbraWidth;     // x: 1 / referenceWidthMm; y: (N-1)/N; z: 0.5/N  (w = sigma x; v = z + y w / (w + 1))
     vec4 shCurvature;       // as diffuseCurvature, for the SH table's width
@@ -37,11 +39,13 @@ struct LutMapping {
 };
 PRESKIN_CHECK_SIZE(LutMapping, 128)
 
-// Diffuse D(NoL, curvature): NoL = dot(N, L) (any sign), curvaturePerMm = 1 / radius in profile mm.
+// Diffuse D(NoL, curvature): NoL = dot(N, L) (any sign), curvaturePerMm = signed mean curvature in
+// profile 1/mm (1 / radius; > 0 convex, < 0 concave).
 PRESKIN_LUT_FN vec2 preskinDiffuseLutUv(LutMapping m, float NoL, float curvaturePerMm) {
     float n = clamp(NoL, -1.0f, 1.0f);
     float u = m.diffuseNoL.x + n * ((n < 0.0f) ? m.diffuseNoL.y : m.diffuseNoL.z);
-    float v = m.diffuseCurvature.z + m.diffuseCurvature.y * sqrt(clamp(curvaturePerMm * m.diffuseCurvature.x, 0.0f, 1.0f));
+    float s = sqrt(clamp(abs(curvaturePerMm) * m.diffuseCurvature.x, 0.0f, 1.0f));
+    float v = m.diffuseCurvature.y + ((curvaturePerMm < 0.0f) ? -m.diffuseCurvature.z : m.diffuseCurvature.w) * s;
     return vec2(u, v);
 }
 

@@ -6,9 +6,11 @@
 //  - the GPU curvature of the deformed mesh equals computeVertexCurvature of the CPU-deformed
 //    mesh within the documented tolerance (float against double, relative to the mesh's largest
 //    curvature: 97 % of vertices within 2.5 %, every vertex within 15 %), and on the bent tube
-//    differs from the bind pose where it bends and not elsewhere;
+//    differs from the bind pose where it bends and not elsewhere; it is signed as the CPU's is
+//    (a sphere seen from inside is concave: -1/r);
 //  - a pose that does not fit the scene is refused and the previous one kept.
 #include "support/GpuTest.h"
+#include "support/TestScenes.h"
 
 #include <preskin/Curvature.h>
 #include <preskin/Deformation.h>
@@ -22,6 +24,7 @@
 #include "vk/Resources.h"
 
 #include <algorithm>
+#include <cstdio>
 #include <cmath>
 #include <cstring>
 #include <string>
@@ -186,6 +189,41 @@ TEST_F(GpuDeformation, GpuCurvatureMatchesCpuEstimatorAndFollowsTheBend) {
         EXPECT_GT(elbow, 0u);
         EXPECT_GT(changed, elbow / 2) << "the elbow's curvature should follow the bend";
         EXPECT_GT(unchanged, ends * 9 / 10) << "the straight parts keep their curvature";
+    }
+}
+
+// A sphere seen from outside and from inside (normals and winding turned), each given a morph
+// target so the GPU pass recomputes its curvature: +1/r outside, -1/r inside, as on the CPU.
+TEST_F(GpuDeformation, GpuCurvatureIsSignedLikeTheCpuEstimator) {
+    const float radiusM = 0.1f;
+    for (bool inside : {false, true}) {
+        Primitive sphere = makeSphere(radiusM, 32, 16);
+        if (inside) {
+            for (Vertex& v : sphere.vertices) v.normalOs = -v.normalOs;
+            for (size_t i = 0; i + 2 < sphere.indices.size(); i += 3) std::swap(sphere.indices[i + 1], sphere.indices[i + 2]);
+        }
+        MorphTarget still;
+        still.positionDeltas.assign(sphere.vertices.size(), glm::vec3(0.0f));
+        still.normalDeltas.assign(sphere.vertices.size(), glm::vec3(0.0f));
+        still.tangentDeltas.assign(sphere.vertices.size(), glm::vec3(0.0f));
+        sphere.targets.push_back(still);
+        sphere.material = 0;
+        Scene scene = makeScene({{sphere, glm::mat4(1.0f)}}, {Material{}});
+        scene.meshes[0].weights.assign(1, 0.0f);
+        scene.makeSkin("all");
+        ScenePose pose = restPose(scene);
+        pose.instances[0].morphWeights = {1.0f};
+        const std::vector<Vertex> gpu = gpuDeform(context(), scene, pose);
+        const std::vector<float> cpu = cpuCurvature(scene, cpuDeform(scene, pose));
+        // Away from the poles (where the UV sphere's triangles degenerate) the estimate is 1/r.
+        const float want = (inside ? -1.0f : 1.0f) / radiusM;
+        for (size_t i = 0; i < gpu.size(); ++i) {
+            const char* what = inside ? "inside" : "outside";
+            if (std::abs(sphere.vertices[i].positionOs.y) < 0.8f * radiusM) {
+                EXPECT_NEAR(cpu[i], want, 0.02f * std::abs(want)) << what << " " << i;
+            }
+            EXPECT_NEAR(gpu[i].curvaturePerM, cpu[i], 1e-3f * std::abs(want)) << what << " " << i;
+        }
     }
 }
 

@@ -1,9 +1,9 @@
 // Skin SH ambient on a sphere (no lights) against a brute-force CPU integration over the
 // environment's texels:
 //   E_c(N) = sum over texels of L_c(w) D_c(N . w, curvature) dOmega,
-// with D_c Penner's ring integral computed here from the profile's Gaussians (own quadrature of
-// int cos(theta + x)+ K(x) dx / int K(x) dx with K(x) = P(2 r sin(|x| / 2)), P the line profile;
-// neither the LUT nor the library's integrator). The GPU instead projects the environment onto
+// with D_c the diffuse response on the sphere computed here from the profile's Gaussians (own
+// quadrature of the profile over the sphere times the clamped cosine; neither the LUT nor the
+// library's integrator). The GPU instead projects the environment onto
 // L2 SH and scales the bands by the SH transfer LUT A_l(curvature); the two agree exactly when
 // the environment holds nothing above band 2, so the synthetic environment is a positive
 // polynomial of degree 2 in the direction (structure in bands 0, 1 and 2, a different one per
@@ -33,30 +33,43 @@ namespace {
 
 constexpr double kPiD = 3.14159265358979323846;
 
-// D(theta) of one channel on a uniform theta grid (thetaSteps + 1 values over [0, pi]) for a ring
-// of curvature curvaturePerMm, by the trapezoid rule over [-pi, pi] on a fine uniform grid
-// (the kernel's narrowest scale, sigma / r, spans many steps).
-std::vector<double> ringScatterTable(const DiffusionProfile& profile, int channel, double curvaturePerMm,
-                                     int thetaSteps) {
+// D(theta) of one channel on a uniform theta grid (thetaSteps + 1 values over [0, pi]) on a
+// sphere of curvature curvaturePerMm: the profile over the sphere times max(n_y . L, 0), by the
+// midpoint rule in the angle psi between x and y on a fine uniform grid (the kernel's narrowest
+// scale, sigma / r, spans many steps) and the closed-form azimuthal integral of the clamped
+// cosine, normalised by the profile's integral over the sphere.
+std::vector<double> sphereScatterTable(const DiffusionProfile& profile, int channel, double curvaturePerMm,
+                                       int thetaSteps) {
     const double r = 1.0 / curvaturePerMm;
     const int n = 16384;
-    const double h = 2.0 * kPiD / n;
-    std::vector<double> kernel(n + 1);
+    const double h = kPiD / n;
+    std::vector<double> kernel(n), cosPsi(n), sinPsi(n);
     double total = 0.0;
-    for (int j = 0; j <= n; ++j) {
-        const double x = -kPiD + h * j;
-        const double u = 2.0 * r * std::sin(0.5 * std::abs(x));
+    for (int j = 0; j < n; ++j) {
+        const double psi = h * (j + 0.5);
+        const double u = 2.0 * r * std::sin(0.5 * psi);
         double p = 0.0;
         for (const GaussianTerm& t : profile.gaussians())
-            p += t.weight[channel] * std::exp(-u * u / (2.0 * t.varianceMm2)) / std::sqrt(2.0 * kPiD * t.varianceMm2);
-        kernel[size_t(j)] = p * ((j == 0 || j == n) ? 0.5 : 1.0);
-        total += kernel[size_t(j)];
+            p += t.weight[channel] * std::exp(-u * u / (2.0 * t.varianceMm2)) / (2.0 * kPiD * t.varianceMm2);
+        cosPsi[size_t(j)] = std::cos(psi);
+        sinPsi[size_t(j)] = std::sin(psi);
+        kernel[size_t(j)] = p * sinPsi[size_t(j)];
+        total += 2.0 * kPiD * kernel[size_t(j)];
     }
     std::vector<double> table(size_t(thetaSteps) + 1);
     for (int k = 0; k <= thetaSteps; ++k) {
         const double theta = kPiD * k / thetaSteps;
         double sum = 0.0;
-        for (int j = 0; j <= n; ++j) sum += std::max(std::cos(theta + (-kPiD + h * j)), 0.0) * kernel[size_t(j)];
+        for (int j = 0; j < n; ++j) {
+            const double A = std::cos(theta) * cosPsi[size_t(j)], B = std::sin(theta) * sinPsi[size_t(j)];
+            double azimuthal = 0.0;  // int_0^2pi max(A + B cos(phi), 0) dphi
+            if (A >= B) azimuthal = 2.0 * kPiD * A;
+            else if (A > -B) {
+                const double phi0 = std::acos(-A / B);
+                azimuthal = 2.0 * (A * phi0 + B * std::sin(phi0));
+            }
+            sum += kernel[size_t(j)] * azimuthal;
+        }
         table[size_t(k)] = sum / total;
     }
     return table;
@@ -142,7 +155,7 @@ TEST_F(SkinShAmbient, SphereMatchesBruteForceIntegrationWithSkinTransfer) {
         }
     }
     std::array<std::vector<double>, 3> D;
-    for (int c = 0; c < 3; ++c) D[size_t(c)] = ringScatterTable(luts.profile(), c, curvaturePerMm, 1024);
+    for (int c = 0; c < 3; ++c) D[size_t(c)] = sphereScatterTable(luts.profile(), c, curvaturePerMm, 512);
 
     const std::vector<SphereHit> hits = traceSphere(view, size, size, glm::dvec3(0.0), radiusM);
     const glm::dvec3 eye(view.eye().positionWs);

@@ -178,6 +178,7 @@ TEST_F(SkinToggles, AllOffEqualsStandardPath) {
         for (Material& m : standard.materials) m.skin.reset();
         RenderSettings off = s.settings;
         off.skin = SkinFeatures::none();
+        off.fitShadowToSkin = false;  // the same shadow map for both scenes (one has no skin to fit it to)
         Renderer skinRenderer(context(), s.scene, s.environment, &luts, off);
         Renderer standardRenderer(context(), standard, s.environment, &luts, off);
         const RenderedImage skinImage = skinRenderer.render(s.view, kSize, kSize, OutputEncoding::LinearFloat);

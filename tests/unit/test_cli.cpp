@@ -1,6 +1,7 @@
 // The `preskin` tool end to end: bad input of every kind ends with one clear error line naming
 // the file and the problem, a non-zero exit and no output file; a good render with validation on
 // writes the image and reports its frame time.
+#include "support/CliTest.h"
 #include "support/Process.h"
 
 #include <OpenImageIO/imageio.h>
@@ -25,46 +26,12 @@ namespace fs = std::filesystem;
 using preskin::test::ProcessResult;
 using CliResult = ProcessResult;
 
-class Cli : public ::testing::Test {
+class Cli : public preskin::test::CliTest {
 protected:
-    void SetUp() override {
-        if (!fs::exists(PRESKIN_CLI_PATH)) GTEST_SKIP() << "the preskin tool is not built: " << PRESKIN_CLI_PATH;
-        std::ostringstream name;
-        name << "preskin_cli_" << ::getpid() << "_" << ::testing::UnitTest::GetInstance()->current_test_info()->name();
-        dir_ = fs::temp_directory_path() / name.str();
-        fs::remove_all(dir_);
-        fs::create_directories(dir_);
-    }
-    void TearDown() override {
-        std::error_code ec;
-        fs::remove_all(dir_, ec);
-    }
-
-    // Runs `preskin <args>` with a time limit; captures stdout and stderr.
-    CliResult run(const std::vector<std::string>& args) { return preskin::test::runCli(args, dir_, 120.0); }
-
     std::vector<std::string> renderArgs(const std::string& scene, const fs::path& out) {
         return {"render", scene, "--out", out.string(), "--width", "32", "--height", "32", "--device",
                 preskin::test::testDevice()};
     }
-
-    // One line "preskin: error: ..." containing every needle; nothing written.
-    void expectError(const CliResult& r, const std::vector<std::string>& needles, const fs::path& out) {
-        EXPECT_EQ(r.exitCode, 1) << r.err;
-        EXPECT_EQ(r.err.rfind("preskin: error: ", 0), 0u) << r.err;
-        size_t errorLines = 0;
-        std::istringstream lines(r.err);
-        for (std::string line; std::getline(lines, line);)
-            if (line.rfind("preskin: error: ", 0) == 0) ++errorLines;
-        EXPECT_EQ(errorLines, 1u) << r.err;
-        for (const std::string& n : needles) EXPECT_NE(r.err.find(n), std::string::npos) << "'" << n << "' in: " << r.err;
-        EXPECT_FALSE(fs::exists(out)) << out;
-        if (!fs::is_directory(out.parent_path())) return;
-        for (const auto& entry : fs::directory_iterator(out.parent_path()))
-            EXPECT_EQ(entry.path().filename().string().find(".partial"), std::string::npos) << entry.path();
-    }
-
-    fs::path dir_;
 };
 
 const fs::path kData = fs::path(PRESKIN_SOURCE_DIR) / "tests" / "data" / "gltf";

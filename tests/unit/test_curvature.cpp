@@ -1,5 +1,6 @@
-// Per-vertex mean curvature (preskin/Curvature.h) against closed forms: a sphere of radius r has
-// mean curvature 1/r, a cylinder 1/(2r), a plane 0. Meshes are built here from their analytic
+// Per-vertex signed mean curvature (preskin/Curvature.h) against closed forms: a sphere of radius
+// r has mean curvature 1/r seen from outside and -1/r from inside, a cylinder 1/(2r), a plane 0,
+// the quadric z = (k1 x^2 + k2 y^2) / 2 with normals towards +z -(k1 + k2) / 2 at its centre. Meshes are built here from their analytic
 // parametrisations; normals are either analytic or averaged from the faces (the harder case).
 #include <preskin/Curvature.h>
 #include <preskin/Error.h>
@@ -38,7 +39,7 @@ TestMesh uvSphere(float radius, int segments, int rings) {
     for (uint32_t r = 0; r < static_cast<uint32_t>(rings); ++r) {
         for (uint32_t s = 0; s < static_cast<uint32_t>(segments); ++s) {
             const uint32_t a = r * row + s, b = a + 1, c = a + row, d = c + 1;
-            m.indices.insert(m.indices.end(), {a, c, b, b, c, d});
+            m.indices.insert(m.indices.end(), {a, b, c, b, d, c});  // counter-clockwise seen from outside
         }
     }
     return m;
@@ -147,6 +148,43 @@ TEST(Curvature, SeamSplitSphereMatchesWeldedSphere) {
     const auto a = preskin::computeVertexCurvature(split.positions, split.normals, split.indices);
     const auto b = preskin::computeVertexCurvature(welded.positions, welded.normals, welded.indices);
     for (size_t i = 0; i < split.positions.size(); ++i) EXPECT_NEAR(a[i], b[remap[i]], 1e-4f * b[remap[i]]);
+}
+
+TEST(Curvature, InsideOfASphereIsConcave) {
+    // The same sphere with its normals turned inwards (the inside of a bowl): -1/r.
+    const float radius = 0.5f;
+    TestMesh m = uvSphere(radius, 64, 32);
+    for (glm::vec3& n : m.normals) n = -n;
+    const std::vector<float> curvature = preskin::computeVertexCurvature(m.positions, m.normals, m.indices);
+    for (size_t i = 0; i < m.positions.size(); ++i) {
+        if (std::abs(m.positions[i].y) > 0.9f * radius) continue;
+        EXPECT_NEAR(curvature[i], -1.0f / radius, 0.02f / radius);
+    }
+}
+
+TEST(Curvature, QuadricSignFollowsTheNormal) {
+    // z = (k1 x^2 + k2 y^2) / 2 near the origin, normals towards +z: a bowl (both k > 0) bends
+    // towards its normals, concave, H < 0; a saddle takes the sign of its stronger bend.
+    for (const auto& [k1, k2] : {std::pair{3.0f, 2.0f}, std::pair{2.0f, -5.0f}, std::pair{-1.0f, 4.0f}}) {
+        TestMesh m;
+        const int n = 40;
+        const float half = 0.2f;
+        for (int j = 0; j <= n; ++j)
+            for (int i = 0; i <= n; ++i) {
+                const float x = half * (2.0f * float(i) / float(n) - 1.0f), y = half * (2.0f * float(j) / float(n) - 1.0f);
+                m.positions.push_back(glm::vec3(x, y, 0.5f * (k1 * x * x + k2 * y * y)));
+                m.normals.push_back(glm::normalize(glm::vec3(-k1 * x, -k2 * y, 1.0f)));
+            }
+        for (uint32_t j = 0; j < uint32_t(n); ++j)
+            for (uint32_t i = 0; i < uint32_t(n); ++i) {
+                const uint32_t a = j * (n + 1) + i, b = a + 1, c = a + n + 1, d = c + 1;
+                m.indices.insert(m.indices.end(), {a, b, c, b, d, c});
+            }
+        const auto curvature = preskin::computeVertexCurvature(m.positions, m.normals, m.indices);
+        const size_t centre = size_t(n / 2) * size_t(n + 1) + size_t(n / 2);
+        const float expected = -0.5f * (k1 + k2);
+        EXPECT_NEAR(curvature[centre], expected, 0.03f * std::abs(expected)) << "k1 " << k1 << " k2 " << k2;
+    }
 }
 
 TEST(Curvature, PlaneGivesZero) {

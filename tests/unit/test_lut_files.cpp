@@ -94,7 +94,7 @@ TEST(LutFiles, SaveLoadRoundTrip) {
     EXPECT_EQ(manifest["format"], "preskin-lut-set");
     EXPECT_EQ(manifest["tables"]["diffuse"]["x"]["quantity"], "NoL");
     EXPECT_EQ(manifest["tables"]["diffuse"]["y"]["unit"], "1/mm");
-    EXPECT_EQ(manifest["tables"]["diffuse"]["y"]["mapping"], "sqrt");
+    EXPECT_EQ(manifest["tables"]["diffuse"]["y"]["mapping"], "splitSqrt");
     EXPECT_EQ(manifest["tables"]["penumbra"]["y"]["max"], "infinity");
     EXPECT_EQ(manifest["tables"]["diffuse"]["hash"], smallSet().diffuse().contentHash());
     EXPECT_TRUE(manifest["conventions"].contains("varianceScale"));
@@ -186,12 +186,12 @@ TEST(LutFiles, ManifestProblemsNameTheField) {
         {[](nlohmann::json& j) { j["settings"]["diffuseNoLSize"] = 0; },
          "settings.diffuseNoLSize: must be an integer in [16, 4096], got 0"},
         {[](nlohmann::json& j) { j["settings"]["diffuseNoLSize"] = 32; }, "tables.diffuse.width: 16x16 does not match the settings (32x16)"},
-        {[](nlohmann::json& j) { j["settings"]["curvatureMaxPerMm"] = 2.0; }, "tables.diffuse.y.max: 1 does not match"},
+        {[](nlohmann::json& j) { j["settings"]["curvatureMaxPerMm"] = 2.0; }, "tables.diffuse.y.min: -1 does not match"},
         {[](nlohmann::json& j) { j["profile"]["gaussians"][0]["varianceMm2"] = -1; },
          "profile.gaussians[0].varianceMm2: must be > 0, got -1"},
         {[](nlohmann::json& j) { j["profile"]["gaussians"][5]["varianceMm2"] = 9.0; }, "does not match"},
         {[](nlohmann::json& j) { j["tables"]["diffuse"]["y"]["mapping"] = "linear"; },
-         "tables.diffuse.y.mapping: expected \"sqrt\", got \"linear\""},
+         "tables.diffuse.y.mapping: expected \"splitSqrt\", got \"linear\""},
         {[](nlohmann::json& j) { j["tables"]["diffuse"]["file"] = "../x.exr"; }, "tables.diffuse.file: expected \"diffuse.exr\""},
         {[](nlohmann::json& j) { j["version"] = 7; }, "version: unsupported version 7"},
         {[](nlohmann::json& j) { j.erase("tables"); }, "tables: missing"},

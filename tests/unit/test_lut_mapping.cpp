@@ -89,9 +89,10 @@ TEST(LutMapping, LookupsAtNodesReturnTexels) {
             for (int c = 0; c < 3; ++c) EXPECT_NEAR(got[c], want[c], 1e-4) << ix << ", " << iy;
         }
     }
-    // Curvature beyond the range clamps to the last row; negative curvature to flat.
-    EXPECT_EQ(luts.lookupDiffuse(0.0f, 50.0f), luts.lookupDiffuse(0.0f, static_cast<float>(luts.settings().curvatureMaxPerMm)));
-    EXPECT_EQ(luts.lookupDiffuse(0.5f, -1.0f), luts.lookupDiffuse(0.5f, 0.0f));
+    // Curvature beyond the range clamps to the last row on either side.
+    const float max = static_cast<float>(luts.settings().curvatureMaxPerMm);
+    EXPECT_EQ(luts.lookupDiffuse(0.0f, 50.0f), luts.lookupDiffuse(0.0f, max));
+    EXPECT_EQ(luts.lookupDiffuse(0.5f, -50.0f), luts.lookupDiffuse(0.5f, -max));
 }
 
 TEST(LutMapping, SharedStructLayout) {
@@ -107,8 +108,9 @@ TEST(LutMapping, RgbaHalfExport) {
     const std::vector<uint16_t> rgba = table.rgba16f();
     ASSERT_EQ(rgba.size(), static_cast<size_t>(table.width() * table.height() * 4));
     EXPECT_EQ(rgba[3], 0x3c00u);                      // alpha 1.0
-    EXPECT_EQ(rgba[4 * (table.width() - 1)], 0x3c00u);  // flat row, NoL = 1: 1.0
-    EXPECT_EQ(rgba[0], 0u);                           // flat row, NoL = -1: 0
+    const size_t flat = size_t(table.height() / 2) * size_t(table.width()) * 4;
+    EXPECT_EQ(rgba[flat + 4 * size_t(table.width() - 1)], 0x3c00u);  // flat row, NoL = 1: 1.0
+    EXPECT_EQ(rgba[flat], 0u);                                       // flat row, NoL = -1: 0
 }
 
 TEST(LutBakeSettingsTest, AbsurdSizesAreRefused) {

@@ -1,7 +1,8 @@
 // Independent reference computations for the profile and LUT tests: adaptive Simpson quadrature
-// (written here, not the library's Gauss-Legendre), line profiles from test-side closed forms
-// (std::cyl_bessel_k for Burley, not the library's Abramowitz-Stegun K0), and Penner's ring
-// integral evaluated directly on [-pi, pi] with the clamped cosine (no lit-arc decomposition).
+// (written here, not the library's Gauss-Legendre), line and radial profiles from test-side
+// closed forms (std::cyl_bessel_k for Burley, not the library's Abramowitz-Stegun K0), and the
+// diffuse response on a sphere integrated over the surface directly (positions, normals and
+// visibility as vectors; no closed form in the azimuth).
 // Limits: slow (thousands of evaluations per value); for tests only.
 #pragma once
 
@@ -73,38 +74,63 @@ inline double referenceLineProfile(const DiffusionProfile& profile, int channel,
     return a / (4.0 * kPi * d) * (std::cyl_bessel_k(0.0, u / d) + std::cyl_bessel_k(0.0, u / (3.0 * d)));
 }
 
-// Penner's D(theta, r) for one channel, integrating cos(theta + x)+ K(x) and K(x) over [-pi, pi]
-// directly; the substitution x = t^2 on each side removes Burley's log singularity at x = 0,
-// and the lit-arc ends (kinks of the integrand) are split points.
-inline double referenceRingScatter(const DiffusionProfile& profile, int channel, double NoL, double curvaturePerMm) {
-    if (curvaturePerMm <= 0.0) return std::clamp(NoL, 0.0, 1.0);
-    const double r = 1.0 / curvaturePerMm;
-    const double theta = std::acos(std::clamp(NoL, -1.0, 1.0));
-    auto kernel = [&](double x) { return referenceLineProfile(profile, channel, 2.0 * r * std::sin(0.5 * std::abs(x))); };
-    double numerator = 0.0;
-    double denominator = 0.0;
-    for (int side = -1; side <= 1; side += 2) {
-        // Kinks where cos(theta + x) changes sign, as t = sqrt(|x|) on this side.
-        std::vector<double> cuts{0.0, std::sqrt(kPi)};
-        for (double k : {kPi / 2 - theta, -kPi / 2 - theta, 3 * kPi / 2 - theta, -3 * kPi / 2 - theta}) {
-            if (k * side > 0.0 && std::abs(k) < kPi) cuts.push_back(std::sqrt(std::abs(k)));
-        }
-        std::sort(cuts.begin(), cuts.end());
-        auto lit = [&](double t) {
-            if (t == 0.0) return 0.0;
-            const double x = side * t * t;
-            return 2.0 * t * std::max(std::cos(theta + x), 0.0) * kernel(x);
-        };
-        auto all = [&](double t) {
-            if (t == 0.0) return 0.0;
-            return 2.0 * t * kernel(side * t * t);
-        };
-        for (size_t i = 0; i + 1 < cuts.size(); ++i) {
-            if (cuts[i + 1] <= cuts[i]) continue;
-            numerator += integrateGradedTowardsStart(lit, cuts[i], cuts[i + 1], 1e-11);
-            denominator += integrateGradedTowardsStart(all, cuts[i], cuts[i + 1], 1e-11);
-        }
+// Radial profile R(r) of one channel, from the closed forms (test-side code), 1/mm^2.
+inline double referenceRadialProfile(const DiffusionProfile& profile, int channel, double r) {
+    r = std::abs(r);
+    if (profile.kind() == DiffusionProfile::Kind::SumOfGaussians) {
+        double sum = 0.0;
+        for (const GaussianTerm& t : profile.gaussians())
+            sum += t.weight[channel] * std::exp(-r * r / (2.0 * t.varianceMm2)) / (2.0 * kPi * t.varianceMm2);
+        return sum;
     }
+    const double a = profile.albedo()[channel];
+    const double l = profile.meanFreePathMm()[channel];
+    const double d = l / (1.85 - a + 7.0 * std::pow(std::abs(a - 0.8), 3.0));
+    return a * (std::exp(-r / d) + std::exp(-r / (3.0 * d))) / (8.0 * kPi * d * std::max(r, 1e-300));
+}
+
+// The pre-integrated diffuse response on a sphere for one channel, straight from its definition
+// as a surface integral: nested adaptive Simpson over the angle psi from x (graded towards 0)
+// and the azimuth phi, with each neighbour's position, normal and visibility built as vectors.
+// Convex (curvature > 0): the outside of a sphere of radius 1/curvature, visible where
+// n_y . L > 0. Concave (< 0): the inside, whose cap of arc radius patchMm around x shadows it: a
+// neighbour facing the light is shadowed when the ray towards the light leaves the sphere
+// inside that cap. Normalised by the profile's integral over the same surface. (The library
+// integrates phi in closed form between visibility thresholds instead.)
+inline double referenceSphereScatter(const DiffusionProfile& profile, int channel, double NoL, double curvaturePerMm,
+                                     double patchMm) {
+    if (curvaturePerMm == 0.0) return std::clamp(NoL, 0.0, 1.0);
+    const bool concave = curvaturePerMm < 0.0;
+    const double a = 1.0 / std::abs(curvaturePerMm);
+    const double theta = std::acos(std::clamp(NoL, -1.0, 1.0));
+    const double Lx = std::sin(theta), Lz = std::cos(theta);
+    const double psiMax = kPi;
+    const double cosPatch = std::cos(std::min(patchMm / a, kPi));
+    // The light-weighted azimuthal integral at angle psi (phi in [0, pi], doubled by symmetry).
+    auto lit = [&](double psi) {
+        const double sp = std::sin(psi), cp = std::cos(psi);
+        auto f = [&](double phi) {
+            const double yx = a * sp * std::cos(phi), yy = a * sp * std::sin(phi), yz = concave ? -a * cp : a * cp;
+            const double sign = concave ? -1.0 : 1.0;  // the normal: outward on a convex sphere, inward on a concave one
+            const double cosine = sign * (yx * Lx + yz * Lz) / a;
+            if (cosine <= 0.0) return 0.0;
+            if (concave) {
+                const double yl = yx * Lx + yz * Lz;
+                const double exitZ = yz - 2.0 * yl * Lz;  // y - 2 (y . L) L, z component
+                if (-exitZ / a >= cosPatch) return 0.0;  // leaves the sphere inside the patch
+            }
+            (void)yy;
+            return cosine;
+        };
+        return 2.0 * adaptiveSimpson(f, 0.0, kPi, 1e-10, 6, 30);
+    };
+    auto kernel = [&](double psi) {
+        return referenceRadialProfile(profile, channel, 2.0 * a * std::sin(0.5 * psi)) * a * a * std::sin(psi);
+    };
+    const double numerator =
+        integrateGradedTowardsStart([&](double psi) { return psi == 0.0 ? 0.0 : kernel(psi) * lit(psi); }, 0.0, psiMax, 1e-10);
+    const double denominator =
+        integrateGradedTowardsStart([&](double psi) { return psi == 0.0 ? 0.0 : 2.0 * kPi * kernel(psi); }, 0.0, psiMax, 1e-10);
     return numerator / denominator;
 }
 

@@ -1,9 +1,10 @@
 // Tests of the SH transfer table A_l(curvature), l = 0, 1, 2: flat skin gives exactly
 // Lambert's (pi, 2 pi / 3, pi / 4); curved skin matches an adaptive integration over cos(theta)
-// of the (separately verified) ring integral; higher bands are attenuated, red most.
+// of the (separately verified, test_lut_diffuse.cpp) response on the sphere, which is what the
+// library's Funk-Hecke form must equal; higher bands are attenuated, red most.
 #include "test_lut_reference.h"
 
-#include "skin/RingScatter.h"
+#include "skin/SphereScatter.h"
 
 #include <preskin/LutSet.h>
 
@@ -31,7 +32,7 @@ TEST(LutSh, ZeroCurvatureIsLambert) {
     }
 }
 
-TEST(LutSh, MatchesAdaptiveIntegrationOfTheRingIntegral) {
+TEST(LutSh, MatchesAdaptiveIntegrationOfTheSphereResponse) {
     const LutSet& luts = LutSet::loadDefault();
     for (double curvature : {0.02, 0.2, 0.7}) {
         const std::array<glm::dvec3, 3> got = skin::shTransfer(luts.profile(), curvature);
@@ -40,7 +41,7 @@ TEST(LutSh, MatchesAdaptiveIntegrationOfTheRingIntegral) {
             for (int c = 0; c < 3; ++c) {
                 auto integrand = [&](double mu) {
                     const double legendre = l == 0 ? 1.0 : (l == 1 ? mu : 0.5 * (3.0 * mu * mu - 1.0));
-                    return skin::ringScatter(luts.profile(), curvature, mu)[c] * legendre;
+                    return skin::sphereScatter(luts.profile(), curvature, luts.localPatchMm(), mu)[c] * legendre;
                 };
                 const double want = 2.0 * test::kPi *
                                     (test::adaptiveSimpson(integrand, -1.0, 0.0, 1e-9, 6) + test::adaptiveSimpson(integrand, 0.0, 1.0, 1e-9, 6));

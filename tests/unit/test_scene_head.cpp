@@ -147,11 +147,15 @@ TEST(SceneHead, VFlipPutsTheLipsOnTheMouth) {
 TEST(SceneHead, CurvatureIsHeadSized) {
     const preskin::Primitive& p = head().meshes[0].primitives[0];
     std::vector<float> k;
+    size_t concave = 0;
     for (const preskin::Vertex& v : p.vertices) {
         ASSERT_TRUE(std::isfinite(v.curvaturePerM));
-        ASSERT_GE(v.curvaturePerM, 0.0f);
-        k.push_back(v.curvaturePerM);
+        k.push_back(std::abs(v.curvaturePerM));
+        concave += v.curvaturePerM < 0.0f;
     }
+    // Signed: mostly convex, with concave folds (eye sockets, ears, nostrils, the neck's crease).
+    EXPECT_GT(concave, k.size() / 20);
+    EXPECT_LT(concave, k.size() / 2);
     std::nth_element(k.begin(), k.begin() + static_cast<std::ptrdiff_t>(k.size() / 2), k.end());
     const float median = k[k.size() / 2];
     // A head is roughly a 0.08 m sphere (12.5 / m); features make the median larger, not tenfold.

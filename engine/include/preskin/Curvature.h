@@ -7,9 +7,11 @@
 // area-weighted average over the incident triangles, followed by one light smoothing pass over
 // the one-ring (half the vertex's own value, half its neighbours' mean).
 //
-// Convention: mean curvature H = (k1 + k2) / 2, returned as the magnitude |H| in 1 / (mesh units):
-// a sphere of radius r gives 1/r, a cylinder 1/(2r), a plane 0. A saddle whose principal
-// curvatures cancel also gives about 0.
+// Convention: signed mean curvature H = (k1 + k2) / 2 in 1 / (mesh units), positive where the
+// surface bends away from its normals (convex, with outward normals): a sphere of radius r gives
+// 1/r seen from outside and -1/r from inside (the inside of a bowl, normals pointing inwards), a
+// cylinder 1/(2r), a plane 0. A saddle whose principal curvatures cancel gives about 0; one
+// that bends more along its concave direction gives a negative value.
 //
 // Seams: vertices are welded by exact position before the estimate, so vertices duplicated along
 // UV or normal seams get one value. Vertices at one position whose normals face apart (more than
@@ -32,7 +34,7 @@ namespace preskin {
 
 struct Mesh;
 
-// Mean curvature magnitude per vertex, in 1 / (units of `positions`). `normals` are per-vertex
+// Signed mean curvature per vertex, in 1 / (units of `positions`). `normals` are per-vertex
 // unit normals (same count as `positions`), `indices` a triangle list. Throws preskin::Error
 // when the counts disagree or an index is out of range.
 PRESKIN_API std::vector<float> computeVertexCurvature(std::span<const glm::vec3> positions,

@@ -89,6 +89,10 @@ public:
     // energy beyond radius d. T(0) = 1. Gaussians: sum_i w_i exp(-d^2 / 2 v_i) / albedo;
     // Burley: (exp(-d/D) + 3 exp(-d/3D)) / 4 with D = scatteringDistanceMm.
     glm::dvec3 transmittance(double thicknessMm) const;
+    // The smallest radius beyond which at most `tailFraction` (in (0, 1)) of every channel's energy
+    // lies: the d where the largest channel's transmittance(d) falls to tailFraction (bisection
+    // to 1e-9 relative). Integrals of the profile over a surface can stop at this radius.
+    double reachMm(double tailFraction) const;
 
     // Per-channel scattering width: the RMS radius sqrt(int r^2 2 pi r R dr / albedo), mm.
     // Gaussians: sqrt(2 sum_i w_i v_i / albedo); Burley: sqrt(14) d.

@@ -3,12 +3,15 @@
 // (both use the mapping functions of shaders/shared/lut_mapping.h).
 //
 // Tables (every one RGB, values rounded to half; see LutTable.h for the texel layout):
-//  - diffuse D(NoL, curvature): Penner & Borshukov's ring integral (GPU Pro 2, 2011), see
-//    engine/src/skin/RingScatter.h. x: NoL in [-1, 1], SplitLinear (a texel centre sits exactly
-//    at NoL = 0, so the flat limit saturate(NoL) is reproduced without interpolation error).
-//    y: curvature 1/r in [0, curvatureMaxPerMm] (default 1/mm: radii from 1 mm to flat),
-//    Sqrt mapping, which puts half the rows below a quarter of the range, where faces are
-//    (radii ~2..100 mm, curvature 0.01..0.5 1/mm). Row 0 is exactly flat: D = saturate(NoL).
+//  - diffuse D(NoL, curvature): Penner & Borshukov's pre-integration (GPU Pro 2, 2011) over the
+//    sphere of the signed mean curvature, see engine/src/skin/SphereScatter.h: convex rows are
+//    the outside of a sphere, concave rows the inside of one limited to the local patch
+//    (localPatchMm), which shadows itself. x: NoL in [-1, 1], SplitLinear (a texel centre sits
+//    exactly at NoL = 0, so the flat limit saturate(NoL) is reproduced without interpolation
+//    error). y: signed curvature 1/r in [-curvatureMaxPerMm, curvatureMaxPerMm] (default 1/mm:
+//    radii from 1 mm to flat, either side), SplitSqrt mapping: row N/2 is exactly flat
+//    (D = saturate(NoL)) and each half puts half its rows below a quarter of its range, where
+//    faces are (radii ~2..100 mm, |curvature| 0.01..0.5 1/mm).
 //  - penumbra P(shadow, filter width): the skin response to a soft shadow edge: the penumbra of
 //    the project's Gaussian shadow filter (shaders/preskin/shadow.glsl) taken as the light that
 //    reaches the skin, scattered by the profile. x: the filtered shadow value s in [0, 1]
@@ -42,7 +45,7 @@
 // checked before the renames, and on failure the temporary files (and folders save created) are
 // removed, so nothing new is left behind.
 //
-// Limits: see RingScatter.h (ring model), the penumbra model above (straight edges, Gaussian
+// Limits: see SphereScatter.h (sphere model), the penumbra model above (straight edges, Gaussian
 // filter), and LutTable.h (GPU sub-texel precision).
 #pragma once
 
@@ -111,6 +114,9 @@ public:
     const LutTable& shTransfer() const { return shTransfer_; }
     const LutTable& transmittance() const { return transmittance_; }
     double penumbraReferenceWidthMm() const { return penumbraReferenceWidthMm_; }
+    // Radius of the local patch (profile mm): the surface around a shaded point whose own
+    // shadowing the diffuse LUT models; skin looks the shadow map up above it.
+    double localPatchMm() const;
     double transmittanceMaxMm() const { return transmittance_.x.max; }
 
     // Texture coordinates and bilinear CPU lookups, identical to lut.glsl.

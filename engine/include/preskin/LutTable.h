@@ -28,6 +28,8 @@ enum class AxisMapping {
     SplitLinear,  // NoL: node k = N/2 (integer division) sits at v = 0, exactly;
                   // t = k (v - min) / -min for v < 0, k + (N-1-k) v / max for v >= 0
     Sqrt,         // t = (N-1) sqrt((v - min) / (max - min))
+    SplitSqrt,    // signed curvature: node k = N/2 sits at v = 0, exactly; min = -max;
+                  // t = k (1 - sqrt(v / min)) for v < 0, k + (N-1-k) sqrt(v / max) for v >= 0
     Rational,     // t = (N-1) v / (v + 1), v in [0, inf): node N-1 is v = infinity
     Log1p,        // t = (N-1) ln(1 + v / scale) / ln(1 + max / scale), min = 0
     Index,        // t = v, an integer row (SH band, or the single row of a 1D table)

@@ -67,6 +67,12 @@ struct RenderSettings {
     uint32_t shadowMapSize = 2048;
     float shadowSoftnessTexels = 1.5f;  // Gaussian sigma of the PCF kernel, in shadow-map texels
     bool shadows = true;
+    // true: the shadow map covers the skin in view (small texels where skin receives shadows);
+    // false: the whole scene's bounding sphere. Without skin in view both cover the scene.
+    bool fitShadowToSkin = true;
+    // false: no specular reflection for any material, and diffuse without the Fresnel factors
+    // (1 - F) that specular takes from it: pure diffuse, what DiffusionReference models.
+    bool specular = true;
     // Samples per pixel of the forward pass (any count of Renderer::msaaSampleCounts()), resolved
     // into the target by averaging. Shading stays per pixel; alpha-mask materials use
     // alpha-to-coverage when this is above 1.

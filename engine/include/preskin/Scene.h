@@ -45,7 +45,7 @@ struct Vertex {
     glm::vec3 normalOs{0.0f, 0.0f, 1.0f};
     glm::vec4 tangentOs{1.0f, 0.0f, 0.0f, 1.0f};  // xyz tangent, w = bitangent sign
     glm::vec2 uv0{0.0f};
-    float curvaturePerM = 0.0f;  // mean curvature magnitude 1/radius in object-space units, >= 0
+    float curvaturePerM = 0.0f;  // signed mean curvature in object-space units (> 0 convex; Curvature.h)
 };
 
 // One morph target of a primitive: per-vertex deltas, each either empty (the target does not

@@ -51,6 +51,7 @@ PipelineKey Renderer::Impl::pipelineKey(const GpuMaterial& m, VkFormat format, V
                        static_cast<uint32_t>(settings.debugView),
                        skin ? settings.skin.mask() : 0u,
                        settings.lightLoop == LightLoop::Clustered ? gpu::kLightLoopClustered : gpu::kLightLoopAll,
+                       settings.specular ? 1u : 0u,
                        eyes,
                        settings.msaaSamples,
                        eyeDrawing() == EyeDrawing::InstancedLayers ? 1u : 0u};
@@ -70,7 +71,7 @@ VkPipeline Renderer::Impl::createForwardPipeline(const PipelineKey& key) const {
     vk::GraphicsPipelineDesc desc;
     desc.vertexSpirv = shader(key.layered ? "forward_layers.vert" : "forward.vert");
     desc.fragmentSpirv = shader("forward.frag");
-    desc.specialization.values.resize(7);
+    desc.specialization.values.resize(8);
     desc.specialization.values[gpu::kSpecMaterialModel] = key.model;
     desc.specialization.values[gpu::kSpecOutputMode] = isDisplayFormat(format) ? gpu::kOutputTonemapped
                                                                                : gpu::kOutputLinear;
@@ -78,6 +79,7 @@ VkPipeline Renderer::Impl::createForwardPipeline(const PipelineKey& key) const {
     desc.specialization.values[gpu::kSpecAlphaMode] = key.alphaMode;
     desc.specialization.values[gpu::kSpecSkinFeatures] = key.skinMask;
     desc.specialization.values[gpu::kSpecLightLoop] = key.lightLoop;
+    desc.specialization.values[gpu::kSpecSpecular] = key.specular;
     const AlphaMode alphaMode = static_cast<AlphaMode>(key.alphaMode);
     const bool alphaToCoverage = key.samples > 1 && alphaMode == AlphaMode::Mask;
     desc.specialization.values[gpu::kSpecAlphaToCoverage] = alphaToCoverage ? 1u : 0u;

@@ -22,4 +22,10 @@ gpu::GpuLight toGpuLight(const Light& light, bool shadowed) {
     return g;
 }
 
+int shadowLightIndex(const std::vector<Light>& lights) {
+    for (size_t i = 0; i < lights.size(); ++i)
+        if (lights[i].type == LightType::Directional && lights[i].castsShadow) return static_cast<int>(i);
+    return -1;
+}
+
 }  // namespace preskin

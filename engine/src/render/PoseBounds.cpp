@@ -26,11 +26,12 @@ Bounds grown(Bounds b, float by) {
 
 }  // namespace
 
-PoseBounds::PoseBounds(const Scene& scene) {
+PoseBounds::PoseBounds(const Scene& scene, const PrimitiveFilter& include) {
     meshes_.resize(scene.meshes.size());
     for (size_t m = 0; m < scene.meshes.size(); ++m) {
         MeshBounds& mb = meshes_[m];
         for (const Primitive& p : scene.meshes[m].primitives) {
+            if (include && !include(p)) continue;
             mb.object.extend(p.boundsOs);
             mb.targetReach.resize(std::max(mb.targetReach.size(), p.targets.size()), 0.0f);
             for (size_t t = 0; t < p.targets.size(); ++t)

@@ -6,19 +6,23 @@
 //  - a skinned instance: a skinned vertex is a convex combination (weights >= 0, summing to 1) of
 //    its joints' transforms of its morphed position, so it lies in the union, over joints j, of
 //    jointMatrix_j applied to the (grown) object bounds of the vertices joint j influences.
+// A filter limits the bounds to some primitives (the skin, for the shadow map's receivers).
 // Limits: boxes through matrices (8 corners), so rotated bounds are looser than the mesh.
 #pragma once
 
 #include <preskin/Animation.h>
 #include <preskin/Scene.h>
 
+#include <functional>
 #include <vector>
 
 namespace preskin {
 
 class PoseBounds {
 public:
-    explicit PoseBounds(const Scene& scene);
+    using PrimitiveFilter = std::function<bool(const Primitive&)>;
+    // Bounds of the primitives `include` accepts (every primitive without a filter).
+    explicit PoseBounds(const Scene& scene, const PrimitiveFilter& include = {});
     Bounds worldBounds(const ScenePose& pose) const;
 
 private:

@@ -17,6 +17,7 @@
 #include "render/InputChecks.h"
 #include "render/MultiviewProbe.h"
 #include "render/PoseBounds.h"
+#include "render/ShadowFit.h"
 #include "shared/gpu_types.h"
 #include "vk/Check.h"
 #include "vk/ContextAccess.h"
@@ -50,14 +51,6 @@ std::span<const uint32_t> builtinShader(const char* name) {
     auto code = shaders::spirv(name);
     if (code.empty()) throw Error(fmt::format("internal: shader {} is not compiled into the library", name));
     return code;
-}
-
-// Index of the light that gets the shadow map: the first directional light flagged castsShadow
-// (the glTF loader flags the first directional light when a file says nothing); -1 when none.
-int shadowLightIndex(const std::vector<Light>& lights) {
-    for (size_t i = 0; i < lights.size(); ++i)
-        if (lights[i].type == LightType::Directional && lights[i].castsShadow) return static_cast<int>(i);
-    return -1;
 }
 
 }  // namespace
@@ -97,6 +90,7 @@ Renderer::Impl::Impl(Context& ctx, const Scene& s, const Environment& env, const
     checkLights(s.lights);
     scene = std::make_unique<GpuScene>(dev, s);
     poseBounds = std::make_unique<PoseBounds>(s);
+    receiverPoseBounds = std::make_unique<PoseBounds>(skinReceiverBounds(s));
     deformer = std::make_unique<GpuDeformer>(dev, s, scene->vertices, scene->meshFirstVertex);
     setPose(restPose(s));
     setLutLayers(lutLayers);
@@ -231,6 +225,7 @@ void Renderer::Impl::setPose(ScenePose p) {
             throw Error(fmt::format("pose: instance {}: its transform is not finite", i));
     deformer->check(p);
     bounds = poseBounds->worldBounds(p);
+    receivers = receiverPoseBounds->worldBounds(p);
     pose = std::move(p);
     ++poseVersion;
 }
@@ -273,18 +268,21 @@ bool Renderer::Impl::prepareFrame(Slot& slot, uint32_t slotIndex, const View& vi
     u.params = glm::vec4(settings.exposure, float(view.eyeCount()), 0.0f, 0.0f);
     u.viewport = glm::vec4(float(extent.width), float(extent.height), 1.0f / float(extent.width),
                            1.0f / float(extent.height));
-    float radius = 1.0f;
     const uint32_t mapSize = shadowMap.desc().width;
+    ShadowFit fit;  // without a shadow light: unit values, never sampled
+    fit.texelSizeM = 2.0f / float(mapSize);
+    fit.depthRangeM = 2.0f;
     if (shadowLight >= 0) {
         const glm::vec3 dir = glm::length(lights[size_t(shadowLight)].directionWs) > 0.0f
                                   ? glm::normalize(lights[size_t(shadowLight)].directionWs)
                                   : glm::vec3(0.0f, 0.0f, -1.0f);
-        shadowClipFromWorld = shadowMatrix(bounds, dir, radius);
+        fit = fitDirectionalShadow(bounds, settings.fitShadowToSkin ? receivers : Bounds{}, view, dir, mapSize);
+        shadowClipFromWorld = fit.clipFromWorld;
         u.shadowClipFromWorld = shadowClipFromWorld;
         u.shadowDirectionWs = glm::vec4(dir, 1.0f);
     }
-    u.shadowParams = glm::vec4(2.0f * radius / float(mapSize), std::max(settings.shadowSoftnessTexels, 0.25f),
-                               2.0f * radius, float(mapSize));
+    u.shadowParams = glm::vec4(fit.texelSizeM, std::max(settings.shadowSoftnessTexels, 0.25f), fit.depthRangeM,
+                               float(mapSize));
     for (int i = 0; i < 9; ++i) u.shRadiance[i] = glm::vec4(radianceSh.c[size_t(i)], 0.0f);
     u.lightCounts = glm::uvec4(slot.lightCount, directional, 0u, 0u);
     if (settings.lightLoop == LightLoop::Clustered)

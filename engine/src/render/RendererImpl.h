@@ -29,16 +29,14 @@ inline constexpr uint32_t kQueryCount = 6;
 
 // What makes one forward pipeline differ from another.
 struct PipelineKey {
-    uint32_t model, alphaMode, doubleSided, format, depthFormat, debugView, skinMask, lightLoop, eyes, samples, layered;
+    uint32_t model, alphaMode, doubleSided, format, depthFormat, debugView, skinMask, lightLoop, specular, eyes, samples,
+        layered;
     auto tie() const {
-        return std::tie(model, alphaMode, doubleSided, format, depthFormat, debugView, skinMask, lightLoop, eyes,
-                        samples, layered);
+        return std::tie(model, alphaMode, doubleSided, format, depthFormat, debugView, skinMask, lightLoop, specular,
+                        eyes, samples, layered);
     }
     bool operator<(const PipelineKey& o) const { return tie() < o.tie(); }
 };
-
-// Orthographic light matrix around the scene's bounding sphere (depth 0 near .. 1 far).
-glm::mat4 shadowMatrix(const Bounds& bounds, const glm::vec3& direction, float& radiusOut);
 
 struct Renderer::Impl {
     struct Slot {
@@ -61,13 +59,15 @@ struct Renderer::Impl {
     RenderSettings settings;
     EyeDrawing resolvedEyeDrawing = EyeDrawing::Multiview;
     std::vector<Light> lights;
-    Bounds bounds;  // of the scene in the current pose
+    Bounds bounds;     // of the scene in the current pose
+    Bounds receivers;  // of the skin in the current pose: what the shadow map is fitted to (render/ShadowFit.h)
     ShRgb radianceSh;
     std::string sceneName;  // for messages
     std::unique_ptr<GpuScene> scene;
     ScenePose pose;
     uint64_t poseVersion = 0;
     std::unique_ptr<PoseBounds> poseBounds;
+    std::unique_ptr<PoseBounds> receiverPoseBounds;  // the skin's
     std::unique_ptr<GpuDeformer> deformer;
     std::unique_ptr<GpuLuts> luts;
     std::unique_ptr<ClusterBuilder> clusters;

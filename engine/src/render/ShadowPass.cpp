@@ -1,5 +1,5 @@
 // The shadow pass of the sample renderer: the directional light's orthographic shadow map
-// (fitted around the scene's bounding sphere), its depth-only pipeline and its recording. The
+// (fitted to the skin in view, render/ShadowFit.h), its depth-only pipeline and its recording. The
 // forward pass samples the map with preskin/shadow.glsl's Gaussian PCF.
 #include "render/RendererImpl.h"
 
@@ -13,28 +13,6 @@
 #include <cmath>
 
 namespace preskin {
-
-// Orthographic light matrix around the scene's bounding sphere (depth 0 near .. 1 far).
-glm::mat4 shadowMatrix(const Bounds& bounds, const glm::vec3& direction, float& radiusOut) {
-    const glm::vec3 c = bounds.empty() ? glm::vec3(0.0f) : bounds.center();
-    const float r = bounds.empty() ? 1.0f : std::max(0.5f * glm::length(bounds.extent()), 1e-4f);
-    const glm::vec3 d = glm::normalize(direction);
-    const glm::vec3 helper = std::abs(d.y) < 0.99f ? glm::vec3(0.0f, 1.0f, 0.0f) : glm::vec3(1.0f, 0.0f, 0.0f);
-    const glm::vec3 right = glm::normalize(glm::cross(helper, d));
-    const glm::vec3 up = glm::cross(d, right);
-    glm::mat4 m(0.0f);  // m[col][row]
-    for (int i = 0; i < 3; ++i) {
-        m[i][0] = right[i] / r;
-        m[i][1] = up[i] / r;
-        m[i][2] = d[i] / (2.0f * r);
-    }
-    m[3][0] = -glm::dot(c, right) / r;
-    m[3][1] = -glm::dot(c, up) / r;
-    m[3][2] = (r - glm::dot(c, d)) / (2.0f * r);
-    m[3][3] = 1.0f;
-    radiusOut = r;
-    return m;
-}
 
 // The shadow map at the settings' size; a new one starts in the read layout (sampled even
 // when no light casts a shadow), transitioned in `cmd`.

@@ -1,4 +1,4 @@
-// Per-vertex mean curvature: weld by position, fit each triangle's shape operator to the change of
+// Per-vertex signed mean curvature: weld by position, fit each triangle's shape operator to the change of
 // the vertex normals along its edges (Rusinkiewicz 2004, see preskin/Curvature.h), average half
 // its trace to the vertices by area, smooth once over the one-ring. Computed in double precision.
 #include <preskin/Curvature.h>
@@ -169,7 +169,7 @@ std::vector<float> computeVertexCurvature(std::span<const glm::vec3> positions,
     for (size_t i = 0; i < weldedCount; ++i) {
         double h = curvature[i];
         if (neighbourCount[i] > 0) h = 0.5 * h + 0.5 * neighbourSum[i] / neighbourCount[i];
-        smoothed[i] = static_cast<float>(std::abs(h));
+        smoothed[i] = static_cast<float>(h);
     }
 
     std::vector<float> result(vertexCount);

@@ -253,6 +253,24 @@ glm::dvec3 DiffusionProfile::edgeResponse(double xMm) const {
     return xMm >= 0.0 ? glm::dvec3(1.0) - beyond : beyond;
 }
 
+double DiffusionProfile::reachMm(double tailFraction) const {
+    auto largest = [&](double d) {
+        const glm::dvec3 t = transmittance(d);
+        return std::max({t.x, t.y, t.z});
+    };
+    double lo = 0.0;
+    double hi = maxWidthMm();
+    while (largest(hi) > tailFraction) {
+        lo = hi;
+        hi *= 2.0;
+    }
+    for (int i = 0; i < 200 && hi - lo > 1e-9 * hi; ++i) {
+        const double mid = 0.5 * (lo + hi);
+        (largest(mid) > tailFraction ? lo : hi) = mid;
+    }
+    return hi;
+}
+
 double DiffusionProfile::maxWidthMm() const { return std::max({widthMm_.x, widthMm_.y, widthMm_.z}); }
 
 double DiffusionProfile::narrowestScaleMm() const {

@@ -1,12 +1,13 @@
-// Baking a LutSet from a DiffusionProfile: diffuse ring integral (Penner & Borshukov 2011),
+// Baking a LutSet from a DiffusionProfile: diffuse response on the sphere of the signed curvature
+// (SphereScatter.h, after Penner & Borshukov 2011),
 // penumbra scattering, SH transfer and transmittance, in parallel over table columns with TBB.
-// Models and axis definitions: engine/include/preskin/LutSet.h; quadrature: RingScatter.h.
+// Models and axis definitions: engine/include/preskin/LutSet.h; quadrature: SphereScatter.h.
 // Limits: sizes in [16, 4096] per axis; curvature range (0, 100] 1/mm.
 #include <preskin/LutSet.h>
 
 #include "skin/Half.h"
 #include "skin/LutLayout.h"
-#include "skin/RingScatter.h"
+#include "skin/SphereScatter.h"
 #include "skin/SoftEdge.h"
 #include "skin/SpecialFunctions.h"
 
@@ -35,21 +36,7 @@ void checkSize(int value, std::string_view source, std::string_view field) {
 // The thickness where the largest channel's transmittance falls to kTransmittanceFloor, rounded
 // up to 0.01 mm (a round number keeps manifests comparable across machines).
 double transmittanceRangeMm(const DiffusionProfile& profile) {
-    auto largest = [&](double d) {
-        const glm::dvec3 t = profile.transmittance(d);
-        return std::max({t.x, t.y, t.z});
-    };
-    double lo = 0.0;
-    double hi = profile.maxWidthMm();
-    while (largest(hi) > kTransmittanceFloor) {
-        lo = hi;
-        hi *= 2.0;
-    }
-    for (int i = 0; i < 200 && hi - lo > 1e-9 * hi; ++i) {
-        const double mid = 0.5 * (lo + hi);
-        (largest(mid) > kTransmittanceFloor ? lo : hi) = mid;
-    }
-    return std::ceil(hi * 100.0) / 100.0;
+    return std::ceil(profile.reachMm(kTransmittanceFloor) * 100.0) / 100.0;
 }
 
 LutAxis axis(std::string quantity, std::string unit, AxisMapping mapping, double min, double max, double scale, int size) {
@@ -88,7 +75,8 @@ LutLayout makeLutLayout(const DiffusionProfile& profile, const LutBakeSettings& 
     LutLayout layout;
     layout.diffuse.name = "diffuse";
     layout.diffuse.x = axis("NoL", "1", AxisMapping::SplitLinear, -1.0, 1.0, 1.0, s.diffuseNoLSize);
-    layout.diffuse.y = axis("curvature", "1/mm", AxisMapping::Sqrt, 0.0, s.curvatureMaxPerMm, 1.0, s.diffuseCurvatureSize);
+    layout.diffuse.y = axis("curvature", "1/mm", AxisMapping::SplitSqrt, -s.curvatureMaxPerMm, s.curvatureMaxPerMm, 1.0,
+                            s.diffuseCurvatureSize);
     layout.penumbra.name = "penumbra";
     layout.penumbra.x = axis("shadow", "1", AxisMapping::Linear, 0.0, 1.0, 1.0, s.penumbraShadowSize);
     layout.penumbra.y = axis("filterSigmaRelative", "1", AxisMapping::Rational, 0.0, inf, 1.0, s.penumbraWidthSize);
@@ -154,13 +142,14 @@ LutSet LutSet::bake(const DiffusionProfile& profile, const LutBakeSettings& sett
     };
 
     const double windowSigmas = skin::kPenumbraWindowSigmas;
+    const double patchMm = set.localPatchMm();
     const skin::SoftEdge softEdge(profile);
     tbb::parallel_for(0, total, [&](int unit) {
         if (unit < diffuseUnits) {
             const int iy = unit;
             const double curvaturePerMm = set.diffuse_.y.valueAt(iy);
             std::vector<glm::dvec3> column(nol.size());
-            skin::ringScatter(profile, curvaturePerMm, nol, column);
+            skin::sphereScatter(profile, curvaturePerMm, patchMm, nol, column);
             for (int ix = 0; ix < set.diffuse_.width(); ++ix) skin::storeHalf(set.diffuse_, ix, iy, column[static_cast<size_t>(ix)]);
         } else if (unit < diffuseUnits + shUnits) {
             const int ix = unit - diffuseUnits;

@@ -42,7 +42,7 @@ namespace fs = std::filesystem;
 using ordered_json = nlohmann::ordered_json;
 
 constexpr const char* kFormat = "preskin-lut-set";
-constexpr int kVersion = 1;
+constexpr int kVersion = 2;  // 2: diffuse over the sphere of the signed curvature (concave half)
 constexpr const char* kManifestName = "manifest.json";
 
 struct TableFile {
@@ -115,19 +115,25 @@ std::string manifestText(const LutSet& set) {
         {"normalisation", "every table carries the profile's shape only (per channel, albedo divided out); multiply "
                           "by the material's albedo"},
         {"varianceScale", "none: Gaussian variances are used as published (no 1.414 factor)"},
-        {"curvature", "1/r in 1/mm of the profile's units, range [0, curvatureMaxPerMm] (default 1: radii from 1 mm to "
-                      "flat); sqrt mapping, so half the rows lie below a quarter of the range, where faces are "
+        {"curvature", "signed mean curvature 1/r in 1/mm of the profile's units, > 0 convex, < 0 concave; diffuse: "
+                      "range [-curvatureMaxPerMm, curvatureMaxPerMm] (default 1: radii from 1 mm to flat) with the "
+                      "flat row exactly in the middle, SH transfer: |curvature| in [0, curvatureMaxPerMm]; sqrt "
+                      "mappings, so half the rows of each side lie below a quarter of its range, where faces are "
                       "(radii ~2..100 mm); values beyond the range clamp to the last row"},
         {"penumbraWidth", "filterSigmaRelative = sigma_f / referenceWidthMm; sigma_f is the shadow filter's Gaussian "
                           "standard deviation on the receiver across the edge (mm), referenceWidthMm the widest "
                           "channel's RMS width"},
-        {"ringKernel", "diffuse ring integral (Penner & Borshukov 2011) with K(x) = P(2 r sin(|x|/2)), P the profile "
-                       "integrated along the cylinder axis (1D-normalised Gaussians for sums of Gaussians)"},
+        {"sphereKernel", "diffuse: the profile integrated over a sphere of radius 1/|curvature| (Penner & Borshukov 2011's "
+                         "pre-integration on a sphere instead of a ring): D = int R(|x-y|) max(n_y.L, 0) V dA / int R dA, "
+                         "convex: the whole sphere, V = 1; concave: the inside, limited to the cap of arc radius "
+                         "localPatchMm around x, V = 0 where the light towards y leaves through the cap"},
+        {"localPatchMm", set.localPatchMm()},
         {"penumbraModel", "the shadow filter's Gaussian penumbra (standard deviation sigma_f) convolved with the "
                           "profile; x = sigma_f Phi^-1(shadow); value = that soft-edge response renormalised to "
                           "|x| <= 3 sigma_f"},
         {"shTransfer", "stored as A_l / (pi, 2 pi / 3, pi / 4)_l, A_l = 2 pi int D(theta) P_l(cos theta) sin theta "
-                       "dtheta; flat skin stores 1"},
+                       "dtheta over the convex sphere of |curvature| (= Lambert_l g_l / g_0, g_l the profile's Legendre "
+                       "coefficients on the sphere, Funk-Hecke); flat skin stores 1"},
         {"transmittance", "T(d) = int 2 pi r R(sqrt(r^2 + d^2)) dr / albedo; Gaussians: sum_i w_i exp(-d^2 / 2 v_i) / "
                           "albedo (Jimenez et al. 2010's form with variances doubled, no 1.414 factor)"},
         {"previews", "preview_*.png: sRGB-encoded, first y node at the bottom; SH bands 0, 1, 2 bottom to top"},
@@ -135,10 +141,12 @@ std::string manifestText(const LutSet& set) {
 
     ordered_json tables;
     ordered_json diffuse = tableJson(set.diffuse(), kDiffuseFile);
-    diffuse["method"] = "ring integral over [0, pi] by 8-point Gauss-Legendre on intervals between every lit-arc "
-                        "endpoint and a geometric mesh (ratio 1.25) from 1e-7 of the narrowest kernel scale; row 0 "
-                        "(curvature 0) is exactly saturate(NoL)";
-    diffuse["samples"] = {{"gaussLegendrePointsPerInterval", 8}, {"gradedMeshRatio", 1.25}, {"uniformBreaks", 32}};
+    diffuse["method"] = "integral over the angle psi between x and y of a^2 R(2 a sin(psi/2)) sin(psi) times the "
+                        "closed-form azimuthal integral of max(n_y.L, 0) (with the concave cap's visibility threshold), "
+                        "up to the profile's 1e-4 reach, by 8-point Gauss-Legendre on a geometric mesh (ratio 1.5) "
+                        "from 1e-3 of the narrowest scale and 64 uniform intervals; the middle row (curvature 0) is "
+                        "exactly saturate(NoL)";
+    diffuse["samples"] = {{"gaussLegendrePointsPerInterval", 8}, {"gradedMeshRatio", 1.5}, {"uniformIntervals", 64}};
     tables["diffuse"] = std::move(diffuse);
 
     ordered_json penumbra = tableJson(set.penumbra(), kPenumbraFile);

@@ -6,6 +6,8 @@
 
 #include <preskin/LutSet.h>
 
+#include "skin/LutLayout.h"
+
 #include <cmath>
 
 namespace preskin {
@@ -33,11 +35,14 @@ gpu::LutMapping lutMapping(const LutSet& luts, const LutExtents& extents) {
     const int zero = n / 2;
     const double nolExtent = extentOr(extents.diffuse.x, n);
     m.diffuseNoL = glm::vec4(f((zero + 0.5) / nolExtent), f(zero / (-nol.min * nolExtent)),
-                             f((n - 1 - zero) / (nol.max * nolExtent)), 0.0f);
+                             f((n - 1 - zero) / (nol.max * nolExtent)), f(luts.localPatchMm()));
 
-    const LutAxis& curvature = luts.diffuse().y;  // Sqrt on [0, max]
-    const glm::vec2 curvatureTexel = texelScaleOffset(curvature.size, extentOr(extents.diffuse.y, curvature.size));
-    m.diffuseCurvature = glm::vec4(f(1.0 / curvature.max), curvatureTexel.x, curvatureTexel.y, 0.0f);
+    const LutAxis& curvature = luts.diffuse().y;  // SplitSqrt on [-max, max]
+    const int cn = curvature.size;
+    const int czero = cn / 2;
+    const double curvatureExtent = extentOr(extents.diffuse.y, cn);
+    m.diffuseCurvature = glm::vec4(f(1.0 / curvature.max), f((czero + 0.5) / curvatureExtent),
+                                   f(double(czero) / curvatureExtent), f(double(cn - 1 - czero) / curvatureExtent));
 
     const LutAxis& shadow = luts.penumbra().x;  // Linear on [0, 1]
     const glm::vec2 shadowTexel = texelScaleOffset(shadow.size, extentOr(extents.penumbra.x, shadow.size));
@@ -59,6 +64,8 @@ gpu::LutMapping lutMapping(const LutSet& luts, const LutExtents& extents) {
         glm::vec4(f(1.0 / thickness.scale), f(1.0 / std::log1p(thickness.max / thickness.scale)), thicknessTexel.x, thicknessTexel.y);
     return m;
 }
+
+double LutSet::localPatchMm() const { return skin::kLocalPatchWidths * profile_.maxWidthMm(); }
 
 glm::vec2 LutSet::diffuseUv(float NoL, float curvaturePerMm) const {
     return gpu::preskinDiffuseLutUv(lutMapping(*this), NoL, curvaturePerMm);

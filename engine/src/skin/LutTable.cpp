@@ -19,6 +19,7 @@ const char* axisMappingName(AxisMapping mapping) {
     case AxisMapping::Linear: return "linear";
     case AxisMapping::SplitLinear: return "splitLinear";
     case AxisMapping::Sqrt: return "sqrt";
+    case AxisMapping::SplitSqrt: return "splitSqrt";
     case AxisMapping::Rational: return "rational";
     case AxisMapping::Log1p: return "log1p";
     case AxisMapping::Index: return "index";
@@ -37,6 +38,15 @@ double LutAxis::valueAt(int node) const {
         return max * static_cast<double>(node - zero) / (last - zero);
     }
     case AxisMapping::Sqrt: return min + (max - min) * t * t;
+    case AxisMapping::SplitSqrt: {
+        const int zero = size / 2;
+        if (node < zero) {
+            const double f = 1.0 - static_cast<double>(node) / zero;
+            return min * f * f;
+        }
+        const double f = static_cast<double>(node - zero) / (last - zero);
+        return max * f * f;
+    }
     case AxisMapping::Rational: return node >= last ? std::numeric_limits<double>::infinity() : t / (1.0 - t);
     case AxisMapping::Log1p: return scale * std::expm1(t * std::log1p(max / scale));
     case AxisMapping::Index: return node;
@@ -55,6 +65,12 @@ double LutAxis::nodeCoordinate(double value) const {
         break;
     }
     case AxisMapping::Sqrt: t = last * std::sqrt(std::clamp((value - min) / (max - min), 0.0, 1.0)); break;
+    case AxisMapping::SplitSqrt: {
+        const int zero = size / 2;
+        t = value < 0.0 ? zero * (1.0 - std::sqrt(std::clamp(value / min, 0.0, 1.0)))
+                        : zero + (last - zero) * std::sqrt(std::clamp(value / max, 0.0, 1.0));
+        break;
+    }
     case AxisMapping::Rational: {
         const double v = std::max(value, 0.0);
         t = std::isinf(v) ? last : last * v / (v + 1.0);
@@ -73,6 +89,9 @@ std::string LutAxis::formula() const {
         return "k = floor(size/2) (texel k is exactly v = 0); t = k * (v - min) / (0 - min) for v < 0, "
                "t = k + (size-1-k) * v / max for v >= 0";
     case AxisMapping::Sqrt: return "t = (size-1) * sqrt((v - min) / (max - min))";
+    case AxisMapping::SplitSqrt:
+        return "k = floor(size/2) (texel k is exactly v = 0), min = -max; t = k * (1 - sqrt(v / min)) for v < 0, "
+               "t = k + (size-1-k) * sqrt(v / max) for v >= 0";
     case AxisMapping::Rational: return "t = (size-1) * v / (v + 1); the last texel is v = infinity";
     case AxisMapping::Log1p: return "t = (size-1) * ln(1 + v / scale) / ln(1 + max / scale)";
     case AxisMapping::Index: return "t = v (one texel row per index)";

@@ -1,0 +1,91 @@
+// Irradiance at surface points for the diffusion reference (see IrradianceField.h).
+#include "reference/IrradianceField.h"
+
+#include "render/GpuLights.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+namespace preskin::reference {
+
+void lightIncidence(const gpu::GpuLight& light, const glm::dvec3& positionWs, glm::dvec3& L, glm::dvec3& irradiance) {
+    const uint32_t type = uint32_t(light.directionType.w);
+    const glm::dvec3 color(light.colorIntensity);
+    if (type == gpu::kLightDirectional) {
+        L = -glm::dvec3(light.directionType);
+        irradiance = color;
+        return;
+    }
+    const glm::dvec3 toLight = glm::dvec3(light.positionRange) - positionWs;
+    const double d2 = std::max(glm::dot(toLight, toLight), 1e-8);
+    L = toLight / std::sqrt(d2);
+    double attenuation = 1.0 / d2;
+    const double range = light.positionRange.w;
+    if (range > 0.0) {
+        const double r = d2 / (range * range);
+        const double window = std::clamp(1.0 - r * r, 0.0, 1.0);
+        attenuation *= window * window;
+    }
+    if (type == gpu::kLightSpot) {
+        const double cd = glm::dot(glm::dvec3(light.directionType), -L);
+        const double a = std::clamp(cd * double(light.spotScaleOffset.x) + double(light.spotScaleOffset.y), 0.0, 1.0);
+        attenuation *= a * a;
+    }
+    irradiance = color * attenuation;
+}
+
+IrradianceField::IrradianceField(const ReferenceMesh& mesh, const RayScene& rays, const ReferenceMaterials& materials,
+                                 const std::vector<Light>& lights, const ShRgb& radianceSh, bool shadows)
+    : mesh_(mesh), rays_(rays), materials_(materials), radianceSh_(radianceSh) {
+    const int shadowLight = shadows ? shadowLightIndex(lights) : -1;
+    for (size_t i = 0; i < lights.size(); ++i) {
+        if (int(i) == shadowLight) shadowLight_ = int(lights_.size());
+        lights_.push_back(toGpuLight(lights[i], int(i) == shadowLight));
+    }
+}
+
+glm::dvec3 IrradianceField::shadowRayOrigin(const SurfacePoint& p, const glm::dvec3& normal, bool flipNormal) const {
+    const MeshTriangle& t = mesh_.triangles[p.triangle];
+    const glm::dvec3 position = mesh_.position(p);
+    const double sign = flipNormal ? -1.0 : 1.0;
+    glm::dvec3 lifted = position;
+    double longestEdge = 0.0;
+    for (int k = 0; k < 3; ++k) {
+        const glm::dvec3& corner = mesh_.positionsWs[t.v[size_t(k)]];
+        const glm::dvec3 n = sign * mesh_.normalsWs[t.v[size_t(k)]];
+        lifted -= p.bary[k] * std::min(0.0, glm::dot(position - corner, n)) * n;
+        longestEdge = std::max(longestEdge, glm::length(mesh_.positionsWs[t.v[size_t((k + 1) % 3)]] - corner));
+    }
+    glm::dvec3 face = mesh_.faceNormal(p.triangle);
+    if (glm::dot(face, normal) < 0.0) face = -face;
+    const double magnitude = std::max({std::abs(lifted.x), std::abs(lifted.y), std::abs(lifted.z)});
+    return lifted + face * (1e-4 * longestEdge + 1e-6 * magnitude);
+}
+
+IrradianceSample IrradianceField::at(const SurfacePoint& p, bool flipNormal) const {
+    IrradianceSample out;
+    const glm::dvec3 position = mesh_.position(p);
+    glm::dvec3 n = mesh_.normal(p);
+    if (flipNormal) n = -n;
+    for (size_t i = 0; i < lights_.size(); ++i) {
+        glm::dvec3 L, irradiance;
+        lightIncidence(lights_[i], position, L, irradiance);
+        const double NoL = glm::dot(n, L);
+        if (!(NoL > 0.0)) continue;
+        if (int(i) == shadowLight_) {
+            if (rays_.occluded(shadowRayOrigin(p, n, flipNormal), L, 0.0, std::numeric_limits<double>::infinity())) {
+                out.shadow = ShadowState::CastShadow;
+                continue;
+            }
+            out.shadow = ShadowState::Lit;
+        }
+        out.irradiance += irradiance * NoL;
+    }
+    const glm::dvec3 ambient = glm::max(glm::dvec3(evaluateSh(radianceSh_, glm::vec3(n), kLambertBands)), glm::dvec3(0.0));
+    const uint32_t material = mesh_.triangles[p.triangle].material;
+    out.irradiance += ambient * materials_.occlusion(material, UvFootprint{mesh_.uv(p), glm::dvec2(0.0), glm::dvec2(0.0)});
+    return out;
+}
+
+}  // namespace preskin::reference

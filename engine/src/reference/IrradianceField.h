@@ -1,0 +1,63 @@
+// IrradianceField: the irradiance E(y) at a surface point for the diffusion reference, from the
+// renderer's own light definitions (toGpuLight and the falloff of shaders/preskin/lights.glsl):
+// every punctual light times max(N.L, 0) with N the interpolated vertex normal; the shadow
+// light (shadowLightIndex) only where a ray towards it is unoccluded; the environment's L2 SH
+// irradiance (Lambert's zonal coefficients, clamped at zero as forward.frag does) times the
+// material's occlusion texture.
+// Shadow rays start from the point lifted onto the surface the vertex normals imply (Hanika,
+// "Hacking the Shadow Terminator", Ray Tracing Gems II, 2021: the point moved off each corner's
+// tangent plane it lies below, blended by the barycentric weights), plus a relative epsilon along
+// the face normal, so a coarse tessellation does not shadow itself where its smooth normals
+// still face the light.
+// Limits: the other lights are unshadowed (as in the renderer); the shadow light is a sharp
+// point-like source; SH ambient is unshadowed (as in the renderer).
+#pragma once
+
+#include "reference/RayScene.h"
+#include "reference/ReferenceMaterials.h"
+#include "reference/ReferenceMesh.h"
+#include "shared/gpu_types.h"
+
+#include <preskin/Environment.h>
+#include <preskin/Scene.h>
+
+#include <cstdint>
+#include <vector>
+
+namespace preskin::reference {
+
+enum class ShadowState : int8_t {
+    NotFacing = -1,  // no shadow light, or N.L <= 0 for it
+    Lit = 0,         // facing the shadow light and visible from it
+    CastShadow = 1,  // facing the shadow light but occluded
+};
+
+struct IrradianceSample {
+    glm::dvec3 irradiance{0.0};
+    ShadowState shadow = ShadowState::NotFacing;
+};
+
+class IrradianceField {
+public:
+    IrradianceField(const ReferenceMesh& mesh, const RayScene& rays, const ReferenceMaterials& materials,
+                    const std::vector<Light>& lights, const ShRgb& radianceSh, bool shadows);
+
+    // flipNormal: the point is shaded from the back of a double-sided surface.
+    IrradianceSample at(const SurfacePoint& p, bool flipNormal) const;
+
+private:
+    glm::dvec3 shadowRayOrigin(const SurfacePoint& p, const glm::dvec3& normal, bool flipNormal) const;
+
+    const ReferenceMesh& mesh_;
+    const RayScene& rays_;
+    const ReferenceMaterials& materials_;
+    std::vector<gpu::GpuLight> lights_;
+    int shadowLight_ = -1;  // index into lights_
+    ShRgb radianceSh_;
+};
+
+// Direction to the light and the irradiance normal to it at a point (lights.glsl's
+// preskinLightIncidence in double precision).
+void lightIncidence(const gpu::GpuLight& light, const glm::dvec3& positionWs, glm::dvec3& L, glm::dvec3& irradiance);
+
+}  // namespace preskin::reference

@@ -1,0 +1,198 @@
+// `preskin compare`: how close skin comes to true diffusion. Renders the scene three ways for
+// the same view and size: the skin path (every technique on), Lambert (the standard path,
+// RenderSettings::skin = none) and the diffusion reference (DiffusionReference), all without
+// specular (RenderSettings::specular = false; the reference models diffuse light only) and
+// without normal maps (the reference shades the smooth surface), then reports per region the
+// RMSE of skin and of Lambert against the reference and their ratio, as JSON (every field:
+// docs/reference.md), plus a side-by-side PNG with error heat maps. The JSON holds no timings,
+// so a run on the same machine and driver reproduces it exactly.
+#include "Commands.h"
+#include "CommandLine.h"  // samples/common
+#include "CompareMetrics.h"
+#include "ComparePicture.h"
+#include "JsonWriter.h"
+#include "Options.h"  // samples/common
+#include "ReferenceOptions.h"
+
+#include <preskin/Error.h>
+#include <preskin/Renderer.h>
+
+#include <fmt/core.h>
+#include <unistd.h>
+
+#include <chrono>
+#include <limits>
+#include <memory>
+#include <string>
+
+namespace preskin::cli {
+
+namespace {
+
+struct Options {
+    std::string scene;
+    std::string json = "compare.json";
+    std::string image = "compare.png";
+    double curvatureClassPerMm = 0.01;
+    ViewOptions view;
+    CommonOptions common;
+    ReferenceOptions reference;
+};
+
+void rgb(JsonWriter& j, std::string_view key, const glm::dvec3& v) {
+    j.key(key);
+    j.beginArray();
+    for (int c = 0; c < 3; ++c) j.number(v[c]);
+    j.endArray();
+}
+
+void stats(JsonWriter& j, std::string_view key, const ErrorStats& s) {
+    j.key(key);
+    j.beginObject();
+    rgb(j, "rmse", s.rmse);
+    j.field("rmsePooled", s.rmsePooled);
+    rgb(j, "meanError", s.meanError);
+    j.endObject();
+}
+
+double ratio(double a, double b) { return b > 0.0 ? a / b : (a > 0.0 ? std::numeric_limits<double>::infinity() : 1.0); }
+
+// Scene edits that make the three images comparable: no normal maps anywhere.
+uint32_t removeNormalMaps(Scene& scene) {
+    uint32_t removed = 0;
+    for (Material& m : scene.materials) {
+        if (m.normal.valid()) ++removed;
+        m.normal = TextureRef{};
+        if (m.skin) {
+            if (m.skin->detailNormalTexture.valid()) ++removed;
+            m.skin->detailNormalTexture = SkinTextureRef{};
+        }
+    }
+    return removed;
+}
+
+void run(const Options& o) {
+    const std::filesystem::path jsonPath(o.json), imagePath(o.image);
+    if (jsonPath.extension() != ".json") throw Error(fmt::format("{}: --json: the report is written as .json", o.json));
+    {
+        const std::filesystem::path dir = jsonPath.has_parent_path() ? jsonPath.parent_path() : ".";
+        std::error_code ec;
+        if (!std::filesystem::is_directory(dir, ec))
+            throw Error(fmt::format("{}: --json: folder {} does not exist", o.json, dir.string()));
+        if (::access(dir.c_str(), W_OK) != 0)
+            throw Error(fmt::format("{}: --json: folder {} is not writable", o.json, dir.string()));
+    }
+    if (imagePath.extension() != ".png") throw Error(fmt::format("{}: --image: the picture is written as .png", o.image));
+    checkOutputPath(imagePath, OutputEncoding::DisplaySrgb8);
+    checkViewOptions(o.view);
+    const std::filesystem::path scenePath = o.scene.empty() ? defaultScenePath() : std::filesystem::path(o.scene);
+    Scene scene = loadScene(scenePath, o.common);
+    for (const std::string& warning : scene.warnings) fmt::print(stderr, "preskin: warning: {}\n", warning);
+    applySkinOption(scene, o.common);
+    const uint32_t normalMapsRemoved = removeNormalMaps(scene);
+    const View view = makeView(scene, scenePath, o.view);
+    const Environment environment = loadEnvironment(scene, o.common);
+    const LutSet luts = loadLuts(o.common);
+    const uint32_t width = o.view.width, height = o.view.height;
+
+    auto context = Context::create(contextDesc(o.common));
+    RenderSettings settings = renderSettings(o.common);
+    settings.specular = false;
+    settings.debugView = DebugView::None;
+    settings.skin = SkinFeatures{};
+    Renderer renderer(*context, scene, environment, &luts, settings);
+    applyLightOptions(renderer, scene, o.common);
+    const RenderedImage skin = renderer.render(view, width, height, OutputEncoding::LinearFloat);
+    settings.skin = SkinFeatures::none();
+    renderer.setSettings(settings);
+    const RenderedImage lambert = renderer.render(view, width, height, OutputEncoding::LinearFloat);
+    reportValidation(*context);
+
+    const auto start = std::chrono::steady_clock::now();
+    const auto reference = makeReference(scene, environment, luts, o.common, o.reference);
+    const ReferenceImage ref = renderReference(*reference, view, o.view, o.common.exposure, o.reference);
+    const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+
+    const std::vector<Region> regions = compareRegions(ref, o.curvatureClassPerMm);
+    JsonWriter j;
+    j.beginObject();
+    j.field("scene", scenePath.string());
+    j.field("width", width);
+    j.field("height", height);
+    j.field("view", !o.view.camera.empty() ? "camera " + o.view.camera
+                    : !o.view.orbit.empty() ? "orbit " + o.view.orbit
+                                            : std::string("default framing"));
+    j.field("device", context->deviceName());
+    j.field("profile", luts.profile().name());
+    j.field("exposure", o.common.exposure);
+    j.field("shadows", !o.common.noShadows);
+    j.field("shadowMapSize", o.common.shadowMapSize);
+    j.field("shadowSoftnessTexels", o.common.shadowSoftness);
+    j.field("normalMapsRemoved", normalMapsRemoved);
+    j.field("curvatureClassPerMm", o.curvatureClassPerMm);
+    j.key("reference");
+    j.beginObject();
+    j.field("tailFraction", o.reference.settings.tailFraction);
+    j.field("leafRatio", o.reference.settings.leafRatio);
+    j.field("finestLeafRatio", o.reference.settings.finestLeafRatio);
+    j.field("momentTolerance", o.reference.settings.momentTolerance);
+    j.field("reachMm", reference->reachMm());
+    j.field("shadowEdgeRadiusMm", o.reference.settings.shadowEdgeWidths * luts.profile().maxWidthMm());
+    j.endObject();
+    j.key("regions");
+    j.beginObject();
+    fmt::print("preskin: compare on {} ({}x{}), RMSE against the reference (linear radiance):\n", context->deviceName(),
+               width, height);
+    fmt::print("  {:<11} {:>7}  {:>30}  {:>30}  {:>14}\n", "region", "pixels", "skin rmse r, g, b (pooled)",
+               "lambert rmse r, g, b (pooled)", "skin / lambert");
+    for (const Region& region : regions) {
+        const ErrorStats s = measureError(skin.rgba32f, ref, region);
+        const ErrorStats l = measureError(lambert.rgba32f, ref, region);
+        j.key(region.name);
+        j.beginObject();
+        j.field("pixels", region.pixels);
+        rgb(j, "referenceMean", regionMean(ref, region));
+        stats(j, "skin", s);
+        stats(j, "lambert", l);
+        rgb(j, "ratioToLambert", glm::dvec3(ratio(s.rmse.r, l.rmse.r), ratio(s.rmse.g, l.rmse.g), ratio(s.rmse.b, l.rmse.b)));
+        j.field("ratioToLambertPooled", ratio(s.rmsePooled, l.rmsePooled));
+        j.endObject();
+        fmt::print("  {:<11} {:>7}  {:.4f} {:.4f} {:.4f} ({:.4f})  {:.4f} {:.4f} {:.4f} ({:.4f})  {:>14.3f}\n",
+                   region.name, region.pixels, s.rmse.r, s.rmse.g, s.rmse.b, s.rmsePooled, l.rmse.r, l.rmse.g,
+                   l.rmse.b, l.rmsePooled, ratio(s.rmsePooled, l.rmsePooled));
+    }
+    j.endObject();
+    j.endObject();
+    writeComparePicture(imagePath, scenePath.filename().string(), ref, skin.rgba32f, lambert.rgba32f, regions);
+    try {
+        writeTextFile(jsonPath, j.text() + "\n", "--json");
+    } catch (...) {
+        std::error_code ec;
+        std::filesystem::remove(imagePath, ec);  // nothing half done is left behind
+        throw;
+    }
+    fmt::print("preskin: wrote {} and {} (reference {:.1f} s)\n", jsonPath.string(), imagePath.string(), seconds);
+}
+
+}  // namespace
+
+void addCompareCommand(CLI::App& app) {
+    auto options = std::make_shared<Options>();
+    CLI::App* cmd = app.add_subcommand(
+        "compare", "RMSE of skin and of Lambert against the diffusion reference (no specular), JSON and PNG");
+    cmd->add_option("scene", options->scene, "glTF scene (.gltf or .glb); default: the bundled head scene");
+    cmd->add_option("--json", options->json, "Report (.json)")->capture_default_str();
+    cmd->add_option("--image", options->image, "Side-by-side picture with error heat maps (.png)")->capture_default_str();
+    cmd->add_option("--curvature-class", options->curvatureClassPerMm,
+                    "Signed mean curvature (profile 1/mm) beyond which skin counts as convex or concave")
+        ->check(numberIn(0.0, 100.0))
+        ->capture_default_str();
+    addViewOptions(*cmd, options->view);
+    addSceneOptions(*cmd, options->common);
+    addDeviceOptions(*cmd, options->common);
+    addShadowMapOptions(*cmd, options->common);
+    addReferenceOptions(*cmd, options->reference);
+    cmd->callback([options] { run(*options); });
+}
+
+}  // namespace preskin::cli

@@ -1,0 +1,32 @@
+// Options of the diffusion reference shared by `preskin reference` and `preskin compare`, and the
+// helpers that build a DiffusionReference from the command line's scene.
+#pragma once
+
+#include "Options.h"  // samples/common
+
+#include <preskin/DiffusionReference.h>
+
+#include <CLI/CLI.hpp>
+
+#include <memory>
+
+namespace preskin::cli {
+
+struct ReferenceOptions {
+    ReferenceSettings settings;
+    uint32_t threads = 0;  // 0: every core
+};
+
+void addReferenceOptions(CLI::App& cmd, ReferenceOptions& o);
+
+// The reference of the scene as `preskin render` would light it: the same lights (sceneLights),
+// environment SH, the LUT set's profile, and --no-shadows.
+std::unique_ptr<DiffusionReference> makeReference(const Scene& scene, const Environment& environment,
+                                                  const LutSet& luts, const CommonOptions& common,
+                                                  const ReferenceOptions& o);
+
+// Renders it with a progress bar on stderr, on --threads threads.
+ReferenceImage renderReference(const DiffusionReference& reference, const View& view, const ViewOptions& size,
+                               float exposure, const ReferenceOptions& o);
+
+}  // namespace preskin::cli

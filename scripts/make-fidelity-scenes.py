@@ -1,0 +1,77 @@
+#!/usr/bin/env python3
+"""Writes scenes that `preskin compare` has not been tuned on, to check that the fidelity figures
+of the README ("Fidelity") hold beyond the bundled scenes:
+
+  sphere_20mm_side.gltf  a 20 mm skin sphere (a size between the bundled ones) lit from the
+                         right and slightly behind, so the terminator crosses the view;
+  torus.gltf             a skin torus of tube radius 6 mm around a 10 mm ring radius: convex
+                         outside, concave round the 4 mm hole (mean curvature -1/24 per mm on the
+                         inner equator), casting shadows on itself, lit from the upper left;
+  head_low_left.gltf     the bundled head (its files copied) under a key light from the lower left
+                         front instead of the upper right.
+
+Usage: make-fidelity-scenes.py OUTDIR   (Python 3 standard library only)
+"""
+import json
+import math
+import os
+import shutil
+import sys
+
+ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
+sys.path.insert(0, os.path.join(ROOT, "samples", "assets", "spheres"))
+import make_spheres  # noqa: E402
+
+
+def torus(ring_radius, tube_radius, segments=128, sides=64):
+    positions, normals, uvs, indices = [], [], [], []
+    for i in range(segments + 1):
+        u = 2.0 * math.pi * i / segments
+        for j in range(sides + 1):
+            v = 2.0 * math.pi * j / sides
+            n = (math.cos(v) * math.cos(u), math.sin(v), math.cos(v) * math.sin(u))
+            c = (ring_radius * math.cos(u), 0.0, ring_radius * math.sin(u))
+            normals += n
+            positions += [c[k] + tube_radius * n[k] for k in range(3)]
+            uvs += [i / segments, j / sides]
+    for i in range(segments):
+        for j in range(sides):
+            a = i * (sides + 1) + j
+            b = a + sides + 1
+            indices += [a, a + 1, b, b, a + 1, b + 1]  # counter-clockwise seen from outside
+    return positions, normals, uvs, indices
+
+
+def main():
+    if len(sys.argv) != 2:
+        sys.exit(__doc__)
+    out = sys.argv[1]
+    os.makedirs(out, exist_ok=True)
+
+    positions, normals, uvs, indices = make_spheres.sphere(0.010)
+    make_spheres.write_document(os.path.join(out, "sphere_20mm_side.gltf"),
+                                make_spheres.scene_document("sphere", positions, normals, uvs, indices,
+                                                            (-0.9, -0.15, 0.25), albedo=(0.75, 0.55, 0.45)))
+
+    positions, normals, uvs, indices = torus(0.010, 0.006)
+    doc = make_spheres.scene_document("torus", positions, normals, uvs, indices, (0.45, -0.8, -0.4),
+                                      albedo=(0.85, 0.62, 0.52))
+    # Tilted towards the camera (+Z) so the hole and the inner wall are in view.
+    doc["nodes"][0]["rotation"] = [math.sin(0.5 * 0.9), 0.0, 0.0, math.cos(0.5 * 0.9)]
+    make_spheres.write_document(os.path.join(out, "torus.gltf"), doc)
+
+    head_dir = os.path.join(ROOT, "samples", "assets", "head")
+    with open(os.path.join(head_dir, "head.gltf")) as f:
+        head = json.load(f)
+    for name in ["head.bin", "Map-COL.jpg", "Map-SPEC.jpg", "Infinite-Level_02_Tangent_SmoothUV.jpg",
+                 "studio_small_05_1k.hdr"]:
+        shutil.copyfile(os.path.join(head_dir, name), os.path.join(out, name))
+    for node in head["nodes"]:
+        if node.get("name") == "key":
+            node["rotation"] = make_spheres.quaternion_from_minus_z_to(
+                tuple(x / math.sqrt(0.7 ** 2 + 0.45 ** 2 + 0.55 ** 2) for x in (0.7, 0.45, -0.55)))
+    make_spheres.write_document(os.path.join(out, "head_low_left.gltf"), head)
+
+
+if __name__ == "__main__":
+    main()
