@@ -36,9 +36,6 @@ void addSceneOptions(CLI::App& cmd, CommonOptions& o) {
     cmd.add_option("--seed", o.seed, "Seed for --lights")->check(wholeNumberIn(0, UINT32_MAX))->capture_default_str();
     cmd.add_option("--exposure", o.exposure, "Exposure multiplier")->check(numberIn(0.0, 1e6))->capture_default_str();
     cmd.add_flag("--no-shadows", o.noShadows, "Disable the shadow map");
-    cmd.add_option("--luts", o.luts, "Skin LUT set folder (from `preskin bake`); default: the bundled d'Eon set");
-    cmd.add_flag("--allow-outside-links", o.allowOutsideLinks,
-                 "Follow symbolic links in the scene's folder that lead out of it (refused by default)");
 }
 
 void addDeviceOptions(CLI::App& cmd, CommonOptions& o) {
