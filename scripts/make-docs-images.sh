@@ -2,7 +2,8 @@
 # Renders docs/skin-vs-standard.png: the bundled head with the standard material (left) and with
 # pre-integrated skin (right), same view and lights: the scene's front camera, then a close-up of
 # the nose's shadow on the cheek and the ear. Needs ImageMagick (convert, montage). Also
-# docs/stereo-head.png: the head as a stereo pair (README, VR).
+# docs/stereo-head.png: the head as a stereo pair (README, VR); docs/profiles-side-by-side.png:
+# four diffusion profiles in one scene (README, Profiles).
 set -euo pipefail
 cd "$(dirname "$0")/.."
 bin=${PRESKIN_BUILD_DIR:-build}/bin/preskin
@@ -23,3 +24,7 @@ echo "wrote docs/skin-vs-standard.png"
 # The stereo pair: both eyes in one multiview pass with 4x MSAA, left eye on the left.
 "$bin" render --stereo --ipd 0.063 --msaa 4 --width 480 --height 540 --out docs/stereo-head.png >/dev/null
 echo "wrote docs/stereo-head.png"
+# Four diffusion profiles in one scene (docs/profiles.md): the head four times, one profile each.
+"$bin" render samples/assets/head/head_profiles.gltf --camera front --width 1200 --height 400 \
+  --out docs/profiles-side-by-side.png >/dev/null
+echo "wrote docs/profiles-side-by-side.png"

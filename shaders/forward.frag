@@ -22,10 +22,11 @@ layout(constant_id = kSpecSpecular) const uint kSpecular = 1;
 layout(set = 0, binding = kBindingFrame) uniform Frame { FrameUniforms frame; };
 layout(std430, set = 0, binding = kBindingLights) readonly buffer Lights { GpuLight lights[]; };
 layout(set = 0, binding = kBindingShadowMap) uniform sampler2D shadowMap;
-layout(set = 0, binding = kBindingDiffuseLut) uniform sampler2D diffuseLut;
-layout(set = 0, binding = kBindingPenumbraLut) uniform sampler2D penumbraLut;
-layout(set = 0, binding = kBindingShTransferLut) uniform sampler2D shTransferLut;
-layout(set = 0, binding = kBindingTransmittanceLut) uniform sampler2D transmittanceLut;
+layout(set = 0, binding = kBindingDiffuseLut) uniform sampler2DArray diffuseLut;
+layout(set = 0, binding = kBindingPenumbraLut) uniform sampler2DArray penumbraLut;
+layout(set = 0, binding = kBindingShTransferLut) uniform sampler2DArray shTransferLut;
+layout(set = 0, binding = kBindingTransmittanceLut) uniform sampler2DArray transmittanceLut;
+layout(std430, set = 0, binding = kBindingLutMappings) readonly buffer LutMappings { LutMapping lutMappings[]; };
 layout(std430, set = 0, binding = kBindingClusterRanges) readonly buffer ClusterRanges { uvec2 clusterRanges[]; };
 layout(std430, set = 0, binding = kBindingClusterIndices) readonly buffer ClusterIndices { uint clusterIndices[]; };
 
@@ -38,6 +39,7 @@ layout(set = 1, binding = kBindingEmissiveTexture) uniform sampler2D emissiveTex
 layout(set = 1, binding = kBindingSpecularTexture) uniform sampler2D specularTexture;
 layout(set = 1, binding = kBindingDetailNormalTexture) uniform sampler2D detailNormalTexture;
 layout(set = 1, binding = kBindingCurvatureTexture) uniform sampler2D curvatureTexture;
+layout(set = 1, binding = kBindingProfileWeightTexture) uniform sampler2D profileWeightTexture;
 
 #include "preskin/brdf.glsl"
 #include "preskin/lights.glsl"
@@ -88,6 +90,39 @@ void localLightRange(out uint first, out uint count, out bool indirect) {
         count = frame.lightCounts.x - directional;
         indirect = false;
     }
+}
+
+// One layer's mapping, member by member (glslang stores a buffer struct into a local one of
+// another layout with a mismatched type, which SPIR-V validation refuses).
+LutMapping lutMappingOf(uint layer) {
+    LutMapping m;
+    m.diffuseNoL = lutMappings[layer].diffuseNoL;
+    m.diffuseCurvature = lutMappings[layer].diffuseCurvature;
+    m.penumbraShadow = lutMappings[layer].penumbraShadow;
+    m.penumbraWidth = lutMappings[layer].penumbraWidth;
+    m.shCurvature = lutMappings[layer].shCurvature;
+    m.shBandV = lutMappings[layer].shBandV;
+    m.shLambert = lutMappings[layer].shLambert;
+    m.transmittance = lutMappings[layer].transmittance;
+    return m;
+}
+
+// The material's diffusion profile, or its profiles blended by the weight texture (r, g, b
+// weigh the blended layers, the material's own profile gets the rest; sums above 1 are scaled).
+PreskinProfileMix skinProfileMix() {
+    PreskinProfileMix p;
+    p.layer = material.skinProfileLayers;
+    p.weight = vec4(1.0, 0.0, 0.0, 0.0);
+    int blended = int(material.skinProfileBlend.x);
+    if (blended > 0) {
+        vec3 w = texture(profileWeightTexture, inUv0).rgb * vec3(greaterThan(vec3(blended), vec3(0.0, 1.0, 2.0)));
+        float sum = w.r + w.g + w.b;
+        if (sum > 1.0) w /= sum;
+        p.weight = vec4(max(1.0 - (w.r + w.g + w.b), 0.0), w);
+    }
+    p.mapping[0] = lutMappingOf(uint(p.layer.x));
+    for (int i = 1; i < 4; ++i) p.mapping[i] = i <= blended ? lutMappingOf(uint(p.layer[i])) : p.mapping[0];
+    return p;
 }
 
 vec3 curvatureHeat(float curvaturePerMm) {
@@ -143,7 +178,8 @@ void main() {
     vec3 shadowPositionWs = inPositionWs;
     if (kMaterialModel == kModelSkin && (kSkinFeatures & kSkinLutDiffuse) != 0u)
         shadowPositionWs = preskinSkinShadowPosition(inPositionWs, geometricN, -frame.shadowDirectionWs.xyz,
-                                                     skinCurvaturePerMm, material.skinScatter.x, frame.lut);
+                                                     skinCurvaturePerMm, material.skinScatter.x,
+                                                     lutMappingOf(uint(material.skinProfileLayers.x)));
     if (frame.shadowDirectionWs.w > 0.5)
         shadow = preskinSampleShadow(shadowMap, frame.shadowClipFromWorld, frame.shadowParams, shadowPositionWs, geometricN);
 
@@ -189,6 +225,7 @@ void main() {
         skin.lobes = material.skinSpecular.yzww;
         skin.transmissionTint = material.skinScatter.w * material.skinTransmission.rgb;
         skin.thicknessScale = material.skinTransmission.w;
+        PreskinProfileMix profiles = skinProfileMix();
 
         vec3 transmitted = vec3(0.0);
         vec3 penumbra = vec3(1.0);
@@ -202,27 +239,27 @@ void main() {
             float visibility = 1.0;
             if (shadowed) {
                 visibility = shadow.visibility;
-                shadowRgb = preskinSkinShadow(skin, frame.lut, penumbraLut, visibility, shadow.kernelWidthM, L, features);
+                shadowRgb = preskinSkinShadow(skin, profiles, penumbraLut, visibility, shadow.kernelWidthM, L, features);
                 penumbra = shadowRgb;
                 float thicknessM = 0.0;
                 if (preskinTransmissionGate(geometricN, L, features))
                     thicknessM = preskinShadowThickness(shadowMap, frame.shadowClipFromWorld, frame.shadowParams,
                                                         preskinThicknessPointWs(inPositionWs, geometricN, skin.scatterScale));
-                transmitted += preskinSkinTransmission(skin, frame.lut, transmittanceLut, L, irradiance, thicknessM,
+                transmitted += preskinSkinTransmission(skin, profiles, transmittanceLut, L, irradiance, thicknessM,
                                                        features);
             }
-            color += preskinSkinLight(skin, frame.lut, diffuseLut, V, L, irradiance, shadowRgb, visibility, features);
+            color += preskinSkinLight(skin, profiles, diffuseLut, V, L, irradiance, shadowRgb, visibility, features);
         }
         for (uint i = 0; i < count; ++i) {
             GpuLight light = lights[indirect ? clusterIndices[first + i] : first + i];
             vec3 L;
             vec3 irradiance;
             preskinLightIncidence(light, inPositionWs, L, irradiance);
-            color += preskinSkinLight(skin, frame.lut, diffuseLut, V, L, irradiance, vec3(1.0), 1.0, features);
+            color += preskinSkinLight(skin, profiles, diffuseLut, V, L, irradiance, vec3(1.0), 1.0, features);
         }
         color += transmitted;
         diffuseColor = skin.albedo;
-        color += preskinSkinAmbient(skin, frame.lut, shTransferLut, frame.shRadiance, V, features, ambientDiffuse) *
+        color += preskinSkinAmbient(skin, profiles, shTransferLut, frame.shRadiance, V, features, ambientDiffuse) *
                  occlusion;
         ambientDiffuse *= occlusion;
         if (kDebugView == kDebugCurvature) debugColor = curvatureHeat(abs(skin.curvaturePerMm));

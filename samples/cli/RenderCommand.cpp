@@ -145,9 +145,9 @@ void run(const RenderOptions& o) {
     for (const std::string& warning : scene.warnings) fmt::print(stderr, "preskin: warning: {}\n", warning);
     applySkinOption(scene, o.common);
     const Environment environment = loadEnvironment(scene, o.common);
-    const LutSet luts = loadLuts(o.common);  // every input file is read before any GPU work
+    const ProfileLibrary profiles = loadProfiles(scene, o.common);  // every input file is read before any GPU work
     auto context = Context::create(contextDesc(o.common));
-    Renderer renderer(*context, scene, environment, &luts, renderSettings(o.common));
+    Renderer renderer(*context, scene, environment, profiles, renderSettings(o.common));
     applyLightOptions(renderer, scene, o.common);
 
     const View view = applyStereoOptions(makeView(scene, scenePath, o.view), o.stereo);

@@ -36,9 +36,6 @@ void addSceneOptions(CLI::App& cmd, CommonOptions& o) {
     cmd.add_option("--seed", o.seed, "Seed for --lights")->check(wholeNumberIn(0, UINT32_MAX))->capture_default_str();
     cmd.add_option("--exposure", o.exposure, "Exposure multiplier")->check(numberIn(0.0, 1e6))->capture_default_str();
     cmd.add_flag("--no-shadows", o.noShadows, "Disable the shadow map");
-    cmd.add_option("--luts", o.luts, "Skin LUT set folder (from `preskin bake`); default: the bundled d'Eon set");
-    cmd.add_flag("--allow-outside-links", o.allowOutsideLinks,
-                 "Follow symbolic links in the scene's folder that lead out of it (refused by default)");
 }
 
 void addDeviceOptions(CLI::App& cmd, CommonOptions& o) {
@@ -77,6 +74,14 @@ void addCommonOptions(CLI::App& cmd, CommonOptions& o) {
     cmd.add_option("--msaa", o.msaa, "Samples per pixel (1, 2, 4 or 8, as the device offers; lavapipe: 1 or 4)")
         ->check(oneOf({"1", "2", "4", "8"}))
         ->capture_default_str();
+    cmd.add_option("--luts", o.luts, "Skin LUT set folder (from `preskin bake`); default: the bundled d'Eon set");
+    cmd.add_flag("--no-cache", o.noCache, "Bake the scene's diffusion profiles without reading or writing the LUT cache");
+    cmd.add_option("--cache-dir", o.cacheDir, "LUT cache folder (default: $XDG_CACHE_HOME/preskin/luts or ~/.cache/preskin/luts)");
+    cmd.add_option("--profile-lut-size", o.profileLutSize, "Table size of the scene's baked profiles")
+        ->check(wholeNumberIn(LutBakeSettings::kMinSize, LutBakeSettings::kMaxSize))
+        ->capture_default_str();
+    cmd.add_flag("--allow-outside-links", o.allowOutsideLinks,
+                 "Follow symbolic links in the scene's folder that lead out of it (refused by default)");
 }
 
 Scene loadScene(const std::filesystem::path& path, const CommonOptions& o) {
@@ -191,6 +196,17 @@ LutSet loadLuts(const CommonOptions& o) {
     std::error_code ec;
     if (std::filesystem::exists(bundled / "manifest.json", ec)) return LutSet::load(bundled);
     return LutSet::loadDefault();
+}
+
+ProfileLibrary loadProfiles(const Scene& scene, const CommonOptions& o, std::shared_ptr<const LutSet> defaultLuts) {
+    ProfileCacheOptions cache;
+    cache.enabled = !o.noCache;
+    cache.folder = o.cacheDir;
+    if (!defaultLuts) defaultLuts = std::make_shared<const LutSet>(loadLuts(o));
+    ProfileLibrary library = ProfileLibrary::forScene(scene, std::move(defaultLuts),
+                                                      LutBakeSettings::withSize(int(o.profileLutSize)), cache);
+    for (const std::string& warning : library.warnings()) fmt::print(stderr, "preskin: warning: {}\n", warning);
+    return library;
 }
 
 RenderSettings renderSettings(const CommonOptions& o) {

@@ -5,6 +5,7 @@
 #include <preskin/Context.h>
 #include <preskin/Environment.h>
 #include <preskin/LutSet.h>
+#include <preskin/ProfileLibrary.h>
 #include <preskin/Renderer.h>
 #include <preskin/Scene.h>
 #include <preskin/View.h>
@@ -45,6 +46,9 @@ struct CommonOptions {
     uint32_t msaa = 1;
     std::string luts;  // LUT set folder; default: the committed luts/ (d'Eon)
     bool allowOutsideLinks = false;  // SceneLoadOptions::allowLinksOutsideFolder
+    bool noCache = false;            // bake the scene's profiles without the on-disk cache
+    std::string cacheDir;            // profile cache folder; default: the XDG cache folder
+    uint32_t profileLutSize = 256;   // table size the scene's analytic profiles are baked at
 };
 
 // Every option below: the scene options plus the renderer's (device, validation, skin
@@ -94,6 +98,10 @@ View applyStereoOptions(const View& mono, const StereoOptions& o);
 ContextDesc contextDesc(const CommonOptions& o);
 // --luts DIR, else the committed default set (luts/ of the data folder), else a fresh bake.
 LutSet loadLuts(const CommonOptions& o);
+// The default set (loadLuts) and the scene's diffusion profiles, baked or read from the cache
+// (--no-cache, --cache-dir, --profile-lut-size); prints the cache's warnings.
+// `defaultLuts`: layer 0, or loadLuts(o) when null.
+ProfileLibrary loadProfiles(const Scene& scene, const CommonOptions& o, std::shared_ptr<const LutSet> defaultLuts = {});
 RenderSettings renderSettings(const CommonOptions& o);
 void applySkinOption(Scene& scene, const CommonOptions& o);
 // --env, else the scene's PRESKIN_environment, else a dim uniform grey.

@@ -23,8 +23,8 @@ layout(set = 0, binding = 0) uniform Frame {
 layout(set = 0, binding = 1) uniform sampler2D baseColorMap;
 layout(set = 0, binding = 2) uniform sampler2D normalMap;
 layout(set = 0, binding = 3) uniform sampler2D specularMap;
-layout(set = 0, binding = 4) uniform sampler2D diffuseLut;
-layout(set = 0, binding = 5) uniform sampler2D shTransferLut;
+layout(set = 0, binding = 4) uniform sampler2DArray diffuseLut;     // one layer: one diffusion profile
+layout(set = 0, binding = 5) uniform sampler2DArray shTransferLut;
 
 layout(location = 0) in vec3 inPositionWs;
 layout(location = 1) in vec3 inNormalWs;
@@ -52,11 +52,12 @@ void main() {
 
     vec3 V = normalize(frame.cameraPositionWs.xyz - inPositionWs);
     vec3 ambientDiffuse;
-    vec3 color = preskinSkinAmbient(s, frame.lut, shTransferLut, frame.sh, V, kFeatures, ambientDiffuse);
+    PreskinProfileMix profile = preskinSingleProfile(frame.lut, 0.0);
+    vec3 color = preskinSkinAmbient(s, profile, shTransferLut, frame.sh, V, kFeatures, ambientDiffuse);
     for (uint i = 0; i < frame.lightCount.x; ++i) {
         vec3 L, irradiance;
         preskinLightIncidence(frame.lights[i], inPositionWs, L, irradiance);
-        color += preskinSkinLight(s, frame.lut, diffuseLut, V, L, irradiance, vec3(1.0), 1.0, kFeatures);
+        color += preskinSkinLight(s, profile, diffuseLut, V, L, irradiance, vec3(1.0), 1.0, kFeatures);
     }
     outColor = vec4(preskinTonemapNeutral(max(color, vec3(0.0))), 1.0);
 }

@@ -148,7 +148,7 @@ public:
         VkImageView view;
     };
     Image image(VkFormat format, uint32_t width, uint32_t height, uint32_t mips, VkImageUsageFlags usage,
-                VkImageAspectFlags aspect) {
+                VkImageAspectFlags aspect, VkImageViewType viewType = VK_IMAGE_VIEW_TYPE_2D) {
         VkImageCreateInfo ci{VK_STRUCTURE_TYPE_IMAGE_CREATE_INFO};
         ci.imageType = VK_IMAGE_TYPE_2D;
         ci.format = format;
@@ -164,7 +164,7 @@ public:
         vkBindImageMemory(device, out.image, allocate(req, VK_MEMORY_PROPERTY_DEVICE_LOCAL_BIT), 0);
         VkImageViewCreateInfo vi{VK_STRUCTURE_TYPE_IMAGE_VIEW_CREATE_INFO};
         vi.image = out.image;
-        vi.viewType = VK_IMAGE_VIEW_TYPE_2D;
+        vi.viewType = viewType;
         vi.format = format;
         vi.subresourceRange = {aspect, 0, mips, 0, 1};
         check(vkCreateImageView(device, &vi, nullptr, &out.view), "vkCreateImageView");
@@ -212,12 +212,12 @@ public:
 
     // A sampled texture from tightly packed rows, with a mip chain of linear blits when `mipmapped`.
     VkImageView texture(VkFormat format, uint32_t width, uint32_t height, const void* pixels, size_t bytes,
-                        bool mipmapped) {
+                        bool mipmapped, VkImageViewType viewType = VK_IMAGE_VIEW_TYPE_2D) {
         uint32_t mips = 1;
         while (mipmapped && std::max(width, height) >> mips) ++mips;
         const Image img = image(format, width, height, mips,
                                 VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_DST_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT,
-                                VK_IMAGE_ASPECT_COLOR_BIT);
+                                VK_IMAGE_ASPECT_COLOR_BIT, viewType);
         const VkBuffer staging = buffer(bytes, VK_BUFFER_USAGE_TRANSFER_SRC_BIT, pixels);
         submit([&](VkCommandBuffer cmd) {
             barrier(cmd, img.image, VK_IMAGE_ASPECT_COLOR_BIT, 0, mips, VK_IMAGE_LAYOUT_UNDEFINED,
@@ -362,7 +362,7 @@ int main(int argc, char** argv) {
         auto lutTexture = [&](const preskin::LutTable& table) {
             const std::vector<uint16_t> texels = table.rgba16f();
             return gpu.texture(VK_FORMAT_R16G16B16A16_SFLOAT, uint32_t(table.width()), uint32_t(table.height()),
-                               texels.data(), texels.size() * sizeof(uint16_t), false);
+                               texels.data(), texels.size() * sizeof(uint16_t), false, VK_IMAGE_VIEW_TYPE_2D_ARRAY);
         };
         const uint8_t white[4] = {255, 255, 255, 255};
         const VkImageView views[] = {

@@ -10,10 +10,10 @@ LutBaker::~LutBaker() {
     if (job_.valid()) job_.wait();
 }
 
-void LutBaker::request(const DiffusionProfile& profile, const LutBakeSettings& settings) {
-    Request request{profile, settings};
+void LutBaker::request(size_t layer, const DiffusionProfile& profile, const LutBakeSettings& settings) {
+    Request request{layer, profile, settings};
     if (job_.valid()) {
-        next_ = std::move(request);
+        next_.insert_or_assign(layer, std::move(request));
         return;
     }
     start(std::move(request));
@@ -24,6 +24,7 @@ void LutBaker::start(Request request) {
     auto progress = progress_;
     job_ = std::async(std::launch::async, [request = std::move(request), progress] {
         LutBakeResult result;
+        result.layer = request.layer;
         const auto begin = std::chrono::steady_clock::now();
         try {
             result.luts = LutSet::bake(request.profile, request.settings,
@@ -42,7 +43,11 @@ std::optional<LutBakeResult> LutBaker::poll() {
     LutBakeResult result = job_.get();
     // A newer request waiting starts now; this result is still shown meanwhile, so a slider
     // dragged for a while keeps updating the image.
-    if (next_) start(std::move(*std::exchange(next_, std::nullopt)));
+    if (!next_.empty()) {
+        Request request = std::move(next_.begin()->second);
+        next_.erase(next_.begin());
+        start(std::move(request));
+    }
     return result;
 }
 

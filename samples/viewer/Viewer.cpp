@@ -78,8 +78,8 @@ Viewer::Viewer(ViewerOptions options) : options_(std::move(options)) {
     scatterSeed_ = options_.common.seed;
     const auto albedo = cli::parseFloats(options_.albedo, 3, "--albedo");
     const auto mfp = cli::parseFloats(options_.mfp, 3, "--mfp");
-    std::copy(albedo.begin(), albedo.end(), burleyAlbedo_.begin());
-    std::copy(mfp.begin(), mfp.end(), burleyMfpMm_.begin());
+    std::copy(albedo.begin(), albedo.end(), startEdit_.albedo.begin());
+    std::copy(mfp.begin(), mfp.end(), startEdit_.mfpMm.begin());
     lutSize_ = options_.lutSize;
     try {
         createWindow();
@@ -95,8 +95,9 @@ Viewer::Viewer(ViewerOptions options) : options_(std::move(options)) {
                              shaders_->directory().string()));
         loadStartupContent();
         if (!options_.profile.empty()) {
-            profileChoice_ = options_.profile == "burley" ? ProfileChoice::Burley : ProfileChoice::DeonLuebke;
-            requestBake();
+            startEdit_.choice = options_.profile == "burley" ? ProfileChoice::Burley : ProfileChoice::DeonLuebke;
+            layerEdits_.at(0) = startEdit_;
+            requestBake(0);
         }
     } catch (...) {
         shutdown();
@@ -346,14 +347,57 @@ void Viewer::adoptScene(Scene scene, const std::filesystem::path& path) {
     animation_ = scene_.animations.empty() ? -1 : 0;
     animationTimeS_ = animation_ >= 0 ? scene_.animations[0].startS() : 0.0f;
     playing_ = false;
+    prepareProfiles();
     rebuildRenderer("scene loaded");
+}
+
+void Viewer::prepareProfiles() {
+    const auto begin = Clock::now();
+    auto defaultLuts = std::make_shared<const LutSet>(luts_ ? *luts_ : LutSet::loadDefault());
+    try {
+        profiles_ = cli::loadProfiles(scene_, options_.common, defaultLuts);
+        for (const std::string& w : profiles_->warnings()) info("warning: " + w);
+        if (!scene_.profiles.empty()) {
+            const ProfileLoadStats& st = profiles_->stats();
+            info(fmt::format("{} profiles ready in {:.0f} ms ({} from the cache, {} baked, {} LUT folders)",
+                             scene_.profiles.size(), msSince(begin), st.cacheHits, st.baked, st.lutFolders));
+        }
+    } catch (const std::exception& e) {
+        error(fmt::format("profiles: {} (only the default set is loaded)", e.what()));
+        profiles_.emplace(defaultLuts);
+    }
+    preparedLayers_.clear();
+    for (size_t i = 0; i < profiles_->layerCount(); ++i) preparedLayers_.push_back(profiles_->layerPointer(i));
+    LayerEdit fresh = startEdit_;
+    fresh.choice = ProfileChoice::Loaded;
+    layerEdits_.assign(profiles_->layerCount(), fresh);
+}
+
+size_t Viewer::editedLayer() const {
+    if (selectedMaterial_ < 0 || size_t(selectedMaterial_) >= scene_.materials.size()) return 0;
+    const Material& m = scene_.materials[size_t(selectedMaterial_)];
+    const size_t layer = m.skin ? size_t(m.skin->profile + 1) : 0;
+    return profiles_ && layer < profiles_->layerCount() ? layer : 0;
+}
+
+void Viewer::applyBakedLayer(size_t layer, std::shared_ptr<const LutSet> luts) {
+    if (!profiles_ || layer >= profiles_->layerCount()) return;
+    profiles_->setLayer(layer, luts);
+    if (layer == 0) luts_ = *luts;
+    if (!renderer_) return;
+    try {
+        renderer_->setProfileLayer(layer, *luts);  // only this layer is uploaded
+    } catch (const std::exception&) {
+        renderer_->setProfiles(*profiles_);  // larger tables than the arrays': rebuild them
+    }
 }
 
 void Viewer::rebuildRenderer(const char* why) {
     const auto begin = Clock::now();
     renderer_.reset();  // waits for the device; frees the old scene's memory before the upload
     try {
-        renderer_ = std::make_unique<Renderer>(*context_, scene_, environment_, luts_ ? &*luts_ : nullptr, settings_);
+        renderer_ = profiles_ ? std::make_unique<Renderer>(*context_, scene_, environment_, *profiles_, settings_)
+                              : std::make_unique<Renderer>(*context_, scene_, environment_, luts_ ? &*luts_ : nullptr, settings_);
     } catch (const std::exception& e) {
         error(fmt::format("renderer: {}", e.what()));
         return;
@@ -488,24 +532,21 @@ void Viewer::applyShaderBuild(ShaderBuild build) {
     }
 }
 
-void Viewer::requestBake() {
-    if (profileChoice_ == ProfileChoice::Loaded) {
-        try {
-            luts_ = cli::loadLuts(options_.common);
-            if (renderer_) renderer_->setLuts(&*luts_);
-            lutStatus_ = "using " + lutsName_;
-        } catch (const std::exception& e) {
-            error(fmt::format("LUTs not loaded: {}", e.what()));
-        }
+void Viewer::requestBake(size_t layer) {
+    if (!profiles_ || layer >= layerEdits_.size()) return;
+    const LayerEdit& edit = layerEdits_[layer];
+    if (edit.choice == ProfileChoice::Loaded) {
+        applyBakedLayer(layer, preparedLayers_.at(layer));
+        lutStatus_ = "using " + (layer == 0 ? lutsName_ : scene_.profiles[layer - 1].name + " as loaded");
         return;
     }
     try {
         const DiffusionProfile profile =
-            profileChoice_ == ProfileChoice::Burley
-                ? DiffusionProfile::burley(glm::dvec3(burleyAlbedo_[0], burleyAlbedo_[1], burleyAlbedo_[2]),
-                                           glm::dvec3(burleyMfpMm_[0], burleyMfpMm_[1], burleyMfpMm_[2]))
+            edit.choice == ProfileChoice::Burley
+                ? DiffusionProfile::burley(glm::dvec3(edit.albedo[0], edit.albedo[1], edit.albedo[2]),
+                                           glm::dvec3(edit.mfpMm[0], edit.mfpMm[1], edit.mfpMm[2]))
                 : DiffusionProfile::deonLuebke();
-        baker_.request(profile, LutBakeSettings::withSize(lutSize_));
+        baker_.request(layer, profile, LutBakeSettings::withSize(lutSize_));
     } catch (const std::exception& e) {
         error(fmt::format("profile: {}", e.what()));
     }
@@ -535,10 +576,10 @@ void Viewer::pollJobs() {
     if (auto baked = baker_.poll()) {
         if (baked->luts) {
             const auto begin = Clock::now();
-            luts_ = std::move(*baked->luts);
-            if (renderer_) renderer_->setLuts(&*luts_);
-            lutStatus_ = fmt::format("{}: baked in {:.0f} ms, uploaded in {:.0f} ms", luts_->profile().name(),
-                                     baked->bakeMs, msSince(begin));
+            auto luts = std::make_shared<const LutSet>(std::move(*baked->luts));
+            applyBakedLayer(baked->layer, luts);
+            lutStatus_ = fmt::format("{} (layer {}): baked in {:.0f} ms, uploaded in {:.0f} ms", luts->profile().name(),
+                                     baked->layer, baked->bakeMs, msSince(begin));
             info("LUTs " + lutStatus_);
         } else {
             error(fmt::format("LUT bake failed: {}", baked->error));

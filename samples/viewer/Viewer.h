@@ -38,6 +38,7 @@
 #include <preskin/Context.h>
 #include <preskin/Environment.h>
 #include <preskin/LutSet.h>
+#include <preskin/ProfileLibrary.h>
 #include <preskin/Renderer.h>
 #include <preskin/Scene.h>
 
@@ -107,6 +108,12 @@ private:
         bool fromScene = false;
     };
     enum class ProfileChoice { Loaded, DeonLuebke, Burley };
+    // The viewer's edit of one LUT layer (the default set, or one of the scene's profiles).
+    struct LayerEdit {
+        ProfileChoice choice = ProfileChoice::Loaded;
+        std::array<float, 3> albedo{};
+        std::array<float, 3> mfpMm{};
+    };
 
     // Set-up and tear-down.
     void shutdown() noexcept;
@@ -141,7 +148,10 @@ private:
     void applyLights();
     void applyPose(float dtS);  // advances playback and gives the renderer this frame's pose
     void applyShaderBuild(ShaderBuild build);
-    void requestBake();
+    void prepareProfiles();        // the scene's profiles as LUT layers (ProfileLibrary)
+    size_t editedLayer() const;    // the LUT layer of the selected material's profile
+    void requestBake(size_t layer);
+    void applyBakedLayer(size_t layer, std::shared_ptr<const LutSet> luts);
     void requestScreenshot(std::optional<std::filesystem::path> path, bool withUi);
 
     // Panels (ViewerPanels.cpp).
@@ -196,8 +206,11 @@ private:
     std::string environmentName_;
     bool environmentFromScene_ = false;
     float environmentIntensity_ = 1.0f;
-    std::optional<LutSet> luts_;
+    std::optional<LutSet> luts_;  // the default set (layer 0) as loaded
     std::string lutsName_;
+    std::optional<ProfileLibrary> profiles_;                     // what the renderer's LUT arrays hold
+    std::vector<std::shared_ptr<const LutSet>> preparedLayers_;  // the layers as prepared, for "as loaded"
+    std::vector<LayerEdit> layerEdits_;                          // per layer
     std::unique_ptr<Renderer> renderer_;
     RenderSettings settings_;
     RenderSettings lastGoodSettings_;
@@ -214,9 +227,7 @@ private:
     std::string shaderLog_;
     bool shaderLogIsError_ = false;
     LutBaker baker_;
-    ProfileChoice profileChoice_ = ProfileChoice::Loaded;
-    std::array<float, 3> burleyAlbedo_{};
-    std::array<float, 3> burleyMfpMm_{};
+    LayerEdit startEdit_;  // --profile, --albedo, --mfp: the default layer's first edit
     int lutSize_ = 256;
     std::string lutStatus_;
     std::future<SceneLoad> sceneJob_;

@@ -308,19 +308,43 @@ void Viewer::panelMaterial() {
 
 void Viewer::panelProfile() {
     if (!ImGui::CollapsingHeader("Diffusion profile", ImGuiTreeNodeFlags_DefaultOpen)) return;
-    int choice = static_cast<int>(profileChoice_);
-    bool changed = ImGui::RadioButton(fmt::format("As loaded: {}", lutsName_).c_str(), &choice, 0);
+    // The selected material's profile: the default set or one of the scene's (a LUT layer each).
+    const bool skinSelected = selectedMaterial_ >= 0 && size_t(selectedMaterial_) < scene_.materials.size() &&
+                              scene_.materials[size_t(selectedMaterial_)].skin;
+    if (skinSelected && profiles_) {
+        SkinMaterial& skin = *scene_.materials[size_t(selectedMaterial_)].skin;
+        std::vector<std::string> labels = {fmt::format("default: {}", lutsName_)};
+        for (const SkinProfile& p : scene_.profiles) labels.push_back(p.name);
+        std::vector<const char*> names;
+        for (const std::string& l : labels) names.push_back(l.c_str());
+        int choice = skin.profile + 1;
+        if (ImGui::Combo("Profile of the material", &choice, names.data(), static_cast<int>(names.size()))) {
+            skin.profile = choice - 1;
+            rebuildRenderer("material profile chosen");
+        }
+        tooltip("Which of the scene's diffusion profiles this material uses; each is one layer of the LUT arrays");
+        if (!skin.blendProfiles.empty())
+            ImGui::TextDisabled("blends %zu more profiles by its weight texture", skin.blendProfiles.size());
+    }
+    const size_t layer = editedLayer();
+    if (layer >= layerEdits_.size()) return;
+    LayerEdit& edit = layerEdits_[layer];
+    ImGui::Text("Editing LUT layer %zu (%s); only it is re-baked", layer,
+                layer == 0 ? "the default set" : scene_.profiles[layer - 1].name.c_str());
+    int choice = static_cast<int>(edit.choice);
+    bool changed = ImGui::RadioButton(
+        fmt::format("As loaded: {}", layer == 0 ? lutsName_ : scene_.profiles[layer - 1].name).c_str(), &choice, 0);
     changed |= ImGui::RadioButton("d'Eon & Luebke (sum of Gaussians)", &choice, 1);
     changed |= ImGui::RadioButton("Christensen & Burley (normalized diffusion)", &choice, 2);
-    profileChoice_ = static_cast<ProfileChoice>(choice);
-    if (profileChoice_ == ProfileChoice::Burley) {
-        changed |= ImGui::SliderFloat3("Albedo", burleyAlbedo_.data(), 0.01f, 1.0f, "%.2f");
+    edit.choice = static_cast<ProfileChoice>(choice);
+    if (edit.choice == ProfileChoice::Burley) {
+        changed |= ImGui::SliderFloat3("Albedo", edit.albedo.data(), 0.01f, 1.0f, "%.2f");
         tooltip("Surface albedo per channel (R, G, B)");
-        changed |= ImGui::SliderFloat3("Mean free path", burleyMfpMm_.data(), 0.01f, 10.0f, "%.2f mm",
+        changed |= ImGui::SliderFloat3("Mean free path", edit.mfpMm.data(), 0.01f, 10.0f, "%.2f mm",
                                        ImGuiSliderFlags_Logarithmic);
         tooltip("Mean free path per channel in millimetres (R, G, B)");
     }
-    if (profileChoice_ != ProfileChoice::Loaded) {
+    if (edit.choice != ProfileChoice::Loaded) {
         const int sizes[] = {64, 128, 256, 512};
         int index = static_cast<int>(std::find(std::begin(sizes), std::end(sizes), lutSize_) - std::begin(sizes));
         const char* labels[] = {"64", "128", "256 (default)", "512"};
@@ -329,14 +353,14 @@ void Viewer::panelProfile() {
             changed = true;
         }
     }
-    if (changed) requestBake();
+    if (changed) requestBake(layer);
     if (baker_.busy()) {
         ImGui::ProgressBar(static_cast<float>(baker_.progress()), ImVec2(-1.0f, 0.0f), "baking LUTs");
     } else if (!lutStatus_.empty()) {
         ImGui::TextDisabled("%s", lutStatus_.c_str());
     }
-    if (luts_) {
-        const glm::dvec3 w = luts_->profile().widthMm();
+    if (profiles_) {
+        const glm::dvec3 w = profiles_->layer(layer).profile().widthMm();
         ImGui::TextDisabled("Scattering width R %.2f G %.2f B %.2f mm", w.x, w.y, w.z);
     }
 }

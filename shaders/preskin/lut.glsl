@@ -7,9 +7,14 @@
 // All inputs are in profile units: curvature in 1/mm, widths and thickness in mm (convert world
 // units with the material's scatter scale first). Results carry the profile's shape only;
 // multiply by the material's albedo.
+// Several profiles (preskin::ProfileLibrary): the tables are layers of 2D array textures, each
+// layer with its own LutMapping; a PreskinProfileMix names up to four layers and their weights
+// (a material's profile, or profiles blended per texel), and each lookup is the weighted sum of
+// the layers' lookups.
 // Limits: bilinear lookups on the baked grid (values clamp at the axis ends); the penumbra
 // table takes the shadow as a straight edge blurred by a Gaussian shadow filter of standard
-// deviation filterSigmaMm (see engine/include/preskin/LutSet.h).
+// deviation filterSigmaMm (see engine/include/preskin/LutSet.h). A blend of lookups is not the
+// lookup of the blended profile (docs/profiles.md measures the difference).
 #ifndef PRESKIN_LUT_GLSL
 #define PRESKIN_LUT_GLSL
 
@@ -37,6 +42,70 @@ void preskinShTransferLut(LutMapping m, sampler2D shTransferLut, float curvature
 // Transmittance through thicknessMm of skin lit from behind (RGB, 1 at zero thickness).
 vec3 preskinTransmittanceLut(LutMapping m, sampler2D transmittanceLut, float thicknessMm) {
     return textureLod(transmittanceLut, preskinTransmittanceLutUv(m, thicknessMm), 0.0).rgb;
+}
+
+// Up to four LUT layers and their weights (summing to 1; unused entries weigh 0).
+struct PreskinProfileMix {
+    LutMapping mapping[4];
+    vec4 layer;   // array layer of each entry
+    vec4 weight;
+};
+
+// One profile: layer `layer` with weight 1.
+PreskinProfileMix preskinSingleProfile(LutMapping m, float layer) {
+    PreskinProfileMix p;
+    p.mapping[0] = m;
+    p.mapping[1] = m;
+    p.mapping[2] = m;
+    p.mapping[3] = m;
+    p.layer = vec4(layer);
+    p.weight = vec4(1.0, 0.0, 0.0, 0.0);
+    return p;
+}
+
+vec3 preskinDiffuseLut(PreskinProfileMix p, sampler2DArray diffuseLut, float NoL, float curvaturePerMm) {
+    vec3 sum = vec3(0.0);
+    for (int i = 0; i < 4; ++i) {
+        if (p.weight[i] <= 0.0) continue;
+        vec2 uv = preskinDiffuseLutUv(p.mapping[i], NoL, curvaturePerMm);
+        sum += p.weight[i] * textureLod(diffuseLut, vec3(uv, p.layer[i]), 0.0).rgb;
+    }
+    return sum;
+}
+
+vec3 preskinPenumbraLut(PreskinProfileMix p, sampler2DArray penumbraLut, float shadow, float filterSigmaMm) {
+    vec3 sum = vec3(0.0);
+    for (int i = 0; i < 4; ++i) {
+        if (p.weight[i] <= 0.0) continue;
+        vec2 uv = preskinPenumbraLutUv(p.mapping[i], shadow, filterSigmaMm);
+        sum += p.weight[i] * textureLod(penumbraLut, vec3(uv, p.layer[i]), 0.0).rgb;
+    }
+    return sum;
+}
+
+void preskinShTransferLut(PreskinProfileMix p, sampler2DArray shTransferLut, float curvaturePerMm, out vec3 a0,
+                          out vec3 a1, out vec3 a2) {
+    a0 = vec3(0.0);
+    a1 = vec3(0.0);
+    a2 = vec3(0.0);
+    for (int i = 0; i < 4; ++i) {
+        if (p.weight[i] <= 0.0) continue;
+        LutMapping m = p.mapping[i];
+        float w = p.weight[i];
+        a0 += w * m.shLambert.x * textureLod(shTransferLut, vec3(preskinShTransferLutUv(m, curvaturePerMm, 0), p.layer[i]), 0.0).rgb;
+        a1 += w * m.shLambert.y * textureLod(shTransferLut, vec3(preskinShTransferLutUv(m, curvaturePerMm, 1), p.layer[i]), 0.0).rgb;
+        a2 += w * m.shLambert.z * textureLod(shTransferLut, vec3(preskinShTransferLutUv(m, curvaturePerMm, 2), p.layer[i]), 0.0).rgb;
+    }
+}
+
+vec3 preskinTransmittanceLut(PreskinProfileMix p, sampler2DArray transmittanceLut, float thicknessMm) {
+    vec3 sum = vec3(0.0);
+    for (int i = 0; i < 4; ++i) {
+        if (p.weight[i] <= 0.0) continue;
+        vec2 uv = preskinTransmittanceLutUv(p.mapping[i], thicknessMm);
+        sum += p.weight[i] * textureLod(transmittanceLut, vec3(uv, p.layer[i]), 0.0).rgb;
+    }
+    return sum;
 }
 
 #endif

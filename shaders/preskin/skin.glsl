@@ -29,7 +29,8 @@
 // Inputs are in world units (metres) except where named; the material's scatter scale
 // converts them to profile millimetres. Includes preskin/brdf.glsl, preskin/lut.glsl,
 // preskin/sh.glsl and preskin/skin_surface.glsl (building the surface from a host's textures);
-// needs the four LUT samplers (see README, "Embedding").
+// needs the four LUT array samplers and the fragment's profile mix (PreskinProfileMix of
+// preskin/lut.glsl; preskinSingleProfile for one profile; see README, "Embedding").
 // Limits: curvature and thickness are scalar per fragment; transmission only for the light that
 // owns the shadow map; the diffuse LUT assumes locally spherical geometry of the mean curvature
 // (a cylinder reads as a sphere of twice its radius); the concave patch's extent is a model
@@ -61,7 +62,7 @@ struct PreskinSkinSurface {
 };
 
 // Diffuse response per channel for one light direction (replaces saturate(NoL)).
-vec3 preskinSkinDiffuseResponse(PreskinSkinSurface s, LutMapping m, sampler2D diffuseLut, vec3 L, uint features) {
+vec3 preskinSkinDiffuseResponse(PreskinSkinSurface s, PreskinProfileMix m, sampler2DArray diffuseLut, vec3 L, uint features) {
     vec3 NoL = vec3(dot(s.normalR, L), dot(s.normalG, L), dot(s.normalB, L));
     if ((features & kSkinLutDiffuse) == 0u) return clamp(NoL, 0.0, 1.0);
     if ((features & kSkinNormalPrefilter) == 0u)
@@ -95,7 +96,7 @@ vec3 preskinSkinSpecular(PreskinSkinSurface s, vec3 V, vec3 L, uint features) {
 
 // Reflected radiance of one light. shadowRgb: per-channel visibility (penumbra LUT, or the plain
 // filtered shadow in all channels); specularVisibility: the plain filtered shadow.
-vec3 preskinSkinLight(PreskinSkinSurface s, LutMapping m, sampler2D diffuseLut, vec3 V, vec3 L, vec3 irradiance,
+vec3 preskinSkinLight(PreskinSkinSurface s, PreskinProfileMix m, sampler2DArray diffuseLut, vec3 V, vec3 L, vec3 irradiance,
                       vec3 shadowRgb, float specularVisibility, uint features) {
     vec3 F = s.specularWeight * preskinSchlickF(s.F0, preskinSaturate(dot(V, normalize(L + V))));
     vec3 diffuse = (vec3(1.0) - F) * s.albedo / PRESKIN_PI * preskinSkinDiffuseResponse(s, m, diffuseLut, L, features);
@@ -105,7 +106,7 @@ vec3 preskinSkinLight(PreskinSkinSurface s, LutMapping m, sampler2D diffuseLut, 
 
 // Per-channel shadow for skin: the penumbra LUT indexed by the filtered visibility and the
 // filter's width on the receiver (the light-plane width stretched by the receiver's slope).
-vec3 preskinSkinShadow(PreskinSkinSurface s, LutMapping m, sampler2D penumbraLut, float visibility,
+vec3 preskinSkinShadow(PreskinSkinSurface s, PreskinProfileMix m, sampler2DArray penumbraLut, float visibility,
                        float filterWidthLightM, vec3 L, uint features) {
     // Fully lit or fully shadowed: the LUT's end columns are exactly 1 and 0, skip the fetch.
     if ((features & kSkinPenumbra) == 0u || visibility <= 0.0 || visibility >= 1.0) return vec3(visibility);
@@ -124,7 +125,7 @@ vec3 preskinSkinShadow(PreskinSkinSurface s, LutMapping m, sampler2D penumbraLut
 // sqrt((a - d)^2 c^2 + 2 a d - d^2), d the shrink) is subtracted. On a sphere the two cancel; a
 // thin sheet (an ear) keeps T of the sheet. Nothing is added where the skin faces the light.
 // Limits: sheets thinner than the shrink read as that thick.
-vec3 preskinSkinTransmission(PreskinSkinSurface s, LutMapping m, sampler2D transmittanceLut, vec3 L,
+vec3 preskinSkinTransmission(PreskinSkinSurface s, PreskinProfileMix m, sampler2DArray transmittanceLut, vec3 L,
                              vec3 irradiance, float thicknessM, uint features) {
     float c = preskinSaturate(-dot(s.geometricNormal, L));
     if ((features & kSkinTransmission) == 0u || c <= 0.0) return vec3(0.0);
@@ -140,7 +141,7 @@ vec3 preskinSkinTransmission(PreskinSkinSurface s, LutMapping m, sampler2D trans
 }
 
 // Diffuse ambient irradiance per channel from L2 SH radiance (multiply by albedo / pi).
-vec3 preskinSkinAmbientIrradiance(PreskinSkinSurface s, LutMapping m, sampler2D shTransferLut, vec4 sh[9],
+vec3 preskinSkinAmbientIrradiance(PreskinSkinSurface s, PreskinProfileMix m, sampler2DArray shTransferLut, vec4 sh[9],
                                   uint features) {
     vec3 bandR = PRESKIN_SH_LAMBERT;
     vec3 bandG = PRESKIN_SH_LAMBERT;
@@ -182,8 +183,8 @@ vec3 preskinSkinShadowPosition(vec3 positionWs, vec3 geometricNormalWs, vec3 L, 
 // from the cosine-convolved SH in the reflection direction, weighted by Karis's analytic split-sum
 // environment BRDF (none with specularWeight 0). diffuseOut: the diffuse part alone. Multiply both
 // by ambient occlusion.
-vec3 preskinSkinAmbient(PreskinSkinSurface s, LutMapping m, sampler2D shTransferLut, vec4 sh[9], vec3 V, uint features,
-                        out vec3 diffuseOut) {
+vec3 preskinSkinAmbient(PreskinSkinSurface s, PreskinProfileMix m, sampler2DArray shTransferLut, vec4 sh[9], vec3 V,
+                        uint features, out vec3 diffuseOut) {
     float NoV = max(dot(s.normalSpecular, V), 1e-4);
     vec3 envBrdf = preskinEnvBrdfApprox(s.F0, s.roughness, NoV) * s.specularWeight;
     vec3 R = reflect(-V, s.normalSpecular);

@@ -16,12 +16,14 @@ PRESKIN_CONST(uint, kBindingFrame, 0)          // FrameUniforms (uniform buffer)
 PRESKIN_CONST(uint, kBindingLights, 1)         // GpuLight[] (storage buffer)
 PRESKIN_CONST(uint, kBindingInstances, 2)      // GpuInstance[] (storage buffer)
 PRESKIN_CONST(uint, kBindingShadowMap, 3)      // depth, sampled with NEAREST taps (manual PCF)
+// The LUTs are 2D array textures, one layer per diffusion profile (layer 0: the default set).
 PRESKIN_CONST(uint, kBindingDiffuseLut, 4)     // D(NoL, curvature)
 PRESKIN_CONST(uint, kBindingPenumbraLut, 5)    // P(penumbra position, width)
 PRESKIN_CONST(uint, kBindingShTransferLut, 6)  // A_l(curvature), bands 0..2
 PRESKIN_CONST(uint, kBindingTransmittanceLut, 7)  // T(thickness)
 PRESKIN_CONST(uint, kBindingClusterRanges, 8)  // uvec2 (offset, count) per cluster
 PRESKIN_CONST(uint, kBindingClusterIndices, 9) // uint light indices
+PRESKIN_CONST(uint, kBindingLutMappings, 10)   // LutMapping[] per LUT layer (storage buffer)
 
 // ---- descriptor set 1: per material ----------------------------------------------------------
 PRESKIN_CONST(uint, kBindingMaterial, 0)  // MaterialUniforms (uniform buffer)
@@ -33,7 +35,8 @@ PRESKIN_CONST(uint, kBindingEmissiveTexture, 5)
 PRESKIN_CONST(uint, kBindingSpecularTexture, 6)      // skin: F0 scale (red)
 PRESKIN_CONST(uint, kBindingDetailNormalTexture, 7)  // skin: detail normal map
 PRESKIN_CONST(uint, kBindingCurvatureTexture, 8)     // skin: curvature (red)
-PRESKIN_CONST(uint, kMaterialTextureCount, 8)
+PRESKIN_CONST(uint, kBindingProfileWeightTexture, 9) // skin: weights of the blended profiles (RGB)
+PRESKIN_CONST(uint, kMaterialTextureCount, 9)
 
 // ---- specialization constants of forward.frag ------------------------------------------------
 PRESKIN_CONST(uint, kSpecMaterialModel, 0)  // kModelStandard or kModelSkin
@@ -83,9 +86,8 @@ struct FrameUniforms {
     vec4 clusterScale;          // x,y: tiles per unit of cluster-camera NDC (tile = (ndc + 1) * xy),
                                 // z,w: depth slice = log2(viewDepth) * z + w
     uvec4 clusterDims;          // x, y, z clusters; w: max lights per cluster
-    LutMapping lut;             // skin LUT coordinates (shared/lut_mapping.h)
 };
-PRESKIN_CHECK_SIZE(FrameUniforms, 6 * 96 + 2 * 64 + 4 * 16 + 9 * 16 + 3 * 16 + 128)
+PRESKIN_CHECK_SIZE(FrameUniforms, 6 * 96 + 2 * 64 + 4 * 16 + 9 * 16 + 3 * 16)
 
 // Per-texture transform rows (KHR_texture_transform): uv' = (dot(r0.xyz, (u,v,1)), dot(r1.xyz, (u,v,1))).
 struct GpuUvTransform {
@@ -104,9 +106,11 @@ struct MaterialUniforms {
     vec4 skinSpecular;         // x F0 scale, y lobe-0 roughness multiplier, z lobe-1 multiplier, w lobe-1 weight
     vec4 textureFlags;         // x has detail normal, y detail uv scale, z has specular texture, w has normal map
     vec4 hasTextures;          // 1 where the texture exists: x base colour, y metallic-roughness, z occlusion, w emissive
+    vec4 skinProfileLayers;    // LUT array layers: x the profile, y z w the blended ones (SkinMaterial::blendProfiles)
+    vec4 skinProfileBlend;     // x: blended profiles (0..3), weighted by the profile-weight texture's r, g, b
     GpuUvTransform uv[5];      // base colour, metallic-roughness, normal, occlusion, emissive
 };
-PRESKIN_CHECK_SIZE(MaterialUniforms, 9 * 16 + 5 * 32)
+PRESKIN_CHECK_SIZE(MaterialUniforms, 11 * 16 + 5 * 32)
 
 // Per draw.
 struct DrawPush {

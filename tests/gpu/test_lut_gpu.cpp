@@ -5,6 +5,9 @@
 // weights to subTexelPrecisionBits (LutTable.h), so it may differ from the exact bilinear value by
 // up to 2^-bits of the spread of the 2x2 texels it blends along each of the two axes; plus
 // float rounding. A lookup half a texel off, a wrong row or a missing clamp exceeds that.
+// The tables are layers of array textures (as the renderer binds them, read through a
+// PreskinProfileMix of one layer): once as the only layer, and once as layer 1 behind a larger
+// set, so padded to the larger size and addressed through its own LutMapping.
 #include "support/GpuTest.h"
 #include "support/TestShaders.h"
 
@@ -36,8 +39,9 @@ struct Lookup {
 };
 
 // Runs lut_lookup.comp over `lookups` and returns one RGB result per lookup.
-std::vector<glm::vec3> runOnGpu(const vk::Device& device, const LutSet& luts, const std::vector<Lookup>& lookups) {
-    const GpuLuts gpuLuts(device, &luts);
+std::vector<glm::vec3> runOnGpu(const vk::Device& device, const std::vector<const LutSet*>& layers, uint32_t layer,
+                                const std::vector<Lookup>& lookups) {
+    const GpuLuts gpuLuts(device, layers);
     const VkDevice d = device.device();
     const VkShaderStageFlags compute = VK_SHADER_STAGE_COMPUTE_BIT;
     const std::array<vk::Binding, 7> bindings{{{0, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, compute},
@@ -48,7 +52,7 @@ std::vector<glm::vec3> runOnGpu(const vk::Device& device, const LutSet& luts, co
                                                {5, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, compute},
                                                {6, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, compute}}};
     const VkDescriptorSetLayout setLayout = vk::createSetLayout(device, bindings);
-    const VkPipelineLayout layout = vk::createPipelineLayout(device, std::span(&setLayout, 1), sizeof(uint32_t), compute);
+    const VkPipelineLayout layout = vk::createPipelineLayout(device, std::span(&setLayout, 1), 2 * sizeof(uint32_t), compute);
     const VkPipeline pipeline = vk::createComputePipeline(device, test_shaders::spirv("lut_lookup.comp"), layout);
 
     const std::array<VkDescriptorPoolSize, 3> sizes{{{VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, 1},
@@ -67,7 +71,7 @@ std::vector<glm::vec3> runOnGpu(const vk::Device& device, const LutSet& luts, co
     VkDescriptorSet set = VK_NULL_HANDLE;
     PRESKIN_VK(vkAllocateDescriptorSets(d, &allocInfo, &set));
 
-    const gpu::LutMapping mapping = gpuLuts.mapping();
+    const gpu::LutMapping mapping = gpuLuts.mapping(layer);
     vk::Buffer uniforms(device, sizeof(mapping), VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT, true);
     uniforms.upload(&mapping, sizeof(mapping));
     std::vector<glm::vec4> inputData;
@@ -95,11 +99,12 @@ std::vector<glm::vec3> runOnGpu(const vk::Device& device, const LutSet& luts, co
     writes[6].pBufferInfo = &outputInfo;
     vkUpdateDescriptorSets(d, static_cast<uint32_t>(writes.size()), writes.data(), 0, nullptr);
 
-    const uint32_t count = static_cast<uint32_t>(lookups.size());
+    const uint32_t push[2] = {static_cast<uint32_t>(lookups.size()), layer};
+    const uint32_t count = push[0];
     device.submitAndWait([&](VkCommandBuffer cmd) {
         vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, pipeline);
         vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, layout, 0, 1, &set, 0, nullptr);
-        vkCmdPushConstants(cmd, layout, compute, 0, sizeof(count), &count);
+        vkCmdPushConstants(cmd, layout, compute, 0, sizeof(push), push);
         vkCmdDispatch(cmd, (count + 63) / 64, 1, 1);
         vk::memoryBarrier(cmd, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT,
                           VK_PIPELINE_STAGE_2_HOST_BIT, VK_ACCESS_2_HOST_READ_BIT);
@@ -182,64 +187,71 @@ TEST_F(LutGpu, GlslLookupsMatchCpuLookups) {
         lookups.push_back({kTransmittance, thicknessMax * unit(rng), 0.0f});
     }
 
-    const std::vector<glm::vec3> gpuResults = runOnGpu(ContextAccess::core(context()), luts, lookups);
-    const uint32_t bits = ContextAccess::core(context()).properties().limits.subTexelPrecisionBits;
-    ASSERT_GE(bits, 4u) << "Vulkan requires at least 4 sub-texel precision bits";
-    const double weightStep = std::ldexp(1.0, -int(bits));
+    const LutSet larger = LutSet::bake(DiffusionProfile::burley({0.8, 0.5, 0.4}, {1.0, 0.4, 0.25}),
+                                       LutBakeSettings::withSize(luts.diffuse().width() + 44));
+    const vk::Device& device = ContextAccess::core(context());
+    for (const bool padded : {false, true}) {
+        SCOPED_TRACE(padded ? "layer 1, padded" : "one layer");
+        const std::vector<glm::vec3> gpuResults = padded ? runOnGpu(device, {&larger, &luts}, 1, lookups)
+                                                         : runOnGpu(device, {&luts}, 0, lookups);
+        const uint32_t bits = device.properties().limits.subTexelPrecisionBits;
+        ASSERT_GE(bits, 4u) << "Vulkan requires at least 4 sub-texel precision bits";
+        const double weightStep = std::ldexp(1.0, -int(bits));
 
-    const char* names[] = {"diffuse", "penumbra", "SH transfer", "transmittance"};
-    std::array<int, 4> failures{};
-    std::array<double, 4> worst{};           // largest |GPU - CPU|
-    std::array<double, 4> worstRatio{};      // largest |GPU - CPU| / tolerance
-    std::array<double, 4> largestValue{};    // to show the errors are not vacuous
-    std::string firstFailures;
-    for (size_t i = 0; i < lookups.size(); ++i) {
-        const Lookup& l = lookups[i];
-        glm::vec3 cpu;
-        glm::vec2 spread;
-        switch (l.table) {
-            case kDiffuse:
-                cpu = luts.lookupDiffuse(l.a, l.b);
-                spread = texelSpread(luts.diffuse(), luts.diffuseUv(l.a, l.b));
-                break;
-            case kPenumbra:
-                cpu = luts.lookupPenumbra(l.a, l.b);
-                spread = texelSpread(luts.penumbra(), luts.penumbraUv(l.a, l.b));
-                break;
-            case kShTransfer: {
-                const int band = static_cast<int>(l.b);
-                cpu = luts.lookupShTransfer(l.a)[size_t(band)];
-                // The table holds A_l relative to Lambert's coefficient; the lookup multiplies it back.
-                spread = texelSpread(luts.shTransfer(), luts.shTransferUv(l.a, band)) * kLambertBands[band];
-                break;
+        const char* names[] = {"diffuse", "penumbra", "SH transfer", "transmittance"};
+        std::array<int, 4> failures{};
+        std::array<double, 4> worst{};           // largest |GPU - CPU|
+        std::array<double, 4> worstRatio{};      // largest |GPU - CPU| / tolerance
+        std::array<double, 4> largestValue{};    // to show the errors are not vacuous
+        std::string firstFailures;
+        for (size_t i = 0; i < lookups.size(); ++i) {
+            const Lookup& l = lookups[i];
+            glm::vec3 cpu;
+            glm::vec2 spread;
+            switch (l.table) {
+                case kDiffuse:
+                    cpu = luts.lookupDiffuse(l.a, l.b);
+                    spread = texelSpread(luts.diffuse(), luts.diffuseUv(l.a, l.b));
+                    break;
+                case kPenumbra:
+                    cpu = luts.lookupPenumbra(l.a, l.b);
+                    spread = texelSpread(luts.penumbra(), luts.penumbraUv(l.a, l.b));
+                    break;
+                case kShTransfer: {
+                    const int band = static_cast<int>(l.b);
+                    cpu = luts.lookupShTransfer(l.a)[size_t(band)];
+                    // The table holds A_l relative to Lambert's coefficient; the lookup multiplies it back.
+                    spread = texelSpread(luts.shTransfer(), luts.shTransferUv(l.a, band)) * kLambertBands[band];
+                    break;
+                }
+                default:
+                    cpu = luts.lookupTransmittance(l.a);
+                    spread = texelSpread(luts.transmittance(), luts.transmittanceUv(l.a));
+                    break;
             }
-            default:
-                cpu = luts.lookupTransmittance(l.a);
-                spread = texelSpread(luts.transmittance(), luts.transmittanceUv(l.a));
-                break;
+            const glm::vec3 got = gpuResults[i];
+            const double magnitude = std::max({1.0, double(std::abs(cpu.r)), double(std::abs(cpu.g)), double(std::abs(cpu.b))});
+            const double tolerance = weightStep * double(spread.x + spread.y) + 2e-6 * magnitude;
+            double error = 0.0;
+            for (int c = 0; c < 3; ++c) error = std::max(error, double(std::abs(got[c] - cpu[c])));
+            const auto t = size_t(l.table);
+            worst[t] = std::max(worst[t], error);
+            worstRatio[t] = std::max(worstRatio[t], error / tolerance);
+            largestValue[t] = std::max(largestValue[t], double(std::max({cpu.r, cpu.g, cpu.b})));
+            if (!(error <= tolerance) && failures[t]++ < 5)
+                firstFailures += std::string(names[t]) + "(" + std::to_string(l.a) + ", " + std::to_string(l.b) +
+                                 "): GPU (" + std::to_string(got.r) + ", " + std::to_string(got.g) + ", " +
+                                 std::to_string(got.b) + ") CPU (" + std::to_string(cpu.r) + ", " + std::to_string(cpu.g) +
+                                 ", " + std::to_string(cpu.b) + "), tolerance " + std::to_string(tolerance) + "\n";
         }
-        const glm::vec3 got = gpuResults[i];
-        const double magnitude = std::max({1.0, double(std::abs(cpu.r)), double(std::abs(cpu.g)), double(std::abs(cpu.b))});
-        const double tolerance = weightStep * double(spread.x + spread.y) + 2e-6 * magnitude;
-        double error = 0.0;
-        for (int c = 0; c < 3; ++c) error = std::max(error, double(std::abs(got[c] - cpu[c])));
-        const auto t = size_t(l.table);
-        worst[t] = std::max(worst[t], error);
-        worstRatio[t] = std::max(worstRatio[t], error / tolerance);
-        largestValue[t] = std::max(largestValue[t], double(std::max({cpu.r, cpu.g, cpu.b})));
-        if (!(error <= tolerance) && failures[t]++ < 5)
-            firstFailures += std::string(names[t]) + "(" + std::to_string(l.a) + ", " + std::to_string(l.b) +
-                             "): GPU (" + std::to_string(got.r) + ", " + std::to_string(got.g) + ", " +
-                             std::to_string(got.b) + ") CPU (" + std::to_string(cpu.r) + ", " + std::to_string(cpu.g) +
-                             ", " + std::to_string(cpu.b) + "), tolerance " + std::to_string(tolerance) + "\n";
+        for (size_t t = 0; t < 4; ++t) {
+            EXPECT_EQ(failures[t], 0) << names[t] << ": " << failures[t] << " lookups outside tolerance";
+            EXPECT_GT(largestValue[t], 0.5) << names[t] << ": the grid should reach large table values";
+            std::printf("[ lut gpu  ] %s %-13s worst |GPU - CPU| %.3g, worst error / tolerance %.3f (%u sub-texel bits)\n",
+                        padded ? "padded layer" : "one layer   ", names[t], worst[t], worstRatio[t], bits);
+        }
+        EXPECT_TRUE(firstFailures.empty()) << firstFailures;
     }
-    for (size_t t = 0; t < 4; ++t) {
-        EXPECT_EQ(failures[t], 0) << names[t] << ": " << failures[t] << " lookups outside tolerance";
-        EXPECT_GT(largestValue[t], 0.5) << names[t] << ": the grid should reach large table values";
-        std::printf("[ lut gpu  ] %-13s worst |GPU - CPU| %.3g, worst error / tolerance %.3f (%u sub-texel bits)\n",
-                    names[t], worst[t], worstRatio[t], bits);
-    }
-    EXPECT_TRUE(firstFailures.empty()) << firstFailures;
 }
 
 }  // namespace

@@ -4,6 +4,8 @@
 
 #include <preskin/Curvature.h>
 
+#include <glm/gtc/matrix_transform.hpp>
+
 #include <unistd.h>
 
 #include <algorithm>
@@ -136,6 +138,90 @@ double maxSrgbDifference(const RenderedImage& a, const RenderedImage& b) {
         for (uint32_t x = 0; x < a.width; ++x)
             worst = std::max(worst, srgbDifference(pixelLinear(a, x, y), pixelLinear(b, x, y)));
     return worst;
+}
+
+namespace {
+
+constexpr double kPiD = 3.14159265358979323846;
+
+glm::dvec3 schlick(double F0, double VoH) {
+    return glm::dvec3(F0 + (1.0 - F0) * std::pow(1.0 - std::clamp(VoH, 0.0, 1.0), 5.0));
+}
+
+// GGX D * height-correlated Smith V * Schlick F for perceptual roughness r.
+glm::dvec3 ggxLobe(double F0, double r, double NoL, double NoV, double NoH, double VoH) {
+    const double alpha = std::max(r * r, 1e-3);
+    const double a2 = alpha * alpha;
+    const double denom = NoH * NoH * (a2 - 1.0) + 1.0;
+    const double D = a2 / (kPiD * denom * denom);
+    const double Vis = 0.5 / (NoL * std::sqrt(NoV * NoV * (1.0 - a2) + a2) + NoV * std::sqrt(NoL * NoL * (1.0 - a2) + a2));
+    return D * Vis * schlick(F0, VoH);
+}
+
+}  // namespace
+
+DiffuseLookup lutDiffuse(const LutSet& luts) {
+    return [&luts](double NoL, double curvaturePerMm) {
+        return glm::dvec3(luts.lookupDiffuse(float(NoL), float(curvaturePerMm)));
+    };
+}
+
+Light sphereLight() {
+    Light light;
+    light.type = LightType::Directional;
+    light.directionWs = glm::normalize(glm::vec3(-0.8f, -0.35f, 0.3f));
+    light.color = glm::vec3(1.0f, 0.96f, 0.92f);
+    light.intensity = 3.0f;
+    return light;
+}
+
+View sphereView(double radiusM) {
+    const glm::vec3 eye = glm::vec3(0.3f, 0.4f, 3.6f) * float(radiusM);
+    const glm::mat4 worldFromView = glm::inverse(glm::lookAt(eye, glm::vec3(0.0f), glm::vec3(0.0f, 1.0f, 0.0f)));
+    return perspectiveView(worldFromView, 0.7f, 1.0f, 0.1f * float(radiusM), 10.0f * float(radiusM));
+}
+
+SphereAgreement compareWithSkinReference(const RenderedImage& image, const View& view, double radiusM,
+                                         const Light& light, const SkinMaterial& skin, const glm::dvec3& albedo,
+                                         double roughness, const DiffuseLookup& diffuse) {
+    const uint32_t size = image.width;
+    const double curvaturePerMm = 1.0 / radiusM * 0.001 / double(skin.scatterScale);
+    const std::vector<SphereHit> hits = traceSphere(view, size, size, glm::dvec3(0.0), radiusM);
+    const glm::dvec3 L = -glm::normalize(glm::dvec3(light.directionWs));
+    const glm::dvec3 E = glm::dvec3(light.color) * double(light.intensity);
+    const glm::dvec3 eye(view.eye().positionWs);
+    const double F0 = 0.028 * double(skin.specularIntensity);
+    SphereAgreement a;
+    for (uint32_t y = 0; y < size; ++y)
+        for (uint32_t x = 0; x < size; ++x) {
+            const SphereHit& h = hits[size_t(y) * size + x];
+            if (!h.interior) continue;
+            const glm::dvec3 N = glm::normalize(h.positionWs);
+            const glm::dvec3 V = glm::normalize(eye - h.positionWs);
+            const glm::dvec3 H = glm::normalize(L + V);
+            const double NoL = glm::dot(N, L);
+            const double VoH = glm::dot(V, H);
+            const glm::dvec3 D = diffuse(NoL, curvaturePerMm);
+            const glm::dvec3 diffuseScale = (glm::dvec3(1.0) - schlick(F0, VoH)) * albedo / kPiD * E;
+            glm::dvec3 specular(0.0);
+            if (NoL > 0.0) {
+                const double NoV = std::max(glm::dot(N, V), 1e-4);
+                const double NoH = std::clamp(glm::dot(N, H), 0.0, 1.0);
+                const double r0 = std::clamp(roughness * double(skin.lobeRoughness0), 0.03, 1.0);
+                const double r1 = std::clamp(roughness * double(skin.lobeRoughness1), 0.03, 1.0);
+                specular = glm::mix(ggxLobe(F0, r0, NoL, NoV, NoH, VoH), ggxLobe(F0, r1, NoL, NoV, NoH, VoH),
+                                    double(skin.lobeMix)) * NoL * E;
+            }
+            const glm::dvec3 expected = diffuseScale * D + specular;
+            const glm::dvec3 lambert = diffuseScale * std::clamp(NoL, 0.0, 1.0) + specular;
+            const glm::dvec3 got = pixelLinear(image, x, y);
+            const double diff = srgbDifference(got, expected);
+            a.worst = std::max(a.worst, diff);
+            ++a.interior;
+            if (diff <= 2.0) ++a.within;
+            if (srgbDifference(got, lambert) <= 2.0) ++a.lambertWithin;
+        }
+    return a;
 }
 
 }  // namespace preskin::test

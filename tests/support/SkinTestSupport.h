@@ -4,6 +4,7 @@
 #pragma once
 
 #include <preskin/Environment.h>
+#include <preskin/LutSet.h>
 #include <preskin/Renderer.h>
 #include <preskin/Scene.h>
 #include <preskin/View.h>
@@ -55,5 +56,30 @@ double srgbDifference(const glm::dvec3& a, const glm::dvec3& b);
 size_t countDifferingPixels(const RenderedImage& a, const RenderedImage& b, double steps);
 // The largest sRGB difference over all pixels, in 8-bit steps.
 double maxSrgbDifference(const RenderedImage& a, const RenderedImage& b);
+
+// Per-pixel agreement of a rendered sphere (radius radiusM at the origin, one directional
+// light, no shadows or environment) with the CPU evaluation of the skin model.
+struct SphereAgreement {
+    size_t interior = 0;       // pixels fully covered by the sphere
+    size_t within = 0;         // of those, within 2/255 of the skin reference
+    size_t lambertWithin = 0;  // within 2/255 of the reference with Lambert in place of D
+    double worst = 0.0;        // largest difference from the skin reference, 1/255 steps
+};
+
+// The diffuse LUT D(NoL, curvature in profile 1/mm), per channel.
+using DiffuseLookup = std::function<glm::dvec3(double NoL, double curvaturePerMm)>;
+DiffuseLookup lutDiffuse(const LutSet& luts);
+
+// A directional light whose terminator crosses sphereView's image.
+Light sphereLight();
+// A square view of a sphere of radius radiusM at the origin, filling about half the image.
+View sphereView(double radiusM);
+
+// `image` (LinearFloat) against (1 - F) albedo / pi D(NoL, curvature) E + dual-lobe GGX specular
+// with the skin parameters `skin` (F0 = 0.028 specularIntensity), albedo and roughness, at the
+// analytic curvature 1 / radiusM, for every interior pixel.
+SphereAgreement compareWithSkinReference(const RenderedImage& image, const View& view, double radiusM,
+                                         const Light& light, const SkinMaterial& skin, const glm::dvec3& albedo,
+                                         double roughness, const DiffuseLookup& diffuse);
 
 }  // namespace preskin::test

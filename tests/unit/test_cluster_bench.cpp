@@ -50,7 +50,7 @@ TEST_F(BenchCli, WritesJsonAndPlot) {
     std::string err;
     // A budget no loaded machine reaches: every point gets its 2 frames (the JSON is checked for them).
     ASSERT_EQ(bench({"--budget-s", "600", "--width", "96", "--height", "64", "--counts", "0,8,32", "--skin-counts", "8",
-                     "--reps", "2", "--warmup", "0", "--validation", "--out", json.string()},
+                     "--reps", "2", "--warmup", "0", "--validation", "--profile-lut-size", "16", "--out", json.string()},
                     err),
               0)
         << err;
@@ -90,6 +90,12 @@ TEST_F(BenchCli, WritesJsonAndPlot) {
     EXPECT_GT(animation.at("curvature_gpu_ms").get<double>(), 0.0);
     EXPECT_GT(animation.at("curvature_cpu_ms").get<double>(), 0.0);
     EXPECT_LT(animation.at("deform_and_curvature_share_gpu").get<double>(), 1.0);
+    // Profiles: 64 baked into a fresh cache, then all 64 read back from it; 8 copies of the head.
+    const auto& profiles = j.at("profiles");
+    EXPECT_EQ(profiles.at("cached_profiles"), 64);
+    EXPECT_GT(profiles.at("load_cached_ms").get<double>(), 0.0);
+    EXPECT_GT(profiles.at("bake_one_ms").get<double>(), 0.0);
+    EXPECT_EQ(profiles.at("frame_eight_profiles").at("frames"), 2);
     EXPECT_FALSE(j.at("goals").empty());
     const test::ProcessResult plotted = test::runProcess(
         "/usr/bin/python3", {PRESKIN_SOURCE_DIR "/scripts/plot-bench.py", json.string(), plot.string()}, {}, dir_, 120.0);

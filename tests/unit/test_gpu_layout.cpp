@@ -83,7 +83,6 @@ TEST(GpuLayout, ForwardShaderStructsMatchCpp) {
     PRESKIN_EXPECT_MEMBER(l, FrameUniforms, lightCounts);
     PRESKIN_EXPECT_MEMBER(l, FrameUniforms, clusterScale);
     PRESKIN_EXPECT_MEMBER(l, FrameUniforms, clusterDims);
-    PRESKIN_EXPECT_MEMBER(l, FrameUniforms, lut);
     PRESKIN_EXPECT_MEMBER(l, EyeUniforms, clipFromWorld);
     PRESKIN_EXPECT_MEMBER(l, EyeUniforms, positionWs);
     PRESKIN_EXPECT_MEMBER(l, EyeUniforms, viewDepthFromWorld);
@@ -108,6 +107,8 @@ TEST(GpuLayout, ForwardShaderStructsMatchCpp) {
     PRESKIN_EXPECT_MEMBER(l, MaterialUniforms, skinSpecular);
     PRESKIN_EXPECT_MEMBER(l, MaterialUniforms, textureFlags);
     PRESKIN_EXPECT_MEMBER(l, MaterialUniforms, hasTextures);
+    PRESKIN_EXPECT_MEMBER(l, MaterialUniforms, skinProfileLayers);
+    PRESKIN_EXPECT_MEMBER(l, MaterialUniforms, skinProfileBlend);
     PRESKIN_EXPECT_MEMBER(l, MaterialUniforms, uv);
 }
 

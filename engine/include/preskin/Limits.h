@@ -45,6 +45,10 @@ inline constexpr uint64_t kMaxSceneImagePixels = 1ull << 27;  // all textures of
 inline constexpr uint32_t kMaxEnvironmentWidth = 8192;        // equirectangular: 8192 x 4096
 inline constexpr uint32_t kMaxEnvironmentHeight = 4096;
 
+// Diffusion profiles of one scene (LUT array layers: every Vulkan 1.3 device has at least 256,
+// one of them is the default set's).
+inline constexpr uint64_t kMaxSkinProfiles = 255;
+
 // Numbers.
 inline constexpr double kMaxInputMagnitude = 1e6;
 

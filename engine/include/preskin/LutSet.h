@@ -147,4 +147,16 @@ private:
 // (preskin/lut.glsl): the same numbers the set's CPU lookups use.
 PRESKIN_API gpu::LutMapping lutMapping(const LutSet& luts);
 
+// Texture extents (texels) that hold a set's tables, per table; 0: the table's own size. A
+// table smaller than its texture sits at texel (0, 0), padded with copies of its edge texels
+// (layers of LUT array textures, <preskin/ProfileLibrary.h>).
+struct LutExtents {
+    glm::ivec2 diffuse{0};
+    glm::ivec2 penumbra{0};
+    glm::ivec2 shTransfer{0};
+    glm::ivec2 transmittance{0};
+};
+// The mapping of the set's tables held in such larger (padded) textures.
+PRESKIN_API gpu::LutMapping lutMapping(const LutSet& luts, const LutExtents& extents);
+
 }  // namespace preskin

@@ -27,6 +27,7 @@
 namespace preskin {
 
 class LutSet;
+class ProfileLibrary;
 
 // Each technique of the skin path on or off; off falls back to its standard equivalent
 // (Lambert NoL, one normal, plain PCF shadow, Lambert SH, no transmission, one GGX lobe).
@@ -153,8 +154,14 @@ struct RenderTarget {
 
 class PRESKIN_API Renderer {
 public:
-    // luts may be null: skin materials then render with the standard model.
+    // luts may be null: skin materials then render with the standard model. With one LUT set,
+    // every skin material must use the default profile (SkinMaterial::profile -1).
     Renderer(Context& context, const Scene& scene, const Environment& environment, const LutSet* luts,
+             const RenderSettings& settings = {});
+    // Several diffusion profiles: the library's layers become the layers of the LUT arrays
+    // (<preskin/ProfileLibrary.h>). Throws preskin::Error when a skin material names a profile
+    // the library has no layer for.
+    Renderer(Context& context, const Scene& scene, const Environment& environment, const ProfileLibrary& profiles,
              const RenderSettings& settings = {});
     ~Renderer();
     Renderer(const Renderer&) = delete;
@@ -175,6 +182,11 @@ public:
     const std::vector<Light>& lights() const;
     void setEnvironment(const Environment& environment);
     void setLuts(const LutSet* luts);
+    void setProfiles(const ProfileLibrary& profiles);
+    // Replaces the tables of one layer (a re-baked profile: layer p + 1 for Scene::profiles[p])
+    // and uploads only that layer. Throws preskin::Error when the layer does not exist or a table
+    // is larger than the arrays' (setProfiles rebuilds them).
+    void setProfileLayer(size_t layer, const LutSet& luts);
     // Replaces the SPIR-V of built-in shader stages by file name ("forward.vert", "forward_layers.vert", "forward.frag",
     // "shadow.vert"); stages missing from the map use the code built into the library. Every
     // pipeline in use is rebuilt at once; when that fails, throws preskin::Error and keeps the

@@ -14,6 +14,7 @@
 #include <preskin/Animation.h>
 #include <preskin/Export.h>
 #include <preskin/SkinMaterial.h>
+#include <preskin/SkinProfile.h>
 
 #include <preskin/Glm.h>
 
@@ -195,6 +196,9 @@ struct Scene {
     std::vector<Mesh> meshes;
     std::vector<MeshInstance> instances;
     std::vector<Material> materials;
+    // Diffusion profiles the skin materials name (SkinMaterial::profile); empty: every skin
+    // material uses the renderer's default set.
+    std::vector<SkinProfile> profiles;
     std::vector<Image> images;
     std::vector<Sampler> samplers;
     std::vector<Light> lights;
@@ -216,9 +220,21 @@ struct Scene {
     PRESKIN_API Bounds worldBounds() const;
     // Marks materials as skin: every material for "all", else the materials with that name
     // (throws preskin::Error when no material has it). Existing skin parameters are kept.
-    // Primitives without a material (Primitive::material == -1) are not covered.
-    // A material made skin here gets `defaults`, then the material's KHR transmission / volume values.
+    // "all" covers primitives without a material too: they get glTF's default material first
+    // (addDefaultMaterial). A material made skin here gets `defaults`, then the material's KHR
+    // transmission / volume values.
     PRESKIN_API void makeSkin(const std::string& materialName, const SkinMaterial& defaults = {});
+    // Gives every primitive without a material (Primitive::material == -1, or an index past
+    // `materials`) an explicit copy of glTF's default material (base colour 1, metallic 1,
+    // roughness 1, opaque, single-sided), named kDefaultMaterialName and appended once to
+    // `materials`. Returns its index, or -1 when every primitive already has a material.
+    PRESKIN_API int addDefaultMaterial();
+    // Gives the materials named `materialName` ("all": every material, as makeSkin) the
+    // diffusion profile Scene::profiles[profile] (-1: the default set), making them skin first
+    // where they are not. Throws preskin::Error when no material has the name or the profile
+    // index is out of range.
+    PRESKIN_API void setSkinProfile(const std::string& materialName, int profile);
+    static constexpr const char* kDefaultMaterialName = "(default)";
 };
 
 }  // namespace preskin

@@ -7,6 +7,7 @@
 
 #include <optional>
 #include <string>
+#include <vector>
 
 namespace preskin {
 
@@ -28,7 +29,20 @@ struct SkinTextureRef {
     bool valid() const { return image >= 0; }
 };
 
+// At most this many profiles blend on one material: the base profile plus one per RGB channel
+// of the profile-weight texture.
+inline constexpr int kMaxBlendedProfiles = 4;
+
 struct SkinMaterial {
+    // The diffusion profile: an index into Scene::profiles, -1 for the renderer's default set
+    // (the bundled skin). Its LUTs are layer profile + 1 of the renderer's LUT arrays.
+    int profile = -1;
+    // Spatially varying profiles: up to three more profiles (indices as `profile`) weighted per
+    // texel by the red, green and blue channels of profileWeightTexture (linear, TEXCOORD_0);
+    // `profile` gets 1 - (r + g + b), and weights summing above 1 are scaled to sum to 1. Each
+    // LUT lookup is the weighted sum of the profiles' lookups.
+    std::vector<int> blendProfiles;
+    SkinTextureRef profileWeightTexture;
     // How many profile millimetres one world millimetre is: curvature, penumbra width and
     // thickness are converted to profile units with it. 1 for a life-size head in metres.
     float scatterScale = 1.0f;

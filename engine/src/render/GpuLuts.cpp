@@ -1,55 +1,109 @@
 #include "render/GpuLuts.h"
 
+#include <preskin/Error.h>
 #include <preskin/LutSet.h>
 
 #include "vk/Check.h"
 
 #include <fmt/core.h>
 
+#include <algorithm>
+
 namespace preskin {
 
 namespace {
 
-vk::Image uploadTable(const vk::Device& device, const LutTable& table) {
-    if (!device.supportsFormat(VK_FORMAT_R16G16B16A16_SFLOAT, VK_FORMAT_FEATURE_2_SAMPLED_IMAGE_FILTER_LINEAR_BIT))
-        throw Error("Vulkan: the device cannot filter R16G16B16A16_SFLOAT textures linearly");
-    vk::Image image(device, {VK_FORMAT_R16G16B16A16_SFLOAT, uint32_t(table.width()), uint32_t(table.height()), 1,
-                             VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_DST_BIT, VK_IMAGE_ASPECT_COLOR_BIT});
+std::array<const LutTable*, 4> tablesOf(const LutSet& luts) {
+    return {&luts.diffuse(), &luts.penumbra(), &luts.shTransfer(), &luts.transmittance()};
+}
+
+std::array<glm::ivec2*, 4> extentsOf(LutExtents& e) { return {&e.diffuse, &e.penumbra, &e.shTransfer, &e.transmittance}; }
+
+// RGBA half texels of `table` in an extent.x x extent.y texture: the table at (0, 0), its last
+// column and row repeated into the padding.
+std::vector<uint16_t> paddedTexels(const LutTable& table, glm::ivec2 extent) {
     const std::vector<uint16_t> texels = table.rgba16f();
-    image.uploadAndGenerateMips(texels.data(), texels.size() * sizeof(uint16_t));
-    return image;
+    if (extent == glm::ivec2(table.width(), table.height())) return texels;
+    std::vector<uint16_t> out(size_t(extent.x) * size_t(extent.y) * 4);
+    for (int y = 0; y < extent.y; ++y)
+        for (int x = 0; x < extent.x; ++x) {
+            const size_t from = (size_t(std::min(y, table.height() - 1)) * size_t(table.width()) +
+                                 size_t(std::min(x, table.width() - 1))) * 4;
+            std::copy_n(texels.begin() + std::ptrdiff_t(from), 4, out.begin() + std::ptrdiff_t((size_t(y) * size_t(extent.x) + size_t(x)) * 4));
+        }
+    return out;
 }
 
 }  // namespace
 
-GpuLuts::GpuLuts(const vk::Device& device, const LutSet* luts) : device_(device) {
+GpuLuts::GpuLuts(const vk::Device& device, const std::vector<const LutSet*>& layers) : device_(device) {
     VkSamplerCreateInfo info{VK_STRUCTURE_TYPE_SAMPLER_CREATE_INFO};
     info.magFilter = VK_FILTER_LINEAR;
     info.minFilter = VK_FILTER_LINEAR;
     info.mipmapMode = VK_SAMPLER_MIPMAP_MODE_NEAREST;
     info.addressModeU = info.addressModeV = info.addressModeW = VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_EDGE;
     PRESKIN_VK(vkCreateSampler(device.device(), &info, nullptr, &sampler_));
-    if (luts) {
-        images_[0] = uploadTable(device, luts->diffuse());
-        images_[1] = uploadTable(device, luts->penumbra());
-        images_[2] = uploadTable(device, luts->shTransfer());
-        images_[3] = uploadTable(device, luts->transmittance());
-        mapping_ = lutMapping(*luts);
-        widths_.widthMm = glm::vec3(luts->profile().widthMm());
-        valid_ = true;
+    const auto layerCount = static_cast<uint32_t>(layers.size());
+    mappingBuffer_ =
+        vk::Buffer(device, sizeof(gpu::LutMapping) * std::max(layerCount, 1u), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, true);
+    mappings_.resize(std::max(layerCount, 1u));
+    if (layers.empty()) {
+        mappingBuffer_.upload(mappings_.data(), sizeof(gpu::LutMapping));
+        const uint8_t white[4] = {255, 255, 255, 255};
+        for (vk::Image& image : images_) {
+            image = vk::Image(device, {VK_FORMAT_R8G8B8A8_UNORM, 1, 1, 1,
+                                       VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_DST_BIT,
+                                       VK_IMAGE_ASPECT_COLOR_BIT, 1, VK_SAMPLE_COUNT_1_BIT, true});
+            image.uploadLayer(white, sizeof(white), 0, VK_IMAGE_LAYOUT_UNDEFINED);
+        }
         return;
     }
-    const uint8_t white[4] = {255, 255, 255, 255};
-    for (vk::Image& image : images_) {
-        image = vk::Image(device, {VK_FORMAT_R8G8B8A8_UNORM, 1, 1, 1,
-                                   VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_DST_BIT,
-                                   VK_IMAGE_ASPECT_COLOR_BIT});
-        image.uploadAndGenerateMips(white, sizeof(white));
+    if (layerCount > device.properties().limits.maxImageArrayLayers)
+        throw Error(fmt::format("Vulkan: {} diffusion profiles exceed the device's {} texture array layers", layerCount,
+                                device.properties().limits.maxImageArrayLayers));
+    if (!device.supportsFormat(VK_FORMAT_R16G16B16A16_SFLOAT, VK_FORMAT_FEATURE_2_SAMPLED_IMAGE_FILTER_LINEAR_BIT))
+        throw Error("Vulkan: the device cannot filter R16G16B16A16_SFLOAT textures linearly");
+    for (const LutSet* luts : layers) {
+        const auto tables = tablesOf(*luts);
+        const auto extents = extentsOf(extents_);
+        for (size_t t = 0; t < 4; ++t)
+            *extents[t] = glm::max(*extents[t], glm::ivec2(tables[t]->width(), tables[t]->height()));
     }
+    const auto extents = extentsOf(extents_);
+    for (size_t t = 0; t < 4; ++t) {
+        images_[t] = vk::Image(device, {VK_FORMAT_R16G16B16A16_SFLOAT, uint32_t(extents[t]->x), uint32_t(extents[t]->y), 1,
+                                        VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_DST_BIT,
+                                        VK_IMAGE_ASPECT_COLOR_BIT, layerCount, VK_SAMPLE_COUNT_1_BIT, true});
+    }
+    widths_.resize(layerCount);
+    for (uint32_t layer = 0; layer < layerCount; ++layer) uploadLayer(layer, *layers[layer], VK_IMAGE_LAYOUT_UNDEFINED);
 }
 
 GpuLuts::~GpuLuts() {
     if (sampler_) vkDestroySampler(device_.device(), sampler_, nullptr);
+}
+
+void GpuLuts::uploadLayer(uint32_t layer, const LutSet& luts, VkImageLayout oldLayout) {
+    const auto tables = tablesOf(luts);
+    const auto extents = extentsOf(extents_);
+    for (size_t t = 0; t < 4; ++t) {
+        const std::vector<uint16_t> texels = paddedTexels(*tables[t], *extents[t]);
+        images_[t].uploadLayer(texels.data(), texels.size() * sizeof(uint16_t), layer, oldLayout);
+    }
+    mappings_[layer] = lutMapping(luts, extents_);
+    mappingBuffer_.upload(&mappings_[layer], sizeof(gpu::LutMapping), sizeof(gpu::LutMapping) * layer);
+    widths_[layer].widthMm = glm::vec3(luts.profile().widthMm());
+}
+
+bool GpuLuts::replaceLayer(uint32_t layer, const LutSet& luts) {
+    if (layer >= layerCount()) return false;
+    const auto tables = tablesOf(luts);
+    const auto extents = extentsOf(extents_);
+    for (size_t t = 0; t < 4; ++t) {
+        if (tables[t]->width() > extents[t]->x || tables[t]->height() > extents[t]->y) return false;
+    }
+    uploadLayer(layer, luts, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL);
+    return true;
 }
 
 std::array<VkDescriptorImageInfo, 4> GpuLuts::descriptors() const {
@@ -57,5 +111,7 @@ std::array<VkDescriptorImageInfo, 4> GpuLuts::descriptors() const {
     for (size_t i = 0; i < 4; ++i) out[i] = {sampler_, images_[i].view(), VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL};
     return out;
 }
+
+VkDescriptorBufferInfo GpuLuts::mappingDescriptor() const { return {mappingBuffer_.handle(), 0, VK_WHOLE_SIZE}; }
 
 }  // namespace preskin

@@ -1,37 +1,53 @@
-// The skin LUTs on the GPU: four half-float textures sampled with LINEAR filtering and
-// CLAMP_TO_EDGE, plus the mapping parameters the shader needs. Without a LutSet, 1x1 stand-ins
-// keep the descriptors valid and skin materials render with the standard model.
+// The skin LUTs on the GPU: four half-float 2D array textures (diffuse, penumbra, SH transfer,
+// transmittance), one layer per diffusion profile (layer 0 the default set, <preskin/ProfileLibrary.h>),
+// sampled with LINEAR filtering and CLAMP_TO_EDGE, plus a storage buffer with each layer's
+// LutMapping. Array textures need no descriptor indexing, so this runs on lavapipe. Each texture
+// is as large as the largest layer's table; smaller tables are padded with their edge texels and
+// their mapping addresses only their own texels. Without LUT sets, 1x1 stand-ins keep the
+// descriptors valid and skin materials render with the standard model.
 #pragma once
+
+#include <preskin/LutSet.h>
 
 #include "render/GpuScene.h"
 #include "shared/gpu_types.h"
 #include "vk/Resources.h"
 
 #include <array>
+#include <vector>
 
 namespace preskin {
 
-class LutSet;
 
 class GpuLuts {
 public:
-    GpuLuts(const vk::Device& device, const LutSet* luts);
+    GpuLuts(const vk::Device& device, const std::vector<const LutSet*>& layers);
     ~GpuLuts();
     GpuLuts(const GpuLuts&) = delete;
     GpuLuts& operator=(const GpuLuts&) = delete;
 
-    bool valid() const { return valid_; }
-    ProfileWidths profileWidths() const { return widths_; }
-    const gpu::LutMapping& mapping() const { return mapping_; }
+    bool valid() const { return !widths_.empty(); }
+    uint32_t layerCount() const { return static_cast<uint32_t>(widths_.size()); }
+    // Per layer: the profile's scattering widths (normal-map LOD biases).
+    const std::vector<ProfileWidths>& profileWidths() const { return widths_; }
+    // Replaces one layer's tables and mapping when they fit the textures (returns false, and
+    // changes nothing, when a table is larger). The GPU must not be using the textures.
+    bool replaceLayer(uint32_t layer, const LutSet& luts);
     // diffuse, penumbra, SH transfer, transmittance
     std::array<VkDescriptorImageInfo, 4> descriptors() const;
+    VkDescriptorBufferInfo mappingDescriptor() const;
+    // The mapping of one layer's tables in the (possibly larger) array textures.
+    const gpu::LutMapping& mapping(uint32_t layer) const { return mappings_.at(layer); }
 
 private:
+    void uploadLayer(uint32_t layer, const LutSet& luts, VkImageLayout oldLayout);
+
     const vk::Device& device_;
-    bool valid_ = false;
-    ProfileWidths widths_;
-    gpu::LutMapping mapping_{};
+    std::vector<ProfileWidths> widths_;
+    LutExtents extents_;
     std::array<vk::Image, 4> images_;
+    std::vector<gpu::LutMapping> mappings_;  // per layer, as in mappingBuffer_
+    vk::Buffer mappingBuffer_;
     VkSampler sampler_ = VK_NULL_HANDLE;
 };
 

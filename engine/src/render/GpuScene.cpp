@@ -210,6 +210,8 @@ GpuScene::GpuScene(const vk::Device& device, const Scene& scene)
             {gpu::kBindingDetailNormalTexture, skin.detailNormalTexture.image, skin.detailNormalTexture.sampler, false,
              &flatNormal_},
             {gpu::kBindingCurvatureTexture, skin.curvatureTexture.image, skin.curvatureTexture.sampler, false, &white_},
+            {gpu::kBindingProfileWeightTexture, skin.profileWeightTexture.image, skin.profileWeightTexture.sampler, false,
+             &white_},
         };
         std::array<VkDescriptorImageInfo, gpu::kMaterialTextureCount> imageInfos{};
         std::array<VkWriteDescriptorSet, gpu::kMaterialTextureCount + 1> writes{};
@@ -236,7 +238,7 @@ GpuScene::GpuScene(const vk::Device& device, const Scene& scene)
         vkUpdateDescriptorSets(dev, static_cast<uint32_t>(writes.size()), writes.data(), 0, nullptr);
         materials.push_back(gm);
     }
-    updateMaterials(ProfileWidths{});
+    updateMaterials({});
 }
 
 GpuScene::~GpuScene() {
@@ -297,14 +299,22 @@ gpu::MaterialUniforms GpuScene::uniformsFor(const Material& mat, const GpuMateri
         u.textureFlags.x = s.detailNormalTexture.valid() ? 1.0f : 0.0f;
         u.textureFlags.y = s.detailUvScale;
         u.textureFlags.z = s.specularTexture.valid() ? 1.0f : 0.0f;
+        // Layer p + 1 holds profile p (layer 0: the default set); unused entries repeat the first.
+        const auto blended = std::min(s.blendProfiles.size(), size_t(kMaxBlendedProfiles - 1));
+        const float base = float(s.profile + 1);
+        u.skinProfileLayers = glm::vec4(base);
+        for (size_t i = 0; i < blended; ++i) u.skinProfileLayers[int(i) + 1] = float(s.blendProfiles[i] + 1);
+        u.skinProfileBlend = glm::vec4(s.profileWeightTexture.valid() ? float(blended) : 0.0f, 0.0f, 0.0f, 0.0f);
     }
     return u;
 }
 
-void GpuScene::updateMaterials(const ProfileWidths& widths) {
+void GpuScene::updateMaterials(const std::vector<ProfileWidths>& layerWidths) {
     const Material fallback;
     for (size_t i = 0; i < materials.size(); ++i) {
         const Material& mat = i < sceneMaterials_.size() ? sceneMaterials_[i] : fallback;
+        const auto layer = static_cast<size_t>(mat.skin ? mat.skin->profile + 1 : 0);
+        const ProfileWidths widths = layer < layerWidths.size() ? layerWidths[layer] : ProfileWidths{};
         const gpu::MaterialUniforms u = uniformsFor(mat, materials[i], widths);
         materialUniforms_.upload(&u, sizeof(u), uniformStride_ * i);
     }

@@ -33,7 +33,7 @@ struct GpuMaterial {
     float texelsPerMm = 0.0f;  // normal-map texels per world millimetre on the meshes using it
 };
 
-// Scattering widths of the active diffusion profile, for the normal-map LOD biases.
+// Scattering widths of a diffusion profile, for the normal-map LOD biases.
 struct ProfileWidths {
     glm::vec3 widthMm{0.0f};
 };
@@ -49,8 +49,11 @@ public:
     GpuScene& operator=(const GpuScene&) = delete;
 
     VkDescriptorSetLayout materialLayout() const { return materialLayout_; }
-    // Fills every material's uniforms; the skin LOD biases depend on the profile's widths.
-    void updateMaterials(const ProfileWidths& widths);
+    // Fills every material's uniforms; the skin LOD biases depend on the widths of the
+    // material's profile (per LUT layer: layer p + 1 holds SkinMaterial::profile p).
+    void updateMaterials(const std::vector<ProfileWidths>& layerWidths);
+    // The scene's materials as uploaded.
+    const std::vector<Material>& sceneMaterials() const { return sceneMaterials_; }
 
     vk::Buffer vertices;
     vk::Buffer indices;

@@ -6,6 +6,8 @@
 #include "render/RendererImpl.h"
 
 #include <preskin/ClusterGrid.h>
+#include <preskin/Error.h>
+#include <preskin/ProfileLibrary.h>
 
 #include "lights/ClusterBuilder.h"
 #include "render/GpuDeformer.h"
@@ -80,9 +82,10 @@ uint32_t SkinFeatures::mask() const {
            (transmission ? gpu::kSkinTransmission : 0u) | (dualSpecular ? gpu::kSkinDualSpecular : 0u);
 }
 
-Renderer::Impl::Impl(Context& ctx, const Scene& s, const Environment& env, const LutSet* lutSet, const RenderSettings& rs)
+Renderer::Impl::Impl(Context& ctx, const Scene& s, const Environment& env, const std::vector<const LutSet*>& lutLayers,
+                     const RenderSettings& rs)
     : context(ctx), dev(ContextAccess::core(ctx)), settings(rs), lights(s.lights), bounds(s.worldBounds()),
-      radianceSh(env.radianceSh()) {
+      radianceSh(env.radianceSh()), sceneName(s.sourcePath.empty() ? std::string("scene") : s.sourcePath.string()) {
     checkRenderSettings(rs);
     checkLights(s.lights);
     scene = std::make_unique<GpuScene>(dev, s);
@@ -90,8 +93,7 @@ Renderer::Impl::Impl(Context& ctx, const Scene& s, const Environment& env, const
     receiverPoseBounds = std::make_unique<PoseBounds>(skinReceiverBounds(s));
     deformer = std::make_unique<GpuDeformer>(dev, s, scene->vertices, scene->meshFirstVertex);
     setPose(restPose(s));
-    luts = std::make_unique<GpuLuts>(dev, lutSet);
-    scene->updateMaterials(luts->profileWidths());
+    setLutLayers(lutLayers);
     clusters = std::make_unique<ClusterBuilder>(dev);
     createLayouts();
     dev.submitAndWait([&](VkCommandBuffer cmd) { createShadowMap(cmd, 0); });
@@ -127,6 +129,7 @@ void Renderer::Impl::createLayouts() {
         {gpu::kBindingTransmittanceLut, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, fs},
         {gpu::kBindingClusterRanges, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, fs},
         {gpu::kBindingClusterIndices, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, fs},
+        {gpu::kBindingLutMappings, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, fs},
     };
     frameLayout = vk::createSetLayout(dev, bindings);
     const VkDescriptorSetLayout forwardSets[] = {frameLayout, scene->materialLayout()};
@@ -134,7 +137,7 @@ void Renderer::Impl::createLayouts() {
     shadowLayout = vk::createPipelineLayout(dev, std::span(forwardSets, 1), sizeof(gpu::DrawPush), all);
 
     const VkDescriptorPoolSize sizes[] = {{VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, kSlotCount},
-                                          {VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 4 * kSlotCount},
+                                          {VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 5 * kSlotCount},
                                           {VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 5 * kSlotCount}};
     VkDescriptorPoolCreateInfo poolInfo{VK_STRUCTURE_TYPE_DESCRIPTOR_POOL_CREATE_INFO};
     poolInfo.maxSets = kSlotCount;
@@ -282,7 +285,6 @@ bool Renderer::Impl::prepareFrame(Slot& slot, uint32_t slotIndex, const View& vi
                                float(mapSize));
     for (int i = 0; i < 9; ++i) u.shRadiance[i] = glm::vec4(radianceSh.c[size_t(i)], 0.0f);
     u.lightCounts = glm::uvec4(slot.lightCount, directional, 0u, 0u);
-    u.lut = luts->mapping();
     if (settings.lightLoop == LightLoop::Clustered)
         clusters->prepare(slotIndex, settings.clusters, clusterCamera(view, extent.width, extent.height), bounds,
                           gpuLights, directional, slot.lights, u);
@@ -298,6 +300,7 @@ void Renderer::Impl::updateFrameSet(Slot& slot, uint32_t slotIndex) {
     const VkDescriptorBufferInfo indicesInfo{clusters->indices(slotIndex).handle(), 0, VK_WHOLE_SIZE};
     const VkDescriptorImageInfo shadowInfo{shadowSampler, shadowMap.view(), VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL};
     const std::array<VkDescriptorImageInfo, 4> lutInfos = luts->descriptors();
+    const VkDescriptorBufferInfo lutMappingInfo = luts->mappingDescriptor();
     std::vector<VkWriteDescriptorSet> writes;
     auto buffer = [&](uint32_t binding, VkDescriptorType type, const VkDescriptorBufferInfo* info) {
         VkWriteDescriptorSet w{VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET};
@@ -322,6 +325,7 @@ void Renderer::Impl::updateFrameSet(Slot& slot, uint32_t slotIndex) {
     buffer(gpu::kBindingInstances, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, &instanceInfo);
     buffer(gpu::kBindingClusterRanges, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, &rangesInfo);
     buffer(gpu::kBindingClusterIndices, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, &indicesInfo);
+    buffer(gpu::kBindingLutMappings, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, &lutMappingInfo);
     image(gpu::kBindingShadowMap, &shadowInfo);
     image(gpu::kBindingDiffuseLut, &lutInfos[0]);
     image(gpu::kBindingPenumbraLut, &lutInfos[1]);
@@ -435,9 +439,51 @@ FrameStats Renderer::Impl::stats(uint32_t slotIndex) const {
     return s;
 }
 
+void Renderer::Impl::checkProfileLayers(size_t layerCount) const {
+    if (layerCount == 0) return;
+    const std::vector<Material>& materials = scene->sceneMaterials();
+    for (size_t i = 0; i < materials.size(); ++i) {
+        if (!materials[i].skin) continue;
+        std::vector<int> profiles{materials[i].skin->profile};
+        for (int p : materials[i].skin->blendProfiles) profiles.push_back(p);
+        for (int p : profiles) {
+            if (p >= -1 && size_t(p + 1) < layerCount) continue;
+            throw Error(fmt::format("{}: materials[{}] ('{}'): profile {} has no LUT layer: the renderer holds {} "
+                                    "(the default set and {} profiles)",
+                                    sceneName, i, materials[i].name, p, layerCount, layerCount - 1));
+        }
+    }
+}
+
+void Renderer::Impl::setLutLayers(const std::vector<const LutSet*>& layers) {
+    checkProfileLayers(layers.size());
+    auto replacement = std::make_unique<GpuLuts>(dev, layers);
+    vkDeviceWaitIdle(dev.device());
+    luts = std::move(replacement);
+    scene->updateMaterials(luts->profileWidths());
+}
+
+namespace {
+
+std::vector<const LutSet*> layersOf(const ProfileLibrary& profiles) {
+    std::vector<const LutSet*> layers;
+    for (size_t i = 0; i < profiles.layerCount(); ++i) layers.push_back(&profiles.layer(i));
+    return layers;
+}
+
+std::vector<const LutSet*> layersOf(const LutSet* luts) {
+    return luts ? std::vector<const LutSet*>{luts} : std::vector<const LutSet*>{};
+}
+
+}  // namespace
+
 Renderer::Renderer(Context& context, const Scene& scene, const Environment& environment, const LutSet* luts,
                    const RenderSettings& settings)
-    : impl_(std::make_unique<Impl>(context, scene, environment, luts, settings)) {}
+    : impl_(std::make_unique<Impl>(context, scene, environment, layersOf(luts), settings)) {}
+
+Renderer::Renderer(Context& context, const Scene& scene, const Environment& environment, const ProfileLibrary& profiles,
+                   const RenderSettings& settings)
+    : impl_(std::make_unique<Impl>(context, scene, environment, layersOf(profiles), settings)) {}
 
 Renderer::~Renderer() = default;
 
@@ -460,9 +506,17 @@ void Renderer::setLights(const std::vector<Light>& lights) {
 const std::vector<Light>& Renderer::lights() const { return impl_->lights; }
 void Renderer::setEnvironment(const Environment& environment) { impl_->radianceSh = environment.radianceSh(); }
 
-void Renderer::setLuts(const LutSet* luts) {
+void Renderer::setLuts(const LutSet* luts) { impl_->setLutLayers(layersOf(luts)); }
+
+void Renderer::setProfiles(const ProfileLibrary& profiles) { impl_->setLutLayers(layersOf(profiles)); }
+
+void Renderer::setProfileLayer(size_t layer, const LutSet& luts) {
+    if (layer >= impl_->luts->layerCount())
+        throw Error(fmt::format("Renderer::setProfileLayer: layer {} is out of range (the renderer holds {})", layer,
+                                impl_->luts->layerCount()));
     vkDeviceWaitIdle(impl_->dev.device());
-    impl_->luts = std::make_unique<GpuLuts>(impl_->dev, luts);
+    if (!impl_->luts->replaceLayer(static_cast<uint32_t>(layer), luts))
+        throw Error("Renderer::setProfileLayer: the LUT set is larger than the renderer's LUT arrays; use setProfiles");
     impl_->scene->updateMaterials(impl_->luts->profileWidths());
 }
 

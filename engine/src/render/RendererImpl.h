@@ -62,6 +62,7 @@ struct Renderer::Impl {
     Bounds bounds;     // of the scene in the current pose
     Bounds receivers;  // of the skin in the current pose: what the shadow map is fitted to (render/ShadowFit.h)
     ShRgb radianceSh;
+    std::string sceneName;  // for messages
     std::unique_ptr<GpuScene> scene;
     ScenePose pose;
     uint64_t poseVersion = 0;
@@ -93,11 +94,18 @@ struct Renderer::Impl {
     vk::Image colorTarget;
     vk::Buffer readback;
 
-    Impl(Context& ctx, const Scene& s, const Environment& env, const LutSet* lutSet, const RenderSettings& rs);
+    // lutLayers: the LUT array layers (<preskin/ProfileLibrary.h>); empty: no LUTs.
+    Impl(Context& ctx, const Scene& s, const Environment& env, const std::vector<const LutSet*>& lutLayers,
+         const RenderSettings& rs);
 
     ~Impl();
 
     void createLayouts();
+
+    // Every skin material's profiles must have a layer (when there are LUTs at all).
+    void checkProfileLayers(size_t layerCount) const;
+    // Replaces the LUT arrays (after checking the materials against them).
+    void setLutLayers(const std::vector<const LutSet*>& layers);
 
     // Replaces an attachment without waiting: the old image lives on until every other slot
     // whose last frame was recorded with it has been recorded again (the host's slot contract).

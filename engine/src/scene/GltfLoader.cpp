@@ -664,6 +664,7 @@ Scene loadSceneBytes(std::vector<uint8_t> bytes, const fs::path& path, const Sce
     scene.environmentPath = prepass.environmentPath;
     scene.environmentIntensity = prepass.environmentIntensity;
     scene.environmentRotation = prepass.environmentRotation;
+    scene.profiles = prepass.profiles;
 
     LoadContext ctx;
     ctx.file = file;

@@ -121,6 +121,40 @@ void skinNumber(const LoadContext& ctx, const tinygltf::Value& skin, const char*
     out = static_cast<float>(*v);
 }
 
+// An index into the scene's profiles (the root extension's "profiles").
+int profileIndex(const LoadContext& ctx, const tinygltf::Value& value, const std::string& where) {
+    if (!value.IsInt() && !value.IsNumber()) ctx.fail(where, "not an integer");
+    const double index = value.IsInt() ? value.GetNumberAsInt() : value.GetNumberAsDouble();
+    const size_t count = ctx.scene->profiles.size();
+    if (index != std::floor(index) || index < 0.0 || index >= static_cast<double>(count)) {
+        ctx.fail(where, number(index) + " is out of range: the file has " + std::to_string(count) +
+                            " profiles (extensions.PRESKIN_materials_skin.profiles)");
+    }
+    return static_cast<int>(index);
+}
+
+// "profile": index; "profileBlend": {"profiles": [up to 3 indices], "weightTexture": textureInfo}.
+void parseProfileChoice(const LoadContext& ctx, const tinygltf::Value& skin, const std::string& where, SkinMaterial& s) {
+    if (skin.Has("profile")) s.profile = profileIndex(ctx, skin.Get("profile"), where + ".profile");
+    if (!skin.Has("profileBlend")) return;
+    const tinygltf::Value& blend = skin.Get("profileBlend");
+    const std::string at = where + ".profileBlend";
+    if (!blend.IsObject()) ctx.fail(at, "not an object");
+    for (const std::string& key : blend.Keys()) {
+        if (key != "profiles" && key != "weightTexture") ctx.fail(at + "." + key, "unknown field");
+    }
+    if (!blend.Has("profiles") || !blend.Get("profiles").IsArray()) ctx.fail(at + ".profiles", "missing or not an array");
+    const tinygltf::Value& list = blend.Get("profiles");
+    if (list.ArrayLen() < 1 || list.ArrayLen() > size_t(kMaxBlendedProfiles - 1)) {
+        ctx.fail(at + ".profiles", std::to_string(list.ArrayLen()) + " entries (expected 1 to " +
+                                       std::to_string(kMaxBlendedProfiles - 1) + ", one per weight-texture channel)");
+    }
+    for (size_t i = 0; i < list.ArrayLen(); ++i)
+        s.blendProfiles.push_back(profileIndex(ctx, list.Get(static_cast<int>(i)), indexed(at + ".profiles", i)));
+    s.profileWeightTexture = skinTextureRef(ctx, blend, "weightTexture", at, nullptr);
+    if (!s.profileWeightTexture.valid()) ctx.fail(at + ".weightTexture", "missing or without a usable image");
+}
+
 SkinMaterial parseSkinExtension(const LoadContext& ctx, const tinygltf::Value& skin, const std::string& where,
                                 SkinMaterial s) {
     if (!skin.IsObject()) ctx.fail(where, "not an object");
@@ -128,7 +162,8 @@ SkinMaterial parseSkinExtension(const LoadContext& ctx, const tinygltf::Value& s
         "scatterScale",     "curvatureSource",     "curvatureTexture",  "curvatureTextureScalePerM", "deformedCurvature",
         "normalLodBias",    "detailNormalTexture", "detailUvScale",     "transmission",
         "transmissionColor", "thicknessScale",     "specularIntensity", "specularTexture",
-        "lobeRoughness0",   "lobeRoughness1",      "lobeMix"};
+        "lobeRoughness0",   "lobeRoughness1",      "lobeMix",           "profile",
+        "profileBlend"};
     for (const std::string& key : skin.Keys()) {
         if (!known.count(key) && key != "extensions" && key != "extras") ctx.warn(where + "." + key, "unknown field; ignored");
     }
@@ -164,6 +199,7 @@ SkinMaterial parseSkinExtension(const LoadContext& ctx, const tinygltf::Value& s
     skinNumber(ctx, skin, "lobeRoughness0", where, s.lobeRoughness0, 0.0, inf, true);
     skinNumber(ctx, skin, "lobeRoughness1", where, s.lobeRoughness1, 0.0, inf, true);
     skinNumber(ctx, skin, "lobeMix", where, s.lobeMix, 0.0, 1.0);
+    parseProfileChoice(ctx, skin, where, s);
     return s;
 }
 

@@ -3,6 +3,9 @@
 #include "io/MessageText.h"
 #include "io/NumberRule.h"
 #include "scene/TinyGltf.h"
+#include "skin/ProfileJson.h"
+
+#include <preskin/Error.h>
 
 #include <preskin/Limits.h>
 
@@ -571,6 +574,71 @@ void checkEnvironment(const Checker& c, const json& doc, PrepassResult& result) 
     if (auto rotation = c.numberField(*env, "rotation", where)) result.environmentRotation = static_cast<float>(*rotation);
 }
 
+// The root PRESKIN_materials_skin extension: {"profiles": [profile, ...]}. A profile is
+// {"type": "deonLuebke"}, a sum of Gaussians or normalized diffusion (DiffusionProfile's JSON),
+// or {"type": "lutFolder", "uri": folder of a baked LUT set}; each may have a "name".
+void checkSkinProfiles(const Checker& c, const json& doc, PrepassResult& result) {
+    const json* extensions = Checker::member(doc, "extensions");
+    const json* skin = extensions ? Checker::member(*extensions, "PRESKIN_materials_skin") : nullptr;
+    if (!skin) return;
+    const std::string where = "extensions.PRESKIN_materials_skin";
+    for (auto it = skin->begin(); it != skin->end(); ++it) {
+        if (it.key() != "profiles" && it.key() != "extras" && it.key() != "extensions")
+            result.warnings.push_back(c.file + ": " + where + "." + io::messageText(it.key()) + ": unknown field; ignored");
+    }
+    const json* profiles = Checker::member(*skin, "profiles");
+    if (!profiles) return;
+    if (!profiles->is_array()) c.error(where + ".profiles", "not an array");
+    if (profiles->size() > limits::kMaxSkinProfiles) {
+        c.error(where + ".profiles", std::to_string(profiles->size()) + " profiles exceed the limit of " +
+                                         std::to_string(limits::kMaxSkinProfiles));
+    }
+    for (size_t i = 0; i < profiles->size(); ++i) {
+        const std::string at = where + Checker::indexed(".profiles", i);
+        const json& entry = (*profiles)[i];
+        if (!entry.is_object()) c.error(at, "not an object");
+        SkinProfile profile;
+        const json* name = Checker::member(entry, "name");
+        if (name && !name->is_string()) c.error(at + ".name", "not a string");
+        profile.name = name ? name->get<std::string>() : Checker::indexed("profiles", i);
+        const json* type = Checker::member(entry, "type");
+        if (type && *type == "deonLuebke") {
+            for (auto f = entry.begin(); f != entry.end(); ++f) {
+                if (f.key() != "type" && f.key() != "name") c.error(at + "." + io::messageText(f.key()), "unknown field");
+            }
+            profile.profile = DiffusionProfile::deonLuebke();
+        } else if (type && *type == "lutFolder") {
+            for (auto f = entry.begin(); f != entry.end(); ++f) {
+                if (f.key() != "type" && f.key() != "name" && f.key() != "uri")
+                    c.error(at + "." + io::messageText(f.key()), "unknown field");
+            }
+            const json* uri = Checker::member(entry, "uri");
+            if (!uri || !uri->is_string()) c.error(at + ".uri", "missing or not a string");
+            const std::string text = uri->get<std::string>();
+            profile.lutFolder = resolveUri(text, c.folder, c.file, at + ".uri", c.allowOutsideLinks);
+            std::error_code ec;
+            if (!fs::is_directory(profile.lutFolder, ec)) c.error(at + ".uri", "LUT folder '" + io::messageText(text) + "' not found next to the scene");
+        } else {
+            // Reports an unknown type as "must be sumOfGaussians or normalizedDiffusion"; the two
+            // kinds above are named in docs/gltf-extensions.md.
+            try {
+                profile.profile = skin::parseProfileJson(entry, c.file, at + ".");
+            } catch (const Error& e) {
+                if (type && type->is_string()) {
+                    const std::string kind = type->get<std::string>();
+                    if (kind != "sumOfGaussians" && kind != "normalizedDiffusion") {
+                        c.error(at + ".type", "'" + io::messageText(kind) +
+                                                   "' is not a profile type (deonLuebke, normalizedDiffusion, "
+                                                   "sumOfGaussians or lutFolder)");
+                    }
+                }
+                throw;
+            }
+        }
+        result.profiles.push_back(std::move(profile));
+    }
+}
+
 }  // namespace
 
 PrepassResult checkDocument(const json& doc, const std::string& file, const fs::path& folder, const GlbChunks* glb,
@@ -638,6 +706,7 @@ PrepassResult checkDocument(const json& doc, const std::string& file, const fs::
     checkNodesAndScenes(c, doc);
     checkLights(c, doc);
     checkEnvironment(c, doc, result);
+    checkSkinProfiles(c, doc, result);
     return result;
 }
 

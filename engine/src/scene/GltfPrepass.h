@@ -12,12 +12,15 @@
 //   every index into another array (glTFid: an integer >= 0 below that array's length) in
 //   scenes, nodes, meshes (at least one primitive each), materials' textureInfo, textures,
 //   skins and animations; KHR_lights_punctual lights (type, colour in [0, 1], intensity >= 0,
-//   range > 0, spot cone angles); and the root PRESKIN_environment extension.
+//   range > 0, spot cone angles); the root PRESKIN_environment extension; and the root
+//   PRESKIN_materials_skin extension's diffusion profiles (every field, LUT folders exist).
 // What needs the model (accessor ranges against views, index values, finiteness of data, the
 // node graph) is checked while the tinygltf model is converted, see GltfLoader.cpp.
 #pragma once
 
 #include "scene/GltfFiles.h"
+
+#include <preskin/SkinProfile.h>
 
 #include <nlohmann/json.hpp>
 
@@ -35,6 +38,7 @@ struct PrepassResult {
     std::optional<std::filesystem::path> environmentPath;
     float environmentIntensity = 1.0f;
     float environmentRotation = 0.0f;
+    std::vector<SkinProfile> profiles;  // the root PRESKIN_materials_skin extension's
     std::vector<std::string> warnings;
 };
 

@@ -44,7 +44,24 @@ Bounds Scene::worldBounds() const {
     return bounds;
 }
 
+int Scene::addDefaultMaterial() {
+    int index = -1;
+    for (Mesh& mesh : meshes)
+        for (Primitive& primitive : mesh.primitives) {
+            if (primitive.material >= 0 && size_t(primitive.material) < materials.size()) continue;
+            if (index < 0) {
+                index = static_cast<int>(materials.size());
+                Material material;  // Material's defaults are glTF's default material
+                material.name = kDefaultMaterialName;
+                materials.push_back(std::move(material));
+            }
+            primitive.material = index;
+        }
+    return index;
+}
+
 void Scene::makeSkin(const std::string& materialName, const SkinMaterial& defaults) {
+    if (materialName == "all") addDefaultMaterial();
     bool found = false;
     for (Material& material : materials) {
         if (materialName != "all" && material.name != materialName) continue;
@@ -56,6 +73,17 @@ void Scene::makeSkin(const std::string& materialName, const SkinMaterial& defaul
         for (const Material& material : materials) names += (names.empty() ? "" : ", ") + material.name;
         throw Error(sourcePath.string() + ": no material named '" + materialName + "' (materials: " +
                     (names.empty() ? "none" : names) + ")");
+    }
+}
+
+void Scene::setSkinProfile(const std::string& materialName, int profile) {
+    if (profile < -1 || profile >= static_cast<int>(profiles.size())) {
+        throw Error(sourcePath.string() + ": profile: " + std::to_string(profile) + " is out of range: the scene has " +
+                    std::to_string(profiles.size()) + " profiles (-1: the default)");
+    }
+    makeSkin(materialName);
+    for (Material& material : materials) {
+        if (materialName == "all" || material.name == materialName) material.skin->profile = profile;
     }
 }
 

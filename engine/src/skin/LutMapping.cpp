@@ -15,42 +15,51 @@ namespace {
 
 float f(double value) { return static_cast<float>(value); }
 
-// v = (t + 0.5) / N with t = (N-1) * g(value): returns ((N-1)/N, 0.5/N).
-glm::vec2 texelScaleOffset(int size) {
-    return {f(static_cast<double>(size - 1) / size), f(0.5 / size)};
+// v = (t + 0.5) / E with t = (N-1) * g(value), N the table's size and E >= N the texture's
+// (a table padded with its edge texels up to E): returns ((N-1)/E, 0.5/E).
+glm::vec2 texelScaleOffset(int size, int extent) {
+    return {f(static_cast<double>(size - 1) / extent), f(0.5 / extent)};
 }
+
+int extentOr(int extent, int size) { return extent > 0 ? extent : size; }
 
 }  // namespace
 
-gpu::LutMapping lutMapping(const LutSet& luts) {
+gpu::LutMapping lutMapping(const LutSet& luts) { return lutMapping(luts, LutExtents{}); }
+
+gpu::LutMapping lutMapping(const LutSet& luts, const LutExtents& extents) {
     gpu::LutMapping m{};
 
     const LutAxis& nol = luts.diffuse().x;  // SplitLinear on [min < 0, max > 0]
     const int n = nol.size;
     const int zero = n / 2;
-    m.diffuseNoL = glm::vec4(f((zero + 0.5) / n), f(zero / (-nol.min * n)), f((n - 1 - zero) / (nol.max * n)),
-                             f(luts.localPatchMm()));
+    const double nolExtent = extentOr(extents.diffuse.x, n);
+    m.diffuseNoL = glm::vec4(f((zero + 0.5) / nolExtent), f(zero / (-nol.min * nolExtent)),
+                             f((n - 1 - zero) / (nol.max * nolExtent)), f(luts.localPatchMm()));
 
     const LutAxis& curvature = luts.diffuse().y;  // SplitSqrt on [-max, max]
     const int cn = curvature.size;
     const int czero = cn / 2;
-    m.diffuseCurvature = glm::vec4(f(1.0 / curvature.max), f((czero + 0.5) / cn), f(double(czero) / cn),
-                                   f(double(cn - 1 - czero) / cn));
+    const double curvatureExtent = extentOr(extents.diffuse.y, cn);
+    m.diffuseCurvature = glm::vec4(f(1.0 / curvature.max), f((czero + 0.5) / curvatureExtent),
+                                   f(double(czero) / curvatureExtent), f(double(cn - 1 - czero) / curvatureExtent));
 
-    const glm::vec2 shadowTexel = texelScaleOffset(luts.penumbra().x.size);  // Linear on [0, 1]
+    const LutAxis& shadow = luts.penumbra().x;  // Linear on [0, 1]
+    const glm::vec2 shadowTexel = texelScaleOffset(shadow.size, extentOr(extents.penumbra.x, shadow.size));
     m.penumbraShadow = glm::vec4(shadowTexel.x, shadowTexel.y, 0.0f, 0.0f);
-    const glm::vec2 widthTexel = texelScaleOffset(luts.penumbra().y.size);  // Rational
+    const LutAxis& width = luts.penumbra().y;  // Rational
+    const glm::vec2 widthTexel = texelScaleOffset(width.size, extentOr(extents.penumbra.y, width.size));
     m.penumbraWidth = glm::vec4(f(1.0 / luts.penumbraReferenceWidthMm()), widthTexel.x, widthTexel.y, 0.0f);
 
     const LutAxis& shCurvature = luts.shTransfer().x;
-    const glm::vec2 shTexel = texelScaleOffset(shCurvature.size);
+    const glm::vec2 shTexel = texelScaleOffset(shCurvature.size, extentOr(extents.shTransfer.x, shCurvature.size));
     m.shCurvature = glm::vec4(f(1.0 / shCurvature.max), shTexel.x, shTexel.y, 0.0f);
-    const auto bands = static_cast<float>(luts.shTransfer().y.size);
+    const auto bands = static_cast<float>(extentOr(extents.shTransfer.y, luts.shTransfer().y.size));
     m.shBandV = glm::vec4(0.5f / bands, 1.5f / bands, 2.5f / bands, 0.0f);
     m.shLambert = glm::vec4(gpu::kShLambert0, gpu::kShLambert1, gpu::kShLambert2, 0.0f);
 
     const LutAxis& thickness = luts.transmittance().x;  // Log1p on [0, max]
-    const glm::vec2 thicknessTexel = texelScaleOffset(thickness.size);
+    const glm::vec2 thicknessTexel = texelScaleOffset(thickness.size, extentOr(extents.transmittance.x, thickness.size));
     m.transmittance =
         glm::vec4(f(1.0 / thickness.scale), f(1.0 / std::log1p(thickness.max / thickness.scale)), thicknessTexel.x, thicknessTexel.y);
     return m;

@@ -46,6 +46,7 @@ struct ImageDesc {
     VkImageAspectFlags aspect = VK_IMAGE_ASPECT_COLOR_BIT;
     uint32_t layers = 1;  // > 1: a 2D array image with a 2D_ARRAY view of every layer
     VkSampleCountFlagBits samples = VK_SAMPLE_COUNT_1_BIT;
+    bool arrayView = false;  // a 2D_ARRAY view even for one layer (sampler2DArray)
 };
 
 class Image {
@@ -67,6 +68,9 @@ public:
     // Uploads mip 0 (tightly packed rows) and, when the image has more levels, fills the chain
     // with linear blits (sRGB formats are filtered in linear space). Ends SHADER_READ_ONLY.
     void uploadAndGenerateMips(const void* pixels, size_t bytes);
+    // Replaces mip 0 of one array layer (images with one mip level) and leaves it
+    // SHADER_READ_ONLY_OPTIMAL; `oldLayout` is the layer's layout now (UNDEFINED when new).
+    void uploadLayer(const void* pixels, size_t bytes, uint32_t layer, VkImageLayout oldLayout);
 
 private:
     void release();
