@@ -120,8 +120,10 @@ PreskinProfileMix skinProfileMix() {
         if (sum > 1.0) w /= sum;
         p.weight = vec4(max(1.0 - (w.r + w.g + w.b), 0.0), w);
     }
+    p.count = 1 + clamp(blended, 0, 3);
     p.mapping[0] = lutMappingOf(uint(p.layer.x));
-    for (int i = 1; i < 4; ++i) p.mapping[i] = i <= blended ? lutMappingOf(uint(p.layer[i])) : p.mapping[0];
+    for (int i = 1; i < 4; ++i) p.mapping[i] = p.mapping[0];
+    for (int i = 1; i < p.count; ++i) p.mapping[i] = lutMappingOf(uint(p.layer[i]));
     return p;
 }
 

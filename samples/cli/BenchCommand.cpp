@@ -503,11 +503,7 @@ void run(const BenchOptions& o) {
     const Scene scene = loadScene(scenePath, common);
     for (const std::string& warning : scene.warnings) fmt::print(stderr, "preskin: warning: {}\n", warning);
     Scene standardScene = scene;
-    bool hasSkin = false;
-    for (Material& m : standardScene.materials) {
-        hasSkin = hasSkin || m.skin.has_value();
-        m.skin.reset();
-    }
+    const bool hasSkin = removeSkin(standardScene);
     const Environment environment = loadEnvironment(scene, common);
     auto context = Context::create(contextDesc(common));
     const LutSet luts = loadLuts(common);

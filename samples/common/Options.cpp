@@ -30,7 +30,9 @@ void addSceneOptions(CLI::App& cmd, CommonOptions& o) {
     cmd.add_option("--env-intensity", o.envIntensity, "Environment radiance scale")->check(numberIn(0.0, 1e6));
     cmd.add_option("--env-rotation", o.envRotationDeg, "Turn the environment about +Y, degrees")
         ->check(numberIn(-3600.0, 3600.0));
-    cmd.add_option("--skin", o.skin, "Shade this material (or 'all') as skin with default parameters");
+    cmd.add_option("--skin", o.skin,
+                   "Shade this material (or 'all') as skin with default parameters; 'none': no material is skin "
+                   "(the standard glTF material everywhere)");
     cmd.add_option("--lights", o.lights, "Scatter this many coloured point and spot lights (clustered)")
         ->check(wholeNumberIn(0, 1 << 20));
     cmd.add_option("--seed", o.seed, "Seed for --lights")->check(wholeNumberIn(0, UINT32_MAX))->capture_default_str();
@@ -238,8 +240,20 @@ RenderSettings renderSettings(const CommonOptions& o) {
     return s;
 }
 
+bool removeSkin(Scene& scene) {
+    bool hadSkin = false;
+    for (Material& material : scene.materials) {
+        hadSkin = hadSkin || material.skin.has_value();
+        material.skin.reset();
+    }
+    return hadSkin;
+}
+
 void applySkinOption(Scene& scene, const CommonOptions& o) {
-    if (!o.skin.empty()) scene.makeSkin(o.skin);
+    if (o.skin == "none")
+        removeSkin(scene);
+    else if (!o.skin.empty())
+        scene.makeSkin(o.skin);
 }
 
 Environment loadEnvironment(const Scene& scene, const CommonOptions& o) {

@@ -26,7 +26,7 @@ struct CommonOptions {
     std::optional<float> envRotationDeg;  // unset: the scene's (or 0)
     std::string device;
     bool validation = false;
-    std::string skin;  // material name or "all"
+    std::string skin;  // material name, "all" or "none"
     bool standard = false;
     bool noLutDiffuse = false;
     bool noNormalPrefilter = false;
@@ -103,7 +103,10 @@ LutSet loadLuts(const CommonOptions& o);
 // `defaultLuts`: layer 0, or loadLuts(o) when null.
 ProfileLibrary loadProfiles(const Scene& scene, const CommonOptions& o, std::shared_ptr<const LutSet> defaultLuts = {});
 RenderSettings renderSettings(const CommonOptions& o);
+// --skin: makes the named material (or every one) skin, or with "none" removes skin from every
+// material (removeSkin: returns whether any was skin).
 void applySkinOption(Scene& scene, const CommonOptions& o);
+bool removeSkin(Scene& scene);
 // --env, else the scene's PRESKIN_environment, else a dim uniform grey.
 Environment loadEnvironment(const Scene& scene, const CommonOptions& o);
 // The scene's lights plus --lights N scattered ones; a scene without any light gets a key light.

@@ -7,6 +7,9 @@
 // All inputs are in profile units: curvature in 1/mm, widths and thickness in mm (convert world
 // units with the material's scatter scale first). Results carry the profile's shape only;
 // multiply by the material's albedo.
+// The diffuse table is read per light and per colour channel, so it is stored as its bilinear
+// footprints (preskin::lutFootprints: texel (c W + x, y) holds channel c of the 2x2 texels from
+// (x, y)) and filtered here: one unfiltered fetch of one texel per channel instead of four.
 // Several profiles (preskin::ProfileLibrary): the tables are layers of 2D array textures, each
 // layer with its own LutMapping; a PreskinProfileMix names up to four layers and their weights
 // (a material's profile, or profiles blended per texel), and each lookup is the weighted sum of
@@ -20,9 +23,28 @@
 
 #include "shared/lut_mapping.h"
 
-// Pre-integrated diffuse: replaces saturate(NoL) for skin (RGB, 0..1).
-vec3 preskinDiffuseLut(LutMapping m, sampler2D diffuseLut, float NoL, float curvaturePerMm) {
-    return textureLod(diffuseLut, preskinDiffuseLutUv(m, NoL, curvaturePerMm), 0.0).rgb;
+// Pre-integrated diffuse, replacing saturate(NoL) per channel: red at NoL.r, green at NoL.g,
+// blue at NoL.b (the per-channel prefiltered normals; pass one NoL three times for RGB at one
+// angle), from layer `layer` of the footprint image (3 W x H). Bilinear with CLAMP_TO_EDGE at
+// texel centres, as LINEAR filtering of the table itself (LutTable::sample on the CPU).
+vec3 preskinDiffuseLut(LutMapping m, sampler2DArray diffuseFootprints, float layer, vec3 NoL, float curvaturePerMm) {
+    ivec2 size = textureSize(diffuseFootprints, 0).xy;
+    int width = size.x / 3;
+    vec2 uvR = preskinDiffuseLutUv(m, NoL.r, curvaturePerMm);
+    vec3 u = vec3(uvR.x, preskinDiffuseLutUv(m, NoL.g, curvaturePerMm).x, preskinDiffuseLutUv(m, NoL.b, curvaturePerMm).x);
+    vec3 x = u * float(width) - 0.5;
+    vec3 x0 = clamp(floor(x), 0.0, float(width - 1));
+    vec3 fx = clamp(x - x0, 0.0, 1.0);
+    float y = uvR.y * float(size.y) - 0.5;
+    float y0 = clamp(floor(y), 0.0, float(size.y - 1));
+    float fy = clamp(y - y0, 0.0, 1.0);
+    ivec3 column = ivec3(x0) + ivec3(0, width, 2 * width);
+    vec4 r = texelFetch(diffuseFootprints, ivec3(column.r, int(y0), int(layer)), 0);
+    vec4 g = texelFetch(diffuseFootprints, ivec3(column.g, int(y0), int(layer)), 0);
+    vec4 b = texelFetch(diffuseFootprints, ivec3(column.b, int(y0), int(layer)), 0);
+    vec3 near = mix(vec3(r.x, g.x, b.x), vec3(r.y, g.y, b.y), fx);  // row y0
+    vec3 far = mix(vec3(r.z, g.z, b.z), vec3(r.w, g.w, b.w), fx);   // row y0 + 1
+    return mix(near, far, fy);
 }
 
 // Penumbra scattering: replaces the filtered shadow visibility for skin (RGB, 0..1).
@@ -49,6 +71,8 @@ struct PreskinProfileMix {
     LutMapping mapping[4];
     vec4 layer;   // array layer of each entry
     vec4 weight;
+    int count;    // entries in use, 1..4: every lookup loops over these only (a loop, not a branch,
+                  // is what a SIMD-on-CPU driver such as lavapipe skips, so one profile is one fetch)
 };
 
 // One profile: layer `layer` with weight 1.
@@ -60,27 +84,43 @@ PreskinProfileMix preskinSingleProfile(LutMapping m, float layer) {
     p.mapping[3] = m;
     p.layer = vec4(layer);
     p.weight = vec4(1.0, 0.0, 0.0, 0.0);
+    p.count = 1;
     return p;
 }
 
-vec3 preskinDiffuseLut(PreskinProfileMix p, sampler2DArray diffuseLut, float NoL, float curvaturePerMm) {
-    vec3 sum = vec3(0.0);
-    for (int i = 0; i < 4; ++i) {
+// Entry i >= 1 of a mix, picked with constant indices (an indexed local array costs a CPU driver
+// per-lane memory traffic even where the loop below never runs).
+LutMapping preskinMixMapping(PreskinProfileMix p, int i) {
+    return i == 1 ? p.mapping[1] : (i == 2 ? p.mapping[2] : p.mapping[3]);
+}
+
+// The lookups of a mix: entry 0 always, entries 1..count-1 of non-zero weight in a loop, so a
+// single profile is one fetch per lookup.
+vec3 preskinDiffuseLut(PreskinProfileMix p, sampler2DArray diffuseFootprints, vec3 NoL, float curvaturePerMm) {
+    vec3 sum = p.weight.x * preskinDiffuseLut(p.mapping[0], diffuseFootprints, p.layer.x, NoL, curvaturePerMm);
+    for (int i = 1; i < p.count; ++i) {
         if (p.weight[i] <= 0.0) continue;
-        vec2 uv = preskinDiffuseLutUv(p.mapping[i], NoL, curvaturePerMm);
-        sum += p.weight[i] * textureLod(diffuseLut, vec3(uv, p.layer[i]), 0.0).rgb;
+        sum += p.weight[i] * preskinDiffuseLut(preskinMixMapping(p, i), diffuseFootprints, p.layer[i], NoL, curvaturePerMm);
     }
     return sum;
 }
 
 vec3 preskinPenumbraLut(PreskinProfileMix p, sampler2DArray penumbraLut, float shadow, float filterSigmaMm) {
-    vec3 sum = vec3(0.0);
-    for (int i = 0; i < 4; ++i) {
+    vec3 sum = p.weight.x * textureLod(penumbraLut, vec3(preskinPenumbraLutUv(p.mapping[0], shadow, filterSigmaMm), p.layer.x), 0.0).rgb;
+    for (int i = 1; i < p.count; ++i) {
         if (p.weight[i] <= 0.0) continue;
-        vec2 uv = preskinPenumbraLutUv(p.mapping[i], shadow, filterSigmaMm);
+        vec2 uv = preskinPenumbraLutUv(preskinMixMapping(p, i), shadow, filterSigmaMm);
         sum += p.weight[i] * textureLod(penumbraLut, vec3(uv, p.layer[i]), 0.0).rgb;
     }
     return sum;
+}
+
+// One entry's weighted SH transfer added to a0..a2.
+void preskinShTransferLutAdd(LutMapping m, sampler2DArray shTransferLut, float layer, float weight,
+                             float curvaturePerMm, inout vec3 a0, inout vec3 a1, inout vec3 a2) {
+    a0 += weight * m.shLambert.x * textureLod(shTransferLut, vec3(preskinShTransferLutUv(m, curvaturePerMm, 0), layer), 0.0).rgb;
+    a1 += weight * m.shLambert.y * textureLod(shTransferLut, vec3(preskinShTransferLutUv(m, curvaturePerMm, 1), layer), 0.0).rgb;
+    a2 += weight * m.shLambert.z * textureLod(shTransferLut, vec3(preskinShTransferLutUv(m, curvaturePerMm, 2), layer), 0.0).rgb;
 }
 
 void preskinShTransferLut(PreskinProfileMix p, sampler2DArray shTransferLut, float curvaturePerMm, out vec3 a0,
@@ -88,21 +128,18 @@ void preskinShTransferLut(PreskinProfileMix p, sampler2DArray shTransferLut, flo
     a0 = vec3(0.0);
     a1 = vec3(0.0);
     a2 = vec3(0.0);
-    for (int i = 0; i < 4; ++i) {
+    preskinShTransferLutAdd(p.mapping[0], shTransferLut, p.layer.x, p.weight.x, curvaturePerMm, a0, a1, a2);
+    for (int i = 1; i < p.count; ++i) {
         if (p.weight[i] <= 0.0) continue;
-        LutMapping m = p.mapping[i];
-        float w = p.weight[i];
-        a0 += w * m.shLambert.x * textureLod(shTransferLut, vec3(preskinShTransferLutUv(m, curvaturePerMm, 0), p.layer[i]), 0.0).rgb;
-        a1 += w * m.shLambert.y * textureLod(shTransferLut, vec3(preskinShTransferLutUv(m, curvaturePerMm, 1), p.layer[i]), 0.0).rgb;
-        a2 += w * m.shLambert.z * textureLod(shTransferLut, vec3(preskinShTransferLutUv(m, curvaturePerMm, 2), p.layer[i]), 0.0).rgb;
+        preskinShTransferLutAdd(preskinMixMapping(p, i), shTransferLut, p.layer[i], p.weight[i], curvaturePerMm, a0, a1, a2);
     }
 }
 
 vec3 preskinTransmittanceLut(PreskinProfileMix p, sampler2DArray transmittanceLut, float thicknessMm) {
-    vec3 sum = vec3(0.0);
-    for (int i = 0; i < 4; ++i) {
+    vec3 sum = p.weight.x * textureLod(transmittanceLut, vec3(preskinTransmittanceLutUv(p.mapping[0], thicknessMm), p.layer.x), 0.0).rgb;
+    for (int i = 1; i < p.count; ++i) {
         if (p.weight[i] <= 0.0) continue;
-        vec2 uv = preskinTransmittanceLutUv(p.mapping[i], thicknessMm);
+        vec2 uv = preskinTransmittanceLutUv(preskinMixMapping(p, i), thicknessMm);
         sum += p.weight[i] * textureLod(transmittanceLut, vec3(uv, p.layer[i]), 0.0).rgb;
     }
     return sum;

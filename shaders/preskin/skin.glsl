@@ -65,11 +65,7 @@ struct PreskinSkinSurface {
 vec3 preskinSkinDiffuseResponse(PreskinSkinSurface s, PreskinProfileMix m, sampler2DArray diffuseLut, vec3 L, uint features) {
     vec3 NoL = vec3(dot(s.normalR, L), dot(s.normalG, L), dot(s.normalB, L));
     if ((features & kSkinLutDiffuse) == 0u) return clamp(NoL, 0.0, 1.0);
-    if ((features & kSkinNormalPrefilter) == 0u)
-        return preskinDiffuseLut(m, diffuseLut, NoL.g, s.curvaturePerMm);
-    return vec3(preskinDiffuseLut(m, diffuseLut, NoL.r, s.curvaturePerMm).r,
-                preskinDiffuseLut(m, diffuseLut, NoL.g, s.curvaturePerMm).g,
-                preskinDiffuseLut(m, diffuseLut, NoL.b, s.curvaturePerMm).b);
+    return preskinDiffuseLut(m, diffuseLut, NoL, s.curvaturePerMm);  // without prefiltering the three are equal
 }
 
 // Specular of one light: one or two GGX lobes with the unbiased normal (Fresnel shared).

@@ -70,8 +70,15 @@ GpuLuts::GpuLuts(const vk::Device& device, const std::vector<const LutSet*>& lay
             *extents[t] = glm::max(*extents[t], glm::ivec2(tables[t]->width(), tables[t]->height()));
     }
     const auto extents = extentsOf(extents_);
+    const uint32_t maxWidth = device.properties().limits.maxImageDimension2D;
+    if (uint32_t(3 * extents_.diffuse.x) > maxWidth)
+        throw Error(fmt::format("Vulkan: a diffuse table {} texels wide needs a {}-texel image (its bilinear footprints), "
+                                "over the device's {}",
+                                extents_.diffuse.x, 3 * extents_.diffuse.x, maxWidth));
     for (size_t t = 0; t < 4; ++t) {
-        images_[t] = vk::Image(device, {VK_FORMAT_R16G16B16A16_SFLOAT, uint32_t(extents[t]->x), uint32_t(extents[t]->y), 1,
+        // The diffuse table as bilinear footprints (lutFootprints), three times as wide.
+        const uint32_t width = uint32_t(extents[t]->x) * (t == 0 ? 3u : 1u);
+        images_[t] = vk::Image(device, {VK_FORMAT_R16G16B16A16_SFLOAT, width, uint32_t(extents[t]->y), 1,
                                         VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_DST_BIT,
                                         VK_IMAGE_ASPECT_COLOR_BIT, layerCount, VK_SAMPLE_COUNT_1_BIT, true});
     }
@@ -87,7 +94,8 @@ void GpuLuts::uploadLayer(uint32_t layer, const LutSet& luts, VkImageLayout oldL
     const auto tables = tablesOf(luts);
     const auto extents = extentsOf(extents_);
     for (size_t t = 0; t < 4; ++t) {
-        const std::vector<uint16_t> texels = paddedTexels(*tables[t], *extents[t]);
+        std::vector<uint16_t> texels = paddedTexels(*tables[t], *extents[t]);
+        if (t == 0) texels = lutFootprints(texels, extents[t]->x, extents[t]->y);
         images_[t].uploadLayer(texels.data(), texels.size() * sizeof(uint16_t), layer, oldLayout);
     }
     mappings_[layer] = lutMapping(luts, extents_);

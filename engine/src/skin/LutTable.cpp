@@ -3,6 +3,7 @@
 // hash (Fowler, Noll & Vo; 64-bit offset basis 14695981039346656037, prime 1099511628211).
 // Limits: see LutTable.h.
 #include <preskin/LutTable.h>
+#include <preskin/Error.h>
 
 #include "skin/Half.h"
 
@@ -11,6 +12,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <string>
 
 namespace preskin {
 
@@ -131,6 +133,28 @@ std::vector<uint16_t> LutTable::rgba16f() const {
     for (size_t i = 0; i < texels; ++i) {
         for (size_t c = 0; c < 3; ++c) out[4 * i + c] = skin::floatToHalfBits(rgb[3 * i + c]);
         out[4 * i + 3] = one;
+    }
+    return out;
+}
+
+std::vector<uint16_t> LutTable::footprintsRgba16f() const { return lutFootprints(rgba16f(), width(), height()); }
+
+std::vector<uint16_t> lutFootprints(const std::vector<uint16_t>& rgba16f, int width, int height) {
+    const auto w = static_cast<size_t>(std::max(width, 0));
+    const auto h = static_cast<size_t>(std::max(height, 0));
+    if (rgba16f.size() != w * h * 4) throw Error("lutFootprints: the image holds " + std::to_string(rgba16f.size()) +
+                                                 " values, not " + std::to_string(w * h * 4));
+    std::vector<uint16_t> out(3 * w * h * 4);
+    for (size_t y = 0; y < h; ++y) {
+        const size_t y1 = std::min(y + 1, h - 1);
+        for (size_t x = 0; x < w; ++x) {
+            const size_t x1 = std::min(x + 1, w - 1);
+            const size_t corners[4] = {y * w + x, y * w + x1, y1 * w + x, y1 * w + x1};
+            for (size_t c = 0; c < 3; ++c) {
+                uint16_t* texel = &out[(y * 3 * w + c * w + x) * 4];
+                for (size_t k = 0; k < 4; ++k) texel[k] = rgba16f[corners[k] * 4 + c];
+            }
+        }
     }
     return out;
 }

@@ -32,7 +32,7 @@ void main() {
     vec3 result = vec3(0.0);
     PreskinProfileMix profile = preskinSingleProfile(lut, float(push.layer));
     if (table == 0u) {
-        result = preskinDiffuseLut(profile, diffuseLut, arg.y, arg.z);
+        result = preskinDiffuseLut(profile, diffuseLut, vec3(arg.y), arg.z);
     } else if (table == 1u) {
         result = preskinPenumbraLut(profile, penumbraLut, arg.y, arg.z);
     } else if (table == 2u) {

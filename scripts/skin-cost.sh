@@ -1,0 +1,135 @@
+#!/usr/bin/env bash
+# What each skin technique costs on this machine's Vulkan device, two ways, written as a Markdown
+# table (docs/skin-cost.md by default):
+#  - instructions per frame under valgrind's callgrind, whole process (every llvmpipe thread):
+#    `preskin render --frames N` switches collection on after its warm-up frame and off after the
+#    N measured frames (callgrind client requests, run with --instr-atstart=no), so start-up,
+#    shader compiles and first-use costs are not counted; the count / N is one frame. Repeatable
+#    on a busy machine, where wall time is not. At WIDTH x HEIGHT (default 320x180: valgrind runs
+#    the JIT code about 50 times slower);
+#  - time: `preskin bench`'s skin_techniques section (the all-on frame minus the frame with one
+#    technique off, interleaved, medians; 1280x720) and the skin / standard-material ratio.
+# A technique's cost is the all-on frame minus the frame with that technique off (its standard
+# fallback on); the standard frame is the same scene with the skin extension removed
+# (`--skin none`). Both at LIGHTS scattered lights (default 256) on the bundled head.
+#   scripts/skin-cost.sh [OUT.md]
+#   env: FRAMES (default 2), WIDTH, HEIGHT, LIGHTS, REPS (bench, default 5), JOBS (parallel
+#   valgrind runs, default: cores), SCENE (default: the bundled head), NO_BENCH=1 (instructions only)
+set -euo pipefail
+cd "$(dirname "$0")/.."
+out="${1:-docs/skin-cost.md}"
+frames="${FRAMES:-2}"
+width="${WIDTH:-320}"
+height="${HEIGHT:-180}"
+lights="${LIGHTS:-256}"
+reps="${REPS:-5}"
+jobs="${JOBS:-$(nproc)}"
+scene="${SCENE:-}"
+preskin=build/bin/preskin
+[ -x "$preskin" ] || { echo "skin-cost: build the tools first (scripts/build.sh or cmake --build build)" >&2; exit 1; }
+command -v valgrind >/dev/null || { echo "skin-cost: needs valgrind (apt-get install valgrind)" >&2; exit 1; }
+work="$(mktemp -d)"
+trap 'rm -rf "$work"' EXIT
+
+# name|flags (the rows of the table, in order)
+configs=(
+  "skin|"
+  "standard|--skin none"
+  "lut_diffuse|--no-lut-diffuse"
+  "normal_prefilter|--no-normal-prefilter"
+  "penumbra|--no-penumbra"
+  "sh_ambient|--no-sh-skin"
+  "transmission|--no-transmission"
+  "dual_specular|--no-dual-specular"
+  "all_off|--standard"
+  "no_shadows|--no-shadows"
+  "standard_no_shadows|--skin none --no-shadows"
+  "stereo|--stereo"
+  "stereo_standard|--stereo --skin none"
+)
+measure() {  # "name|flags" -> writes $work/<name>.count
+  local name="${1%%|*}" flags="${1#*|}"
+  # shellcheck disable=SC2086
+  "$preskin" render $scene --lights "$lights" --width "$width" --height "$height" $flags \
+    --out "$work/$name-warm.png" >/dev/null 2>&1  # fills Mesa's shader cache
+  # shellcheck disable=SC2086
+  valgrind --tool=callgrind --instr-atstart=no --callgrind-out-file="$work/$name.cg" "$preskin" render $scene \
+    --lights "$lights" --width "$width" --height "$height" --frames "$frames" $flags --out "$work/$name.png" \
+    >"$work/$name.log" 2>&1 || { echo "skin-cost: $name failed:" >&2; tail -5 "$work/$name.log" >&2; return 1; }
+  grep -o 'Collected : [0-9]*' "$work/$name.log" | head -1 | grep -o '[0-9]*$' >"$work/$name.count"
+  echo "skin-cost: $name: $(( $(cat "$work/$name.count") / frames / 1000000 )) M instructions per frame" >&2
+}
+export -f measure
+export preskin scene lights width height frames work
+printf '%s\n' "${configs[@]}" | xargs -d '\n' -P "$jobs" -I{} bash -c 'measure "$1"' _ {}
+
+bench_json=""
+if [ -z "${NO_BENCH:-}" ]; then
+  # shellcheck disable=SC2086
+  "$preskin" bench $scene --counts 16 --skin-counts "$lights" --no-brute --no-build-compare \
+    --no-lut-bake --no-vr --no-per-pixel --no-animation --no-profiles --reps "$reps" --out "$work/bench.json" >&2
+  bench_json="$work/bench.json"
+fi
+
+device="$(sed -n 's/^preskin: frame time on \(.*\) (median.*/\1/p' "$work/skin.log" | head -1)"
+python3 - "$work" "$out" "$width" "$height" "$lights" "$frames" "$bench_json" "$device" <<'PY'
+import json, os, sys
+work, out, width, height, lights, frames, bench_path, device = sys.argv[1:9]
+frames = int(frames)
+count = {n[:-6]: int(open(os.path.join(work, n)).read()) / frames for n in os.listdir(work) if n.endswith(".count")}
+bench = json.load(open(bench_path)) if bench_path else None
+t = bench["skin_techniques"] if bench else None
+skin, std = count["skin"], count["standard"]
+M = lambda v: f"{v / 1e6:.1f}"
+lines = [
+    "# What the skin techniques cost",
+    "",
+    f"Measured by `scripts/skin-cost.sh` ({device or 'default Vulkan device'}), the bundled head with {lights} "
+    "scattered lights. Instructions: valgrind's callgrind, whole process, the measured frames of `preskin render "
+    f"--frames {frames}` only (start-up, shader compiles and the warm-up frame not counted), per frame, at "
+    f"{width}x{height}."
+    + (f" Time: `preskin bench` skin_techniques at {bench['width']}x{bench['height']}, interleaved frames, medians."
+       if bench else ""),
+    "A technique's cost is the all-on frame minus the frame with that technique off (its standard fallback on); "
+    "the costs overlap (the normal prefilter triples the diffuse lookups), so they do not add up to the total.",
+    "",
+    "| | instructions per frame (M) | share of the skin frame | wall ms | forward-pass ms |",
+    "| --- | ---: | ---: | ---: | ---: |",
+]
+def timed(name):
+    if not t:
+        return "| |"
+    c = t["cost_ms"][name]
+    return f"| {c['wall']:.1f} | {c['forward_gpu']:.1f} |"
+lines.append(f"| skin frame, all techniques on | {M(skin)} | 100% "
+             + (f"| {t['skin']['wall_ms']:.1f} | {t['skin']['gpu_pass_ms']['forward']:.1f} |" if t else "| |"))
+lines.append(f"| standard-material frame (`--skin none`) | {M(std)} | {100 * std / skin:.0f}% "
+             + (f"| {t['standard_material']['wall_ms']:.1f} | {t['standard_material']['gpu_pass_ms']['forward']:.1f} |"
+                if t else "| |"))
+labels = {"lut_diffuse": "diffuse LUT fetches (per light, per channel)",
+          "normal_prefilter": "normal samples (three prefiltered normals)",
+          "penumbra": "penumbra LUT", "sh_ambient": "SH transfer", "transmission": "thickness and transmission",
+          "dual_specular": "dual specular"}
+for name, label in labels.items():
+    d = skin - count[name]
+    lines.append(f"| {label} (`{name}`) | {M(d)} | {100 * d / skin:.0f}% {timed(name)}")
+d = skin - count["no_shadows"]
+ds = std - count["standard_no_shadows"]
+lines.append(f"| shadow map and filter, skin (`--no-shadows`) | {M(d)} | {100 * d / skin:.0f}% | | |")
+lines.append(f"| shadow map and filter, standard material | {M(ds)} | {100 * ds / skin:.0f}% | | |")
+lines.append(f"| skin shader, every technique off (`--standard`) | {M(count['all_off'])} | "
+             f"{100 * count['all_off'] / skin:.0f}% | | |")
+lines += [
+    "",
+    f"Skin / standard, instructions: {skin / std:.2f} (mono), "
+    f"{count['stereo'] / count['stereo_standard']:.2f} (stereo, {M(count['stereo'])} M against "
+    f"{M(count['stereo_standard'])} M)."
+    + (f" Time: {t['skin']['wall_ms']:.1f} / {t['standard_material']['wall_ms']:.1f} ms = {t['skin_over_standard']:.2f}."
+       if t else ""),
+    "",
+]
+os.makedirs(os.path.dirname(out) or ".", exist_ok=True)
+open(out, "w").write("\n".join(lines))
+print("\n".join(lines))
+print(f"skin-cost: wrote {out}", file=sys.stderr)
+PY
