@@ -161,8 +161,10 @@ void main() {
     if (!gl_FrontFacing) geometricN = -geometricN;
     vec2 uvNormal = transformUv(material.uv[2], inUv0);
     bool hasNormalMap = material.textureFlags.w > 0.5;
-    vec3 N = hasNormalMap ? perturbNormal(texture(normalTexture, uvNormal).rgb, material.pbr.z, geometricN, inTangentWs)
-                          : geometricN;
+    // Skin reads its normal maps itself (preskinSkinNormals), the standard model here.
+    vec3 N = geometricN;
+    if (kMaterialModel != kModelSkin && hasNormalMap)
+        N = perturbNormal(texture(normalTexture, uvNormal).rgb, material.pbr.z, geometricN, inTangentWs);
     vec3 V = normalize(frame.eyes[inEye].positionWs.xyz - inPositionWs);
     float NoV = max(dot(N, V), 1e-4);
 
