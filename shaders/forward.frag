@@ -18,6 +18,9 @@ layout(constant_id = kSpecSkinFeatures) const uint kSkinFeatures = kSkinAll;
 layout(constant_id = kSpecLightLoop) const uint kLightLoop = kLightLoopAll;
 layout(constant_id = kSpecAlphaToCoverage) const uint kAlphaToCoverage = 0;
 layout(constant_id = kSpecSpecular) const uint kSpecular = 1;
+layout(constant_id = kSpecProfileMix) const uint kProfileMix = 4;
+// A material without a profile blend compiles without the blend's lookups (preskin/lut.glsl).
+#define PRESKIN_PROFILE_MIX_MAX kProfileMix
 
 layout(set = 0, binding = kBindingFrame) uniform Frame { FrameUniforms frame; };
 layout(std430, set = 0, binding = kBindingLights) readonly buffer Lights { GpuLight lights[]; };
@@ -113,7 +116,7 @@ PreskinProfileMix skinProfileMix() {
     PreskinProfileMix p;
     p.layer = material.skinProfileLayers;
     p.weight = vec4(1.0, 0.0, 0.0, 0.0);
-    int blended = int(material.skinProfileBlend.x);
+    int blended = kProfileMix > 1u ? int(material.skinProfileBlend.x) : 0;
     if (blended > 0) {
         vec3 w = texture(profileWeightTexture, inUv0).rgb * vec3(greaterThan(vec3(blended), vec3(0.0, 1.0, 2.0)));
         float sum = w.r + w.g + w.b;

@@ -66,13 +66,20 @@ vec3 preskinTransmittanceLut(LutMapping m, sampler2D transmittanceLut, float thi
     return textureLod(transmittanceLut, preskinTransmittanceLutUv(m, thicknessMm), 0.0).rgb;
 }
 
+// The most entries a PreskinProfileMix uses in this shader, 1..4 (default 4). A shader for
+// materials without a profile blend defines it as 1 (a constant or a specialization constant)
+// before including, which compiles the blend's lookups out: SIMD drivers on the CPU (lavapipe)
+// run a loop's body once under an empty lane mask even when no fragment enters it.
+#ifndef PRESKIN_PROFILE_MIX_MAX
+#define PRESKIN_PROFILE_MIX_MAX 4
+#endif
+
 // Up to four LUT layers and their weights (summing to 1; unused entries weigh 0).
 struct PreskinProfileMix {
     LutMapping mapping[4];
     vec4 layer;   // array layer of each entry
     vec4 weight;
-    int count;    // entries in use, 1..4: every lookup loops over these only (a loop, not a branch,
-                  // is what a SIMD-on-CPU driver such as lavapipe skips, so one profile is one fetch)
+    int count;    // entries in use, 1..4 (at most PRESKIN_PROFILE_MIX_MAX)
 };
 
 // One profile: layer `layer` with weight 1.
@@ -98,7 +105,7 @@ LutMapping preskinMixMapping(PreskinProfileMix p, int i) {
 // single profile is one fetch per lookup.
 vec3 preskinDiffuseLut(PreskinProfileMix p, sampler2DArray diffuseFootprints, vec3 NoL, float curvaturePerMm) {
     vec3 sum = p.weight.x * preskinDiffuseLut(p.mapping[0], diffuseFootprints, p.layer.x, NoL, curvaturePerMm);
-    for (int i = 1; i < p.count; ++i) {
+    if (int(PRESKIN_PROFILE_MIX_MAX) > 1) for (int i = 1; i < p.count; ++i) {
         if (p.weight[i] <= 0.0) continue;
         sum += p.weight[i] * preskinDiffuseLut(preskinMixMapping(p, i), diffuseFootprints, p.layer[i], NoL, curvaturePerMm);
     }
@@ -107,7 +114,7 @@ vec3 preskinDiffuseLut(PreskinProfileMix p, sampler2DArray diffuseFootprints, ve
 
 vec3 preskinPenumbraLut(PreskinProfileMix p, sampler2DArray penumbraLut, float shadow, float filterSigmaMm) {
     vec3 sum = p.weight.x * textureLod(penumbraLut, vec3(preskinPenumbraLutUv(p.mapping[0], shadow, filterSigmaMm), p.layer.x), 0.0).rgb;
-    for (int i = 1; i < p.count; ++i) {
+    if (int(PRESKIN_PROFILE_MIX_MAX) > 1) for (int i = 1; i < p.count; ++i) {
         if (p.weight[i] <= 0.0) continue;
         vec2 uv = preskinPenumbraLutUv(preskinMixMapping(p, i), shadow, filterSigmaMm);
         sum += p.weight[i] * textureLod(penumbraLut, vec3(uv, p.layer[i]), 0.0).rgb;
@@ -129,7 +136,7 @@ void preskinShTransferLut(PreskinProfileMix p, sampler2DArray shTransferLut, flo
     a1 = vec3(0.0);
     a2 = vec3(0.0);
     preskinShTransferLutAdd(p.mapping[0], shTransferLut, p.layer.x, p.weight.x, curvaturePerMm, a0, a1, a2);
-    for (int i = 1; i < p.count; ++i) {
+    if (int(PRESKIN_PROFILE_MIX_MAX) > 1) for (int i = 1; i < p.count; ++i) {
         if (p.weight[i] <= 0.0) continue;
         preskinShTransferLutAdd(preskinMixMapping(p, i), shTransferLut, p.layer[i], p.weight[i], curvaturePerMm, a0, a1, a2);
     }
@@ -137,7 +144,7 @@ void preskinShTransferLut(PreskinProfileMix p, sampler2DArray shTransferLut, flo
 
 vec3 preskinTransmittanceLut(PreskinProfileMix p, sampler2DArray transmittanceLut, float thicknessMm) {
     vec3 sum = p.weight.x * textureLod(transmittanceLut, vec3(preskinTransmittanceLutUv(p.mapping[0], thicknessMm), p.layer.x), 0.0).rgb;
-    for (int i = 1; i < p.count; ++i) {
+    if (int(PRESKIN_PROFILE_MIX_MAX) > 1) for (int i = 1; i < p.count; ++i) {
         if (p.weight[i] <= 0.0) continue;
         vec2 uv = preskinTransmittanceLutUv(preskinMixMapping(p, i), thicknessMm);
         sum += p.weight[i] * textureLod(transmittanceLut, vec3(uv, p.layer[i]), 0.0).rgb;

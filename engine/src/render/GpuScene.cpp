@@ -179,6 +179,8 @@ GpuScene::GpuScene(const vk::Device& device, const Scene& scene)
         gm.skin = mat.skin.has_value();
         gm.alphaMode = mat.alphaMode;
         gm.doubleSided = mat.doubleSided;
+        if (mat.skin && mat.skin->profileWeightTexture.valid())
+            gm.profileMix = 1u + uint32_t(std::min(mat.skin->blendProfiles.size(), size_t(kMaxBlendedProfiles - 1)));
         if (mat.normal.valid() && size_t(mat.normal.image) < scene.images.size()) {
             const Image& img = scene.images[size_t(mat.normal.image)];
             // KHR_texture_transform's scale repeats the map: density grows with it.

@@ -31,6 +31,7 @@ struct GpuMaterial {
     AlphaMode alphaMode = AlphaMode::Opaque;
     bool doubleSided = false;
     float texelsPerMm = 0.0f;  // normal-map texels per world millimetre on the meshes using it
+    uint32_t profileMix = 1;   // skin: its profile plus the profiles its weight texture blends in (1..4)
 };
 
 // Scattering widths of a diffusion profile, for the normal-map LOD biases.
