@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # What each skin technique costs on this machine's Vulkan device, two ways, written as a Markdown
-# table (docs/skin-cost.md by default):
+# table (docs/skin-cost-table.md by default; docs/skin-cost.md explains it):
 #  - instructions per frame under valgrind's callgrind, whole process (every llvmpipe thread):
 #    `preskin render --frames N` switches collection on after its warm-up frame and off after the
 #    N measured frames (callgrind client requests, run with --instr-atstart=no), so start-up,
@@ -17,7 +17,7 @@
 #   valgrind runs, default: cores), SCENE (default: the bundled head), NO_BENCH=1 (instructions only)
 set -euo pipefail
 cd "$(dirname "$0")/.."
-out="${1:-docs/skin-cost.md}"
+out="${1:-docs/skin-cost-table.md}"
 frames="${FRAMES:-2}"
 width="${WIDTH:-320}"
 height="${HEIGHT:-180}"

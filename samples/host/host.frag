@@ -4,6 +4,7 @@
 // from the GLSL library (glslangValidator -I<preskin_SHADER_DIR>).
 // Limits: no shadows (so no penumbra or transmission), no texture transforms, one material.
 #extension GL_GOOGLE_include_directive : require
+#define PRESKIN_PROFILE_MIX_MAX 1  // one profile per fragment: the blend's lookups compile out
 #include "preskin/lights.glsl"
 #include "preskin/skin.glsl"
 #include "preskin/tonemap.glsl"
@@ -23,7 +24,7 @@ layout(set = 0, binding = 0) uniform Frame {
 layout(set = 0, binding = 1) uniform sampler2D baseColorMap;
 layout(set = 0, binding = 2) uniform sampler2D normalMap;
 layout(set = 0, binding = 3) uniform sampler2D specularMap;
-layout(set = 0, binding = 4) uniform sampler2DArray diffuseLut;     // one layer: one diffusion profile
+layout(set = 0, binding = 4) uniform sampler2DArray diffuseLut;     // footprints; one layer: one diffusion profile
 layout(set = 0, binding = 5) uniform sampler2DArray shTransferLut;
 
 layout(location = 0) in vec3 inPositionWs;

@@ -1,11 +1,15 @@
 // Tests of the LUT texture layout and mapping: LutTable::sample follows Vulkan's LINEAR +
 // CLAMP_TO_EDGE rule (checked against a bilinear filter written here), axis node values sit on
 // texel centres through the shared mapping functions of shaders/shared/lut_mapping.h, the
-// LutMapping layout, and bake-settings validation.
+// LutMapping layout, the diffuse table's bilinear footprints (one texel per channel holds the
+// 2x2 texels a bilinear lookup needs, as shaders/preskin/lut.glsl reads them), and bake-settings
+// validation.
 #include "shared/lut_mapping.h"
 
 #include <preskin/Error.h>
 #include <preskin/LutSet.h>
+
+#include "skin/Half.h"
 
 #include <gtest/gtest.h>
 
@@ -50,6 +54,45 @@ TEST(LutMapping, SamplerFollowsTheVulkanRule) {
         const glm::dvec3 want = referenceBilinear(t, static_cast<float>(u), static_cast<float>(v));
         for (int c = 0; c < 3; ++c) ASSERT_NEAR(got[c], want[c], 2e-6) << u << ", " << v;
     }
+}
+
+// Footprint texel (c W + x, y) holds channel c of (x, y), (x + 1, y), (x, y + 1), (x + 1, y + 1),
+// clamped; filtering by hand from it, as lut.glsl does, equals Vulkan's LINEAR filter of the table.
+TEST(LutMapping, FootprintsFilterLikeTheTable) {
+    LutTable t;
+    t.x.size = 7;
+    t.y.size = 4;
+    std::mt19937 rng(5);
+    std::uniform_real_distribution<float> value(0.0f, 1.0f);
+    t.rgb.resize(7 * 4 * 3);
+    for (float& f : t.rgb) f = skin::roundToHalf(value(rng));
+    const std::vector<uint16_t> footprints = t.footprintsRgba16f();
+    ASSERT_EQ(footprints.size(), size_t(3 * 7 * 4 * 4));
+    auto corner = [&](int c, int x, int y, int k) {
+        return double(skin::halfBitsToFloat(footprints[(size_t(y) * 21 + size_t(c) * 7 + size_t(x)) * 4 + size_t(k)]));
+    };
+    for (int y = 0; y < 4; ++y)
+        for (int x = 0; x < 7; ++x)
+            for (int c = 0; c < 3; ++c) {
+                EXPECT_EQ(corner(c, x, y, 0), t.texel(x, y)[c]);
+                EXPECT_EQ(corner(c, x, y, 1), t.texel(std::min(x + 1, 6), y)[c]);
+                EXPECT_EQ(corner(c, x, y, 2), t.texel(x, std::min(y + 1, 3))[c]);
+                EXPECT_EQ(corner(c, x, y, 3), t.texel(std::min(x + 1, 6), std::min(y + 1, 3))[c]);
+            }
+    std::uniform_real_distribution<double> uv(-0.2, 1.2);
+    for (int i = 0; i < 1000; ++i) {
+        const double u = uv(rng), v = uv(rng);
+        const glm::dvec3 want = referenceBilinear(t, u, v);
+        const double y = v * 4 - 0.5, y0 = std::clamp(std::floor(y), 0.0, 3.0), fy = std::clamp(y - y0, 0.0, 1.0);
+        const double x = u * 7 - 0.5, x0 = std::clamp(std::floor(x), 0.0, 6.0), fx = std::clamp(x - x0, 0.0, 1.0);
+        for (int c = 0; c < 3; ++c) {
+            const int ix = int(x0), iy = int(y0);
+            const double near = (1 - fx) * corner(c, ix, iy, 0) + fx * corner(c, ix, iy, 1);
+            const double far = (1 - fx) * corner(c, ix, iy, 2) + fx * corner(c, ix, iy, 3);
+            ASSERT_NEAR((1 - fy) * near + fy * far, want[c], 1e-9) << u << ", " << v;
+        }
+    }
+    EXPECT_THROW(lutFootprints(std::vector<uint16_t>(10), 7, 4), Error);
 }
 
 void expectNodesOnTexelCentres(const LutTable& table, const std::function<glm::vec2(double)>& uvOfValue, bool alongX) {
