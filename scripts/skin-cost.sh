@@ -91,7 +91,7 @@ lines = [
     + (f" Time: `preskin bench` skin_techniques at {bench['width']}x{bench['height']}, interleaved frames, medians."
        if bench else ""),
     "A technique's cost is the all-on frame minus the frame with that technique off (its standard fallback on); "
-    "the costs overlap (the normal prefilter triples the diffuse lookups), so they do not add up to the total.",
+    "the costs overlap, so they do not add up to the total.",
     "",
     "| | instructions per frame (M) | share of the skin frame | wall ms | forward-pass ms |",
     "| --- | ---: | ---: | ---: | ---: |",
