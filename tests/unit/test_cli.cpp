@@ -6,6 +6,7 @@
 
 #include <OpenImageIO/imageio.h>
 #include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
 
 #include <sys/stat.h>
 #include <sys/wait.h>
@@ -207,6 +208,37 @@ TEST_F(Cli, StereoWritesEyesSideBySideAndEyeRendersOneOfThem) {
         EXPECT_EQ(differ, 0u);
         EXPECT_GT(eyesDiffer, 20u) << "a 30 cm IPD moves the triangle between the eyes";
     }
+}
+
+// --skin none: every material is the standard glTF material, exactly as the same scene written
+// without the skin extension renders; the skin render differs from it.
+TEST_F(Cli, SkinNoneRendersTheSceneWithoutItsSkinExtension) {
+    const fs::path source = fs::path(PRESKIN_SOURCE_DIR) / "samples" / "assets" / "spheres" / "sphere_10mm.gltf";
+    nlohmann::json gltf = nlohmann::json::parse(std::ifstream(source));
+    bool hadSkin = false;
+    for (auto& material : gltf["materials"]) {
+        if (material.contains("extensions")) hadSkin = material["extensions"].erase("PRESKIN_materials_skin") > 0 || hadSkin;
+    }
+    ASSERT_TRUE(hadSkin);
+    const fs::path stripped = dir_ / "sphere_standard.gltf";
+    std::ofstream(stripped) << gltf.dump();
+    auto render = [&](const std::string& scene, const std::string& name, const std::vector<std::string>& extra) {
+        const fs::path out = dir_ / name;
+        auto args = renderArgs(scene, out);
+        args.insert(args.end(), extra.begin(), extra.end());
+        const CliResult r = run(args);
+        EXPECT_EQ(r.exitCode, 0) << r.err;
+        int w = 0, h = 0;
+        return readPng(out, w, h);
+    };
+    const auto none = render(source.string(), "none.png", {"--skin", "none"});
+    const auto standard = render(stripped.string(), "standard.png", {});
+    const auto skin = render(source.string(), "skin.png", {});
+    ASSERT_FALSE(none.empty());
+    EXPECT_EQ(none, standard);
+    size_t differ = 0;
+    for (size_t i = 0; i < skin.size() && i < none.size(); ++i) differ += std::abs(int(skin[i]) - int(none[i])) > 2;
+    EXPECT_GT(differ, 20u) << "the skin render should differ from the standard one";
 }
 
 TEST_F(Cli, StereoAndMsaaRefuseWhatCannotBeDrawn) {
