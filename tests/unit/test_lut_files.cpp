@@ -5,7 +5,11 @@
 #include <preskin/Error.h>
 #include <preskin/LutSet.h>
 
+#include "skin/Half.h"
+
 #include <OpenImageIO/imageio.h>
+#include <fmt/core.h>
+#include <zlib.h>
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 
@@ -134,6 +138,44 @@ TEST(LutFiles, CommittedDefaultSetEqualsAFreshBake) {
         }
         EXPECT_LE(differing, a.rgb.size() / 100) << a.name;
     }
+}
+
+// Raw half-float tables (what the profile cache writes): the same set back, each file checked by
+// its CRC-32 (zlib's crc32 of the bytes written, computed here from the tables), and a flipped
+// byte or a short file refused with the file's name.
+TEST(LutFiles, RawTablesRoundTripAndDamageIsRefused) {
+    TempDir tmp;
+    const fs::path dir = tmp.path() / "raw";
+    smallSet().save(dir, {.rawTables = true});
+    EXPECT_EQ(listing(dir), (std::vector<std::string>{"diffuse.f16", "manifest.json", "penumbra.f16", "sh_transfer.f16",
+                                                      "transmittance.f16"}));
+    EXPECT_EQ(fs::file_size(dir / "diffuse.f16"), smallSet().diffuse().rgb.size() * 2);
+    const LutSet loaded = LutSet::load(dir);
+    expectSameTables(smallSet(), loaded);
+    const nlohmann::json manifest = readJson(dir / "manifest.json");
+    EXPECT_EQ(manifest["tables"]["diffuse"]["file"], "diffuse.f16");
+    EXPECT_EQ(manifest["tables"]["diffuse"]["hash"], smallSet().diffuse().contentHash());
+    {
+        std::vector<uint8_t> bytes;
+        for (float v : smallSet().penumbra().rgb) {
+            const uint16_t h = skin::floatToHalfBits(v);
+            bytes.push_back(uint8_t(h & 0xff));
+            bytes.push_back(uint8_t(h >> 8));
+        }
+        EXPECT_EQ(manifest["tables"]["penumbra"]["crc32"], fmt::format("{:08x}", crc32_z(0, bytes.data(), bytes.size())));
+    }
+    const fs::path table = dir / "sh_transfer.f16";
+    {
+        std::fstream f(table, std::ios::in | std::ios::out | std::ios::binary);
+        f.seekp(3);
+        f.put('\x5a');
+    }
+    std::string message = errorOf([&] { LutSet::load(dir); });
+    EXPECT_EQ(message.rfind(table.string() + ": CRC-32", 0), 0u) << message;
+    smallSet().save(dir, {.rawTables = true});
+    fs::resize_file(table, fs::file_size(table) - 2);
+    message = errorOf([&] { LutSet::load(dir); });
+    EXPECT_EQ(message.rfind(table.string() + ": holds", 0), 0u) << message;
 }
 
 TEST(LutFiles, CorruptExrIsRefused) {

@@ -189,7 +189,7 @@ TEST(ProfileLibrary, CacheMissHitAndDamagedEntry) {
     const fs::path entryB = profileCacheEntry(cache.path(), *b.profile, smallSettings());
     EXPECT_NE(entryA, entryB);
     EXPECT_TRUE(fs::exists(entryA / "manifest.json"));
-    EXPECT_TRUE(fs::exists(entryB / "diffuse.exr"));
+    EXPECT_TRUE(fs::exists(entryB / "diffuse.f16"));  // raw half floats: read without decoding
     // Other bake settings are another entry.
     EXPECT_NE(profileCacheEntry(cache.path(), *a.profile, LutBakeSettings::withSize(24)), entryA);
 
@@ -199,10 +199,10 @@ TEST(ProfileLibrary, CacheMissHitAndDamagedEntry) {
     EXPECT_TRUE(sameTables(hit.layer(1), miss.layer(1)));
     EXPECT_TRUE(sameTables(hit.layer(2), miss.layer(2)));
 
-    // Damage one table of entry b: its content hash fails, it is baked again with a warning and
-    // the entry is repaired.
+    // Damage one table of entry b: its CRC fails, it is baked again with a warning and the entry
+    // is repaired.
     {
-        std::fstream file(entryB / "penumbra.exr", std::ios::in | std::ios::out | std::ios::binary);
+        std::fstream file(entryB / "penumbra.f16", std::ios::in | std::ios::out | std::ios::binary);
         file.seekp(-64, std::ios::end);
         const char garbage[16] = {'d', 'a', 'm', 'a', 'g', 'e', 'd', '!', 'd', 'a', 'm', 'a', 'g', 'e', 'd', '!'};
         file.write(garbage, sizeof(garbage));
@@ -213,7 +213,8 @@ TEST(ProfileLibrary, CacheMissHitAndDamagedEntry) {
     EXPECT_EQ(repaired.stats().baked, 1);
     ASSERT_EQ(repaired.warnings().size(), 1u);
     EXPECT_NE(repaired.warnings()[0].find("profile 'b': damaged cache entry"), std::string::npos) << repaired.warnings()[0];
-    EXPECT_NE(repaired.warnings()[0].find("penumbra.exr"), std::string::npos) << repaired.warnings()[0];
+    EXPECT_NE(repaired.warnings()[0].find("penumbra.f16"), std::string::npos) << repaired.warnings()[0];
+    EXPECT_NE(repaired.warnings()[0].find("CRC-32"), std::string::npos) << repaired.warnings()[0];
     EXPECT_TRUE(sameTables(repaired.layer(2), miss.layer(2)));
     const ProfileLibrary again = ProfileLibrary::forScene(scene, smallDefault(), smallSettings(), options);
     EXPECT_EQ(again.stats().cacheHits, 2);

@@ -91,6 +91,10 @@ using LutBakeProgress = std::function<void(double fraction)>;
 
 struct LutSaveOptions {
     bool previewPngs = false;  // also write preview_<table>.png (8-bit sRGB visualisations)
+    // The tables as raw half floats (<table>.f16: RGB, row-major, little-endian) instead of
+    // OpenEXR: read back without decoding, checked by the same content hashes (the profile cache
+    // writes these). LutSet::load reads either.
+    bool rawTables = false;
 };
 
 class PRESKIN_API LutSet {

@@ -5,6 +5,8 @@
 
 #include <bit>
 #include <cstdint>
+#include <span>
+#include <string>
 
 namespace preskin::skin {
 
@@ -50,5 +52,9 @@ inline float halfBitsToFloat(uint16_t half) {
 }
 
 inline float roundToHalf(float value) { return halfBitsToFloat(floatToHalfBits(value)); }
+
+// LutTable::contentHash of a table whose values are these half floats: "fnv1a64:<16 hex digits>"
+// over their bytes, low byte first (LutTable.cpp).
+std::string halfContentHash(std::span<const uint16_t> half);
 
 }  // namespace preskin::skin

@@ -21,13 +21,16 @@
 #include "io/NumberRule.h"
 
 #include <OpenImageIO/imageio.h>
+#include <zlib.h>
 #include <fmt/core.h>
 #include <nlohmann/json.hpp>
 
 #include <sys/stat.h>
 #include <unistd.h>
 
+#include <bit>
 #include <cmath>
+#include <cstring>
 #include <fstream>
 #include <functional>
 #include <numbers>
@@ -48,14 +51,30 @@ constexpr const char* kManifestName = "manifest.json";
 struct TableFile {
     const char* key;       // manifest key
     const char* fileName;  // EXR name
+    const char* rawName;   // raw half-float name (LutSaveOptions::rawTables)
     const char* preview;   // PNG name
+    const char* name(bool raw) const { return raw ? rawName : fileName; }
 };
-constexpr TableFile kDiffuseFile{"diffuse", "diffuse.exr", "preview_diffuse.png"};
-constexpr TableFile kPenumbraFile{"penumbra", "penumbra.exr", "preview_penumbra.png"};
-constexpr TableFile kShFile{"shTransfer", "sh_transfer.exr", "preview_sh_transfer.png"};
-constexpr TableFile kTransmittanceFile{"transmittance", "transmittance.exr", "preview_transmittance.png"};
+constexpr TableFile kDiffuseFile{"diffuse", "diffuse.exr", "diffuse.f16", "preview_diffuse.png"};
+constexpr TableFile kPenumbraFile{"penumbra", "penumbra.exr", "penumbra.f16", "preview_penumbra.png"};
+constexpr TableFile kShFile{"shTransfer", "sh_transfer.exr", "sh_transfer.f16", "preview_sh_transfer.png"};
+constexpr TableFile kTransmittanceFile{"transmittance", "transmittance.exr", "transmittance.f16", "preview_transmittance.png"};
+static_assert(std::endian::native == std::endian::little, "raw LUT tables are little-endian half floats");
 
 std::string shown(const fs::path& p) { return p.string(); }
+
+// ---- raw tables ----------------------------------------------------------------------------
+
+std::vector<uint16_t> rawHalf(const LutTable& table) {
+    std::vector<uint16_t> half(table.rgb.size());
+    for (size_t i = 0; i < half.size(); ++i) half[i] = skin::floatToHalfBits(table.rgb[i]);
+    return half;
+}
+
+uint32_t rawCrc32(const std::vector<uint16_t>& half) {
+    return static_cast<uint32_t>(
+        crc32_z(0, reinterpret_cast<const Bytef*>(half.data()), half.size() * sizeof(uint16_t)));
+}
 
 // ---- manifest writing ----------------------------------------------------------------------
 
@@ -73,9 +92,9 @@ ordered_json axisJson(const LutAxis& axis) {
     return j;
 }
 
-ordered_json tableJson(const LutTable& table, const TableFile& file) {
+ordered_json tableJson(const LutTable& table, const TableFile& file, bool raw) {
     ordered_json j;
-    j["file"] = file.fileName;
+    j["file"] = file.name(raw);
     j["width"] = table.width();
     j["height"] = table.height();
     j["channels"] = ordered_json::array({"R", "G", "B"});
@@ -83,12 +102,15 @@ ordered_json tableJson(const LutTable& table, const TableFile& file) {
     j["x"] = axisJson(table.x);
     j["y"] = axisJson(table.y);
     j["hash"] = table.contentHash();
+    // Raw tables also carry the CRC-32 (zlib) of their file, what a load checks: the content hash
+    // is a byte-at-a-time FNV and would be most of the time a cache hit takes.
+    if (raw) j["crc32"] = fmt::format("{:08x}", rawCrc32(rawHalf(table)));
     return j;
 }
 
 ordered_json rgbJson(glm::dvec3 v) { return ordered_json::array({v.x, v.y, v.z}); }
 
-std::string manifestText(const LutSet& set) {
+std::string manifestText(const LutSet& set, bool raw) {
     const DiffusionProfile& profile = set.profile();
     const LutBakeSettings& s = set.settings();
     ordered_json j;
@@ -140,7 +162,7 @@ std::string manifestText(const LutSet& set) {
     };
 
     ordered_json tables;
-    ordered_json diffuse = tableJson(set.diffuse(), kDiffuseFile);
+    ordered_json diffuse = tableJson(set.diffuse(), kDiffuseFile, raw);
     diffuse["method"] = "integral over the angle psi between x and y of a^2 R(2 a sin(psi/2)) sin(psi) times the "
                         "closed-form azimuthal integral of max(n_y.L, 0) (with the concave cap's visibility threshold), "
                         "up to the profile's 1e-4 reach, by 8-point Gauss-Legendre on a geometric mesh (ratio 1.5) "
@@ -149,21 +171,21 @@ std::string manifestText(const LutSet& set) {
     diffuse["samples"] = {{"gaussLegendrePointsPerInterval", 8}, {"gradedMeshRatio", 1.5}, {"uniformIntervals", 64}};
     tables["diffuse"] = std::move(diffuse);
 
-    ordered_json penumbra = tableJson(set.penumbra(), kPenumbraFile);
+    ordered_json penumbra = tableJson(set.penumbra(), kPenumbraFile, raw);
     penumbra["referenceWidthMm"] = set.penumbraReferenceWidthMm();
     penumbra["windowSigmas"] = skin::kPenumbraWindowSigmas;
     penumbra["method"] = "closed form (erfc) for Gaussians; Craig-form integral (1/pi) int_0^{pi/2} T(a / sin psi) dpsi "
                          "by 8-point Gauss-Legendre on a halving mesh for normalized diffusion";
     tables["penumbra"] = std::move(penumbra);
 
-    ordered_json sh = tableJson(set.shTransfer(), kShFile);
+    ordered_json sh = tableJson(set.shTransfer(), kShFile, raw);
     sh["lambert"] = ordered_json::array({std::numbers::pi, 2.0 * std::numbers::pi / 3.0, std::numbers::pi / 4.0});
     sh["method"] = "16-point Gauss-Legendre in cos(theta) on [-1, 1] with breaks at 0, +-1/256, +-1/64, +-1/16, +-1/4 "
                    "(160 ring integrals per curvature)";
     sh["samples"] = {{"cosThetaNodes", 160}};
     tables["shTransfer"] = std::move(sh);
 
-    ordered_json transmittance = tableJson(set.transmittance(), kTransmittanceFile);
+    ordered_json transmittance = tableJson(set.transmittance(), kTransmittanceFile, raw);
     transmittance["floor"] = skin::kTransmittanceFloor;
     transmittance["method"] = "closed form";
     tables["transmittance"] = std::move(transmittance);
@@ -184,6 +206,14 @@ void writeExr(const fs::path& path, const fs::path& shownPath, const LutTable& t
     spec.attribute("preskin:table", table.name);
     if (!out->open(path.string(), spec) || !out->write_image(OIIO::TypeDesc::HALF, half.data()) || !out->close())
         throw Error(fmt::format("{}: cannot write: {}", shown(shownPath), out->geterror()));
+}
+
+void writeRaw(const fs::path& path, const fs::path& shownPath, const LutTable& table) {
+    const std::vector<uint16_t> half = rawHalf(table);
+    std::ofstream out(path, std::ios::binary | std::ios::trunc);
+    out.write(reinterpret_cast<const char*>(half.data()), std::streamsize(half.size() * sizeof(uint16_t)));
+    out.close();
+    if (!out) throw Error(fmt::format("{}: cannot write", shown(shownPath)));
 }
 
 float srgbEncode(float linear) {
@@ -283,22 +313,17 @@ void checkAxis(const ManifestReader& reader, const nlohmann::json& tables, const
     if (expected.mapping == AxisMapping::Log1p) expect("scale", reader.number(a, at, "scale"), expected.scale);
 }
 
-LutTable readTable(const fs::path& dir, const ManifestReader& reader, const nlohmann::json& tables, const TableFile& file,
-                   LutTable expected) {
-    const std::string path = std::string("tables.") + file.key;
-    const nlohmann::json& t = reader.field(tables, "tables", file.key);
-    const std::string name = reader.string(t, path, "file");
-    if (name != file.fileName) reader.fail(path + ".file", fmt::format("expected \"{}\", got \"{}\"", file.fileName, name));
-    const int width = reader.integer(t, path, "width");
-    const int height = reader.integer(t, path, "height");
-    if (width != expected.width() || height != expected.height())
-        reader.fail(path + ".width", fmt::format("{}x{} does not match the settings ({}x{})", width, height, expected.width(),
-                                                 expected.height()));
-    checkAxis(reader, t, path, "x", expected.x);
-    checkAxis(reader, t, path, "y", expected.y);
-    const std::string hash = reader.string(t, path, "hash");
+// Raw half floats: exactly `values` of them, nothing else.
+std::vector<uint8_t> readRaw(const fs::path& rawPath, size_t values) {
+    std::vector<uint8_t> bytes = io::readInputFile(rawPath, shown(rawPath), limits::kMaxImageFileBytes);
+    if (bytes.size() != values * sizeof(uint16_t))
+        throw Error(fmt::format("{}: holds {} bytes, but the table needs {}", shown(rawPath), bytes.size(),
+                                values * sizeof(uint16_t)));
+    return bytes;
+}
 
-    const fs::path exrPath = dir / file.fileName;
+void readExr(const fs::path& exrPath, const ManifestReader& reader, const std::string& path, int width, int height,
+             std::vector<uint16_t>& half) {
     // The size from the file's own header, checked against the manifest before a decoder
     // allocates; then only the OpenEXR reader (opening by name would try every format).
     const std::vector<uint8_t> prefix =
@@ -323,20 +348,66 @@ LutTable readTable(const fs::path& dir, const ManifestReader& reader, const nloh
     if (spec.width != width || spec.height != height || spec.nchannels != 3)
         throw Error(fmt::format("{}: image is {}x{} with {} channels, but {} {} says {}x{} RGB", shown(exrPath), spec.width,
                                 spec.height, spec.nchannels, reader.source, path, width, height));
-    std::vector<uint16_t> half(static_cast<size_t>(width) * static_cast<size_t>(height) * 3);
     if (!in->read_image(0, 0, 0, 3, OIIO::TypeDesc::HALF, half.data()))
         throw Error(fmt::format("{}: cannot read: {}", shown(exrPath), io::messageText(in->geterror())));
     in->close();
-    expected.rgb.resize(half.size());
-    for (size_t i = 0; i < half.size(); ++i) {
-        expected.rgb[i] = skin::halfBitsToFloat(half[i]);
-        if (!std::isfinite(expected.rgb[i]))
-            throw Error(fmt::format("{}: texel {} holds a non-finite value", shown(exrPath), i / 3));
+}
+
+
+LutTable readTable(const fs::path& dir, const ManifestReader& reader, const nlohmann::json& tables, const TableFile& file,
+                   LutTable expected) {
+    const std::string path = std::string("tables.") + file.key;
+    const nlohmann::json& t = reader.field(tables, "tables", file.key);
+    const std::string name = reader.string(t, path, "file");
+    if (name != file.fileName && name != file.rawName)
+        reader.fail(path + ".file", fmt::format("expected \"{}\" or \"{}\", got \"{}\"", file.fileName, file.rawName, name));
+    const int width = reader.integer(t, path, "width");
+    const int height = reader.integer(t, path, "height");
+    if (width != expected.width() || height != expected.height())
+        reader.fail(path + ".width", fmt::format("{}x{} does not match the settings ({}x{})", width, height, expected.width(),
+                                                 expected.height()));
+    checkAxis(reader, t, path, "x", expected.x);
+    checkAxis(reader, t, path, "y", expected.y);
+    const std::string hash = reader.string(t, path, "hash");
+    const size_t values = static_cast<size_t>(width) * static_cast<size_t>(height) * 3;
+    const fs::path tablePath = dir / name;
+    const bool raw = name == file.rawName;
+    std::vector<uint8_t> bytes;  // raw: the file
+    std::vector<uint16_t> half;  // EXR: the decoded values
+    if (raw) {
+        const std::string crc = reader.string(t, path, "crc32");
+        bytes = readRaw(tablePath, values);
+        const std::string actual = fmt::format("{:08x}", crc32_z(0, bytes.data(), bytes.size()));
+        if (actual != crc)
+            throw Error(fmt::format("{}: CRC-32 {} does not match {} {}.crc32 ({}); the file is corrupt", shown(tablePath),
+                                    actual, reader.source, path, io::messageText(crc)));
+    } else {
+        half.resize(values);
+        readExr(tablePath, reader, path, width, height, half);
     }
-    const std::string actual = expected.contentHash();
+    auto halfAt = [&](size_t i) {
+        if (!raw) return half[i];
+        uint16_t h;
+        std::memcpy(&h, bytes.data() + 2 * i, sizeof h);
+        return h;
+    };
+    // Every half value as a float, once (a cache load converts millions of them).
+    static const std::vector<float> kHalfToFloat = [] {
+        std::vector<float> table(65536);
+        for (uint32_t h = 0; h < 65536; ++h) table[h] = skin::halfBitsToFloat(static_cast<uint16_t>(h));
+        return table;
+    }();
+    expected.rgb.resize(values);
+    for (size_t i = 0; i < values; ++i) {
+        const uint16_t h = halfAt(i);
+        if ((h & 0x7c00u) == 0x7c00u)  // exponent all ones: infinity or NaN
+            throw Error(fmt::format("{}: texel {} holds a non-finite value", shown(tablePath), i / 3));
+        expected.rgb[i] = kHalfToFloat[h];
+    }
+    const std::string actual = raw ? hash : skin::halfContentHash(half);  // raw: the CRC above
     if (actual != hash)
         throw Error(fmt::format("{}: content hash {} does not match {} {}.hash ({}); the file is corrupt or from another bake",
-                                shown(exrPath), actual, reader.source, path, io::messageText(hash)));
+                                shown(tablePath), actual, reader.source, path, io::messageText(hash)));
     return expected;
 }
 
@@ -354,8 +425,12 @@ void LutSet::save(const fs::path& dir, const LutSaveOptions& options) const {
     };
     std::vector<Pending> files;
     auto addTable = [&](const LutTable& table, const TableFile& file) {
-        files.push_back({dir / file.fileName, [&table, shownPath = dir / file.fileName](const fs::path& temp) {
-                             writeExr(temp, shownPath, table);
+        const fs::path path = dir / file.name(options.rawTables);
+        files.push_back({path, [&table, shownPath = path, raw = options.rawTables](const fs::path& temp) {
+                             if (raw)
+                                 writeRaw(temp, shownPath, table);
+                             else
+                                 writeExr(temp, shownPath, table);
                          }});
     };
     addTable(diffuse_, kDiffuseFile);
@@ -373,7 +448,7 @@ void LutSet::save(const fs::path& dir, const LutSaveOptions& options) const {
         addPreview(shTransfer_, kShFile, 16);
         addPreview(transmittance_, kTransmittanceFile, 32);
     }
-    const std::string manifest = manifestText(*this);
+    const std::string manifest = manifestText(*this, options.rawTables);
     files.push_back({dir / kManifestName, [&manifest, shownPath = dir / kManifestName](const fs::path& temp) {
                          writeText(temp, shownPath, manifest);
                      }});

@@ -160,11 +160,16 @@ std::vector<uint16_t> lutFootprints(const std::vector<uint16_t>& rgba16f, int wi
 }
 
 std::string LutTable::contentHash() const {
+    std::vector<uint16_t> half(rgb.size());
+    for (size_t i = 0; i < rgb.size(); ++i) half[i] = skin::floatToHalfBits(rgb[i]);
+    return skin::halfContentHash(half);
+}
+
+std::string skin::halfContentHash(std::span<const uint16_t> half) {
     uint64_t hash = 14695981039346656037ull;
-    for (float value : rgb) {
-        const uint16_t half = skin::floatToHalfBits(value);
+    for (const uint16_t value : half) {
         for (int byte = 0; byte < 2; ++byte) {
-            hash ^= static_cast<uint64_t>((half >> (8 * byte)) & 0xffu);
+            hash ^= static_cast<uint64_t>((value >> (8 * byte)) & 0xffu);
             hash *= 1099511628211ull;
         }
     }

@@ -131,7 +131,7 @@ ProfileLibrary ProfileLibrary::forScene(const Scene& scene, std::shared_ptr<cons
         if (!warnings[i].empty()) library.warnings_.push_back(warnings[i]);
         if (!toSave[i] || !cacheWritable) continue;
         try {
-            sets[i]->save(profileCacheEntry(cacheFolder, *scene.profiles[i].profile, settings));
+            sets[i]->save(profileCacheEntry(cacheFolder, *scene.profiles[i].profile, settings), {.rawTables = true});
         } catch (const Error& e) {
             cacheWritable = false;
             library.warnings_.push_back(
