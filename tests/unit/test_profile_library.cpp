@@ -136,16 +136,18 @@ TEST(SceneProfiles, BadProfileDataIsOneLineNamingTheField) {
     nlohmann::json albedoAboveOne = burleyJson(1.5);
     nlohmann::json negativeVariance = gaussiansJson();
     negativeVariance["gaussians"][1]["varianceMm2"] = -0.5;
+    // One-element lists are written as arrays explicitly: `{x}` of one json is a copy of x under
+    // clang (CWG 2137) and an array of one under GCC.
     const std::vector<Case> cases = {
-        {"unknown_kind", {{{"type", "dipole"}}}, nlohmann::json::object(), {profiles + "[0].type", "'dipole'"}},
+        {"unknown_kind", nlohmann::json::array({{{"type", "dipole"}}}), nlohmann::json::object(), {profiles + "[0].type", "'dipole'"}},
         {"albedo_above_one", {burleyJson(0.8), albedoAboveOne}, nlohmann::json::object(),
          {profiles + "[1].albedo[0]", "(0, 1]"}},
-        {"negative_variance", {negativeVariance}, nlohmann::json::object(), {profiles + "[0].gaussians[1].varianceMm2"}},
-        {"missing_lut_folder", {{{"type", "lutFolder"}, {"uri", "nowhere"}}}, nlohmann::json::object(),
+        {"negative_variance", nlohmann::json::array({negativeVariance}), nlohmann::json::object(), {profiles + "[0].gaussians[1].varianceMm2"}},
+        {"missing_lut_folder", nlohmann::json::array({{{"type", "lutFolder"}, {"uri", "nowhere"}}}), nlohmann::json::object(),
          {profiles + "[0].uri", "'nowhere' not found"}},
-        {"layer_out_of_range", {burleyJson(0.8)}, {{"profile", 1}},
+        {"layer_out_of_range", nlohmann::json::array({burleyJson(0.8)}), {{"profile", 1}},
          {"materials[0].extensions.PRESKIN_materials_skin.profile", "1 is out of range", "1 profiles"}},
-        {"blend_out_of_range", {burleyJson(0.8)}, {{"profileBlend", {{"profiles", {0, 4}}, {"weightTexture", {{"index", 0}}}}}},
+        {"blend_out_of_range", nlohmann::json::array({burleyJson(0.8)}), {{"profileBlend", {{"profiles", {0, 4}}, {"weightTexture", {{"index", 0}}}}}},
          {"profileBlend.profiles[1]", "4 is out of range"}},
     };
     for (const Case& c : cases) {
@@ -157,7 +159,7 @@ TEST(SceneProfiles, BadProfileDataIsOneLineNamingTheField) {
         expectLoadError(writeProfileScene(sub, c.profiles, c.skin), fragments);
     }
     // NaN is not JSON: the file's JSON reader refuses it, naming the file.
-    const fs::path nanScene = writeProfileScene(dir.path(), {burleyJson(0.8)}, nlohmann::json::object());
+    const fs::path nanScene = writeProfileScene(dir.path(), nlohmann::json::array({burleyJson(0.8)}), nlohmann::json::object());
     std::string text = readFile(nanScene);
     text.replace(text.find("0.8"), 3, "NaN");
     writeText(nanScene, text);
