@@ -51,8 +51,8 @@ KernelNodes kernelNodes(const DiffusionProfile& profile, double radiusMm, double
 double azimuthal(double A, double B, double tau) {
     if (A - B >= tau) return 2.0 * kPi * A;
     if (A + B <= tau) return 0.0;
-    const double phi = std::acos(std::clamp((tau - A) / B, -1.0, 1.0));
-    return 2.0 * (A * phi + B * std::sin(phi));
+    const double x = std::clamp((tau - A) / B, -1.0, 1.0);  // cos(phi) at the limit
+    return 2.0 * (A * std::acos(x) + B * std::sqrt(1.0 - x * x));  // sin(acos(x)) = sqrt(1 - x^2)
 }
 
 // The psi range that matters: the chord out to the profile's reach, and for a concave patch its
