@@ -101,8 +101,8 @@ LutMapping preskinMixMapping(PreskinProfileMix p, int i) {
     return i == 1 ? p.mapping[1] : (i == 2 ? p.mapping[2] : p.mapping[3]);
 }
 
-// The lookups of a mix: entry 0 always, entries 1..count-1 of non-zero weight in a loop, so a
-// single profile is one fetch per lookup.
+// The lookups of a mix: entry 0 always, entries 1..count-1 of non-zero weight in a loop (not
+// compiled where PRESKIN_PROFILE_MIX_MAX is 1).
 vec3 preskinDiffuseLut(PreskinProfileMix p, sampler2DArray diffuseFootprints, vec3 NoL, float curvaturePerMm) {
     vec3 sum = p.weight.x * preskinDiffuseLut(p.mapping[0], diffuseFootprints, p.layer.x, NoL, curvaturePerMm);
     if (int(PRESKIN_PROFILE_MIX_MAX) > 1) for (int i = 1; i < p.count; ++i) {
