@@ -19,6 +19,11 @@ layout(constant_id = kSpecLightLoop) const uint kLightLoop = kLightLoopAll;
 layout(constant_id = kSpecAlphaToCoverage) const uint kAlphaToCoverage = 0;
 layout(constant_id = kSpecSpecular) const uint kSpecular = 1;
 layout(constant_id = kSpecProfileMix) const uint kProfileMix = 4;
+// What a skin material reads (kSpecSkinInputs): a pipeline for a material without a detail map or
+// with per-vertex curvature has no code for the others (a CPU driver would run it masked).
+layout(constant_id = kSpecSkinInputs) const uint kSkinInputs = 0;
+const bool kSkinDetailNormals = (kSkinInputs & 1u) != 0u;
+const uint kSkinCurvatureSource = (kSkinInputs >> 1) & 3u;
 // A material without a profile blend compiles without the blend's lookups (preskin/lut.glsl).
 #define PRESKIN_PROFILE_MIX_MAX kProfileMix
 
@@ -179,7 +184,7 @@ void main() {
     float skinCurvaturePerMm = 0.0;
     if (kMaterialModel == kModelSkin)
         skinCurvaturePerMm = preskinCurvatureProfilePerMm(
-            preskinSkinCurvaturePerM(uint(material.skinScatter.y), inCurvaturePerM, curvatureTexture, uvBase,
+            preskinSkinCurvaturePerM(kSkinCurvatureSource, inCurvaturePerM, curvatureTexture, uvBase,
                                      material.skinScatter.z, geometricN, inPositionWs),
             material.skinScatter.x);
     vec3 shadowPositionWs = inPositionWs;
@@ -209,7 +214,7 @@ void main() {
         if (hasNormalMap) {
             PreskinNormalMaps maps;
             maps.scale = material.pbr.z;
-            maps.hasDetail = material.textureFlags.x > 0.5;
+            maps.hasDetail = kSkinDetailNormals;
             maps.detailUvScale = material.textureFlags.y;
             maps.detailScale = material.skinNormalLodBias.w;
             maps.lodBias = material.skinNormalLodBias.rgb;

@@ -5,6 +5,8 @@
 //    every scene. For that the skin material gets specularIntensity = 0.04 / 0.028, so its F0 is
 //    the standard dielectric's 0.04, and the standard material is a dielectric (metallic 0) with
 //    the same base colour, roughness and normal map.
+// A skin material's optional inputs (a detail normal map, the curvature source) specialise its
+// pipeline: each input, when the material has it, still reaches the image.
 // Scenes: a normal-mapped skin sphere (2 cm, scatter scale 0.2: it scatters like a 4 mm one) under a shadowed key light with a
 // caster and a structured environment (LUT diffuse, normal prefilter, SH ambient, dual specular);
 // a skin plane behind a caster with a wide shadow filter (penumbra); a thin skin slab lit from
@@ -167,6 +169,57 @@ TEST_F(SkinToggles, EachTechniqueChangesTheImage) {
             EXPECT_GE(changed, size_t(kSize * kSize / 100)) << c.name << " off should change at least 1% of the image";
         }
     }
+}
+
+// A uniform image of one grey level (red = green = blue = value / 255).
+int addUniformImage(Scene& scene, uint8_t value) {
+    Image image;
+    image.name = "uniform";
+    image.width = image.height = 4;
+    image.rgba8.assign(4 * 4 * 4, value);
+    for (size_t i = 3; i < image.rgba8.size(); i += 4) image.rgba8[i] = 255;
+    scene.images.push_back(std::move(image));
+    return static_cast<int>(scene.images.size()) - 1;
+}
+
+TEST_F(SkinToggles, MaterialInputsReachTheImage) {
+    const LutSet& luts = LutSet::loadDefault();
+    ToggleScene s = sphereScene();
+    auto render = [&](const Scene& scene) {
+        Renderer renderer(context(), scene, s.environment, &luts, s.settings);
+        return renderer.render(s.view, kSize, kSize, OutputEncoding::LinearFloat);
+    };
+    const RenderedImage vertex = render(s.scene);
+    // Curvature from a texture: the sphere's own curvature (1 / 2 cm = 50 / m) as a uniform
+    // texture renders as the per-vertex curvature does; a texture of 0 (flat skin) does not.
+    Scene textured = s.scene;
+    SkinMaterial& skin = *textured.materials[0].skin;
+    skin.curvatureSource = CurvatureSource::Texture;
+    skin.curvatureTextureScalePerM = 50.0f * 255.0f / 200.0f;  // texel 200 / 255 -> 50 / m
+    skin.curvatureTexture.image = addUniformImage(textured, 200);
+    const RenderedImage fromTexture = render(textured);
+    skin.curvatureTexture.image = addUniformImage(textured, 0);
+    const RenderedImage flat = render(textured);
+    const size_t textureVsVertex = countDifferingPixels(vertex, fromTexture, 2.0);
+    const size_t flatVsVertex = countDifferingPixels(vertex, flat, 2.0);
+    std::printf("[ skin     ] curvature texture: %zu pixels differ from per-vertex curvature by > 2/255; a flat one: %zu\n",
+                textureVsVertex, flatVsVertex);
+    EXPECT_LE(textureVsVertex, size_t(kSize * kSize / 200));
+    EXPECT_GE(flatVsVertex, size_t(kSize * kSize / 100));
+    // A detail normal map: flat (128, 128, 255) leaves the image as it is, a tilted one changes it.
+    Scene detailed = s.scene;
+    SkinMaterial& d = *detailed.materials[0].skin;
+    d.detailNormalScale = 1.0f;
+    d.detailNormalTexture.image = addNormalMap(detailed, 8, 8, [](glm::vec2) { return glm::vec3(0.0f, 0.0f, 1.0f); });
+    const RenderedImage flatDetail = render(detailed);
+    d.detailNormalTexture.image = addNormalMap(detailed, 8, 8, [](glm::vec2) { return glm::vec3(0.5f, 0.0f, 1.0f); });
+    const RenderedImage tiltedDetail = render(detailed);
+    const size_t flatDetailChanged = countDifferingPixels(vertex, flatDetail, 2.0);
+    const size_t tiltedDetailChanged = countDifferingPixels(vertex, tiltedDetail, 2.0);
+    std::printf("[ skin     ] detail normal map: flat changes %zu pixels by > 2/255, tilted %zu\n", flatDetailChanged,
+                tiltedDetailChanged);
+    EXPECT_LE(flatDetailChanged, size_t(kSize * kSize / 200));
+    EXPECT_GE(tiltedDetailChanged, size_t(kSize * kSize / 20));
 }
 
 TEST_F(SkinToggles, AllOffEqualsStandardPath) {

@@ -55,7 +55,8 @@ PipelineKey Renderer::Impl::pipelineKey(const GpuMaterial& m, VkFormat format, V
                        eyes,
                        settings.msaaSamples,
                        eyeDrawing() == EyeDrawing::InstancedLayers ? 1u : 0u,
-                       skin ? m.profileMix : 1u};
+                       skin ? m.profileMix : 1u,
+                       skin ? m.skinInputs : 0u};
 }
 
 VkPipeline Renderer::Impl::forwardPipeline(const GpuMaterial& m, VkFormat format, VkFormat depthFormat, uint32_t eyes) {
@@ -72,7 +73,7 @@ VkPipeline Renderer::Impl::createForwardPipeline(const PipelineKey& key) const {
     vk::GraphicsPipelineDesc desc;
     desc.vertexSpirv = shader(key.layered ? "forward_layers.vert" : "forward.vert");
     desc.fragmentSpirv = shader("forward.frag");
-    desc.specialization.values.resize(9);
+    desc.specialization.values.resize(10);
     desc.specialization.values[gpu::kSpecMaterialModel] = key.model;
     desc.specialization.values[gpu::kSpecOutputMode] = isDisplayFormat(format) ? gpu::kOutputTonemapped
                                                                                : gpu::kOutputLinear;
@@ -82,6 +83,7 @@ VkPipeline Renderer::Impl::createForwardPipeline(const PipelineKey& key) const {
     desc.specialization.values[gpu::kSpecLightLoop] = key.lightLoop;
     desc.specialization.values[gpu::kSpecSpecular] = key.specular;
     desc.specialization.values[gpu::kSpecProfileMix] = key.profileMix;
+    desc.specialization.values[gpu::kSpecSkinInputs] = key.skinInputs;
     const AlphaMode alphaMode = static_cast<AlphaMode>(key.alphaMode);
     const bool alphaToCoverage = key.samples > 1 && alphaMode == AlphaMode::Mask;
     desc.specialization.values[gpu::kSpecAlphaToCoverage] = alphaToCoverage ? 1u : 0u;

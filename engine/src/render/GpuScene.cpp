@@ -179,6 +179,9 @@ GpuScene::GpuScene(const vk::Device& device, const Scene& scene)
         gm.skin = mat.skin.has_value();
         gm.alphaMode = mat.alphaMode;
         gm.doubleSided = mat.doubleSided;
+        if (mat.skin)
+            gm.skinInputs = (mat.skin->detailNormalTexture.valid() ? 1u : 0u) |
+                            (uint32_t(static_cast<int>(mat.skin->curvatureSource)) << 1);
         if (mat.skin && mat.skin->profileWeightTexture.valid())
             gm.profileMix = 1u + uint32_t(std::min(mat.skin->blendProfiles.size(), size_t(kMaxBlendedProfiles - 1)));
         if (mat.normal.valid() && size_t(mat.normal.image) < scene.images.size()) {

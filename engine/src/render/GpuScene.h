@@ -32,6 +32,7 @@ struct GpuMaterial {
     bool doubleSided = false;
     float texelsPerMm = 0.0f;  // normal-map texels per world millimetre on the meshes using it
     uint32_t profileMix = 1;   // skin: its profile plus the profiles its weight texture blends in (1..4)
+    uint32_t skinInputs = 0;   // skin: bit 0 a detail normal map, bits 1-2 the curvature source (kSpecSkinInputs)
 };
 
 // Scattering widths of a diffusion profile, for the normal-map LOD biases.

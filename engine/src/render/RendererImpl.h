@@ -30,10 +30,10 @@ inline constexpr uint32_t kQueryCount = 6;
 // What makes one forward pipeline differ from another.
 struct PipelineKey {
     uint32_t model, alphaMode, doubleSided, format, depthFormat, debugView, skinMask, lightLoop, specular, eyes, samples,
-        layered, profileMix;
+        layered, profileMix, skinInputs;
     auto tie() const {
         return std::tie(model, alphaMode, doubleSided, format, depthFormat, debugView, skinMask, lightLoop, specular,
-                        eyes, samples, layered, profileMix);
+                        eyes, samples, layered, profileMix, skinInputs);
     }
     bool operator<(const PipelineKey& o) const { return tie() < o.tie(); }
 };
