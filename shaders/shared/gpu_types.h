@@ -101,12 +101,13 @@ struct MaterialUniforms {
     vec4 baseColorFactor;
     vec4 emissiveAlphaCutoff;  // rgb emissive factor (strength applied), w alpha cutoff
     vec4 pbr;                  // x metallic, y roughness, z normal scale, w occlusion strength
-    vec4 skinScatter;          // x scatter scale, y curvature source (kCurvatureSource*),
+    vec4 skinScatter;          // x scatter scale, y unused (the curvature source is kSpecSkinInputs),
                                // z curvature texture scale (1/m), w transmission strength
     vec4 skinNormalLodBias;    // rgb LOD bias per channel, w detail normal scale
     vec4 skinTransmission;     // rgb transmission colour, w thickness scale
     vec4 skinSpecular;         // x F0 scale, y lobe-0 roughness multiplier, z lobe-1 multiplier, w lobe-1 weight
-    vec4 textureFlags;         // x has detail normal, y detail uv scale, z has specular texture, w has normal map
+    vec4 textureFlags;         // x unused (a detail map is kSpecSkinInputs), y detail uv scale, z has specular
+                               // texture, w has normal map
     vec4 hasTextures;          // 1 where the texture exists: x base colour, y metallic-roughness, z occlusion, w emissive
     vec4 skinProfileLayers;    // LUT array layers: x the profile, y z w the blended ones (SkinMaterial::blendProfiles)
     vec4 skinProfileBlend;     // x: blended profiles (0..3), weighted by the profile-weight texture's r, g, b

@@ -37,12 +37,12 @@ protected:
 };
 
 // A lit sphere in front of the camera, filling the middle of the picture.
-Scene sphereScene() {
+Scene sphereScene(uint32_t segments = 48) {
     Material material;
     material.baseColorFactor = glm::vec4(0.7f, 0.5f, 0.4f, 1.0f);
     material.metallicFactor = 0.0f;
     material.roughnessFactor = 0.5f;
-    Scene scene = makeScene({{makeSphere(1.0f, 48, 24), glm::mat4(1.0f)}}, {material});
+    Scene scene = makeScene({{makeSphere(1.0f, segments, segments / 2), glm::mat4(1.0f)}}, {material});
     scene.meshes[0].primitives[0].material = 0;
     Light light;
     light.directionWs = glm::normalize(glm::vec3(-0.3f, -0.6f, -0.7f));
@@ -58,17 +58,7 @@ uint8_t srgb8(float linear) {
 }
 
 TEST_F(HostContext, WrappedDeviceRendersLikeOwnedOne) {
-    Material material;
-    material.baseColorFactor = glm::vec4(0.7f, 0.5f, 0.4f, 1.0f);
-    material.metallicFactor = 0.0f;
-    material.roughnessFactor = 0.5f;
-    Scene scene = makeScene({{makeSphere(1.0f, 64, 32), glm::mat4(1.0f)}}, {material});
-    scene.meshes[0].primitives[0].material = 0;
-    Light light;
-    light.directionWs = glm::normalize(glm::vec3(-0.3f, -0.6f, -0.7f));
-    light.intensity = 2.0f;
-    light.castsShadow = true;
-    scene.lights = {light};
+    const Scene scene = sphereScene(64);
     const Environment env = Environment::constant(glm::vec3(0.1f));
     const View view = orbitView(scene.worldBounds(), 20.0f, 10.0f, 0.0f, 1.0f);
 

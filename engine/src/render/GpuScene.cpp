@@ -294,14 +294,12 @@ gpu::MaterialUniforms GpuScene::uniformsFor(const Material& mat, const GpuMateri
     for (size_t i = 0; i < 5; ++i) u.uv[i] = toGpu(*refs[i]);
     if (mat.skin) {
         const SkinMaterial& s = *mat.skin;
-        u.skinScatter = glm::vec4(s.scatterScale, float(static_cast<int>(s.curvatureSource)),
-                                  s.curvatureTextureScalePerM, s.transmission);
+        u.skinScatter = glm::vec4(s.scatterScale, 0.0f, s.curvatureTextureScalePerM, s.transmission);
         const glm::vec3 bias = s.normalLodBias ? *s.normalLodBias
                                                : normalLodBias(widths.widthMm, s.scatterScale, gm.texelsPerMm);
         u.skinNormalLodBias = glm::vec4(bias, s.detailNormalScale);
         u.skinTransmission = glm::vec4(s.transmissionColor, s.thicknessScale);
         u.skinSpecular = glm::vec4(s.specularIntensity, s.lobeRoughness0, s.lobeRoughness1, s.lobeMix);
-        u.textureFlags.x = s.detailNormalTexture.valid() ? 1.0f : 0.0f;
         u.textureFlags.y = s.detailUvScale;
         u.textureFlags.z = s.specularTexture.valid() ? 1.0f : 0.0f;
         // Layer p + 1 holds profile p (layer 0: the default set); unused entries repeat the first.

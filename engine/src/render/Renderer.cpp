@@ -302,23 +302,22 @@ void Renderer::Impl::updateFrameSet(Slot& slot, uint32_t slotIndex) {
     const std::array<VkDescriptorImageInfo, 4> lutInfos = luts->descriptors();
     const VkDescriptorBufferInfo lutMappingInfo = luts->mappingDescriptor();
     std::vector<VkWriteDescriptorSet> writes;
-    auto buffer = [&](uint32_t binding, VkDescriptorType type, const VkDescriptorBufferInfo* info) {
+    auto write = [&](uint32_t binding, VkDescriptorType type, const VkDescriptorBufferInfo* bufferInfo,
+                     const VkDescriptorImageInfo* imageInfo) {
         VkWriteDescriptorSet w{VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET};
         w.dstSet = slot.set;
         w.dstBinding = binding;
         w.descriptorCount = 1;
         w.descriptorType = type;
-        w.pBufferInfo = info;
+        w.pBufferInfo = bufferInfo;
+        w.pImageInfo = imageInfo;
         writes.push_back(w);
     };
+    auto buffer = [&](uint32_t binding, VkDescriptorType type, const VkDescriptorBufferInfo* info) {
+        write(binding, type, info, nullptr);
+    };
     auto image = [&](uint32_t binding, const VkDescriptorImageInfo* info) {
-        VkWriteDescriptorSet w{VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET};
-        w.dstSet = slot.set;
-        w.dstBinding = binding;
-        w.descriptorCount = 1;
-        w.descriptorType = VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER;
-        w.pImageInfo = info;
-        writes.push_back(w);
+        write(binding, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, nullptr, info);
     };
     buffer(gpu::kBindingFrame, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, &frameInfo);
     buffer(gpu::kBindingLights, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, &lightInfo);
