@@ -100,6 +100,17 @@ void localLightRange(out uint first, out uint count, out bool indirect) {
     }
 }
 
+// Light i of the loop after the shadow light: the other directional lights, then the
+// fragment's local lights (localLightRange).
+GpuLight unshadowedLight(uint i, uint shadowLights, uint first, bool indirect) {
+    uint directional = frame.lightCounts.y - shadowLights;
+    uint index;
+    if (i < directional) index = shadowLights + i;
+    else if (indirect) index = clusterIndices[first + (i - directional)];
+    else index = first + (i - directional);
+    return lights[index];
+}
+
 // One layer's mapping, member by member (glslang stores a buffer struct into a local one of
 // another layout with a mismatched type, which SPIR-V validation refuses).
 LutMapping lutMappingOf(uint layer) {
@@ -200,6 +211,12 @@ void main() {
     bool indirect;
     localLightRange(first, count, indirect);
     uint lightTotal = frame.lightCounts.y + count;
+    // The shadow light (lights[0] when there is a shadow map) is shaded on its own, every other
+    // light in one loop; the loop is a do-while because a CPU driver (lavapipe) runs a while
+    // loop's body once more under an empty lane mask.
+    bool hasShadowLight = frame.shadowDirectionWs.w > 0.5;
+    uint shadowLights = hasShadowLight ? 1u : 0u;
+    uint loopCount = lightTotal - shadowLights;
 
     vec3 color = vec3(0.0);
     vec3 debugColor = vec3(0.0);
@@ -241,33 +258,26 @@ void main() {
 
         vec3 transmitted = vec3(0.0);
         vec3 penumbra = vec3(1.0);
-        for (uint i = 0; i < frame.lightCounts.y; ++i) {
-            GpuLight light = lights[i];
+        if (hasShadowLight) {
             vec3 L;
             vec3 irradiance;
-            preskinLightIncidence(light, inPositionWs, L, irradiance);
-            bool shadowed = light.colorIntensity.w >= 0.0 && frame.shadowDirectionWs.w > 0.5;
-            vec3 shadowRgb = vec3(1.0);
-            float visibility = 1.0;
-            if (shadowed) {
-                visibility = shadow.visibility;
-                shadowRgb = preskinSkinShadow(skin, profiles, penumbraLut, visibility, shadow.kernelWidthM, L, features);
-                penumbra = shadowRgb;
-                float thicknessM = 0.0;
-                if (preskinTransmissionGate(geometricN, L, features))
-                    thicknessM = preskinShadowThickness(shadowMap, frame.shadowClipFromWorld, frame.shadowParams,
-                                                        preskinThicknessPointWs(inPositionWs, geometricN, skin.scatterScale));
-                transmitted += preskinSkinTransmission(skin, profiles, transmittanceLut, L, irradiance, thicknessM,
-                                                       features);
-            }
-            color += preskinSkinLight(skin, profiles, diffuseLut, V, L, irradiance, shadowRgb, visibility, features);
+            preskinLightIncidence(lights[0], inPositionWs, L, irradiance);
+            penumbra = preskinSkinShadow(skin, profiles, penumbraLut, shadow.visibility, shadow.kernelWidthM, L, features);
+            float thicknessM = 0.0;
+            if (preskinTransmissionGate(geometricN, L, features))
+                thicknessM = preskinShadowThickness(shadowMap, frame.shadowClipFromWorld, frame.shadowParams,
+                                                    preskinThicknessPointWs(inPositionWs, geometricN, skin.scatterScale));
+            transmitted = preskinSkinTransmission(skin, profiles, transmittanceLut, L, irradiance, thicknessM, features);
+            color += preskinSkinLight(skin, profiles, diffuseLut, V, L, irradiance, penumbra, shadow.visibility, features);
         }
-        for (uint i = 0; i < count; ++i) {
-            GpuLight light = lights[indirect ? clusterIndices[first + i] : first + i];
-            vec3 L;
-            vec3 irradiance;
-            preskinLightIncidence(light, inPositionWs, L, irradiance);
-            color += preskinSkinLight(skin, profiles, diffuseLut, V, L, irradiance, vec3(1.0), 1.0, features);
+        if (loopCount > 0u) {
+            uint i = 0u;
+            do {
+                vec3 L;
+                vec3 irradiance;
+                preskinLightIncidence(unshadowedLight(i, shadowLights, first, indirect), inPositionWs, L, irradiance);
+                color += preskinSkinLight(skin, profiles, diffuseLut, V, L, irradiance, vec3(1.0), 1.0, features);
+            } while (++i < loopCount);
         }
         color += transmitted;
         diffuseColor = skin.albedo;
@@ -285,20 +295,20 @@ void main() {
         surface.F0 = mix(vec3(0.04), baseColor.rgb, metallic);
         surface.roughness = roughness;
         surface.specularWeight = float(kSpecular);
-        for (uint i = 0; i < frame.lightCounts.y; ++i) {
-            GpuLight light = lights[i];
+        if (hasShadowLight) {
             vec3 L;
             vec3 irradiance;
-            preskinLightIncidence(light, inPositionWs, L, irradiance);
-            float visibility = light.colorIntensity.w >= 0.0 ? shadow.visibility : 1.0;
-            color += preskinStandardLight(surface, N, V, L, irradiance * visibility);
+            preskinLightIncidence(lights[0], inPositionWs, L, irradiance);
+            color += preskinStandardLight(surface, N, V, L, irradiance * shadow.visibility);
         }
-        for (uint i = 0; i < count; ++i) {
-            GpuLight light = lights[indirect ? clusterIndices[first + i] : first + i];
-            vec3 L;
-            vec3 irradiance;
-            preskinLightIncidence(light, inPositionWs, L, irradiance);
-            color += preskinStandardLight(surface, N, V, L, irradiance);
+        if (loopCount > 0u) {
+            uint i = 0u;
+            do {
+                vec3 L;
+                vec3 irradiance;
+                preskinLightIncidence(unshadowedLight(i, shadowLights, first, indirect), inPositionWs, L, irradiance);
+                color += preskinStandardLight(surface, N, V, L, irradiance);
+            } while (++i < loopCount);
         }
         // Ambient: SH irradiance for diffuse; for specular the cosine-convolved SH in the
         // reflection direction, exact for rough surfaces and too blurry for glossy ones.

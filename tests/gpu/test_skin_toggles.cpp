@@ -222,6 +222,50 @@ TEST_F(SkinToggles, MaterialInputsReachTheImage) {
     EXPECT_GE(tiltedDetailChanged, size_t(kSize * kSize / 20));
 }
 
+// The shadow map belongs to the light flagged castsShadow wherever the scene lists it: with an
+// unshadowed directional fill light listed first, the image (linear, no ambient) is the sum of
+// the images of the two lights alone, for skin and for the standard material, and the key's cast
+// shadow darkens part of the plane while the fill lights it.
+TEST_F(SkinToggles, ShadowLightIsTheCasterWhereverItIsListed) {
+    const LutSet& luts = LutSet::loadDefault();
+    for (bool skin : {true, false}) {
+        ToggleScene s = penumbraScene();
+        s.environment = Environment::constant(glm::vec3(0.0f));
+        if (!skin)
+            for (Material& m : s.scene.materials) m.skin.reset();
+        Light key = s.scene.lights[0];
+        Light fill;
+        fill.type = LightType::Directional;
+        fill.directionWs = glm::normalize(glm::vec3(0.6f, 0.3f, -1.0f));
+        fill.intensity = 1.5f;
+        auto render = [&](const std::vector<Light>& lights) {
+            Scene scene = s.scene;
+            scene.lights = lights;
+            Renderer renderer(context(), scene, s.environment, &luts, s.settings);
+            return renderer.render(s.view, kSize, kSize, OutputEncoding::LinearFloat);
+        };
+        const RenderedImage both = render({fill, key});
+        const RenderedImage fillAlone = render({fill});
+        const RenderedImage keyAlone = render({key});
+        double worst = 0.0;
+        size_t keyShadowed = 0;
+        for (size_t p = 0; p < size_t(kSize) * kSize; ++p) {
+            for (size_t c = 0; c < 3; ++c) {
+                const size_t i = p * 4 + c;
+                const double sum = double(fillAlone.rgba32f[i]) + double(keyAlone.rgba32f[i]);
+                worst = std::max(worst, std::abs(double(both.rgba32f[i]) - sum) / std::max(sum, 0.05));
+            }
+            const size_t g = p * 4 + 1;
+            if (keyAlone.rgba32f[g] < 0.02f * fillAlone.rgba32f[g] && fillAlone.rgba32f[g] > 0.05f) ++keyShadowed;
+        }
+        std::printf("[ lights   ] %s: fill + key against the sum of each alone: largest relative difference %.2e; "
+                    "%zu pixels in the key's shadow and the fill's light\n",
+                    skin ? "skin" : "standard", worst, keyShadowed);
+        EXPECT_LT(worst, 1e-3) << (skin ? "skin" : "standard");
+        EXPECT_GE(keyShadowed, size_t(kSize * kSize / 50)) << (skin ? "skin" : "standard");
+    }
+}
+
 TEST_F(SkinToggles, AllOffEqualsStandardPath) {
     const LutSet& luts = LutSet::loadDefault();
     for (ToggleScene s : {sphereScene(), penumbraScene(), transmissionScene()}) {

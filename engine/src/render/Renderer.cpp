@@ -244,10 +244,16 @@ bool Renderer::Impl::prepareFrame(Slot& slot, uint32_t slotIndex, const View& vi
     const int shadowLight = settings.shadows ? shadowLightIndex(lights) : -1;
     std::vector<gpu::GpuLight> gpuLights;
     gpuLights.reserve(lights.size());
+    // Directional lights first, the shadow light (if any) at index 0: forward.frag shades it on
+    // its own and loops over the rest.
     uint32_t directional = 0;
+    if (shadowLight >= 0) {
+        gpuLights.push_back(toGpuLight(lights[size_t(shadowLight)], true));
+        ++directional;
+    }
     for (size_t i = 0; i < lights.size(); ++i)
-        if (lights[i].type == LightType::Directional) {
-            gpuLights.push_back(toGpuLight(lights[i], int(i) == shadowLight));
+        if (lights[i].type == LightType::Directional && int(i) != shadowLight) {
+            gpuLights.push_back(toGpuLight(lights[i], false));
             ++directional;
         }
     for (const Light& l : lights)
