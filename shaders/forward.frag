@@ -256,6 +256,7 @@ void main() {
         skin.thicknessScale = material.skinTransmission.w;
         PreskinProfileMix profiles = skinProfileMix();
 
+        PreskinSkinLighting lighting = preskinSkinLighting(skin, profiles, diffuseLut, V, features);
         vec3 transmitted = vec3(0.0);
         vec3 penumbra = vec3(1.0);
         if (hasShadowLight) {
@@ -268,7 +269,7 @@ void main() {
                 thicknessM = preskinShadowThickness(shadowMap, frame.shadowClipFromWorld, frame.shadowParams,
                                                     preskinThicknessPointWs(inPositionWs, geometricN, skin.scatterScale));
             transmitted = preskinSkinTransmission(skin, profiles, transmittanceLut, L, irradiance, thicknessM, features);
-            color += preskinSkinLight(skin, profiles, diffuseLut, V, L, irradiance, penumbra, shadow.visibility, features);
+            color += preskinSkinLight(skin, lighting, profiles, diffuseLut, V, L, irradiance, penumbra, shadow.visibility, features);
         }
         if (loopCount > 0u) {
             uint i = 0u;
@@ -276,7 +277,7 @@ void main() {
                 vec3 L;
                 vec3 irradiance;
                 preskinLightIncidence(unshadowedLight(i, shadowLights, first, indirect), inPositionWs, L, irradiance);
-                color += preskinSkinLight(skin, profiles, diffuseLut, V, L, irradiance, vec3(1.0), 1.0, features);
+                color += preskinSkinLight(skin, lighting, profiles, diffuseLut, V, L, irradiance, vec3(1.0), 1.0, features);
             } while (++i < loopCount);
         }
         color += transmitted;

@@ -13,12 +13,22 @@ float preskinGgxD(float NoH, float alpha) {
     return a2 / (PRESKIN_PI * d * d);
 }
 
-// V = G / (4 NoL NoV), height-correlated Smith for GGX.
-float preskinSmithV(float NoL, float NoV, float alpha) {
+// V = G / (4 NoL NoV), height-correlated Smith for GGX; its view term
+// sqrt(NoV^2 (1 - alpha^2) + alpha^2) apart, for a loop over lights to find it once.
+float preskinSmithViewTerm(float NoV, float alpha) {
     float a2 = alpha * alpha;
-    float gv = NoL * sqrt(NoV * NoV * (1.0 - a2) + a2);
+    return sqrt(NoV * NoV * (1.0 - a2) + a2);
+}
+
+float preskinSmithV(float NoL, float NoV, float alpha, float viewTerm) {
+    float a2 = alpha * alpha;
+    float gv = NoL * viewTerm;
     float gl = NoV * sqrt(NoL * NoL * (1.0 - a2) + a2);
     return 0.5 / max(gv + gl, 1e-7);
+}
+
+float preskinSmithV(float NoL, float NoV, float alpha) {
+    return preskinSmithV(NoL, NoV, alpha, preskinSmithViewTerm(NoV, alpha));
 }
 
 vec3 preskinSchlickF(vec3 F0, float VoH) {

@@ -23,28 +23,45 @@
 
 #include "shared/lut_mapping.h"
 
+// Where one fragment's curvature falls in a diffuse table: texel row y0 and the weight fy of row
+// y0 + 1, found once per fragment and shared by all its lights.
+struct PreskinDiffuseRow {
+    float y0;
+    float fy;
+};
+
+PreskinDiffuseRow preskinDiffuseRow(LutMapping m, sampler2DArray diffuseFootprints, float curvaturePerMm) {
+    float height = float(textureSize(diffuseFootprints, 0).y);
+    float y = preskinDiffuseLutV(m, curvaturePerMm) * height - 0.5;
+    PreskinDiffuseRow row;
+    row.y0 = clamp(floor(y), 0.0, height - 1.0);
+    row.fy = clamp(y - row.y0, 0.0, 1.0);
+    return row;
+}
+
 // Pre-integrated diffuse, replacing saturate(NoL) per channel: red at NoL.r, green at NoL.g,
 // blue at NoL.b (the per-channel prefiltered normals; pass one NoL three times for RGB at one
-// angle), from layer `layer` of the footprint image (3 W x H). Bilinear with CLAMP_TO_EDGE at
-// texel centres, as LINEAR filtering of the table itself (LutTable::sample on the CPU).
-vec3 preskinDiffuseLut(LutMapping m, sampler2DArray diffuseFootprints, float layer, vec3 NoL, float curvaturePerMm) {
-    ivec2 size = textureSize(diffuseFootprints, 0).xy;
-    int width = size.x / 3;
-    vec2 uvR = preskinDiffuseLutUv(m, NoL.r, curvaturePerMm);
-    vec3 u = vec3(uvR.x, preskinDiffuseLutUv(m, NoL.g, curvaturePerMm).x, preskinDiffuseLutUv(m, NoL.b, curvaturePerMm).x);
+// angle), on row `row` of layer `layer` of the footprint image (3 W x H). Bilinear with
+// CLAMP_TO_EDGE at texel centres, as LINEAR filtering of the table itself (LutTable::sample on
+// the CPU).
+vec3 preskinDiffuseLut(LutMapping m, PreskinDiffuseRow row, sampler2DArray diffuseFootprints, float layer, vec3 NoL) {
+    int width = textureSize(diffuseFootprints, 0).x / 3;
+    vec3 u = vec3(preskinDiffuseLutU(m, NoL.r), preskinDiffuseLutU(m, NoL.g), preskinDiffuseLutU(m, NoL.b));
     vec3 x = u * float(width) - 0.5;
     vec3 x0 = clamp(floor(x), 0.0, float(width - 1));
     vec3 fx = clamp(x - x0, 0.0, 1.0);
-    float y = uvR.y * float(size.y) - 0.5;
-    float y0 = clamp(floor(y), 0.0, float(size.y - 1));
-    float fy = clamp(y - y0, 0.0, 1.0);
     ivec3 column = ivec3(x0) + ivec3(0, width, 2 * width);
-    vec4 r = texelFetch(diffuseFootprints, ivec3(column.r, int(y0), int(layer)), 0);
-    vec4 g = texelFetch(diffuseFootprints, ivec3(column.g, int(y0), int(layer)), 0);
-    vec4 b = texelFetch(diffuseFootprints, ivec3(column.b, int(y0), int(layer)), 0);
+    vec4 r = texelFetch(diffuseFootprints, ivec3(column.r, int(row.y0), int(layer)), 0);
+    vec4 g = texelFetch(diffuseFootprints, ivec3(column.g, int(row.y0), int(layer)), 0);
+    vec4 b = texelFetch(diffuseFootprints, ivec3(column.b, int(row.y0), int(layer)), 0);
     vec3 near = mix(vec3(r.x, g.x, b.x), vec3(r.y, g.y, b.y), fx);  // row y0
     vec3 far = mix(vec3(r.z, g.z, b.z), vec3(r.w, g.w, b.w), fx);   // row y0 + 1
-    return mix(near, far, fy);
+    return mix(near, far, row.fy);
+}
+
+// The same at one curvature (finds the row on every call).
+vec3 preskinDiffuseLut(LutMapping m, sampler2DArray diffuseFootprints, float layer, vec3 NoL, float curvaturePerMm) {
+    return preskinDiffuseLut(m, preskinDiffuseRow(m, diffuseFootprints, curvaturePerMm), diffuseFootprints, layer, NoL);
 }
 
 // Penumbra scattering: replaces the filtered shadow visibility for skin (RGB, 0..1).
@@ -101,15 +118,45 @@ LutMapping preskinMixMapping(PreskinProfileMix p, int i) {
     return i == 1 ? p.mapping[1] : (i == 2 ? p.mapping[2] : p.mapping[3]);
 }
 
+// The diffuse rows of a mix's entries at one fragment's curvature (preskinDiffuseRow).
+struct PreskinDiffuseRows {
+    vec4 y0;
+    vec4 fy;
+};
+
+PreskinDiffuseRows preskinDiffuseRows(PreskinProfileMix p, sampler2DArray diffuseFootprints, float curvaturePerMm) {
+    PreskinDiffuseRows rows;
+    PreskinDiffuseRow row = preskinDiffuseRow(p.mapping[0], diffuseFootprints, curvaturePerMm);
+    rows.y0 = vec4(row.y0);
+    rows.fy = vec4(row.fy);
+    if (int(PRESKIN_PROFILE_MIX_MAX) > 1) for (int i = 1; i < p.count; ++i) {
+        row = preskinDiffuseRow(preskinMixMapping(p, i), diffuseFootprints, curvaturePerMm);
+        rows.y0[i] = row.y0;
+        rows.fy[i] = row.fy;
+    }
+    return rows;
+}
+
 // The lookups of a mix: entry 0 always, entries 1..count-1 of non-zero weight in a loop (not
-// compiled where PRESKIN_PROFILE_MIX_MAX is 1).
-vec3 preskinDiffuseLut(PreskinProfileMix p, sampler2DArray diffuseFootprints, vec3 NoL, float curvaturePerMm) {
-    vec3 sum = p.weight.x * preskinDiffuseLut(p.mapping[0], diffuseFootprints, p.layer.x, NoL, curvaturePerMm);
+// compiled where PRESKIN_PROFILE_MIX_MAX is 1). With the rows found once per fragment
+// (preskinDiffuseRows), for a loop over lights:
+vec3 preskinDiffuseLut(PreskinProfileMix p, PreskinDiffuseRows rows, sampler2DArray diffuseFootprints, vec3 NoL) {
+    PreskinDiffuseRow row;
+    row.y0 = rows.y0.x;
+    row.fy = rows.fy.x;
+    vec3 sum = p.weight.x * preskinDiffuseLut(p.mapping[0], row, diffuseFootprints, p.layer.x, NoL);
     if (int(PRESKIN_PROFILE_MIX_MAX) > 1) for (int i = 1; i < p.count; ++i) {
         if (p.weight[i] <= 0.0) continue;
-        sum += p.weight[i] * preskinDiffuseLut(preskinMixMapping(p, i), diffuseFootprints, p.layer[i], NoL, curvaturePerMm);
+        row.y0 = rows.y0[i];
+        row.fy = rows.fy[i];
+        sum += p.weight[i] * preskinDiffuseLut(preskinMixMapping(p, i), row, diffuseFootprints, p.layer[i], NoL);
     }
     return sum;
+}
+
+// At one curvature (finds the rows on every call).
+vec3 preskinDiffuseLut(PreskinProfileMix p, sampler2DArray diffuseFootprints, vec3 NoL, float curvaturePerMm) {
+    return preskinDiffuseLut(p, preskinDiffuseRows(p, diffuseFootprints, curvaturePerMm), diffuseFootprints, NoL);
 }
 
 vec3 preskinPenumbraLut(PreskinProfileMix p, sampler2DArray penumbraLut, float shadow, float filterSigmaMm) {

@@ -61,43 +61,68 @@ struct PreskinSkinSurface {
     float thicknessScale;
 };
 
+// What every light of one fragment shares: the diffuse LUT rows at its curvature, the specular
+// lobes' alphas and their Smith view terms. A loop over lights finds it once
+// (preskinSkinLighting) and passes it to each preskinSkinLight.
+struct PreskinSkinLighting {
+    PreskinDiffuseRows diffuseRows;
+    float NoV;
+    vec2 alpha;      // lobe 0, lobe 1 (lobe 0 twice without dual specular)
+    vec2 viewTerm;   // preskinSmithViewTerm of each lobe
+};
+
+PreskinSkinLighting preskinSkinLighting(PreskinSkinSurface s, PreskinProfileMix m, sampler2DArray diffuseLut, vec3 V,
+                                        uint features) {
+    PreskinSkinLighting k;
+    if ((features & kSkinLutDiffuse) != 0u) k.diffuseRows = preskinDiffuseRows(m, diffuseLut, s.curvaturePerMm);
+    k.NoV = max(dot(s.normalSpecular, V), 1e-4);
+    if ((features & kSkinDualSpecular) == 0u) {
+        k.alpha = vec2(max(s.roughness * s.roughness, 1e-3));
+    } else {
+        vec2 r = clamp(s.roughness * s.lobes.xy, 0.03, 1.0);
+        k.alpha = max(r * r, vec2(1e-3));
+    }
+    k.viewTerm = vec2(preskinSmithViewTerm(k.NoV, k.alpha.x), preskinSmithViewTerm(k.NoV, k.alpha.y));
+    return k;
+}
+
 // Diffuse response per channel for one light direction (replaces saturate(NoL)).
-vec3 preskinSkinDiffuseResponse(PreskinSkinSurface s, PreskinProfileMix m, sampler2DArray diffuseLut, vec3 L, uint features) {
+vec3 preskinSkinDiffuseResponse(PreskinSkinSurface s, PreskinSkinLighting k, PreskinProfileMix m,
+                                sampler2DArray diffuseLut, vec3 L, uint features) {
     vec3 NoL = vec3(dot(s.normalR, L), dot(s.normalG, L), dot(s.normalB, L));
     if ((features & kSkinLutDiffuse) == 0u) return clamp(NoL, 0.0, 1.0);
-    return preskinDiffuseLut(m, diffuseLut, NoL, s.curvaturePerMm);  // without prefiltering the three are equal
+    return preskinDiffuseLut(m, k.diffuseRows, diffuseLut, NoL);  // without prefiltering the three are equal
 }
 
 // Specular of one light: one or two GGX lobes with the unbiased normal (Fresnel shared).
-vec3 preskinSkinSpecular(PreskinSkinSurface s, vec3 V, vec3 L, uint features) {
+vec3 preskinSkinSpecular(PreskinSkinSurface s, PreskinSkinLighting k, vec3 V, vec3 L, uint features) {
     vec3 N = s.normalSpecular;
     float NoL = dot(N, L);
     if (NoL <= 0.0) return vec3(0.0);
     vec3 H = normalize(L + V);
-    float NoV = max(dot(N, V), 1e-4);
     float NoH = preskinSaturate(dot(N, H));
     vec3 F = preskinSchlickF(s.F0, preskinSaturate(dot(V, H)));
-    if ((features & kSkinDualSpecular) == 0u) {
-        float alpha = max(s.roughness * s.roughness, 1e-3);
-        return F * (preskinGgxD(NoH, alpha) * preskinSmithV(NoL, NoV, alpha) * NoL);
-    }
-    float r0 = clamp(s.roughness * s.lobes.x, 0.03, 1.0);
-    float r1 = clamp(s.roughness * s.lobes.y, 0.03, 1.0);
-    float a0 = max(r0 * r0, 1e-3);
-    float a1 = max(r1 * r1, 1e-3);
-    float lobe0 = preskinGgxD(NoH, a0) * preskinSmithV(NoL, NoV, a0);
-    float lobe1 = preskinGgxD(NoH, a1) * preskinSmithV(NoL, NoV, a1);
+    float lobe0 = preskinGgxD(NoH, k.alpha.x) * preskinSmithV(NoL, k.NoV, k.alpha.x, k.viewTerm.x);
+    if ((features & kSkinDualSpecular) == 0u) return F * (lobe0 * NoL);
+    float lobe1 = preskinGgxD(NoH, k.alpha.y) * preskinSmithV(NoL, k.NoV, k.alpha.y, k.viewTerm.y);
     return F * (mix(lobe0, lobe1, s.lobes.z) * NoL);
 }
 
 // Reflected radiance of one light. shadowRgb: per-channel visibility (penumbra LUT, or the plain
 // filtered shadow in all channels); specularVisibility: the plain filtered shadow.
-vec3 preskinSkinLight(PreskinSkinSurface s, PreskinProfileMix m, sampler2DArray diffuseLut, vec3 V, vec3 L, vec3 irradiance,
-                      vec3 shadowRgb, float specularVisibility, uint features) {
+vec3 preskinSkinLight(PreskinSkinSurface s, PreskinSkinLighting k, PreskinProfileMix m, sampler2DArray diffuseLut,
+                      vec3 V, vec3 L, vec3 irradiance, vec3 shadowRgb, float specularVisibility, uint features) {
     vec3 F = s.specularWeight * preskinSchlickF(s.F0, preskinSaturate(dot(V, normalize(L + V))));
-    vec3 diffuse = (vec3(1.0) - F) * s.albedo / PRESKIN_PI * preskinSkinDiffuseResponse(s, m, diffuseLut, L, features);
-    vec3 specular = s.specularWeight * preskinSkinSpecular(s, V, L, features);
+    vec3 diffuse = (vec3(1.0) - F) * s.albedo / PRESKIN_PI * preskinSkinDiffuseResponse(s, k, m, diffuseLut, L, features);
+    vec3 specular = s.specularWeight * preskinSkinSpecular(s, k, V, L, features);
     return (diffuse * shadowRgb + specular * specularVisibility) * irradiance;
+}
+
+// The same for a single light (finds the shared values on every call).
+vec3 preskinSkinLight(PreskinSkinSurface s, PreskinProfileMix m, sampler2DArray diffuseLut, vec3 V, vec3 L,
+                      vec3 irradiance, vec3 shadowRgb, float specularVisibility, uint features) {
+    return preskinSkinLight(s, preskinSkinLighting(s, m, diffuseLut, V, features), m, diffuseLut, V, L, irradiance,
+                            shadowRgb, specularVisibility, features);
 }
 
 // Per-channel shadow for skin: the penumbra LUT indexed by the filtered visibility and the

@@ -41,12 +41,19 @@ PRESKIN_CHECK_SIZE(LutMapping, 128)
 
 // Diffuse D(NoL, curvature): NoL = dot(N, L) (any sign), curvaturePerMm = signed mean curvature in
 // profile 1/mm (1 / radius; > 0 convex, < 0 concave).
-PRESKIN_LUT_FN vec2 preskinDiffuseLutUv(LutMapping m, float NoL, float curvaturePerMm) {
+// Its two coordinates apart: u depends on the light, v on the fragment only.
+PRESKIN_LUT_FN float preskinDiffuseLutU(LutMapping m, float NoL) {
     float n = clamp(NoL, -1.0f, 1.0f);
-    float u = m.diffuseNoL.x + n * ((n < 0.0f) ? m.diffuseNoL.y : m.diffuseNoL.z);
+    return m.diffuseNoL.x + n * ((n < 0.0f) ? m.diffuseNoL.y : m.diffuseNoL.z);
+}
+
+PRESKIN_LUT_FN float preskinDiffuseLutV(LutMapping m, float curvaturePerMm) {
     float s = sqrt(clamp(abs(curvaturePerMm) * m.diffuseCurvature.x, 0.0f, 1.0f));
-    float v = m.diffuseCurvature.y + ((curvaturePerMm < 0.0f) ? -m.diffuseCurvature.z : m.diffuseCurvature.w) * s;
-    return vec2(u, v);
+    return m.diffuseCurvature.y + ((curvaturePerMm < 0.0f) ? -m.diffuseCurvature.z : m.diffuseCurvature.w) * s;
+}
+
+PRESKIN_LUT_FN vec2 preskinDiffuseLutUv(LutMapping m, float NoL, float curvaturePerMm) {
+    return vec2(preskinDiffuseLutU(m, NoL), preskinDiffuseLutV(m, curvaturePerMm));
 }
 
 // Penumbra: shadow = filtered visibility in [0, 1]; filterSigmaMm = the shadow filter's Gaussian
