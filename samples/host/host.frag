@@ -24,7 +24,7 @@ layout(set = 0, binding = 0) uniform Frame {
 layout(set = 0, binding = 1) uniform sampler2D baseColorMap;
 layout(set = 0, binding = 2) uniform sampler2D normalMap;
 layout(set = 0, binding = 3) uniform sampler2D specularMap;
-layout(set = 0, binding = 4) uniform sampler2DArray diffuseLut;     // footprints; one layer: one diffusion profile
+layout(set = 0, binding = 4) uniform sampler2DArray diffuseLut;     // channel planes; a layer per diffusion profile
 layout(set = 0, binding = 5) uniform sampler2DArray shTransferLut;
 
 layout(location = 0) in vec3 inPositionWs;

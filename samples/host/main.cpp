@@ -359,12 +359,11 @@ int main(int argc, char** argv) {
             const preskin::Image& img = scene.images[size_t(index)];
             return gpu.texture(format, img.width, img.height, img.rgba8.data(), img.rgba8.size(), true);
         };
-        // The diffuse table as its bilinear footprints (three times as wide), the others as they are.
-        auto lutTexture = [&](const preskin::LutTable& table, bool footprints) {
-            const std::vector<uint16_t> texels = footprints ? table.footprintsRgba16f() : table.rgba16f();
-            return gpu.texture(VK_FORMAT_R16G16B16A16_SFLOAT, uint32_t(table.width() * (footprints ? 3 : 1)),
-                               uint32_t(table.height()), texels.data(), texels.size() * sizeof(uint16_t), false,
-                               VK_IMAGE_VIEW_TYPE_2D_ARRAY);
+        // Each skin table as its channel planes (one float channel, three times as wide).
+        auto lutTexture = [&](const preskin::LutTable& table) {
+            const std::vector<float> planes = table.planes();
+            return gpu.texture(VK_FORMAT_R32_SFLOAT, uint32_t(table.width() * 3), uint32_t(table.height()),
+                               planes.data(), planes.size() * sizeof(float), false, VK_IMAGE_VIEW_TYPE_2D_ARRAY);
         };
         const uint8_t white[4] = {255, 255, 255, 255};
         const VkImageView views[] = {
@@ -372,10 +371,10 @@ int main(int argc, char** argv) {
             sceneTexture(material.normal.image, VK_FORMAT_R8G8B8A8_UNORM),
             skin.specularTexture.valid() ? sceneTexture(skin.specularTexture.image, VK_FORMAT_R8G8B8A8_UNORM)
                                          : gpu.texture(VK_FORMAT_R8G8B8A8_UNORM, 1, 1, white, 4, false),
-            lutTexture(luts.diffuse(), true),
-            lutTexture(luts.shTransfer(), false),
+            lutTexture(luts.diffuse()),
+            lutTexture(luts.shTransfer()),
         };
-        // Material textures: linear, mipmapped, repeat; LUTs: linear, clamped, no mips.
+        // Material textures: linear, mipmapped, repeat; LUTs: unfiltered (the shader gathers), clamped, no mips.
         VkSamplerCreateInfo si{VK_STRUCTURE_TYPE_SAMPLER_CREATE_INFO};
         si.magFilter = si.minFilter = VK_FILTER_LINEAR;
         si.mipmapMode = VK_SAMPLER_MIPMAP_MODE_LINEAR;
@@ -383,6 +382,8 @@ int main(int argc, char** argv) {
         VkSampler materialSampler, lutSampler;
         check(vkCreateSampler(dev, &si, nullptr, &materialSampler), "vkCreateSampler");
         si.addressModeU = si.addressModeV = si.addressModeW = VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_EDGE;
+        si.magFilter = si.minFilter = VK_FILTER_NEAREST;
+        si.mipmapMode = VK_SAMPLER_MIPMAP_MODE_NEAREST;
         si.maxLod = 0.0f;
         check(vkCreateSampler(dev, &si, nullptr, &lutSampler), "vkCreateSampler");
 

@@ -7,9 +7,13 @@
 // All inputs are in profile units: curvature in 1/mm, widths and thickness in mm (convert world
 // units with the material's scatter scale first). Results carry the profile's shape only;
 // multiply by the material's albedo.
-// The diffuse table is read per light and per colour channel, so it is stored as its bilinear
-// footprints (preskin::lutFootprints: texel (c W + x, y) holds channel c of the 2x2 texels from
-// (x, y)) and filtered here: one unfiltered fetch of one texel per channel instead of four.
+// Every table is stored as its channel planes (preskin::lutPlanes: one 32-bit float channel,
+// the red, green and blue planes side by side, 3 W x H; texel (c W + x, y) holds channel c of
+// texel (x, y)) and filtered here from one textureGather per channel: bilinear with
+// CLAMP_TO_EDGE at texel centres, as LINEAR filtering of the table itself (LutTable::sample on
+// the CPU) but with exact weights. The diffuse table is read per light and per channel; a CPU
+// driver (lavapipe) gathers a single 32-bit channel for under half of what one texel of a
+// four-channel half-float image costs it, and filters a four-channel texel at twice that again.
 // Several profiles (preskin::ProfileLibrary): the tables are layers of 2D array textures, each
 // layer with its own LutMapping; a PreskinProfileMix names up to four layers and their weights
 // (a material's profile, or profiles blended per texel), and each lookup is the weighted sum of
@@ -23,64 +27,53 @@
 
 #include "shared/lut_mapping.h"
 
-// Where one fragment's curvature falls in a diffuse table: texel row y0 and the weight fy of row
-// y0 + 1, found once per fragment and shared by all its lights.
-struct PreskinDiffuseRow {
-    float y0;
-    float fy;
-};
+// One axis of a bilinear lookup in a plane `size` texels wide: the first texel x0 of the pair
+// (x0, x0 + 1) and the weight of x0 + 1, clamped like CLAMP_TO_EDGE; the pair stays inside the
+// plane (x0 <= size - 2), so it never reaches the next channel's plane.
+vec2 preskinLutAxis(float u, float size) {
+    float x = clamp(u * size - 0.5, 0.0, size - 1.0);
+    float x0 = max(min(floor(x), size - 2.0), 0.0);
+    return vec2(x0, x - x0);
+}
 
-PreskinDiffuseRow preskinDiffuseRow(LutMapping m, sampler2DArray diffuseFootprints, float curvaturePerMm) {
-    float height = float(textureSize(diffuseFootprints, 0).y);
-    float y = preskinDiffuseLutV(m, curvaturePerMm) * height - 0.5;
-    PreskinDiffuseRow row;
-    row.y0 = clamp(floor(y), 0.0, height - 1.0);
-    row.fy = clamp(y - row.y0, 0.0, 1.0);
-    return row;
+// Channel `channel` (0..2) of layer `layer` filtered at the texel pair positions x = (x0, fx),
+// y = (y0, fy) (preskinLutAxis), from one gather; imageSize = textureSize of the planes image.
+float preskinLutGather(sampler2DArray planes, vec2 imageSize, float channel, vec2 x, vec2 y, float layer) {
+    float column = channel * (imageSize.x / 3.0) + x.x;
+    vec4 g = textureGather(planes, vec3((column + 1.0) / imageSize.x, (y.x + 1.0) / imageSize.y, layer), 0);
+    // gather order: (x0, y0 + 1), (x0 + 1, y0 + 1), (x0 + 1, y0), (x0, y0)
+    return mix(mix(g.w, g.z, x.y), mix(g.x, g.y, x.y), y.y);
+}
+
+// All three channels of layer `layer` at texture coordinates uv.
+vec3 preskinLutBilinear(sampler2DArray planes, vec2 uv, float layer) {
+    vec2 imageSize = vec2(textureSize(planes, 0).xy);
+    vec2 x = preskinLutAxis(uv.x, imageSize.x / 3.0);
+    vec2 y = preskinLutAxis(uv.y, imageSize.y);
+    return vec3(preskinLutGather(planes, imageSize, 0.0, x, y, layer), preskinLutGather(planes, imageSize, 1.0, x, y, layer),
+                preskinLutGather(planes, imageSize, 2.0, x, y, layer));
+}
+
+// Where one fragment's curvature falls in a diffuse table (preskinLutAxis of its v), found once
+// per fragment and shared by all its lights.
+vec2 preskinDiffuseRow(LutMapping m, sampler2DArray diffuseLut, float curvaturePerMm) {
+    return preskinLutAxis(preskinDiffuseLutV(m, curvaturePerMm), float(textureSize(diffuseLut, 0).y));
 }
 
 // Pre-integrated diffuse, replacing saturate(NoL) per channel: red at NoL.r, green at NoL.g,
 // blue at NoL.b (the per-channel prefiltered normals; pass one NoL three times for RGB at one
-// angle), on row `row` of layer `layer` of the footprint image (3 W x H). Bilinear with
-// CLAMP_TO_EDGE at texel centres, as LINEAR filtering of the table itself (LutTable::sample on
-// the CPU).
-vec3 preskinDiffuseLut(LutMapping m, PreskinDiffuseRow row, sampler2DArray diffuseFootprints, float layer, vec3 NoL) {
-    int width = textureSize(diffuseFootprints, 0).x / 3;
-    vec3 u = vec3(preskinDiffuseLutU(m, NoL.r), preskinDiffuseLutU(m, NoL.g), preskinDiffuseLutU(m, NoL.b));
-    vec3 x = u * float(width) - 0.5;
-    vec3 x0 = clamp(floor(x), 0.0, float(width - 1));
-    vec3 fx = clamp(x - x0, 0.0, 1.0);
-    ivec3 column = ivec3(x0) + ivec3(0, width, 2 * width);
-    vec4 r = texelFetch(diffuseFootprints, ivec3(column.r, int(row.y0), int(layer)), 0);
-    vec4 g = texelFetch(diffuseFootprints, ivec3(column.g, int(row.y0), int(layer)), 0);
-    vec4 b = texelFetch(diffuseFootprints, ivec3(column.b, int(row.y0), int(layer)), 0);
-    vec3 near = mix(vec3(r.x, g.x, b.x), vec3(r.y, g.y, b.y), fx);  // row y0
-    vec3 far = mix(vec3(r.z, g.z, b.z), vec3(r.w, g.w, b.w), fx);   // row y0 + 1
-    return mix(near, far, row.fy);
+// angle), on row `row` (preskinDiffuseRow) of layer `layer`.
+vec3 preskinDiffuseLut(LutMapping m, vec2 row, sampler2DArray diffuseLut, float layer, vec3 NoL) {
+    vec2 imageSize = vec2(textureSize(diffuseLut, 0).xy);
+    float width = imageSize.x / 3.0;
+    return vec3(preskinLutGather(diffuseLut, imageSize, 0.0, preskinLutAxis(preskinDiffuseLutU(m, NoL.r), width), row, layer),
+                preskinLutGather(diffuseLut, imageSize, 1.0, preskinLutAxis(preskinDiffuseLutU(m, NoL.g), width), row, layer),
+                preskinLutGather(diffuseLut, imageSize, 2.0, preskinLutAxis(preskinDiffuseLutU(m, NoL.b), width), row, layer));
 }
 
 // The same at one curvature (finds the row on every call).
-vec3 preskinDiffuseLut(LutMapping m, sampler2DArray diffuseFootprints, float layer, vec3 NoL, float curvaturePerMm) {
-    return preskinDiffuseLut(m, preskinDiffuseRow(m, diffuseFootprints, curvaturePerMm), diffuseFootprints, layer, NoL);
-}
-
-// Penumbra scattering: replaces the filtered shadow visibility for skin (RGB, 0..1).
-vec3 preskinPenumbraLut(LutMapping m, sampler2D penumbraLut, float shadow, float filterSigmaMm) {
-    return textureLod(penumbraLut, preskinPenumbraLutUv(m, shadow, filterSigmaMm), 0.0).rgb;
-}
-
-// Per-channel zonal coefficients A_0, A_1, A_2 (absolute: flat skin gives pi, 2 pi / 3, pi / 4),
-// to use as SH band scales in place of Lambert's.
-void preskinShTransferLut(LutMapping m, sampler2D shTransferLut, float curvaturePerMm, out vec3 a0, out vec3 a1,
-                          out vec3 a2) {
-    a0 = m.shLambert.x * textureLod(shTransferLut, preskinShTransferLutUv(m, curvaturePerMm, 0), 0.0).rgb;
-    a1 = m.shLambert.y * textureLod(shTransferLut, preskinShTransferLutUv(m, curvaturePerMm, 1), 0.0).rgb;
-    a2 = m.shLambert.z * textureLod(shTransferLut, preskinShTransferLutUv(m, curvaturePerMm, 2), 0.0).rgb;
-}
-
-// Transmittance through thicknessMm of skin lit from behind (RGB, 1 at zero thickness).
-vec3 preskinTransmittanceLut(LutMapping m, sampler2D transmittanceLut, float thicknessMm) {
-    return textureLod(transmittanceLut, preskinTransmittanceLutUv(m, thicknessMm), 0.0).rgb;
+vec3 preskinDiffuseLut(LutMapping m, sampler2DArray diffuseLut, float layer, vec3 NoL, float curvaturePerMm) {
+    return preskinDiffuseLut(m, preskinDiffuseRow(m, diffuseLut, curvaturePerMm), diffuseLut, layer, NoL);
 }
 
 // The most entries a PreskinProfileMix uses in this shader, 1..4 (default 4). A shader for
@@ -118,21 +111,22 @@ LutMapping preskinMixMapping(PreskinProfileMix p, int i) {
     return i == 1 ? p.mapping[1] : (i == 2 ? p.mapping[2] : p.mapping[3]);
 }
 
-// The diffuse rows of a mix's entries at one fragment's curvature (preskinDiffuseRow).
+// The diffuse rows of a mix's entries at one fragment's curvature (preskinDiffuseRow): entry
+// i's texel row in y0[i], its weight in fy[i].
 struct PreskinDiffuseRows {
     vec4 y0;
     vec4 fy;
 };
 
-PreskinDiffuseRows preskinDiffuseRows(PreskinProfileMix p, sampler2DArray diffuseFootprints, float curvaturePerMm) {
+PreskinDiffuseRows preskinDiffuseRows(PreskinProfileMix p, sampler2DArray diffuseLut, float curvaturePerMm) {
     PreskinDiffuseRows rows;
-    PreskinDiffuseRow row = preskinDiffuseRow(p.mapping[0], diffuseFootprints, curvaturePerMm);
-    rows.y0 = vec4(row.y0);
-    rows.fy = vec4(row.fy);
+    vec2 row = preskinDiffuseRow(p.mapping[0], diffuseLut, curvaturePerMm);
+    rows.y0 = vec4(row.x);
+    rows.fy = vec4(row.y);
     if (int(PRESKIN_PROFILE_MIX_MAX) > 1) for (int i = 1; i < p.count; ++i) {
-        row = preskinDiffuseRow(preskinMixMapping(p, i), diffuseFootprints, curvaturePerMm);
-        rows.y0[i] = row.y0;
-        rows.fy[i] = row.fy;
+        row = preskinDiffuseRow(preskinMixMapping(p, i), diffuseLut, curvaturePerMm);
+        rows.y0[i] = row.x;
+        rows.fy[i] = row.y;
     }
     return rows;
 }
@@ -140,31 +134,27 @@ PreskinDiffuseRows preskinDiffuseRows(PreskinProfileMix p, sampler2DArray diffus
 // The lookups of a mix: entry 0 always, entries 1..count-1 of non-zero weight in a loop (not
 // compiled where PRESKIN_PROFILE_MIX_MAX is 1). With the rows found once per fragment
 // (preskinDiffuseRows), for a loop over lights:
-vec3 preskinDiffuseLut(PreskinProfileMix p, PreskinDiffuseRows rows, sampler2DArray diffuseFootprints, vec3 NoL) {
-    PreskinDiffuseRow row;
-    row.y0 = rows.y0.x;
-    row.fy = rows.fy.x;
-    vec3 sum = p.weight.x * preskinDiffuseLut(p.mapping[0], row, diffuseFootprints, p.layer.x, NoL);
+vec3 preskinDiffuseLut(PreskinProfileMix p, PreskinDiffuseRows rows, sampler2DArray diffuseLut, vec3 NoL) {
+    vec3 sum = p.weight.x * preskinDiffuseLut(p.mapping[0], vec2(rows.y0.x, rows.fy.x), diffuseLut, p.layer.x, NoL);
     if (int(PRESKIN_PROFILE_MIX_MAX) > 1) for (int i = 1; i < p.count; ++i) {
         if (p.weight[i] <= 0.0) continue;
-        row.y0 = rows.y0[i];
-        row.fy = rows.fy[i];
-        sum += p.weight[i] * preskinDiffuseLut(preskinMixMapping(p, i), row, diffuseFootprints, p.layer[i], NoL);
+        sum += p.weight[i] *
+               preskinDiffuseLut(preskinMixMapping(p, i), vec2(rows.y0[i], rows.fy[i]), diffuseLut, p.layer[i], NoL);
     }
     return sum;
 }
 
 // At one curvature (finds the rows on every call).
-vec3 preskinDiffuseLut(PreskinProfileMix p, sampler2DArray diffuseFootprints, vec3 NoL, float curvaturePerMm) {
-    return preskinDiffuseLut(p, preskinDiffuseRows(p, diffuseFootprints, curvaturePerMm), diffuseFootprints, NoL);
+vec3 preskinDiffuseLut(PreskinProfileMix p, sampler2DArray diffuseLut, vec3 NoL, float curvaturePerMm) {
+    return preskinDiffuseLut(p, preskinDiffuseRows(p, diffuseLut, curvaturePerMm), diffuseLut, NoL);
 }
 
 vec3 preskinPenumbraLut(PreskinProfileMix p, sampler2DArray penumbraLut, float shadow, float filterSigmaMm) {
-    vec3 sum = p.weight.x * textureLod(penumbraLut, vec3(preskinPenumbraLutUv(p.mapping[0], shadow, filterSigmaMm), p.layer.x), 0.0).rgb;
+    vec3 sum = p.weight.x * preskinLutBilinear(penumbraLut, preskinPenumbraLutUv(p.mapping[0], shadow, filterSigmaMm), p.layer.x);
     if (int(PRESKIN_PROFILE_MIX_MAX) > 1) for (int i = 1; i < p.count; ++i) {
         if (p.weight[i] <= 0.0) continue;
         vec2 uv = preskinPenumbraLutUv(preskinMixMapping(p, i), shadow, filterSigmaMm);
-        sum += p.weight[i] * textureLod(penumbraLut, vec3(uv, p.layer[i]), 0.0).rgb;
+        sum += p.weight[i] * preskinLutBilinear(penumbraLut, uv, p.layer[i]);
     }
     return sum;
 }
@@ -172,9 +162,9 @@ vec3 preskinPenumbraLut(PreskinProfileMix p, sampler2DArray penumbraLut, float s
 // One entry's weighted SH transfer added to a0..a2.
 void preskinShTransferLutAdd(LutMapping m, sampler2DArray shTransferLut, float layer, float weight,
                              float curvaturePerMm, inout vec3 a0, inout vec3 a1, inout vec3 a2) {
-    a0 += weight * m.shLambert.x * textureLod(shTransferLut, vec3(preskinShTransferLutUv(m, curvaturePerMm, 0), layer), 0.0).rgb;
-    a1 += weight * m.shLambert.y * textureLod(shTransferLut, vec3(preskinShTransferLutUv(m, curvaturePerMm, 1), layer), 0.0).rgb;
-    a2 += weight * m.shLambert.z * textureLod(shTransferLut, vec3(preskinShTransferLutUv(m, curvaturePerMm, 2), layer), 0.0).rgb;
+    a0 += weight * m.shLambert.x * preskinLutBilinear(shTransferLut, preskinShTransferLutUv(m, curvaturePerMm, 0), layer);
+    a1 += weight * m.shLambert.y * preskinLutBilinear(shTransferLut, preskinShTransferLutUv(m, curvaturePerMm, 1), layer);
+    a2 += weight * m.shLambert.z * preskinLutBilinear(shTransferLut, preskinShTransferLutUv(m, curvaturePerMm, 2), layer);
 }
 
 void preskinShTransferLut(PreskinProfileMix p, sampler2DArray shTransferLut, float curvaturePerMm, out vec3 a0,
@@ -190,11 +180,11 @@ void preskinShTransferLut(PreskinProfileMix p, sampler2DArray shTransferLut, flo
 }
 
 vec3 preskinTransmittanceLut(PreskinProfileMix p, sampler2DArray transmittanceLut, float thicknessMm) {
-    vec3 sum = p.weight.x * textureLod(transmittanceLut, vec3(preskinTransmittanceLutUv(p.mapping[0], thicknessMm), p.layer.x), 0.0).rgb;
+    vec3 sum = p.weight.x * preskinLutBilinear(transmittanceLut, preskinTransmittanceLutUv(p.mapping[0], thicknessMm), p.layer.x);
     if (int(PRESKIN_PROFILE_MIX_MAX) > 1) for (int i = 1; i < p.count; ++i) {
         if (p.weight[i] <= 0.0) continue;
         vec2 uv = preskinTransmittanceLutUv(preskinMixMapping(p, i), thicknessMm);
-        sum += p.weight[i] * textureLod(transmittanceLut, vec3(uv, p.layer[i]), 0.0).rgb;
+        sum += p.weight[i] * preskinLutBilinear(transmittanceLut, uv, p.layer[i]);
     }
     return sum;
 }

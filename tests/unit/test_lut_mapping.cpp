@@ -1,9 +1,9 @@
 // Tests of the LUT texture layout and mapping: LutTable::sample follows Vulkan's LINEAR +
 // CLAMP_TO_EDGE rule (checked against a bilinear filter written here), axis node values sit on
 // texel centres through the shared mapping functions of shaders/shared/lut_mapping.h, the
-// LutMapping layout, the diffuse table's bilinear footprints (one texel per channel holds the
-// 2x2 texels a bilinear lookup needs, as shaders/preskin/lut.glsl reads them), and bake-settings
-// validation.
+// LutMapping layout, the tables' channel planes (each channel a plane of its own, gathered 2x2
+// texels at a time and filtered by hand, as shaders/preskin/lut.glsl reads them), and
+// bake-settings validation.
 #include "shared/lut_mapping.h"
 
 #include <preskin/Error.h>
@@ -56,9 +56,10 @@ TEST(LutMapping, SamplerFollowsTheVulkanRule) {
     }
 }
 
-// Footprint texel (c W + x, y) holds channel c of (x, y), (x + 1, y), (x, y + 1), (x + 1, y + 1),
-// clamped; filtering by hand from it, as lut.glsl does, equals Vulkan's LINEAR filter of the table.
-TEST(LutMapping, FootprintsFilterLikeTheTable) {
+// Plane texel (c W + x, y) holds channel c of texel (x, y); filtering by hand from the 2x2 texels
+// a gather returns, with lut.glsl's axis clamp (the pair (x0, x0 + 1) kept inside the plane),
+// equals Vulkan's LINEAR filter of the table with CLAMP_TO_EDGE.
+TEST(LutMapping, PlanesFilterLikeTheTable) {
     LutTable t;
     t.x.size = 7;
     t.y.size = 4;
@@ -66,33 +67,31 @@ TEST(LutMapping, FootprintsFilterLikeTheTable) {
     std::uniform_real_distribution<float> value(0.0f, 1.0f);
     t.rgb.resize(7 * 4 * 3);
     for (float& f : t.rgb) f = skin::roundToHalf(value(rng));
-    const std::vector<uint16_t> footprints = t.footprintsRgba16f();
-    ASSERT_EQ(footprints.size(), size_t(3 * 7 * 4 * 4));
-    auto corner = [&](int c, int x, int y, int k) {
-        return double(skin::halfBitsToFloat(footprints[(size_t(y) * 21 + size_t(c) * 7 + size_t(x)) * 4 + size_t(k)]));
-    };
+    const std::vector<float> planes = t.planes();
+    ASSERT_EQ(planes.size(), size_t(3 * 7 * 4));
+    auto texel = [&](int column, int y) { return double(planes[size_t(y) * 21 + size_t(column)]); };
     for (int y = 0; y < 4; ++y)
         for (int x = 0; x < 7; ++x)
-            for (int c = 0; c < 3; ++c) {
-                EXPECT_EQ(corner(c, x, y, 0), t.texel(x, y)[c]);
-                EXPECT_EQ(corner(c, x, y, 1), t.texel(std::min(x + 1, 6), y)[c]);
-                EXPECT_EQ(corner(c, x, y, 2), t.texel(x, std::min(y + 1, 3))[c]);
-                EXPECT_EQ(corner(c, x, y, 3), t.texel(std::min(x + 1, 6), std::min(y + 1, 3))[c]);
-            }
+            for (int c = 0; c < 3; ++c) EXPECT_EQ(texel(c * 7 + x, y), t.texel(x, y)[c]);
+    auto axis = [](double u, double size) {  // preskinLutAxis
+        const double x = std::clamp(u * size - 0.5, 0.0, size - 1.0);
+        const double x0 = std::max(std::min(std::floor(x), size - 2.0), 0.0);
+        return std::pair{int(x0), x - x0};
+    };
     std::uniform_real_distribution<double> uv(-0.2, 1.2);
     for (int i = 0; i < 1000; ++i) {
         const double u = uv(rng), v = uv(rng);
         const glm::dvec3 want = referenceBilinear(t, u, v);
-        const double y = v * 4 - 0.5, y0 = std::clamp(std::floor(y), 0.0, 3.0), fy = std::clamp(y - y0, 0.0, 1.0);
-        const double x = u * 7 - 0.5, x0 = std::clamp(std::floor(x), 0.0, 6.0), fx = std::clamp(x - x0, 0.0, 1.0);
+        const auto [x0, fx] = axis(u, 7.0);
+        const auto [y0, fy] = axis(v, 4.0);
         for (int c = 0; c < 3; ++c) {
-            const int ix = int(x0), iy = int(y0);
-            const double near = (1 - fx) * corner(c, ix, iy, 0) + fx * corner(c, ix, iy, 1);
-            const double far = (1 - fx) * corner(c, ix, iy, 2) + fx * corner(c, ix, iy, 3);
+            const int column = c * 7 + x0;  // the gather's 2x2 texels: columns x0, x0 + 1 of plane c
+            const double near = (1 - fx) * texel(column, y0) + fx * texel(column + 1, y0);
+            const double far = (1 - fx) * texel(column, y0 + 1) + fx * texel(column + 1, y0 + 1);
             ASSERT_NEAR((1 - fy) * near + fy * far, want[c], 1e-9) << u << ", " << v;
         }
     }
-    EXPECT_THROW(lutFootprints(std::vector<uint16_t>(10), 7, 4), Error);
+    EXPECT_THROW(lutPlanes(std::vector<uint16_t>(10), 7, 4), Error);
 }
 
 void expectNodesOnTexelCentres(const LutTable& table, const std::function<glm::vec2(double)>& uvOfValue, bool alongX) {

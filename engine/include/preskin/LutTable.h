@@ -67,19 +67,18 @@ struct PRESKIN_API LutTable {
     glm::vec3 sample(glm::vec2 uv) const;
     // Half-float bits, RGBA (alpha = 1), row-major: ready for a R16G16B16A16_SFLOAT image.
     std::vector<uint16_t> rgba16f() const;
-    // The table as bilinear footprints, for a shader that filters by hand with one unfiltered
-    // fetch per channel (the diffuse table: see lutFootprints below).
-    std::vector<uint16_t> footprintsRgba16f() const;
+    // The table as channel planes, as shaders read it (see lutPlanes below).
+    std::vector<float> planes() const;
     // "fnv1a64:<16 hex digits>" over the half-float bits of the RGB values, row-major.
     std::string contentHash() const;
 };
 
-// Bilinear footprints of an RGBA half-float image (width x height, row-major): a (3 width) x
-// height RGBA half-float image in which texel (c * width + x, y) holds channel c (0 red, 1
-// green, 2 blue) of the texels (x, y), (x + 1, y), (x, y + 1) and (x + 1, y + 1), indices clamped
-// to the image (CLAMP_TO_EDGE). One unfiltered fetch then gives everything a bilinear lookup of
-// one channel needs: shaders/preskin/lut.glsl reads the diffuse table this way, three channels
-// at three NoL values (the prefiltered normals) in three fetches of one texel each.
-PRESKIN_API std::vector<uint16_t> lutFootprints(const std::vector<uint16_t>& rgba16f, int width, int height);
+// Channel planes of an RGBA half-float image (width x height, row-major): a (3 width) x height
+// single-channel float image (R32_SFLOAT) with the red, green and blue planes side by side:
+// texel (c * width + x, y) holds channel c of texel (x, y), exactly (half values are floats).
+// shaders/preskin/lut.glsl reads every skin table this way: one textureGather per channel gives
+// the 2x2 texels a bilinear lookup of that channel needs, and the shader filters by hand, like
+// LINEAR filtering with CLAMP_TO_EDGE of the table itself (without a GPU's coarse sub-texel weights).
+PRESKIN_API std::vector<float> lutPlanes(const std::vector<uint16_t>& rgba16f, int width, int height);
 
 }  // namespace preskin

@@ -37,9 +37,10 @@ std::vector<uint16_t> paddedTexels(const LutTable& table, glm::ivec2 extent) {
 }  // namespace
 
 GpuLuts::GpuLuts(const vk::Device& device, const std::vector<const LutSet*>& layers) : device_(device) {
+    // The shaders gather and filter by hand: no filtering (R32_SFLOAT need not be filterable).
     VkSamplerCreateInfo info{VK_STRUCTURE_TYPE_SAMPLER_CREATE_INFO};
-    info.magFilter = VK_FILTER_LINEAR;
-    info.minFilter = VK_FILTER_LINEAR;
+    info.magFilter = VK_FILTER_NEAREST;
+    info.minFilter = VK_FILTER_NEAREST;
     info.mipmapMode = VK_SAMPLER_MIPMAP_MODE_NEAREST;
     info.addressModeU = info.addressModeV = info.addressModeW = VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_EDGE;
     PRESKIN_VK(vkCreateSampler(device.device(), &info, nullptr, &sampler_));
@@ -49,20 +50,18 @@ GpuLuts::GpuLuts(const vk::Device& device, const std::vector<const LutSet*>& lay
     mappings_.resize(std::max(layerCount, 1u));
     if (layers.empty()) {
         mappingBuffer_.upload(mappings_.data(), sizeof(gpu::LutMapping));
-        const uint8_t white[4] = {255, 255, 255, 255};
+        const float one[3] = {1.0f, 1.0f, 1.0f};
         for (vk::Image& image : images_) {
-            image = vk::Image(device, {VK_FORMAT_R8G8B8A8_UNORM, 1, 1, 1,
+            image = vk::Image(device, {VK_FORMAT_R32_SFLOAT, 3, 1, 1,
                                        VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_DST_BIT,
                                        VK_IMAGE_ASPECT_COLOR_BIT, 1, VK_SAMPLE_COUNT_1_BIT, true});
-            image.uploadLayer(white, sizeof(white), 0, VK_IMAGE_LAYOUT_UNDEFINED);
+            image.uploadLayer(one, sizeof(one), 0, VK_IMAGE_LAYOUT_UNDEFINED);
         }
         return;
     }
     if (layerCount > device.properties().limits.maxImageArrayLayers)
         throw Error(fmt::format("Vulkan: {} diffusion profiles exceed the device's {} texture array layers", layerCount,
                                 device.properties().limits.maxImageArrayLayers));
-    if (!device.supportsFormat(VK_FORMAT_R16G16B16A16_SFLOAT, VK_FORMAT_FEATURE_2_SAMPLED_IMAGE_FILTER_LINEAR_BIT))
-        throw Error("Vulkan: the device cannot filter R16G16B16A16_SFLOAT textures linearly");
     for (const LutSet* luts : layers) {
         const auto tables = tablesOf(*luts);
         const auto extents = extentsOf(extents_);
@@ -71,14 +70,14 @@ GpuLuts::GpuLuts(const vk::Device& device, const std::vector<const LutSet*>& lay
     }
     const auto extents = extentsOf(extents_);
     const uint32_t maxWidth = device.properties().limits.maxImageDimension2D;
-    if (uint32_t(3 * extents_.diffuse.x) > maxWidth)
-        throw Error(fmt::format("Vulkan: a diffuse table {} texels wide needs a {}-texel image (its bilinear footprints), "
-                                "over the device's {}",
-                                extents_.diffuse.x, 3 * extents_.diffuse.x, maxWidth));
     for (size_t t = 0; t < 4; ++t) {
-        // The diffuse table as bilinear footprints (lutFootprints), three times as wide.
-        const uint32_t width = uint32_t(extents[t]->x) * (t == 0 ? 3u : 1u);
-        images_[t] = vk::Image(device, {VK_FORMAT_R16G16B16A16_SFLOAT, width, uint32_t(extents[t]->y), 1,
+        // Each table as its channel planes (lutPlanes), three times as wide.
+        const uint32_t width = 3u * uint32_t(extents[t]->x);
+        if (width > maxWidth)
+            throw Error(fmt::format("Vulkan: a skin table {} texels wide needs a {}-texel image (its channel planes), "
+                                    "over the device's {}",
+                                    extents[t]->x, width, maxWidth));
+        images_[t] = vk::Image(device, {VK_FORMAT_R32_SFLOAT, width, uint32_t(extents[t]->y), 1,
                                         VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_DST_BIT,
                                         VK_IMAGE_ASPECT_COLOR_BIT, layerCount, VK_SAMPLE_COUNT_1_BIT, true});
     }
@@ -94,9 +93,8 @@ void GpuLuts::uploadLayer(uint32_t layer, const LutSet& luts, VkImageLayout oldL
     const auto tables = tablesOf(luts);
     const auto extents = extentsOf(extents_);
     for (size_t t = 0; t < 4; ++t) {
-        std::vector<uint16_t> texels = paddedTexels(*tables[t], *extents[t]);
-        if (t == 0) texels = lutFootprints(texels, extents[t]->x, extents[t]->y);
-        images_[t].uploadLayer(texels.data(), texels.size() * sizeof(uint16_t), layer, oldLayout);
+        const std::vector<float> planes = lutPlanes(paddedTexels(*tables[t], *extents[t]), extents[t]->x, extents[t]->y);
+        images_[t].uploadLayer(planes.data(), planes.size() * sizeof(float), layer, oldLayout);
     }
     mappings_[layer] = lutMapping(luts, extents_);
     mappingBuffer_.upload(&mappings_[layer], sizeof(gpu::LutMapping), sizeof(gpu::LutMapping) * layer);

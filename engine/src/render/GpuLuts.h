@@ -1,8 +1,8 @@
-// The skin LUTs on the GPU: four half-float 2D array textures (diffuse, penumbra, SH transfer,
+// The skin LUTs on the GPU: four R32_SFLOAT 2D array textures (diffuse, penumbra, SH transfer,
 // transmittance), one layer per diffusion profile (layer 0 the default set, <preskin/ProfileLibrary.h>),
-// sampled with LINEAR filtering and CLAMP_TO_EDGE (the diffuse table is stored as its bilinear
-// footprints, lutFootprints, and read unfiltered), plus a storage buffer with each layer's
-// LutMapping. Array textures need no descriptor indexing, so this runs on lavapipe. Each texture
+// each table stored as its channel planes side by side (lutPlanes), gathered and filtered by hand
+// in the shaders (preskin/lut.glsl) with an unfiltered CLAMP_TO_EDGE sampler, plus a storage
+// buffer with each layer's LutMapping. Array textures need no descriptor indexing, so this runs on lavapipe. Each texture
 // is as large as the largest layer's table; smaller tables are padded with their edge texels and
 // their mapping addresses only their own texels. Without LUT sets, 1x1 stand-ins keep the
 // descriptors valid and skin materials render with the standard model.

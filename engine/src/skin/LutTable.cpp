@@ -137,25 +137,18 @@ std::vector<uint16_t> LutTable::rgba16f() const {
     return out;
 }
 
-std::vector<uint16_t> LutTable::footprintsRgba16f() const { return lutFootprints(rgba16f(), width(), height()); }
+std::vector<float> LutTable::planes() const { return lutPlanes(rgba16f(), width(), height()); }
 
-std::vector<uint16_t> lutFootprints(const std::vector<uint16_t>& rgba16f, int width, int height) {
+std::vector<float> lutPlanes(const std::vector<uint16_t>& rgba16f, int width, int height) {
     const auto w = static_cast<size_t>(std::max(width, 0));
     const auto h = static_cast<size_t>(std::max(height, 0));
-    if (rgba16f.size() != w * h * 4) throw Error("lutFootprints: the image holds " + std::to_string(rgba16f.size()) +
+    if (rgba16f.size() != w * h * 4) throw Error("lutPlanes: the image holds " + std::to_string(rgba16f.size()) +
                                                  " values, not " + std::to_string(w * h * 4));
-    std::vector<uint16_t> out(3 * w * h * 4);
-    for (size_t y = 0; y < h; ++y) {
-        const size_t y1 = std::min(y + 1, h - 1);
-        for (size_t x = 0; x < w; ++x) {
-            const size_t x1 = std::min(x + 1, w - 1);
-            const size_t corners[4] = {y * w + x, y * w + x1, y1 * w + x, y1 * w + x1};
-            for (size_t c = 0; c < 3; ++c) {
-                uint16_t* texel = &out[(y * 3 * w + c * w + x) * 4];
-                for (size_t k = 0; k < 4; ++k) texel[k] = rgba16f[corners[k] * 4 + c];
-            }
-        }
-    }
+    std::vector<float> out(3 * w * h);
+    for (size_t y = 0; y < h; ++y)
+        for (size_t x = 0; x < w; ++x)
+            for (size_t c = 0; c < 3; ++c)
+                out[y * 3 * w + c * w + x] = skin::halfBitsToFloat(rgba16f[(y * w + x) * 4 + c]);
     return out;
 }
 
