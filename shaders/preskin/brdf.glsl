@@ -32,7 +32,9 @@ float preskinSmithV(float NoL, float NoV, float alpha) {
 }
 
 vec3 preskinSchlickF(vec3 F0, float VoH) {
-    float f = pow(1.0 - preskinSaturate(VoH), 5.0);
+    float m = 1.0 - preskinSaturate(VoH);
+    float m2 = m * m;
+    float f = m2 * m2 * m;  // (1 - VoH)^5 by multiplication: pow() is exp2(5 log2(x)) on some drivers
     return F0 + (vec3(1.0) - F0) * f;
 }
 
