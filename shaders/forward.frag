@@ -8,22 +8,8 @@
 // The derivative curvature fallback (preskinCurvatureFromDerivatives) is per eye: screen-space
 // derivatives differ between the eyes, per-vertex and texture curvature do not.
 #extension GL_GOOGLE_include_directive : require
-#include "shared/gpu_types.h"
-
-layout(constant_id = kSpecMaterialModel) const uint kMaterialModel = kModelStandard;
-layout(constant_id = kSpecOutputMode) const uint kOutputMode = kOutputTonemapped;
-layout(constant_id = kSpecDebugView) const uint kDebugView = kDebugNone;
-layout(constant_id = kSpecAlphaMode) const uint kAlphaMode = 0;
-layout(constant_id = kSpecSkinFeatures) const uint kSkinFeatures = kSkinAll;
-layout(constant_id = kSpecLightLoop) const uint kLightLoop = kLightLoopAll;
-layout(constant_id = kSpecAlphaToCoverage) const uint kAlphaToCoverage = 0;
-layout(constant_id = kSpecSpecular) const uint kSpecular = 1;
-layout(constant_id = kSpecProfileMix) const uint kProfileMix = 4;
-// What a skin material reads (kSpecSkinInputs): a pipeline for a material without a detail map or
-// with per-vertex curvature has no code for the others (a CPU driver would run it masked).
-layout(constant_id = kSpecSkinInputs) const uint kSkinInputs = 0;
-const bool kSkinDetailNormals = (kSkinInputs & 1u) != 0u;
-const uint kSkinCurvatureSource = (kSkinInputs >> 1) & 3u;
+#include "forward_material.glsl"
+#include "forward_specialization.glsl"
 // A material without a profile blend compiles without the blend's lookups (preskin/lut.glsl).
 #define PRESKIN_PROFILE_MIX_MAX kProfileMix
 
@@ -34,11 +20,9 @@ layout(set = 0, binding = kBindingDiffuseLut) uniform sampler2DArray diffuseLut;
 layout(set = 0, binding = kBindingPenumbraLut) uniform sampler2DArray penumbraLut;
 layout(set = 0, binding = kBindingShTransferLut) uniform sampler2DArray shTransferLut;
 layout(set = 0, binding = kBindingTransmittanceLut) uniform sampler2DArray transmittanceLut;
-layout(std430, set = 0, binding = kBindingLutMappings) readonly buffer LutMappings { LutMapping lutMappings[]; };
 layout(std430, set = 0, binding = kBindingClusterRanges) readonly buffer ClusterRanges { uvec2 clusterRanges[]; };
 layout(std430, set = 0, binding = kBindingClusterIndices) readonly buffer ClusterIndices { uint clusterIndices[]; };
 
-layout(set = 1, binding = kBindingMaterial) uniform Material { MaterialUniforms material; };
 layout(set = 1, binding = kBindingBaseColorTexture) uniform sampler2D baseColorTexture;
 layout(set = 1, binding = kBindingMetallicRoughnessTexture) uniform sampler2D metallicRoughnessTexture;
 layout(set = 1, binding = kBindingNormalTexture) uniform sampler2D normalTexture;
@@ -62,6 +46,9 @@ layout(location = 2) in vec4 inTangentWs;
 layout(location = 3) in vec2 inUv0;
 layout(location = 4) in float inCurvaturePerM;
 layout(location = 5) flat in uint inEye;
+layout(location = 6) in vec3 inShTransferRed;  // kSkinShPerVertex: the vertex stage's PreskinShTransfer
+layout(location = 7) in vec3 inShTransferGreen;
+layout(location = 8) in vec3 inShTransferBlue;
 
 layout(location = 0) out vec4 outColor;
 
@@ -111,21 +98,6 @@ GpuLight unshadowedLight(uint i, uint shadowLights, uint first, bool indirect) {
     return lights[index];
 }
 
-// One layer's mapping, member by member (glslang stores a buffer struct into a local one of
-// another layout with a mismatched type, which SPIR-V validation refuses).
-LutMapping lutMappingOf(uint layer) {
-    LutMapping m;
-    m.diffuseNoL = lutMappings[layer].diffuseNoL;
-    m.diffuseCurvature = lutMappings[layer].diffuseCurvature;
-    m.penumbraShadow = lutMappings[layer].penumbraShadow;
-    m.penumbraWidth = lutMappings[layer].penumbraWidth;
-    m.shCurvature = lutMappings[layer].shCurvature;
-    m.shBandV = lutMappings[layer].shBandV;
-    m.shLambert = lutMappings[layer].shLambert;
-    m.transmittance = lutMappings[layer].transmittance;
-    return m;
-}
-
 // The material's diffusion profile, or its profiles blended by the weight texture (r, g, b
 // weigh the blended layers, the material's own profile gets the rest; sums above 1 are scaled).
 PreskinProfileMix skinProfileMix() {
@@ -140,9 +112,8 @@ PreskinProfileMix skinProfileMix() {
         p.weight = vec4(max(1.0 - (w.r + w.g + w.b), 0.0), w);
     }
     p.count = 1 + clamp(blended, 0, 3);
-    p.mapping[0] = lutMappingOf(uint(p.layer.x));
-    for (int i = 1; i < 4; ++i) p.mapping[i] = p.mapping[0];
-    for (int i = 1; i < p.count; ++i) p.mapping[i] = lutMappingOf(uint(p.layer[i]));
+    p.mapping[0] = materialLutMapping(0);
+    for (int i = 1; i < 4; ++i) p.mapping[i] = materialLutMapping(i);  // read only by blending pipelines
     return p;
 }
 
@@ -202,7 +173,7 @@ void main() {
     if (kMaterialModel == kModelSkin && (kSkinFeatures & kSkinLutDiffuse) != 0u)
         shadowPositionWs = preskinSkinShadowPosition(inPositionWs, geometricN, -frame.shadowDirectionWs.xyz,
                                                      skinCurvaturePerMm, material.skinScatter.x,
-                                                     lutMappingOf(uint(material.skinProfileLayers.x)));
+                                                     materialLutMapping(0));
     if (frame.shadowDirectionWs.w > 0.5)
         shadow = preskinSampleShadow(shadowMap, frame.shadowClipFromWorld, frame.shadowParams, shadowPositionWs, geometricN);
 
@@ -282,8 +253,10 @@ void main() {
         }
         color += transmitted;
         diffuseColor = skin.albedo;
-        color += preskinSkinAmbient(skin, profiles, shTransferLut, frame.shRadiance, V, features, ambientDiffuse) *
-                 occlusion;
+        PreskinShTransfer shTransfer;
+        if (kSkinShPerVertex) shTransfer = PreskinShTransfer(inShTransferRed, inShTransferGreen, inShTransferBlue);
+        else shTransfer = preskinSkinShTransfer(profiles, shTransferLut, skin.curvaturePerMm, features);
+        color += preskinSkinAmbient(skin, shTransfer, frame.shRadiance, V, features, ambientDiffuse) * occlusion;
         ambientDiffuse *= occlusion;
         if (kDebugView == kDebugCurvature) debugColor = curvatureHeat(abs(skin.curvaturePerMm));
         else if (kDebugView == kDebugNormals)

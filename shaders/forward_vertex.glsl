@@ -5,13 +5,19 @@
 //                        the vertex is sent to array layer gl_Layer = eye.
 // Transforms one mesh instance into the eye's clip space; passes the world-space tangent frame,
 // TEXCOORD_0, per-vertex curvature (object units -> 1/m in world space), which are the same for
-// every eye, and the eye index for the fragment stage. The including file defines
+// every eye, and the eye index for the fragment stage. Skin pipelines with per-vertex curvature
+// (kSkinShPerVertex) also look up the SH transfer at the vertex's curvature, which the fragment
+// stage interpolates instead of looking it up per fragment. The including file defines
 // PRESKIN_EYE_INDEX (and PRESKIN_WRITE_LAYER for layered drawing).
-#include "shared/gpu_types.h"
+#include "forward_material.glsl"
+#include "forward_specialization.glsl"
 
 layout(set = 0, binding = kBindingFrame) uniform Frame { FrameUniforms frame; };
 layout(std430, set = 0, binding = kBindingInstances) readonly buffer Instances { GpuInstance instances[]; };
+layout(set = 0, binding = kBindingShTransferLut) uniform sampler2DArray shTransferLut;
 layout(push_constant) uniform Push { DrawPush draw; };
+
+#include "preskin/lut.glsl"
 
 layout(location = kAttributePosition) in vec3 inPositionOs;
 layout(location = kAttributeNormal) in vec3 inNormalOs;
@@ -25,6 +31,9 @@ layout(location = 2) out vec4 outTangentWs;
 layout(location = 3) out vec2 outUv0;
 layout(location = 4) out float outCurvaturePerM;
 layout(location = 5) flat out uint outEye;
+layout(location = 6) out vec3 outShTransferRed;
+layout(location = 7) out vec3 outShTransferGreen;
+layout(location = 8) out vec3 outShTransferBlue;
 
 void main() {
     uint eye = uint(PRESKIN_EYE_INDEX);
@@ -36,6 +45,18 @@ void main() {
     outUv0 = inUv0;
     outCurvaturePerM = inCurvature * instance.params.x;
     outEye = eye;
+    if (kSkinShPerVertex) {
+        PreskinProfileMix profile = preskinSingleProfile(materialLutMapping(0), material.skinProfileLayers.x);
+        PreskinShTransfer t = preskinShTransfer(
+            profile, shTransferLut, preskinCurvatureProfilePerMm(outCurvaturePerM, material.skinScatter.x));
+        outShTransferRed = t.red;
+        outShTransferGreen = t.green;
+        outShTransferBlue = t.blue;
+    } else {
+        outShTransferRed = vec3(0.0);
+        outShTransferGreen = vec3(0.0);
+        outShTransferBlue = vec3(0.0);
+    }
     gl_Position = frame.eyes[eye].clipFromWorld * positionWs;
 #ifdef PRESKIN_WRITE_LAYER
     gl_Layer = int(eye);

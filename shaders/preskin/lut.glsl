@@ -27,6 +27,11 @@
 
 #include "shared/lut_mapping.h"
 
+// World curvature (1/m) -> the LUTs' profile units (1/mm of the profile): world 1/m * 0.001 / scatter scale.
+float preskinCurvatureProfilePerMm(float curvaturePerM, float scatterScale) {
+    return curvaturePerM * 0.001 / max(scatterScale, 1e-6);
+}
+
 // One axis of a bilinear lookup in a plane `size` texels wide: the first texel x0 of the pair
 // (x0, x0 + 1) and the weight of x0 + 1, clamped like CLAMP_TO_EDGE; the pair stays inside the
 // plane (x0 <= size - 2), so it never reaches the next channel's plane.
@@ -177,6 +182,22 @@ void preskinShTransferLut(PreskinProfileMix p, sampler2DArray shTransferLut, flo
         if (p.weight[i] <= 0.0) continue;
         preskinShTransferLutAdd(preskinMixMapping(p, i), shTransferLut, p.layer[i], p.weight[i], curvaturePerMm, a0, a1, a2);
     }
+}
+
+// Skin's SH band scales: (A_0, A_1, A_2) of each colour channel, the zonal transfer of the diffuse
+// response at curvature |curvaturePerMm| (ambient light is unshadowed: either sign reads the same).
+// They depend on the curvature alone, so where curvature is per vertex they may be found in the
+// vertex stage and interpolated (the renderer does).
+struct PreskinShTransfer {
+    vec3 red;
+    vec3 green;
+    vec3 blue;
+};
+
+PreskinShTransfer preskinShTransfer(PreskinProfileMix p, sampler2DArray shTransferLut, float curvaturePerMm) {
+    vec3 a0, a1, a2;
+    preskinShTransferLut(p, shTransferLut, abs(curvaturePerMm), a0, a1, a2);
+    return PreskinShTransfer(vec3(a0.r, a1.r, a2.r), vec3(a0.g, a1.g, a2.g), vec3(a0.b, a1.b, a2.b));
 }
 
 vec3 preskinTransmittanceLut(PreskinProfileMix p, sampler2DArray transmittanceLut, float thicknessMm) {

@@ -161,23 +161,20 @@ vec3 preskinSkinTransmission(PreskinSkinSurface s, PreskinProfileMix m, sampler2
     return T * c * s.transmissionTint * s.albedo / PRESKIN_PI * irradiance;
 }
 
+// Skin's SH band scales at one curvature (PreskinShTransfer of preskin/lut.glsl): the SH transfer
+// table's, or Lambert's (pi, 2 pi / 3, pi / 4) in every channel without kSkinShAmbient.
+PreskinShTransfer preskinSkinShTransfer(PreskinProfileMix m, sampler2DArray shTransferLut, float curvaturePerMm,
+                                        uint features) {
+    if ((features & kSkinShAmbient) != 0u) return preskinShTransfer(m, shTransferLut, curvaturePerMm);
+    return PreskinShTransfer(PRESKIN_SH_LAMBERT, PRESKIN_SH_LAMBERT, PRESKIN_SH_LAMBERT);
+}
+
 // Diffuse ambient irradiance per channel from L2 SH radiance (multiply by albedo / pi).
-vec3 preskinSkinAmbientIrradiance(PreskinSkinSurface s, PreskinProfileMix m, sampler2DArray shTransferLut, vec4 sh[9],
-                                  uint features) {
-    vec3 bandR = PRESKIN_SH_LAMBERT;
-    vec3 bandG = PRESKIN_SH_LAMBERT;
-    vec3 bandB = PRESKIN_SH_LAMBERT;
-    if ((features & kSkinShAmbient) != 0u) {
-        vec3 a0, a1, a2;
-        preskinShTransferLut(m, shTransferLut, abs(s.curvaturePerMm), a0, a1, a2);  // unshadowed: either sign
-        bandR = vec3(a0.r, a1.r, a2.r);
-        bandG = vec3(a0.g, a1.g, a2.g);
-        bandB = vec3(a0.b, a1.b, a2.b);
-    }
+vec3 preskinSkinAmbientIrradiance(PreskinSkinSurface s, PreskinShTransfer t, vec4 sh[9], uint features) {
     if ((features & kSkinNormalPrefilter) == 0u)  // one normal for all channels
-        return max(preskinShEvaluateRgb(sh, s.normalG, bandR, bandG, bandB), vec3(0.0));
-    return max(vec3(preskinShEvaluateChannel(sh, s.normalR, bandR, 0), preskinShEvaluateChannel(sh, s.normalG, bandG, 1),
-                    preskinShEvaluateChannel(sh, s.normalB, bandB, 2)),
+        return max(preskinShEvaluateRgb(sh, s.normalG, t.red, t.green, t.blue), vec3(0.0));
+    return max(vec3(preskinShEvaluateChannel(sh, s.normalR, t.red, 0), preskinShEvaluateChannel(sh, s.normalG, t.green, 1),
+                    preskinShEvaluateChannel(sh, s.normalB, t.blue, 2)),
                vec3(0.0));
 }
 
@@ -199,20 +196,26 @@ vec3 preskinSkinShadowPosition(vec3 positionWs, vec3 geometricNormalWs, vec3 L, 
     return positionWs + geometricNormalWs * (fade * liftMm * 0.001 / max(scatterScale, 1e-6));
 }
 
-// Ambient light of the environment's L2 SH radiance: diffuse from the per-channel transfer
-// (preskinSkinAmbientIrradiance times albedo / pi, less what the specular takes) plus specular
-// from the cosine-convolved SH in the reflection direction, weighted by Karis's analytic split-sum
-// environment BRDF (none with specularWeight 0). diffuseOut: the diffuse part alone. Multiply both
-// by ambient occlusion.
-vec3 preskinSkinAmbient(PreskinSkinSurface s, PreskinProfileMix m, sampler2DArray shTransferLut, vec4 sh[9], vec3 V,
-                        uint features, out vec3 diffuseOut) {
+// Ambient light of the environment's L2 SH radiance: diffuse from the per-channel transfer t
+// (preskinSkinShTransfer; preskinSkinAmbientIrradiance times albedo / pi, less what the specular
+// takes) plus specular from the cosine-convolved SH in the reflection direction, weighted by
+// Karis's analytic split-sum environment BRDF (none with specularWeight 0). diffuseOut: the
+// diffuse part alone. Multiply both by ambient occlusion.
+vec3 preskinSkinAmbient(PreskinSkinSurface s, PreskinShTransfer t, vec4 sh[9], vec3 V, uint features,
+                        out vec3 diffuseOut) {
     float NoV = max(dot(s.normalSpecular, V), 1e-4);
     vec3 envBrdf = preskinEnvBrdfApprox(s.F0, s.roughness, NoV) * s.specularWeight;
     vec3 R = reflect(-V, s.normalSpecular);
     vec3 specularSh = max(preskinShEvaluate(sh, R, PRESKIN_SH_LAMBERT), vec3(0.0)) / PRESKIN_PI;
-    diffuseOut = s.albedo * preskinSkinAmbientIrradiance(s, m, shTransferLut, sh, features) / PRESKIN_PI *
-                 (vec3(1.0) - envBrdf);
+    diffuseOut = s.albedo * preskinSkinAmbientIrradiance(s, t, sh, features) / PRESKIN_PI * (vec3(1.0) - envBrdf);
     return diffuseOut + specularSh * envBrdf;
+}
+
+// The same, the transfer looked up at the surface's curvature.
+vec3 preskinSkinAmbient(PreskinSkinSurface s, PreskinProfileMix m, sampler2DArray shTransferLut, vec4 sh[9], vec3 V,
+                        uint features, out vec3 diffuseOut) {
+    return preskinSkinAmbient(s, preskinSkinShTransfer(m, shTransferLut, s.curvaturePerMm, features), sh, V, features,
+                              diffuseOut);
 }
 
 #endif

@@ -7,8 +7,8 @@
 //  - per-channel normal prefiltering (Penner & Borshukov; d'Eon & Luebke): one level-of-detail
 //    query, then the map at three explicit levels lod + bias per channel (the biases from
 //    normalLodBias() in <preskin/SkinParameters.h>), the unbiased normal for specular;
-//  - the curvature source (per-vertex, texture or screen derivatives) and the unit conversion
-//    to profile 1/mm (world 1/m * 0.001 / scatter scale);
+//  - the curvature source (per-vertex, texture or screen derivatives; preskinCurvatureProfilePerMm
+//    of preskin/lut.glsl converts it to profile 1/mm);
 //  - skin F0 (kSkinF0 of shared/constants.h times the material's intensity and specular map);
 //  - the thickness sample point (kSkinThicknessShrinkMm inside along the normal, after Jimenez
 //    et al. 2010's shrink) and the gate that skips the shadow-map read where no transmission
@@ -90,11 +90,6 @@ float preskinSkinCurvaturePerM(uint source, float vertexCurvaturePerM, sampler2D
     if (source == kCurvatureSourceTexture) return texture(curvatureTexture, uv).r * textureScalePerM;
     if (source == kCurvatureSourceDerivatives) return preskinCurvatureFromDerivatives(geometricNormal, positionWs);
     return vertexCurvaturePerM;
-}
-
-// World curvature (1/m) -> the LUTs' profile units (1/mm of the profile).
-float preskinCurvatureProfilePerMm(float curvaturePerM, float scatterScale) {
-    return curvaturePerM * 0.001 / max(scatterScale, 1e-6);
 }
 
 // Skin's specular reflectance at normal incidence.

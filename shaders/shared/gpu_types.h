@@ -23,7 +23,6 @@ PRESKIN_CONST(uint, kBindingShTransferLut, 6)  // A_l(curvature), bands 0..2
 PRESKIN_CONST(uint, kBindingTransmittanceLut, 7)  // T(thickness)
 PRESKIN_CONST(uint, kBindingClusterRanges, 8)  // uvec2 (offset, count) per cluster
 PRESKIN_CONST(uint, kBindingClusterIndices, 9) // uint light indices
-PRESKIN_CONST(uint, kBindingLutMappings, 10)   // LutMapping[] per LUT layer (storage buffer)
 
 // ---- descriptor set 1: per material ----------------------------------------------------------
 PRESKIN_CONST(uint, kBindingMaterial, 0)  // MaterialUniforms (uniform buffer)
@@ -112,8 +111,10 @@ struct MaterialUniforms {
     vec4 skinProfileLayers;    // LUT array layers: x the profile, y z w the blended ones (SkinMaterial::blendProfiles)
     vec4 skinProfileBlend;     // x: blended profiles (0..3), weighted by the profile-weight texture's r, g, b
     GpuUvTransform uv[5];      // base colour, metallic-roughness, normal, occlusion, emissive
+    LutMapping skinLuts[4];    // the LutMapping of each skinProfileLayers entry (uniform per draw: no per-fragment
+                               // buffer reads)
 };
-PRESKIN_CHECK_SIZE(MaterialUniforms, 11 * 16 + 5 * 32)
+PRESKIN_CHECK_SIZE(MaterialUniforms, 11 * 16 + 5 * 32 + 4 * 128)
 
 // Per draw.
 struct DrawPush {

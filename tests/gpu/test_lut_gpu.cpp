@@ -71,7 +71,7 @@ std::vector<glm::vec3> runOnGpu(const vk::Device& device, const std::vector<cons
     VkDescriptorSet set = VK_NULL_HANDLE;
     PRESKIN_VK(vkAllocateDescriptorSets(d, &allocInfo, &set));
 
-    const gpu::LutMapping mapping = gpuLuts.mapping(layer);
+    const gpu::LutMapping mapping = gpuLuts.layers().at(layer).mapping;
     vk::Buffer uniforms(device, sizeof(mapping), VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT, true);
     uniforms.upload(&mapping, sizeof(mapping));
     std::vector<glm::vec4> inputData;

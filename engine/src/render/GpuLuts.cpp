@@ -45,11 +45,7 @@ GpuLuts::GpuLuts(const vk::Device& device, const std::vector<const LutSet*>& lay
     info.addressModeU = info.addressModeV = info.addressModeW = VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_EDGE;
     PRESKIN_VK(vkCreateSampler(device.device(), &info, nullptr, &sampler_));
     const auto layerCount = static_cast<uint32_t>(layers.size());
-    mappingBuffer_ =
-        vk::Buffer(device, sizeof(gpu::LutMapping) * std::max(layerCount, 1u), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, true);
-    mappings_.resize(std::max(layerCount, 1u));
     if (layers.empty()) {
-        mappingBuffer_.upload(mappings_.data(), sizeof(gpu::LutMapping));
         const float one[3] = {1.0f, 1.0f, 1.0f};
         for (vk::Image& image : images_) {
             image = vk::Image(device, {VK_FORMAT_R32_SFLOAT, 3, 1, 1,
@@ -81,7 +77,7 @@ GpuLuts::GpuLuts(const vk::Device& device, const std::vector<const LutSet*>& lay
                                         VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_DST_BIT,
                                         VK_IMAGE_ASPECT_COLOR_BIT, layerCount, VK_SAMPLE_COUNT_1_BIT, true});
     }
-    widths_.resize(layerCount);
+    layers_.resize(layerCount);
     for (uint32_t layer = 0; layer < layerCount; ++layer) uploadLayer(layer, *layers[layer], VK_IMAGE_LAYOUT_UNDEFINED);
 }
 
@@ -96,9 +92,8 @@ void GpuLuts::uploadLayer(uint32_t layer, const LutSet& luts, VkImageLayout oldL
         const std::vector<float> planes = lutPlanes(paddedTexels(*tables[t], *extents[t]), extents[t]->x, extents[t]->y);
         images_[t].uploadLayer(planes.data(), planes.size() * sizeof(float), layer, oldLayout);
     }
-    mappings_[layer] = lutMapping(luts, extents_);
-    mappingBuffer_.upload(&mappings_[layer], sizeof(gpu::LutMapping), sizeof(gpu::LutMapping) * layer);
-    widths_[layer].widthMm = glm::vec3(luts.profile().widthMm());
+    layers_[layer].mapping = lutMapping(luts, extents_);
+    layers_[layer].widthMm = glm::vec3(luts.profile().widthMm());
 }
 
 bool GpuLuts::replaceLayer(uint32_t layer, const LutSet& luts) {
@@ -117,7 +112,5 @@ std::array<VkDescriptorImageInfo, 4> GpuLuts::descriptors() const {
     for (size_t i = 0; i < 4; ++i) out[i] = {sampler_, images_[i].view(), VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL};
     return out;
 }
-
-VkDescriptorBufferInfo GpuLuts::mappingDescriptor() const { return {mappingBuffer_.handle(), 0, VK_WHOLE_SIZE}; }
 
 }  // namespace preskin

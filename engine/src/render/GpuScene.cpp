@@ -154,8 +154,9 @@ GpuScene::GpuScene(const vk::Device& device, const Scene& scene)
     }
 
     // Material descriptor sets.
+    // The uniforms are read by both stages (the vertex stage: a skin material's SH transfer).
     std::vector<vk::Binding> bindings = {{gpu::kBindingMaterial, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER,
-                                          VK_SHADER_STAGE_FRAGMENT_BIT}};
+                                          VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_FRAGMENT_BIT}};
     for (uint32_t b = 1; b <= gpu::kMaterialTextureCount; ++b)
         bindings.push_back({b, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, VK_SHADER_STAGE_FRAGMENT_BIT});
     materialLayout_ = vk::createSetLayout(device, bindings);
@@ -281,7 +282,7 @@ VkSampler GpuScene::sampler(int index) const {
 }
 
 gpu::MaterialUniforms GpuScene::uniformsFor(const Material& mat, const GpuMaterial& gm,
-                                            const ProfileWidths& widths) const {
+                                            const std::vector<ProfileLayer>& layers) const {
     gpu::MaterialUniforms u{};
     u.baseColorFactor = mat.baseColorFactor;
     u.emissiveAlphaCutoff = glm::vec4(mat.emissiveFactor, mat.alphaCutoff);
@@ -295,8 +296,13 @@ gpu::MaterialUniforms GpuScene::uniformsFor(const Material& mat, const GpuMateri
     if (mat.skin) {
         const SkinMaterial& s = *mat.skin;
         u.skinScatter = glm::vec4(s.scatterScale, 0.0f, s.curvatureTextureScalePerM, s.transmission);
+        auto layerOf = [&](float index) {
+            const auto i = static_cast<size_t>(index);
+            return i < layers.size() ? layers[i] : ProfileLayer{};
+        };
         const glm::vec3 bias = s.normalLodBias ? *s.normalLodBias
-                                               : normalLodBias(widths.widthMm, s.scatterScale, gm.texelsPerMm);
+                                               : normalLodBias(layerOf(float(s.profile + 1)).widthMm, s.scatterScale,
+                                                               gm.texelsPerMm);
         u.skinNormalLodBias = glm::vec4(bias, s.detailNormalScale);
         u.skinTransmission = glm::vec4(s.transmissionColor, s.thicknessScale);
         u.skinSpecular = glm::vec4(s.specularIntensity, s.lobeRoughness0, s.lobeRoughness1, s.lobeMix);
@@ -308,17 +314,16 @@ gpu::MaterialUniforms GpuScene::uniformsFor(const Material& mat, const GpuMateri
         u.skinProfileLayers = glm::vec4(base);
         for (size_t i = 0; i < blended; ++i) u.skinProfileLayers[int(i) + 1] = float(s.blendProfiles[i] + 1);
         u.skinProfileBlend = glm::vec4(s.profileWeightTexture.valid() ? float(blended) : 0.0f, 0.0f, 0.0f, 0.0f);
+        for (int i = 0; i < 4; ++i) u.skinLuts[i] = layerOf(u.skinProfileLayers[i]).mapping;
     }
     return u;
 }
 
-void GpuScene::updateMaterials(const std::vector<ProfileWidths>& layerWidths) {
+void GpuScene::updateMaterials(const std::vector<ProfileLayer>& layers) {
     const Material fallback;
     for (size_t i = 0; i < materials.size(); ++i) {
         const Material& mat = i < sceneMaterials_.size() ? sceneMaterials_[i] : fallback;
-        const auto layer = static_cast<size_t>(mat.skin ? mat.skin->profile + 1 : 0);
-        const ProfileWidths widths = layer < layerWidths.size() ? layerWidths[layer] : ProfileWidths{};
-        const gpu::MaterialUniforms u = uniformsFor(mat, materials[i], widths);
+        const gpu::MaterialUniforms u = uniformsFor(mat, materials[i], layers);
         materialUniforms_.upload(&u, sizeof(u), uniformStride_ * i);
     }
 }

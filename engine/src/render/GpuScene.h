@@ -35,9 +35,11 @@ struct GpuMaterial {
     uint32_t skinInputs = 0;   // skin: bit 0 a detail normal map, bits 1-2 the curvature source (kSpecSkinInputs)
 };
 
-// Scattering widths of a diffusion profile, for the normal-map LOD biases.
-struct ProfileWidths {
+// What a skin material takes from a LUT layer (one diffusion profile): the profile's scattering
+// widths (normal-map LOD biases) and where its tables lie in the LUT array textures.
+struct ProfileLayer {
     glm::vec3 widthMm{0.0f};
+    gpu::LutMapping mapping{};
 };
 
 // An instance's transforms as the vertex stage reads them.
@@ -51,9 +53,10 @@ public:
     GpuScene& operator=(const GpuScene&) = delete;
 
     VkDescriptorSetLayout materialLayout() const { return materialLayout_; }
-    // Fills every material's uniforms; the skin LOD biases depend on the widths of the
-    // material's profile (per LUT layer: layer p + 1 holds SkinMaterial::profile p).
-    void updateMaterials(const std::vector<ProfileWidths>& layerWidths);
+    // Fills every material's uniforms from the LUT layers (layer p + 1 holds SkinMaterial::profile p):
+    // the skin LOD biases from the widths of the material's profile, and the LutMapping of every
+    // profile the material mixes.
+    void updateMaterials(const std::vector<ProfileLayer>& layers);
     // The scene's materials as uploaded.
     const std::vector<Material>& sceneMaterials() const { return sceneMaterials_; }
 
@@ -68,7 +71,7 @@ private:
     const vk::Image& texture(const Scene& scene, int image, bool srgb);
     VkSampler sampler(int index) const;
     gpu::MaterialUniforms uniformsFor(const Material& material, const GpuMaterial& gpu,
-                                      const ProfileWidths& widths) const;
+                                      const std::vector<ProfileLayer>& layers) const;
 
     const vk::Device& device_;
     std::vector<Material> sceneMaterials_;

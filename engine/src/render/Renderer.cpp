@@ -125,11 +125,10 @@ void Renderer::Impl::createLayouts() {
         {gpu::kBindingShadowMap, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, fs},
         {gpu::kBindingDiffuseLut, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, fs},
         {gpu::kBindingPenumbraLut, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, fs},
-        {gpu::kBindingShTransferLut, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, fs},
+        {gpu::kBindingShTransferLut, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, all},  // per-vertex SH transfer
         {gpu::kBindingTransmittanceLut, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, fs},
         {gpu::kBindingClusterRanges, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, fs},
         {gpu::kBindingClusterIndices, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, fs},
-        {gpu::kBindingLutMappings, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, fs},
     };
     frameLayout = vk::createSetLayout(dev, bindings);
     const VkDescriptorSetLayout forwardSets[] = {frameLayout, scene->materialLayout()};
@@ -137,7 +136,7 @@ void Renderer::Impl::createLayouts() {
     shadowLayout = vk::createPipelineLayout(dev, std::span(forwardSets, 1), sizeof(gpu::DrawPush), all);
 
     const VkDescriptorPoolSize sizes[] = {{VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, kSlotCount},
-                                          {VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 5 * kSlotCount},
+                                          {VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 4 * kSlotCount},
                                           {VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 5 * kSlotCount}};
     VkDescriptorPoolCreateInfo poolInfo{VK_STRUCTURE_TYPE_DESCRIPTOR_POOL_CREATE_INFO};
     poolInfo.maxSets = kSlotCount;
@@ -306,7 +305,6 @@ void Renderer::Impl::updateFrameSet(Slot& slot, uint32_t slotIndex) {
     const VkDescriptorBufferInfo indicesInfo{clusters->indices(slotIndex).handle(), 0, VK_WHOLE_SIZE};
     const VkDescriptorImageInfo shadowInfo{shadowSampler, shadowMap.view(), VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL};
     const std::array<VkDescriptorImageInfo, 4> lutInfos = luts->descriptors();
-    const VkDescriptorBufferInfo lutMappingInfo = luts->mappingDescriptor();
     std::vector<VkWriteDescriptorSet> writes;
     auto write = [&](uint32_t binding, VkDescriptorType type, const VkDescriptorBufferInfo* bufferInfo,
                      const VkDescriptorImageInfo* imageInfo) {
@@ -330,7 +328,6 @@ void Renderer::Impl::updateFrameSet(Slot& slot, uint32_t slotIndex) {
     buffer(gpu::kBindingInstances, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, &instanceInfo);
     buffer(gpu::kBindingClusterRanges, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, &rangesInfo);
     buffer(gpu::kBindingClusterIndices, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, &indicesInfo);
-    buffer(gpu::kBindingLutMappings, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, &lutMappingInfo);
     image(gpu::kBindingShadowMap, &shadowInfo);
     image(gpu::kBindingDiffuseLut, &lutInfos[0]);
     image(gpu::kBindingPenumbraLut, &lutInfos[1]);
@@ -465,7 +462,7 @@ void Renderer::Impl::setLutLayers(const std::vector<const LutSet*>& layers) {
     auto replacement = std::make_unique<GpuLuts>(dev, layers);
     vkDeviceWaitIdle(dev.device());
     luts = std::move(replacement);
-    scene->updateMaterials(luts->profileWidths());
+    scene->updateMaterials(luts->layers());
 }
 
 namespace {
@@ -522,7 +519,7 @@ void Renderer::setProfileLayer(size_t layer, const LutSet& luts) {
     vkDeviceWaitIdle(impl_->dev.device());
     if (!impl_->luts->replaceLayer(static_cast<uint32_t>(layer), luts))
         throw Error("Renderer::setProfileLayer: the LUT set is larger than the renderer's LUT arrays; use setProfiles");
-    impl_->scene->updateMaterials(impl_->luts->profileWidths());
+    impl_->scene->updateMaterials(impl_->luts->layers());
 }
 
 void Renderer::setShaderOverrides(const std::map<std::string, std::vector<uint32_t>>& spirvByFile) {

@@ -1,0 +1,25 @@
+// forward_material.glsl: the forward pass's material uniforms (descriptor set 1), read by both of
+// its stages, and the LutMapping of each entry of a skin material's profile mix.
+#ifndef PRESKIN_FORWARD_MATERIAL_GLSL
+#define PRESKIN_FORWARD_MATERIAL_GLSL
+
+#include "shared/gpu_types.h"
+
+layout(set = 1, binding = kBindingMaterial) uniform Material { MaterialUniforms material; };
+
+// Entry i of the material's profile mix, member by member (glslang stores a uniform-block struct
+// into a local one of another layout with a mismatched type, which SPIR-V validation refuses).
+LutMapping materialLutMapping(int i) {
+    LutMapping m;
+    m.diffuseNoL = material.skinLuts[i].diffuseNoL;
+    m.diffuseCurvature = material.skinLuts[i].diffuseCurvature;
+    m.penumbraShadow = material.skinLuts[i].penumbraShadow;
+    m.penumbraWidth = material.skinLuts[i].penumbraWidth;
+    m.shCurvature = material.skinLuts[i].shCurvature;
+    m.shBandV = material.skinLuts[i].shBandV;
+    m.shLambert = material.skinLuts[i].shLambert;
+    m.transmittance = material.skinLuts[i].transmittance;
+    return m;
+}
+
+#endif
