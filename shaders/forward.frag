@@ -206,6 +206,7 @@ void main() {
             maps.detailUvScale = material.textureFlags.y;
             maps.detailScale = material.skinNormalLodBias.w;
             maps.lodBias = material.skinNormalLodBias.rgb;
+            maps.levelCount = int(kSkinNormalLevels);
             preskinSkinNormals(normalTexture, detailNormalTexture, maps, uvNormal, geometricN, inTangentWs, features,
                                skin.normalSpecular, skin.normalR, skin.normalG, skin.normalB);
         } else {

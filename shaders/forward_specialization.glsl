@@ -22,6 +22,7 @@ layout(constant_id = kSpecProfileMix) const uint kProfileMix = 4;
 layout(constant_id = kSpecSkinInputs) const uint kSkinInputs = 0;
 const bool kSkinDetailNormals = (kSkinInputs & 1u) != 0u;
 const uint kSkinCurvatureSource = (kSkinInputs >> 1) & 3u;
+const uint kSkinNormalLevels = (kSkinInputs >> 3) & 31u;  // PreskinNormalMaps::levelCount
 // The SH transfer depends on curvature alone: with per-vertex curvature and one profile (no
 // per-texel blend) the vertex stage looks it up and the fragment stage interpolates it.
 // (Written as one comparison: glslang turns && of specialization constants into control flow.)

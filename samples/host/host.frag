@@ -16,7 +16,7 @@ layout(set = 0, binding = 0) uniform Frame {
     vec4 sh[9];                 // Environment::radianceSh()
     vec4 cameraPositionWs;
     vec4 skin;                  // x scatter scale, y roughness, z specular intensity, w normal scale
-    vec4 lodBias;               // rgb: normalLodBias()
+    vec4 lodBias;               // rgb: normalLodBias(), w: normalLevelCount()
     vec4 lobes;                 // SkinMaterial lobeRoughness0, lobeRoughness1, lobeMix
     uvec4 lightCount;
     GpuLight lights[8];
@@ -36,7 +36,7 @@ layout(location = 0) out vec4 outColor;
 
 void main() {
     vec3 geometricN = normalize(inNormalWs) * (gl_FrontFacing ? 1.0 : -1.0);
-    PreskinNormalMaps maps = PreskinNormalMaps(frame.skin.w, false, 1.0, 0.0, frame.lodBias.rgb);
+    PreskinNormalMaps maps = PreskinNormalMaps(frame.skin.w, false, 1.0, 0.0, frame.lodBias.rgb, int(frame.lodBias.w));
     PreskinSkinSurface s;
     preskinSkinNormals(normalMap, normalMap, maps, inUv0, geometricN, inTangentWs, kFeatures, s.normalSpecular,
                        s.normalR, s.normalG, s.normalB);

@@ -309,10 +309,13 @@ int main(int argc, char** argv) {
             for (const preskin::Primitive& p : scene.meshes[size_t(inst.mesh)].primitives)
                 preskin::accumulateTexelDensity(p, inst.worldFromObject, uvArea, areaMm2);
         const preskin::Image& normalImage = scene.images[size_t(material.normal.image)];
-        frame.lodBias = glm::vec4(skin.normalLodBias.value_or(preskin::normalLodBias(
-                                      glm::vec3(luts.profile().widthMm()), skin.scatterScale,
-                                      preskin::texelsPerMm(uvArea, areaMm2, normalImage.width, normalImage.height))),
-                                  0.0f);
+        const glm::vec3 lodBias = skin.normalLodBias.value_or(preskin::normalLodBias(
+            glm::vec3(luts.profile().widthMm()), skin.scatterScale,
+            preskin::texelsPerMm(uvArea, areaMm2, normalImage.width, normalImage.height)));
+        // The whole mip levels the biased samples blend; the map has a full chain (texture() below).
+        uint32_t normalMips = 1;
+        while (std::max(normalImage.width, normalImage.height) >> normalMips) ++normalMips;
+        frame.lodBias = glm::vec4(lodBias, float(preskin::normalLevelCount(lodBias, normalMips)));
         for (const preskin::Light& l : scene.lights) {
             if (frame.lightCount.x == 8) break;
             preskin::gpu::GpuLight& g = frame.lights[frame.lightCount.x++];

@@ -5,8 +5,10 @@
 //    with an optional detail map blended over the base map (whiteout blend, Barre-Brisebois &
 //    Hill, "Blending in Detail", 2012);
 //  - per-channel normal prefiltering (Penner & Borshukov; d'Eon & Luebke): one level-of-detail
-//    query, then the map at three explicit levels lod + bias per channel (the biases from
-//    normalLodBias() in <preskin/SkinParameters.h>), the unbiased normal for specular;
+//    query, then the map at three levels lod + bias per channel (the biases from normalLodBias()
+//    in <preskin/SkinParameters.h>), filtered trilinearly by hand from bilinear samples at whole
+//    levels that the three channels share (preskinSampleLevels); the unbiased normal, with the
+//    sampler's own filtering (anisotropic where it is), for specular;
 //  - the curvature source (per-vertex, texture or screen derivatives; preskinCurvatureProfilePerMm
 //    of preskin/lut.glsl converts it to profile 1/mm);
 //  - skin F0 (kSkinF0 of shared/constants.h times the material's intensity and specular map);
@@ -19,6 +21,7 @@
 #define PRESKIN_SKIN_SURFACE_GLSL
 
 #include "preskin/common.glsl"
+#include "preskin/mip_levels.glsl"
 #include "shared/skin_features.h"
 
 // Tangent frame (tangent, bitangent, normal); a degenerate tangent gives (0, 0, N).
@@ -36,19 +39,16 @@ struct PreskinNormalMaps {
     float detailUvScale; // detail uv = uv * detailUvScale
     float detailScale;   // strength of the detail map's xy
     vec3 lodBias;        // per-channel level-of-detail bias (red, green, blue): normalLodBias()
+    int levelCount;      // whole levels the biased samples blend: normalLevelCount() (preskinSampleLevels)
 };
 
-// Tangent-space normal of the base map plus the optional detail map (whiteout blend). Without
-// explicitLod, the hardware's own level of detail; with it, level `lod` of the base map and
-// `lod + detailLodOffset` of the detail map.
-vec3 preskinNormalTs(sampler2D normalMap, sampler2D detailMap, PreskinNormalMaps maps, vec2 uv, bool explicitLod,
-                     float lod, float detailLodOffset) {
-    vec3 base = (explicitLod ? textureLod(normalMap, uv, lod) : texture(normalMap, uv)).rgb * 2.0 - 1.0;
+// Tangent-space normal from a texel of the base map and one of the detail map (whiteout blend;
+// without a detail map its texel is not read).
+vec3 preskinNormalTs(vec3 baseTexel, vec3 detailTexel, PreskinNormalMaps maps) {
+    vec3 base = baseTexel * 2.0 - 1.0;
     base.xy *= maps.scale;
     if (maps.hasDetail) {
-        vec2 uvDetail = uv * maps.detailUvScale;
-        vec3 detail = (explicitLod ? textureLod(detailMap, uvDetail, lod + detailLodOffset)
-                                   : texture(detailMap, uvDetail)).rgb * 2.0 - 1.0;
+        vec3 detail = detailTexel * 2.0 - 1.0;
         detail.xy *= maps.detailScale;
         base = vec3(base.xy + detail.xy, base.z * detail.z);
     }
@@ -63,16 +63,23 @@ void preskinSkinNormals(sampler2D normalMap, sampler2D detailMap, PreskinNormalM
                         vec3 geometricNormal, vec4 tangentWs, uint features, out vec3 normalSpecular,
                         out vec3 normalR, out vec3 normalG, out vec3 normalB) {
     mat3 tbn = preskinTangentFrame(geometricNormal, tangentWs);
-    normalSpecular = normalize(tbn * preskinNormalTs(normalMap, detailMap, maps, uv, false, 0.0, 0.0));
+    vec2 uvDetail = uv * maps.detailUvScale;
+    vec3 detail = maps.hasDetail ? texture(detailMap, uvDetail).rgb : vec3(0.5, 0.5, 1.0);
+    normalSpecular = normalize(tbn * preskinNormalTs(texture(normalMap, uv).rgb, detail, maps));
     normalR = normalSpecular;
     normalG = normalSpecular;
     normalB = normalSpecular;
     if ((features & kSkinNormalPrefilter) == 0u) return;
-    float lod = textureQueryLod(normalMap, uv).y;
-    float detailOffset = maps.hasDetail ? textureQueryLod(detailMap, uv * maps.detailUvScale).y - lod : 0.0;
-    normalR = normalize(tbn * preskinNormalTs(normalMap, detailMap, maps, uv, true, lod + maps.lodBias.r, detailOffset));
-    normalG = normalize(tbn * preskinNormalTs(normalMap, detailMap, maps, uv, true, lod + maps.lodBias.g, detailOffset));
-    normalB = normalize(tbn * preskinNormalTs(normalMap, detailMap, maps, uv, true, lod + maps.lodBias.b, detailOffset));
+    vec3 baseR, baseG, baseB;
+    preskinSampleLevels(normalMap, uv, vec3(textureQueryLod(normalMap, uv).y) + maps.lodBias, maps.levelCount, baseR,
+                        baseG, baseB);
+    vec3 detailR = detail, detailG = detail, detailB = detail;
+    if (maps.hasDetail)
+        preskinSampleLevels(detailMap, uvDetail, vec3(textureQueryLod(detailMap, uvDetail).y) + maps.lodBias,
+                            maps.levelCount, detailR, detailG, detailB);
+    normalR = normalize(tbn * preskinNormalTs(baseR, detailR, maps));
+    normalG = normalize(tbn * preskinNormalTs(baseG, detailG, maps));
+    normalB = normalize(tbn * preskinNormalTs(baseB, detailB, maps));
 }
 
 // Curvature in 1/m from screen-space derivatives (Penner's fallback: constant per triangle).

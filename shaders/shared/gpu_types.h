@@ -47,7 +47,8 @@ PRESKIN_CONST(uint, kSpecLightLoop, 5)      // kLightLoopClustered or kLightLoop
 PRESKIN_CONST(uint, kSpecAlphaToCoverage, 6)  // 1: alpha-mask coverage from alpha (MSAA), 0: discard
 PRESKIN_CONST(uint, kSpecSpecular, 7)       // 1: specular and Fresnel on; 0: diffuse only (RenderSettings::specular)
 PRESKIN_CONST(uint, kSpecProfileMix, 8)     // entries of a skin material's profile mix: 1 (its own), 2..4 (blended)
-PRESKIN_CONST(uint, kSpecSkinInputs, 9)     // a skin material's inputs: bit 0 a detail normal map, bits 1-2 its kCurvatureSource*
+PRESKIN_CONST(uint, kSpecSkinInputs, 9)     // a skin material's inputs: bit 0 a detail normal map, bits 1-2 its kCurvatureSource*,
+                                            // bits 3-7 the normal levels its biased samples blend (normalLevelCount)
 
 PRESKIN_CONST(uint, kModelStandard, 0)
 PRESKIN_CONST(uint, kModelSkin, 1)

@@ -56,7 +56,7 @@ PipelineKey Renderer::Impl::pipelineKey(const GpuMaterial& m, VkFormat format, V
                        settings.msaaSamples,
                        eyeDrawing() == EyeDrawing::InstancedLayers ? 1u : 0u,
                        skin ? m.profileMix : 1u,
-                       skin ? m.skinInputs : 0u};
+                       skin ? m.skinInputBits() : 0u};
 }
 
 VkPipeline Renderer::Impl::forwardPipeline(const GpuMaterial& m, VkFormat format, VkFormat depthFormat, uint32_t eyes) {

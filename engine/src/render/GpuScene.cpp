@@ -234,6 +234,8 @@ GpuScene::GpuScene(const vk::Device& device, const Scene& scene)
             const bool valid = slot.image >= 0 && size_t(slot.image) < scene.images.size();
             const vk::Image& image = valid ? texture(scene, slot.image, slot.srgb) : *slot.fallbackImage;
             imageInfos[s] = {sampler(slot.sampler), image.view(), VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL};
+            if (slot.binding == gpu::kBindingNormalTexture || slot.binding == gpu::kBindingDetailNormalTexture)
+                gm.normalMipLevels = std::max(gm.normalMipLevels, image.desc().mipLevels);
             writes[s + 1] = {VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET};
             writes[s + 1].dstSet = gm.set;
             writes[s + 1].dstBinding = slot.binding;
@@ -324,6 +326,8 @@ void GpuScene::updateMaterials(const std::vector<ProfileLayer>& layers) {
     for (size_t i = 0; i < materials.size(); ++i) {
         const Material& mat = i < sceneMaterials_.size() ? sceneMaterials_[i] : fallback;
         const gpu::MaterialUniforms u = uniformsFor(mat, materials[i], layers);
+        materials[i].normalLevels =
+            uint32_t(normalLevelCount(glm::vec3(u.skinNormalLodBias), materials[i].normalMipLevels));
         materialUniforms_.upload(&u, sizeof(u), uniformStride_ * i);
     }
 }

@@ -33,6 +33,10 @@ struct GpuMaterial {
     float texelsPerMm = 0.0f;  // normal-map texels per world millimetre on the meshes using it
     uint32_t profileMix = 1;   // skin: its profile plus the profiles its weight texture blends in (1..4)
     uint32_t skinInputs = 0;   // skin: bit 0 a detail normal map, bits 1-2 the curvature source (kSpecSkinInputs)
+    uint32_t normalMipLevels = 1;  // mip levels of the normal map (the larger of it and the detail map)
+    uint32_t normalLevels = 1;     // skin: whole levels the biased normal samples blend (normalLevelCount)
+    // The kSpecSkinInputs value of a skin material: skinInputs, normalLevels in bits 3-7.
+    uint32_t skinInputBits() const { return skinInputs | (normalLevels << 3); }
 };
 
 // What a skin material takes from a LUT layer (one diffusion profile): the profile's scattering
@@ -54,8 +58,9 @@ public:
 
     VkDescriptorSetLayout materialLayout() const { return materialLayout_; }
     // Fills every material's uniforms from the LUT layers (layer p + 1 holds SkinMaterial::profile p):
-    // the skin LOD biases from the widths of the material's profile, and the LutMapping of every
-    // profile the material mixes.
+    // the skin LOD biases from the widths of the material's profile (and the normal levels the
+    // biased samples blend, part of the pipeline), and the LutMapping of every profile the material
+    // mixes.
     void updateMaterials(const std::vector<ProfileLayer>& layers);
     // The scene's materials as uploaded.
     const std::vector<Material>& sceneMaterials() const { return sceneMaterials_; }

@@ -11,6 +11,14 @@ glm::vec3 normalLodBias(const glm::vec3& widthMm, float scatterScale, float texe
     return glm::log2(glm::vec3(1.0f) + widthMm / scale * std::max(texelsPerMm, 0.0f));
 }
 
+int normalLevelCount(const glm::vec3& lodBias, uint32_t mipLevels) {
+    const int levels = static_cast<int>(std::clamp(mipLevels, 1u, 32u));
+    const float span = std::max(lodBias.x, std::max(lodBias.y, lodBias.z)) -
+                       std::min(lodBias.x, std::min(lodBias.y, lodBias.z));
+    if (!std::isfinite(span) || span >= float(levels)) return levels;
+    return std::min(static_cast<int>(std::ceil(span)) + 2, levels);
+}
+
 void accumulateTexelDensity(const Primitive& primitive, const glm::mat4& worldFromObject, double& uvArea,
                             double& surfaceAreaMm2) {
     const glm::mat3 m(worldFromObject);

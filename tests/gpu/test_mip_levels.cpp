@@ -1,0 +1,196 @@
+// preskinSampleLevels (shaders/preskin/mip_levels.glsl), the hand-made trilinear filtering the
+// skin's per-channel normal samples use, against the sampler's own: textureLod of the same
+// mipmapped texture (linear within and between levels, as the scene's samplers) at each of the
+// three levels of detail, run by tests/gpu/shaders/mip_levels.comp. Levels of detail: random
+// bases over and beyond the chain (negative and past the last level, which clamp) plus biases with
+// spans up to five levels and of either sign, as normalLodBias() and authored biases give; the
+// number of whole levels read is normalLevelCount()'s. Tolerance: 2/255, what a driver that
+// filters 8-bit texels in fixed point (lavapipe quantises the level fraction and rounds each
+// level's bilinear result) may differ from filtering in float. One level fewer than
+// normalLevelCount() must fail the same comparison, so the count is needed, not generous.
+#include "support/GpuTest.h"
+#include "support/TestShaders.h"
+
+#include <preskin/SkinParameters.h>
+
+#include "vk/Check.h"
+#include "vk/Pipeline.h"
+#include "vk/Resources.h"
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <random>
+#include <vector>
+
+namespace preskin::test {
+namespace {
+
+struct Query {
+    glm::vec2 uv;
+    glm::vec3 lod;
+};
+
+struct Result {
+    std::array<glm::vec3, 3> levels;     // preskinSampleLevels
+    std::array<glm::vec3, 3> reference;  // textureLod
+};
+
+class MipLevels : public GpuTest {
+protected:
+    // A 64x64 RGBA8 texture with its full chain (7 levels) of linear blits.
+    static constexpr uint32_t kSize = 64;
+
+    std::vector<Result> run(const std::vector<Query>& queries, int levelCount) {
+        const vk::Device& device = ContextAccess::core(context());
+        const VkDevice d = device.device();
+        // Structure at every scale, so every level differs from its neighbours: quadrants of
+        // different colours, an 8x8 checker and per-texel noise.
+        std::mt19937 rng(7);
+        std::uniform_int_distribution<int> noise(0, 63);
+        std::vector<uint8_t> texels(size_t(kSize) * kSize * 4);
+        for (uint32_t y = 0; y < kSize; ++y)
+            for (uint32_t x = 0; x < kSize; ++x)
+                for (uint32_t c = 0; c < 4; ++c) {
+                    const uint32_t quadrant = (x / 32) + 2 * (y / 32);
+                    const int value = int(((quadrant + c) % 4) * 48) + int(((x / 8 + y / 8 + c) % 2) * 32) + noise(rng);
+                    texels[(size_t(y) * kSize + x) * 4 + c] = static_cast<uint8_t>(std::min(value, 255));
+                }
+        vk::Image image(device, {VK_FORMAT_R8G8B8A8_UNORM, kSize, kSize, vk::mipLevelCount(kSize, kSize),
+                                 VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT |
+                                     VK_IMAGE_USAGE_TRANSFER_DST_BIT});
+        image.uploadAndGenerateMips(texels.data(), texels.size());
+
+        VkSamplerCreateInfo si{VK_STRUCTURE_TYPE_SAMPLER_CREATE_INFO};
+        si.magFilter = VK_FILTER_LINEAR;
+        si.minFilter = VK_FILTER_LINEAR;
+        si.mipmapMode = VK_SAMPLER_MIPMAP_MODE_LINEAR;
+        si.addressModeU = si.addressModeV = si.addressModeW = VK_SAMPLER_ADDRESS_MODE_REPEAT;
+        si.maxLod = VK_LOD_CLAMP_NONE;
+        VkSampler sampler = VK_NULL_HANDLE;
+        PRESKIN_VK(vkCreateSampler(d, &si, nullptr, &sampler));
+
+        const VkShaderStageFlags compute = VK_SHADER_STAGE_COMPUTE_BIT;
+        const std::array<vk::Binding, 3> bindings{{{0, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, compute},
+                                                   {1, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, compute},
+                                                   {2, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, compute}}};
+        const VkDescriptorSetLayout setLayout = vk::createSetLayout(device, bindings);
+        const VkPipelineLayout layout =
+            vk::createPipelineLayout(device, std::span(&setLayout, 1), 2 * sizeof(uint32_t), compute);
+        const VkPipeline pipeline = vk::createComputePipeline(device, test_shaders::spirv("mip_levels.comp"), layout);
+        const std::array<VkDescriptorPoolSize, 2> sizes{{{VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 1},
+                                                         {VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 2}}};
+        VkDescriptorPoolCreateInfo poolInfo{VK_STRUCTURE_TYPE_DESCRIPTOR_POOL_CREATE_INFO};
+        poolInfo.maxSets = 1;
+        poolInfo.poolSizeCount = static_cast<uint32_t>(sizes.size());
+        poolInfo.pPoolSizes = sizes.data();
+        VkDescriptorPool pool = VK_NULL_HANDLE;
+        PRESKIN_VK(vkCreateDescriptorPool(d, &poolInfo, nullptr, &pool));
+        VkDescriptorSetAllocateInfo allocInfo{VK_STRUCTURE_TYPE_DESCRIPTOR_SET_ALLOCATE_INFO};
+        allocInfo.descriptorPool = pool;
+        allocInfo.descriptorSetCount = 1;
+        allocInfo.pSetLayouts = &setLayout;
+        VkDescriptorSet set = VK_NULL_HANDLE;
+        PRESKIN_VK(vkAllocateDescriptorSets(d, &allocInfo, &set));
+
+        std::vector<glm::vec4> inputData;
+        for (const Query& q : queries) {
+            inputData.emplace_back(q.uv, q.lod.x, q.lod.y);
+            inputData.emplace_back(q.lod.z, 0.0f, 0.0f, 0.0f);
+        }
+        const VkDeviceSize inBytes = inputData.size() * sizeof(glm::vec4);
+        const VkDeviceSize outBytes = queries.size() * 6 * sizeof(glm::vec4);
+        vk::Buffer inputs(device, inBytes, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, true);
+        inputs.upload(inputData.data(), inBytes);
+        vk::Buffer outputs(device, outBytes, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, true);
+        const VkDescriptorImageInfo imageInfo{sampler, image.view(), VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL};
+        const VkDescriptorBufferInfo inputInfo{inputs.handle(), 0, inBytes};
+        const VkDescriptorBufferInfo outputInfo{outputs.handle(), 0, outBytes};
+        std::array<VkWriteDescriptorSet, 3> writes{};
+        for (uint32_t i = 0; i < 3; ++i) {
+            writes[i] = {VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET};
+            writes[i].dstSet = set;
+            writes[i].dstBinding = i;
+            writes[i].descriptorCount = 1;
+            writes[i].descriptorType = bindings[i].type;
+        }
+        writes[0].pImageInfo = &imageInfo;
+        writes[1].pBufferInfo = &inputInfo;
+        writes[2].pBufferInfo = &outputInfo;
+        vkUpdateDescriptorSets(d, static_cast<uint32_t>(writes.size()), writes.data(), 0, nullptr);
+
+        const uint32_t count = static_cast<uint32_t>(queries.size());
+        const int32_t push[2] = {static_cast<int32_t>(count), levelCount};
+        device.submitAndWait([&](VkCommandBuffer cmd) {
+            vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, pipeline);
+            vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, layout, 0, 1, &set, 0, nullptr);
+            vkCmdPushConstants(cmd, layout, compute, 0, sizeof(push), push);
+            vkCmdDispatch(cmd, (count + 63) / 64, 1, 1);
+            vk::memoryBarrier(cmd, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT,
+                              VK_PIPELINE_STAGE_2_HOST_BIT, VK_ACCESS_2_HOST_READ_BIT);
+        });
+        std::vector<Result> results(queries.size());
+        const auto* out = static_cast<const glm::vec4*>(outputs.mapped());
+        for (size_t i = 0; i < results.size(); ++i)
+            for (size_t c = 0; c < 3; ++c) {
+                results[i].levels[c] = glm::vec3(out[6 * i + c]);
+                results[i].reference[c] = glm::vec3(out[6 * i + 3 + c]);
+            }
+        vkDestroyDescriptorPool(d, pool, nullptr);
+        vkDestroyPipeline(d, pipeline, nullptr);
+        vkDestroyPipelineLayout(d, layout, nullptr);
+        vkDestroyDescriptorSetLayout(d, setLayout, nullptr);
+        vkDestroySampler(d, sampler, nullptr);
+        return results;
+    }
+};
+
+// Largest difference from textureLod over the queries, in 8-bit steps.
+float largestError(const std::vector<Result>& results) {
+    float worst = 0.0f;
+    for (const Result& r : results)
+        for (size_t c = 0; c < 3; ++c) {
+            const glm::vec3 d = glm::abs(r.levels[c] - r.reference[c]) * 255.0f;
+            worst = std::max(worst, std::max(d.x, std::max(d.y, d.z)));
+        }
+    return worst;
+}
+
+TEST_F(MipLevels, SharedWholeLevelsMatchTrilinearSamplesForEveryBiasSpan) {
+    const uint32_t mips = vk::mipLevelCount(kSize, kSize);
+    std::mt19937 rng(11);
+    std::uniform_real_distribution<float> unit(0.0f, 1.0f);
+    // One set of biases per span, with the span's lowest bias anywhere in [-2, 1].
+    for (float span : {0.0f, 0.3f, 1.0f, 1.47f, 2.0f, 2.6f, 5.0f}) {
+        const float low = -2.0f + 3.0f * unit(rng);
+        glm::vec3 bias(low + span, low + unit(rng) * span, low);
+        std::shuffle(&bias[0], &bias[0] + 3, rng);
+        const int levelCount = normalLevelCount(bias, mips);
+        std::vector<Query> queries;
+        for (int i = 0; i < 512; ++i) {
+            const float base = -1.5f + (float(mips) + 2.0f) * unit(rng);  // below, over and past the chain
+            queries.push_back({{unit(rng) * 3.0f - 1.0f, unit(rng) * 3.0f - 1.0f}, glm::vec3(base) + bias});
+        }
+        EXPECT_LE(largestError(run(queries, levelCount)), 2.0f)
+            << "span " << span << ", biases " << bias.x << " " << bias.y << " " << bias.z << ", " << levelCount
+            << " levels";
+        // Whenever the count is below the chain's length, one level fewer must show.
+        if (levelCount > 1 && span < float(mips) - 1.0f) {
+            EXPECT_GT(largestError(run(queries, levelCount - 1)), 2.0f)
+                << "span " << span << ": " << levelCount - 1 << " levels were enough";
+        }
+    }
+}
+
+TEST(NormalLevelCount, SpansTheBiasesAndStaysWithinTheChain) {
+    EXPECT_EQ(normalLevelCount(glm::vec3(0.0f), 12), 2);                      // one level of detail: trilinear
+    EXPECT_EQ(normalLevelCount(glm::vec3(1.93f, 0.70f, 0.46f), 12), 4);       // the bundled head
+    EXPECT_EQ(normalLevelCount(glm::vec3(-1.0f, 1.0f, 0.0f), 12), 4);         // span 2
+    EXPECT_EQ(normalLevelCount(glm::vec3(3.0f, 0.5f, 0.5f), 12), 5);          // span 2.5
+    EXPECT_EQ(normalLevelCount(glm::vec3(40.0f, 0.0f, 0.0f), 12), 12);        // never more than the chain
+    EXPECT_EQ(normalLevelCount(glm::vec3(1.0f, 0.0f, 0.0f), 1), 1);           // no mips
+    EXPECT_EQ(normalLevelCount(glm::vec3(NAN, 0.0f, 0.0f), 9), 9);            // not a number: every level
+}
+
+}  // namespace
+}  // namespace preskin::test
