@@ -9,7 +9,7 @@
 // PreskinProfileMix of one layer): once as the only layer, and once as layer 1 behind a larger
 // set, so padded to the larger size and addressed through its own LutMapping.
 #include "support/GpuTest.h"
-#include "support/TestShaders.h"
+#include "support/ComputeDispatch.h"
 
 #include <preskin/Environment.h>
 #include <preskin/LutSet.h>
@@ -42,35 +42,6 @@ struct Lookup {
 std::vector<glm::vec3> runOnGpu(const vk::Device& device, const std::vector<const LutSet*>& layers, uint32_t layer,
                                 const std::vector<Lookup>& lookups) {
     const GpuLuts gpuLuts(device, layers);
-    const VkDevice d = device.device();
-    const VkShaderStageFlags compute = VK_SHADER_STAGE_COMPUTE_BIT;
-    const std::array<vk::Binding, 7> bindings{{{0, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, compute},
-                                               {1, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, compute},
-                                               {2, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, compute},
-                                               {3, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, compute},
-                                               {4, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, compute},
-                                               {5, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, compute},
-                                               {6, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, compute}}};
-    const VkDescriptorSetLayout setLayout = vk::createSetLayout(device, bindings);
-    const VkPipelineLayout layout = vk::createPipelineLayout(device, std::span(&setLayout, 1), 2 * sizeof(uint32_t), compute);
-    const VkPipeline pipeline = vk::createComputePipeline(device, test_shaders::spirv("lut_lookup.comp"), layout);
-
-    const std::array<VkDescriptorPoolSize, 3> sizes{{{VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, 1},
-                                                     {VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 4},
-                                                     {VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 2}}};
-    VkDescriptorPoolCreateInfo poolInfo{VK_STRUCTURE_TYPE_DESCRIPTOR_POOL_CREATE_INFO};
-    poolInfo.maxSets = 1;
-    poolInfo.poolSizeCount = static_cast<uint32_t>(sizes.size());
-    poolInfo.pPoolSizes = sizes.data();
-    VkDescriptorPool pool = VK_NULL_HANDLE;
-    PRESKIN_VK(vkCreateDescriptorPool(d, &poolInfo, nullptr, &pool));
-    VkDescriptorSetAllocateInfo allocInfo{VK_STRUCTURE_TYPE_DESCRIPTOR_SET_ALLOCATE_INFO};
-    allocInfo.descriptorPool = pool;
-    allocInfo.descriptorSetCount = 1;
-    allocInfo.pSetLayouts = &setLayout;
-    VkDescriptorSet set = VK_NULL_HANDLE;
-    PRESKIN_VK(vkAllocateDescriptorSets(d, &allocInfo, &set));
-
     const gpu::LutMapping mapping = gpuLuts.layers().at(layer).mapping;
     vk::Buffer uniforms(device, sizeof(mapping), VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT, true);
     uniforms.upload(&mapping, sizeof(mapping));
@@ -80,43 +51,18 @@ std::vector<glm::vec3> runOnGpu(const vk::Device& device, const std::vector<cons
     vk::Buffer inputs(device, bytes, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, true);
     inputs.upload(inputData.data(), bytes);
     vk::Buffer outputs(device, bytes, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, true);
-
-    const VkDescriptorBufferInfo uniformInfo{uniforms.handle(), 0, sizeof(mapping)};
-    const VkDescriptorBufferInfo inputInfo{inputs.handle(), 0, bytes};
-    const VkDescriptorBufferInfo outputInfo{outputs.handle(), 0, bytes};
     const auto images = gpuLuts.descriptors();
-    std::array<VkWriteDescriptorSet, 7> writes{};
-    for (uint32_t i = 0; i < 7; ++i) {
-        writes[i] = {VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET};
-        writes[i].dstSet = set;
-        writes[i].dstBinding = i;
-        writes[i].descriptorCount = 1;
-        writes[i].descriptorType = bindings[i].type;
-    }
-    writes[0].pBufferInfo = &uniformInfo;
-    for (uint32_t i = 0; i < 4; ++i) writes[i + 1].pImageInfo = &images[i];
-    writes[5].pBufferInfo = &inputInfo;
-    writes[6].pBufferInfo = &outputInfo;
-    vkUpdateDescriptorSets(d, static_cast<uint32_t>(writes.size()), writes.data(), 0, nullptr);
-
+    std::vector<ComputeResource> resources{
+        bufferResource(VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, uniforms.handle(), sizeof(mapping))};
+    for (const VkDescriptorImageInfo& image : images) resources.push_back(imageResource(image.sampler, image.imageView));
+    resources.push_back(bufferResource(VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, inputs.handle(), bytes));
+    resources.push_back(bufferResource(VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, outputs.handle(), bytes));
     const uint32_t push[2] = {static_cast<uint32_t>(lookups.size()), layer};
-    const uint32_t count = push[0];
-    device.submitAndWait([&](VkCommandBuffer cmd) {
-        vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, pipeline);
-        vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, layout, 0, 1, &set, 0, nullptr);
-        vkCmdPushConstants(cmd, layout, compute, 0, sizeof(push), push);
-        vkCmdDispatch(cmd, (count + 63) / 64, 1, 1);
-        vk::memoryBarrier(cmd, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT,
-                          VK_PIPELINE_STAGE_2_HOST_BIT, VK_ACCESS_2_HOST_READ_BIT);
-    });
+    dispatchCompute(device, "lut_lookup.comp", resources, push, push[0]);
 
     std::vector<glm::vec3> results(lookups.size());
     const auto* out = static_cast<const glm::vec4*>(outputs.mapped());
     for (size_t i = 0; i < results.size(); ++i) results[i] = glm::vec3(out[i]);
-    vkDestroyDescriptorPool(d, pool, nullptr);
-    vkDestroyPipeline(d, pipeline, nullptr);
-    vkDestroyPipelineLayout(d, layout, nullptr);
-    vkDestroyDescriptorSetLayout(d, setLayout, nullptr);
     return results;
 }
 

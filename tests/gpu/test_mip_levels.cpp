@@ -9,12 +9,11 @@
 // level's bilinear result) may differ from filtering in float. One level fewer than
 // normalLevelCount() must fail the same comparison, so the count is needed, not generous.
 #include "support/GpuTest.h"
-#include "support/TestShaders.h"
+#include "support/ComputeDispatch.h"
 
 #include <preskin/SkinParameters.h>
 
 #include "vk/Check.h"
-#include "vk/Pipeline.h"
 #include "vk/Resources.h"
 
 #include <algorithm>
@@ -70,29 +69,6 @@ protected:
         VkSampler sampler = VK_NULL_HANDLE;
         PRESKIN_VK(vkCreateSampler(d, &si, nullptr, &sampler));
 
-        const VkShaderStageFlags compute = VK_SHADER_STAGE_COMPUTE_BIT;
-        const std::array<vk::Binding, 3> bindings{{{0, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, compute},
-                                                   {1, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, compute},
-                                                   {2, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, compute}}};
-        const VkDescriptorSetLayout setLayout = vk::createSetLayout(device, bindings);
-        const VkPipelineLayout layout =
-            vk::createPipelineLayout(device, std::span(&setLayout, 1), 2 * sizeof(uint32_t), compute);
-        const VkPipeline pipeline = vk::createComputePipeline(device, test_shaders::spirv("mip_levels.comp"), layout);
-        const std::array<VkDescriptorPoolSize, 2> sizes{{{VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 1},
-                                                         {VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 2}}};
-        VkDescriptorPoolCreateInfo poolInfo{VK_STRUCTURE_TYPE_DESCRIPTOR_POOL_CREATE_INFO};
-        poolInfo.maxSets = 1;
-        poolInfo.poolSizeCount = static_cast<uint32_t>(sizes.size());
-        poolInfo.pPoolSizes = sizes.data();
-        VkDescriptorPool pool = VK_NULL_HANDLE;
-        PRESKIN_VK(vkCreateDescriptorPool(d, &poolInfo, nullptr, &pool));
-        VkDescriptorSetAllocateInfo allocInfo{VK_STRUCTURE_TYPE_DESCRIPTOR_SET_ALLOCATE_INFO};
-        allocInfo.descriptorPool = pool;
-        allocInfo.descriptorSetCount = 1;
-        allocInfo.pSetLayouts = &setLayout;
-        VkDescriptorSet set = VK_NULL_HANDLE;
-        PRESKIN_VK(vkAllocateDescriptorSets(d, &allocInfo, &set));
-
         std::vector<glm::vec4> inputData;
         for (const Query& q : queries) {
             inputData.emplace_back(q.uv, q.lod.x, q.lod.y);
@@ -103,32 +79,12 @@ protected:
         vk::Buffer inputs(device, inBytes, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, true);
         inputs.upload(inputData.data(), inBytes);
         vk::Buffer outputs(device, outBytes, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, true);
-        const VkDescriptorImageInfo imageInfo{sampler, image.view(), VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL};
-        const VkDescriptorBufferInfo inputInfo{inputs.handle(), 0, inBytes};
-        const VkDescriptorBufferInfo outputInfo{outputs.handle(), 0, outBytes};
-        std::array<VkWriteDescriptorSet, 3> writes{};
-        for (uint32_t i = 0; i < 3; ++i) {
-            writes[i] = {VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET};
-            writes[i].dstSet = set;
-            writes[i].dstBinding = i;
-            writes[i].descriptorCount = 1;
-            writes[i].descriptorType = bindings[i].type;
-        }
-        writes[0].pImageInfo = &imageInfo;
-        writes[1].pBufferInfo = &inputInfo;
-        writes[2].pBufferInfo = &outputInfo;
-        vkUpdateDescriptorSets(d, static_cast<uint32_t>(writes.size()), writes.data(), 0, nullptr);
-
         const uint32_t count = static_cast<uint32_t>(queries.size());
-        const int32_t push[2] = {static_cast<int32_t>(count), levelCount};
-        device.submitAndWait([&](VkCommandBuffer cmd) {
-            vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, pipeline);
-            vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, layout, 0, 1, &set, 0, nullptr);
-            vkCmdPushConstants(cmd, layout, compute, 0, sizeof(push), push);
-            vkCmdDispatch(cmd, (count + 63) / 64, 1, 1);
-            vk::memoryBarrier(cmd, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT,
-                              VK_PIPELINE_STAGE_2_HOST_BIT, VK_ACCESS_2_HOST_READ_BIT);
-        });
+        const ComputeResource resources[] = {imageResource(sampler, image.view()),
+                                             bufferResource(VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, inputs.handle(), inBytes),
+                                             bufferResource(VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, outputs.handle(), outBytes)};
+        const uint32_t push[2] = {count, static_cast<uint32_t>(levelCount)};
+        dispatchCompute(device, "mip_levels.comp", resources, push, count);
         std::vector<Result> results(queries.size());
         const auto* out = static_cast<const glm::vec4*>(outputs.mapped());
         for (size_t i = 0; i < results.size(); ++i)
@@ -136,10 +92,6 @@ protected:
                 results[i].levels[c] = glm::vec3(out[6 * i + c]);
                 results[i].reference[c] = glm::vec3(out[6 * i + 3 + c]);
             }
-        vkDestroyDescriptorPool(d, pool, nullptr);
-        vkDestroyPipeline(d, pipeline, nullptr);
-        vkDestroyPipelineLayout(d, layout, nullptr);
-        vkDestroyDescriptorSetLayout(d, setLayout, nullptr);
         vkDestroySampler(d, sampler, nullptr);
         return results;
     }
