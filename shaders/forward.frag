@@ -174,8 +174,12 @@ void main() {
         shadowPositionWs = preskinSkinShadowPosition(inPositionWs, geometricN, -frame.shadowDirectionWs.xyz,
                                                      skinCurvaturePerMm, material.skinScatter.x,
                                                      materialLutMapping(0));
+    // The shadow map's transform, read once here, outside the branches that use it: a CPU driver
+    // (lavapipe) reads uniform buffers lane by lane, and reads in separate branches are not shared.
+    mat4 shadowClipFromWorld = frame.shadowClipFromWorld;
+    vec4 shadowParams = frame.shadowParams;
     if (frame.shadowDirectionWs.w > 0.5)
-        shadow = preskinSampleShadow(shadowMap, frame.shadowClipFromWorld, frame.shadowParams, shadowPositionWs, geometricN);
+        shadow = preskinSampleShadow(shadowMap, shadowClipFromWorld, shadowParams, shadowPositionWs, geometricN);
 
     uint first;
     uint count;
@@ -238,7 +242,7 @@ void main() {
             penumbra = preskinSkinShadow(skin, profiles, penumbraLut, shadow.visibility, shadow.kernelWidthM, L, features);
             float thicknessM = 0.0;
             if (preskinTransmissionGate(geometricN, L, features))
-                thicknessM = preskinShadowThickness(shadowMap, frame.shadowClipFromWorld, frame.shadowParams,
+                thicknessM = preskinShadowThickness(shadowMap, shadowClipFromWorld, shadowParams,
                                                     preskinThicknessPointWs(inPositionWs, geometricN, skin.scatterScale));
             transmitted = preskinSkinTransmission(skin, profiles, transmittanceLut, L, irradiance, thicknessM, features);
             color += preskinSkinLight(skin, lighting, profiles, diffuseLut, V, L, irradiance, penumbra, shadow.visibility, features);
