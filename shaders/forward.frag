@@ -9,7 +9,6 @@
 // derivatives differ between the eyes, per-vertex and texture curvature do not.
 #extension GL_GOOGLE_include_directive : require
 #include "forward_material.glsl"
-#include "forward_specialization.glsl"
 // A material without a profile blend compiles without the blend's lookups (preskin/lut.glsl).
 #define PRESKIN_PROFILE_MIX_MAX kProfileMix
 
@@ -224,7 +223,7 @@ void main() {
         skin.scatterScale = material.skinScatter.x;
         skin.curvaturePerMm = skinCurvaturePerMm;
         skin.roughness = roughness;
-        float specularMap = material.textureFlags.z > 0.5 ? texture(specularTexture, uvBase).r : 1.0;
+        float specularMap = kSkinSpecularMap ? texture(specularTexture, uvBase).r : 1.0;
         skin.F0 = preskinSkinF0(material.skinSpecular.x, specularMap);
         skin.specularWeight = float(kSpecular);
         skin.lobes = material.skinSpecular.yzww;

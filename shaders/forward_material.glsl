@@ -1,15 +1,18 @@
 // forward_material.glsl: the forward pass's material uniforms (descriptor set 1), read by both of
-// its stages, and the LutMapping of each entry of a skin material's profile mix.
+// its stages, and the LutMapping of each entry of a skin material's profile mix: the material's
+// own from the pipeline's specialization, the blended ones from the uniforms.
 #ifndef PRESKIN_FORWARD_MATERIAL_GLSL
 #define PRESKIN_FORWARD_MATERIAL_GLSL
 
-#include "shared/gpu_types.h"
+#include "forward_specialization.glsl"
 
 layout(set = 1, binding = kBindingMaterial) uniform Material { MaterialUniforms material; };
 
-// Entry i of the material's profile mix, member by member (glslang stores a uniform-block struct
-// into a local one of another layout with a mismatched type, which SPIR-V validation refuses).
+// Entry i of the material's profile mix; the blended entries member by member (glslang stores a
+// uniform-block struct into a local one of another layout with a mismatched type, which SPIR-V
+// validation refuses).
 LutMapping materialLutMapping(int i) {
+    if (i == 0) return specializedLutMapping();
     LutMapping m;
     m.diffuseNoL = material.skinLuts[i].diffuseNoL;
     m.diffuseCurvature = material.skinLuts[i].diffuseCurvature;

@@ -23,10 +23,60 @@ layout(constant_id = kSpecSkinInputs) const uint kSkinInputs = 0;
 const bool kSkinDetailNormals = (kSkinInputs & 1u) != 0u;
 const uint kSkinCurvatureSource = (kSkinInputs >> 1) & 3u;
 const uint kSkinNormalLevels = (kSkinInputs >> 3) & 31u;  // PreskinNormalMaps::levelCount
+const bool kSkinSpecularMap = (kSkinInputs & 256u) != 0u;
 // The SH transfer depends on curvature alone: with per-vertex curvature and one profile (no
 // per-texel blend) the vertex stage looks it up and the fragment stage interpolates it.
 // (Written as one comparison: glslang turns && of specialization constants into control flow.)
 const bool kSkinShPerVertex = (uint(kMaterialModel == kModelSkin) & uint((kSkinFeatures & kSkinShAmbient) != 0u) &
                                uint(kSkinCurvatureSource == kCurvatureSourceVertex) & uint(kProfileMix == 1u)) != 0u;
+
+// A skin material's own profile's LutMapping (kSpecLutMapping: the pipeline is specialised to its
+// LUT layout): uniform-buffer reads would cost a CPU driver (lavapipe) a gather per component, lane
+// by lane, in every fragment.
+layout(constant_id = kSpecLutMapping + 0u) const float kLutMapping0 = 0.0;
+layout(constant_id = kSpecLutMapping + 1u) const float kLutMapping1 = 0.0;
+layout(constant_id = kSpecLutMapping + 2u) const float kLutMapping2 = 0.0;
+layout(constant_id = kSpecLutMapping + 3u) const float kLutMapping3 = 0.0;
+layout(constant_id = kSpecLutMapping + 4u) const float kLutMapping4 = 0.0;
+layout(constant_id = kSpecLutMapping + 5u) const float kLutMapping5 = 0.0;
+layout(constant_id = kSpecLutMapping + 6u) const float kLutMapping6 = 0.0;
+layout(constant_id = kSpecLutMapping + 7u) const float kLutMapping7 = 0.0;
+layout(constant_id = kSpecLutMapping + 8u) const float kLutMapping8 = 0.0;
+layout(constant_id = kSpecLutMapping + 9u) const float kLutMapping9 = 0.0;
+layout(constant_id = kSpecLutMapping + 10u) const float kLutMapping10 = 0.0;
+layout(constant_id = kSpecLutMapping + 11u) const float kLutMapping11 = 0.0;
+layout(constant_id = kSpecLutMapping + 12u) const float kLutMapping12 = 0.0;
+layout(constant_id = kSpecLutMapping + 13u) const float kLutMapping13 = 0.0;
+layout(constant_id = kSpecLutMapping + 14u) const float kLutMapping14 = 0.0;
+layout(constant_id = kSpecLutMapping + 15u) const float kLutMapping15 = 0.0;
+layout(constant_id = kSpecLutMapping + 16u) const float kLutMapping16 = 0.0;
+layout(constant_id = kSpecLutMapping + 17u) const float kLutMapping17 = 0.0;
+layout(constant_id = kSpecLutMapping + 18u) const float kLutMapping18 = 0.0;
+layout(constant_id = kSpecLutMapping + 19u) const float kLutMapping19 = 0.0;
+layout(constant_id = kSpecLutMapping + 20u) const float kLutMapping20 = 0.0;
+layout(constant_id = kSpecLutMapping + 21u) const float kLutMapping21 = 0.0;
+layout(constant_id = kSpecLutMapping + 22u) const float kLutMapping22 = 0.0;
+layout(constant_id = kSpecLutMapping + 23u) const float kLutMapping23 = 0.0;
+layout(constant_id = kSpecLutMapping + 24u) const float kLutMapping24 = 0.0;
+layout(constant_id = kSpecLutMapping + 25u) const float kLutMapping25 = 0.0;
+layout(constant_id = kSpecLutMapping + 26u) const float kLutMapping26 = 0.0;
+layout(constant_id = kSpecLutMapping + 27u) const float kLutMapping27 = 0.0;
+layout(constant_id = kSpecLutMapping + 28u) const float kLutMapping28 = 0.0;
+layout(constant_id = kSpecLutMapping + 29u) const float kLutMapping29 = 0.0;
+layout(constant_id = kSpecLutMapping + 30u) const float kLutMapping30 = 0.0;
+layout(constant_id = kSpecLutMapping + 31u) const float kLutMapping31 = 0.0;
+
+LutMapping specializedLutMapping() {
+    LutMapping m;
+    m.diffuseNoL = vec4(kLutMapping0, kLutMapping1, kLutMapping2, kLutMapping3);
+    m.diffuseCurvature = vec4(kLutMapping4, kLutMapping5, kLutMapping6, kLutMapping7);
+    m.penumbraShadow = vec4(kLutMapping8, kLutMapping9, kLutMapping10, kLutMapping11);
+    m.penumbraWidth = vec4(kLutMapping12, kLutMapping13, kLutMapping14, kLutMapping15);
+    m.shCurvature = vec4(kLutMapping16, kLutMapping17, kLutMapping18, kLutMapping19);
+    m.shBandV = vec4(kLutMapping20, kLutMapping21, kLutMapping22, kLutMapping23);
+    m.shLambert = vec4(kLutMapping24, kLutMapping25, kLutMapping26, kLutMapping27);
+    m.transmittance = vec4(kLutMapping28, kLutMapping29, kLutMapping30, kLutMapping31);
+    return m;
+}
 
 #endif

@@ -10,7 +10,6 @@
 // stage interpolates instead of looking it up per fragment. The including file defines
 // PRESKIN_EYE_INDEX (and PRESKIN_WRITE_LAYER for layered drawing).
 #include "forward_material.glsl"
-#include "forward_specialization.glsl"
 
 layout(set = 0, binding = kBindingFrame) uniform Frame { FrameUniforms frame; };
 layout(std430, set = 0, binding = kBindingInstances) readonly buffer Instances { GpuInstance instances[]; };

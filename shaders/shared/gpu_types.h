@@ -48,7 +48,10 @@ PRESKIN_CONST(uint, kSpecAlphaToCoverage, 6)  // 1: alpha-mask coverage from alp
 PRESKIN_CONST(uint, kSpecSpecular, 7)       // 1: specular and Fresnel on; 0: diffuse only (RenderSettings::specular)
 PRESKIN_CONST(uint, kSpecProfileMix, 8)     // entries of a skin material's profile mix: 1 (its own), 2..4 (blended)
 PRESKIN_CONST(uint, kSpecSkinInputs, 9)     // a skin material's inputs: bit 0 a detail normal map, bits 1-2 its kCurvatureSource*,
-                                            // bits 3-7 the normal levels its biased samples blend (normalLevelCount)
+                                            // bits 3-7 the normal levels its biased samples blend (normalLevelCount),
+                                            // bit 8 a specular map
+PRESKIN_CONST(uint, kSpecLutMapping, 10)    // 32 ids: a skin material's own profile's LutMapping, member by member (xyzw)
+PRESKIN_CONST(uint, kSpecCount, 42)
 
 PRESKIN_CONST(uint, kModelStandard, 0)
 PRESKIN_CONST(uint, kModelSkin, 1)
@@ -106,14 +109,14 @@ struct MaterialUniforms {
     vec4 skinNormalLodBias;    // rgb LOD bias per channel, w detail normal scale
     vec4 skinTransmission;     // rgb transmission colour, w thickness scale
     vec4 skinSpecular;         // x F0 scale, y lobe-0 roughness multiplier, z lobe-1 multiplier, w lobe-1 weight
-    vec4 textureFlags;         // x unused (a detail map is kSpecSkinInputs), y detail uv scale, z has specular
-                               // texture, w has normal map
+    vec4 textureFlags;         // x, z unused (a detail map and a specular map are kSpecSkinInputs), y detail uv
+                               // scale, w has normal map
     vec4 hasTextures;          // 1 where the texture exists: x base colour, y metallic-roughness, z occlusion, w emissive
     vec4 skinProfileLayers;    // LUT array layers: x the profile, y z w the blended ones (SkinMaterial::blendProfiles)
     vec4 skinProfileBlend;     // x: blended profiles (0..3), weighted by the profile-weight texture's r, g, b
     GpuUvTransform uv[5];      // base colour, metallic-roughness, normal, occlusion, emissive
-    LutMapping skinLuts[4];    // the LutMapping of each skinProfileLayers entry (uniform per draw: no per-fragment
-                               // buffer reads)
+    LutMapping skinLuts[4];    // the LutMapping of each skinProfileLayers entry; the forward pass takes entry 0
+                               // from its pipeline's specialization (kSpecLutMapping) instead
 };
 PRESKIN_CHECK_SIZE(MaterialUniforms, 11 * 16 + 5 * 32 + 4 * 128)
 

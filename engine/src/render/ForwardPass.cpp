@@ -13,6 +13,7 @@
 #include <fmt/ranges.h>
 
 #include <algorithm>
+#include <bit>
 
 namespace preskin {
 
@@ -56,7 +57,8 @@ PipelineKey Renderer::Impl::pipelineKey(const GpuMaterial& m, VkFormat format, V
                        settings.msaaSamples,
                        eyeDrawing() == EyeDrawing::InstancedLayers ? 1u : 0u,
                        skin ? m.profileMix : 1u,
-                       skin ? m.skinInputBits() : 0u};
+                       skin ? m.skinInputBits() : 0u,
+                       skin ? std::bit_cast<std::array<uint32_t, 32>>(m.lutMapping) : std::array<uint32_t, 32>{}};
 }
 
 VkPipeline Renderer::Impl::forwardPipeline(const GpuMaterial& m, VkFormat format, VkFormat depthFormat, uint32_t eyes) {
@@ -73,7 +75,7 @@ VkPipeline Renderer::Impl::createForwardPipeline(const PipelineKey& key) const {
     vk::GraphicsPipelineDesc desc;
     desc.vertexSpirv = shader(key.layered ? "forward_layers.vert" : "forward.vert");
     desc.fragmentSpirv = shader("forward.frag");
-    desc.specialization.values.resize(10);
+    desc.specialization.values.resize(gpu::kSpecCount);
     desc.specialization.values[gpu::kSpecMaterialModel] = key.model;
     desc.specialization.values[gpu::kSpecOutputMode] = isDisplayFormat(format) ? gpu::kOutputTonemapped
                                                                                : gpu::kOutputLinear;
@@ -84,6 +86,7 @@ VkPipeline Renderer::Impl::createForwardPipeline(const PipelineKey& key) const {
     desc.specialization.values[gpu::kSpecSpecular] = key.specular;
     desc.specialization.values[gpu::kSpecProfileMix] = key.profileMix;
     desc.specialization.values[gpu::kSpecSkinInputs] = key.skinInputs;
+    std::copy(key.lutMapping.begin(), key.lutMapping.end(), desc.specialization.values.begin() + gpu::kSpecLutMapping);
     const AlphaMode alphaMode = static_cast<AlphaMode>(key.alphaMode);
     const bool alphaToCoverage = key.samples > 1 && alphaMode == AlphaMode::Mask;
     desc.specialization.values[gpu::kSpecAlphaToCoverage] = alphaToCoverage ? 1u : 0u;

@@ -182,7 +182,8 @@ GpuScene::GpuScene(const vk::Device& device, const Scene& scene)
         gm.doubleSided = mat.doubleSided;
         if (mat.skin)
             gm.skinInputs = (mat.skin->detailNormalTexture.valid() ? 1u : 0u) |
-                            (uint32_t(static_cast<int>(mat.skin->curvatureSource)) << 1);
+                            (uint32_t(static_cast<int>(mat.skin->curvatureSource)) << 1) |
+                            (mat.skin->specularTexture.valid() ? 256u : 0u);
         if (mat.skin && mat.skin->profileWeightTexture.valid())
             gm.profileMix = 1u + uint32_t(std::min(mat.skin->blendProfiles.size(), size_t(kMaxBlendedProfiles - 1)));
         if (mat.normal.valid() && size_t(mat.normal.image) < scene.images.size()) {
@@ -309,7 +310,6 @@ gpu::MaterialUniforms GpuScene::uniformsFor(const Material& mat, const GpuMateri
         u.skinTransmission = glm::vec4(s.transmissionColor, s.thicknessScale);
         u.skinSpecular = glm::vec4(s.specularIntensity, s.lobeRoughness0, s.lobeRoughness1, s.lobeMix);
         u.textureFlags.y = s.detailUvScale;
-        u.textureFlags.z = s.specularTexture.valid() ? 1.0f : 0.0f;
         // Layer p + 1 holds profile p (layer 0: the default set); unused entries repeat the first.
         const auto blended = std::min(s.blendProfiles.size(), size_t(kMaxBlendedProfiles - 1));
         const float base = float(s.profile + 1);
@@ -328,6 +328,7 @@ void GpuScene::updateMaterials(const std::vector<ProfileLayer>& layers) {
         const gpu::MaterialUniforms u = uniformsFor(mat, materials[i], layers);
         materials[i].normalLevels =
             uint32_t(normalLevelCount(glm::vec3(u.skinNormalLodBias), materials[i].normalMipLevels));
+        materials[i].lutMapping = u.skinLuts[0];
         materialUniforms_.upload(&u, sizeof(u), uniformStride_ * i);
     }
 }

@@ -457,12 +457,21 @@ void Renderer::Impl::checkProfileLayers(size_t layerCount) const {
     }
 }
 
+void Renderer::Impl::dropSkinPipelines() {
+    std::erase_if(pipelines, [&](const auto& entry) {
+        if (entry.first.model != gpu::kModelSkin) return false;
+        vkDestroyPipeline(dev.device(), entry.second, nullptr);
+        return true;
+    });
+}
+
 void Renderer::Impl::setLutLayers(const std::vector<const LutSet*>& layers) {
     checkProfileLayers(layers.size());
     auto replacement = std::make_unique<GpuLuts>(dev, layers);
     vkDeviceWaitIdle(dev.device());
     luts = std::move(replacement);
     scene->updateMaterials(luts->layers());
+    dropSkinPipelines();
 }
 
 namespace {
@@ -520,6 +529,7 @@ void Renderer::setProfileLayer(size_t layer, const LutSet& luts) {
     if (!impl_->luts->replaceLayer(static_cast<uint32_t>(layer), luts))
         throw Error("Renderer::setProfileLayer: the LUT set is larger than the renderer's LUT arrays; use setProfiles");
     impl_->scene->updateMaterials(impl_->luts->layers());
+    impl_->dropSkinPipelines();
 }
 
 void Renderer::setShaderOverrides(const std::map<std::string, std::vector<uint32_t>>& spirvByFile) {

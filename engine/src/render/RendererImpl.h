@@ -31,9 +31,10 @@ inline constexpr uint32_t kQueryCount = 6;
 struct PipelineKey {
     uint32_t model, alphaMode, doubleSided, format, depthFormat, debugView, skinMask, lightLoop, specular, eyes, samples,
         layered, profileMix, skinInputs;
+    std::array<uint32_t, 32> lutMapping;  // skin: the material's own LutMapping, as bits (kSpecLutMapping)
     auto tie() const {
         return std::tie(model, alphaMode, doubleSided, format, depthFormat, debugView, skinMask, lightLoop, specular,
-                        eyes, samples, layered, profileMix, skinInputs);
+                        eyes, samples, layered, profileMix, skinInputs, lutMapping);
     }
     bool operator<(const PipelineKey& o) const { return tie() < o.tie(); }
 };
@@ -106,6 +107,9 @@ struct Renderer::Impl {
     void checkProfileLayers(size_t layerCount) const;
     // Replaces the LUT arrays (after checking the materials against them).
     void setLutLayers(const std::vector<const LutSet*>& layers);
+    // Destroys the skin pipelines (specialised to LUT mappings that may have changed); the GPU
+    // must be idle. They are made again when drawn.
+    void dropSkinPipelines();
 
     // Replaces an attachment without waiting: the old image lives on until every other slot
     // whose last frame was recorded with it has been recorded again (the host's slot contract).
