@@ -48,6 +48,8 @@ layout(location = 5) flat in uint inEye;
 layout(location = 6) in vec3 inShTransferRed;  // kSkinShPerVertex: the vertex stage's PreskinShTransfer
 layout(location = 7) in vec3 inShTransferGreen;
 layout(location = 8) in vec3 inShTransferBlue;
+layout(location = 9) in vec2 inShadowLift;               // kSkinLiftPerVertex: preskinSkinShadowLift
+layout(location = 10) in vec3 inSphereTransmittance;     // kSkinSphereTransmittancePerVertex
 
 layout(location = 0) out vec4 outColor;
 
@@ -169,10 +171,11 @@ void main() {
                                      material.skinScatter.z, geometricN, inPositionWs),
             material.skinScatter.x);
     vec3 shadowPositionWs = inPositionWs;
-    if (kMaterialModel == kModelSkin && (kSkinFeatures & kSkinLutDiffuse) != 0u)
-        shadowPositionWs = preskinSkinShadowPosition(inPositionWs, geometricN, -frame.shadowDirectionWs.xyz,
-                                                     skinCurvaturePerMm, material.skinScatter.x,
-                                                     materialLutMapping(0));
+    if (kMaterialModel == kModelSkin && (kSkinFeatures & kSkinLutDiffuse) != 0u) {
+        vec2 lift = inShadowLift;
+        if (!kSkinLiftPerVertex) lift = preskinSkinShadowLift(skinCurvaturePerMm, material.skinScatter.x, materialLutMapping(0));
+        shadowPositionWs = preskinSkinShadowPosition(inPositionWs, geometricN, -frame.shadowDirectionWs.xyz, lift);
+    }
     // The shadow map's transform, read once here, outside the branches that use it: a CPU driver
     // (lavapipe) reads uniform buffers lane by lane, and reads in separate branches are not shared.
     mat4 shadowClipFromWorld = frame.shadowClipFromWorld;
@@ -243,7 +246,12 @@ void main() {
             if (preskinTransmissionGate(geometricN, L, features))
                 thicknessM = preskinShadowThickness(shadowMap, shadowClipFromWorld, shadowParams,
                                                     preskinThicknessPointWs(inPositionWs, geometricN, skin.scatterScale));
-            transmitted = preskinSkinTransmission(skin, profiles, transmittanceLut, L, irradiance, thicknessM, features);
+            vec3 sphereT = inSphereTransmittance;
+            if (!kSkinSphereTransmittancePerVertex)
+                sphereT = preskinSkinSphereTransmittance(profiles, transmittanceLut, skin.curvaturePerMm, geometricN, L,
+                                                         features);
+            transmitted =
+                preskinSkinTransmission(skin, profiles, transmittanceLut, L, irradiance, thicknessM, sphereT, features);
             color += preskinSkinLight(skin, lighting, profiles, diffuseLut, V, L, irradiance, penumbra, shadow.visibility, features);
         }
         if (loopCount > 0u) {

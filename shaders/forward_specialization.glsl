@@ -24,11 +24,21 @@ const bool kSkinDetailNormals = (kSkinInputs & 1u) != 0u;
 const uint kSkinCurvatureSource = (kSkinInputs >> 1) & 3u;
 const uint kSkinNormalLevels = (kSkinInputs >> 3) & 31u;  // PreskinNormalMaps::levelCount
 const bool kSkinSpecularMap = (kSkinInputs & 256u) != 0u;
-// The SH transfer depends on curvature alone: with per-vertex curvature and one profile (no
-// per-texel blend) the vertex stage looks it up and the fragment stage interpolates it.
-// (Written as one comparison: glslang turns && of specialization constants into control flow.)
-const bool kSkinShPerVertex = (uint(kMaterialModel == kModelSkin) & uint((kSkinFeatures & kSkinShAmbient) != 0u) &
-                               uint(kSkinCurvatureSource == kCurvatureSourceVertex) & uint(kProfileMix == 1u)) != 0u;
+const bool kSkinDoubleSided = (kSkinInputs & 512u) != 0u;
+// What depends on curvature, the geometric normal and the shadow light alone
+// (preskin/skin_vertex.glsl) is found by the vertex stage and interpolated where curvature is per
+// vertex (unless RenderSettings::skinTermsPerVertex is off): the shadow lookup's lift; with one profile (no per-texel blend) the SH transfer; and
+// with one profile on single-sided skin (the vertex stage cannot tell which side faces the
+// viewer) the transmittance the diffuse LUT already holds.
+// (Written as comparisons of uints: glslang turns && of specialization constants into control flow.)
+const uint kSkinVertexCurvature = uint(kMaterialModel == kModelSkin) &
+                                  uint(kSkinCurvatureSource == kCurvatureSourceVertex) & uint((kSkinInputs & 1024u) == 0u);
+const bool kSkinShPerVertex =
+    (kSkinVertexCurvature & uint((kSkinFeatures & kSkinShAmbient) != 0u) & uint(kProfileMix == 1u)) != 0u;
+const bool kSkinLiftPerVertex = (kSkinVertexCurvature & uint((kSkinFeatures & kSkinLutDiffuse) != 0u)) != 0u;
+const bool kSkinSphereTransmittancePerVertex =
+    (kSkinVertexCurvature & uint((kSkinFeatures & kSkinLutDiffuse) != 0u) &
+     uint((kSkinFeatures & kSkinTransmission) != 0u) & uint(kProfileMix == 1u) & uint(!kSkinDoubleSided)) != 0u;
 
 // A skin material's own profile's LutMapping (kSpecLutMapping: the pipeline is specialised to its
 // LUT layout): uniform-buffer reads would cost a CPU driver (lavapipe) a gather per component, lane

@@ -14,9 +14,10 @@
 layout(set = 0, binding = kBindingFrame) uniform Frame { FrameUniforms frame; };
 layout(std430, set = 0, binding = kBindingInstances) readonly buffer Instances { GpuInstance instances[]; };
 layout(set = 0, binding = kBindingShTransferLut) uniform sampler2DArray shTransferLut;
+layout(set = 0, binding = kBindingTransmittanceLut) uniform sampler2DArray transmittanceLut;
 layout(push_constant) uniform Push { DrawPush draw; };
 
-#include "preskin/lut.glsl"
+#include "preskin/skin_vertex.glsl"
 
 layout(location = kAttributePosition) in vec3 inPositionOs;
 layout(location = kAttributeNormal) in vec3 inNormalOs;
@@ -33,6 +34,8 @@ layout(location = 5) flat out uint outEye;
 layout(location = 6) out vec3 outShTransferRed;
 layout(location = 7) out vec3 outShTransferGreen;
 layout(location = 8) out vec3 outShTransferBlue;
+layout(location = 9) out vec2 outShadowLift;               // kSkinLiftPerVertex: preskinSkinShadowLift
+layout(location = 10) out vec3 outSphereTransmittance;     // kSkinSphereTransmittancePerVertex
 
 void main() {
     uint eye = uint(PRESKIN_EYE_INDEX);
@@ -44,18 +47,22 @@ void main() {
     outUv0 = inUv0;
     outCurvaturePerM = inCurvature * instance.params.x;
     outEye = eye;
-    if (kSkinShPerVertex) {
-        PreskinProfileMix profile = preskinSingleProfile(materialLutMapping(0), material.skinProfileLayers.x);
-        PreskinShTransfer t = preskinShTransfer(
-            profile, shTransferLut, preskinCurvatureProfilePerMm(outCurvaturePerM, material.skinScatter.x));
-        outShTransferRed = t.red;
-        outShTransferGreen = t.green;
-        outShTransferBlue = t.blue;
-    } else {
-        outShTransferRed = vec3(0.0);
-        outShTransferGreen = vec3(0.0);
-        outShTransferBlue = vec3(0.0);
-    }
+    // Skin's per-vertex terms (preskin/skin_vertex.glsl), for the material's own profile.
+    PreskinProfileMix profile = preskinSingleProfile(materialLutMapping(0), material.skinProfileLayers.x);
+    float curvaturePerMm = preskinCurvatureProfilePerMm(outCurvaturePerM, material.skinScatter.x);
+    PreskinShTransfer t = PreskinShTransfer(vec3(0.0), vec3(0.0), vec3(0.0));
+    if (kSkinShPerVertex) t = preskinShTransfer(profile, shTransferLut, curvaturePerMm);
+    outShTransferRed = t.red;
+    outShTransferGreen = t.green;
+    outShTransferBlue = t.blue;
+    outShadowLift = vec2(0.0);
+    if (kSkinLiftPerVertex)
+        outShadowLift = preskinSkinShadowLift(curvaturePerMm, material.skinScatter.x, materialLutMapping(0));
+    outSphereTransmittance = vec3(0.0);
+    if (kSkinSphereTransmittancePerVertex && frame.shadowDirectionWs.w > 0.5)
+        outSphereTransmittance = preskinSkinSphereTransmittance(profile, transmittanceLut, curvaturePerMm,
+                                                                normalize(outNormalWs), -frame.shadowDirectionWs.xyz,
+                                                                kSkinFeatures);
     gl_Position = frame.eyes[eye].clipFromWorld * positionWs;
 #ifdef PRESKIN_WRITE_LAYER
     gl_Layer = int(eye);

@@ -64,6 +64,9 @@ void addCommonOptions(CLI::App& cmd, CommonOptions& o) {
     cmd.add_flag("--no-sh-skin", o.noShSkin, "Skin: Lambert SH ambient instead of the skin transfer");
     cmd.add_flag("--no-transmission", o.noTransmission, "Skin: no transmission through thin parts");
     cmd.add_flag("--no-dual-specular", o.noDualSpecular, "Skin: one GGX lobe instead of two");
+    cmd.add_flag("--skin-terms-per-fragment", o.skinTermsPerFragment,
+                 "Skin: find the curvature-only terms (SH transfer, shadow lift, sphere transmittance) per fragment "
+                 "instead of per vertex");
     cmd.add_flag("--no-specular", o.noSpecular,
                  "No specular at all, every material: diffuse without Fresnel (what `preskin reference` models)");
     cmd.add_option("--debug", o.debug,
@@ -219,6 +222,7 @@ RenderSettings renderSettings(const CommonOptions& o) {
     s.skin.shAmbient = !o.noShSkin;
     s.skin.transmission = !o.noTransmission;
     s.skin.dualSpecular = !o.noDualSpecular;
+    s.skinTermsPerVertex = !o.skinTermsPerFragment;
     if (o.standard) s.skin = SkinFeatures::none();
     s.specular = !o.noSpecular;
     const std::string d = lower(o.debug);

@@ -34,6 +34,7 @@ struct CommonOptions {
     bool noShSkin = false;
     bool noTransmission = false;
     bool noDualSpecular = false;
+    bool skinTermsPerFragment = false;
     bool noSpecular = false;
     std::string debug = "none";
     uint32_t lights = 0;

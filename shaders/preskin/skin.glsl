@@ -42,6 +42,7 @@
 #include "preskin/lut.glsl"
 #include "preskin/sh.glsl"
 #include "preskin/skin_surface.glsl"
+#include "preskin/skin_vertex.glsl"
 #include "shared/skin_features.h"
 
 struct PreskinSkinSurface {
@@ -141,24 +142,24 @@ vec3 preskinSkinShadow(PreskinSkinSurface s, PreskinProfileMix m, sampler2DArray
 // the surface along L is that plus the shrink depth times c = saturate(-NoL); T(thickness) from
 // the profile (its plane integral at that depth, exact for a slab), times c, the far side's
 // cosine for a slab. Only light the diffuse LUT does not already hold is added: the LUT
-// integrates over the osculating sphere of convex skin (radius a = 1/curvature), so T of that
-// sphere's thickness along L (measured the same way: from the shrunk point, (a - d) c +
-// sqrt((a - d)^2 c^2 + 2 a d - d^2), d the shrink) is subtracted. On a sphere the two cancel; a
-// thin sheet (an ear) keeps T of the sheet. Nothing is added where the skin faces the light.
+// integrates over the osculating sphere of convex skin, so T of that sphere's thickness,
+// sphereT (preskinSkinSphereTransmittance), is subtracted. On a sphere the two cancel; a thin
+// sheet (an ear) keeps T of the sheet. Nothing is added where the skin faces the light.
 // Limits: sheets thinner than the shrink read as that thick.
 vec3 preskinSkinTransmission(PreskinSkinSurface s, PreskinProfileMix m, sampler2DArray transmittanceLut, vec3 L,
-                             vec3 irradiance, float thicknessM, uint features) {
+                             vec3 irradiance, float thicknessM, vec3 sphereT, uint features) {
     float c = preskinSaturate(-dot(s.geometricNormal, L));
     if ((features & kSkinTransmission) == 0u || c <= 0.0) return vec3(0.0);
-    float d = kSkinThicknessShrinkMm;
-    float thicknessMm = thicknessM * 1000.0 * s.thicknessScale * s.scatterScale + d * c;
-    vec3 T = preskinTransmittanceLut(m, transmittanceLut, thicknessMm);
-    if ((features & kSkinLutDiffuse) != 0u && s.curvaturePerMm > 0.0) {
-        float a = 1.0 / s.curvaturePerMm;
-        float sphereMm = (a - d) * c + sqrt(max((a - d) * (a - d) * c * c + 2.0 * a * d - d * d, 0.0)) + d * c;
-        T = max(T - preskinTransmittanceLut(m, transmittanceLut, sphereMm), vec3(0.0));
-    }
+    float thicknessMm = thicknessM * 1000.0 * s.thicknessScale * s.scatterScale + kSkinThicknessShrinkMm * c;
+    vec3 T = max(preskinTransmittanceLut(m, transmittanceLut, thicknessMm) - sphereT, vec3(0.0));
     return T * c * s.transmissionTint * s.albedo / PRESKIN_PI * irradiance;
+}
+
+// The same, the sphere's transmittance found at the surface's curvature.
+vec3 preskinSkinTransmission(PreskinSkinSurface s, PreskinProfileMix m, sampler2DArray transmittanceLut, vec3 L,
+                             vec3 irradiance, float thicknessM, uint features) {
+    vec3 sphereT = preskinSkinSphereTransmittance(m, transmittanceLut, s.curvaturePerMm, s.geometricNormal, L, features);
+    return preskinSkinTransmission(s, m, transmittanceLut, L, irradiance, thicknessM, sphereT, features);
 }
 
 // Skin's SH band scales at one curvature (PreskinShTransfer of preskin/lut.glsl): the SH transfer
@@ -185,15 +186,18 @@ vec3 preskinSkinAmbientIrradiance(PreskinSkinSurface s, PreskinShTransfer t, vec
 // shadow map carries cast shadows only: on a closed surface the terminator's self-shadowing is
 // left to the diffuse LUT, which already holds it (max(N.L, 0) of every neighbour) together with
 // the light scattered past it. The lift fades out where the patch cannot reach the terminator
-// (N.L above sin(rho |k|)), so shadows cast onto lit skin keep their place; flat skin is not lifted.
+// (N.L above sin(rho |k|)), so shadows cast onto lit skin keep their place; flat skin is not
+// lifted. lift: preskinSkinShadowLift (preskin/skin_vertex.glsl).
+vec3 preskinSkinShadowPosition(vec3 positionWs, vec3 geometricNormalWs, vec3 L, vec2 lift) {
+    float fade = lift.y > 0.0 ? preskinSaturate(1.0 - dot(geometricNormalWs, L) / lift.y) : 0.0;
+    return positionWs + geometricNormalWs * (fade * lift.x);
+}
+
+// The same, the lift found at one curvature (profile 1/mm).
 vec3 preskinSkinShadowPosition(vec3 positionWs, vec3 geometricNormalWs, vec3 L, float curvaturePerMm,
                                float scatterScale, LutMapping m) {
-    float k = abs(curvaturePerMm);
-    float angle = min(m.diffuseNoL.w * k, PRESKIN_PI);
-    float liftMm = angle < 1e-3 ? 0.5 * m.diffuseNoL.w * angle : (1.0 - cos(angle)) / k;
-    float reach = sin(min(angle, 0.5 * PRESKIN_PI));
-    float fade = reach > 0.0 ? preskinSaturate(1.0 - dot(geometricNormalWs, L) / reach) : 0.0;
-    return positionWs + geometricNormalWs * (fade * liftMm * 0.001 / max(scatterScale, 1e-6));
+    return preskinSkinShadowPosition(positionWs, geometricNormalWs, L,
+                                     preskinSkinShadowLift(curvaturePerMm, scatterScale, m));
 }
 
 // Ambient light of the environment's L2 SH radiance: diffuse from the per-channel transfer t

@@ -49,7 +49,8 @@ PRESKIN_CONST(uint, kSpecSpecular, 7)       // 1: specular and Fresnel on; 0: di
 PRESKIN_CONST(uint, kSpecProfileMix, 8)     // entries of a skin material's profile mix: 1 (its own), 2..4 (blended)
 PRESKIN_CONST(uint, kSpecSkinInputs, 9)     // a skin material's inputs: bit 0 a detail normal map, bits 1-2 its kCurvatureSource*,
                                             // bits 3-7 the normal levels its biased samples blend (normalLevelCount),
-                                            // bit 8 a specular map
+                                            // bit 8 a specular map, bit 9 double-sided, bit 10 the
+                                            // curvature-only terms per fragment (RenderSettings::skinTermsPerVertex off)
 PRESKIN_CONST(uint, kSpecLutMapping, 10)    // 32 ids: a skin material's own profile's LutMapping, member by member (xyzw)
 PRESKIN_CONST(uint, kSpecCount, 42)
 

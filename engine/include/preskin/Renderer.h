@@ -78,6 +78,10 @@ struct RenderSettings {
     // alpha-to-coverage when this is above 1.
     uint32_t msaaSamples = 1;
     EyeDrawing eyeDrawing = EyeDrawing::Auto;
+    // true: where a skin material's curvature is per vertex, what depends on curvature alone (the
+    // SH transfer, the shadow lookup's lift, the transmittance the diffuse LUT already holds:
+    // preskin/skin_vertex.glsl) is found per vertex and interpolated; false: per fragment.
+    bool skinTermsPerVertex = true;
 };
 
 enum class OutputEncoding {

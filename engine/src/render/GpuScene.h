@@ -37,8 +37,9 @@ struct GpuMaterial {
     uint32_t normalMipLevels = 1;  // mip levels of the normal map (the larger of it and the detail map)
     uint32_t normalLevels = 1;     // skin: whole levels the biased normal samples blend (normalLevelCount)
     gpu::LutMapping lutMapping{};  // skin: its own profile's, which its pipelines are specialised to
-    // The kSpecSkinInputs value of a skin material: skinInputs, normalLevels in bits 3-7.
-    uint32_t skinInputBits() const { return skinInputs | (normalLevels << 3); }
+    // The kSpecSkinInputs value of a skin material: skinInputs, normalLevels in bits 3-7, bit 9
+    // double-sided.
+    uint32_t skinInputBits() const { return skinInputs | (normalLevels << 3) | (doubleSided ? 512u : 0u); }
 };
 
 // What a skin material takes from a LUT layer (one diffusion profile): the profile's scattering

@@ -126,7 +126,7 @@ void Renderer::Impl::createLayouts() {
         {gpu::kBindingDiffuseLut, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, fs},
         {gpu::kBindingPenumbraLut, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, fs},
         {gpu::kBindingShTransferLut, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, all},  // per-vertex SH transfer
-        {gpu::kBindingTransmittanceLut, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, fs},
+        {gpu::kBindingTransmittanceLut, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, all},  // per-vertex sphere term
         {gpu::kBindingClusterRanges, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, fs},
         {gpu::kBindingClusterIndices, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, fs},
     };

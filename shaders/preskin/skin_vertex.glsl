@@ -1,0 +1,49 @@
+// preskin/skin_vertex.glsl: the parts of pre-integrated skin (preskin/skin.glsl) that depend on
+// the surface's curvature, its geometric normal and a directional light alone, none on the
+// normal maps, so where curvature is per vertex a host can find them in the vertex stage and let
+// the fragment stage interpolate them (the renderer does; a CPU driver such as lavapipe runs the
+// vertex stage for a fraction of the invocations):
+//  - the SH transfer (preskinShTransfer of preskin/lut.glsl);
+//  - the lift of the shadow lookup above the local patch (preskinSkinShadowLift, used by
+//    preskinSkinShadowPosition);
+//  - the transmittance the diffuse LUT already holds (preskinSkinSphereTransmittance, subtracted
+//    by preskinSkinTransmission).
+// Interpolated across a triangle they differ from their value at the interpolated curvature by
+// second-order terms. Every function here is valid in any shader stage.
+#ifndef PRESKIN_SKIN_VERTEX_GLSL
+#define PRESKIN_SKIN_VERTEX_GLSL
+
+#include "preskin/common.glsl"
+#include "preskin/lut.glsl"
+#include "shared/skin_features.h"
+
+// The shadow lookup's lift for curvaturePerMm (profile 1/mm): x the height in world metres of the
+// osculating sphere's sagitta over the local patch (radius rho = m.diffuseNoL.w profile mm,
+// LutSet::localPatchMm), (1 - cos(rho |k|)) / |k|; y the N.L above which the lift has faded out,
+// sin(rho |k|) (0 on flat skin). See preskinSkinShadowPosition.
+vec2 preskinSkinShadowLift(float curvaturePerMm, float scatterScale, LutMapping m) {
+    float k = abs(curvaturePerMm);
+    float angle = min(m.diffuseNoL.w * k, PRESKIN_PI);
+    float liftMm = angle < 1e-3 ? 0.5 * m.diffuseNoL.w * angle : (1.0 - cos(angle)) / k;
+    float reach = sin(min(angle, 0.5 * PRESKIN_PI));
+    return vec2(liftMm * 0.001 / max(scatterScale, 1e-6), reach);
+}
+
+// What the diffuse LUT already holds of the light a directional light sends through convex skin:
+// the transmittance through its osculating sphere (radius a = 1/curvature) along L, measured from
+// the point kSkinThicknessShrinkMm = d inside, (a - d) c + sqrt((a - d)^2 c^2 + 2 a d - d^2) + d c,
+// c = saturate(-dot(geometricNormal, L)). Zero where the LUT diffuse is off, on flat or concave
+// skin and where the skin faces the light.
+vec3 preskinSkinSphereTransmittance(PreskinProfileMix m, sampler2DArray transmittanceLut, float curvaturePerMm,
+                                    vec3 geometricNormal, vec3 L, uint features) {
+    float c = preskinSaturate(-dot(geometricNormal, L));
+    if ((features & (kSkinTransmission | kSkinLutDiffuse)) != (kSkinTransmission | kSkinLutDiffuse) ||
+        curvaturePerMm <= 0.0 || c <= 0.0)
+        return vec3(0.0);
+    float d = kSkinThicknessShrinkMm;
+    float a = 1.0 / curvaturePerMm;
+    float sphereMm = (a - d) * c + sqrt(max((a - d) * (a - d) * c * c + 2.0 * a * d - d * d, 0.0)) + d * c;
+    return preskinTransmittanceLut(m, transmittanceLut, sphereMm);
+}
+
+#endif
