@@ -213,6 +213,7 @@ void main() {
             maps.detailScale = material.skinNormalLodBias.w;
             maps.lodBias = material.skinNormalLodBias.rgb;
             maps.levelCount = int(kSkinNormalLevels);
+            maps.specularFromLevels = kSkinSpecularFromLevels;
             preskinSkinNormals(normalTexture, detailNormalTexture, maps, uvNormal, geometricN, inTangentWs, features,
                                skin.normalSpecular, skin.normalR, skin.normalG, skin.normalB);
         } else {

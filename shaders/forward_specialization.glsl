@@ -25,6 +25,7 @@ const uint kSkinCurvatureSource = (kSkinInputs >> 1) & 3u;
 const uint kSkinNormalLevels = (kSkinInputs >> 3) & 31u;  // PreskinNormalMaps::levelCount
 const bool kSkinSpecularMap = (kSkinInputs & 256u) != 0u;
 const bool kSkinDoubleSided = (kSkinInputs & 512u) != 0u;
+const bool kSkinSpecularFromLevels = (kSkinInputs & 2048u) != 0u;  // PreskinNormalMaps::specularFromLevels
 // What depends on curvature, the geometric normal and the shadow light alone
 // (preskin/skin_vertex.glsl) is found by the vertex stage and interpolated where curvature is per
 // vertex (unless RenderSettings::skinTermsPerVertex is off): the shadow lookup's lift; with one profile (no per-texel blend) the SH transfer; and

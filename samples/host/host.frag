@@ -36,7 +36,7 @@ layout(location = 0) out vec4 outColor;
 
 void main() {
     vec3 geometricN = normalize(inNormalWs) * (gl_FrontFacing ? 1.0 : -1.0);
-    PreskinNormalMaps maps = PreskinNormalMaps(frame.skin.w, false, 1.0, 0.0, frame.lodBias.rgb, int(frame.lodBias.w));
+    PreskinNormalMaps maps = PreskinNormalMaps(frame.skin.w, false, 1.0, 0.0, frame.lodBias.rgb, int(frame.lodBias.w), false);
     PreskinSkinSurface s;
     preskinSkinNormals(normalMap, normalMap, maps, inUv0, geometricN, inTangentWs, kFeatures, s.normalSpecular,
                        s.normalR, s.normalG, s.normalB);

@@ -7,8 +7,8 @@
 //  - per-channel normal prefiltering (Penner & Borshukov; d'Eon & Luebke): one level-of-detail
 //    query, then the map at three levels lod + bias per channel (the biases from normalLodBias()
 //    in <preskin/SkinParameters.h>), filtered trilinearly by hand from bilinear samples at whole
-//    levels that the three channels share (preskinSampleLevels); the unbiased normal, with the
-//    sampler's own filtering (anisotropic where it is), for specular;
+//    levels that the three channels share (preskinSampleLevels); the unbiased normal for specular,
+//    from the same levels where the sampler does not filter anisotropically, else from the sampler;
 //  - the curvature source (per-vertex, texture or screen derivatives; preskinCurvatureProfilePerMm
 //    of preskin/lut.glsl converts it to profile 1/mm);
 //  - skin F0 (kSkinF0 of shared/constants.h times the material's intensity and specular map);
@@ -40,6 +40,8 @@ struct PreskinNormalMaps {
     float detailScale;   // strength of the detail map's xy
     vec3 lodBias;        // per-channel level-of-detail bias (red, green, blue): normalLodBias()
     int levelCount;      // whole levels the biased samples blend: normalLevelCount() (preskinSampleLevels)
+    bool specularFromLevels;  // the unbiased normal blended from the same levels (a sampler without anisotropic
+                              // filtering gives the same; levelCount must then span bias 0 too)
 };
 
 // Tangent-space normal from a texel of the base map and one of the detail map (whiteout blend;
@@ -64,22 +66,34 @@ void preskinSkinNormals(sampler2D normalMap, sampler2D detailMap, PreskinNormalM
                         out vec3 normalR, out vec3 normalG, out vec3 normalB) {
     mat3 tbn = preskinTangentFrame(geometricNormal, tangentWs);
     vec2 uvDetail = uv * maps.detailUvScale;
-    vec3 detail = maps.hasDetail ? texture(detailMap, uvDetail).rgb : vec3(0.5, 0.5, 1.0);
-    normalSpecular = normalize(tbn * preskinNormalTs(texture(normalMap, uv).rgb, detail, maps));
-    normalR = normalSpecular;
-    normalG = normalSpecular;
-    normalB = normalSpecular;
-    if ((features & kSkinNormalPrefilter) == 0u) return;
-    vec3 baseR, baseG, baseB;
-    preskinSampleLevels(normalMap, uv, vec3(textureQueryLod(normalMap, uv).y) + maps.lodBias, maps.levelCount, baseR,
-                        baseG, baseB);
+    bool levels = (features & kSkinNormalPrefilter) != 0u;
+    vec3 base = vec3(0.5, 0.5, 1.0);
+    vec3 detail = vec3(0.5, 0.5, 1.0);
+    if (!levels || !maps.specularFromLevels) {
+        base = texture(normalMap, uv).rgb;
+        if (maps.hasDetail) detail = texture(detailMap, uvDetail).rgb;
+    }
+    vec3 baseR = base, baseG = base, baseB = base;
     vec3 detailR = detail, detailG = detail, detailB = detail;
-    if (maps.hasDetail)
-        preskinSampleLevels(detailMap, uvDetail, vec3(textureQueryLod(detailMap, uvDetail).y) + maps.lodBias,
-                            maps.levelCount, detailR, detailG, detailB);
-    normalR = normalize(tbn * preskinNormalTs(baseR, detailR, maps));
-    normalG = normalize(tbn * preskinNormalTs(baseG, detailG, maps));
-    normalB = normalize(tbn * preskinNormalTs(baseB, detailB, maps));
+    if (levels) {
+        // The fourth level of detail: the unbiased one with specularFromLevels, else the red one again.
+        vec3 unbiased;
+        float lod = textureQueryLod(normalMap, uv).y;
+        float lodW = maps.specularFromLevels ? 0.0 : maps.lodBias.r;
+        preskinSampleLevels(normalMap, uv, vec4(lod + maps.lodBias, lod + lodW), maps.levelCount, baseR, baseG, baseB,
+                            unbiased);
+        if (maps.specularFromLevels) base = unbiased;
+        if (maps.hasDetail) {
+            float detailLod = textureQueryLod(detailMap, uvDetail).y;
+            preskinSampleLevels(detailMap, uvDetail, vec4(detailLod + maps.lodBias, detailLod + lodW), maps.levelCount,
+                                detailR, detailG, detailB, unbiased);
+            if (maps.specularFromLevels) detail = unbiased;
+        }
+    }
+    normalSpecular = normalize(tbn * preskinNormalTs(base, detail, maps));
+    normalR = levels ? normalize(tbn * preskinNormalTs(baseR, detailR, maps)) : normalSpecular;
+    normalG = levels ? normalize(tbn * preskinNormalTs(baseG, detailG, maps)) : normalSpecular;
+    normalB = levels ? normalize(tbn * preskinNormalTs(baseB, detailB, maps)) : normalSpecular;
 }
 
 // Curvature in 1/m from screen-space derivatives (Penner's fallback: constant per triangle).

@@ -50,7 +50,8 @@ PRESKIN_CONST(uint, kSpecProfileMix, 8)     // entries of a skin material's prof
 PRESKIN_CONST(uint, kSpecSkinInputs, 9)     // a skin material's inputs: bit 0 a detail normal map, bits 1-2 its kCurvatureSource*,
                                             // bits 3-7 the normal levels its biased samples blend (normalLevelCount),
                                             // bit 8 a specular map, bit 9 double-sided, bit 10 the
-                                            // curvature-only terms per fragment (RenderSettings::skinTermsPerVertex off)
+                                            // curvature-only terms per fragment (RenderSettings::skinTermsPerVertex off),
+                                            // bit 11 the specular normal from the biased samples' levels (no anisotropy)
 PRESKIN_CONST(uint, kSpecLutMapping, 10)    // 32 ids: a skin material's own profile's LutMapping, member by member (xyzw)
 PRESKIN_CONST(uint, kSpecCount, 42)
 

@@ -1,10 +1,11 @@
 // preskinSampleLevels (shaders/preskin/mip_levels.glsl), the hand-made trilinear filtering the
 // skin's per-channel normal samples use, against the sampler's own: textureLod of the same
 // mipmapped texture (linear within and between levels, as the scene's samplers) at each of the
-// three levels of detail, run by tests/gpu/shaders/mip_levels.comp. Levels of detail: random
-// bases over and beyond the chain (negative and past the last level, which clamp) plus biases with
-// spans up to five levels and of either sign, as normalLodBias() and authored biases give; the
-// number of whole levels read is normalLevelCount()'s. Tolerance: 2/255, what a driver that
+// four levels of detail (three biased ones and the unbiased one, as skin reads its normal map),
+// run by tests/gpu/shaders/mip_levels.comp. Levels of detail: random bases over and beyond the
+// chain (negative and past the last level, which clamp) plus biases with spans up to five levels
+// and of either sign, as normalLodBias() and authored biases give; the number of whole levels
+// read is normalLevelCount()'s, with the unbiased level in its span. Tolerance: 2/255, what a driver that
 // filters 8-bit texels in fixed point (lavapipe quantises the level fraction and rounds each
 // level's bilinear result) may differ from filtering in float. One level fewer than
 // normalLevelCount() must fail the same comparison, so the count is needed, not generous.
@@ -27,12 +28,12 @@ namespace {
 
 struct Query {
     glm::vec2 uv;
-    glm::vec3 lod;
+    glm::vec4 lod;
 };
 
 struct Result {
-    std::array<glm::vec3, 3> levels;     // preskinSampleLevels
-    std::array<glm::vec3, 3> reference;  // textureLod
+    std::array<glm::vec3, 4> levels;     // preskinSampleLevels
+    std::array<glm::vec3, 4> reference;  // textureLod
 };
 
 class MipLevels : public GpuTest {
@@ -72,10 +73,10 @@ protected:
         std::vector<glm::vec4> inputData;
         for (const Query& q : queries) {
             inputData.emplace_back(q.uv, q.lod.x, q.lod.y);
-            inputData.emplace_back(q.lod.z, 0.0f, 0.0f, 0.0f);
+            inputData.emplace_back(q.lod.z, q.lod.w, 0.0f, 0.0f);
         }
         const VkDeviceSize inBytes = inputData.size() * sizeof(glm::vec4);
-        const VkDeviceSize outBytes = queries.size() * 6 * sizeof(glm::vec4);
+        const VkDeviceSize outBytes = queries.size() * 8 * sizeof(glm::vec4);
         vk::Buffer inputs(device, inBytes, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, true);
         inputs.upload(inputData.data(), inBytes);
         vk::Buffer outputs(device, outBytes, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, true);
@@ -88,9 +89,9 @@ protected:
         std::vector<Result> results(queries.size());
         const auto* out = static_cast<const glm::vec4*>(outputs.mapped());
         for (size_t i = 0; i < results.size(); ++i)
-            for (size_t c = 0; c < 3; ++c) {
-                results[i].levels[c] = glm::vec3(out[6 * i + c]);
-                results[i].reference[c] = glm::vec3(out[6 * i + 3 + c]);
+            for (size_t c = 0; c < 4; ++c) {
+                results[i].levels[c] = glm::vec3(out[8 * i + c]);
+                results[i].reference[c] = glm::vec3(out[8 * i + 4 + c]);
             }
         vkDestroySampler(d, sampler, nullptr);
         return results;
@@ -101,7 +102,7 @@ protected:
 float largestError(const std::vector<Result>& results) {
     float worst = 0.0f;
     for (const Result& r : results)
-        for (size_t c = 0; c < 3; ++c) {
+        for (size_t c = 0; c < 4; ++c) {
             const glm::vec3 d = glm::abs(r.levels[c] - r.reference[c]) * 255.0f;
             worst = std::max(worst, std::max(d.x, std::max(d.y, d.z)));
         }
@@ -117,17 +118,17 @@ TEST_F(MipLevels, SharedWholeLevelsMatchTrilinearSamplesForEveryBiasSpan) {
         const float low = -2.0f + 3.0f * unit(rng);
         glm::vec3 bias(low + span, low + unit(rng) * span, low);
         std::shuffle(&bias[0], &bias[0] + 3, rng);
-        const int levelCount = normalLevelCount(bias, mips);
+        const int levelCount = normalLevelCount(bias, mips, true);
         std::vector<Query> queries;
         for (int i = 0; i < 512; ++i) {
             const float base = -1.5f + (float(mips) + 2.0f) * unit(rng);  // below, over and past the chain
-            queries.push_back({{unit(rng) * 3.0f - 1.0f, unit(rng) * 3.0f - 1.0f}, glm::vec3(base) + bias});
+            queries.push_back({{unit(rng) * 3.0f - 1.0f, unit(rng) * 3.0f - 1.0f}, glm::vec4(glm::vec3(base) + bias, base)});
         }
         EXPECT_LE(largestError(run(queries, levelCount)), 2.0f)
             << "span " << span << ", biases " << bias.x << " " << bias.y << " " << bias.z << ", " << levelCount
             << " levels";
         // Whenever the count is below the chain's length, one level fewer must show.
-        if (levelCount > 1 && span < float(mips) - 1.0f) {
+        if (levelCount > 1 && levelCount < int(mips)) {
             EXPECT_GT(largestError(run(queries, levelCount - 1)), 2.0f)
                 << "span " << span << ": " << levelCount - 1 << " levels were enough";
         }
@@ -142,6 +143,8 @@ TEST(NormalLevelCount, SpansTheBiasesAndStaysWithinTheChain) {
     EXPECT_EQ(normalLevelCount(glm::vec3(40.0f, 0.0f, 0.0f), 12), 12);        // never more than the chain
     EXPECT_EQ(normalLevelCount(glm::vec3(1.0f, 0.0f, 0.0f), 1), 1);           // no mips
     EXPECT_EQ(normalLevelCount(glm::vec3(NAN, 0.0f, 0.0f), 9), 9);            // not a number: every level
+    EXPECT_EQ(normalLevelCount(glm::vec3(3.0f, 2.5f, 2.2f), 12), 3);          // span 0.8
+    EXPECT_EQ(normalLevelCount(glm::vec3(3.0f, 2.5f, 2.2f), 12, true), 5);    // span 3 with the unbiased level
 }
 
 }  // namespace

@@ -16,11 +16,12 @@ namespace preskin {
 PRESKIN_API glm::vec3 normalLodBias(const glm::vec3& widthMm, float scatterScale, float texelsPerMm);
 
 // How many whole mip levels the shader blends into the three biased normal samples
-// (PreskinNormalMaps::levelCount, preskinSampleLevels in preskin/skin_surface.glsl): from the
+// (PreskinNormalMaps::levelCount, preskinSampleLevels in preskin/mip_levels.glsl): from the
 // level at or below the lowest biased level of detail to the one above the highest,
 // ceil(max(bias) - min(bias)) + 2, and never more than the map has (mipLevels; with a detail
-// map, the larger of the two maps' counts).
-PRESKIN_API int normalLevelCount(const glm::vec3& lodBias, uint32_t mipLevels);
+// map, the larger of the two maps' counts). withUnbiased: the span includes bias 0 too
+// (PreskinNormalMaps::specularFromLevels).
+PRESKIN_API int normalLevelCount(const glm::vec3& lodBias, uint32_t mipLevels, bool withUnbiased = false);
 
 // Texel density of an image of width x height on a primitive's TEXCOORD_0 layout, in texels per
 // world millimetre: sqrt(texel area / surface area), the surface transformed by worldFromObject

@@ -151,6 +151,7 @@ GpuScene::GpuScene(const vk::Device& device, const Scene& scene)
         VkSampler sampler = VK_NULL_HANDLE;
         PRESKIN_VK(vkCreateSampler(dev, &info, nullptr, &sampler));
         samplers_.push_back(sampler);
+        samplerAnisotropic_.push_back(info.anisotropyEnable == VK_TRUE);
     }
 
     // Material descriptor sets.
@@ -184,6 +185,11 @@ GpuScene::GpuScene(const vk::Device& device, const Scene& scene)
             gm.skinInputs = (mat.skin->detailNormalTexture.valid() ? 1u : 0u) |
                             (uint32_t(static_cast<int>(mat.skin->curvatureSource)) << 1) |
                             (mat.skin->specularTexture.valid() ? 256u : 0u);
+        // Without anisotropic filtering the unbiased normal is the biased samples' levels blended
+        // at the unbiased level of detail: the shader takes it from them (kSpecSkinInputs bit 11).
+        if (mat.skin && !samplerAnisotropic_[samplerSlot(mat.normal.sampler)] &&
+            !(mat.skin->detailNormalTexture.valid() && samplerAnisotropic_[samplerSlot(mat.skin->detailNormalTexture.sampler)]))
+            gm.skinInputs |= 2048u;
         if (mat.skin && mat.skin->profileWeightTexture.valid())
             gm.profileMix = 1u + uint32_t(std::min(mat.skin->blendProfiles.size(), size_t(kMaxBlendedProfiles - 1)));
         if (mat.normal.valid() && size_t(mat.normal.image) < scene.images.size()) {
@@ -279,9 +285,10 @@ const vk::Image& GpuScene::texture(const Scene& scene, int image, bool srgb) {
     return textures_.emplace(key, std::move(gpuImage)).first->second;
 }
 
-VkSampler GpuScene::sampler(int index) const {
-    if (index >= 0 && size_t(index) + 1 < samplers_.size()) return samplers_[size_t(index)];
-    return samplers_.back();
+VkSampler GpuScene::sampler(int index) const { return samplers_[samplerSlot(index)]; }
+
+size_t GpuScene::samplerSlot(int index) const {
+    return index >= 0 && size_t(index) + 1 < samplers_.size() ? size_t(index) : samplers_.size() - 1;
 }
 
 gpu::MaterialUniforms GpuScene::uniformsFor(const Material& mat, const GpuMaterial& gm,
@@ -326,8 +333,8 @@ void GpuScene::updateMaterials(const std::vector<ProfileLayer>& layers) {
     for (size_t i = 0; i < materials.size(); ++i) {
         const Material& mat = i < sceneMaterials_.size() ? sceneMaterials_[i] : fallback;
         const gpu::MaterialUniforms u = uniformsFor(mat, materials[i], layers);
-        materials[i].normalLevels =
-            uint32_t(normalLevelCount(glm::vec3(u.skinNormalLodBias), materials[i].normalMipLevels));
+        materials[i].normalLevels = uint32_t(normalLevelCount(glm::vec3(u.skinNormalLodBias), materials[i].normalMipLevels,
+                                                              (materials[i].skinInputs & 2048u) != 0u));
         materials[i].lutMapping = u.skinLuts[0];
         materialUniforms_.upload(&u, sizeof(u), uniformStride_ * i);
     }

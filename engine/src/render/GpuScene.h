@@ -33,7 +33,7 @@ struct GpuMaterial {
     float texelsPerMm = 0.0f;  // normal-map texels per world millimetre on the meshes using it
     uint32_t profileMix = 1;   // skin: its profile plus the profiles its weight texture blends in (1..4)
     uint32_t skinInputs = 0;   // skin: bit 0 a detail normal map, bits 1-2 the curvature source, bit 8 a specular
-                               // map (kSpecSkinInputs)
+                               // map, bit 11 the specular normal from the biased samples' levels (kSpecSkinInputs)
     uint32_t normalMipLevels = 1;  // mip levels of the normal map (the larger of it and the detail map)
     uint32_t normalLevels = 1;     // skin: whole levels the biased normal samples blend (normalLevelCount)
     gpu::LutMapping lutMapping{};  // skin: its own profile's, which its pipelines are specialised to
@@ -78,6 +78,7 @@ public:
 private:
     const vk::Image& texture(const Scene& scene, int image, bool srgb);
     VkSampler sampler(int index) const;
+    size_t samplerSlot(int index) const;  // into samplers_: the scene's sampler `index`, or the default
     gpu::MaterialUniforms uniformsFor(const Material& material, const GpuMaterial& gpu,
                                       const std::vector<ProfileLayer>& layers) const;
 
@@ -87,6 +88,7 @@ private:
     vk::Image white_;
     vk::Image flatNormal_;
     std::vector<VkSampler> samplers_;  // scene samplers, then the default
+    std::vector<bool> samplerAnisotropic_;  // per entry of samplers_
     VkDescriptorSetLayout materialLayout_ = VK_NULL_HANDLE;
     VkDescriptorPool pool_ = VK_NULL_HANDLE;
     vk::Buffer materialUniforms_;

@@ -11,10 +11,15 @@ glm::vec3 normalLodBias(const glm::vec3& widthMm, float scatterScale, float texe
     return glm::log2(glm::vec3(1.0f) + widthMm / scale * std::max(texelsPerMm, 0.0f));
 }
 
-int normalLevelCount(const glm::vec3& lodBias, uint32_t mipLevels) {
+int normalLevelCount(const glm::vec3& lodBias, uint32_t mipLevels, bool withUnbiased) {
     const int levels = static_cast<int>(std::clamp(mipLevels, 1u, 32u));
-    const float span = std::max(lodBias.x, std::max(lodBias.y, lodBias.z)) -
-                       std::min(lodBias.x, std::min(lodBias.y, lodBias.z));
+    float high = std::max(lodBias.x, std::max(lodBias.y, lodBias.z));
+    float low = std::min(lodBias.x, std::min(lodBias.y, lodBias.z));
+    if (withUnbiased) {
+        high = std::max(high, 0.0f);
+        low = std::min(low, 0.0f);
+    }
+    const float span = high - low;
     if (!std::isfinite(span) || span >= float(levels)) return levels;
     return std::min(static_cast<int>(std::ceil(span)) + 2, levels);
 }

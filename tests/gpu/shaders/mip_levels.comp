@@ -1,9 +1,9 @@
 #version 460
 // mip_levels.comp: preskinSampleLevels (preskin/mip_levels.glsl) against the sampler's own
-// trilinear filtering (textureLod at each of the three levels of detail), one invocation per
+// trilinear filtering (textureLod at each of the four levels of detail), one invocation per
 // input, for tests/gpu/test_mip_levels.cpp.
-// Input i: (u, v, lod.r, lod.g) then (lod.b, 0, 0, 0). Output 6i + c: preskinSampleLevels' texel
-// at lod[c]; output 6i + 3 + c: textureLod's.
+// Input i: (u, v, lod.x, lod.y) then (lod.z, lod.w, 0, 0). Output 8i + c: preskinSampleLevels'
+// texel at lod[c]; output 8i + 4 + c: textureLod's.
 #extension GL_GOOGLE_include_directive : require
 #include "preskin/mip_levels.glsl"
 
@@ -22,11 +22,11 @@ void main() {
     uint i = gl_GlobalInvocationID.x;
     if (i >= push.count) return;
     vec2 uv = inputs[2 * i].xy;
-    vec3 lod = vec3(inputs[2 * i].zw, inputs[2 * i + 1].x);
-    vec3 r, g, b;
-    preskinSampleLevels(map, uv, lod, push.levelCount, r, g, b);
-    outputs[6 * i] = vec4(r, 0.0);
-    outputs[6 * i + 1] = vec4(g, 0.0);
-    outputs[6 * i + 2] = vec4(b, 0.0);
-    for (int c = 0; c < 3; ++c) outputs[6 * i + 3 + c] = vec4(textureLod(map, uv, lod[c]).rgb, 0.0);
+    vec4 lod = vec4(inputs[2 * i].zw, inputs[2 * i + 1].xy);
+    vec3 t[4];
+    preskinSampleLevels(map, uv, lod, push.levelCount, t[0], t[1], t[2], t[3]);
+    for (int c = 0; c < 4; ++c) {
+        outputs[8 * i + c] = vec4(t[c], 0.0);
+        outputs[8 * i + 4 + c] = vec4(textureLod(map, uv, lod[c]).rgb, 0.0);
+    }
 }
