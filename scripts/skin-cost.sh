@@ -37,7 +37,7 @@ trap 'rm -rf "$work"' EXIT
 # whose RDTSCP instructions (0f 01 f9) read RDTSC; NOP (0f 31 90): the same time stamp counter
 # without the processor number, which libhwy does not use to time. Only the copy is changed, and
 # only when every match of the bytes is an RDTSCP instruction.
-if valgrind --tool=none "$preskin" --help >/dev/null 2>"$work/probe.log"; then :; fi
+(valgrind --tool=none "$preskin" --help >/dev/null 2>"$work/probe.log") 2>/dev/null || true
 if grep -q "Illegal opcode" "$work/probe.log"; then
   hwy="$(ldd "$preskin" | awk '/libhwy/ {print $3; exit}')"
   [ -n "$hwy" ] || { echo "skin-cost: valgrind cannot run $preskin here:" >&2; tail -5 "$work/probe.log" >&2; exit 1; }
@@ -96,7 +96,7 @@ if [ -z "${NO_BENCH:-}" ]; then
   bench_json="$work/bench.json"
 fi
 
-device="$(sed -n 's/^preskin: frame time on \(.*\) (median.*/\1/p' "$work/skin.log" | head -1)"
+device="$(grep -m1 '^preskin: frame time on ' "$work/skin.log" | sed 's/^preskin: frame time on //; s/: gpu .*//; s/ (median of [0-9]* frames)$//')"
 python3 - "$work" "$out" "$width" "$height" "$lights" "$frames" "$bench_json" "$device" <<'PY'
 import json, os, sys
 work, out, width, height, lights, frames, bench_path, device = sys.argv[1:9]
