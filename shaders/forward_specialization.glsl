@@ -1,6 +1,7 @@
 // forward_specialization.glsl: the forward pass's specialization constants (ids in
 // shared/gpu_types.h), read by both of its stages, and what follows from them: what a skin
-// material reads (kSpecSkinInputs) and where its SH transfer is found. Pipelines are specialised
+// material reads (kSpecSkinInputs), which skin terms the vertex stage finds, and the material's
+// own LutMapping (kSpecLutMapping). Pipelines are specialised
 // so that work a material does not need is not compiled: a CPU driver (lavapipe) runs both sides
 // of every branch under a lane mask, so a skipped branch still costs it.
 #ifndef PRESKIN_FORWARD_SPECIALIZATION_GLSL
@@ -28,9 +29,10 @@ const bool kSkinDoubleSided = (kSkinInputs & 512u) != 0u;
 const bool kSkinSpecularFromLevels = (kSkinInputs & 2048u) != 0u;  // PreskinNormalMaps::specularFromLevels
 // What depends on curvature, the geometric normal and the shadow light alone
 // (preskin/skin_vertex.glsl) is found by the vertex stage and interpolated where curvature is per
-// vertex (unless RenderSettings::skinTermsPerVertex is off): the shadow lookup's lift; with one profile (no per-texel blend) the SH transfer; and
-// with one profile on single-sided skin (the vertex stage cannot tell which side faces the
-// viewer) the transmittance the diffuse LUT already holds.
+// vertex (unless RenderSettings::skinTermsPerVertex is off, kSkinInputs bit 10): the shadow
+// lookup's lift; with one profile (no per-texel blend) the SH transfer; and with one profile on
+// single-sided skin (the vertex stage cannot tell which side faces the viewer) the transmittance
+// the diffuse LUT already holds.
 // (Written as comparisons of uints: glslang turns && of specialization constants into control flow.)
 const uint kSkinVertexCurvature = uint(kMaterialModel == kModelSkin) &
                                   uint(kSkinCurvatureSource == kCurvatureSourceVertex) & uint((kSkinInputs & 1024u) == 0u);

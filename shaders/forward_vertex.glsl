@@ -6,9 +6,10 @@
 // Transforms one mesh instance into the eye's clip space; passes the world-space tangent frame,
 // TEXCOORD_0, per-vertex curvature (object units -> 1/m in world space), which are the same for
 // every eye, and the eye index for the fragment stage. Skin pipelines with per-vertex curvature
-// (kSkinShPerVertex) also look up the SH transfer at the vertex's curvature, which the fragment
-// stage interpolates instead of looking it up per fragment. The including file defines
-// PRESKIN_EYE_INDEX (and PRESKIN_WRITE_LAYER for layered drawing).
+// also find the skin terms that depend on curvature alone (preskin/skin_vertex.glsl: the SH
+// transfer, the shadow lookup's lift, the sphere transmittance; see forward_specialization.glsl
+// for when), which the fragment stage interpolates instead of finding them per fragment. The
+// including file defines PRESKIN_EYE_INDEX (and PRESKIN_WRITE_LAYER for layered drawing).
 #include "forward_material.glsl"
 
 layout(set = 0, binding = kBindingFrame) uniform Frame { FrameUniforms frame; };
