@@ -21,21 +21,22 @@ layout(constant_id = kSpecProfileMix) const uint kProfileMix = 4;
 // What a skin material reads (kSpecSkinInputs): a pipeline for a material without a detail map or
 // with per-vertex curvature has no code for the others.
 layout(constant_id = kSpecSkinInputs) const uint kSkinInputs = 0;
-const bool kSkinDetailNormals = (kSkinInputs & 1u) != 0u;
-const uint kSkinCurvatureSource = (kSkinInputs >> 1) & 3u;
-const uint kSkinNormalLevels = (kSkinInputs >> 3) & 31u;  // PreskinNormalMaps::levelCount
-const bool kSkinSpecularMap = (kSkinInputs & 256u) != 0u;
-const bool kSkinDoubleSided = (kSkinInputs & 512u) != 0u;
-const bool kSkinSpecularFromLevels = (kSkinInputs & 2048u) != 0u;  // PreskinNormalMaps::specularFromLevels
+const bool kSkinDetailNormals = (kSkinInputs & kSkinInputDetailNormals) != 0u;
+const uint kSkinCurvatureSource = (kSkinInputs >> kSkinInputCurvatureShift) & 3u;
+const uint kSkinNormalLevels = (kSkinInputs >> kSkinInputNormalLevelsShift) & 31u;  // PreskinNormalMaps::levelCount
+const bool kSkinSpecularMap = (kSkinInputs & kSkinInputSpecularMap) != 0u;
+const bool kSkinDoubleSided = (kSkinInputs & kSkinInputDoubleSided) != 0u;
+const bool kSkinSpecularFromLevels = (kSkinInputs & kSkinInputSpecularFromLevels) != 0u;  // PreskinNormalMaps::specularFromLevels
 // What depends on curvature, the geometric normal and the shadow light alone
 // (preskin/skin_vertex.glsl) is found by the vertex stage and interpolated where curvature is per
-// vertex (unless RenderSettings::skinTermsPerVertex is off, kSkinInputs bit 10): the shadow
+// vertex (unless RenderSettings::skinTermsPerVertex is off: kSkinInputTermsPerFragment): the shadow
 // lookup's lift; with one profile (no per-texel blend) the SH transfer; and with one profile on
 // single-sided skin (the vertex stage cannot tell which side faces the viewer) the transmittance
 // the diffuse LUT already holds.
 // (Written as comparisons of uints: glslang turns && of specialization constants into control flow.)
 const uint kSkinVertexCurvature = uint(kMaterialModel == kModelSkin) &
-                                  uint(kSkinCurvatureSource == kCurvatureSourceVertex) & uint((kSkinInputs & 1024u) == 0u);
+                                  uint(kSkinCurvatureSource == kCurvatureSourceVertex) &
+                                  uint((kSkinInputs & kSkinInputTermsPerFragment) == 0u);
 const bool kSkinShPerVertex =
     (kSkinVertexCurvature & uint((kSkinFeatures & kSkinShAmbient) != 0u) & uint(kProfileMix == 1u)) != 0u;
 const bool kSkinLiftPerVertex = (kSkinVertexCurvature & uint((kSkinFeatures & kSkinLutDiffuse) != 0u)) != 0u;

@@ -47,13 +47,19 @@ PRESKIN_CONST(uint, kSpecLightLoop, 5)      // kLightLoopClustered or kLightLoop
 PRESKIN_CONST(uint, kSpecAlphaToCoverage, 6)  // 1: alpha-mask coverage from alpha (MSAA), 0: discard
 PRESKIN_CONST(uint, kSpecSpecular, 7)       // 1: specular and Fresnel on; 0: diffuse only (RenderSettings::specular)
 PRESKIN_CONST(uint, kSpecProfileMix, 8)     // entries of a skin material's profile mix: 1 (its own), 2..4 (blended)
-PRESKIN_CONST(uint, kSpecSkinInputs, 9)     // a skin material's inputs: bit 0 a detail normal map, bits 1-2 its kCurvatureSource*,
-                                            // bits 3-7 the normal levels its biased samples blend (normalLevelCount),
-                                            // bit 8 a specular map, bit 9 double-sided, bit 10 the
-                                            // curvature-only terms per fragment (RenderSettings::skinTermsPerVertex off),
-                                            // bit 11 the specular normal from the biased samples' levels (no anisotropy)
+PRESKIN_CONST(uint, kSpecSkinInputs, 9)     // a skin material's inputs and how to read them: kSkinInput* below
 PRESKIN_CONST(uint, kSpecLutMapping, 10)    // 32 ids: a skin material's own profile's LutMapping, member by member (xyzw)
 PRESKIN_CONST(uint, kSpecCount, 42)
+
+// Bits of kSpecSkinInputs.
+PRESKIN_CONST(uint, kSkinInputDetailNormals, 1u)       // a detail normal map
+PRESKIN_CONST(uint, kSkinInputCurvatureShift, 1u)      // bits 1-2: the curvature source, kCurvatureSource*
+PRESKIN_CONST(uint, kSkinInputNormalLevelsShift, 3u)   // bits 3-7: the whole levels the biased normals blend
+                                                       // (normalLevelCount, PreskinNormalMaps::levelCount)
+PRESKIN_CONST(uint, kSkinInputSpecularMap, 256u)       // a specular map
+PRESKIN_CONST(uint, kSkinInputDoubleSided, 512u)       // double-sided (the vertex stage cannot tell the facing)
+PRESKIN_CONST(uint, kSkinInputTermsPerFragment, 1024u) // curvature-only terms per fragment (RenderSettings::skinTermsPerVertex off)
+PRESKIN_CONST(uint, kSkinInputSpecularFromLevels, 2048u)  // the unbiased normal from the biased samples' levels
 
 PRESKIN_CONST(uint, kModelStandard, 0)
 PRESKIN_CONST(uint, kModelSkin, 1)

@@ -182,14 +182,14 @@ GpuScene::GpuScene(const vk::Device& device, const Scene& scene)
         gm.alphaMode = mat.alphaMode;
         gm.doubleSided = mat.doubleSided;
         if (mat.skin)
-            gm.skinInputs = (mat.skin->detailNormalTexture.valid() ? 1u : 0u) |
-                            (uint32_t(static_cast<int>(mat.skin->curvatureSource)) << 1) |
-                            (mat.skin->specularTexture.valid() ? 256u : 0u);
+            gm.skinInputs = (mat.skin->detailNormalTexture.valid() ? gpu::kSkinInputDetailNormals : 0u) |
+                            (uint32_t(static_cast<int>(mat.skin->curvatureSource)) << gpu::kSkinInputCurvatureShift) |
+                            (mat.skin->specularTexture.valid() ? gpu::kSkinInputSpecularMap : 0u);
         // Without anisotropic filtering the unbiased normal is the biased samples' levels blended
-        // at the unbiased level of detail: the shader takes it from them (kSpecSkinInputs bit 11).
+        // at the unbiased level of detail: the shader takes it from them.
         if (mat.skin && !samplerAnisotropic_[samplerSlot(mat.normal.sampler)] &&
             !(mat.skin->detailNormalTexture.valid() && samplerAnisotropic_[samplerSlot(mat.skin->detailNormalTexture.sampler)]))
-            gm.skinInputs |= 2048u;
+            gm.skinInputs |= gpu::kSkinInputSpecularFromLevels;
         if (mat.skin && mat.skin->profileWeightTexture.valid())
             gm.profileMix = 1u + uint32_t(std::min(mat.skin->blendProfiles.size(), size_t(kMaxBlendedProfiles - 1)));
         if (mat.normal.valid() && size_t(mat.normal.image) < scene.images.size()) {
@@ -334,7 +334,7 @@ void GpuScene::updateMaterials(const std::vector<ProfileLayer>& layers) {
         const Material& mat = i < sceneMaterials_.size() ? sceneMaterials_[i] : fallback;
         const gpu::MaterialUniforms u = uniformsFor(mat, materials[i], layers);
         materials[i].normalLevels = uint32_t(normalLevelCount(glm::vec3(u.skinNormalLodBias), materials[i].normalMipLevels,
-                                                              (materials[i].skinInputs & 2048u) != 0u));
+                                                              (materials[i].skinInputs & gpu::kSkinInputSpecularFromLevels) != 0u));
         materials[i].lutMapping = u.skinLuts[0];
         materialUniforms_.upload(&u, sizeof(u), uniformStride_ * i);
     }

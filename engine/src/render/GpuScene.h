@@ -32,14 +32,16 @@ struct GpuMaterial {
     bool doubleSided = false;
     float texelsPerMm = 0.0f;  // normal-map texels per world millimetre on the meshes using it
     uint32_t profileMix = 1;   // skin: its profile plus the profiles its weight texture blends in (1..4)
-    uint32_t skinInputs = 0;   // skin: bit 0 a detail normal map, bits 1-2 the curvature source, bit 8 a specular
-                               // map, bit 11 the specular normal from the biased samples' levels (kSpecSkinInputs)
+    uint32_t skinInputs = 0;   // skin: its inputs, gpu::kSkinInput* bits (kSpecSkinInputs) but the normal levels and
+                               // double-sidedness
     uint32_t normalMipLevels = 1;  // mip levels of the normal map (the larger of it and the detail map)
     uint32_t normalLevels = 1;     // skin: whole levels the biased normal samples blend (normalLevelCount)
     gpu::LutMapping lutMapping{};  // skin: its own profile's, which its pipelines are specialised to
-    // The kSpecSkinInputs value of a skin material: skinInputs, normalLevels in bits 3-7, bit 9
-    // double-sided.
-    uint32_t skinInputBits() const { return skinInputs | (normalLevels << 3) | (doubleSided ? 512u : 0u); }
+    // The kSpecSkinInputs value of a skin material: skinInputs, the normal levels, double-sidedness.
+    uint32_t skinInputBits() const {
+        return skinInputs | (normalLevels << gpu::kSkinInputNormalLevelsShift) |
+               (doubleSided ? gpu::kSkinInputDoubleSided : 0u);
+    }
 };
 
 // What a skin material takes from a LUT layer (one diffusion profile): the profile's scattering
