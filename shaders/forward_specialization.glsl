@@ -1,9 +1,9 @@
 // forward_specialization.glsl: the forward pass's specialization constants (ids in
 // shared/gpu_types.h), read by both of its stages, and what follows from them: what a skin
 // material reads (kSpecSkinInputs), which skin terms the vertex stage finds, and the material's
-// own LutMapping (kSpecLutMapping). Pipelines are specialised
-// so that work a material does not need is not compiled: a CPU driver (lavapipe) runs both sides
-// of every branch under a lane mask, so a skipped branch still costs it.
+// own LutMapping (kSpecLutMapping). Pipelines are specialised so that work a material does not
+// need is not compiled: a CPU driver (lavapipe) runs both sides of every branch under a lane
+// mask, so a skipped branch still costs it.
 #ifndef PRESKIN_FORWARD_SPECIALIZATION_GLSL
 #define PRESKIN_FORWARD_SPECIALIZATION_GLSL
 

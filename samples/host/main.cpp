@@ -36,6 +36,13 @@
 
 namespace {
 
+// Levels of a full mip chain of a width x height image.
+uint32_t mipCount(uint32_t width, uint32_t height) {
+    uint32_t mips = 1;
+    while (std::max(width, height) >> mips) ++mips;
+    return mips;
+}
+
 void check(VkResult r, const char* what) {
     if (r != VK_SUCCESS) throw std::runtime_error(std::string(what) + " failed (VkResult " + std::to_string(r) + ")");
 }
@@ -213,8 +220,7 @@ public:
     // A sampled texture from tightly packed rows, with a mip chain of linear blits when `mipmapped`.
     VkImageView texture(VkFormat format, uint32_t width, uint32_t height, const void* pixels, size_t bytes,
                         bool mipmapped, VkImageViewType viewType = VK_IMAGE_VIEW_TYPE_2D) {
-        uint32_t mips = 1;
-        while (mipmapped && std::max(width, height) >> mips) ++mips;
+        const uint32_t mips = mipmapped ? mipCount(width, height) : 1u;
         const Image img = image(format, width, height, mips,
                                 VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_DST_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT,
                                 VK_IMAGE_ASPECT_COLOR_BIT, viewType);
@@ -313,9 +319,8 @@ int main(int argc, char** argv) {
             glm::vec3(luts.profile().widthMm()), skin.scatterScale,
             preskin::texelsPerMm(uvArea, areaMm2, normalImage.width, normalImage.height)));
         // The whole mip levels the biased samples blend; the map has a full chain (texture() below).
-        uint32_t normalMips = 1;
-        while (std::max(normalImage.width, normalImage.height) >> normalMips) ++normalMips;
-        frame.lodBias = glm::vec4(lodBias, float(preskin::normalLevelCount(lodBias, normalMips)));
+        frame.lodBias = glm::vec4(
+            lodBias, float(preskin::normalLevelCount(lodBias, mipCount(normalImage.width, normalImage.height))));
         for (const preskin::Light& l : scene.lights) {
             if (frame.lightCount.x == 8) break;
             preskin::gpu::GpuLight& g = frame.lights[frame.lightCount.x++];

@@ -155,7 +155,7 @@ GpuScene::GpuScene(const vk::Device& device, const Scene& scene)
     }
 
     // Material descriptor sets.
-    // The uniforms are read by both stages (the vertex stage: a skin material's SH transfer).
+    // The uniforms are read by both stages (the vertex stage: a skin material's per-vertex terms).
     std::vector<vk::Binding> bindings = {{gpu::kBindingMaterial, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER,
                                           VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_FRAGMENT_BIT}};
     for (uint32_t b = 1; b <= gpu::kMaterialTextureCount; ++b)
@@ -306,12 +306,11 @@ gpu::MaterialUniforms GpuScene::uniformsFor(const Material& mat, const GpuMateri
     if (mat.skin) {
         const SkinMaterial& s = *mat.skin;
         u.skinScatter = glm::vec4(s.scatterScale, 0.0f, s.curvatureTextureScalePerM, s.transmission);
-        auto layerOf = [&](float index) {
-            const auto i = static_cast<size_t>(index);
-            return i < layers.size() ? layers[i] : ProfileLayer{};
+        auto layerOf = [&](int index) {
+            return index >= 0 && size_t(index) < layers.size() ? layers[size_t(index)] : ProfileLayer{};
         };
         const glm::vec3 bias = s.normalLodBias ? *s.normalLodBias
-                                               : normalLodBias(layerOf(float(s.profile + 1)).widthMm, s.scatterScale,
+                                               : normalLodBias(layerOf(s.profile + 1).widthMm, s.scatterScale,
                                                                gm.texelsPerMm);
         u.skinNormalLodBias = glm::vec4(bias, s.detailNormalScale);
         u.skinTransmission = glm::vec4(s.transmissionColor, s.thicknessScale);
@@ -323,7 +322,7 @@ gpu::MaterialUniforms GpuScene::uniformsFor(const Material& mat, const GpuMateri
         u.skinProfileLayers = glm::vec4(base);
         for (size_t i = 0; i < blended; ++i) u.skinProfileLayers[int(i) + 1] = float(s.blendProfiles[i] + 1);
         u.skinProfileBlend = glm::vec4(s.profileWeightTexture.valid() ? float(blended) : 0.0f, 0.0f, 0.0f, 0.0f);
-        for (int i = 0; i < 4; ++i) u.skinLuts[i] = layerOf(u.skinProfileLayers[i]).mapping;
+        for (int i = 0; i < 4; ++i) u.skinLuts[i] = layerOf(int(u.skinProfileLayers[i])).mapping;
     }
     return u;
 }
