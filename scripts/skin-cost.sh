@@ -8,7 +8,9 @@
 #    on a busy machine, where wall time is not. At WIDTH x HEIGHT (default 1280x720, the goal's
 #    size; valgrind runs the JIT code about 50 times slower, about a minute per configuration);
 #  - time: `preskin bench`'s skin_techniques section (the all-on frame minus the frame with one
-#    technique off, interleaved, medians; 1280x720) and the skin / standard-material ratio.
+#    technique off, interleaved, medians; 1280x720) and the skin / standard-material ratio, in
+#    wall time and in the process's CPU time per frame (on lavapipe the rendering threads' work,
+#    steadier than wall time when other programs share the machine).
 # A technique's cost is the all-on frame minus the frame with that technique off (its standard
 # fallback on); the standard frame is the same scene with the skin extension removed
 # (`--skin none`). Both at LIGHTS scattered lights (default 256) on the bundled head.
@@ -118,19 +120,20 @@ lines = [
     "A technique's cost is the all-on frame minus the frame with that technique off (its standard fallback on); "
     "the costs overlap, so they do not add up to the total.",
     "",
-    "| | instructions per frame (M) | share of the skin frame | wall ms | forward-pass ms |",
-    "| --- | ---: | ---: | ---: | ---: |",
+    "| | instructions per frame (M) | share of the skin frame | wall ms | process CPU ms | forward-pass ms |",
+    "| --- | ---: | ---: | ---: | ---: | ---: |",
 ]
 def timed(name):
     if not t:
-        return "| |"
+        return "| | |"
     c = t["cost_ms"][name]
-    return f"| {c['wall']:.1f} | {c['forward_gpu']:.1f} |"
+    return f"| {c['wall']:.1f} | {c['cpu']:.1f} | {c['forward_gpu']:.1f} |"
+def frame(m):
+    return f"| {m['wall_ms']:.1f} | {m['cpu_ms']:.1f} | {m['gpu_pass_ms']['forward']:.1f} |"
 lines.append(f"| skin frame, all techniques on | {M(skin)} | 100% "
-             + (f"| {t['skin']['wall_ms']:.1f} | {t['skin']['gpu_pass_ms']['forward']:.1f} |" if t else "| |"))
+             + (frame(t["skin"]) if t else "| | |"))
 lines.append(f"| standard-material frame (`--skin none`) | {M(std)} | {100 * std / skin:.0f}% "
-             + (f"| {t['standard_material']['wall_ms']:.1f} | {t['standard_material']['gpu_pass_ms']['forward']:.1f} |"
-                if t else "| |"))
+             + (frame(t["standard_material"]) if t else "| | |"))
 labels = {"lut_diffuse": "diffuse LUT fetches (per light, per channel)",
           "normal_prefilter": "normal samples (three prefiltered normals)",
           "penumbra": "penumbra LUT", "sh_ambient": "SH transfer", "transmission": "thickness and transmission",
@@ -140,16 +143,18 @@ for name, label in labels.items():
     lines.append(f"| {label} (`{name}`) | {M(d)} | {100 * d / skin:.0f}% {timed(name)}")
 d = skin - count["no_shadows"]
 ds = std - count["standard_no_shadows"]
-lines.append(f"| shadow map and filter, skin (`--no-shadows`) | {M(d)} | {100 * d / skin:.0f}% | | |")
-lines.append(f"| shadow map and filter, standard material | {M(ds)} | {100 * ds / skin:.0f}% | | |")
+lines.append(f"| shadow map and filter, skin (`--no-shadows`) | {M(d)} | {100 * d / skin:.0f}% | | | |")
+lines.append(f"| shadow map and filter, standard material | {M(ds)} | {100 * ds / skin:.0f}% | | | |")
 lines.append(f"| skin shader, every technique off (`--standard`) | {M(count['all_off'])} | "
-             f"{100 * count['all_off'] / skin:.0f}% | | |")
+             f"{100 * count['all_off'] / skin:.0f}% | | | |")
 lines += [
     "",
     f"Skin / standard, instructions: {skin / std:.2f} (mono), "
     f"{count['stereo'] / count['stereo_standard']:.2f} (stereo, {M(count['stereo'])} M against "
     f"{M(count['stereo_standard'])} M)."
-    + (f" Time: {t['skin']['wall_ms']:.1f} / {t['standard_material']['wall_ms']:.1f} ms = {t['skin_over_standard']:.2f}."
+    + (f" Time: wall {t['skin']['wall_ms']:.1f} / {t['standard_material']['wall_ms']:.1f} ms = "
+       f"{t['skin_over_standard']:.2f}; process CPU {t['skin']['cpu_ms']:.1f} / {t['standard_material']['cpu_ms']:.1f} ms "
+       f"= {t['skin_over_standard_cpu']:.2f}."
        if t else ""),
     "",
 ]

@@ -22,8 +22,10 @@
 // configurations compared at one light count (clustered, the other cluster build, brute force;
 // or skin, standard, skin techniques off) are measured together: warm-up frames first, then
 // rounds of one frame each, so a change in machine load hits all of them alike; reported are
-// medians of --reps frames of wall time (CPU clock around the whole frame) and of the GPU
-// timestamps per pass. Slow points (brute force at many lights) get fewer frames: when the
+// medians of --reps frames of wall time (CPU clock around the whole frame), of the process's CPU
+// time over the frame (every thread: on a software device such as lavapipe its rendering threads,
+// so the work a frame takes, less sensitive than wall time to other programs on a shared machine;
+// on a GPU only the host's part) and of the GPU timestamps per pass. Slow points (brute force at many lights) get fewer frames: when the
 // frame time predicted from the previous counts times the frames planned exceeds --budget-s,
 // the warm-up is dropped and the repetitions cut (at least one); the JSON records what ran.
 // Goals (docs/clustering.md) are evaluated on the wall-time medians.
@@ -52,6 +54,8 @@
 #include <glm/gtc/matrix_transform.hpp>
 #include <nlohmann/json.hpp>
 
+#include <time.h>
+
 #include <algorithm>
 #include <chrono>
 #include <cmath>
@@ -73,6 +77,13 @@ namespace {
 using Clock = std::chrono::steady_clock;
 
 double secondsSince(Clock::time_point start) { return std::chrono::duration<double>(Clock::now() - start).count(); }
+
+// CPU time of the whole process (all threads), ms.
+double processCpuMs() {
+    timespec t{};
+    clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &t);
+    return double(t.tv_sec) * 1e3 + double(t.tv_nsec) * 1e-6;
+}
 
 
 // ---- measurement -----------------------------------------------------------------------------
@@ -126,7 +137,9 @@ double median(std::vector<double> v) {
 struct Measurement {
     uint32_t warmup = 0;
     std::vector<FrameStats> frames;
+    std::vector<double> cpuMsEach;  // the process's CPU time over each frame
 
+    double cpuMs() const { return median(cpuMsEach); }
     double wallMs() const { return medianOf([](const FrameStats& s) { return s.wallMs; }); }
     double gpuMs() const { return medianOf([](const FrameStats& s) { return s.gpuMs; }); }
     double buildCpuMs() const { return medianOf([](const FrameStats& s) { return s.clusterBuildCpuMs; }); }
@@ -163,6 +176,7 @@ void writeMeasurement(JsonWriter& j, const Measurement& m) {
     j.field("warmup_frames", m.warmup);
     j.field("frames", m.frames.size());
     j.field("wall_ms", m.wallMs());
+    j.field("cpu_ms", m.cpuMs());
     j.field("gpu_ms", m.gpuMs());
     j.key("gpu_pass_ms");
     j.beginObject();
@@ -240,7 +254,9 @@ public:
         for (uint32_t r = 0; r < rounds; ++r)
             for (size_t i = 0; i < configs.size(); ++i) {
                 if ((uint64_t(r) + 1) * reps[i] / rounds == uint64_t(r) * reps[i] / rounds) continue;
+                const double cpuStart = processCpuMs();
                 frame(configs[i]);
+                out[i].cpuMsEach.push_back(processCpuMs() - cpuStart);
                 out[i].frames.push_back(configs[i].renderer->frameStats());
             }
         for (size_t i = 0; i < configs.size(); ++i)
@@ -722,6 +738,7 @@ void run(const BenchOptions& o) {
             writeMeasurement(j, row.featuresOff);
             j.field("skin_over_standard", row.skin.wallMs() / row.standard.wallMs());
             j.field("skin_over_standard_gpu", row.skin.gpuMs() / row.standard.gpuMs());
+            j.field("skin_over_standard_cpu", row.skin.cpuMs() / row.standard.cpuMs());
             j.field("skin_over_features_off", row.skin.wallMs() / row.featuresOff.wallMs());
             j.endObject();
         }
@@ -758,7 +775,7 @@ void run(const BenchOptions& o) {
             j.field("lights", n);
             j.field("method",
                     "each technique's cost: the all-on skin frame minus the frame with that technique off (its "
-                    "standard fallback on), interleaved; wall and forward-pass GPU ms");
+                    "standard fallback on), interleaved; wall, process CPU and forward-pass GPU ms");
             j.key("skin");
             writeMeasurement(j, measured[0]);
             j.key("standard_material");
@@ -769,12 +786,14 @@ void run(const BenchOptions& o) {
                 j.key(techniques[i].name);
                 j.beginObject();
                 j.field("wall", measured[0].wallMs() - measured[2 + i].wallMs());
+                j.field("cpu", measured[0].cpuMs() - measured[2 + i].cpuMs());
                 j.field("forward_gpu", measured[0].passMs("forward") - measured[2 + i].passMs("forward"));
                 j.endObject();
             }
             j.endObject();
             j.field("skin_over_standard", measured[0].wallMs() / measured[1].wallMs());
             j.field("skin_over_standard_gpu", measured[0].gpuMs() / measured[1].gpuMs());
+            j.field("skin_over_standard_cpu", measured[0].cpuMs() / measured[1].cpuMs());
             j.endObject();
         }
     } else if (!skinCounts.empty()) {
