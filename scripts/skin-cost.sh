@@ -39,12 +39,12 @@ trap 'rm -rf "$work"' EXIT
 # whose RDTSCP instructions (0f 01 f9) read RDTSC; NOP (0f 31 90): the same time stamp counter
 # without the processor number, which libhwy does not use to time. Only the copy is changed, and
 # only when every match of the bytes is an RDTSCP instruction.
-(valgrind --tool=none "$preskin" --help >/dev/null 2>"$work/probe.log"; exit 0) 2>/dev/null
+(valgrind --tool=none "$preskin" --help >/dev/null 2>"$work/probe.log" || true) 2>/dev/null
 if grep -q "Illegal opcode" "$work/probe.log"; then
-  hwy="$(ldd "$preskin" | awk '/libhwy/ {print $3; exit}')"
+  hwy="$(ldd "$preskin" | awk '/libhwy/ && !seen {print $3; seen = 1}')"
   [ -n "$hwy" ] || { echo "skin-cost: valgrind cannot run $preskin here:" >&2; tail -5 "$work/probe.log" >&2; exit 1; }
   mkdir -p "$work/lib"
-  python3 - "$hwy" "$work/lib/$(basename "$(ldd "$preskin" | awk '/libhwy/ {print $1; exit}')")" <<'PY'
+  python3 - "$hwy" "$work/lib/$(basename "$(ldd "$preskin" | awk '/libhwy/ && !seen {print $1; seen = 1}')")" <<'PY'
 import subprocess, sys
 src, dst = sys.argv[1:3]
 data = open(src, "rb").read()
@@ -125,15 +125,15 @@ lines = [
 ]
 def timed(name):
     if not t:
-        return "| | |"
+        return "| | | |"
     c = t["cost_ms"][name]
     return f"| {c['wall']:.1f} | {c['cpu']:.1f} | {c['forward_gpu']:.1f} |"
 def frame(m):
     return f"| {m['wall_ms']:.1f} | {m['cpu_ms']:.1f} | {m['gpu_pass_ms']['forward']:.1f} |"
 lines.append(f"| skin frame, all techniques on | {M(skin)} | 100% "
-             + (frame(t["skin"]) if t else "| | |"))
+             + (frame(t["skin"]) if t else "| | | |"))
 lines.append(f"| standard-material frame (`--skin none`) | {M(std)} | {100 * std / skin:.0f}% "
-             + (frame(t["standard_material"]) if t else "| | |"))
+             + (frame(t["standard_material"]) if t else "| | | |"))
 labels = {"lut_diffuse": "diffuse LUT fetches (per light, per channel)",
           "normal_prefilter": "normal samples (three prefiltered normals)",
           "penumbra": "penumbra LUT", "sh_ambient": "SH transfer", "transmission": "thickness and transmission",
