@@ -25,9 +25,10 @@
 // medians of --reps frames of wall time (CPU clock around the whole frame), of the process's CPU
 // time over the frame (every thread: on a software device such as lavapipe its rendering threads,
 // so the work a frame takes, less sensitive than wall time to other programs on a shared machine;
-// on a GPU only the host's part) and of the GPU timestamps per pass. Slow points (brute force at many lights) get fewer frames: when the
-// frame time predicted from the previous counts times the frames planned exceeds --budget-s,
-// the warm-up is dropped and the repetitions cut (at least one); the JSON records what ran.
+// on a GPU only the host's part) and of the GPU timestamps per pass. Slow points (brute force at
+// many lights) get fewer frames: when the frame time predicted from the previous counts times
+// the frames planned exceeds --budget-s, the warm-up is dropped and the repetitions cut (at
+// least one); the JSON records what ran.
 // Goals (docs/clustering.md) are evaluated on the wall-time medians.
 // Limits: timings on a shared machine are noisy; compare numbers from one run.
 #include "Commands.h"
@@ -84,7 +85,6 @@ double processCpuMs() {
     clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &t);
     return double(t.tv_sec) * 1e3 + double(t.tv_nsec) * 1e-6;
 }
-
 
 // ---- measurement -----------------------------------------------------------------------------
 
