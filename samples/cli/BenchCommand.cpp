@@ -515,20 +515,24 @@ void run(const BenchOptions& o) {
     CommonOptions common;
     common.device = o.device;
     common.validation = o.validation;
+    common.profileLutSize = uint32_t(o.profileLutSize);
     const std::filesystem::path scenePath = o.scene.empty() ? defaultScenePath() : std::filesystem::path(o.scene);
     const Scene scene = loadScene(scenePath, common);
     for (const std::string& warning : scene.warnings) fmt::print(stderr, "preskin: warning: {}\n", warning);
     Scene standardScene = scene;
     const bool hasSkin = removeSkin(standardScene);
     const Environment environment = loadEnvironment(scene, common);
+    // The default LUT set, and the scene's own diffusion profiles as `preskin render` loads them.
+    const auto defaultLuts = std::make_shared<const LutSet>(loadLuts(common));
+    const LutSet& luts = *defaultLuts;
+    const ProfileLibrary profiles = loadProfiles(scene, common, defaultLuts);
     auto context = Context::create(contextDesc(common));
-    const LutSet luts = loadLuts(common);
     const View view = frameBoundsView(scene.worldBounds(), float(o.width) / float(o.height));
 
     RenderSettings base;
     base.clusters = o.clusters;
     base.clusters.build = o.build == "cpu" ? ClusterBuild::Cpu : o.build == "gpu" ? ClusterBuild::Gpu : ClusterBuild::Auto;
-    Renderer renderer(*context, scene, environment, &luts, base);
+    Renderer renderer(*context, scene, environment, profiles, base);
     Bench bench(o, *context, view);
 
     JsonWriter j;
@@ -710,7 +714,7 @@ void run(const BenchOptions& o) {
     };
     std::vector<SkinRow> skinRows;
     if (!skinCounts.empty() && hasSkin) {
-        Renderer standardRenderer(*context, standardScene, environment, &luts, base);
+        Renderer standardRenderer(*context, standardScene, environment, profiles, base);
         for (uint32_t n : skinCounts) {
             CommonOptions withLights = common;
             withLights.lights = n;
@@ -822,8 +826,8 @@ void run(const BenchOptions& o) {
         VrRun run;
         // One renderer per eye count and sample count, as an application keeps them: a renderer
         // resizes its attachments when either changes.
-        Renderer stereoRenderer(*context, scene, environment, &luts, base);
-        Renderer monoRenderer(*context, scene, environment, &luts, base);
+        Renderer stereoRenderer(*context, scene, environment, profiles, base);
+        Renderer monoRenderer(*context, scene, environment, profiles, base);
         std::vector<Measurement> eyes = bench.measure(
             {{&stereoRenderer, base, fmt::format("{} lights, stereo {}x{} per eye", o.vrLights, o.vrWidth, o.vrHeight),
               0.0, &stereo, o.vrWidth, o.vrHeight},
@@ -851,7 +855,7 @@ void run(const BenchOptions& o) {
         if (std::find(offered.begin(), offered.end(), 4u) != offered.end()) {
             RenderSettings four = base;
             four.msaaSamples = 4;
-            Renderer msaaRenderer(*context, scene, environment, &luts, four);
+            Renderer msaaRenderer(*context, scene, environment, profiles, four);
             std::vector<Measurement> msaa = bench.measure(
                 {{&renderer, base, fmt::format("{} lights, MSAA 1x", o.vrLights), 0.0},
                  {&msaaRenderer, four, fmt::format("{} lights, MSAA 4x", o.vrLights), 0.0}},

@@ -111,6 +111,24 @@ TEST_F(BenchCli, WritesJsonAndPlot) {
     EXPECT_EQ(std::string(signature + 1, 3), "PNG");
 }
 
+// A scene whose skin materials name their own diffusion profiles renders with them, as
+// `preskin render` renders it (the profiles baked at --profile-lut-size).
+TEST_F(BenchCli, MeasuresSceneWithItsOwnProfiles) {
+    const fs::path json = dir_ / "bench.json";
+    std::string err;
+    ASSERT_EQ(bench({std::string(PRESKIN_SOURCE_DIR) + "/samples/assets/head/head_profiles.gltf", "--width", "64",
+                     "--height", "36", "--counts", "8", "--skin-counts", "8", "--reps", "1", "--warmup", "0",
+                     "--no-brute", "--no-build-compare", "--no-lut-bake", "--no-vr", "--no-per-pixel", "--no-animation",
+                     "--no-profiles", "--no-techniques", "--profile-lut-size", "16", "--validation", "--out",
+                     json.string()},
+                    err),
+              0)
+        << err;
+    const nlohmann::json j = nlohmann::json::parse(std::ifstream(json));
+    ASSERT_EQ(j.at("skin_vs_standard").size(), 1u);
+    EXPECT_GT(j.at("skin_vs_standard")[0].at("skin").at("wall_ms").get<double>(), 0.0);
+}
+
 TEST_F(BenchCli, RefusesBadArgumentsBeforeWork) {
     std::string err;
     const fs::path json = dir_ / "bench.json";
