@@ -20,6 +20,7 @@
 #include <fmt/core.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <chrono>
 #include <limits>
 #include <memory>
@@ -33,6 +34,8 @@ struct Options {
     std::string scene;
     std::string json = "compare.json";
     std::string image = "compare.png";
+    std::string referenceFile;  // reused when it holds this run's reference, else written
+    std::string renders;        // prefix of the skin and Lambert renders' EXRs
     double curvatureClassPerMm = 0.01;
     ViewOptions view;
     CommonOptions common;
@@ -95,11 +98,21 @@ void run(const Options& o) {
     const LutSet luts = loadLuts(o.common);
     const uint32_t width = o.view.width, height = o.view.height;
 
+    const std::filesystem::path referencePath(o.referenceFile);
+    std::error_code ec;
+    const bool reuseReference = !o.referenceFile.empty() && std::filesystem::exists(referencePath, ec);
+    if (!o.referenceFile.empty() && !reuseReference) checkOutputPath(referencePath, OutputEncoding::LinearFloat);
+    const std::filesystem::path skinRenderPath = o.renders + ".skin.exr", lambertRenderPath = o.renders + ".lambert.exr";
+    if (!o.renders.empty()) {
+        checkOutputPath(skinRenderPath, OutputEncoding::LinearFloat);
+        checkOutputPath(lambertRenderPath, OutputEncoding::LinearFloat);
+    }
+    const ReferenceKey key = referenceKey(scenePath, o.view, o.common, o.reference, luts);
+
     auto context = Context::create(contextDesc(o.common));
-    RenderSettings settings = renderSettings(o.common);
+    RenderSettings settings = renderSettings(o.common);  // the skin technique switches hold
     settings.specular = false;
     settings.debugView = DebugView::None;
-    settings.skin = SkinFeatures{};
     Renderer renderer(*context, scene, environment, &luts, settings);
     applyLightOptions(renderer, scene, o.common);
     const RenderedImage skin = renderer.render(view, width, height, OutputEncoding::LinearFloat);
@@ -109,8 +122,22 @@ void run(const Options& o) {
     reportValidation(*context);
 
     const auto start = std::chrono::steady_clock::now();
-    const auto reference = makeReference(scene, environment, luts, o.common, o.reference);
-    const ReferenceImage ref = renderReference(*reference, view, o.view, o.common.exposure, o.reference);
+    ReferenceImage ref;
+    if (reuseReference) {
+        ReferenceKey made;
+        ref = readReferenceImage(referencePath, made);
+        for (const auto& [name, value] : key) {
+            auto it = std::find_if(made.begin(), made.end(), [&](const auto& kv) { return kv.first == name; });
+            const std::string was = it == made.end() ? std::string("(not recorded)") : it->second;
+            if (was != value)
+                throw Error(fmt::format("{}: --reference: {}: the file was made for '{}', this run needs '{}' (remove "
+                                        "the file to compute it again)",
+                                        o.referenceFile, name, was, value));
+        }
+    } else {
+        const auto reference = makeReference(scene, environment, luts, o.common, o.reference);
+        ref = renderReference(*reference, view, o.view, o.common.exposure, o.reference);
+    }
     const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 
     const std::vector<Region> regions = compareRegions(ref, o.curvatureClassPerMm);
@@ -136,7 +163,7 @@ void run(const Options& o) {
     j.field("leafRatio", o.reference.settings.leafRatio);
     j.field("finestLeafRatio", o.reference.settings.finestLeafRatio);
     j.field("momentTolerance", o.reference.settings.momentTolerance);
-    j.field("reachMm", reference->reachMm());
+    j.field("reachMm", luts.profile().reachMm(o.reference.settings.tailFraction));
     j.field("shadowEdgeRadiusMm", o.reference.settings.shadowEdgeWidths * luts.profile().maxWidthMm());
     j.endObject();
     j.key("regions");
@@ -163,15 +190,26 @@ void run(const Options& o) {
     }
     j.endObject();
     j.endObject();
-    writeComparePicture(imagePath, scenePath.filename().string(), ref, skin.rgba32f, lambert.rgba32f, regions);
+    // Written in this order, each removed again if a later one fails: nothing half done is left
+    // behind (a reference that was computed is kept: it is complete and costly).
+    std::vector<std::filesystem::path> written;
     try {
+        if (!o.referenceFile.empty() && !reuseReference) writeReferenceImage(referencePath, ref, key);
+        writeComparePicture(imagePath, scenePath.filename().string(), ref, skin.rgba32f, lambert.rgba32f, regions);
+        written.push_back(imagePath);
+        if (!o.renders.empty()) {
+            writeImage(skinRenderPath, skin);
+            written.push_back(skinRenderPath);
+            writeImage(lambertRenderPath, lambert);
+            written.push_back(lambertRenderPath);
+        }
         writeTextFile(jsonPath, j.text() + "\n", "--json");
     } catch (...) {
-        std::error_code ec;
-        std::filesystem::remove(imagePath, ec);  // nothing half done is left behind
+        for (const auto& path : written) std::filesystem::remove(path, ec);
         throw;
     }
-    fmt::print("preskin: wrote {} and {} (reference {:.1f} s)\n", jsonPath.string(), imagePath.string(), seconds);
+    fmt::print("preskin: wrote {} and {} (reference {} {:.1f} s)\n", jsonPath.string(), imagePath.string(),
+               reuseReference ? "read in" : "computed in", seconds);
 }
 
 }  // namespace
@@ -187,10 +225,17 @@ void addCompareCommand(CLI::App& app) {
                     "Signed mean curvature (profile 1/mm) beyond which skin counts as convex or concave")
         ->check(numberIn(0.0, 100.0))
         ->capture_default_str();
+    cmd->add_option("--reference", options->referenceFile,
+                    "Reference image (.exr): read when it holds this run's reference (same scene, view, size, "
+                    "lighting and quadrature), else computed and written there");
+    cmd->add_option("--renders", options->renders,
+                    "Also write the skin and Lambert renders as PREFIX.skin.exr and PREFIX.lambert.exr (linear)");
     addViewOptions(*cmd, options->view);
     addSceneOptions(*cmd, options->common);
     addDeviceOptions(*cmd, options->common);
+    addSkinTechniqueOptions(*cmd, options->common);
     addShadowMapOptions(*cmd, options->common);
+    addLutOptions(*cmd, options->common);
     addReferenceOptions(*cmd, options->reference);
     cmd->callback([options] { run(*options); });
 }

@@ -1,6 +1,7 @@
 // `preskin reference`: ground-truth diffuse radiance of a scene (DiffusionReference: the surface
 // integral of the diffusion profile times the ray-traced irradiance) for the same view and
-// image size as `preskin render`, written as a linear EXR (alpha: 1 where a surface is visible).
+// image size as `preskin render`, written as a linear float EXR (alpha: 1 where a surface is
+// visible) with the masks and the key `preskin compare --reference` reads (writeReferenceImage).
 #include "Commands.h"
 #include "Options.h"  // samples/common
 #include "ReferenceOptions.h"
@@ -45,12 +46,7 @@ void run(const Options& o) {
     const ReferenceImage image = renderReference(*reference, view, o.view, o.common.exposure, o.reference);
     const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 
-    RenderedImage out;
-    out.width = image.width;
-    out.height = image.height;
-    out.encoding = OutputEncoding::LinearFloat;
-    out.rgba32f = image.rgba32f;
-    writeImage(outPath, out);
+    writeReferenceImage(outPath, image, referenceKey(scenePath, o.view, o.common, o.reference, luts));
     fmt::print("preskin: wrote {} ({}x{})\n", outPath.string(), image.width, image.height);
     fmt::print("preskin: reference of '{}' in {:.1f} s: reach {:.2f} profile mm, {} irradiance samples\n",
                luts.profile().name(), seconds, reference->reachMm(), image.irradianceSamples);
@@ -66,6 +62,7 @@ void addReferenceCommand(CLI::App& app) {
     cmd->add_option("--out,-o", options->out, "Output image (.exr, linear)")->capture_default_str();
     addViewOptions(*cmd, options->view);
     addSceneOptions(*cmd, options->common);
+    addLutOptions(*cmd, options->common);
     addReferenceOptions(*cmd, options->reference);
     cmd->callback([options] { run(*options); });
 }

@@ -2,9 +2,11 @@
 #include "CommandLine.h"  // samples/common
 #include "ProgressBar.h"
 
+#include <fmt/core.h>
 #include <tbb/global_control.h>
 
 #include <algorithm>
+#include <fstream>
 #include <optional>
 
 namespace preskin::cli {
@@ -36,6 +38,47 @@ std::unique_ptr<DiffusionReference> makeReference(const Scene& scene, const Envi
     settings.shadows = !common.noShadows;
     return std::make_unique<DiffusionReference>(scene, sceneLights(scene, common), environment.radianceSh(),
                                                 luts.profile(), settings);
+}
+
+namespace {
+
+// FNV-1a (64 bits) of a file's bytes: tells a changed scene file from the one a reference was made of.
+std::string fileHash(const std::filesystem::path& path) {
+    std::ifstream in(path, std::ios::binary);
+    uint64_t h = 14695981039346656037ull;
+    char buffer[1 << 16];
+    while (in) {
+        in.read(buffer, sizeof buffer);
+        for (std::streamsize i = 0; i < in.gcount(); ++i) h = (h ^ uint8_t(buffer[i])) * 1099511628211ull;
+    }
+    return fmt::format("{:016x}", h);
+}
+
+}  // namespace
+
+ReferenceKey referenceKey(const std::filesystem::path& scenePath, const ViewOptions& view, const CommonOptions& common,
+                          const ReferenceOptions& o, const LutSet& luts) {
+    std::error_code ec;
+    const std::filesystem::path scene = std::filesystem::weakly_canonical(scenePath, ec);
+    const ReferenceSettings& s = o.settings;
+    return {
+        {"model", "1"},
+        {"scene", (ec ? scenePath : scene).string()},
+        {"sceneHash", fileHash(scenePath)},
+        {"size", fmt::format("{}x{}", view.width, view.height)},
+        {"view", !view.camera.empty() ? "camera " + view.camera : !view.orbit.empty() ? "orbit " + view.orbit : "default"},
+        {"env", common.env.empty() ? "scene" : common.env},
+        {"envIntensity", common.envIntensity < 0.0f ? "scene" : fmt::format("{}", common.envIntensity)},
+        {"envRotation", common.envRotationDeg ? fmt::format("{}", *common.envRotationDeg) : "scene"},
+        {"skin", common.skin.empty() ? "scene" : common.skin},
+        {"lights", fmt::format("{} seed {}", common.lights, common.seed)},
+        {"exposure", fmt::format("{}", common.exposure)},
+        {"shadows", common.noShadows ? "off" : "on"},
+        {"profile", luts.profile().name()},
+        {"luts", common.luts.empty() ? "bundled" : common.luts},
+        {"quadrature", fmt::format("tail {} leaf {} finest {} moments {} edge {}", s.tailFraction, s.leafRatio,
+                                   s.finestLeafRatio, s.momentTolerance, s.shadowEdgeWidths)},
+    };
 }
 
 ReferenceImage renderReference(const DiffusionReference& reference, const View& view, const ViewOptions& size,

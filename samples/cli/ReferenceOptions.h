@@ -25,6 +25,12 @@ std::unique_ptr<DiffusionReference> makeReference(const Scene& scene, const Envi
                                                   const LutSet& luts, const CommonOptions& common,
                                                   const ReferenceOptions& o);
 
+// What the reference of this command line depends on, for reference files reused by
+// `preskin compare --reference`: the model's version, the scene file (path and a hash of its
+// bytes), the view and size, the lighting options, the LUT set's profile and the quadrature.
+ReferenceKey referenceKey(const std::filesystem::path& scenePath, const ViewOptions& view, const CommonOptions& common,
+                          const ReferenceOptions& o, const LutSet& luts);
+
 // Renders it with a progress bar on stderr, on --threads threads.
 ReferenceImage renderReference(const DiffusionReference& reference, const View& view, const ViewOptions& size,
                                float exposure, const ReferenceOptions& o);

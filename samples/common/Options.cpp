@@ -58,15 +58,7 @@ void addCommonOptions(CLI::App& cmd, CommonOptions& o) {
     addSceneOptions(cmd, o);
     addDeviceOptions(cmd, o);
     cmd.add_flag("--standard", o.standard, "Turn every skin technique off (standard shading, for comparison)");
-    cmd.add_flag("--no-lut-diffuse", o.noLutDiffuse, "Skin: Lambert instead of the pre-integrated diffuse LUT");
-    cmd.add_flag("--no-normal-prefilter", o.noNormalPrefilter, "Skin: one normal-map sample for all channels");
-    cmd.add_flag("--no-penumbra", o.noPenumbra, "Skin: plain PCF shadow instead of penumbra scattering");
-    cmd.add_flag("--no-sh-skin", o.noShSkin, "Skin: Lambert SH ambient instead of the skin transfer");
-    cmd.add_flag("--no-transmission", o.noTransmission, "Skin: no transmission through thin parts");
-    cmd.add_flag("--no-dual-specular", o.noDualSpecular, "Skin: one GGX lobe instead of two");
-    cmd.add_flag("--skin-terms-per-fragment", o.skinTermsPerFragment,
-                 "Skin: find the curvature-only terms (SH transfer, shadow lift, sphere transmittance) per fragment "
-                 "instead of per vertex");
+    addSkinTechniqueOptions(cmd, o);
     cmd.add_flag("--no-specular", o.noSpecular,
                  "No specular at all, every material: diffuse without Fresnel (what `preskin reference` models)");
     cmd.add_option("--debug", o.debug,
@@ -79,14 +71,34 @@ void addCommonOptions(CLI::App& cmd, CommonOptions& o) {
     cmd.add_option("--msaa", o.msaa, "Samples per pixel (1, 2, 4 or 8, as the device offers; lavapipe: 1 or 4)")
         ->check(oneOf({"1", "2", "4", "8"}))
         ->capture_default_str();
+    addLutOptions(cmd, o);
+    addProfileBakeOptions(cmd, o);
+    cmd.add_flag("--allow-outside-links", o.allowOutsideLinks,
+                 "Follow symbolic links in the scene's folder that lead out of it (refused by default)");
+}
+
+void addSkinTechniqueOptions(CLI::App& cmd, CommonOptions& o) {
+    cmd.add_flag("--no-lut-diffuse", o.noLutDiffuse, "Skin: Lambert instead of the pre-integrated diffuse LUT");
+    cmd.add_flag("--no-normal-prefilter", o.noNormalPrefilter, "Skin: one normal-map sample for all channels");
+    cmd.add_flag("--no-penumbra", o.noPenumbra, "Skin: plain PCF shadow instead of penumbra scattering");
+    cmd.add_flag("--no-sh-skin", o.noShSkin, "Skin: Lambert SH ambient instead of the skin transfer");
+    cmd.add_flag("--no-transmission", o.noTransmission, "Skin: no transmission through thin parts");
+    cmd.add_flag("--no-dual-specular", o.noDualSpecular, "Skin: one GGX lobe instead of two");
+    cmd.add_flag("--skin-terms-per-fragment", o.skinTermsPerFragment,
+                 "Skin: find the curvature-only terms (SH transfer, shadow lift, sphere transmittance) per fragment "
+                 "instead of per vertex");
+}
+
+void addLutOptions(CLI::App& cmd, CommonOptions& o) {
     cmd.add_option("--luts", o.luts, "Skin LUT set folder (from `preskin bake`); default: the bundled d'Eon set");
+}
+
+void addProfileBakeOptions(CLI::App& cmd, CommonOptions& o) {
     cmd.add_flag("--no-cache", o.noCache, "Bake the scene's diffusion profiles without reading or writing the LUT cache");
     cmd.add_option("--cache-dir", o.cacheDir, "LUT cache folder (default: $XDG_CACHE_HOME/preskin/luts or ~/.cache/preskin/luts)");
     cmd.add_option("--profile-lut-size", o.profileLutSize, "Table size of the scene's baked profiles")
         ->check(wholeNumberIn(LutBakeSettings::kMinSize, LutBakeSettings::kMaxSize))
         ->capture_default_str();
-    cmd.add_flag("--allow-outside-links", o.allowOutsideLinks,
-                 "Follow symbolic links in the scene's folder that lead out of it (refused by default)");
 }
 
 Scene loadScene(const std::filesystem::path& path, const CommonOptions& o) {

@@ -64,6 +64,12 @@ void addSceneOptions(CLI::App& cmd, CommonOptions& o);
 void addDeviceOptions(CLI::App& cmd, CommonOptions& o);
 // --shadow-softness, --shadow-map-size.
 void addShadowMapOptions(CLI::App& cmd, CommonOptions& o);
+// The skin technique switches (--no-lut-diffuse ... --skin-terms-per-fragment).
+void addSkinTechniqueOptions(CLI::App& cmd, CommonOptions& o);
+// The LUT set (--luts).
+void addLutOptions(CLI::App& cmd, CommonOptions& o);
+// How the scene's own profiles are baked (--no-cache, --cache-dir, --profile-lut-size).
+void addProfileBakeOptions(CLI::App& cmd, CommonOptions& o);
 
 // Image size and camera, shared by `render`, `reference` and `compare`.
 struct ViewOptions {

@@ -45,9 +45,12 @@
 #include <glm/glm.hpp>
 
 #include <cstdint>
+#include <filesystem>
 #include <functional>
 #include <memory>
 #include <optional>
+#include <string>
+#include <utility>
 #include <vector>
 
 namespace preskin {
@@ -87,6 +90,20 @@ struct ReferenceImage {
     std::vector<uint8_t> nearShadowEdge;   // 1 near a cast-shadow edge (ReferenceSettings::shadowEdgeWidths)
     uint64_t irradianceSamples = 0;        // sum over pixels
 };
+
+// What a reference image was made of, as (name, value) pairs in a fixed order: the scene, view,
+// size, lights and settings a reader checks before it reuses the image.
+using ReferenceKey = std::vector<std::pair<std::string, std::string>>;
+
+// A reference image with everything `preskin compare` measures by (radiance and alpha, the skin
+// mask, the signed curvature, the shadow-edge mask) as a 32-bit float OpenEXR file: channels R,
+// G, B, A, skin, curvaturePerMm, nearShadowEdge; the key as string attributes "preskin:NAME".
+// Written into a temporary file renamed into place. Throws preskin::Error naming the file.
+PRESKIN_API void writeReferenceImage(const std::filesystem::path& path, const ReferenceImage& image,
+                                     const ReferenceKey& key);
+// Reads such a file back with its key (every "preskin:" attribute, in the file's order). Throws
+// preskin::Error naming the file and the missing or malformed channel.
+PRESKIN_API ReferenceImage readReferenceImage(const std::filesystem::path& path, ReferenceKey& key);
 
 // Fraction done in [0, 1]; calls are serialised and non-decreasing, the last one is 1.
 using ReferenceProgress = std::function<void(double fraction)>;

@@ -13,8 +13,8 @@ What it changes (see CREDITS.md):
     Map-COL.jpg as base colour, Infinite-Level_02_Tangent_SmoothUV.jpg as the normal map and
     Map-SPEC.jpg as the skin specular map (PRESKIN_materials_skin, docs/gltf-extensions.md).
   * a directional key light (KHR_lights_punctual, 3 lux, shadow-casting via extras.castsShadow)
-    from the upper front-left, a camera 0.7 m in front of the face and the studio environment
-    (PRESKIN_environment) are added.
+    from the upper front-left, a camera 0.7 m in front of the face, close-up cameras of the nose
+    and cheek, the lips and the ear, and the studio environment (PRESKIN_environment) are added.
 The source's empty Camera/Lamp nodes (its scene 1) are dropped.
 
 Usage: make_head_gltf.py SOURCE.glb [--hdr studio_small_05_1k.hdr]
@@ -153,6 +153,27 @@ def main(argv):
     # the nose shadows the cheek.
     light_travel = normalize([0.6, -0.55, -0.58])
 
+    # Close-up cameras for measuring skin where people look (docs/fidelity.md), each framing about
+    # 60 to 90 mm, so 768 pixels give 8 to 13 pixels per mm: the nose and the cheek its shadow
+    # falls on (from the front right, the shadowed side), the lips, and the lit ear from the side.
+    def close_up(name, target, from_direction, distance, frame_height):
+        offset = [c * distance for c in normalize(from_direction)]
+        position = [t + o for t, o in zip(target, offset)]
+        return ({"name": name, "translation": position,
+                 "rotation": quaternion_looking_along([-o for o in offset]), "camera": len(cameras)},
+                {"name": name, "type": "perspective",
+                 "perspective": {"yfov": 2.0 * math.atan(0.5 * frame_height / distance), "znear": 0.02,
+                                 "zfar": 10.0}})
+    cameras = [{"name": "front", "type": "perspective", "perspective": {"yfov": 0.5, "znear": 0.05, "zfar": 10.0}}]
+    camera_nodes = [{"name": "front", "translation": camera_position, "camera": 0}]
+    for name, target, from_direction, distance, frame_height in [
+            ("cheek_nose", [0.03, 0.05, 0.08], [0.45, 0.1, 1.0], 0.25, 0.09),
+            ("lips", [0.0, 0.03, 0.1], [0.15, -0.05, 1.0], 0.2, 0.06),
+            ("ear", [-0.082, 0.07, 0.0], [-1.0, 0.05, 0.3], 0.25, 0.09)]:
+        node, camera = close_up(name, target, from_direction, distance, frame_height)
+        camera_nodes.append(node)
+        cameras.append(camera)
+
     gltf = {
         "asset": {"version": "2.0", "generator": "preskin make_head_gltf.py",
                   "copyright": "\"Infinite, 3D Head Scan\" by Lee Perry-Smith (Infinite-Realities), "
@@ -165,15 +186,13 @@ def main(argv):
             "PRESKIN_environment": {"uri": ENVIRONMENT, "intensity": 0.5, "rotation": 4.712389},
         },
         "scene": 0,
-        "scenes": [{"name": "head", "nodes": [0, 1, 2]}],
+        "scenes": [{"name": "head", "nodes": list(range(2 + len(camera_nodes)))}],
         "nodes": [
             {"name": "LeePerrySmith", "mesh": 0},
             {"name": "key", "rotation": quaternion_looking_along(light_travel),
              "extensions": {"KHR_lights_punctual": {"light": 0}}},
-            {"name": "front", "translation": camera_position, "camera": 0},
-        ],
-        "cameras": [{"name": "front", "type": "perspective",
-                     "perspective": {"yfov": 0.5, "znear": 0.05, "zfar": 10.0}}],
+        ] + camera_nodes,
+        "cameras": cameras,
         "meshes": [{"name": "LeePerrySmith", "primitives": [{
             "attributes": {"POSITION": 0, "NORMAL": 1, "TEXCOORD_0": 2},
             "indices": 3, "material": 0, "mode": 4}]}],
