@@ -4,8 +4,12 @@
 // skinning applies sum_k w_k J[joint_k] (glTF 2.0, "Skins" and "Morph Targets"): positions by the
 // blended matrix, normals by the inverse transpose of its 3x3 (as its cofactor matrix, which
 // differs by the positive factor |det| and needs no division), tangents by its 3x3, both
-// renormalised. A skinned vertex ends in world space (the joint matrices put it there), an
-// unskinned one stays in object space. uv, tangent.w and curvature are copied (curvature.comp
+// renormalised. The skin's normal basis (averaged normals, <preskin/NormalBasis.h>) moves like
+// the normal: each vector takes the normal's morph delta in proportion to its length along the
+// rest normal and the normal's transform and scale, so rigid motion carries it exactly (the rest
+// pose's neighbourhood is kept: a fold that forms is seen by curvature, not by the basis). A
+// skinned vertex ends in world space (the joint matrices put it there), an unskinned one stays in
+// object space. uv, tangent.w and curvature are copied (curvature.comp
 // recomputes curvature afterwards where the material asks for it). A normal or tangent that the
 // deformation collapses to zero length keeps its undeformed value, as on the CPU.
 // The CPU reference is deformPrimitive (<preskin/Deformation.h>).
@@ -21,6 +25,8 @@ layout(std430, set = 0, binding = kDeformBindingInfluences) readonly buffer Infl
 layout(std430, set = 0, binding = kDeformBindingWeights) readonly buffer Weights { float weights[]; };
 layout(std430, set = 0, binding = kDeformBindingJoints) readonly buffer Joints { mat4 joints[]; };
 layout(std430, set = 0, binding = kDeformBindingOutput) writeonly buffer Output { float outVertices[]; };
+layout(std430, set = 0, binding = kDeformBindingRestNormalBasis) readonly buffer RestBasis { float restBasis[]; };
+layout(std430, set = 0, binding = kDeformBindingNormalBasis) writeonly buffer OutBasis { float outBasis[]; };
 layout(push_constant) uniform Push { DeformPush push; };
 
 vec3 load3(uint i) { return vec3(rest[i], rest[i + 1], rest[i + 2]); }
@@ -42,6 +48,11 @@ void main() {
     vec3 restTangent = load3(src + kVertexTangent);
     vec3 normal = restNormal;
     vec3 tangent = restTangent;
+    uint basisSrc = (push.vertices.x + v) * kNormalBasisFloats;
+    uint basisDst = (push.vertices.y + v) * kNormalBasisFloats;
+    vec3 basis[kNormalBasisCount];
+    for (uint b = 0; b < kNormalBasisCount; ++b)
+        basis[b] = vec3(restBasis[basisSrc + 3 * b], restBasis[basisSrc + 3 * b + 1], restBasis[basisSrc + 3 * b + 2]);
 
     uint targets = push.vertices.w;
     for (uint t = 0; t < targets; ++t) {
@@ -53,6 +64,9 @@ void main() {
         tangent += w * delta3(d + 6);
     }
 
+    vec3 normalDelta = normal - restNormal;
+    for (uint b = 0; b < kNormalBasisCount; ++b) basis[b] += dot(basis[b], restNormal) * normalDelta;
+    mat3 normalTransform = mat3(1.0);
     if (push.offsets.y != 0xffffffffu) {
         DeformInfluences inf = influences[push.offsets.y + v];
         uint jointBase = push.offsets.w;
@@ -65,7 +79,8 @@ void main() {
         mat3 linear = mat3(m);
         // The inverse transpose up to a positive factor: the cofactor matrix times sign(det).
         mat3 cofactor = mat3(cross(linear[1], linear[2]), cross(linear[2], linear[0]), cross(linear[0], linear[1]));
-        normal = (determinant(linear) < 0.0 ? -1.0 : 1.0) * (cofactor * normal);
+        normalTransform = (determinant(linear) < 0.0 ? -1.0 : 1.0) * cofactor;
+        normal = normalTransform * normal;
         tangent = linear * tangent;
     }
     float nl = length(normal);
@@ -75,4 +90,11 @@ void main() {
     store3(dst + kVertexNormal, nl > 0.0 && !isinf(nl) ? normal / nl : restNormal);
     store3(dst + kVertexTangent, tl > 0.0 && !isinf(tl) ? tangent / tl : restTangent);
     for (uint i = kVertexTangent + 3; i < kVertexFloats; ++i) outVertices[dst + i] = rest[src + i];
+    float basisScale = nl > 0.0 && !isinf(nl) ? 1.0 / nl : 1.0;
+    for (uint b = 0; b < kNormalBasisCount; ++b) {
+        vec3 m = basisScale * (normalTransform * basis[b]);
+        outBasis[basisDst + 3 * b] = m.x;
+        outBasis[basisDst + 3 * b + 1] = m.y;
+        outBasis[basisDst + 3 * b + 2] = m.z;
+    }
 }

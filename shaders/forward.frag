@@ -50,6 +50,9 @@ layout(location = 7) in vec3 inShTransferGreen;
 layout(location = 8) in vec3 inShTransferBlue;
 layout(location = 9) in vec2 inShadowLift;               // kSkinLiftPerVertex: preskinSkinShadowLift
 layout(location = 10) in vec3 inSphereTransmittance;     // kSkinSphereTransmittancePerVertex
+layout(location = 11) in vec3 inNormalRedWs;             // skin: per-channel prefiltered geometric normals
+layout(location = 12) in vec3 inNormalGreenWs;
+layout(location = 13) in vec3 inNormalBlueWs;
 
 layout(location = 0) out vec4 outColor;
 
@@ -205,6 +208,11 @@ void main() {
         PreskinSkinSurface skin;
         skin.albedo = baseColor.rgb;
         skin.geometricNormal = geometricN;
+        // The geometric normal seen through each channel's profile (the vertex stage's normal basis).
+        float facing = gl_FrontFacing ? 1.0 : -1.0;
+        vec3 geometricR = facing * normalize(inNormalRedWs);
+        vec3 geometricG = facing * normalize(inNormalGreenWs);
+        vec3 geometricB = facing * normalize(inNormalBlueWs);
         if (hasNormalMap) {
             PreskinNormalMaps maps;
             maps.scale = material.pbr.z;
@@ -214,13 +222,14 @@ void main() {
             maps.lodBias = material.skinNormalLodBias.rgb;
             maps.levelCount = int(kSkinNormalLevels);
             maps.specularFromLevels = kSkinSpecularFromLevels;
-            preskinSkinNormals(normalTexture, detailNormalTexture, maps, uvNormal, geometricN, inTangentWs, features,
-                               skin.normalSpecular, skin.normalR, skin.normalG, skin.normalB);
+            preskinSkinNormals(normalTexture, detailNormalTexture, maps, uvNormal, geometricN, geometricR, geometricG,
+                               geometricB, inTangentWs, features, skin.normalSpecular, skin.normalR, skin.normalG,
+                               skin.normalB);
         } else {
             skin.normalSpecular = geometricN;
-            skin.normalR = geometricN;
-            skin.normalG = geometricN;
-            skin.normalB = geometricN;
+            skin.normalR = geometricR;
+            skin.normalG = geometricG;
+            skin.normalB = geometricB;
         }
         N = skin.normalSpecular;
         NoV = max(dot(N, V), 1e-4);

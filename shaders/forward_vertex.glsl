@@ -5,7 +5,8 @@
 //                        the vertex is sent to array layer gl_Layer = eye.
 // Transforms one mesh instance into the eye's clip space; passes the world-space tangent frame,
 // TEXCOORD_0, per-vertex curvature (object units -> 1/m in world space), which are the same for
-// every eye, and the eye index for the fragment stage. Skin pipelines with per-vertex curvature
+// every eye, and the eye index for the fragment stage; for skin, the geometric normal prefiltered
+// per colour channel from the normal basis (vertex binding 1). Skin pipelines with per-vertex curvature
 // also find the skin terms that depend on curvature alone (preskin/skin_vertex.glsl: the SH
 // transfer, the shadow lookup's lift, the sphere transmittance; see forward_specialization.glsl
 // for when), which the fragment stage interpolates instead of finding them per fragment. The
@@ -17,6 +18,7 @@ layout(std430, set = 0, binding = kBindingInstances) readonly buffer Instances {
 layout(set = 0, binding = kBindingShTransferLut) uniform sampler2DArray shTransferLut;
 layout(set = 0, binding = kBindingTransmittanceLut) uniform sampler2DArray transmittanceLut;
 layout(push_constant) uniform Push { DrawPush draw; };
+layout(set = 1, binding = kBindingProfileWeightTexture) uniform sampler2D profileWeightTexture;
 
 #include "preskin/skin_vertex.glsl"
 
@@ -25,6 +27,7 @@ layout(location = kAttributeNormal) in vec3 inNormalOs;
 layout(location = kAttributeTangent) in vec4 inTangentOs;
 layout(location = kAttributeUv0) in vec2 inUv0;
 layout(location = kAttributeCurvature) in float inCurvature;
+layout(location = kAttributeNormalBasis) in vec3 inNormalBasis[kNormalBasisCount];
 
 layout(location = 0) out vec3 outPositionWs;
 layout(location = 1) out vec3 outNormalWs;
@@ -37,6 +40,9 @@ layout(location = 7) out vec3 outShTransferGreen;
 layout(location = 8) out vec3 outShTransferBlue;
 layout(location = 9) out vec2 outShadowLift;               // kSkinLiftPerVertex: preskinSkinShadowLift
 layout(location = 10) out vec3 outSphereTransmittance;     // kSkinSphereTransmittancePerVertex
+layout(location = 11) out vec3 outNormalRedWs;             // skin: the per-channel prefiltered geometric normals
+layout(location = 12) out vec3 outNormalGreenWs;
+layout(location = 13) out vec3 outNormalBlueWs;
 
 void main() {
     uint eye = uint(PRESKIN_EYE_INDEX);
@@ -46,6 +52,28 @@ void main() {
     outNormalWs = mat3(instance.normalWorldFromObject) * inNormalOs;
     outTangentWs = vec4(mat3(instance.worldFromObject) * inTangentOs.xyz, inTangentOs.w);
     outUv0 = inUv0;
+    outNormalRedWs = outNormalWs;
+    outNormalGreenWs = outNormalWs;
+    outNormalBlueWs = outNormalWs;
+    if (kMaterialModel == kModelSkin && (kSkinFeatures & kSkinNormalPrefilter) != 0u) {
+        // The basis weights of the material's profile, or of its profiles blended by the weight
+        // texture at this vertex (as the fragment stage blends them: skinProfileMix of forward.frag).
+        vec4 weights[3] = vec4[3](material.skinNormalBasis[0], material.skinNormalBasis[1], material.skinNormalBasis[2]);
+        int blended = kProfileMix > 1u ? int(material.skinProfileBlend.x) : 0;
+        if (blended > 0) {
+            vec3 w = textureLod(profileWeightTexture, inUv0, 0.0).rgb * vec3(greaterThan(vec3(blended), vec3(0.0, 1.0, 2.0)));
+            float sum = w.r + w.g + w.b;
+            if (sum > 1.0) w /= sum;
+            vec4 mixWeights = vec4(max(1.0 - (w.r + w.g + w.b), 0.0), w);
+            for (int c = 0; c < 3; ++c)
+                weights[c] = mixWeights.x * material.skinNormalBasis[c] + mixWeights.y * material.skinNormalBasis[3 + c] +
+                             mixWeights.z * material.skinNormalBasis[6 + c] + mixWeights.w * material.skinNormalBasis[9 + c];
+        }
+        mat3 normalWorldFromObject = mat3(instance.normalWorldFromObject);
+        outNormalRedWs = normalWorldFromObject * preskinPrefilteredNormal(inNormalOs, inNormalBasis, weights[0]);
+        outNormalGreenWs = normalWorldFromObject * preskinPrefilteredNormal(inNormalOs, inNormalBasis, weights[1]);
+        outNormalBlueWs = normalWorldFromObject * preskinPrefilteredNormal(inNormalOs, inNormalBasis, weights[2]);
+    }
     outCurvaturePerM = inCurvature * instance.params.x;
     outEye = eye;
     // Skin's per-vertex terms (preskin/skin_vertex.glsl), for the material's own profile.

@@ -32,14 +32,19 @@ layout(location = 1) in vec3 inNormalWs;
 layout(location = 2) in vec4 inTangentWs;
 layout(location = 3) in vec2 inUv0;
 layout(location = 4) in float inCurvaturePerM;
+layout(location = 5) in vec3 inNormalRedWs;  // the skin's per-channel prefiltered geometric normals
+layout(location = 6) in vec3 inNormalGreenWs;
+layout(location = 7) in vec3 inNormalBlueWs;
 layout(location = 0) out vec4 outColor;
 
 void main() {
-    vec3 geometricN = normalize(inNormalWs) * (gl_FrontFacing ? 1.0 : -1.0);
+    float facing = gl_FrontFacing ? 1.0 : -1.0;
+    vec3 geometricN = normalize(inNormalWs) * facing;
     PreskinNormalMaps maps = PreskinNormalMaps(frame.skin.w, false, 1.0, 0.0, frame.lodBias.rgb, int(frame.lodBias.w), false);
     PreskinSkinSurface s;
-    preskinSkinNormals(normalMap, normalMap, maps, inUv0, geometricN, inTangentWs, kFeatures, s.normalSpecular,
-                       s.normalR, s.normalG, s.normalB);
+    preskinSkinNormals(normalMap, normalMap, maps, inUv0, geometricN, normalize(inNormalRedWs) * facing,
+                       normalize(inNormalGreenWs) * facing, normalize(inNormalBlueWs) * facing, inTangentWs, kFeatures,
+                       s.normalSpecular, s.normalR, s.normalG, s.normalB);
     s.albedo = texture(baseColorMap, inUv0).rgb;
     s.geometricNormal = geometricN;
     s.scatterScale = frame.skin.x;

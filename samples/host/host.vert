@@ -1,11 +1,15 @@
 #version 460
 // host.vert: the host sample's vertex stage. World position, normal and tangent of preskin's
-// interleaved Vertex (<preskin/Scene.h>, locations of shared/constants.h), and the per-vertex
-// curvature scaled from object to world units.
+// interleaved Vertex (<preskin/Scene.h>, locations of shared/constants.h), the per-vertex
+// curvature scaled from object to world units, and the skin's per-channel prefiltered normals
+// from the normal basis (second vertex stream, preskin::computeNormalBasis).
 #extension GL_GOOGLE_include_directive : require
-#include "shared/constants.h"
+#include "preskin/skin_vertex.glsl"
 
-layout(set = 0, binding = 6) uniform Camera { mat4 clipFromWorld; } camera;
+layout(set = 0, binding = 6) uniform Camera {
+    mat4 clipFromWorld;
+    vec4 normalBasisWeights[3];  // preskin::normalBasisWeights(profile, scatter scale): red, green, blue
+} camera;
 layout(push_constant) uniform Draw {
     mat4 worldFromObject;
     vec4 normalFromObject[3];  // columns of the inverse transpose; [0].w: 1 / the uniform scale
@@ -16,12 +20,16 @@ layout(location = kAttributeNormal) in vec3 inNormalOs;
 layout(location = kAttributeTangent) in vec4 inTangentOs;
 layout(location = kAttributeUv0) in vec2 inUv0;
 layout(location = kAttributeCurvature) in float inCurvature;
+layout(location = kAttributeNormalBasis) in vec3 inNormalBasis[kNormalBasisCount];
 
 layout(location = 0) out vec3 outPositionWs;
 layout(location = 1) out vec3 outNormalWs;
 layout(location = 2) out vec4 outTangentWs;
 layout(location = 3) out vec2 outUv0;
 layout(location = 4) out float outCurvaturePerM;
+layout(location = 5) out vec3 outNormalRedWs;
+layout(location = 6) out vec3 outNormalGreenWs;
+layout(location = 7) out vec3 outNormalBlueWs;
 
 void main() {
     vec4 positionWs = draw.worldFromObject * vec4(inPositionOs, 1.0);
@@ -31,5 +39,8 @@ void main() {
     outTangentWs = vec4(mat3(draw.worldFromObject) * inTangentOs.xyz, inTangentOs.w);
     outUv0 = inUv0;
     outCurvaturePerM = inCurvature * draw.normalFromObject[0].w;
+    outNormalRedWs = normalFromObject * preskinPrefilteredNormal(inNormalOs, inNormalBasis, camera.normalBasisWeights[0]);
+    outNormalGreenWs = normalFromObject * preskinPrefilteredNormal(inNormalOs, inNormalBasis, camera.normalBasisWeights[1]);
+    outNormalBlueWs = normalFromObject * preskinPrefilteredNormal(inNormalOs, inNormalBasis, camera.normalBasisWeights[2]);
     gl_Position = camera.clipFromWorld * positionWs;
 }

@@ -14,6 +14,7 @@
 #include <preskin/Environment.h>
 #include <preskin/Error.h>
 #include <preskin/LutSet.h>
+#include <preskin/NormalBasis.h>
 #include <preskin/Renderer.h>  // writeImage
 #include <preskin/Scene.h>
 #include <preskin/SkinParameters.h>
@@ -23,6 +24,7 @@
 #include <glm/gtc/matrix_inverse.hpp>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstdio>
 #include <cstring>
@@ -56,6 +58,11 @@ struct Frame {  // host.frag's uniform block
     glm::vec4 lobes;
     glm::uvec4 lightCount;
     preskin::gpu::GpuLight lights[8];
+};
+
+struct Camera {  // host.vert's uniform block
+    glm::mat4 clipFromWorld;
+    glm::vec4 normalBasisWeights[3];  // preskin::normalBasisWeights() per channel
 };
 
 struct Draw {  // host.vert's push constants
@@ -339,6 +346,7 @@ int main(int argc, char** argv) {
         Gpu gpu(deviceName);
         const VkDevice dev = gpu.device;
         std::vector<preskin::Vertex> vertices;
+        std::vector<preskin::NormalBasis> normalBasis;  // the second vertex stream: the skin's prefiltered normals
         std::vector<uint32_t> indices;
         struct DrawRange {
             uint32_t firstIndex, indexCount;
@@ -350,7 +358,21 @@ int main(int argc, char** argv) {
             Draw push{inst.worldFromObject, {}};
             for (int c = 0; c < 3; ++c) push.normalFromObject[c] = glm::vec4(normalFromObject[c], 0.0f);
             push.normalFromObject[0].w = 1.0f / inst.curvatureScale();
-            for (const preskin::Primitive& p : scene.meshes[size_t(inst.mesh)].primitives) {
+            // The mesh's normal basis, all its primitives as one surface, in its world millimetres.
+            const preskin::Mesh& mesh = scene.meshes[size_t(inst.mesh)];
+            std::vector<glm::vec3> positions, normals;
+            std::vector<uint32_t> meshIndices;
+            for (const preskin::Primitive& p : mesh.primitives) {
+                for (uint32_t index : p.indices) meshIndices.push_back(uint32_t(positions.size()) + index);
+                for (const preskin::Vertex& v : p.vertices) {
+                    positions.push_back(v.positionOs);
+                    normals.push_back(v.normalOs);
+                }
+            }
+            const std::vector<preskin::NormalBasis> basis =
+                preskin::computeNormalBasis(positions, normals, meshIndices, 1000.0 / inst.curvatureScale());
+            normalBasis.insert(normalBasis.end(), basis.begin(), basis.end());
+            for (const preskin::Primitive& p : mesh.primitives) {
                 draws.push_back({uint32_t(indices.size()), uint32_t(p.indices.size()), push});
                 for (uint32_t index : p.indices) indices.push_back(uint32_t(vertices.size()) + index);
                 vertices.insert(vertices.end(), p.vertices.begin(), p.vertices.end());
@@ -360,8 +382,12 @@ int main(int argc, char** argv) {
             gpu.buffer(vertices.size() * sizeof(preskin::Vertex), VK_BUFFER_USAGE_VERTEX_BUFFER_BIT, vertices.data());
         const VkBuffer indexBuffer = gpu.buffer(indices.size() * 4, VK_BUFFER_USAGE_INDEX_BUFFER_BIT, indices.data());
         const VkBuffer frameBuffer = gpu.buffer(sizeof(Frame), VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT, &frame);
-        const glm::mat4 clipFromWorld = eye.clipFromWorld();
-        const VkBuffer cameraBuffer = gpu.buffer(sizeof(glm::mat4), VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT, &clipFromWorld);
+        const VkBuffer basisBuffer = gpu.buffer(normalBasis.size() * sizeof(preskin::NormalBasis),
+                                                VK_BUFFER_USAGE_VERTEX_BUFFER_BIT, normalBasis.data());
+        Camera camera{eye.clipFromWorld(), {}};
+        const std::array<glm::vec4, 3> basisWeights = preskin::normalBasisWeights(luts.profile(), skin.scatterScale);
+        for (int c = 0; c < 3; ++c) camera.normalBasisWeights[c] = basisWeights[size_t(c)];
+        const VkBuffer cameraBuffer = gpu.buffer(sizeof(Camera), VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT, &camera);
 
         auto sceneTexture = [&](int index, VkFormat format) {
             const preskin::Image& img = scene.images[size_t(index)];
@@ -420,7 +446,7 @@ int main(int argc, char** argv) {
         dai.pSetLayouts = &setLayout;
         VkDescriptorSet set;
         check(vkAllocateDescriptorSets(dev, &dai, &set), "vkAllocateDescriptorSets");
-        const VkDescriptorBufferInfo bufferInfos[2] = {{frameBuffer, 0, sizeof(Frame)}, {cameraBuffer, 0, sizeof(glm::mat4)}};
+        const VkDescriptorBufferInfo bufferInfos[2] = {{frameBuffer, 0, sizeof(Frame)}, {cameraBuffer, 0, sizeof(Camera)}};
         VkDescriptorImageInfo imageInfos[5];
         VkWriteDescriptorSet writes[7];
         for (uint32_t b = 0; b < 7; ++b) {
@@ -457,18 +483,23 @@ int main(int argc, char** argv) {
         stages[1].stage = VK_SHADER_STAGE_FRAGMENT_BIT;
         stages[1].module = fs;
         stages[1].pName = "main";
-        const VkVertexInputBindingDescription vertexBinding{0, sizeof(preskin::Vertex), VK_VERTEX_INPUT_RATE_VERTEX};
-        const VkVertexInputAttributeDescription attributes[] = {
+        const VkVertexInputBindingDescription vertexBindings[] = {
+            {0, sizeof(preskin::Vertex), VK_VERTEX_INPUT_RATE_VERTEX},
+            {1, sizeof(preskin::NormalBasis), VK_VERTEX_INPUT_RATE_VERTEX}};
+        std::vector<VkVertexInputAttributeDescription> attributes = {
             {preskin::gpu::kAttributePosition, 0, VK_FORMAT_R32G32B32_SFLOAT, offsetof(preskin::Vertex, positionOs)},
             {preskin::gpu::kAttributeNormal, 0, VK_FORMAT_R32G32B32_SFLOAT, offsetof(preskin::Vertex, normalOs)},
             {preskin::gpu::kAttributeTangent, 0, VK_FORMAT_R32G32B32A32_SFLOAT, offsetof(preskin::Vertex, tangentOs)},
             {preskin::gpu::kAttributeUv0, 0, VK_FORMAT_R32G32_SFLOAT, offsetof(preskin::Vertex, uv0)},
             {preskin::gpu::kAttributeCurvature, 0, VK_FORMAT_R32_SFLOAT, offsetof(preskin::Vertex, curvaturePerM)}};
+        for (uint32_t b = 0; b < preskin::gpu::kNormalBasisCount; ++b)
+            attributes.push_back({preskin::gpu::kAttributeNormalBasis + b, 1, VK_FORMAT_R32G32B32_SFLOAT,
+                                  uint32_t(b * sizeof(glm::vec3))});
         VkPipelineVertexInputStateCreateInfo vertexInput{VK_STRUCTURE_TYPE_PIPELINE_VERTEX_INPUT_STATE_CREATE_INFO};
-        vertexInput.vertexBindingDescriptionCount = 1;
-        vertexInput.pVertexBindingDescriptions = &vertexBinding;
-        vertexInput.vertexAttributeDescriptionCount = 5;
-        vertexInput.pVertexAttributeDescriptions = attributes;
+        vertexInput.vertexBindingDescriptionCount = 2;
+        vertexInput.pVertexBindingDescriptions = vertexBindings;
+        vertexInput.vertexAttributeDescriptionCount = uint32_t(attributes.size());
+        vertexInput.pVertexAttributeDescriptions = attributes.data();
         VkPipelineInputAssemblyStateCreateInfo assembly{VK_STRUCTURE_TYPE_PIPELINE_INPUT_ASSEMBLY_STATE_CREATE_INFO};
         assembly.topology = VK_PRIMITIVE_TOPOLOGY_TRIANGLE_LIST;
         const VkViewport viewport{0.0f, 0.0f, float(width), float(height), 0.0f, 1.0f};
@@ -547,7 +578,9 @@ int main(int argc, char** argv) {
             vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, pipeline);
             vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, pipelineLayout, 0, 1, &set, 0, nullptr);
             const VkDeviceSize offset = 0;
-            vkCmdBindVertexBuffers(cmd, 0, 1, &vertexBuffer, &offset);
+            const VkBuffer vertexBuffers[2] = {vertexBuffer, basisBuffer};
+            const VkDeviceSize offsets[2] = {offset, offset};
+            vkCmdBindVertexBuffers(cmd, 0, 2, vertexBuffers, offsets);
             vkCmdBindIndexBuffer(cmd, indexBuffer, 0, VK_INDEX_TYPE_UINT32);
             for (const DrawRange& d : draws) {
                 vkCmdPushConstants(cmd, pipelineLayout, VK_SHADER_STAGE_VERTEX_BIT, 0, sizeof(Draw), &d.push);

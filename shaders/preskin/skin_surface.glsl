@@ -60,10 +60,14 @@ vec3 preskinNormalTs(vec3 baseTexel, vec3 detailTexel, PreskinNormalMaps maps) {
 
 // The surface's four normals from the maps: normalSpecular (unbiased) and normalR/G/B
 // (prefiltered per channel when kSkinNormalPrefilter is set, else equal to normalSpecular).
-// geometricNormal: the interpolated vertex normal facing the viewer; tangentWs: xyz, w sign.
+// geometricNormal: the interpolated vertex normal facing the viewer; geometricR/G/B: the same
+// prefiltered per channel (the mesh seen through each channel's profile, <preskin/NormalBasis.h>;
+// the geometric normal where the host has none), whose tangent frames carry each channel's map
+// sample; tangentWs: xyz, w sign.
 void preskinSkinNormals(sampler2D normalMap, sampler2D detailMap, PreskinNormalMaps maps, vec2 uv,
-                        vec3 geometricNormal, vec4 tangentWs, uint features, out vec3 normalSpecular,
-                        out vec3 normalR, out vec3 normalG, out vec3 normalB) {
+                        vec3 geometricNormal, vec3 geometricR, vec3 geometricG, vec3 geometricB, vec4 tangentWs,
+                        uint features, out vec3 normalSpecular, out vec3 normalR, out vec3 normalG,
+                        out vec3 normalB) {
     mat3 tbn = preskinTangentFrame(geometricNormal, tangentWs);
     vec2 uvDetail = uv * maps.detailUvScale;
     bool levels = (features & kSkinNormalPrefilter) != 0u;
@@ -91,9 +95,20 @@ void preskinSkinNormals(sampler2D normalMap, sampler2D detailMap, PreskinNormalM
         }
     }
     normalSpecular = normalize(tbn * preskinNormalTs(base, detail, maps));
-    normalR = levels ? normalize(tbn * preskinNormalTs(baseR, detailR, maps)) : normalSpecular;
-    normalG = levels ? normalize(tbn * preskinNormalTs(baseG, detailG, maps)) : normalSpecular;
-    normalB = levels ? normalize(tbn * preskinNormalTs(baseB, detailB, maps)) : normalSpecular;
+    normalR = levels ? normalize(preskinTangentFrame(geometricR, tangentWs) * preskinNormalTs(baseR, detailR, maps))
+                     : normalSpecular;
+    normalG = levels ? normalize(preskinTangentFrame(geometricG, tangentWs) * preskinNormalTs(baseG, detailG, maps))
+                     : normalSpecular;
+    normalB = levels ? normalize(preskinTangentFrame(geometricB, tangentWs) * preskinNormalTs(baseB, detailB, maps))
+                     : normalSpecular;
+}
+
+// The same without prefiltered geometric normals (all three the geometric normal).
+void preskinSkinNormals(sampler2D normalMap, sampler2D detailMap, PreskinNormalMaps maps, vec2 uv,
+                        vec3 geometricNormal, vec4 tangentWs, uint features, out vec3 normalSpecular,
+                        out vec3 normalR, out vec3 normalG, out vec3 normalB) {
+    preskinSkinNormals(normalMap, detailMap, maps, uv, geometricNormal, geometricNormal, geometricNormal,
+                       geometricNormal, tangentWs, features, normalSpecular, normalR, normalG, normalB);
 }
 
 // Curvature in 1/m from screen-space derivatives (Penner's fallback: constant per triangle).

@@ -9,13 +9,24 @@
 //  - the transmittance the diffuse LUT already holds (preskinSkinSphereTransmittance, subtracted
 //    by preskinSkinTransmission).
 // Interpolated across a triangle they differ from their value at the interpolated curvature by
-// second-order terms. Every function here is valid in any shader stage.
+// second-order terms. Also the geometric normal prefiltered per colour channel from the mesh's
+// normal basis (preskinPrefilteredNormal). Every function here is valid in any shader stage.
 #ifndef PRESKIN_SKIN_VERTEX_GLSL
 #define PRESKIN_SKIN_VERTEX_GLSL
 
 #include "preskin/common.glsl"
 #include "preskin/lut.glsl"
 #include "shared/skin_features.h"
+
+// The mesh normal seen through one colour channel's profile (<preskin/NormalBasis.h>): `normal`
+// the vertex normal, `basis` its normal basis (computeNormalBasis, kNormalBasisCount vectors, in
+// the normal's space), `weights` the channel's basis weights (normalBasisWeights). Not unit
+// length: normalise after interpolation.
+vec3 preskinPrefilteredNormal(vec3 normal, vec3 basis[kNormalBasisCount], vec4 weights) {
+    vec3 n = (1.0 - (weights.x + weights.y + weights.z + weights.w)) * normal;
+    for (int b = 0; b < int(kNormalBasisCount); ++b) n += weights[b] * basis[b];
+    return n;
+}
 
 // The shadow lookup's lift for curvaturePerMm (profile 1/mm): x the height in world metres of the
 // osculating sphere's sagitta over the local patch (radius rho = m.diffuseNoL.w profile mm,

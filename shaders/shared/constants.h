@@ -38,6 +38,10 @@ PRESKIN_CONST(uint, kAttributeNormal, 1)
 PRESKIN_CONST(uint, kAttributeTangent, 2)
 PRESKIN_CONST(uint, kAttributeUv0, 3)
 PRESKIN_CONST(uint, kAttributeCurvature, 4)
+// The skin's normal basis (<preskin/NormalBasis.h>), a second vertex stream (binding 1): the mesh
+// normals averaged by kNormalBasisCount Gaussians, one vec3 each at consecutive locations.
+PRESKIN_CONST(uint, kNormalBasisCount, 4)
+PRESKIN_CONST(uint, kAttributeNormalBasis, 5)
 
 // preskin::AlphaMode (<preskin/Scene.h>).
 PRESKIN_CONST(uint, kAlphaOpaque, 0)

@@ -5,6 +5,7 @@
 #define PRESKIN_SHARED_DEFORM_H
 
 #include "shared/common.h"
+#include "shared/constants.h"
 
 PRESKIN_GPU_BEGIN
 
@@ -15,6 +16,9 @@ PRESKIN_CONST(uint, kVertexPosition, 0)
 PRESKIN_CONST(uint, kVertexNormal, 3)
 PRESKIN_CONST(uint, kVertexTangent, 6)
 PRESKIN_CONST(uint, kVertexCurvature, 12)
+// A vertex's skin normal basis in a float[] buffer: kNormalBasisCount vec3 (NormalBasis of
+// <preskin/NormalBasis.h>), a second buffer laid out like the vertices.
+PRESKIN_CONST(uint, kNormalBasisFloats, 12)
 // Morph deltas per vertex and target: position 3, normal 3, tangent 3.
 PRESKIN_CONST(uint, kDeltaFloats, 9)
 
@@ -27,6 +31,8 @@ PRESKIN_CONST(uint, kDeformBindingJoints, 4)       // mat4[]: this frame's joint
 PRESKIN_CONST(uint, kDeformBindingOutput, 5)       // float[]: this frame's deformed vertices
 PRESKIN_CONST(uint, kDeformBindingTopology, 6)     // uint[]: the curvature pass's welded topology
 PRESKIN_CONST(uint, kDeformBindingScratch, 7)      // vec4[]: the curvature pass's per-frame scratch
+PRESKIN_CONST(uint, kDeformBindingRestNormalBasis, 8)  // float[]: rest normal basis (the scene's, kNormalBasisFloats per vertex)
+PRESKIN_CONST(uint, kDeformBindingNormalBasis, 9)      // float[]: this frame's deformed normal basis
 
 PRESKIN_CONST(uint, kDeformGroupSize, 64)
 

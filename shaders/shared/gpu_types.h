@@ -125,8 +125,10 @@ struct MaterialUniforms {
     GpuUvTransform uv[5];      // base colour, metallic-roughness, normal, occlusion, emissive
     LutMapping skinLuts[4];    // the LutMapping of each skinProfileLayers entry; the forward pass takes entry 0
                                // from its pipeline's specialization (kSpecLutMapping) instead
+    vec4 skinNormalBasis[12];  // the weights of the normal basis (normalBasisWeights of <preskin/NormalBasis.h>) at
+                               // the material's scatter scale: red, green, blue of each skinProfileLayers entry
 };
-PRESKIN_CHECK_SIZE(MaterialUniforms, 11 * 16 + 5 * 32 + 4 * 128)
+PRESKIN_CHECK_SIZE(MaterialUniforms, 11 * 16 + 5 * 32 + 4 * 128 + 12 * 16)
 
 // Per draw.
 struct DrawPush {

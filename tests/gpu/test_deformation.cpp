@@ -8,6 +8,8 @@
 //    curvature: 97 % of vertices within 2.5 %, every vertex within 15 %), and on the bent tube
 //    differs from the bind pose where it bends and not elsewhere; it is signed as the CPU's is
 //    (a sphere seen from inside is concave: -1/r);
+//  - the skin's normal basis moves like the normals (rigid parts keep each vector's length and
+//    normal component) and starts from computeNormalBasis of the rest mesh;
 //  - a pose that does not fit the scene is refused and the previous one kept.
 #include "support/GpuTest.h"
 #include "support/TestScenes.h"
@@ -15,6 +17,7 @@
 #include <preskin/Curvature.h>
 #include <preskin/Deformation.h>
 #include <preskin/Error.h>
+#include <preskin/NormalBasis.h>
 #include <preskin/Renderer.h>
 #include <preskin/Scene.h>
 
@@ -35,26 +38,43 @@ namespace {
 
 const std::string kTube = std::string(PRESKIN_SOURCE_DIR) + "/samples/assets/tube/tube.gltf";
 
-// The deformer's output for a pose: every deformed vertex of instance 0, in mesh order.
-std::vector<Vertex> gpuDeform(Context& context, const Scene& scene, const ScenePose& pose) {
+// The deformer's output for a pose: every deformed vertex of instance 0, in mesh order (and its
+// normal basis, and the rest one, when asked).
+std::vector<Vertex> gpuDeform(Context& context, const Scene& scene, const ScenePose& pose,
+                              std::vector<NormalBasis>* basis = nullptr, std::vector<NormalBasis>* restBasis = nullptr) {
     const vk::Device& device = ContextAccess::core(context);
     GpuScene gpuScene(device, scene);
-    GpuDeformer deformer(device, scene, gpuScene.vertices, gpuScene.meshFirstVertex);
+    GpuDeformer deformer(device, scene, gpuScene.vertices, gpuScene.normalBasis, gpuScene.meshFirstVertex);
     deformer.check(pose);
     deformer.prepare(0, pose);
     size_t count = 0;
     for (const Primitive& p : scene.meshes[size_t(scene.instances[0].mesh)].primitives) count += p.vertices.size();
     vk::Buffer host(device, count * sizeof(Vertex), VK_BUFFER_USAGE_TRANSFER_DST_BIT, true);
+    vk::Buffer hostBasis(device, count * sizeof(NormalBasis), VK_BUFFER_USAGE_TRANSFER_DST_BIT, true);
+    vk::Buffer hostRest(device, count * sizeof(NormalBasis), VK_BUFFER_USAGE_TRANSFER_DST_BIT, true);
     device.submitAndWait([&](VkCommandBuffer cmd) {
         deformer.recordDeformation(cmd, 0);
         deformer.recordCurvature(cmd, 0);
         const VkBufferCopy region{0, 0, count * sizeof(Vertex)};  // instance 0 is first in the output
         vkCmdCopyBuffer(cmd, deformer.output(0).handle(), host.handle(), 1, &region);
+        const VkBufferCopy basisRegion{0, 0, count * sizeof(NormalBasis)};
+        vkCmdCopyBuffer(cmd, deformer.normalBasisOutput(0).handle(), hostBasis.handle(), 1, &basisRegion);
+        const VkBufferCopy restRegion{gpuScene.meshFirstVertex[size_t(scene.instances[0].mesh)] * sizeof(NormalBasis), 0,
+                                      count * sizeof(NormalBasis)};
+        vkCmdCopyBuffer(cmd, gpuScene.normalBasis.handle(), hostRest.handle(), 1, &restRegion);
         vk::memoryBarrier(cmd, VK_PIPELINE_STAGE_2_COPY_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT, VK_PIPELINE_STAGE_2_HOST_BIT,
                           VK_ACCESS_2_HOST_READ_BIT);
     });
     std::vector<Vertex> out(count);
     std::memcpy(out.data(), host.mapped(), count * sizeof(Vertex));
+    if (basis) {
+        basis->resize(count);
+        std::memcpy(basis->data(), hostBasis.mapped(), count * sizeof(NormalBasis));
+    }
+    if (restBasis) {
+        restBasis->resize(count);
+        std::memcpy(restBasis->data(), hostRest.mapped(), count * sizeof(NormalBasis));
+    }
     return out;
 }
 
@@ -190,6 +210,60 @@ TEST_F(GpuDeformation, GpuCurvatureMatchesCpuEstimatorAndFollowsTheBend) {
         EXPECT_GT(changed, elbow / 2) << "the elbow's curvature should follow the bend";
         EXPECT_GT(unchanged, ends * 9 / 10) << "the straight parts keep their curvature";
     }
+}
+
+// The skin's normal basis moves like the normals: where the tube moves rigidly (its straight
+// ends) each basis vector keeps its length and its component along the normal, and at rest it is
+// the basis computeNormalBasis gives the rest mesh; meshes without skin have none.
+TEST_F(GpuDeformation, NormalBasisMovesLikeTheNormals) {
+    Scene scene = Scene::load(kTube);
+    scene.makeSkin("all");
+    std::vector<Vertex> rest;
+    std::vector<NormalBasis> restBasis, gpuRest;
+    for (float t : {0.0f, 1.0f}) {
+        std::vector<NormalBasis> basis;
+        const std::vector<Vertex> gpu = gpuDeform(context(), scene, tubePose(scene, t), &basis, &gpuRest);
+        if (t == 0.0f) {
+            rest = gpu;
+            restBasis = basis;
+            std::vector<glm::vec3> positions, normals;
+            std::vector<uint32_t> indices;
+            for (const Primitive& p : scene.meshes[size_t(scene.instances[0].mesh)].primitives) {
+                for (uint32_t i : p.indices) indices.push_back(uint32_t(positions.size()) + i);
+                for (const Vertex& v : p.vertices) {
+                    positions.push_back(v.positionOs);
+                    normals.push_back(v.normalOs);
+                }
+            }
+            const std::vector<NormalBasis> cpu = computeNormalBasis(positions, normals, indices, 1000.0);
+            ASSERT_EQ(cpu.size(), gpuRest.size());
+            for (size_t i = 0; i < cpu.size(); ++i)
+                for (size_t b = 0; b < cpu[i].size(); ++b) EXPECT_LT(glm::length(gpuRest[i][b] - cpu[i][b]), 1e-6f);
+            continue;
+        }
+        float lo = 1e30f, hi = -1e30f;
+        for (const Vertex& v : rest) {
+            lo = std::min(lo, v.positionOs.y);
+            hi = std::max(hi, v.positionOs.y);
+        }
+        size_t checked = 0;
+        for (size_t i = 0; i < gpu.size(); ++i) {
+            const float y = (rest[i].positionOs.y - lo) / (hi - lo);
+            if (y > 0.2f && y < 0.8f) continue;  // the bend
+            for (size_t b = 0; b < basis[i].size(); ++b) {
+                EXPECT_NEAR(glm::length(basis[i][b]), glm::length(restBasis[i][b]), 2e-3f) << "vertex " << i;
+                EXPECT_NEAR(glm::dot(basis[i][b], gpu[i].normalOs), glm::dot(restBasis[i][b], rest[i].normalOs), 2e-3f);
+            }
+            ++checked;
+        }
+        EXPECT_GT(checked, gpu.size() / 3);
+    }
+    // Without skin the basis is zero and stays zero.
+    const Scene plain = Scene::load(kTube);
+    std::vector<NormalBasis> basis;
+    gpuDeform(context(), plain, tubePose(plain, 1.0f), &basis);
+    for (const NormalBasis& m : basis)
+        for (const glm::vec3& v : m) EXPECT_EQ(v, glm::vec3(0.0f));
 }
 
 // A sphere seen from outside and from inside (normals and winding turned), each given a morph

@@ -119,6 +119,7 @@ TEST(GpuLayout, VertexShaderStructsMatchCpp) {
     PRESKIN_EXPECT_MEMBER(l, GpuInstance, params);
     PRESKIN_EXPECT_MEMBER(l, DrawPush, indices);
     PRESKIN_EXPECT_MEMBER(l, EyeUniforms, clipFromWorld);
+    PRESKIN_EXPECT_MEMBER(l, MaterialUniforms, skinNormalBasis);  // read by the vertex stage alone
 }
 
 // The light grid's compute build (cluster_build.comp, both passes in one module).

@@ -181,7 +181,9 @@ TEST(SceneHead, KeyLightCameraAndEnvironment) {
     const glm::vec3 expected = glm::normalize(glm::vec3(0.6f, -0.55f, -0.58f));
     EXPECT_NEAR(glm::dot(key.directionWs, expected), 1.0f, 1e-5f);
 
-    ASSERT_EQ(s.cameras.size(), 1u);
+    // The front view, then close-ups of the nose and cheek, the lips and the ear (docs/fidelity.md).
+    ASSERT_EQ(s.cameras.size(), 4u);
+    EXPECT_EQ(s.cameras[0].name, "front");
     const preskin::Camera& cam = s.cameras[0];
     EXPECT_FALSE(cam.orthographic);
     EXPECT_FLOAT_EQ(cam.yfov, 0.5f);
@@ -193,6 +195,23 @@ TEST(SceneHead, KeyLightCameraAndEnvironment) {
     const float halfHeight = position.z * std::tan(cam.yfov * 0.5f);
     EXPECT_LT(0.19f - position.y, halfHeight);
     EXPECT_LT(position.y - (-0.04f), halfHeight);
+
+    const char* closeUps[] = {"cheek_nose", "lips", "ear"};
+    for (size_t i = 0; i < 3; ++i) {
+        const preskin::Camera& c = s.cameras[i + 1];
+        EXPECT_EQ(c.name, closeUps[i]);
+        // Aimed at the head, framing at most 100 mm where the view meets it: >= 7.6 pixels per mm at 768.
+        const glm::vec3 eye(c.worldFromView[3]), look = -glm::vec3(c.worldFromView[2]);
+        float hitM = -1.0f;
+        const preskin::Bounds b = s.worldBounds();
+        for (float t = 0.0f; t < 0.5f; t += 0.0005f)
+            if (glm::all(glm::greaterThanEqual(eye + t * look, b.min)) && glm::all(glm::lessThanEqual(eye + t * look, b.max))) {
+                hitM = t;
+                break;
+            }
+        ASSERT_GT(hitM, 0.0f) << closeUps[i] << " looks past the head";
+        EXPECT_LT(2.0f * hitM * std::tan(0.5f * c.yfov), 0.1f) << closeUps[i];
+    }
 
     ASSERT_TRUE(s.environmentPath.has_value());
     EXPECT_EQ(s.environmentPath->filename(), "studio_small_05_1k.hdr");

@@ -4,6 +4,8 @@
 // and the recording of every draw of every eye into the host's or the headless target.
 #include "render/RendererImpl.h"
 
+#include <preskin/NormalBasis.h>
+
 #include "shared/gpu_types.h"
 #include "vk/Check.h"
 #include "vk/Pipeline.h"
@@ -90,7 +92,8 @@ VkPipeline Renderer::Impl::createForwardPipeline(const PipelineKey& key) const {
     const AlphaMode alphaMode = static_cast<AlphaMode>(key.alphaMode);
     const bool alphaToCoverage = key.samples > 1 && alphaMode == AlphaMode::Mask;
     desc.specialization.values[gpu::kSpecAlphaToCoverage] = alphaToCoverage ? 1u : 0u;
-    desc.vertexBindings = {{0, sizeof(Vertex), VK_VERTEX_INPUT_RATE_VERTEX}};
+    desc.vertexBindings = {{0, sizeof(Vertex), VK_VERTEX_INPUT_RATE_VERTEX},
+                           {1, sizeof(NormalBasis), VK_VERTEX_INPUT_RATE_VERTEX}};
     desc.vertexAttributes = {
         {gpu::kAttributePosition, 0, VK_FORMAT_R32G32B32_SFLOAT, offsetof(Vertex, positionOs)},
         {gpu::kAttributeNormal, 0, VK_FORMAT_R32G32B32_SFLOAT, offsetof(Vertex, normalOs)},
@@ -98,6 +101,9 @@ VkPipeline Renderer::Impl::createForwardPipeline(const PipelineKey& key) const {
         {gpu::kAttributeUv0, 0, VK_FORMAT_R32G32_SFLOAT, offsetof(Vertex, uv0)},
         {gpu::kAttributeCurvature, 0, VK_FORMAT_R32_SFLOAT, offsetof(Vertex, curvaturePerM)},
     };
+    for (uint32_t b = 0; b < gpu::kNormalBasisCount; ++b)
+        desc.vertexAttributes.push_back(
+            {gpu::kAttributeNormalBasis + b, 1, VK_FORMAT_R32G32B32_SFLOAT, uint32_t(b * sizeof(glm::vec3))});
     desc.colorFormats = {format};
     desc.depthFormat = static_cast<VkFormat>(key.depthFormat);
     desc.viewMask = key.layered ? 0u : (1u << key.eyes) - 1u;

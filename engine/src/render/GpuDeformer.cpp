@@ -47,8 +47,8 @@ uint32_t groups(uint32_t n) { return (n + gpu::kDeformGroupSize - 1) / gpu::kDef
 }  // namespace
 
 GpuDeformer::GpuDeformer(const vk::Device& device, const Scene& scene, const vk::Buffer& restVertices,
-                         const std::vector<uint32_t>& meshFirstVertex)
-    : device_(device), rest_(restVertices), meshFirstVertex_(meshFirstVertex) {
+                         const vk::Buffer& restNormalBasis, const std::vector<uint32_t>& meshFirstVertex)
+    : device_(device), rest_(restVertices), restNormalBasis_(restNormalBasis), meshFirstVertex_(meshFirstVertex) {
     // Which instances deform, and the static data of their meshes.
     std::vector<bool> meshUsed(scene.meshes.size(), false), meshSkinned(scene.meshes.size(), false);
     outputOf_.assign(scene.instances.size(), -1);
@@ -134,6 +134,8 @@ GpuDeformer::GpuDeformer(const vk::Device& device, const Scene& scene, const vk:
                               kStorage | VK_BUFFER_USAGE_VERTEX_BUFFER_BIT | VK_BUFFER_USAGE_TRANSFER_SRC_BIT, false);
         s.weights = vk::Buffer(device_, std::max<VkDeviceSize>(weightCount_ * sizeof(float), 16), kStorage, true);
         s.joints = vk::Buffer(device_, std::max<VkDeviceSize>(jointCount_ * sizeof(glm::mat4), 64), kStorage, true);
+        s.normalBasis = vk::Buffer(device_, VkDeviceSize(std::max(outputVertices_, 1u)) * gpu::kNormalBasisFloats * sizeof(float),
+                                   kStorage | VK_BUFFER_USAGE_VERTEX_BUFFER_BIT | VK_BUFFER_USAGE_TRANSFER_SRC_BIT, false);
     }
     createPipelines();
 }
@@ -223,11 +225,14 @@ void GpuDeformer::createPipelines() {
         {gpu::kDeformBindingOutput, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, cs},
         {gpu::kDeformBindingTopology, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, cs},
         {gpu::kDeformBindingScratch, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, cs},
+        {gpu::kDeformBindingRestNormalBasis, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, cs},
+        {gpu::kDeformBindingNormalBasis, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, cs},
     };
     setLayout_ = vk::createSetLayout(device_, bindings);
     deformLayout_ = vk::createPipelineLayout(device_, std::span(&setLayout_, 1), sizeof(gpu::DeformPush), cs);
     curvatureLayout_ = vk::createPipelineLayout(device_, std::span(&setLayout_, 1), sizeof(gpu::CurvaturePush), cs);
-    const VkDescriptorPoolSize size{VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 8 * kSlots};
+    constexpr uint32_t kBindings = 10;
+    const VkDescriptorPoolSize size{VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, kBindings * kSlots};
     VkDescriptorPoolCreateInfo poolInfo{VK_STRUCTURE_TYPE_DESCRIPTOR_POOL_CREATE_INFO};
     poolInfo.maxSets = kSlots;
     poolInfo.poolSizeCount = 1;
@@ -239,11 +244,13 @@ void GpuDeformer::createPipelines() {
         alloc.descriptorSetCount = 1;
         alloc.pSetLayouts = &setLayout_;
         PRESKIN_VK(vkAllocateDescriptorSets(device_.device(), &alloc, &s.set));
-        const VkBuffer buffers[8] = {rest_.handle(),     deltas_.handle(), influences_.handle(), s.weights.handle(),
-                                     s.joints.handle(), s.output.handle(), topology_.handle(),   scratch_.handle()};
-        VkDescriptorBufferInfo infos[8];
-        VkWriteDescriptorSet writes[8];
-        for (uint32_t b = 0; b < 8; ++b) {
+        const VkBuffer buffers[kBindings] = {rest_.handle(),     deltas_.handle(),   influences_.handle(),
+                                             s.weights.handle(), s.joints.handle(),  s.output.handle(),
+                                             topology_.handle(), scratch_.handle(),  restNormalBasis_.handle(),
+                                             s.normalBasis.handle()};
+        VkDescriptorBufferInfo infos[kBindings];
+        VkWriteDescriptorSet writes[kBindings];
+        for (uint32_t b = 0; b < kBindings; ++b) {
             infos[b] = {buffers[b], 0, VK_WHOLE_SIZE};
             writes[b] = {VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET};
             writes[b].dstSet = s.set;
@@ -252,7 +259,7 @@ void GpuDeformer::createPipelines() {
             writes[b].descriptorType = VK_DESCRIPTOR_TYPE_STORAGE_BUFFER;
             writes[b].pBufferInfo = &infos[b];
         }
-        vkUpdateDescriptorSets(device_.device(), 8, writes, 0, nullptr);
+        vkUpdateDescriptorSets(device_.device(), kBindings, writes, 0, nullptr);
     }
     const auto deformCode = shaders::spirv("deform.comp");
     const auto curvatureCode = shaders::spirv("curvature.comp");

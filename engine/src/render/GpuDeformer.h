@@ -1,6 +1,7 @@
 // The renderer's per-frame deformation of animated mesh instances (skinned, or with morph targets):
 // a compute pass writes each such instance's vertices in this frame's pose into a per-frame
-// vertex buffer (shaders/deform.comp), then, for meshes with skin materials that ask for it
+// vertex buffer (shaders/deform.comp), the skin's normal basis moved like the normals into a
+// second one, then, for meshes with skin materials that ask for it
 // (SkinMaterial::deformedCurvature), recomputes per-vertex curvature from the deformed surface
 // (shaders/curvature.comp). The shadow and forward passes of every eye then draw those vertices.
 // Static instances are not touched: they keep drawing the scene's rest vertices.
@@ -30,9 +31,10 @@ public:
     static constexpr uint32_t kSlots = 2;
 
     // `meshFirstVertex`: where each mesh's vertices start in `restVertices` (the scene's vertex
-    // buffer, laid out mesh after mesh, primitive after primitive).
+    // buffer, laid out mesh after mesh, primitive after primitive); `restNormalBasis`: the skin's
+    // normal basis laid out like it (GpuScene::normalBasis).
     GpuDeformer(const vk::Device& device, const Scene& scene, const vk::Buffer& restVertices,
-                const std::vector<uint32_t>& meshFirstVertex);
+                const vk::Buffer& restNormalBasis, const std::vector<uint32_t>& meshFirstVertex);
     ~GpuDeformer();
     GpuDeformer(const GpuDeformer&) = delete;
     GpuDeformer& operator=(const GpuDeformer&) = delete;
@@ -44,6 +46,8 @@ public:
     // from output(slot).
     int32_t vertexShift(uint32_t instance) const;
     const vk::Buffer& output(uint32_t slot) const { return slots_[slot].output; }
+    // This frame's normal basis of the deformed instances (vertex binding 1), laid out like output(slot).
+    const vk::Buffer& normalBasisOutput(uint32_t slot) const { return slots_[slot].normalBasis; }
     uint32_t deformedInstances() const { return static_cast<uint32_t>(deformed_.size()); }
     uint32_t curvatureInstances() const;
 
@@ -84,7 +88,7 @@ private:
         uint32_t scratchOffset = 0;
     };
     struct Slot {
-        vk::Buffer output, weights, joints;
+        vk::Buffer output, weights, joints, normalBasis;
         VkDescriptorSet set = VK_NULL_HANDLE;
     };
 
@@ -93,6 +97,7 @@ private:
 
     const vk::Device& device_;
     const vk::Buffer& rest_;
+    const vk::Buffer& restNormalBasis_;
     std::vector<uint32_t> meshFirstVertex_;
     std::vector<MeshData> meshes_;
     std::vector<int64_t> outputOf_;  // per scene instance: first output vertex, or -1

@@ -94,6 +94,7 @@ void GpuLuts::uploadLayer(uint32_t layer, const LutSet& luts, VkImageLayout oldL
     }
     layers_[layer].mapping = lutMapping(luts, extents_);
     layers_[layer].widthMm = glm::vec3(luts.profile().widthMm());
+    layers_[layer].profile = std::make_shared<const DiffusionProfile>(luts.profile());
 }
 
 bool GpuLuts::replaceLayer(uint32_t layer, const LutSet& luts) {

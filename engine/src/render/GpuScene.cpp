@@ -1,5 +1,6 @@
 #include "render/GpuScene.h"
 
+#include <preskin/NormalBasis.h>
 #include <preskin/SkinParameters.h>
 
 #include "vk/Check.h"
@@ -16,6 +17,8 @@
 namespace preskin {
 
 static_assert(sizeof(Vertex) == 52, "Vertex is read by the GPU with the layout of forward.vert");
+static_assert(sizeof(NormalBasis) == gpu::kNormalBasisCount * 12 && kNormalBasisCount == int(gpu::kNormalBasisCount),
+              "NormalBasis is read by the GPU as kNormalBasisCount vec3 at consecutive locations");
 
 namespace {
 
@@ -68,6 +71,42 @@ GpuScene::GpuScene(const vk::Device& device, const Scene& scene)
             for (const uint32_t index : p.indices) allIndices.push_back(base + index);
         }
     }
+    // The skin's normal basis, per mesh with a skin primitive (all its primitives as one surface,
+    // as for curvature), in the millimetres of its first instance.
+    std::vector<NormalBasis> allBasis(allVertices.size(), NormalBasis{});
+    for (size_t m = 0; m < scene.meshes.size(); ++m) {
+        const Mesh& mesh = scene.meshes[m];
+        const bool skin = std::any_of(mesh.primitives.begin(), mesh.primitives.end(), [&](const Primitive& p) {
+            return p.material >= 0 && size_t(p.material) < scene.materials.size() &&
+                   scene.materials[size_t(p.material)].skin.has_value();
+        });
+        if (!skin) continue;
+        double scale = 1.0;
+        for (const MeshInstance& inst : scene.instances)
+            if (inst.mesh == int(m)) {
+                const double s = std::cbrt(std::abs(glm::determinant(glm::dmat3(inst.worldFromObject))));
+                if (std::isfinite(s) && s > 0.0) scale = s;
+                break;
+            }
+        std::vector<glm::vec3> positions, normals;
+        std::vector<uint32_t> meshIndices;
+        for (const Primitive& p : mesh.primitives) {
+            const auto base = static_cast<uint32_t>(positions.size());
+            for (const Vertex& v : p.vertices) {
+                positions.push_back(v.positionOs);
+                normals.push_back(v.normalOs);
+            }
+            for (uint32_t index : p.indices) meshIndices.push_back(base + index);
+        }
+        const std::vector<NormalBasis> basis = computeNormalBasis(positions, normals, meshIndices, 1000.0 * scale);
+        std::copy(basis.begin(), basis.end(), allBasis.begin() + meshFirstVertex[m]);
+    }
+    normalBasis = vk::Buffer(device, std::max<size_t>(allBasis.size(), 1) * sizeof(NormalBasis),
+                             VK_BUFFER_USAGE_VERTEX_BUFFER_BIT | VK_BUFFER_USAGE_STORAGE_BUFFER_BIT |
+                                 VK_BUFFER_USAGE_TRANSFER_SRC_BIT,
+                             false);
+    normalBasis.upload(allBasis.data(), allBasis.size() * sizeof(NormalBasis));
+
     // Also read by the deformation pass (GpuDeformer) as its rest pose.
     vertices = vk::Buffer(device, std::max<size_t>(allVertices.size(), 1) * sizeof(Vertex),
                           VK_BUFFER_USAGE_VERTEX_BUFFER_BIT | VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, false);
@@ -158,8 +197,12 @@ GpuScene::GpuScene(const vk::Device& device, const Scene& scene)
     // The uniforms are read by both stages (the vertex stage: a skin material's per-vertex terms).
     std::vector<vk::Binding> bindings = {{gpu::kBindingMaterial, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER,
                                           VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_FRAGMENT_BIT}};
+    // The profile-weight texture too (the vertex stage blends the normal basis weights by it).
     for (uint32_t b = 1; b <= gpu::kMaterialTextureCount; ++b)
-        bindings.push_back({b, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, VK_SHADER_STAGE_FRAGMENT_BIT});
+        bindings.push_back({b, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER,
+                            b == gpu::kBindingProfileWeightTexture
+                                ? VkShaderStageFlags(VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_FRAGMENT_BIT)
+                                : VkShaderStageFlags(VK_SHADER_STAGE_FRAGMENT_BIT)});
     materialLayout_ = vk::createSetLayout(device, bindings);
     const uint32_t setCount = defaultMaterial + 1;
     const VkDescriptorPoolSize sizes[] = {{VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, setCount},
@@ -323,6 +366,11 @@ gpu::MaterialUniforms GpuScene::uniformsFor(const Material& mat, const GpuMateri
         for (size_t i = 0; i < blended; ++i) u.skinProfileLayers[int(i) + 1] = float(s.blendProfiles[i] + 1);
         u.skinProfileBlend = glm::vec4(s.profileWeightTexture.valid() ? float(blended) : 0.0f, 0.0f, 0.0f, 0.0f);
         for (int i = 0; i < 4; ++i) u.skinLuts[i] = layerOf(int(u.skinProfileLayers[i])).mapping;
+        for (int i = 0; i < 4; ++i)
+            if (const auto& profile = layerOf(int(u.skinProfileLayers[i])).profile) {
+                const std::array<glm::vec4, 3> w = normalBasisWeights(*profile, s.scatterScale);
+                for (int c = 0; c < 3; ++c) u.skinNormalBasis[3 * i + c] = w[size_t(c)];
+            }
     }
     return u;
 }

@@ -11,6 +11,7 @@
 #include "vk/Resources.h"
 
 #include <map>
+#include <memory>
 #include <utility>
 #include <vector>
 
@@ -49,6 +50,7 @@ struct GpuMaterial {
 struct ProfileLayer {
     glm::vec3 widthMm{0.0f};
     gpu::LutMapping mapping{};
+    std::shared_ptr<const DiffusionProfile> profile;  // its normal-basis weights depend on the material's scatter scale
 };
 
 // An instance's transforms as the vertex stage reads them.
@@ -73,6 +75,9 @@ public:
     vk::Buffer vertices;
     vk::Buffer indices;
     std::vector<uint32_t> meshFirstVertex;  // where each mesh's vertices start in `vertices`
+    // The skin's normal basis of every rest vertex (vertex binding 1, NormalBasis of
+    // <preskin/NormalBasis.h>; zero on meshes without skin). The deformer moves it like the normals.
+    vk::Buffer normalBasis;
     std::vector<gpu::GpuInstance> restInstances;  // per scene instance (the rest pose), for the renderer
     std::vector<DrawItem> draws;
     std::vector<GpuMaterial> materials;  // scene materials, then the default material

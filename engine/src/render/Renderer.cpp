@@ -91,7 +91,7 @@ Renderer::Impl::Impl(Context& ctx, const Scene& s, const Environment& env, const
     scene = std::make_unique<GpuScene>(dev, s);
     poseBounds = std::make_unique<PoseBounds>(s);
     receiverPoseBounds = std::make_unique<PoseBounds>(skinReceiverBounds(s));
-    deformer = std::make_unique<GpuDeformer>(dev, s, scene->vertices, scene->meshFirstVertex);
+    deformer = std::make_unique<GpuDeformer>(dev, s, scene->vertices, scene->normalBasis, scene->meshFirstVertex);
     setPose(restPose(s));
     setLutLayers(lutLayers);
     clusters = std::make_unique<ClusterBuilder>(dev);
@@ -348,8 +348,11 @@ int32_t Renderer::Impl::bindDrawVertices(VkCommandBuffer cmd, uint32_t slotIndex
     const bool deformed = deformer->deforms(d.instance);
     const VkBuffer vb = deformed ? deformer->output(slotIndex).handle() : scene->vertices.handle();
     if (vb != bound) {
-        const VkDeviceSize offset = 0;
-        vkCmdBindVertexBuffers(cmd, 0, 1, &vb, &offset);
+        // Binding 1, the skin's normal basis, is laid out like the vertices.
+        const VkBuffer buffers[2] = {vb, deformed ? deformer->normalBasisOutput(slotIndex).handle()
+                                                  : scene->normalBasis.handle()};
+        const VkDeviceSize offsets[2] = {0, 0};
+        vkCmdBindVertexBuffers(cmd, 0, 2, buffers, offsets);
         bound = vb;
     }
     return d.vertexOffset + (deformed ? deformer->vertexShift(d.instance) : 0);
