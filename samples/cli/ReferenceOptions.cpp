@@ -42,14 +42,20 @@ std::unique_ptr<DiffusionReference> makeReference(const Scene& scene, const Envi
 
 namespace {
 
-// FNV-1a (64 bits) of a file's bytes: tells a changed scene file from the one a reference was made of.
+// FNV-1a (64 bits) of bytes: tells a changed scene file or profile from the one a reference was made of.
+uint64_t fnv1a(uint64_t h, const char* bytes, size_t count) {
+    for (size_t i = 0; i < count; ++i) h = (h ^ uint8_t(bytes[i])) * 1099511628211ull;
+    return h;
+}
+constexpr uint64_t kFnvOffset = 14695981039346656037ull;
+
 std::string fileHash(const std::filesystem::path& path) {
     std::ifstream in(path, std::ios::binary);
-    uint64_t h = 14695981039346656037ull;
+    uint64_t h = kFnvOffset;
     char buffer[1 << 16];
     while (in) {
         in.read(buffer, sizeof buffer);
-        for (std::streamsize i = 0; i < in.gcount(); ++i) h = (h ^ uint8_t(buffer[i])) * 1099511628211ull;
+        h = fnv1a(h, buffer, size_t(in.gcount()));
     }
     return fmt::format("{:016x}", h);
 }
@@ -75,7 +81,10 @@ ReferenceKey referenceKey(const std::filesystem::path& scenePath, const ViewOpti
         {"exposure", fmt::format("{}", common.exposure)},
         {"shadows", common.noShadows ? "off" : "on"},
         {"profile", luts.profile().name()},
-        {"luts", common.luts.empty() ? "bundled" : common.luts},
+        {"profileHash", [&] {
+             const std::string json = luts.profile().toJson();
+             return fmt::format("{:016x}", fnv1a(kFnvOffset, json.data(), json.size()));
+         }()},
         {"quadrature", fmt::format("tail {} leaf {} finest {} moments {} edge {}", s.tailFraction, s.leafRatio,
                                    s.finestLeafRatio, s.momentTolerance, s.shadowEdgeWidths)},
     };

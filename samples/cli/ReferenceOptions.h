@@ -27,7 +27,8 @@ std::unique_ptr<DiffusionReference> makeReference(const Scene& scene, const Envi
 
 // What the reference of this command line depends on, for reference files reused by
 // `preskin compare --reference`: the model's version, the scene file (path and a hash of its
-// bytes), the view and size, the lighting options, the LUT set's profile and the quadrature.
+// bytes), the view and size, the lighting options, the LUT set's profile (name and a hash of its
+// definition: a LUT set baked again from it, at any size, keeps the reference) and the quadrature.
 ReferenceKey referenceKey(const std::filesystem::path& scenePath, const ViewOptions& view, const CommonOptions& common,
                           const ReferenceOptions& o, const LutSet& luts);
 

@@ -3,10 +3,11 @@
 // shadow filter so the edge spans many pixels).
 //  - Along each image row the shadow transition of every channel is normalised between its lit
 //    and dark plateaus and its 10%-90% width measured. With penumbra scattering on, red's
-//    transition must be wider than blue's (red scatters farthest), and no channel's narrower than
-//    the plain shadow's (skin only softens a penumbra); with it off (plain filtered shadow in every channel) the channels'
-//    widths agree. Far from the edge, where the plain filtered shadow is exactly 0 or 1, turning
-//    the technique on must not change the image (within 1/255).
+//    transition must be wider than blue's (red scatters farthest), and blue's narrower than the
+//    plain shadow's (the filter, wider than blue's profile here, only places the edge; the light
+//    is a point); with it off (plain filtered shadow in every channel) the channels' widths
+//    agree. Far from the edge, where the plain filtered shadow is exactly 0 or 1, turning the
+//    technique on must not change the image (within 1/255).
 //  - The plain filtered shadow (Shadow debug view) must be what the penumbra LUT assumes: a
 //    smooth, strictly monotone Gaussian edge, within 0.02 of Phi(x / sigma) with sigma fitted
 //    from its own 16%/84% points.
@@ -184,8 +185,7 @@ TEST_F(SkinPenumbra, RedTransitionWiderThanBlueAndNoChangeFarFromTheEdge) {
     ASSERT_GE(off.rows, int(size) - 20);
     EXPECT_GT(on.width[0], 1.1 * on.width[2]) << "red's transition should be clearly wider than blue's";
     EXPECT_GT(on.width[0], on.width[1]) << "red's transition should be wider than green's";
-    for (int c = 0; c < 3; ++c)
-        EXPECT_GE(on.width[c], off.width[c] - 0.05) << "skin scattering must never sharpen the shadow (channel " << c << ")";
+    EXPECT_LT(on.width[2], 0.8 * off.width[2]) << "blue should see the edge sharper than the filter draws it";
     EXPECT_NEAR(off.width[0], off.width[2], 0.1) << "without penumbra scattering every channel has the same edge";
     EXPECT_GT(off.width[1], 3.0) << "the plain edge should span several pixels, or the widths mean little";
 

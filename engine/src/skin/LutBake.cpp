@@ -8,7 +8,6 @@
 #include "skin/Half.h"
 #include "skin/LutLayout.h"
 #include "skin/SphereScatter.h"
-#include "skin/SoftEdge.h"
 #include "skin/SpecialFunctions.h"
 
 #include <preskin/Error.h>
@@ -143,7 +142,6 @@ LutSet LutSet::bake(const DiffusionProfile& profile, const LutBakeSettings& sett
 
     const double windowSigmas = skin::kPenumbraWindowSigmas;
     const double patchMm = set.localPatchMm();
-    const skin::SoftEdge softEdge(profile);
     tbb::parallel_for(0, total, [&](int unit) {
         if (unit < diffuseUnits) {
             const int iy = unit;
@@ -161,9 +159,11 @@ LutSet LutSet::bake(const DiffusionProfile& profile, const LutBakeSettings& sett
             const int lastRow = set.penumbra_.height() - 1;
             const double sigmaMm = set.penumbra_.y.valueAt(iy) * set.penumbraReferenceWidthMm_;
             const bool limitRow = iy == 0 || iy == lastRow;
-            const glm::dvec3 low = limitRow ? glm::dvec3(0.0) : softEdge(-windowSigmas * sigmaMm, sigmaMm);
-            const glm::dvec3 high = limitRow ? glm::dvec3(1.0) : softEdge(windowSigmas * sigmaMm, sigmaMm);
-            const double phiLow = 0.5 * std::erfc(windowSigmas / std::sqrt(2.0));
+            // The filter only finds where the edge is, x = sigma Phi^-1(shadow); the light is a
+            // point, so the skin sees the hard edge there through its profile, E(x), renormalised
+            // to the filter's window |x| <= 3 sigma (beyond it the filter reads 0 or 1).
+            const glm::dvec3 low = limitRow ? glm::dvec3(0.0) : profile.edgeResponse(-windowSigmas * sigmaMm);
+            const glm::dvec3 high = limitRow ? glm::dvec3(1.0) : profile.edgeResponse(windowSigmas * sigmaMm);
             for (int ix = 0; ix < set.penumbra_.width(); ++ix) {
                 const double q = shadowQuantile[static_cast<size_t>(ix)];
                 glm::dvec3 value;
@@ -172,12 +172,11 @@ LutSet LutSet::bake(const DiffusionProfile& profile, const LutBakeSettings& sett
                 } else if (q >= windowSigmas) {
                     value = glm::dvec3(1.0);
                 } else if (iy == lastRow) {
-                    // A penumbra infinitely wider than the profile passes unchanged (renormalised).
-                    value = glm::dvec3((0.5 * std::erfc(-q / std::sqrt(2.0)) - phiLow) / (1.0 - 2.0 * phiLow));
+                    value = glm::dvec3(q < 0.0 ? 0.0 : (q > 0.0 ? 1.0 : 0.5));  // a filter infinitely wider: the edge
                 } else if (iy == 0) {
                     value = glm::dvec3(0.5 * (q / windowSigmas + 1.0));  // vanishing filter: the linear limit
                 } else {
-                    value = (softEdge(sigmaMm * q, sigmaMm) - low) / (high - low);
+                    value = (profile.edgeResponse(sigmaMm * q) - low) / (high - low);
                 }
                 skin::storeHalf(set.penumbra_, ix, iy, glm::clamp(value, 0.0, 1.0));
             }

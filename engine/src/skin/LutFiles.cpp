@@ -150,9 +150,9 @@ std::string manifestText(const LutSet& set, bool raw) {
                          "convex: the whole sphere, V = 1; concave: the inside, limited to the cap of arc radius "
                          "localPatchMm around x, V = 0 where the light towards y leaves through the cap"},
         {"localPatchMm", set.localPatchMm()},
-        {"penumbraModel", "the shadow filter's Gaussian penumbra (standard deviation sigma_f) convolved with the "
-                          "profile; x = sigma_f Phi^-1(shadow); value = that soft-edge response renormalised to "
-                          "|x| <= 3 sigma_f"},
+        {"penumbraModel", "a point light's hard shadow edge, located by the shadow filter (Gaussian, standard "
+                          "deviation sigma_f): x = sigma_f Phi^-1(shadow); value = the profile's edge response at x "
+                          "renormalised to |x| <= 3 sigma_f"},
         {"shTransfer", "stored as A_l / (pi, 2 pi / 3, pi / 4)_l, A_l = 2 pi int D(theta) P_l(cos theta) sin theta "
                        "dtheta over the convex sphere of |curvature| (= Lambert_l g_l / g_0, g_l the profile's Legendre "
                        "coefficients on the sphere, Funk-Hecke); flat skin stores 1"},
