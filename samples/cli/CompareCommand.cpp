@@ -108,6 +108,22 @@ void run(const Options& o) {
         checkOutputPath(lambertRenderPath, OutputEncoding::LinearFloat);
     }
     const ReferenceKey key = referenceKey(scenePath, o.view, o.common, o.reference, luts);
+    // A reference file is read and checked before anything is rendered: a stale one stops the run at once.
+    ReferenceImage ref;
+    const auto start = std::chrono::steady_clock::now();
+    if (reuseReference) {
+        ReferenceKey made;
+        ref = readReferenceImage(referencePath, made);
+        for (const auto& [name, value] : key) {
+            auto it = std::find_if(made.begin(), made.end(), [&](const auto& kv) { return kv.first == name; });
+            const std::string was = it == made.end() ? std::string("(not recorded)") : it->second;
+            if (was != value)
+                throw Error(fmt::format("{}: --reference: {}: the file was made for '{}', this run needs '{}' (remove "
+                                        "the file to compute it again)",
+                                        o.referenceFile, name, was, value));
+        }
+    }
+    double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 
     auto context = Context::create(contextDesc(o.common));
     RenderSettings settings = renderSettings(o.common);  // the skin technique switches hold
@@ -121,24 +137,12 @@ void run(const Options& o) {
     const RenderedImage lambert = renderer.render(view, width, height, OutputEncoding::LinearFloat);
     reportValidation(*context);
 
-    const auto start = std::chrono::steady_clock::now();
-    ReferenceImage ref;
-    if (reuseReference) {
-        ReferenceKey made;
-        ref = readReferenceImage(referencePath, made);
-        for (const auto& [name, value] : key) {
-            auto it = std::find_if(made.begin(), made.end(), [&](const auto& kv) { return kv.first == name; });
-            const std::string was = it == made.end() ? std::string("(not recorded)") : it->second;
-            if (was != value)
-                throw Error(fmt::format("{}: --reference: {}: the file was made for '{}', this run needs '{}' (remove "
-                                        "the file to compute it again)",
-                                        o.referenceFile, name, was, value));
-        }
-    } else {
+    if (!reuseReference) {
+        const auto computeStart = std::chrono::steady_clock::now();
         const auto reference = makeReference(scene, environment, luts, o.common, o.reference);
         ref = renderReference(*reference, view, o.view, o.common.exposure, o.reference);
+        seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - computeStart).count();
     }
-    const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 
     const std::vector<Region> regions = compareRegions(ref, o.curvatureClassPerMm);
     JsonWriter j;

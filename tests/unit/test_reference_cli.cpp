@@ -9,6 +9,7 @@
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 
+#include <algorithm>
 #include <filesystem>
 #include <set>
 #include <sstream>
@@ -105,6 +106,36 @@ TEST_F(ReferenceCli, CompareJsonIsDocumentedAndReproducible) {
     collectKeys(report, keys);
     for (const std::string& key : keys)
         EXPECT_NE(docs.find("`" + key + "`"), std::string::npos) << "docs/reference.md does not document `" << key << "`";
+}
+
+// A reference written by compare --reference is read back by the next run (same report, no
+// progress bar: nothing computed), and refused, naming the field, by a run it was not made for.
+TEST_F(ReferenceCli, CompareReusesAReferenceMadeForTheSameRun) {
+    const fs::path ref = dir_ / "ref.exr";
+    const fs::path json1 = dir_ / "a.json", png1 = dir_ / "a.png", json2 = dir_ / "b.json", png2 = dir_ / "b.png";
+    std::vector<std::string> args = compareArgs(json1, png1);
+    args.insert(args.end(), {"--reference", ref.string(), "--renders", (dir_ / "r").string()});
+    const ProcessResult first = run(args, 300.0);
+    ASSERT_EQ(first.exitCode, 0) << first.err;
+    EXPECT_TRUE(fs::exists(ref));
+    EXPECT_TRUE(fs::exists(dir_ / "r.skin.exr"));
+    EXPECT_TRUE(fs::exists(dir_ / "r.lambert.exr"));
+    std::vector<std::string> again = compareArgs(json2, png2);
+    again.insert(again.end(), {"--reference", ref.string()});
+    const ProcessResult second = run(again, 300.0);
+    ASSERT_EQ(second.exitCode, 0) << second.err;
+    EXPECT_EQ(second.err.find("100%"), std::string::npos) << "the reference should be read, not computed";
+    EXPECT_NE(second.out.find("read in"), std::string::npos) << second.out;
+    EXPECT_EQ(preskin::test::readFile(json1), preskin::test::readFile(json2));
+
+    std::vector<std::string> other = compareArgs(dir_ / "c.json", dir_ / "c.png");
+    other[std::find(other.begin(), other.end(), "--width") - other.begin() + 1] = "24";
+    other.insert(other.end(), {"--reference", ref.string()});
+    const ProcessResult refused = run(other, 300.0);
+    EXPECT_EQ(refused.exitCode, 1);
+    EXPECT_NE(refused.err.find("preskin: error: " + ref.string() + ": --reference: size:"), std::string::npos)
+        << refused.err;
+    EXPECT_FALSE(fs::exists(dir_ / "c.png"));
 }
 
 }  // namespace
