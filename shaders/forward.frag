@@ -21,6 +21,7 @@ layout(set = 0, binding = kBindingShTransferLut) uniform sampler2DArray shTransf
 layout(set = 0, binding = kBindingTransmittanceLut) uniform sampler2DArray transmittanceLut;
 layout(std430, set = 0, binding = kBindingClusterRanges) readonly buffer ClusterRanges { uvec2 clusterRanges[]; };
 layout(std430, set = 0, binding = kBindingClusterIndices) readonly buffer ClusterIndices { uint clusterIndices[]; };
+layout(set = 0, binding = kBindingWideShadowMap) uniform sampler2D wideShadowMap;
 
 layout(set = 1, binding = kBindingBaseColorTexture) uniform sampler2D baseColorTexture;
 layout(set = 1, binding = kBindingMetallicRoughnessTexture) uniform sampler2D metallicRoughnessTexture;
@@ -166,6 +167,7 @@ void main() {
     shadow.visibility = 1.0;
     shadow.thicknessM = 0.0;
     shadow.kernelWidthM = 0.0;
+    PreskinShadowSample wideShadow = shadow;  // skin with penumbra scattering: the wide map's
     // Skin's signed curvature in profile 1/mm (the shadow lookup and the skin surface use it).
     float skinCurvaturePerMm = 0.0;
     if (kMaterialModel == kModelSkin)
@@ -183,8 +185,22 @@ void main() {
     // (lavapipe) reads uniform buffers lane by lane, and reads in separate branches are not shared.
     mat4 shadowClipFromWorld = frame.shadowClipFromWorld;
     vec4 shadowParams = frame.shadowParams;
-    if (frame.shadowDirectionWs.w > 0.5)
-        shadow = preskinSampleShadow(shadowMap, shadowClipFromWorld, shadowParams, shadowPositionWs, geometricN);
+    if (frame.shadowDirectionWs.w > 0.5) {
+        if (kSkinWideShadow) {
+            // Skin's wide map first (shaders/shadow_reduce.comp: its texels hold their blocks'
+            // nearest depths, so where it is fully lit the shadow map is too, and the shadow map's
+            // own filter is only needed near an edge or in shadow). Concave skin rises towards
+            // the light within the wide kernel, by |curvature| r^2 / 2 at r = 2 wide texels,
+            // which its own walls must not shadow.
+            vec4 wideParams = vec4(frame.wideShadow.z, 1.0, shadowParams.z, frame.wideShadow.y);
+            float concavePerM = max(-skinCurvaturePerMm / max(material.skinScatter.x, 1e-6), 0.0) * 1000.0;
+            float riseM = 2.0 * concavePerM * frame.wideShadow.z * frame.wideShadow.z;
+            wideShadow = preskinSampleShadow(wideShadowMap, preskinScaledShadowClip(shadowClipFromWorld, frame.wideShadow.x),
+                                             wideParams, shadowPositionWs, geometricN, 0.75, riseM, 3);
+        }
+        if (!kSkinWideShadow || wideShadow.visibility < 1.0)
+            shadow = preskinSampleShadow(shadowMap, shadowClipFromWorld, shadowParams, shadowPositionWs, geometricN);
+    }
 
     uint first;
     uint count;
@@ -251,7 +267,8 @@ void main() {
             vec3 L;
             vec3 irradiance;
             preskinLightIncidence(lights[0], inPositionWs, L, irradiance);
-            penumbra = preskinSkinShadow(skin, profiles, penumbraLut, shadow.visibility, shadow.kernelWidthM, L, features);
+            penumbra = preskinSkinShadow(skin, profiles, penumbraLut, shadow.visibility, shadow.kernelWidthM,
+                                         wideShadow.visibility, wideShadow.kernelWidthM, frame.wideShadow.z, L, features);
             float thicknessM = 0.0;
             if (preskinTransmissionGate(geometricN, L, features))
                 thicknessM = preskinShadowThickness(shadowMap, shadowClipFromWorld, shadowParams,

@@ -36,8 +36,16 @@ float preskinShadowThickness(sampler2D shadowMap, mat4 shadowClipFromWorld, vec4
 
 // shadowClipFromWorld: orthographic light matrix (depth 0 near .. 1 far).
 // params: x texel size (m), y Gaussian sigma (texels), z depth range (m), w map size (texels).
+// slopeBiasTexels: extra depth bias, in texels of the receiver plane's slope (0 for a shadow map;
+// a map of each block's nearest depth holds a sloped receiver that much nearer than its plane);
+// riseM: how far (m) the receiver rises towards the light above its plane within the kernel (a
+// concave receiver's own walls, 0 for a plane).
+// gathersPerAxis: the footprint, 2 x gathersPerAxis texels on a side, the window at gathersPerAxis
+// texels (4: 8 x 8 texels by 16 gathers, for sigma up to 2; 3: 6 x 6 by 9, up to 1.2; 2: 4 x 4 by
+// 4, up to 0.8).
 PreskinShadowSample preskinSampleShadow(sampler2D shadowMap, mat4 shadowClipFromWorld, vec4 params,
-                                        vec3 positionWs, vec3 geometricNormalWs) {
+                                        vec3 positionWs, vec3 geometricNormalWs, float slopeBiasTexels, float riseM,
+                                        int gathersPerAxis) {
     PreskinShadowSample result;
     float mapSize = params.w;
     float sigma = max(params.y, 0.25);
@@ -65,24 +73,26 @@ PreskinShadowSample preskinSampleShadow(sampler2D shadowMap, mat4 shadowClipFrom
     float n2 = dot(n, r2) / dot(r2, r2);
     n2 = sign(n2) * max(abs(n2), 1e-4 * (abs(n0) + abs(n1)) + 1e-12);
     vec2 dzPerTexel = clamp(-vec2(n0, n1) / n2 * (2.0 / mapSize), vec2(-0.02), vec2(0.02));
-    const float bias = 2e-4;
+    float bias = 2e-4 + slopeBiasTexels * (abs(dzPerTexel.x) + abs(dzPerTexel.y)) + riseM / params.z;
 
-    // Texel coordinates with texel i's centre at t = i. The footprint is the 8 x 8 texels
-    // cell - 3 .. cell + 4 on each axis; their offsets from the sample point lie in (-4, 4].
+    // Texel coordinates with texel i's centre at t = i. The footprint is the 2G x 2G texels
+    // cell - G + 1 .. cell + G on each axis (G = gathersPerAxis); their offsets from the sample
+    // point lie in (-G, G].
+    const int G = gathersPerAxis;
     vec2 t = uv * mapSize - 0.5;
     vec2 cell = floor(t);
     vec2 f = t - cell;
     float twoVariance = 2.0 * (sigma * sigma + 1.0 / 6.0);
-    float window = exp(-16.0 / twoVariance);
+    float window = exp(-float(G * G) / twoVariance);
     float wx[8];
     float wy[8];
     float sumX = 0.0;
     float sumY = 0.0;
     float varianceX = 0.0;
     float varianceY = 0.0;
-    for (int k = 0; k < 8; ++k) {
-        float dx = float(k) - 3.0 - f.x;
-        float dy = float(k) - 3.0 - f.y;
+    for (int k = 0; k < 2 * G; ++k) {
+        float dx = float(k - G + 1) - f.x;
+        float dy = float(k - G + 1) - f.y;
         wx[k] = max(exp(-dx * dx / twoVariance) - window, 0.0);
         wy[k] = max(exp(-dy * dy / twoVariance) - window, 0.0);
         sumX += wx[k];
@@ -92,13 +102,13 @@ PreskinShadowSample preskinSampleShadow(sampler2D shadowMap, mat4 shadowClipFrom
     }
     float sum = 0.0;
     float weightSum = 0.0;  // summed like `sum`, so fully lit gives exactly 1 and fully shadowed 0
-    for (int j = 0; j < 4; ++j) {
-        float y0 = float(2 * j) - 3.0 - f.y;  // offsets of the gathered rows: y0 and y0 + 1
-        for (int i = 0; i < 4; ++i) {
-            float x0 = float(2 * i) - 3.0 - f.x;
-            // The 2x2 texels cell + (2i - 3, 2j - 3) + (0..1, 0..1); gather order: (0,1), (1,1),
-            // (1,0), (0,0).
-            vec4 occluder = textureGather(shadowMap, (cell + vec2(2 * i - 2, 2 * j - 2)) / mapSize, 0);
+    for (int j = 0; j < G; ++j) {
+        float y0 = float(2 * j - G + 1) - f.y;  // offsets of the gathered rows: y0 and y0 + 1
+        for (int i = 0; i < G; ++i) {
+            float x0 = float(2 * i - G + 1) - f.x;
+            // The 2x2 texels cell + (2i - G + 1, 2j - G + 1) + (0..1, 0..1); gather order: (0,1),
+            // (1,1), (1,0), (0,0).
+            vec4 occluder = textureGather(shadowMap, (cell + vec2(2 * i - G + 2, 2 * j - G + 2)) / mapSize, 0);
             vec4 receiver = z - bias + dzPerTexel.x * vec4(x0, x0 + 1.0, x0 + 1.0, x0) +
                             dzPerTexel.y * vec4(y0 + 1.0, y0 + 1.0, y0, y0);
             vec4 lit = vec4(greaterThanEqual(occluder, receiver));
@@ -114,6 +124,22 @@ PreskinShadowSample preskinSampleShadow(sampler2D shadowMap, mat4 shadowClipFrom
     // The weights' standard deviation (mean of the two axes), the filter's width across an edge.
     result.kernelWidthM = sqrt(0.5 * (varianceX / sumX + varianceY / sumY)) * params.x;
     return result;
+}
+
+PreskinShadowSample preskinSampleShadow(sampler2D shadowMap, mat4 shadowClipFromWorld, vec4 params,
+                                        vec3 positionWs, vec3 geometricNormalWs) {
+    return preskinSampleShadow(shadowMap, shadowClipFromWorld, params, positionWs, geometricNormalWs, 0.0, 0.0, 4);
+}
+
+// The transform of a map covering the shadow map's region scaled by uvScale from its corner
+// (uv' = uv * uvScale): a coarser map whose texels hold whole blocks of the shadow map.
+mat4 preskinScaledShadowClip(mat4 shadowClipFromWorld, float uvScale) {
+    mat4 m = shadowClipFromWorld;
+    for (int c = 0; c < 4; ++c) {
+        m[c][0] = uvScale * m[c][0] + (uvScale - 1.0) * m[c][3];
+        m[c][1] = uvScale * m[c][1] + (uvScale - 1.0) * m[c][3];
+    }
+    return m;
 }
 
 #endif

@@ -137,6 +137,43 @@ vec3 preskinSkinShadow(PreskinSkinSurface s, PreskinProfileMix m, sampler2DArray
     return preskinPenumbraLut(m, penumbraLut, visibility, sigmaProfileMm);
 }
 
+// The same with skin's wide shadow map (shaders/shadow_reduce.comp: each texel the nearest depth of
+// a block of the shadow map, sampled by preskinSampleShadow with the wide map's parameters), which
+// reaches past the shadow map's own filter: red scatters millimetres into a cast shadow. The
+// edge's place x across it (profile mm, > 0 lit) comes from the shadow map's filter where that
+// sees the edge (|Phi^-1(visibility)| < 2, blended out by 3) and from the wide map's filter
+// beyond, moved half a wide texel into the shadow (the wide map's edges lie that far on the lit
+// side on average); the penumbra LUT at the wide filter's width returns the profile's hard-edge
+// response there. wideVisibility, wideFilterWidthLightM: the wide map's sample; wideTexelM: its
+// texel size (m).
+vec3 preskinSkinShadow(PreskinSkinSurface s, PreskinProfileMix m, sampler2DArray penumbraLut, float visibility,
+                       float filterWidthLightM, float wideVisibility, float wideFilterWidthLightM, float wideTexelM,
+                       vec3 L, uint features) {
+    if ((features & kSkinPenumbra) == 0u) return vec3(visibility);
+    bool fineEdge = visibility > 0.0 && visibility < 1.0;
+    bool wideEdge = wideVisibility > 0.0 && wideVisibility < 1.0;
+    if (!fineEdge && !wideEdge) return vec3(visibility);  // far from any edge (the wide map is never lit where this is not)
+    float slope = max(abs(dot(s.geometricNormal, L)), 0.2);
+    float toProfileMm = 1000.0 / slope * s.scatterScale;
+    float sigmaFine = filterWidthLightM * toProfileMm;
+    float sigmaWide = wideFilterWidthLightM * toProfileMm;
+    float x;
+    if (fineEdge) {
+        float q = preskinNormalQuantile(visibility);
+        x = sigmaFine * q;
+        if (wideEdge) {
+            float xWide = sigmaWide * preskinNormalQuantile(wideVisibility) + 0.5 * wideTexelM * toProfileMm;
+            x = mix(xWide, x, smoothstep(3.0, 2.0, abs(q)));
+            x = clamp(x, sigmaFine * (q - 0.5), sigmaFine * (q + 0.5));  // where the fine filter puts it
+        }
+    } else {
+        // The fine filter is saturated: the edge lies beyond its reach, 3 sigma, on the side it says.
+        x = sigmaWide * preskinNormalQuantile(wideVisibility) + 0.5 * wideTexelM * toProfileMm;
+        x = visibility >= 1.0 ? max(x, 3.0 * sigmaFine) : min(x, -3.0 * sigmaFine);
+    }
+    return preskinPenumbraLut(m, penumbraLut, preskinNormalCdf(x / sigmaWide), sigmaWide);
+}
+
 // Light transmitted through the surface from a light behind it (after Jimenez et al. 2010):
 // thicknessM from the shadow map at preskinThicknessPointWs (metres); the thickness from
 // the surface along L is that plus the shrink depth times c = saturate(-NoL); T(thickness) from

@@ -23,6 +23,7 @@ PRESKIN_CONST(uint, kBindingShTransferLut, 6)  // A_l(curvature), bands 0..2
 PRESKIN_CONST(uint, kBindingTransmittanceLut, 7)  // T(thickness)
 PRESKIN_CONST(uint, kBindingClusterRanges, 8)  // uvec2 (offset, count) per cluster
 PRESKIN_CONST(uint, kBindingClusterIndices, 9) // uint light indices
+PRESKIN_CONST(uint, kBindingWideShadowMap, 10)    // skin: the shadow map's nearest depth per block (R32F; shadow_reduce.comp)
 
 // ---- descriptor set 1: per material ----------------------------------------------------------
 PRESKIN_CONST(uint, kBindingMaterial, 0)  // MaterialUniforms (uniform buffer)
@@ -99,8 +100,10 @@ struct FrameUniforms {
     vec4 clusterScale;          // x,y: tiles per unit of cluster-camera NDC (tile = (ndc + 1) * xy),
                                 // z,w: depth slice = log2(viewDepth) * z + w
     uvec4 clusterDims;          // x, y, z clusters; w: max lights per cluster
+    vec4 wideShadow;            // skin's wide shadow map: x its uv per shadow-map uv, y its size (texels), z its
+                                // texel size (m), w shadow-map texels per side of its texels
 };
-PRESKIN_CHECK_SIZE(FrameUniforms, 6 * 96 + 2 * 64 + 4 * 16 + 9 * 16 + 3 * 16)
+PRESKIN_CHECK_SIZE(FrameUniforms, 6 * 96 + 2 * 64 + 4 * 16 + 9 * 16 + 4 * 16)
 
 // Per-texture transform rows (KHR_texture_transform): uv' = (dot(r0.xyz, (u,v,1)), dot(r1.xyz, (u,v,1))).
 struct GpuUvTransform {

@@ -70,6 +70,12 @@ struct RenderSettings {
     // true: the shadow map covers the skin in view (small texels where skin receives shadows);
     // false: the whole scene's bounding sphere. Without skin in view both cover the scene.
     bool fitShadowToSkin = true;
+    // How far (world mm) skin's wide shadow map (the shadow map's nearest depths per block, which
+    // carries red's scattering into cast shadows past the shadow map's filter) must reach: its
+    // blocks are sized for it each frame. 0: two RMS widths of the widest profile any skin
+    // material uses (3.3 mm for d'Eon's skin at scatter scale 1). Set it to give materials the
+    // same wide map whatever other profiles the scene holds.
+    float skinShadowReachMm = 0.0f;
     // false: no specular reflection for any material, and diffuse without the Fresnel factors
     // (1 - F) that specular takes from it: pure diffuse, what DiffusionReference models.
     bool specular = true;

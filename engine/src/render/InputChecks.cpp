@@ -26,6 +26,8 @@ void checkRenderSettings(const RenderSettings& settings) {
     check(settings.shadowSoftnessTexels, "RenderSettings: shadowSoftnessTexels");
     if (settings.exposure < 0.0f) throw Error("RenderSettings: exposure: must be >= 0");
     if (!(settings.shadowSoftnessTexels > 0.0f)) throw Error("RenderSettings: shadowSoftnessTexels: must be > 0");
+    check(settings.skinShadowReachMm, "RenderSettings: skinShadowReachMm");
+    if (settings.skinShadowReachMm < 0.0f) throw Error("RenderSettings: skinShadowReachMm: must be >= 0");
 }
 
 void checkLights(const std::vector<Light>& lights) {

@@ -89,6 +89,7 @@ Renderer::Impl::Impl(Context& ctx, const Scene& s, const Environment& env, const
     checkRenderSettings(rs);
     checkLights(s.lights);
     scene = std::make_unique<GpuScene>(dev, s);
+    sceneHasSkin = std::any_of(s.materials.begin(), s.materials.end(), [](const Material& m) { return m.skin.has_value(); });
     poseBounds = std::make_unique<PoseBounds>(s);
     receiverPoseBounds = std::make_unique<PoseBounds>(skinReceiverBounds(s));
     deformer = std::make_unique<GpuDeformer>(dev, s, scene->vertices, scene->normalBasis, scene->meshFirstVertex);
@@ -96,7 +97,10 @@ Renderer::Impl::Impl(Context& ctx, const Scene& s, const Environment& env, const
     setLutLayers(lutLayers);
     clusters = std::make_unique<ClusterBuilder>(dev);
     createLayouts();
-    dev.submitAndWait([&](VkCommandBuffer cmd) { createShadowMap(cmd, 0); });
+    dev.submitAndWait([&](VkCommandBuffer cmd) {
+        createShadowMap(cmd, 0);
+        createWideShadowMap(cmd, 0);
+    });
     resolveEyeDrawing();
 }
 
@@ -112,6 +116,10 @@ Renderer::Impl::~Impl() {
     if (shadowLayout) vkDestroyPipelineLayout(d, shadowLayout, nullptr);
     if (frameLayout) vkDestroyDescriptorSetLayout(d, frameLayout, nullptr);
     if (shadowSampler) vkDestroySampler(d, shadowSampler, nullptr);
+    if (reducePipeline) vkDestroyPipeline(d, reducePipeline, nullptr);
+    if (reducePool) vkDestroyDescriptorPool(d, reducePool, nullptr);
+    if (reduceLayout) vkDestroyPipelineLayout(d, reduceLayout, nullptr);
+    if (reduceSetLayout) vkDestroyDescriptorSetLayout(d, reduceSetLayout, nullptr);
 }
 
 void Renderer::Impl::createLayouts() {
@@ -129,6 +137,7 @@ void Renderer::Impl::createLayouts() {
         {gpu::kBindingTransmittanceLut, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, all},  // per-vertex sphere term
         {gpu::kBindingClusterRanges, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, fs},
         {gpu::kBindingClusterIndices, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, fs},
+        {gpu::kBindingWideShadowMap, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, fs},
     };
     frameLayout = vk::createSetLayout(dev, bindings);
     const VkDescriptorSetLayout forwardSets[] = {frameLayout, scene->materialLayout()};
@@ -137,7 +146,7 @@ void Renderer::Impl::createLayouts() {
 
     const VkDescriptorPoolSize sizes[] = {{VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, kSlotCount},
                                           {VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 4 * kSlotCount},
-                                          {VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 5 * kSlotCount}};
+                                          {VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 6 * kSlotCount}};
     VkDescriptorPoolCreateInfo poolInfo{VK_STRUCTURE_TYPE_DESCRIPTOR_POOL_CREATE_INFO};
     poolInfo.maxSets = kSlotCount;
     poolInfo.poolSizeCount = 3;
@@ -166,6 +175,27 @@ void Renderer::Impl::createLayouts() {
     nearest.mipmapMode = VK_SAMPLER_MIPMAP_MODE_NEAREST;
     nearest.addressModeU = nearest.addressModeV = nearest.addressModeW = VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_EDGE;
     PRESKIN_VK(vkCreateSampler(d, &nearest, nullptr, &shadowSampler));
+
+    // The wide shadow map's reduction: the shadow map in, the wide map out.
+    const vk::Binding reduceBindings[] = {{0, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, VK_SHADER_STAGE_COMPUTE_BIT},
+                                          {1, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, VK_SHADER_STAGE_COMPUTE_BIT}};
+    reduceSetLayout = vk::createSetLayout(dev, reduceBindings);
+    reduceLayout = vk::createPipelineLayout(dev, std::span(&reduceSetLayout, 1), sizeof(uint32_t), VK_SHADER_STAGE_COMPUTE_BIT);
+    reducePipeline = vk::createComputePipeline(dev, shader("shadow_reduce.comp"), reduceLayout);
+    const VkDescriptorPoolSize reduceSizes[] = {{VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, kSlotCount},
+                                                {VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, kSlotCount}};
+    VkDescriptorPoolCreateInfo reducePoolInfo{VK_STRUCTURE_TYPE_DESCRIPTOR_POOL_CREATE_INFO};
+    reducePoolInfo.maxSets = kSlotCount;
+    reducePoolInfo.poolSizeCount = 2;
+    reducePoolInfo.pPoolSizes = reduceSizes;
+    PRESKIN_VK(vkCreateDescriptorPool(d, &reducePoolInfo, nullptr, &reducePool));
+    for (Slot& s : slots) {
+        VkDescriptorSetAllocateInfo reduceAlloc{VK_STRUCTURE_TYPE_DESCRIPTOR_SET_ALLOCATE_INFO};
+        reduceAlloc.descriptorPool = reducePool;
+        reduceAlloc.descriptorSetCount = 1;
+        reduceAlloc.pSetLayouts = &reduceSetLayout;
+        PRESKIN_VK(vkAllocateDescriptorSets(d, &reduceAlloc, &s.reduceSet));
+    }
 }
 
 // Replaces an attachment without waiting: the old image lives on until every other slot
@@ -288,6 +318,15 @@ bool Renderer::Impl::prepareFrame(Slot& slot, uint32_t slotIndex, const View& vi
     }
     u.shadowParams = glm::vec4(fit.texelSizeM, std::max(settings.shadowSoftnessTexels, 0.25f), fit.depthRangeM,
                                float(mapSize));
+    // Skin's wide map: blocks of the shadow map so large that its filter's footprint (3 wide
+    // texels, preskin/skin.glsl) covers the distance the widest skin profile scatters.
+    const double reachMm = settings.skinShadowReachMm > 0.0f ? double(settings.skinShadowReachMm) : skinReachMm;
+    if (shadowLight >= 0 && sceneHasSkin)
+        wideFactor = uint32_t(std::clamp(std::ceil(reachMm / (3.0 * double(fit.texelSizeM) * 1000.0)), 1.0,
+                                         std::max(1.0, double(mapSize) / 8.0)));
+    const uint32_t wideSize = wideShadowSize();
+    u.wideShadow = glm::vec4(float(mapSize) / float(wideSize * wideFactor), float(wideSize),
+                             fit.texelSizeM * float(wideFactor), float(wideFactor));
     for (int i = 0; i < 9; ++i) u.shRadiance[i] = glm::vec4(radianceSh.c[size_t(i)], 0.0f);
     u.lightCounts = glm::uvec4(slot.lightCount, directional, 0u, 0u);
     if (settings.lightLoop == LightLoop::Clustered)
@@ -304,6 +343,8 @@ void Renderer::Impl::updateFrameSet(Slot& slot, uint32_t slotIndex) {
     const VkDescriptorBufferInfo rangesInfo{clusters->ranges(slotIndex).handle(), 0, VK_WHOLE_SIZE};
     const VkDescriptorBufferInfo indicesInfo{clusters->indices(slotIndex).handle(), 0, VK_WHOLE_SIZE};
     const VkDescriptorImageInfo shadowInfo{shadowSampler, shadowMap.view(), VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL};
+    const VkDescriptorImageInfo wideShadowInfo{shadowSampler, wideShadowMap.view(),
+                                               VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL};
     const std::array<VkDescriptorImageInfo, 4> lutInfos = luts->descriptors();
     std::vector<VkWriteDescriptorSet> writes;
     auto write = [&](uint32_t binding, VkDescriptorType type, const VkDescriptorBufferInfo* bufferInfo,
@@ -329,6 +370,7 @@ void Renderer::Impl::updateFrameSet(Slot& slot, uint32_t slotIndex) {
     buffer(gpu::kBindingClusterRanges, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, &rangesInfo);
     buffer(gpu::kBindingClusterIndices, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, &indicesInfo);
     image(gpu::kBindingShadowMap, &shadowInfo);
+    image(gpu::kBindingWideShadowMap, &wideShadowInfo);
     image(gpu::kBindingDiffuseLut, &lutInfos[0]);
     image(gpu::kBindingPenumbraLut, &lutInfos[1]);
     image(gpu::kBindingShTransferLut, &lutInfos[2]);
@@ -400,6 +442,7 @@ void Renderer::Impl::record(VkCommandBuffer cmd, const RenderTarget& target, con
     ensureAttachments(target.extent, view.eyeCount(), target.format, target.depth.image == VK_NULL_HANDLE, slotIndex);
     glm::mat4 shadowClipFromWorld(1.0f);
     const bool shadow = prepareFrame(slot, slotIndex, view, target.extent, shadowClipFromWorld);
+    createWideShadowMap(cmd, slotIndex);  // at the factor prepareFrame picked
     updateFrameSet(slot, slotIndex);
     if (slot.queries) vkCmdResetQueryPool(cmd, slot.queries, 0, kQueryCount);
     timestamp(cmd, slot, 0);
@@ -474,7 +517,26 @@ void Renderer::Impl::setLutLayers(const std::vector<const LutSet*>& layers) {
     vkDeviceWaitIdle(dev.device());
     luts = std::move(replacement);
     scene->updateMaterials(luts->layers());
+    updateSkinReach();
     dropSkinPipelines();
+}
+
+void Renderer::Impl::updateSkinReach() {
+    // Two RMS widths of the widest profile of any skin material, in world mm: where red's
+    // scattering into a cast shadow falls to a few percent (d'Eon's red: 3.3 mm, 5 % of lit).
+    skinReachMm = 0.0;
+    const std::vector<Material>& materials = scene->sceneMaterials();
+    for (const Material& m : materials) {
+        if (!m.skin) continue;
+        std::vector<int> profiles{m.skin->profile};
+        profiles.insert(profiles.end(), m.skin->blendProfiles.begin(), m.skin->blendProfiles.end());
+        for (int p : profiles) {
+            const size_t layer = size_t(p + 1);
+            if (layer >= luts->layers().size() || !luts->layers()[layer].profile) continue;
+            const double scale = std::max(double(m.skin->scatterScale), 1e-6);
+            skinReachMm = std::max(skinReachMm, 2.0 * luts->layers()[layer].profile->maxWidthMm() / scale);
+        }
+    }
 }
 
 namespace {
@@ -532,6 +594,7 @@ void Renderer::setProfileLayer(size_t layer, const LutSet& luts) {
     if (!impl_->luts->replaceLayer(static_cast<uint32_t>(layer), luts))
         throw Error("Renderer::setProfileLayer: the LUT set is larger than the renderer's LUT arrays; use setProfiles");
     impl_->scene->updateMaterials(impl_->luts->layers());
+    impl_->updateSkinReach();
     impl_->dropSkinPipelines();
 }
 

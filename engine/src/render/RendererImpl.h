@@ -46,6 +46,7 @@ struct Renderer::Impl {
         vk::Buffer instances;  // GpuInstance per scene instance, from the pose
         uint64_t instancesPose = ~0ull;  // the pose version they hold
         VkDescriptorSet set = VK_NULL_HANDLE;
+        VkDescriptorSet reduceSet = VK_NULL_HANDLE;  // the wide shadow map's reduction: shadow map in, wide map out
         VkQueryPool queries = VK_NULL_HANDLE;
         bool recorded = false;  // a frame was recorded into this slot (it may still be in flight)
         bool shadowRecorded = false;
@@ -86,6 +87,14 @@ struct Renderer::Impl {
     };
     std::vector<Retired> retired;
     vk::Image shadowMap;
+    vk::Image wideShadowMap;  // skin's: the shadow map's nearest depth per block of wideFactor^2 texels
+    uint32_t wideFactor = 8;  // this frame's (prepareFrame): the wide filter's footprint covers skinReachMm
+    double skinReachMm = 0.0;  // world mm the widest skin profile scatters far enough to show (2 RMS widths)
+    VkDescriptorSetLayout reduceSetLayout = VK_NULL_HANDLE;
+    VkPipelineLayout reduceLayout = VK_NULL_HANDLE;
+    VkPipeline reducePipeline = VK_NULL_HANDLE;
+    VkDescriptorPool reducePool = VK_NULL_HANDLE;
+    bool sceneHasSkin = false;
     vk::Image depth;        // one layer per eye, msaaSamples samples
     vk::Image msaaColor;    // MSAA only: one layer per eye, resolved into the target
     std::map<PipelineKey, VkPipeline> pipelines;
@@ -107,6 +116,8 @@ struct Renderer::Impl {
     void checkProfileLayers(size_t layerCount) const;
     // Replaces the LUT arrays (after checking the materials against them).
     void setLutLayers(const std::vector<const LutSet*>& layers);
+    // skinReachMm from the skin materials and their LUT layers' profiles.
+    void updateSkinReach();
     // Destroys the skin pipelines (specialised to LUT mappings that may have changed); the GPU
     // must be idle. They are made again when drawn.
     void dropSkinPipelines();
@@ -118,9 +129,13 @@ struct Renderer::Impl {
     // Recording into `slotIndex` means its previous frame finished: nothing retired waits on it.
     void releaseRetired(uint32_t slotIndex);
 
-    // The shadow map at the settings' size; a new one starts in the read layout (sampled even
-    // when no light casts a shadow), transitioned in `cmd`.
+    // The shadow map at the settings' size, and skin's wide map for this frame's factor; new ones
+    // start in the read layout (sampled even when no light casts a shadow), transitioned in `cmd`.
     void createShadowMap(VkCommandBuffer cmd, uint32_t slotIndex);
+    void createWideShadowMap(VkCommandBuffer cmd, uint32_t slotIndex);
+    uint32_t wideShadowSize() const;
+    // The wide map's reduction of the shadow map (after the shadow pass, for scenes with skin).
+    void recordWideShadow(VkCommandBuffer cmd, Slot& slot);
 
     std::span<const uint32_t> shader(const char* name) const;
 

@@ -1,6 +1,7 @@
 // The shadow pass of the sample renderer: the directional light's orthographic shadow map
-// (fitted to the skin in view, render/ShadowFit.h), its depth-only pipeline and its recording. The
-// forward pass samples the map with preskin/shadow.glsl's Gaussian PCF.
+// (fitted to the skin in view, render/ShadowFit.h), its depth-only pipeline and its recording, and
+// for scenes with skin the wide map reduced from it (shaders/shadow_reduce.comp). The forward pass
+// samples both with preskin/shadow.glsl's Gaussian PCF.
 #include "render/RendererImpl.h"
 
 #include "shared/gpu_types.h"
@@ -14,8 +15,8 @@
 
 namespace preskin {
 
-// The shadow map at the settings' size; a new one starts in the read layout (sampled even
-// when no light casts a shadow), transitioned in `cmd`.
+// The shadow map at the settings' size and skin's wide map; new ones start in the read layout
+// (sampled even when no light casts a shadow), transitioned in `cmd`.
 void Renderer::Impl::createShadowMap(VkCommandBuffer cmd, uint32_t slotIndex) {
     const uint32_t size = std::clamp<uint32_t>(settings.shadowMapSize, 16, 8192);
     if (shadowMap && shadowMap.desc().width == size) return;
@@ -29,6 +30,50 @@ void Renderer::Impl::createShadowMap(VkCommandBuffer cmd, uint32_t slotIndex) {
     vk::imageBarrier(cmd, shadowMap.handle(), VK_IMAGE_ASPECT_DEPTH_BIT, VK_IMAGE_LAYOUT_UNDEFINED,
                      VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL, VK_PIPELINE_STAGE_2_NONE, VK_ACCESS_2_NONE,
                      VK_PIPELINE_STAGE_2_FRAGMENT_SHADER_BIT, VK_ACCESS_2_SHADER_SAMPLED_READ_BIT);
+}
+
+uint32_t Renderer::Impl::wideShadowSize() const {
+    const uint32_t size = std::clamp<uint32_t>(settings.shadowMapSize, 16, 8192);
+    return (size + wideFactor - 1) / wideFactor;
+}
+
+void Renderer::Impl::createWideShadowMap(VkCommandBuffer cmd, uint32_t slotIndex) {
+    const uint32_t wideSize = wideShadowSize();
+    if (wideShadowMap && wideShadowMap.desc().width == wideSize) return;
+    retire(wideShadowMap, slotIndex);
+    wideShadowMap = vk::Image(dev, {VK_FORMAT_R32_SFLOAT, wideSize, wideSize, 1,
+                                    VK_IMAGE_USAGE_STORAGE_BIT | VK_IMAGE_USAGE_SAMPLED_BIT, VK_IMAGE_ASPECT_COLOR_BIT});
+    vk::imageBarrier(cmd, wideShadowMap.handle(), VK_IMAGE_ASPECT_COLOR_BIT, VK_IMAGE_LAYOUT_UNDEFINED,
+                     VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL, VK_PIPELINE_STAGE_2_NONE, VK_ACCESS_2_NONE,
+                     VK_PIPELINE_STAGE_2_FRAGMENT_SHADER_BIT, VK_ACCESS_2_SHADER_SAMPLED_READ_BIT);
+}
+
+void Renderer::Impl::recordWideShadow(VkCommandBuffer cmd, Slot& slot) {
+    // The slot's set, like its frame set, is only in use by the slot's previous frame, which is done.
+    const VkDescriptorImageInfo read{shadowSampler, shadowMap.view(), VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL};
+    const VkDescriptorImageInfo write{VK_NULL_HANDLE, wideShadowMap.view(), VK_IMAGE_LAYOUT_GENERAL};
+    VkWriteDescriptorSet writes[2]{};
+    for (uint32_t b = 0; b < 2; ++b) {
+        writes[b] = {VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET};
+        writes[b].dstSet = slot.reduceSet;
+        writes[b].dstBinding = b;
+        writes[b].descriptorCount = 1;
+        writes[b].descriptorType = b == 0 ? VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER : VK_DESCRIPTOR_TYPE_STORAGE_IMAGE;
+        writes[b].pImageInfo = b == 0 ? &read : &write;
+    }
+    vkUpdateDescriptorSets(dev.device(), 2, writes, 0, nullptr);
+    vk::imageBarrier(cmd, wideShadowMap.handle(), VK_IMAGE_ASPECT_COLOR_BIT, VK_IMAGE_LAYOUT_UNDEFINED,
+                     VK_IMAGE_LAYOUT_GENERAL, VK_PIPELINE_STAGE_2_FRAGMENT_SHADER_BIT, VK_ACCESS_2_NONE,
+                     VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT);
+    vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, reducePipeline);
+    vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, reduceLayout, 0, 1, &slot.reduceSet, 0, nullptr);
+    vkCmdPushConstants(cmd, reduceLayout, VK_SHADER_STAGE_COMPUTE_BIT, 0, sizeof(uint32_t), &wideFactor);
+    const uint32_t groups = (wideShadowMap.desc().width + 7) / 8;
+    vkCmdDispatch(cmd, groups, groups, 1);
+    vk::imageBarrier(cmd, wideShadowMap.handle(), VK_IMAGE_ASPECT_COLOR_BIT, VK_IMAGE_LAYOUT_GENERAL,
+                     VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT,
+                     VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT, VK_PIPELINE_STAGE_2_FRAGMENT_SHADER_BIT,
+                     VK_ACCESS_2_SHADER_SAMPLED_READ_BIT);
 }
 
 VkPipeline Renderer::Impl::createShadowPipeline() const {
@@ -87,8 +132,10 @@ void Renderer::Impl::recordShadowPass(VkCommandBuffer cmd, Slot& slot, uint32_t 
     vkCmdEndRendering(cmd);
     vk::imageBarrier(cmd, shadowMap.handle(), VK_IMAGE_ASPECT_DEPTH_BIT, VK_IMAGE_LAYOUT_DEPTH_ATTACHMENT_OPTIMAL,
                      VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL, VK_PIPELINE_STAGE_2_LATE_FRAGMENT_TESTS_BIT,
-                     VK_ACCESS_2_DEPTH_STENCIL_ATTACHMENT_WRITE_BIT, VK_PIPELINE_STAGE_2_FRAGMENT_SHADER_BIT,
+                     VK_ACCESS_2_DEPTH_STENCIL_ATTACHMENT_WRITE_BIT,
+                     VK_PIPELINE_STAGE_2_FRAGMENT_SHADER_BIT | VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT,
                      VK_ACCESS_2_SHADER_SAMPLED_READ_BIT);
+    if (sceneHasSkin) recordWideShadow(cmd, slot);
 }
 
 }  // namespace preskin
