@@ -8,7 +8,9 @@ of the README ("Fidelity") hold beyond the bundled scenes:
                          outside, concave round the 4 mm hole (mean curvature -1/24 per mm on the
                          inner equator), casting shadows on itself, lit from the upper left;
   head_low_left.gltf     the bundled head (its files copied) under a key light from the lower left
-                         front instead of the upper right.
+                         front instead of the upper right;
+  sphere_10mm_studio.gltf  the 10 mm sphere under the studio environment alone, no lights (for
+                         `compare --trace-environment`).
 
 Usage: make-fidelity-scenes.py OUTDIR   (Python 3 standard library only)
 """
@@ -71,6 +73,17 @@ def main():
             node["rotation"] = make_spheres.quaternion_from_minus_z_to(
                 tuple(x / math.sqrt(0.7 ** 2 + 0.45 ** 2 + 0.55 ** 2) for x in (0.7, 0.45, -0.55)))
     make_spheres.write_document(os.path.join(out, "head_low_left.gltf"), head)
+
+    # The bundled 10 mm sphere under the studio environment alone (no lights): what the skin's SH
+    # ambient gives against the traced environment (`preskin compare --trace-environment`).
+    positions, normals, uvs, indices = make_spheres.sphere(0.005)
+    doc = make_spheres.scene_document("sphere", positions, normals, uvs, indices, (0.0, -1.0, 0.0))
+    del doc["extensions"]["KHR_lights_punctual"]
+    doc["extensionsUsed"] = ["PRESKIN_materials_skin", "PRESKIN_environment"]
+    doc["extensions"]["PRESKIN_environment"] = {"uri": "studio_small_05_1k.hdr", "intensity": 1.0}
+    doc["nodes"] = doc["nodes"][:1]
+    doc["scenes"][0]["nodes"] = [0]
+    make_spheres.write_document(os.path.join(out, "sphere_10mm_studio.gltf"), doc)
 
 
 if __name__ == "__main__":

@@ -26,6 +26,11 @@ void addReferenceOptions(CLI::App& cmd, ReferenceOptions& o) {
     cmd.add_option("--moment-tolerance", s.momentTolerance, "Reference: adaptive profile quadrature tolerance per piece")
         ->check(numberIn(1e-12, 1e-2))
         ->capture_default_str();
+    cmd.add_option("--trace-environment", s.environmentSamples,
+                   "Reference: trace the environment image with this many rays per vertex (importance-sampled, "
+                   "occluded by the scene) instead of taking the renderer's L2 SH irradiance")
+        ->check(wholeNumberIn(0, 1 << 20))
+        ->capture_default_str();
     cmd.add_option("--threads", o.threads, "Reference: CPU threads (0: all cores); the result does not depend on it")
         ->check(wholeNumberIn(0, 1024))
         ->capture_default_str();
@@ -36,8 +41,8 @@ std::unique_ptr<DiffusionReference> makeReference(const Scene& scene, const Envi
                                                   const ReferenceOptions& o) {
     ReferenceSettings settings = o.settings;
     settings.shadows = !common.noShadows;
-    return std::make_unique<DiffusionReference>(scene, sceneLights(scene, common), environment.radianceSh(),
-                                                luts.profile(), settings);
+    return std::make_unique<DiffusionReference>(scene, sceneLights(scene, common), environment, luts.profile(),
+                                                settings);
 }
 
 namespace {
@@ -87,6 +92,7 @@ ReferenceKey referenceKey(const std::filesystem::path& scenePath, const ViewOpti
          }()},
         {"quadrature", fmt::format("tail {} leaf {} finest {} moments {} edge {}", s.tailFraction, s.leafRatio,
                                    s.finestLeafRatio, s.momentTolerance, s.shadowEdgeWidths)},
+        {"ambient", s.environmentSamples > 0 ? fmt::format("traced {}", s.environmentSamples) : std::string("sh")},
     };
 }
 

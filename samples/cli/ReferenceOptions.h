@@ -20,7 +20,8 @@ struct ReferenceOptions {
 void addReferenceOptions(CLI::App& cmd, ReferenceOptions& o);
 
 // The reference of the scene as `preskin render` would light it: the same lights (sceneLights),
-// environment SH, the LUT set's profile, and --no-shadows.
+// environment (its SH, or traced with --trace-environment; it must outlive the reference), the
+// LUT set's profile, and --no-shadows.
 std::unique_ptr<DiffusionReference> makeReference(const Scene& scene, const Environment& environment,
                                                   const LutSet& luts, const CommonOptions& common,
                                                   const ReferenceOptions& o);

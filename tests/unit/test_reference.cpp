@@ -170,6 +170,55 @@ TEST(DiffusionReference, SphereConvergesToTheExactIntegral) {
     EXPECT_LT(errors[2], 1e-3);
 }
 
+// A traced uniform environment over an unoccluded skin plane: the irradiance is pi L exactly,
+// and the reference equals Lambert (albedo L).
+TEST(DiffusionReference, TracedUniformEnvironmentOnAPlaneIsLambertsIrradiance) {
+    const glm::vec3 albedo(0.7f, 0.5f, 0.4f), radiance(0.3f, 0.25f, 0.2f);
+    Primitive plane = makeQuad(0.2f, 4);
+    plane.material = 0;
+    const Scene scene = makeScene({{plane, glm::mat4(1.0f)}}, {skinMaterial(albedo, 1.0f)});
+    const Environment env = Environment::constant(radiance);
+    ReferenceSettings settings;
+    settings.environmentSamples = 64;
+    const DiffusionReference reference(scene, {}, env, DiffusionProfile::deonLuebke(), settings);
+    for (const glm::dvec2 at : {glm::dvec2(0.0, 0.0), glm::dvec2(0.013, -0.021)}) {
+        const auto sample = reference.trace(glm::dvec3(at, 0.5), glm::dvec3(0.0, 0.0, -1.0));
+        ASSERT_TRUE(sample.has_value());
+        for (int ch = 0; ch < 3; ++ch) EXPECT_NEAR(sample->radiance[ch] / double(albedo[ch] * radiance[ch]), 1.0, 1e-3);
+    }
+}
+
+// On a convex sphere nothing occludes the environment, so for an environment of bands 0 and 1
+// alone (which L2 SH holds exactly) the traced reference must approach the SH one as the mesh is
+// refined (the traced irradiance is found per vertex and interpolated).
+TEST(DiffusionReference, TracedEnvironmentOnASphereConvergesAsTheMeshIsRefined) {
+    const Environment env = makeEnvironment(64, [](const glm::vec3& d) {
+        return glm::vec3(0.3f, 0.25f, 0.2f) * (1.0f + 0.7f * d.y) + 0.1f * d.x;
+    });
+    std::vector<double> errors;
+    for (uint32_t segments : {12u, 24u, 48u}) {
+        Primitive sphere = makeSphere(0.005f, segments, segments / 2);
+        sphere.material = 0;
+        recomputeCurvature(sphere);
+        const Scene scene = makeScene({{sphere, glm::mat4(1.0f)}}, {skinMaterial(glm::vec3(1.0f), 1.0f)});
+        ReferenceSettings traced;
+        traced.environmentSamples = 1024;
+        const DiffusionReference withRays(scene, {}, env, DiffusionProfile::deonLuebke(), traced);
+        const DiffusionReference withSh(scene, {}, env, DiffusionProfile::deonLuebke());
+        double worst = 0.0;
+        for (const glm::dvec3 n : {glm::dvec3(0.0, 1.0, 0.0), glm::normalize(glm::dvec3(0.7, 0.2, 0.3)),
+                                   glm::normalize(glm::dvec3(-0.2, -0.9, 0.4))}) {
+            const auto a = withRays.trace(n * 0.02, -n), b = withSh.trace(n * 0.02, -n);
+            ASSERT_TRUE(a && b);
+            for (int ch = 0; ch < 3; ++ch) worst = std::max(worst, std::abs(a->radiance[ch] / b->radiance[ch] - 1.0));
+        }
+        std::printf("[ ambient  ] %u segments: traced against SH, largest relative difference %.4f\n", segments, worst);
+        errors.push_back(worst);
+    }
+    EXPECT_LT(errors[2], errors[0]);
+    EXPECT_LT(errors[2], 0.01);
+}
+
 TEST(DiffusionReference, RenderIsBitwiseReproducibleAndThreadIndependent) {
     const DiffusionProfile profile = DiffusionProfile::deonLuebke();
     Primitive sphere = makeSphere(0.01f, 24, 12);

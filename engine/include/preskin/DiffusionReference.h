@@ -61,6 +61,11 @@ struct ReferenceSettings {
     double finestLeafRatio = 1.0;   // smallest piece / the profile's narrowest scale
     double momentTolerance = 1e-7;  // adaptive profile quadrature, per piece (the profile integrates to 1)
     bool shadows = true;            // false: the shadow light is unshadowed too (RenderSettings::shadows)
+    // The environment's light: 0 takes the renderer's L2 SH irradiance (unshadowed, times the
+    // occlusion texture, as the renderer does); N > 0 traces the environment image with N rays
+    // per vertex (importance-sampled, occluded by the scene), the truth the SH ambient stands for.
+    // Tracing needs the constructor that takes the Environment.
+    uint32_t environmentSamples = 0;
     // A pixel is "near a cast-shadow edge" when visible points that face the shadow light, some
     // lit and some in a cast shadow, lie within this many times the profile's widest channel
     // width (profile mm, so divided by the scatter scale in world units) of its point.
@@ -114,6 +119,10 @@ public:
     // directional light flagged castsShadow, as in the renderer. Throws preskin::Error on bad
     // settings or scene data.
     DiffusionReference(const Scene& scene, const std::vector<Light>& lights, const ShRgb& radianceSh,
+                       const DiffusionProfile& profile, const ReferenceSettings& settings = {});
+    // The same with the environment itself, which settings.environmentSamples > 0 traces (the
+    // environment must outlive the reference).
+    DiffusionReference(const Scene& scene, const std::vector<Light>& lights, const Environment& environment,
                        const DiffusionProfile& profile, const ReferenceSettings& settings = {});
     ~DiffusionReference();
     DiffusionReference(const DiffusionReference&) = delete;

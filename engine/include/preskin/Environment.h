@@ -65,11 +65,18 @@ public:
     // The decoded image (empty for constant environments); kept for CPU references.
     const EquirectImage& image() const { return image_; }
     float intensity() const { return intensity_; }
+    // The turn about +Y the image was loaded with (radians; 0 for constant environments).
+    float rotationY() const { return rotationY_; }
+    // Radiance arriving from world direction `directionWs` (unit): the image's texel there
+    // (nearest, intensity applied, turned by rotationY), or the constant.
+    glm::vec3 radiance(const glm::vec3& directionWs) const;
 
 private:
     ShRgb radianceSh_;
     EquirectImage image_;
     float intensity_ = 1.0f;
+    float rotationY_ = 0.0f;
+    glm::vec3 constant_{0.0f};
 };
 
 }  // namespace preskin

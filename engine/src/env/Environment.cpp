@@ -144,13 +144,27 @@ Environment Environment::load(const std::filesystem::path& path, float intensity
     }
     input->close();
     env.radianceSh_ = projectEquirect(env.image_, rotationY);
+    env.rotationY_ = rotationY;
     return env;
+}
+
+glm::vec3 Environment::radiance(const glm::vec3& directionWs) const {
+    if (image_.width == 0 || image_.height == 0) return constant_;
+    const glm::vec3 d = rotateY(directionWs, -rotationY_);
+    const float theta = std::acos(std::clamp(d.y, -1.0f, 1.0f));
+    const float phi = std::atan2(d.z, d.x);
+    float u = phi / (2.0f * kPi) + 0.5f;
+    u -= std::floor(u);
+    const auto x = std::min(uint32_t(u * float(image_.width)), image_.width - 1);
+    const auto y = std::min(uint32_t(theta / kPi * float(image_.height)), image_.height - 1);
+    return image_.texel(x, y);
 }
 
 Environment Environment::constant(const glm::vec3& radiance) {
     Environment env;
     // A constant function c has only c_00 = c * sqrt(4 pi).
     env.radianceSh_.c[0] = radiance * std::sqrt(4.0f * kPi);
+    env.constant_ = radiance;
     return env;
 }
 

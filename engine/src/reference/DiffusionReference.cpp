@@ -9,6 +9,7 @@
 #include "reference/ReferenceMaterials.h"
 #include "reference/ReferenceMesh.h"
 #include "reference/SurfaceIntegral.h"
+#include "reference/TracedEnvironment.h"
 
 #include <fmt/core.h>
 #include <tbb/blocked_range.h>
@@ -99,9 +100,15 @@ struct DiffusionReference::Impl {
     double reachMm = 0.0;
     mutable tbb::enumerable_thread_specific<IrradianceCache> caches;
 
-    Impl(const Scene& scene, const std::vector<Light>& lights, const ShRgb& sh, const DiffusionProfile& p,
-         const ReferenceSettings& s)
+    std::unique_ptr<TracedEnvironment> traced;
+
+    Impl(const Scene& scene, const std::vector<Light>& lights, const ShRgb& sh, const Environment* environment,
+         const DiffusionProfile& p, const ReferenceSettings& s)
         : settings(s), profile(p), mesh(ReferenceMesh::fromScene(scene)), materials(scene) {
+        if (s.environmentSamples > 0 && !environment)
+            throw Error("ReferenceSettings: environmentSamples: tracing the environment needs the Environment");
+        if (s.environmentSamples > (1u << 20))
+            throw Error(fmt::format("ReferenceSettings: environmentSamples: {} is above {}", s.environmentSamples, 1u << 20));
         checkSetting(s.tailFraction, 1e-9, 0.1, "tailFraction");
         checkSetting(s.leafRatio, 0.0, 2.0, "leafRatio", true);
         checkSetting(s.finestLeafRatio, 0.0, 100.0, "finestLeafRatio", true);
@@ -111,7 +118,8 @@ struct DiffusionReference::Impl {
         rays = std::make_unique<RayScene>(mesh, [this](uint32_t t, const glm::dvec3& bary, const glm::dvec3& dir) {
             return acceptHit(t, bary, dir);
         });
-        irradiance = std::make_unique<IrradianceField>(mesh, *rays, materials, lights, sh, s.shadows);
+        if (s.environmentSamples > 0) traced = std::make_unique<TracedEnvironment>(*environment, s.environmentSamples);
+        irradiance = std::make_unique<IrradianceField>(mesh, *rays, materials, lights, sh, s.shadows, traced.get());
         SurfaceIntegralSettings is;
         is.reachMm = reachMm;
         is.leafRatio = s.leafRatio;
@@ -161,7 +169,12 @@ struct DiffusionReference::Impl {
 
 DiffusionReference::DiffusionReference(const Scene& scene, const std::vector<Light>& lights, const ShRgb& radianceSh,
                                        const DiffusionProfile& profile, const ReferenceSettings& settings)
-    : impl_(std::make_unique<Impl>(scene, lights, radianceSh, profile, settings)) {}
+    : impl_(std::make_unique<Impl>(scene, lights, radianceSh, nullptr, profile, settings)) {}
+
+DiffusionReference::DiffusionReference(const Scene& scene, const std::vector<Light>& lights,
+                                       const Environment& environment, const DiffusionProfile& profile,
+                                       const ReferenceSettings& settings)
+    : impl_(std::make_unique<Impl>(scene, lights, environment.radianceSh(), &environment, profile, settings)) {}
 
 DiffusionReference::~DiffusionReference() = default;
 

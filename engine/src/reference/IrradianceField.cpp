@@ -3,8 +3,12 @@
 
 #include "render/GpuLights.h"
 
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
+
 #include <algorithm>
 #include <cmath>
+#include <functional>
 #include <limits>
 
 namespace preskin::reference {
@@ -36,13 +40,31 @@ void lightIncidence(const gpu::GpuLight& light, const glm::dvec3& positionWs, gl
 }
 
 IrradianceField::IrradianceField(const ReferenceMesh& mesh, const RayScene& rays, const ReferenceMaterials& materials,
-                                 const std::vector<Light>& lights, const ShRgb& radianceSh, bool shadows)
-    : mesh_(mesh), rays_(rays), materials_(materials), radianceSh_(radianceSh) {
+                                 const std::vector<Light>& lights, const ShRgb& radianceSh, bool shadows,
+                                 const TracedEnvironment* traced)
+    : mesh_(mesh), rays_(rays), materials_(materials), radianceSh_(radianceSh), traced_(traced) {
     const int shadowLight = shadows ? shadowLightIndex(lights) : -1;
     for (size_t i = 0; i < lights.size(); ++i) {
         if (int(i) == shadowLight) shadowLight_ = int(lights_.size());
         lights_.push_back(toGpuLight(lights[i], int(i) == shadowLight));
     }
+    if (!traced_) return;
+    // Rays leave each vertex a thousandth of its longest edge off the surface.
+    std::vector<double> edge(mesh_.positionsWs.size(), 0.0);
+    for (const MeshTriangle& t : mesh_.triangles)
+        for (int k = 0; k < 3; ++k) {
+            const double l = glm::length(mesh_.positionsWs[t.v[size_t(k)]] - mesh_.positionsWs[t.v[size_t((k + 1) % 3)]]);
+            edge[t.v[size_t(k)]] = std::max(edge[t.v[size_t(k)]], l);
+            edge[t.v[size_t((k + 1) % 3)]] = std::max(edge[t.v[size_t((k + 1) % 3)]], l);
+        }
+    vertexAmbient_.assign(mesh_.positionsWs.size(), glm::dvec3(0.0));
+    tbb::parallel_for(tbb::blocked_range<size_t>(0, vertexAmbient_.size(), 16), [&](const auto& range) {
+        for (size_t v = range.begin(); v != range.end(); ++v) {
+            const glm::dvec3 n = mesh_.normalsWs[v];
+            if (!(glm::dot(n, n) > 0.0)) continue;
+            vertexAmbient_[v] = traced_->irradiance(rays_, mesh_.positionsWs[v] + n * (1e-3 * edge[v]), n, uint64_t(v));
+        }
+    });
 }
 
 glm::dvec3 IrradianceField::shadowRayOrigin(const SurfacePoint& p, const glm::dvec3& normal, bool flipNormal) const {
@@ -81,6 +103,16 @@ IrradianceSample IrradianceField::at(const SurfacePoint& p, bool flipNormal) con
             out.shadow = ShadowState::Lit;
         }
         out.irradiance += irradiance * NoL;
+    }
+    if (traced_) {
+        const MeshTriangle& t = mesh_.triangles[p.triangle];
+        if (!flipNormal) {
+            for (int k = 0; k < 3; ++k) out.irradiance += p.bary[k] * vertexAmbient_[t.v[size_t(k)]];
+        } else {  // the back of a double-sided surface: traced at the point itself
+            const uint64_t key = (uint64_t(p.triangle) << 32) ^ std::hash<double>{}(p.bary.x * 3.0 + p.bary.y);
+            out.irradiance += traced_->irradiance(rays_, shadowRayOrigin(p, n, flipNormal), n, key);
+        }
+        return out;
     }
     const glm::dvec3 ambient = glm::max(glm::dvec3(evaluateSh(radianceSh_, glm::vec3(n), kLambertBands)), glm::dvec3(0.0));
     const uint32_t material = mesh_.triangles[p.triangle].material;

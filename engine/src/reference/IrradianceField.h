@@ -9,13 +9,19 @@
 // tangent plane it lies below, blended by the barycentric weights), plus a relative epsilon along
 // the face normal, so a coarse tessellation does not shadow itself where its smooth normals
 // still face the light.
+// With a TracedEnvironment the environment's light is traced instead of taken from the SH: its
+// irradiance, visibility included, found once per vertex (rays from the vertex, nudged off the
+// surface along its normal) and interpolated across each triangle; the occlusion texture is not
+// applied (the rays see what it stands for).
 // Limits: the other lights are unshadowed (as in the renderer); the shadow light is a sharp
-// point-like source; SH ambient is unshadowed (as in the renderer).
+// point-like source; SH ambient is unshadowed (as in the renderer); traced ambient is linear
+// across triangles (refine the mesh to resolve occlusion finer than it).
 #pragma once
 
 #include "reference/RayScene.h"
 #include "reference/ReferenceMaterials.h"
 #include "reference/ReferenceMesh.h"
+#include "reference/TracedEnvironment.h"
 #include "shared/gpu_types.h"
 
 #include <preskin/Environment.h>
@@ -39,8 +45,10 @@ struct IrradianceSample {
 
 class IrradianceField {
 public:
+    // traced: the environment traced (its per-vertex irradiance is found here), or null for the SH.
     IrradianceField(const ReferenceMesh& mesh, const RayScene& rays, const ReferenceMaterials& materials,
-                    const std::vector<Light>& lights, const ShRgb& radianceSh, bool shadows);
+                    const std::vector<Light>& lights, const ShRgb& radianceSh, bool shadows,
+                    const TracedEnvironment* traced = nullptr);
 
     // flipNormal: the point is shaded from the back of a double-sided surface.
     IrradianceSample at(const SurfacePoint& p, bool flipNormal) const;
@@ -54,6 +62,8 @@ private:
     std::vector<gpu::GpuLight> lights_;
     int shadowLight_ = -1;  // index into lights_
     ShRgb radianceSh_;
+    const TracedEnvironment* traced_ = nullptr;
+    std::vector<glm::dvec3> vertexAmbient_;  // traced: the environment's irradiance per vertex
 };
 
 // Direction to the light and the irradiance normal to it at a point (lights.glsl's
