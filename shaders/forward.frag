@@ -187,19 +187,19 @@ void main() {
     vec4 shadowParams = frame.shadowParams;
     if (frame.shadowDirectionWs.w > 0.5) {
         if (kSkinWideShadow) {
-            // Skin's wide map first (shaders/shadow_reduce.comp: its texels hold their blocks'
-            // nearest depths, so where it is fully lit the shadow map is too, and the shadow map's
-            // own filter is only needed near an edge or in shadow). Concave skin rises towards
-            // the light within the wide kernel, by |curvature| r^2 / 2 at r = 2 wide texels,
-            // which its own walls must not shadow.
+            // Skin's wide map (shaders/shadow_reduce.comp: its texels hold their blocks' nearest
+            // depths), for red's scattering past the shadow map's filter. Concave skin rises towards
+            // the light within the wide kernel, which its own walls must not shadow: a crease of
+            // mean curvature H bends by 2H across, k r^2 / 2 at the kernel's reach r = 3 wide
+            // texels on the map, r / N.L on the skin, seen along the light by N.L.
             vec4 wideParams = vec4(frame.wideShadow.z, 1.0, shadowParams.z, frame.wideShadow.y);
             float concavePerM = max(-skinCurvaturePerMm / max(material.skinScatter.x, 1e-6), 0.0) * 1000.0;
-            float riseM = 2.0 * concavePerM * frame.wideShadow.z * frame.wideShadow.z;
+            float riseM = 9.0 * concavePerM * frame.wideShadow.z * frame.wideShadow.z /
+                          max(abs(dot(geometricN, frame.shadowDirectionWs.xyz)), 0.3);
             wideShadow = preskinSampleShadow(wideShadowMap, preskinScaledShadowClip(shadowClipFromWorld, frame.wideShadow.x),
                                              wideParams, shadowPositionWs, geometricN, 0.75, riseM, 3);
         }
-        if (!kSkinWideShadow || wideShadow.visibility < 1.0)
-            shadow = preskinSampleShadow(shadowMap, shadowClipFromWorld, shadowParams, shadowPositionWs, geometricN);
+        shadow = preskinSampleShadow(shadowMap, shadowClipFromWorld, shadowParams, shadowPositionWs, geometricN);
     }
 
     uint first;

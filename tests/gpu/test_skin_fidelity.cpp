@@ -9,7 +9,8 @@
 // Pixels are the sphere's interior pixels (analytic ray-sphere hits); the reference is traced
 // through the same pixel centres. And the inside of a bowl (a hemisphere seen from inside, its
 // normals inwards, so its mesh curvature is negative) must be shaded with the diffuse LUT's
-// concave response: D(NoL, -1/r), no light past the terminator, not the convex D(NoL, 1/r).
+// concave response: D(NoL, -1/r), no light past the terminator, not the convex D(NoL, 1/r); and
+// the floor of a groove lit across it must be closer to the reference than Lambert.
 #include "support/GpuTest.h"
 #include "support/ImageCompare.h"
 #include "support/SkinTestSupport.h"
@@ -234,6 +235,78 @@ TEST_F(SkinFidelity, InsideOfABowlIsShadedWithTheConcaveResponse) {
     ASSERT_GT(pastTerminator, 50u);
     EXPECT_LE(concaveMisses, compared / 200);
     EXPECT_GT(convexMisses, compared / 20) << "the test must tell the two responses apart";
+}
+
+// A groove (z = -3 mm exp(-x^2 / 2 (2.5 mm)^2) in a skin plane), lit across it at 37 degrees from
+// the normal: in its concave floor (mean curvature to -0.2 / mm) skin must come closer to the
+// diffusion reference than Lambert, by a clear margin (a crease the concave model and the wide
+// shadow map both see).
+TEST_F(SkinFidelity, ConcaveGrooveIsCloserToTheReferenceThanLambert) {
+    const double depthM = 0.003, widthM = 0.0025, halfM = 0.02;
+    const uint32_t n = 80;
+    Primitive groove;
+    for (uint32_t j = 0; j <= n; ++j)
+        for (uint32_t i = 0; i <= n; ++i) {
+            const double x = -halfM + 2.0 * halfM * i / n, y = -halfM + 2.0 * halfM * j / n;
+            const double e = std::exp(-x * x / (2.0 * widthM * widthM));
+            Vertex v;
+            v.positionOs = glm::vec3(float(x), float(y), float(-depthM * e));
+            v.normalOs = glm::vec3(glm::normalize(glm::dvec3(-depthM * x / (widthM * widthM) * e, 0.0, 1.0)));
+            v.uv0 = glm::vec2(float(i) / float(n), float(j) / float(n));
+            groove.vertices.push_back(v);
+            groove.boundsOs.extend(v.positionOs);
+        }
+    for (uint32_t j = 0; j < n; ++j)
+        for (uint32_t i = 0; i < n; ++i) {
+            const uint32_t a = j * (n + 1) + i, b = a + 1, c = a + n + 1, d = c + 1;
+            groove.indices.insert(groove.indices.end(), {a, b, d, a, d, c});
+        }
+    recomputeCurvature(groove);
+    groove.material = 0;
+    Material material;
+    material.baseColorFactor = glm::vec4(0.8f, 0.6f, 0.5f, 1.0f);
+    material.metallicFactor = 0.0f;
+    material.skin = SkinMaterial{};
+    Scene scene = makeScene({{groove, glm::mat4(1.0f)}}, {material});
+    Light light;
+    light.type = LightType::Directional;
+    light.directionWs = glm::normalize(glm::vec3(0.6f, 0.0f, -0.8f));
+    light.intensity = 3.0f;
+    light.castsShadow = true;
+    scene.lights = {light};
+    const uint32_t size = 64;
+    const View view = perspectiveView(
+        glm::inverse(glm::lookAt(glm::vec3(0.0f, 0.0f, 0.06f), glm::vec3(0.0f), glm::vec3(0.0f, 1.0f, 0.0f))),
+        2.0f * std::atan(0.01f / 0.06f), 1.0f, 0.01f, 1.0f);
+    const Environment dark = Environment::constant(glm::vec3(0.0f));
+    RenderSettings settings;
+    settings.specular = false;
+    Renderer renderer(context(), scene, dark, &LutSet::loadDefault(), settings);
+    const RenderedImage skin = renderer.render(view, size, size, OutputEncoding::LinearFloat);
+    settings.skin = SkinFeatures::none();
+    renderer.setSettings(settings);
+    const RenderedImage lambert = renderer.render(view, size, size, OutputEncoding::LinearFloat);
+    ReferenceSettings coarse;
+    coarse.leafRatio = 1.0;
+    coarse.finestLeafRatio = 4.0;
+    coarse.momentTolerance = 1e-5;
+    const DiffusionReference reference(scene, scene.lights, dark.radianceSh(), LutSet::loadDefault().profile(), coarse);
+    const ReferenceImage truth = reference.render(view.eye(), size, size);
+    double skinSquared = 0.0, lambertSquared = 0.0;
+    size_t pixels = 0;
+    for (size_t i = 0; i < size_t(size) * size; ++i) {
+        if (!truth.skin[i] || truth.curvaturePerMm[i] > -0.01f) continue;
+        for (int c = 0; c < 3; ++c) {
+            const double want = double(truth.rgba32f[4 * i + size_t(c)]);
+            skinSquared += std::pow(double(skin.rgba32f[4 * i + size_t(c)]) - want, 2.0);
+            lambertSquared += std::pow(double(lambert.rgba32f[4 * i + size_t(c)]) - want, 2.0);
+        }
+        ++pixels;
+    }
+    const double ratio = std::sqrt(skinSquared / lambertSquared);
+    std::printf("[ fidelity ] groove floor: %zu concave pixels, skin / Lambert RMSE %.3f\n", pixels, ratio);
+    EXPECT_GT(pixels, size_t(size) * 10);
+    EXPECT_LT(ratio, 0.6);
 }
 
 }  // namespace
