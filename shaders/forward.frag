@@ -197,7 +197,8 @@ void main() {
             float riseM = 9.0 * concavePerM * frame.wideShadow.z * frame.wideShadow.z /
                           max(abs(dot(geometricN, frame.shadowDirectionWs.xyz)), 0.3);
             wideShadow = preskinSampleShadow(wideShadowMap, preskinScaledShadowClip(shadowClipFromWorld, frame.wideShadow.x),
-                                             wideParams, shadowPositionWs, geometricN, 0.75, riseM, 3);
+                                             wideParams, shadowPositionWs, geometricN,
+                                             PreskinShadowFilter(3, 0.75, riseM, frame.wideShadow.w));
         }
         shadow = preskinSampleShadow(shadowMap, shadowClipFromWorld, shadowParams, shadowPositionWs, geometricN);
     }

@@ -34,28 +34,36 @@ float preskinShadowThickness(sampler2D shadowMap, mat4 shadowClipFromWorld, vec4
     return max(clip.z - texelFetch(shadowMap, texel, 0).r, 0.0) * params.z;
 }
 
+// How a map is filtered: the Gaussian PCF below on a shadow map, or on a coarser map whose texels
+// hold whole blocks of one (shaders/shadow_reduce.comp).
+struct PreskinShadowFilter {
+    int gathersPerAxis;     // the footprint, 2 x gathersPerAxis texels on a side, the window at
+                            // gathersPerAxis texels (4: 8 x 8 texels by 16 gathers, for sigma up to 2;
+                            // 3: 6 x 6 by 9, up to 1.2; 2: 4 x 4 by 4, up to 0.8)
+    float slopeBiasTexels;  // extra depth bias, in texels of the receiver plane's slope (a map of each
+                            // block's nearest depth holds a sloped receiver that much nearer than its plane)
+    float riseM;            // how far (m) the receiver rises towards the light above its plane within the
+                            // kernel (a concave receiver's own walls)
+    float texelScale;       // the map's texels per shadow-map texel side: the receiver plane's depth step
+                            // per texel is clamped to 0.02 times it (the same steepest slope on any map)
+};
+
+// The filter of a shadow map: 8 x 8 texels, no extra bias.
+const PreskinShadowFilter kPreskinShadowMapFilter = PreskinShadowFilter(4, 0.0, 0.0, 1.0);
+
 // shadowClipFromWorld: orthographic light matrix (depth 0 near .. 1 far).
 // params: x texel size (m), y Gaussian sigma (texels), z depth range (m), w map size (texels).
-// slopeBiasTexels: extra depth bias, in texels of the receiver plane's slope (0 for a shadow map;
-// a map of each block's nearest depth holds a sloped receiver that much nearer than its plane);
-// riseM: how far (m) the receiver rises towards the light above its plane within the kernel (a
-// concave receiver's own walls, 0 for a plane).
-// gathersPerAxis: the footprint, 2 x gathersPerAxis texels on a side, the window at gathersPerAxis
-// texels (4: 8 x 8 texels by 16 gathers, for sigma up to 2; 3: 6 x 6 by 9, up to 1.2; 2: 4 x 4 by
-// 4, up to 0.8).
 PreskinShadowSample preskinSampleShadow(sampler2D shadowMap, mat4 shadowClipFromWorld, vec4 params,
-                                        vec3 positionWs, vec3 geometricNormalWs, float slopeBiasTexels, float riseM,
-                                        int gathersPerAxis) {
+                                        vec3 positionWs, vec3 geometricNormalWs, PreskinShadowFilter shadowFilter) {
     PreskinShadowSample result;
     float mapSize = params.w;
     float sigma = max(params.y, 0.25);
-    // Normal offset: a quarter texel along the normal, whatever the light's angle. The receiver-
-    // plane bias below handles sloped receivers; an offset along the normal moves the lookup
-    // across the map by its component perpendicular to the light, which on a receiver at grazing
-    // light puts cast-shadow edges off their place (against the ray-traced reference on the head,
-    // growing the offset to 1.75 texels at grazing light shrank the nose's shadow on the cheek by
-    // about a millimetre: green RMSE 0.0038 against 0.0031 at 1024x1024, 0.0072 against 0.0049
-    // close up).
+    // Normal offset: a quarter texel along the normal, growing to 1.75 texels only where the light
+    // grazes (cos < 0.25). An offset along the normal moves the lookup across the map by its
+    // component perpendicular to the light, which at grazing light puts cast-shadow edges off their
+    // place: against the ray-traced reference on the head, growing it over the whole hemisphere
+    // shrank the nose's shadow on the cheek by about a millimetre (green RMSE 0.0038 against 0.0031
+    // at 1024x1024). The receiver-plane bias below handles sloped receivers.
     vec3 r0 = vec3(shadowClipFromWorld[0][0], shadowClipFromWorld[1][0], shadowClipFromWorld[2][0]);
     vec3 r1 = vec3(shadowClipFromWorld[0][1], shadowClipFromWorld[1][1], shadowClipFromWorld[2][1]);
     vec3 r2 = vec3(shadowClipFromWorld[0][2], shadowClipFromWorld[1][2], shadowClipFromWorld[2][2]);
@@ -72,13 +80,14 @@ PreskinShadowSample preskinSampleShadow(sampler2D shadowMap, mat4 shadowClipFrom
     float n1 = dot(n, r1) / dot(r1, r1);
     float n2 = dot(n, r2) / dot(r2, r2);
     n2 = sign(n2) * max(abs(n2), 1e-4 * (abs(n0) + abs(n1)) + 1e-12);
-    vec2 dzPerTexel = clamp(-vec2(n0, n1) / n2 * (2.0 / mapSize), vec2(-0.02), vec2(0.02));
-    float bias = 2e-4 + slopeBiasTexels * (abs(dzPerTexel.x) + abs(dzPerTexel.y)) + riseM / params.z;
+    vec2 dzPerTexel = clamp(-vec2(n0, n1) / n2 * (2.0 / mapSize), vec2(-0.02 * shadowFilter.texelScale),
+                            vec2(0.02 * shadowFilter.texelScale));
+    float bias = 2e-4 + shadowFilter.slopeBiasTexels * (abs(dzPerTexel.x) + abs(dzPerTexel.y)) + shadowFilter.riseM / params.z;
 
     // Texel coordinates with texel i's centre at t = i. The footprint is the 2G x 2G texels
     // cell - G + 1 .. cell + G on each axis (G = gathersPerAxis); their offsets from the sample
     // point lie in (-G, G].
-    const int G = gathersPerAxis;
+    const int G = shadowFilter.gathersPerAxis;
     vec2 t = uv * mapSize - 0.5;
     vec2 cell = floor(t);
     vec2 f = t - cell;
@@ -128,7 +137,8 @@ PreskinShadowSample preskinSampleShadow(sampler2D shadowMap, mat4 shadowClipFrom
 
 PreskinShadowSample preskinSampleShadow(sampler2D shadowMap, mat4 shadowClipFromWorld, vec4 params,
                                         vec3 positionWs, vec3 geometricNormalWs) {
-    return preskinSampleShadow(shadowMap, shadowClipFromWorld, params, positionWs, geometricNormalWs, 0.0, 0.0, 4);
+    return preskinSampleShadow(shadowMap, shadowClipFromWorld, params, positionWs, geometricNormalWs,
+                               kPreskinShadowMapFilter);
 }
 
 // The transform of a map covering the shadow map's region scaled by uvScale from its corner

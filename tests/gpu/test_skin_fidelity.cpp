@@ -102,6 +102,34 @@ TEST_F(SkinFidelity, UnlitSideCarriesNinetyPercentOfTheReferenceRed) {
     EXPECT_LE(ratio, 1.25) << "and not far brighter either";
 }
 
+// The whole picture of the small sphere, its shadow-casting light included: every technique on
+// (the wide shadow map's penumbra too, which must not darken the sphere's own terminator).
+TEST_F(SkinFidelity, WholeSphereIsFarCloserToTheReferenceThanLambert) {
+    const RenderedImage skin = render(true);
+    RenderSettings settings;
+    settings.specular = false;
+    settings.skin = SkinFeatures::none();
+    Renderer renderer(context(), scene_, Environment::constant(glm::vec3(0.0f)), &LutSet::loadDefault(), settings);
+    const RenderedImage lambert = renderer.render(view_, kSize, kSize, OutputEncoding::LinearFloat);
+    const DiffusionReference reference(scene_, scene_.lights, ShRgb{}, LutSet::loadDefault().profile());
+    const ReferenceImage truth = reference.render(view_.eye(), kSize, kSize);
+    double skinSquared = 0.0, lambertSquared = 0.0;
+    size_t pixels = 0;
+    for (size_t i = 0; i < size_t(kSize) * kSize; ++i) {
+        if (!truth.skin[i]) continue;
+        for (int c = 0; c < 3; ++c) {
+            const double want = double(truth.rgba32f[4 * i + size_t(c)]);
+            skinSquared += std::pow(double(skin.rgba32f[4 * i + size_t(c)]) - want, 2.0);
+            lambertSquared += std::pow(double(lambert.rgba32f[4 * i + size_t(c)]) - want, 2.0);
+        }
+        ++pixels;
+    }
+    const double ratio = std::sqrt(skinSquared / lambertSquared);
+    std::printf("[ fidelity ] 10 mm sphere (%zu pixels): skin / Lambert RMSE %.3f\n", pixels, ratio);
+    EXPECT_GT(pixels, size_t(kSize) * 20);
+    EXPECT_LT(ratio, 0.3);
+}
+
 TEST_F(SkinFidelity, TransmissionAddsAtMostHalfAPercentWhereTheSkinFacesTheLight) {
     const RenderedImage with = render(true);
     const RenderedImage without = render(false);
