@@ -114,13 +114,13 @@ void run(const Options& o) {
     if (reuseReference) {
         ReferenceKey made;
         ref = readReferenceImage(referencePath, made);
-        for (const auto& [name, value] : key) {
-            auto it = std::find_if(made.begin(), made.end(), [&](const auto& kv) { return kv.first == name; });
+        for (const auto& field : key) {
+            auto it = std::find_if(made.begin(), made.end(), [&](const auto& kv) { return kv.first == field.first; });
             const std::string was = it == made.end() ? std::string("(not recorded)") : it->second;
-            if (was != value)
+            if (was != field.second)
                 throw Error(fmt::format("{}: --reference: {}: the file was made for '{}', this run needs '{}' (remove "
                                         "the file to compute it again)",
-                                        o.referenceFile, name, was, value));
+                                        o.referenceFile, field.first, was, field.second));
         }
     }
     double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();

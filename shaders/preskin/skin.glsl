@@ -144,7 +144,8 @@ vec3 preskinSkinShadow(PreskinSkinSurface s, PreskinProfileMix m, sampler2DArray
 // sees the edge (|Phi^-1(visibility)| < 2, blended out by 3) and from the wide map's filter
 // beyond, moved half a wide texel into the shadow (the wide map's edges lie that far on the lit
 // side on average); the penumbra LUT at the wide filter's width returns the profile's hard-edge
-// response there. wideVisibility, wideFilterWidthLightM: the wide map's sample; wideTexelM: its
+// response there; towards the terminator (N.L from 0.35 down to 0.15) this fades to the shadow
+// map's alone. wideVisibility, wideFilterWidthLightM: the wide map's sample; wideTexelM: its
 // texel size (m).
 vec3 preskinSkinShadow(PreskinSkinSurface s, PreskinProfileMix m, sampler2DArray penumbraLut, float visibility,
                        float filterWidthLightM, float wideVisibility, float wideFilterWidthLightM, float wideTexelM,
@@ -153,6 +154,11 @@ vec3 preskinSkinShadow(PreskinSkinSurface s, PreskinProfileMix m, sampler2DArray
     bool fineEdge = visibility > 0.0 && visibility < 1.0;
     bool wideEdge = wideVisibility > 0.0 && wideVisibility < 1.0;
     if (!fineEdge && !wideEdge) return vec3(visibility);  // far from any edge (the wide map is never lit where this is not)
+    // Towards the terminator the wide kernel stretches over the skin by 1 / N.L and takes in the
+    // receiver's own curve, which the diffuse LUT already holds: there the shadow map alone.
+    float wideTrust = smoothstep(0.15, 0.35, dot(s.geometricNormal, L));
+    vec3 fineOnly = preskinSkinShadow(s, m, penumbraLut, visibility, filterWidthLightM, L, features);
+    if (wideTrust <= 0.0) return fineOnly;
     float slope = max(abs(dot(s.geometricNormal, L)), 0.2);
     float toProfileMm = 1000.0 / slope * s.scatterScale;
     float sigmaFine = filterWidthLightM * toProfileMm;
@@ -171,7 +177,7 @@ vec3 preskinSkinShadow(PreskinSkinSurface s, PreskinProfileMix m, sampler2DArray
         x = sigmaWide * preskinNormalQuantile(wideVisibility) + 0.5 * wideTexelM * toProfileMm;
         x = visibility >= 1.0 ? max(x, 3.0 * sigmaFine) : min(x, -3.0 * sigmaFine);
     }
-    return preskinPenumbraLut(m, penumbraLut, preskinNormalCdf(x / sigmaWide), sigmaWide);
+    return mix(fineOnly, preskinPenumbraLut(m, penumbraLut, preskinNormalCdf(x / sigmaWide), sigmaWide), wideTrust);
 }
 
 // Light transmitted through the surface from a light behind it (after Jimenez et al. 2010):
