@@ -36,5 +36,14 @@ write_basic_package_version_file(${PROJECT_BINARY_DIR}/preskinConfigVersion.cmak
 install(FILES ${PROJECT_BINARY_DIR}/preskinConfig.cmake ${PROJECT_BINARY_DIR}/preskinConfigVersion.cmake
   DESTINATION ${PRESKIN_INSTALL_CMAKEDIR})
 
+# preskin.pc names its prefix relative to its own folder (${pcfiledir}), so it stays right for
+# any `cmake --install --prefix` and when the installed tree is moved.
+if(IS_ABSOLUTE "${CMAKE_INSTALL_LIBDIR}")
+  set(PRESKIN_PC_PREFIX "${CMAKE_INSTALL_PREFIX}")
+else()
+  file(RELATIVE_PATH pc_to_prefix "/prefix/${CMAKE_INSTALL_LIBDIR}/pkgconfig" "/prefix")
+  string(REGEX REPLACE "/$" "" pc_to_prefix "${pc_to_prefix}")
+  set(PRESKIN_PC_PREFIX "\${pcfiledir}/${pc_to_prefix}")
+endif()
 configure_file(${PROJECT_SOURCE_DIR}/cmake/preskin.pc.in ${PROJECT_BINARY_DIR}/preskin.pc @ONLY)
 install(FILES ${PROJECT_BINARY_DIR}/preskin.pc DESTINATION ${CMAKE_INSTALL_LIBDIR}/pkgconfig)

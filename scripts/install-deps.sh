@@ -1,6 +1,7 @@
 #!/usr/bin/env bash
 # Installs every Debian 12 package preskin needs to build, run and test. Idempotent and
 # non-interactive: packages already present are skipped; uses sudo when not root.
+# --docs also installs what scripts/make-docs-images.sh needs (ImageMagick).
 set -euo pipefail
 
 packages=(
@@ -12,6 +13,12 @@ packages=(
   libgtest-dev libbenchmark-dev xvfb xauth libx11-dev
   python3-numpy python3-matplotlib clang libclang-rt-14-dev valgrind
 )
+for arg in "$@"; do
+  case "$arg" in
+    --docs) packages+=(imagemagick) ;;
+    *) echo "install-deps: unknown option $arg (only --docs)" >&2; exit 1 ;;
+  esac
+done
 
 missing=()
 for p in "${packages[@]}"; do

@@ -1,11 +1,17 @@
 #!/usr/bin/env bash
 # Renders docs/skin-vs-standard.png: the bundled head with the standard material (left) and with
 # pre-integrated skin (right), same view and lights: the scene's front camera, then a close-up of
-# the nose's shadow on the cheek and the ear. Needs ImageMagick (convert, montage). Also
-# docs/stereo-head.png: the head as a stereo pair (README, VR); docs/profiles-side-by-side.png:
-# four diffusion profiles in one scene (README, Profiles).
+# the nose's shadow on the cheek and the ear. Also docs/stereo-head.png: the head as a stereo
+# pair (README, VR); docs/profiles-side-by-side.png: four diffusion profiles in one scene
+# (README, Profiles); docs/fidelity-closeup.png: `preskin compare` of the cheek and nose close up
+# at 768x768, shown at a third of its size (README, Fidelity; its reference takes minutes).
+# Needs ImageMagick (convert, montage): scripts/install-deps.sh --docs installs it.
 set -euo pipefail
 cd "$(dirname "$0")/.."
+if ! command -v montage >/dev/null; then
+  echo "make-docs-images: ImageMagick's montage is missing; run scripts/install-deps.sh --docs" >&2
+  exit 1
+fi
 bin=${PRESKIN_BUILD_DIR:-build}/bin/preskin
 [ -x "$bin" ] || ./scripts/build.sh
 tmp=$(mktemp -d)
@@ -28,3 +34,7 @@ echo "wrote docs/stereo-head.png"
 "$bin" render samples/assets/head/head_profiles.gltf --camera front --width 1200 --height 400 \
   --out docs/profiles-side-by-side.png >/dev/null
 echo "wrote docs/profiles-side-by-side.png"
+# The fidelity close-up: reference, skin and Lambert with their error maps.
+"$bin" compare --camera cheek_nose --width 768 --height 768 --json "$tmp/closeup.json" --image "$tmp/closeup.png" >/dev/null
+convert "$tmp/closeup.png" -resize 33.333% -depth 8 docs/fidelity-closeup.png
+echo "wrote docs/fidelity-closeup.png"

@@ -7,6 +7,7 @@
 // Limits: --size sets every table axis at once (16..4096); finer control is in the library
 // (preskin::LutBakeSettings).
 #include "Commands.h"
+#include "ProgressBar.h"
 
 #include <preskin/DiffusionProfile.h>
 #include <preskin/Error.h>
@@ -14,12 +15,12 @@
 
 #include <fmt/core.h>
 
-#include <unistd.h>
-
+#include <cctype>
 #include <charconv>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
+#include <filesystem>
 #include <memory>
 #include <string>
 #include <thread>
@@ -81,43 +82,30 @@ DiffusionProfile selectProfile(const BakeOptions& o) {
         return DiffusionProfile::burley(albedo, meanFreePathMm);
     }
     if (o.profile == "deon") return DiffusionProfile::deonLuebke();
+    std::error_code ec;
+    if (!std::filesystem::exists(o.profile, ec)) {
+        std::string lower = o.profile;
+        for (char& c : lower) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+        const bool keyword = lower == "deon" || lower == "burley";
+        throw Error(fmt::format("--profile {}: value: neither a keyword (deon or burley{}) nor a profile JSON file "
+                                "(looked for {})",
+                                o.profile, keyword ? "; did you mean " + lower + "?" : "",
+                                std::filesystem::absolute(o.profile, ec).lexically_normal().string()));
+    }
     return DiffusionProfile::fromJsonFile(o.profile);
 }
-
-// A one-line progress bar on stderr when it is a terminal.
-class ProgressBar {
-public:
-    ProgressBar() : enabled_(isatty(fileno(stderr)) != 0) {}
-    void update(double fraction) {
-        if (!enabled_) return;
-        const int percent = static_cast<int>(std::lround(fraction * 100.0));
-        if (percent == shown_) return;
-        shown_ = percent;
-        constexpr int kWidth = 40;
-        const int filled = percent * kWidth / 100;
-        fmt::print(stderr, "\rbaking [{}{}] {:3d}%", std::string(static_cast<size_t>(filled), '#'),
-                   std::string(static_cast<size_t>(kWidth - filled), '.'), percent);
-        std::fflush(stderr);
-    }
-    void finish() {
-        if (enabled_ && shown_ >= 0) fmt::print(stderr, "\n");
-    }
-
-private:
-    bool enabled_;
-    int shown_ = -1;
-};
 
 void runBake(const BakeOptions& o) {
     // Everything is validated before the (possibly long) bake, and the bake before any file.
     const LutBakeSettings settings = o.size.empty() ? LutBakeSettings{} : LutBakeSettings::withSize(parseSize(o.size));
     const DiffusionProfile profile = selectProfile(o);
 
-    ProgressBar bar;
     const auto start = std::chrono::steady_clock::now();
-    const LutSet luts = LutSet::bake(profile, settings, [&bar](double fraction) { bar.update(fraction); });
+    const LutSet luts = [&] {
+        ProgressBar bar("baking");
+        return LutSet::bake(profile, settings, [&bar](double fraction) { bar(fraction); });
+    }();
     const auto baked = std::chrono::steady_clock::now();
-    bar.finish();
     luts.save(o.out, {.previewPngs = o.preview});
     const auto saved = std::chrono::steady_clock::now();
 

@@ -44,6 +44,7 @@
 #include <preskin/DiffusionProfile.h>
 #include <preskin/Environment.h>
 #include <preskin/Error.h>
+#include <preskin/OutputFile.h>
 #include <preskin/LightScatter.h>
 #include <preskin/LutSet.h>
 #include <preskin/ProfileLibrary.h>
@@ -510,7 +511,7 @@ void run(const BenchOptions& o) {
     const auto started = Clock::now();
     const std::vector<uint32_t> counts = parseCounts(o.counts, "--counts");
     const std::vector<uint32_t> skinCounts = o.noSkin ? std::vector<uint32_t>{} : parseCounts(o.skinCounts, "--skin-counts");
-    if (!o.out.empty()) checkOutputFile(o.out, "--out");
+    if (!o.out.empty()) checkOutputFile(o.out);
 
     CommonOptions common;
     common.device = o.device;
@@ -1106,7 +1107,7 @@ void run(const BenchOptions& o) {
 
     const std::string json = j.text() + "\n";
     if (o.out.empty()) std::fwrite(json.data(), 1, json.size(), stdout);
-    else writeTextFile(o.out, json, "--out");
+    else writeTextFile(o.out, json);
 
     if (!o.out.empty()) fmt::print(stderr, "preskin bench: wrote {}\n", o.out);
 }

@@ -15,10 +15,10 @@
 #include "ReferenceOptions.h"
 
 #include <preskin/Error.h>
+#include <preskin/OutputFile.h>
 #include <preskin/Renderer.h>
 
 #include <fmt/core.h>
-#include <unistd.h>
 
 #include <algorithm>
 #include <chrono>
@@ -77,14 +77,7 @@ uint32_t removeNormalMaps(Scene& scene) {
 void run(const Options& o) {
     const std::filesystem::path jsonPath(o.json), imagePath(o.image);
     if (jsonPath.extension() != ".json") throw Error(fmt::format("{}: --json: the report is written as .json", o.json));
-    {
-        const std::filesystem::path dir = jsonPath.has_parent_path() ? jsonPath.parent_path() : ".";
-        std::error_code ec;
-        if (!std::filesystem::is_directory(dir, ec))
-            throw Error(fmt::format("{}: --json: folder {} does not exist", o.json, dir.string()));
-        if (::access(dir.c_str(), W_OK) != 0)
-            throw Error(fmt::format("{}: --json: folder {} is not writable", o.json, dir.string()));
-    }
+    checkOutputFile(jsonPath);
     if (imagePath.extension() != ".png") throw Error(fmt::format("{}: --image: the picture is written as .png", o.image));
     checkOutputPath(imagePath, OutputEncoding::DisplaySrgb8);
     checkViewOptions(o.view);
@@ -126,6 +119,7 @@ void run(const Options& o) {
     double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 
     auto context = Context::create(contextDesc(o.common));
+    checkMsaaOption(*context, o.common.msaa);
     RenderSettings settings = renderSettings(o.common);  // the skin technique switches hold
     settings.specular = false;
     settings.debugView = DebugView::None;
@@ -207,7 +201,7 @@ void run(const Options& o) {
             writeImage(lambertRenderPath, lambert);
             written.push_back(lambertRenderPath);
         }
-        writeTextFile(jsonPath, j.text() + "\n", "--json");
+        writeTextFile(jsonPath, j.text() + "\n");
     } catch (...) {
         for (const auto& path : written) std::filesystem::remove(path, ec);
         throw;

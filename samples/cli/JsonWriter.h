@@ -1,13 +1,12 @@
 // JsonWriter: a streaming front end over nlohmann::ordered_json for the tool's reports
 // (`preskin bench`, `preskin compare`): values are added in the order they are measured (keys keep
 // that order) and nlohmann serialises them (two-space indentation, doubles in their shortest
-// round-trip form, non-finite numbers as null). Also the atomic text-file write the reports use.
+// round-trip form, non-finite numbers as null). Reports are written with preskin::writeTextFile.
 #pragma once
 
 #include <nlohmann/json.hpp>
 
 #include <cstdint>
-#include <filesystem>
 #include <string>
 #include <string_view>
 #include <type_traits>
@@ -56,9 +55,5 @@ private:
     std::vector<nlohmann::ordered_json*> open_;  // objects and arrays being filled, innermost last
     std::string key_;
 };
-
-// Writes `text` to `path` through a temporary file renamed into place; throws preskin::Error
-// "<path>: output: cannot write (<flag>)" on failure (no partial file is left).
-void writeTextFile(const std::filesystem::path& path, const std::string& text, const char* flag);
 
 }  // namespace preskin::cli

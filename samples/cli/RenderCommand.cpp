@@ -147,6 +147,7 @@ void run(const RenderOptions& o) {
     const Environment environment = loadEnvironment(scene, o.common);
     const ProfileLibrary profiles = loadProfiles(scene, o.common);  // every input file is read before any GPU work
     auto context = Context::create(contextDesc(o.common));
+    checkMsaaOption(*context, o.common.msaa);
     Renderer renderer(*context, scene, environment, profiles, renderSettings(o.common));
     applyLightOptions(renderer, scene, o.common);
 

@@ -6,12 +6,15 @@
 
 #include <fmt/core.h>
 
+#include <algorithm>
 #include <charconv>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
+#include <filesystem>
 #include <new>
 #include <system_error>
+#include <vector>
 
 namespace preskin::cli {
 
@@ -43,6 +46,93 @@ std::string number(double value) {
 
 std::string afterPrefix(const std::string& text, const std::string& prefix) {
     return text.rfind(prefix, 0) == 0 ? text.substr(prefix.size()) : std::string();
+}
+
+// Edits (insertions, deletions, substitutions, swaps of neighbours) from a to b.
+size_t editDistance(const std::string& a, const std::string& b) {
+    std::vector<std::vector<size_t>> d(a.size() + 1, std::vector<size_t>(b.size() + 1));
+    for (size_t i = 0; i <= a.size(); ++i) d[i][0] = i;
+    for (size_t j = 0; j <= b.size(); ++j) d[0][j] = j;
+    for (size_t i = 1; i <= a.size(); ++i) {
+        for (size_t j = 1; j <= b.size(); ++j) {
+            d[i][j] = std::min({d[i - 1][j] + 1, d[i][j - 1] + 1, d[i - 1][j - 1] + (a[i - 1] == b[j - 1] ? 0 : 1)});
+            if (i > 1 && j > 1 && a[i - 1] == b[j - 2] && a[i - 2] == b[j - 1]) d[i][j] = std::min(d[i][j], d[i - 2][j - 2] + 1);
+        }
+    }
+    return d[a.size()][b.size()];
+}
+
+// ", did you mean X?" for the candidate nearest to `word`, when it is near enough to be a typo.
+std::string nearest(const std::string& word, const std::vector<std::string>& candidates) {
+    std::string best;
+    size_t bestDistance = std::max<size_t>(2, word.size() / 3) + 1;
+    for (const std::string& c : candidates) {
+        const size_t distance = editDistance(word, c);
+        if (distance < bestDistance) {
+            best = c;
+            bestDistance = distance;
+        }
+    }
+    return best.empty() || word.size() < 4 ? std::string() : ", did you mean " + best + "?";
+}
+
+bool looksLikeNumber(const std::string& text) {
+    double value = 0.0;
+    const auto [last, ec] = std::from_chars(text.data(), text.data() + text.size(), value);
+    return ec == std::errc() && last != text.data();
+}
+
+std::vector<std::string> optionNames(const CLI::App& app) {
+    std::vector<std::string> names;
+    for (const CLI::Option* option : app.get_options()) {
+        for (const std::string& n : option->get_lnames()) names.push_back("--" + n);
+        for (const std::string& n : option->get_snames()) names.push_back("-" + n);
+    }
+    return names;
+}
+
+std::vector<std::string> commandNames(const CLI::App& app) {
+    std::vector<std::string> names;
+    for (const CLI::App* sub : app.get_subcommands({})) names.push_back(sub->get_name());
+    return names;
+}
+
+// The first option on the command line that the command it is given to does not have, as
+// "<option>: option: unknown ...", or "". CLI11 hands an unknown option to the positionals or
+// reports a later argument (or a missing required option) instead, so this runs first.
+std::string findUnknownOption(CLI::App& app, int argc, char** argv) {
+    CLI::App* command = &app;
+    const bool hasCommands = !app.get_subcommands({}).empty();
+    for (int i = 1; i < argc; ++i) {
+        const std::string arg = argv[i];
+        if (arg == "--") return {};
+        if (arg.size() < 2 || arg[0] != '-' || looksLikeNumber(arg)) {
+            if (command == &app && hasCommands) {
+                CLI::App* sub = nullptr;
+                for (CLI::App* candidate : app.get_subcommands({}))
+                    if (candidate->check_name(arg)) sub = candidate;
+                if (!sub) return {};  // CLI11 names the unknown command
+                command = sub;
+            }
+            continue;
+        }
+        const size_t eq = arg.find('=');
+        const std::string name = arg.substr(0, eq);
+        const CLI::Option* option = command->get_option_no_throw(name);
+        if (!option && command != &app) option = app.get_option_no_throw(name);
+        if (!option) {
+            std::vector<std::string> names = optionNames(*command);
+            if (command != &app) {
+                for (const std::string& n : optionNames(app)) names.push_back(n);
+            }
+            const std::string program = std::filesystem::path(argv[0]).filename().string();
+            const std::string where = program + (command == &app ? "" : " " + command->get_name()) + " --help";
+            return shown(name) + ": option: unknown" + nearest(name, names) + " (see " + where + ")";
+        }
+        // Skip the option's value: "--width 64" (a value may start with '-': "--env-rotation -30").
+        if (eq == std::string::npos && option->get_type_size_max() > 0 && i + 1 < argc) ++i;
+    }
+    return {};
 }
 
 }  // namespace
@@ -107,7 +197,7 @@ std::string describeParseError(const CLI::ParseError& error, const CLI::App& app
             const std::vector<std::string> rest = app.remaining();
             if (!rest.empty() && !rest.front().empty()) {
                 return shown(rest.front()) + (rest.front()[0] == '-' ? ": option: unknown here (see --help)"
-                                                                     : ": command: unknown (see --help)");
+                                                                     : ": command: unknown" + nearest(rest.front(), commandNames(app)) + " (see --help)");
             }
             return "command: subcommand: missing (see --help)";
         }
@@ -153,6 +243,11 @@ std::string describeParseError(const CLI::ParseError& error, const CLI::App& app
 
 int runCommandLine(CLI::App& app, int argc, char** argv, const std::function<int()>& afterParse) {
     try {
+        const std::string unknown = findUnknownOption(app, argc, argv);
+        if (!unknown.empty()) {
+            fmt::print(stderr, "preskin: error: {}\n", unknown);
+            return 1;
+        }
         app.parse(argc, argv);
         return afterParse ? afterParse() : 0;
     } catch (const CLI::Success& help) {

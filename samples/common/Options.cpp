@@ -6,10 +6,10 @@
 #include <preskin/LightScatter.h>
 
 #include <fmt/core.h>
+#include <fmt/format.h>
 
-#include <sys/stat.h>
-#include <unistd.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdlib>
 #include <sstream>
@@ -120,13 +120,19 @@ void checkViewOptions(const ViewOptions& o) {
     if (!o.orbit.empty()) parseFloats(o.orbit, 3, "--orbit");
 }
 
+size_t findSceneCamera(const Scene& scene, const std::filesystem::path& scenePath, const std::string& name) {
+    std::vector<std::string> names;
+    for (size_t i = 0; i < scene.cameras.size(); ++i) {
+        if (scene.cameras[i].name == name) return i;
+        names.push_back(scene.cameras[i].name.empty() ? fmt::format("cameras[{}] (no name)", i) : scene.cameras[i].name);
+    }
+    throw Error(fmt::format("--camera {}: {} has no camera of that name ({})", name, scenePath.string(),
+                            names.empty() ? std::string("it has no cameras") : "its cameras: " + fmt::format("{}", fmt::join(names, ", "))));
+}
+
 View makeView(const Scene& scene, const std::filesystem::path& scenePath, const ViewOptions& o) {
     const float aspect = float(o.width) / float(o.height);
-    if (!o.camera.empty()) {
-        for (const Camera& c : scene.cameras)
-            if (c.name == o.camera) return cameraView(c, aspect, scene.worldBounds());
-        throw Error(fmt::format("--camera {}: {} has no camera of that name", o.camera, scenePath.string()));
-    }
+    if (!o.camera.empty()) return cameraView(scene.cameras[findSceneCamera(scene, scenePath, o.camera)], aspect, scene.worldBounds());
     if (!o.orbit.empty()) {
         const auto v = parseFloats(o.orbit, 3, "--orbit");
         return orbitView(scene.worldBounds(), v[0], v[1], v[2], aspect);
@@ -135,12 +141,14 @@ View makeView(const Scene& scene, const std::filesystem::path& scenePath, const 
 }
 
 void addStereoOptions(CLI::App& cmd, StereoOptions& o) {
-    cmd.add_flag("--stereo", o.stereo, "Render a stereo pair (one multiview pass), eyes side by side, left eye left");
+    auto* stereo =
+        cmd.add_flag("--stereo", o.stereo, "Render a stereo pair (one multiview pass), eyes side by side, left eye left");
     cmd.add_option("--ipd", o.ipdM, "Interpupillary distance of --stereo and --eye, metres")
         ->check(numberIn(0.0, 1.0))
         ->capture_default_str();
     cmd.add_option("--eye", o.eye, "Render only this eye of the stereo pair (mono): left or right")
-        ->check(oneOf({"left", "right"}));
+        ->check(oneOf({"left", "right"}))
+        ->excludes(stereo);
 }
 
 View applyStereoOptions(const View& mono, const StereoOptions& o) {
@@ -305,18 +313,11 @@ void applyLightOptions(Renderer& renderer, const Scene& scene, const CommonOptio
     renderer.setLights(sceneLights(scene, o));
 }
 
-void checkOutputFile(const std::filesystem::path& path, const char* option) {
-    std::error_code ec;
-    const std::filesystem::path parent = std::filesystem::absolute(path, ec).parent_path();
-    if (!std::filesystem::is_directory(parent, ec))
-        throw Error(fmt::format("{} {}: folder: {} does not exist", option, path.string(), parent.string()));
-    struct stat st {};
-    if (::stat(path.c_str(), &st) == 0) {
-        if (!S_ISREG(st.st_mode))
-            throw Error(fmt::format("{} {}: output: exists and is not a regular file; not replaced", option, path.string()));
-        if ((st.st_mode & (S_IWUSR | S_IWGRP | S_IWOTH)) == 0 || ::access(path.c_str(), W_OK) != 0)
-            throw Error(fmt::format("{} {}: output: exists and is read-only; not replaced", option, path.string()));
-    }
+void checkMsaaOption(const Context& context, uint32_t msaa) {
+    const std::vector<uint32_t> offered = context.msaaSampleCounts();
+    if (std::find(offered.begin(), offered.end(), msaa) == offered.end())
+        throw Error(fmt::format("--msaa: value: {} samples are not offered by {} (offered: {})", msaa,
+                                context.deviceName(), fmt::join(offered, ", ")));
 }
 
 void reportValidation(const Context& context) {

@@ -81,6 +81,9 @@ struct ViewOptions {
 void addViewOptions(CLI::App& cmd, ViewOptions& o);
 // Refuses malformed view options before anything is loaded.
 void checkViewOptions(const ViewOptions& o);
+// The index of the scene's camera named `name`; throws "--camera NAME: SCENE has no camera of
+// that name (its cameras: a, b)" otherwise.
+size_t findSceneCamera(const Scene& scene, const std::filesystem::path& scenePath, const std::string& name);
 // --camera NAME (a glTF camera), --orbit YAW,PITCH,DIST, else the default framing of the bounds.
 View makeView(const Scene& scene, const std::filesystem::path& scenePath, const ViewOptions& o);
 
@@ -119,9 +122,9 @@ Environment loadEnvironment(const Scene& scene, const CommonOptions& o);
 // The scene's lights plus --lights N scattered ones; a scene without any light gets a key light.
 std::vector<Light> sceneLights(const Scene& scene, const CommonOptions& o);
 void applyLightOptions(Renderer& renderer, const Scene& scene, const CommonOptions& o);
-// Refuses an output file `option` names unless its folder exists and the file, if it exists,
-// is a regular file that is not read-only (it would be replaced).
-void checkOutputFile(const std::filesystem::path& path, const char* option);
+// Refuses --msaa N unless the context's device offers N samples, naming the option and the
+// counts it offers (before a renderer is made, whose own refusal names RenderSettings).
+void checkMsaaOption(const Context& context, uint32_t msaa);
 // Throws when validation is on and reported anything.
 void reportValidation(const Context& context);
 std::string formatStats(const FrameStats& stats);

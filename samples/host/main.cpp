@@ -27,6 +27,7 @@
 #include <array>
 #include <cmath>
 #include <cstdio>
+#include <cstdlib>
 #include <cstring>
 #include <functional>
 #include <stdexcept>
@@ -283,16 +284,37 @@ int main(int argc, char** argv) {
     std::string out = "host.png";
     std::string deviceName;
     uint32_t width = 256, height = 256;
-    for (int i = 1; i + 1 < argc; i += 2) {
-        const std::string flag = argv[i], value = argv[i + 1];
+    const char* usage =
+        "usage: preskin-host [--scene FILE.gltf] [--out FILE.png] [--width W] [--height H] [--device NAME]\n"
+        "Renders the scene (default: the head preskin installs) once with the host's own skin shader and\n"
+        "writes a PNG (default host.png, 256x256). --device: part of a device name (default: the first).\n";
+    for (int i = 1; i < argc; i += 2) {
+        const std::string flag = argv[i];
+        if (flag == "--help" || flag == "-h") {
+            std::fputs(usage, stdout);
+            return 0;
+        }
+        if (flag != "--scene" && flag != "--out" && flag != "--device" && flag != "--width" && flag != "--height") {
+            std::fprintf(stderr, "preskin-host: error: %s: unknown option (see --help)\n", flag.c_str());
+            return 1;
+        }
+        if (i + 1 >= argc) {
+            std::fprintf(stderr, "preskin-host: error: %s: value: missing\n", flag.c_str());
+            return 1;
+        }
+        const std::string value = argv[i + 1];
         if (flag == "--scene") scenePath = value;
         else if (flag == "--out") out = value;
         else if (flag == "--device") deviceName = value;
-        else if (flag == "--width") width = uint32_t(std::stoul(value));
-        else if (flag == "--height") height = uint32_t(std::stoul(value));
         else {
-            std::fprintf(stderr, "preskin-host: error: %s: unknown option\n", flag.c_str());
-            return 1;
+            char* end = nullptr;
+            const unsigned long n = std::strtoul(value.c_str(), &end, 10);
+            if (value.empty() || *end != '\0' || n < 1 || n > 16384) {
+                std::fprintf(stderr, "preskin-host: error: %s: value: '%s' is not a whole number in [1, 16384]\n",
+                             flag.c_str(), value.c_str());
+                return 1;
+            }
+            (flag == "--width" ? width : height) = uint32_t(n);
         }
     }
     try {

@@ -161,6 +161,7 @@ void Viewer::createVulkan() {
     for (uint32_t i = 0; i < count; ++i) desc.instanceExtensions.emplace_back(required[i]);
     desc.deviceExtensions.emplace_back(VK_KHR_SWAPCHAIN_EXTENSION_NAME);
     context_ = Context::create(desc);
+    cli::checkMsaaOption(*context_, options_.common.msaa);
     vk_.load(context_->instance(), context_->physicalDevice(), context_->device());
     check(glfwCreateWindowSurface(context_->instance(), window_, nullptr, &surface_), "glfwCreateWindowSurface");
     swapchain_ = std::make_unique<Swapchain>(vk_, surface_, context_->queueFamilyIndex());
@@ -279,14 +280,11 @@ void Viewer::loadStartupContent() {
     }
 
     if (!options_.camera.empty()) {
-        int found = -1;
-        for (size_t i = 0; i < scene_.cameras.size(); ++i)
-            if (scene_.cameras[i].name == options_.camera) found = static_cast<int>(i);
-        if (found < 0) {
-            error(fmt::format("--camera {}: the scene has no camera of that name", options_.camera));
-        } else {
-            camera_.setSceneCamera(found);
+        try {
+            camera_.setSceneCamera(static_cast<int>(cli::findSceneCamera(scene_, scenePath, options_.camera)));
             camera_.setMode(CameraMode::Scene, aspect());
+        } catch (const std::exception& e) {
+            error(e.what());
         }
     } else if (!options_.orbit.empty()) {
         try {

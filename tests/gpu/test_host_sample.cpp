@@ -41,6 +41,9 @@ TEST(HostSample, BuiltAgainstTheInstallRendersLikePreskinRender) {
     run(PRESKIN_CMAKE_COMMAND, {"--build", build.string()}, 300.0);
     ASSERT_FALSE(HasFailure());
 
+    const ProcessResult help = run(build / "preskin-host", {"--help"}, 30.0);
+    EXPECT_EQ(help.out.rfind("usage: preskin-host", 0), 0u) << help.out;
+
     const std::string size = "96";
     const ProcessResult host =
         run(build / "preskin-host", {"--device", testDevice(), "--width", size, "--height", size, "--out", "host.png"},
@@ -69,6 +72,44 @@ TEST(HostSample, BuiltAgainstTheInstallRendersLikePreskinRender) {
     for (size_t p = 0; p < pixels; ++p)
         head += std::abs(int(reference.rgba8[4 * p]) - int(reference.rgba8[0])) > 10 ? 1 : 0;
     EXPECT_GT(head, pixels / 5);
+}
+
+// A program built with `pkg-config --cflags --libs preskin` against an install that was moved
+// after `cmake --install --prefix`: preskin.pc names its paths from its own folder, so the
+// headers, the library and the shader folder are found where the tree now lies.
+TEST(HostSample, PkgConfigFindsAMovedInstall) {
+    const fs::path work = fs::path(PRESKIN_BINARY_DIR) / "pkg-config-test";
+    std::error_code ec;
+    fs::remove_all(work, ec);
+    fs::create_directories(work);
+    const ProcessResult install =
+        runProcess(PRESKIN_CMAKE_COMMAND, {"--install", PRESKIN_BINARY_DIR, "--prefix", (work / "installed").string()},
+                   {}, work, 120.0);
+    ASSERT_EQ(install.exitCode, 0) << install.out << install.err;
+    const fs::path prefix = work / "moved";
+    fs::rename(work / "installed", prefix);
+    std::FILE* source = std::fopen((work / "main.cpp").c_str(), "w");
+    ASSERT_NE(source, nullptr);
+    std::fputs("#include <preskin/DiffusionProfile.h>\n#include <preskin/LutSet.h>\n#include <cstdio>\n"
+               "int main() { std::printf(\"%.3f\\n\", preskin::DiffusionProfile::deonLuebke().reachMm(1e-4)); }\n",
+               source);
+    std::fclose(source);
+    const fs::path pcDir = fs::exists(prefix / "lib" / "pkgconfig") ? prefix / "lib" / "pkgconfig"
+                                                                    : fs::path();
+    ASSERT_FALSE(pcDir.empty()) << "no lib/pkgconfig under " << prefix;
+    const std::string env = "PKG_CONFIG_PATH=" + pcDir.string();
+    const ProcessResult build = runProcess(
+        "/bin/sh", {"-c", "c++ -std=c++20 main.cpp -o main $(pkg-config --cflags --libs preskin)"}, {env}, work, 300.0);
+    ASSERT_EQ(build.exitCode, 0) << build.out << build.err;
+    const ProcessResult shaders = runProcess("/bin/sh", {"-c", "pkg-config --variable=shaderdir preskin"}, {env}, work, 30.0);
+    ASSERT_EQ(shaders.exitCode, 0) << shaders.err;
+    std::string shaderDir = shaders.out.substr(0, shaders.out.find('\n'));
+    EXPECT_TRUE(fs::exists(fs::path(shaderDir) / "preskin" / "skin.glsl")) << shaderDir;
+    EXPECT_EQ(fs::weakly_canonical(shaderDir).string().rfind(fs::weakly_canonical(prefix).string(), 0), 0u) << shaderDir;
+    const ProcessResult ran =
+        runProcess(work / "main", {}, {"LD_LIBRARY_PATH=" + (prefix / "lib").string()}, work, 30.0);
+    ASSERT_EQ(ran.exitCode, 0) << ran.err;
+    EXPECT_EQ(ran.out, "9.934\n");
 }
 
 }  // namespace

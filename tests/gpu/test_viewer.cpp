@@ -552,6 +552,22 @@ TEST_F(Viewer, LiveBurleyBakeMatchesBakedLutFiles) {
     expectMatchesHeadless(shot, kWidth, kHeight, {"--luts", luts.string()});
 }
 
+// An MSAA count the device does not offer is refused at start, naming --msaa and what is offered,
+// instead of a window that never draws.
+TEST_F(Viewer, MsaaTheDeviceDoesNotOfferIsRefusedAtStart) {
+    requireDisplay();
+    if (testDevice() != "llvmpipe") GTEST_SKIP() << "lavapipe offers 1 and 4 samples; other devices differ";
+    const fs::path shot = dir_ / "msaa.png";
+    std::vector<std::string> args = scriptedArgs(shot, 2);
+    args.insert(args.end(), {"--msaa", "2"});
+    const ProcessResult r = viewer(args);
+    EXPECT_EQ(r.exitCode, 1) << describe(r);
+    EXPECT_NE(r.err.find("preskin: error: --msaa: value: 2 samples are not offered by llvmpipe"), std::string::npos)
+        << describe(r);
+    EXPECT_NE(r.err.find("(offered: 1, 4)"), std::string::npos) << describe(r);
+    EXPECT_FALSE(fs::exists(shot));
+}
+
 TEST_F(Viewer, HelpListsTheScriptedOptions) {
     const ProcessResult r = runProcess(kViewerPath, {"--help"}, {}, dir_, 30.0);
     EXPECT_EQ(r.exitCode, 0) << describe(r);

@@ -87,8 +87,19 @@ TEST_F(Cli, MissingSceneFile) {
 TEST_F(Cli, UnwritableOrUnsupportedOutput) {
     const std::string scene = (kData / "triangle.gltf").string();
     {
-        const fs::path out = dir_ / "no_such_folder" / "out.png";
-        expectError(run(renderArgs(scene, out)), {"no_such_folder", "does not exist"}, out);
+        // One rule for every output: missing folders are made when the file is written...
+        const fs::path out = dir_ / "new_folder" / "deeper" / "out.png";
+        const CliResult r = run(renderArgs(scene, out));
+        EXPECT_EQ(r.exitCode, 0) << r.err;
+        EXPECT_TRUE(fs::is_regular_file(out));
+        // ...and not made when the run fails before writing.
+        const fs::path never = dir_ / "never_made" / "out.png";
+        expectError(run(renderArgs((dir_ / "nothing.gltf").string(), never)), {"nothing.gltf"}, never);
+        EXPECT_FALSE(fs::exists(dir_ / "never_made"));
+        // A file where a folder should be.
+        { std::ofstream(dir_ / "a_file") << "x"; }
+        const fs::path underFile = dir_ / "a_file" / "out.png";
+        expectError(run(renderArgs(scene, underFile)), {"a_file", "is not a folder"}, underFile);
     }
     {
         const fs::path locked = dir_ / "locked";

@@ -134,7 +134,9 @@ TEST_F(BenchCli, RefusesBadArgumentsBeforeWork) {
     const fs::path json = dir_ / "bench.json";
     EXPECT_EQ(bench({"--counts", "8,x", "--out", json.string()}, err), 1);
     EXPECT_NE(err.find("--counts"), std::string::npos) << err;
-    EXPECT_EQ(bench({"--out", (dir_ / "missing" / "b.json").string()}, err), 1);
+    { std::ofstream(dir_ / "a_file") << "x"; }  // a file where the report's folder should be
+    EXPECT_EQ(bench({"--out", (dir_ / "a_file" / "b.json").string()}, err), 1);
+    EXPECT_NE(err.find("is not a folder"), std::string::npos) << err;
     EXPECT_FALSE(fs::exists(json));
 }
 

@@ -106,7 +106,7 @@ TEST(GltfErrors, FileLevelProblems) {
     TempDir dir;
     expectError(dir / "absent.gltf", {"file: not found"});
     fs::create_directory(dir / "folder.gltf");
-    expectError(dir / "folder.gltf", {"file: is a folder, not a file"});
+    expectError(dir / "folder.gltf", {"file: is a folder, not a glTF scene"});
     preskin::test::writeText(dir / "scene.obj", "v 0 0 0");
     expectError(dir / "scene.obj", {"unsupported file type '.obj'"});
     preskin::test::writeText(dir / "empty.gltf", "");

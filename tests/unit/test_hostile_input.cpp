@@ -346,7 +346,14 @@ TEST_F(HostileInput, LargestAcceptedNumbersGiveAFiniteImage) {
 TEST_F(HostileInput, CommandLineErrorsAreOneLineAndExitOne) {
     const std::string scene = kTriangle.string();
     const std::vector<std::pair<std::vector<std::string>, std::string>> cases{
-        {{"render", scene, "--frobnicate"}, "--frobnicate: option: unknown here (see --help)"},
+        {{"render", scene, "--frobnicate"}, "--frobnicate: option: unknown (see preskin render --help)"},
+        // A misspelt option is named, with the nearest option, wherever it stands and whatever follows.
+        {{"render", scene, "--widht", "64"}, "--widht: option: unknown, did you mean --width? (see preskin render --help)"},
+        {{"render", "--widht", "64", scene}, "--widht: option: unknown, did you mean --width? (see preskin render --help)"},
+        {{"render", "--widht=64"}, "--widht: option: unknown, did you mean --width? (see preskin render --help)"},
+        {{"bake", "--profil", "burley"}, "--profil: option: unknown, did you mean --profile? (see preskin bake --help)"},
+        {{"render", scene, "--env-rotation", "-30", "--exposre", "2"}, "--exposre: option: unknown, did you mean --exposure? (see preskin render --help)"},
+        {{"rendr", scene}, "rendr: command: unknown, did you mean render? (see --help)"},
         {{"render", scene, "other.gltf"}, "other.gltf: argument: not expected (see --help)"},
         {{"render", scene, "--width"}, "--width: value: missing"},
         {{"render", scene, "--width", "8", "--width", "9"}, "--width: option: given more than once"},
@@ -385,7 +392,8 @@ TEST_F(HostileInput, ViewerCommandLineErrorsAreOneLineAndExitOne) {
     expectRefused(viewer({"--width", "abc"}), "--width: value: 'abc' is not a whole number in [64, 16384]");
     expectRefused(viewer({"--exposure", "nan"}), "--exposure: value: 'nan' is not a finite number");
     expectRefused(viewer({"--lut-size", "100"}), "--lut-size: value: '100' is not one of 64, 128, 256, 512");
-    expectRefused(viewer({"--no-such-option"}), "--no-such-option: option: unknown here (see --help)");
+    expectRefused(viewer({"--no-such-option"}), "--no-such-option: option: unknown (see preskin-viewer --help)");
+    expectRefused(viewer({"--widht", "640"}), "--widht: option: unknown, did you mean --width? (see preskin-viewer --help)");
     // Without a display the viewer cannot start: GLFW's reason is in the one line, not before it.
     const ProcessResult r = preskin::test::runProcess(PRESKIN_VIEWER_PATH, {}, {"DISPLAY="}, dir_, 60.0);
     EXPECT_EQ(r.exitCode, 1);

@@ -75,6 +75,8 @@ public:
     uint32_t queueFamilyIndex() const;
     std::string deviceName() const;
     bool isSoftwareDevice() const;
+    // The MSAA sample counts the device offers for a colour and depth target, ascending (1 first).
+    std::vector<uint32_t> msaaSampleCounts() const;
     // Validation warnings and errors reported so far (0 when validation is off).
     uint32_t validationMessageCount() const;
     std::vector<std::string> validationMessages() const;

@@ -230,9 +230,10 @@ private:
 // several eyes side by side (sideBySide). Throws preskin::Error naming the path on failure, and
 // refuses (writes nothing) an image that holds a non-finite value.
 PRESKIN_API void writeImage(const std::filesystem::path& path, const RenderedImage& image);
-// Throws preskin::Error unless `path` has a supported extension for the encoding, its folder
-// exists and is writable, and it is not an existing file that is read-only or not a regular
-// file (never replaced); call before expensive work.
+// Throws preskin::Error unless `path` has a supported extension for the encoding and can be
+// written under the output rule of <preskin/OutputFile.h> (missing folders are made when the
+// image is written; an existing file that is read-only or not a regular file is never
+// replaced); call before expensive work.
 PRESKIN_API void checkOutputPath(const std::filesystem::path& path, OutputEncoding encoding);
 
 }  // namespace preskin

@@ -35,7 +35,12 @@ uint64_t checkStat(const struct stat& st, const std::string& label, uint64_t max
 uint64_t statPath(const std::filesystem::path& path, const std::string& label, uint64_t maxBytes) {
     struct stat st {};
     if (::stat(path.c_str(), &st) != 0) {
-        if (errno == ENOENT || errno == ENOTDIR) fail(label, "not found");
+        if (errno == ENOENT || errno == ENOTDIR) {
+            std::error_code ec;
+            const std::filesystem::path absolute = std::filesystem::absolute(path, ec);
+            fail(label, path.is_relative() && !ec ? "not found (looked for " + absolute.lexically_normal().string() + ")"
+                                                  : std::string("not found"));
+        }
         fail(label, std::string("cannot read: ") + std::strerror(errno));
     }
     return checkStat(st, label, maxBytes);

@@ -4,6 +4,7 @@
 #include <preskin/DiffusionReference.h>
 #include <preskin/Error.h>
 #include <preskin/Limits.h>
+#include <preskin/OutputFile.h>
 
 #include "io/InputFile.h"
 #include "io/MessageText.h"
@@ -49,25 +50,19 @@ void writeReferenceImage(const std::filesystem::path& path, const ReferenceImage
     spec.attribute("compression", "zip");
     for (const auto& [name, value] : key) spec.attribute(std::string(kKeyPrefix) + name, value);
 
-    const std::filesystem::path dir = path.has_parent_path() ? path.parent_path() : std::filesystem::path(".");
-    const std::filesystem::path temp = dir / fmt::format(".{}.{}.partial.exr", path.filename().string(), ::getpid());
-    auto out = OIIO::ImageOutput::create("openexr");
-    if (!out) throw Error(fmt::format("{}: no OpenEXR writer: {}", path.string(), OIIO::geterror()));
-    auto fail = [&](const std::string& what) {
-        std::error_code ec;
-        std::filesystem::remove(temp, ec);
-        throw Error(fmt::format("{}: {}", path.string(), what));
-    };
-    if (!out->open(temp.string(), spec)) fail("cannot create file: " + out->geterror());
-    if (!out->write_image(OIIO::TypeDesc::FLOAT, pixels.data())) {
-        const std::string error = out->geterror();
-        out->close();
-        fail("cannot write image: " + error);
-    }
-    if (!out->close()) fail("cannot finish image: " + out->geterror());
-    std::error_code ec;
-    std::filesystem::rename(temp, path, ec);
-    if (ec) fail("cannot move the finished image into place: " + ec.message());
+    spec.attribute("DateTime", "");  // no time stamp: the same reference is the same bytes
+    writeOutputFile(path, [&](const std::filesystem::path& temp) {
+        auto out = OIIO::ImageOutput::create("openexr");
+        if (!out) throw Error(fmt::format("{}: no OpenEXR writer: {}", path.string(), OIIO::geterror()));
+        if (!out->open(temp.string(), spec))
+            throw Error(fmt::format("{}: cannot create file: {}", path.string(), out->geterror()));
+        if (!out->write_image(OIIO::TypeDesc::FLOAT, pixels.data())) {
+            const std::string error = out->geterror();
+            out->close();
+            throw Error(fmt::format("{}: cannot write image: {}", path.string(), error));
+        }
+        if (!out->close()) throw Error(fmt::format("{}: cannot finish image: {}", path.string(), out->geterror()));
+    });
 }
 
 ReferenceImage readReferenceImage(const std::filesystem::path& path, ReferenceKey& key) {

@@ -1,7 +1,8 @@
 // Writing rendered images: PNG (8-bit sRGB) or EXR (half float, linear) through OpenImageIO,
-// into a temporary file in the same folder that is renamed into place, so a failed run never
-// leaves a partly written image behind.
+// under the output rule of <preskin/OutputFile.h> (a temporary file renamed into place, missing
+// folders made), so a failed run never leaves a partly written image behind.
 #include <preskin/Error.h>
+#include <preskin/OutputFile.h>
 #include <preskin/Renderer.h>
 
 #include <OpenImageIO/imageio.h>
@@ -36,23 +37,7 @@ void checkOutputPath(const std::filesystem::path& path, OutputEncoding encoding)
     if (ext != wanted)
         throw Error(fmt::format("{}: output: type '{}' does not match the encoding (expected {})", path.string(), ext,
                                 wanted));
-    std::error_code ec;
-    if (std::filesystem::is_directory(path, ec))
-        throw Error(fmt::format("{}: output: is a folder, not a file", path.string()));
-    const std::filesystem::path dir = path.has_parent_path() ? path.parent_path() : std::filesystem::path(".");
-    if (!std::filesystem::is_directory(dir, ec))
-        throw Error(fmt::format("{}: output: folder {} does not exist", path.string(), dir.string()));
-    if (::access(dir.c_str(), W_OK) != 0)
-        throw Error(fmt::format("{}: output: folder {} is not writable", path.string(), dir.string()));
-    // An existing file is replaced only when it is a regular file its owner left writable: the
-    // rename would otherwise replace a read-only file (or a FIFO, a device) without a word.
-    struct stat st {};
-    if (::stat(path.c_str(), &st) == 0) {
-        if (!S_ISREG(st.st_mode))
-            throw Error(fmt::format("{}: output: exists and is not a regular file; not replaced", path.string()));
-        if ((st.st_mode & (S_IWUSR | S_IWGRP | S_IWOTH)) == 0 || ::access(path.c_str(), W_OK) != 0)
-            throw Error(fmt::format("{}: output: exists and is read-only; not replaced", path.string()));
-    }
+    checkOutputFile(path);
 }
 
 RenderedImage eyeImage(const RenderedImage& image, uint32_t eye) {
@@ -112,32 +97,24 @@ void writeImage(const std::filesystem::path& path, const RenderedImage& eyes) {
             throw Error(fmt::format("{}: pixels: {} values of the rendered image are not finite; nothing written",
                                     path.string(), nonFinite));
     }
-    const std::filesystem::path dir = path.has_parent_path() ? path.parent_path() : std::filesystem::path(".");
-    const std::filesystem::path temp =
-        dir / fmt::format(".{}.{}.partial{}", path.filename().string(), ::getpid(), lowerExtension(path));
     const std::string format = display ? "png" : "openexr";
-    auto out = OIIO::ImageOutput::create(format);
-    if (!out) throw Error(fmt::format("{}: no {} writer: {}", path.string(), format, OIIO::geterror()));
     OIIO::ImageSpec spec(int(image.width), int(image.height), 4, display ? OIIO::TypeDesc::UINT8 : OIIO::TypeDesc::HALF);
     spec.attribute("oiio:ColorSpace", display ? "sRGB" : "Linear");
     if (!display) spec.attribute("compression", "zip");
-    auto fail = [&](const std::string& what) {
-        std::error_code ec;
-        std::filesystem::remove(temp, ec);
-        throw Error(fmt::format("{}: {}", path.string(), what));
-    };
-    if (!out->open(temp.string(), spec)) fail("cannot create file: " + out->geterror());
-    const bool ok = display ? out->write_image(OIIO::TypeDesc::UINT8, image.rgba8.data())
-                            : out->write_image(OIIO::TypeDesc::FLOAT, linear.data());
-    if (!ok) {
-        const std::string error = out->geterror();
-        out->close();
-        fail("cannot write image: " + error);
-    }
-    if (!out->close()) fail("cannot finish image: " + out->geterror());
-    std::error_code ec;
-    std::filesystem::rename(temp, path, ec);
-    if (ec) fail("cannot move the finished image into place: " + ec.message());
+    spec.attribute("DateTime", "");  // no time stamp: the same image is the same bytes
+    writeOutputFile(path, [&](const std::filesystem::path& temp) {
+        auto out = OIIO::ImageOutput::create(format);
+        if (!out) throw Error(fmt::format("{}: no {} writer: {}", path.string(), format, OIIO::geterror()));
+        if (!out->open(temp.string(), spec)) throw Error(fmt::format("{}: cannot create file: {}", path.string(), out->geterror()));
+        const bool ok = display ? out->write_image(OIIO::TypeDesc::UINT8, image.rgba8.data())
+                                : out->write_image(OIIO::TypeDesc::FLOAT, linear.data());
+        if (!ok) {
+            const std::string error = out->geterror();
+            out->close();
+            throw Error(fmt::format("{}: cannot write image: {}", path.string(), error));
+        }
+        if (!out->close()) throw Error(fmt::format("{}: cannot finish image: {}", path.string(), out->geterror()));
+    });
 }
 
 }  // namespace preskin

@@ -418,12 +418,7 @@ void Renderer::Impl::checkFrame(const View& view) const {
                                 dev.properties().deviceName, fmt::join(msaaSampleCounts(), ", ")));
 }
 
-std::vector<uint32_t> Renderer::Impl::msaaSampleCounts() const {
-    std::vector<uint32_t> counts;
-    for (uint32_t n = 1; n <= 64; n *= 2)
-        if (dev.msaaSampleCounts() & n) counts.push_back(n);
-    return counts;
-}
+std::vector<uint32_t> Renderer::Impl::msaaSampleCounts() const { return context.msaaSampleCounts(); }
 
 void Renderer::Impl::timestamp(VkCommandBuffer cmd, Slot& slot, uint32_t query) {
     if (slot.queries) vkCmdWriteTimestamp2(cmd, VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT, slot.queries, query);

@@ -592,6 +592,8 @@ std::string lowercase(std::string s) {
 
 std::string extensionOf(const fs::path& path) {
     const std::string extension = lowercase(path.extension().string());
+    std::error_code ec;
+    if (fs::is_directory(path, ec)) fail(path.string(), "file", "is a folder, not a glTF scene (.gltf or .glb)");
     if (extension != ".gltf" && extension != ".glb") {
         fail(path.string(), "", "unsupported file type '" + io::messageText(extension) + "' (expected .gltf or .glb)");
     }
@@ -698,6 +700,8 @@ Scene loadSceneBytes(std::vector<uint8_t> bytes, const fs::path& path, const Sce
     convertNodeHierarchy(ctx);
     convertSkins(ctx);
     convertAnimations(ctx);
+    if (scene.instances.empty())
+        ctx.warn("scenes", "nothing to draw: no node of the scene holds a mesh (the image shows the background only)");
     return scene;
 }
 

@@ -306,13 +306,20 @@ DiffusionProfile parseProfileJson(const nlohmann::json& json, std::string_view s
     if (!json.is_object()) fail(source, rootName, "must be a JSON object, got " + jsonTypeName(json));
     const nlohmann::json& type = requireField(json, "type", source, prefix + "type");
     if (!type.is_string())
-        fail(source, prefix + "type", "must be \"sumOfGaussians\" or \"normalizedDiffusion\", got " + io::jsonExcerpt(type));
+        fail(source, prefix + "type", "must be \"deonLuebke\", \"sumOfGaussians\" or \"normalizedDiffusion\", got " + io::jsonExcerpt(type));
     std::string name;
     if (const auto it = json.find("name"); it != json.end()) {
         if (!it->is_string()) fail(source, prefix + "name", "must be a string, got " + jsonTypeName(*it));
         name = it->get<std::string>();
     }
 
+    if (type == "deonLuebke") {
+        rejectUnknownKeys(json, {"type", "name"}, source, prefix);
+        return name.empty() ? DiffusionProfile::deonLuebke()
+                            : DiffusionProfile::sumOfGaussians(DiffusionProfile::deonLuebke().gaussians(), name, source);
+    }
+    if (type == "lutFolder")
+        fail(source, prefix + "type", "\"lutFolder\" names LUTs already baked: load the folder (--luts, LutSet::load), there is no profile to bake");
     if (type == "sumOfGaussians") {
         rejectUnknownKeys(json, {"type", "name", "gaussians"}, source, prefix);
         const nlohmann::json& list = requireField(json, "gaussians", source, prefix + "gaussians");
@@ -339,7 +346,7 @@ DiffusionProfile parseProfileJson(const nlohmann::json& json, std::string_view s
         checkBurley(albedo, mfp, source, prefix);
         return name.empty() ? DiffusionProfile::burley(albedo, mfp) : DiffusionProfile::burley(albedo, mfp, std::move(name));
     }
-    fail(source, prefix + "type", "must be \"sumOfGaussians\" or \"normalizedDiffusion\", got " + io::jsonExcerpt(type));
+    fail(source, prefix + "type", "must be \"deonLuebke\", \"sumOfGaussians\" or \"normalizedDiffusion\", got " + io::jsonExcerpt(type));
 }
 
 nlohmann::ordered_json profileToJson(const DiffusionProfile& profile) {

@@ -204,6 +204,7 @@ void writeExr(const fs::path& path, const fs::path& shownPath, const LutTable& t
     spec.attribute("compression", "zip");
     spec.attribute("oiio:ColorSpace", "linear");
     spec.attribute("preskin:table", table.name);
+    spec.attribute("DateTime", "");  // no time stamp: the same bake is the same bytes
     if (!out->open(path.string(), spec) || !out->write_image(OIIO::TypeDesc::HALF, half.data()) || !out->close())
         throw Error(fmt::format("{}: cannot write: {}", shown(shownPath), out->geterror()));
 }

@@ -25,6 +25,12 @@ VkQueue Context::queue() const { return device_->queue(); }
 uint32_t Context::queueFamilyIndex() const { return device_->queueFamilyIndex(); }
 std::string Context::deviceName() const { return device_->properties().deviceName; }
 bool Context::isSoftwareDevice() const { return device_->properties().deviceType == VK_PHYSICAL_DEVICE_TYPE_CPU; }
+std::vector<uint32_t> Context::msaaSampleCounts() const {
+    std::vector<uint32_t> counts;
+    for (uint32_t n = 1; n <= 64; n *= 2)
+        if (device_->msaaSampleCounts() & n) counts.push_back(n);
+    return counts;
+}
 uint32_t Context::validationMessageCount() const { return device_->validationMessageCount(); }
 std::vector<std::string> Context::validationMessages() const { return device_->validationMessages(); }
 void Context::waitIdle() const { vkDeviceWaitIdle(device_->device()); }
