@@ -274,8 +274,18 @@ TEST(GltfErrors, AccessorAndIndexProblems) {
                 {"meshes[0].primitives[0].attributes", "no POSITION"});
     expectError(withChange("i", [](GltfBuilder& b) { b.doc["meshes"][0]["primitives"][0]["mode"] = 9; }),
                 {"meshes[0].primitives[0].mode", "9"});
-    expectError(withChange("j", [](GltfBuilder& b) { b.doc["accessors"][3]["count"] = 2; }),
-                {"meshes[0].primitives[0].indices", "index count 2 is not a multiple of 3"});
+    {
+        // Valid glTF (a validator warning): the trailing indices are ignored, here leaving no triangle.
+        const fs::path j = withChange("j", [](GltfBuilder& b) { b.doc["accessors"][3]["count"] = 2; });
+        const preskin::Scene scene = preskin::Scene::load(j);
+        std::string warnings;
+        for (const std::string& w : scene.warnings) warnings += w + "\n";
+        EXPECT_NE(warnings.find(j.string() + ": meshes[0].primitives[0].indices: index count 2 is not a multiple of 3 for a "
+                                             "triangle list; the last 2 ignored"),
+                  std::string::npos)
+            << warnings;
+        EXPECT_NE(warnings.find("meshes[0].primitives[0]: no triangles; primitive skipped"), std::string::npos) << warnings;
+    }
     expectError(withChange("k", [](GltfBuilder& b) { b.doc["accessors"][0]["bufferView"] = 17; }),
                 {"accessors[0].bufferView", "17 is out of range"});
     // Non-finite normals and UVs.

@@ -19,6 +19,7 @@
 #include <cmath>
 #include <filesystem>
 #include <fstream>
+#include <functional>
 #include <regex>
 #include <sstream>
 #include <string>
@@ -313,6 +314,51 @@ TEST_F(HostileInput, NumbersBeyondTheInputRangeAreRefused) {
     }
 }
 
+// Profile parameters below their physical lower bounds are refused by name before a bake (they
+// used to bake tables full of NaN with exit 0); at the bounds every table is finite.
+TEST_F(HostileInput, ProfileParametersBelowTheirLowerBoundsAreRefused) {
+    const fs::path luts = dir_ / "luts";
+    const std::vector<std::pair<std::string, std::string>> profiles{
+        {R"({"type": "sumOfGaussians", "gaussians": [{"varianceMm2": 1e-300, "weights": [0.5, 0.5, 0.5]}]})",
+         "gaussians[0].varianceMm2: must be >= 1e-06 mm^2 (a Gaussian 1 um wide), got 1e-300"},
+        {R"({"type": "normalizedDiffusion", "albedo": [0.5, 0.5, 0.5], "meanFreePathMm": [1, 1e-300, 1]})",
+         "meanFreePathMm[1]: must be >= 0.001 mm (1 um), got 1e-300"},
+    };
+    for (const auto& [json, message] : profiles) {
+        const fs::path file = dir_ / "profile.json";
+        std::ofstream(file) << json;
+        expectRefused(run({"bake", "--profile", file.string(), "--out", luts.string()}), file.string() + ": " + message);
+        EXPECT_FALSE(fs::exists(luts));
+    }
+    // In a scene, the same bound, named by the scene's field.
+    preskin::test::GltfBuilder scene = preskin::test::triangleScene();
+    scene.doc["extensionsUsed"] = {"PRESKIN_materials_skin"};
+    scene.doc["extensions"]["PRESKIN_materials_skin"]["profiles"] = nlohmann::json::array(
+        {{{"type", "sumOfGaussians"}, {"gaussians", {{{"varianceMm2", 1e-300}, {"weights", {0.5, 0.5, 0.5}}}}}}});
+    scene.doc["materials"] = nlohmann::json::array({{{"extensions", {{"PRESKIN_materials_skin", {{"profile", 0}}}}}}});
+    scene.doc["meshes"][0]["primitives"][0]["material"] = 0;
+    const fs::path sceneFile = scene.writeGltf(dir_, "tiny_profile");
+    const ProcessResult r = run(render(sceneFile));
+    EXPECT_EQ(r.exitCode, 1) << r.err;
+    EXPECT_NE(r.err.find("extensions.PRESKIN_materials_skin.profiles[0].gaussians[0].varianceMm2: must be >= 1e-06"),
+              std::string::npos)
+        << r.err;
+    // At the bounds the bake is finite (LutSet::load refuses a non-finite texel, so loading checks it).
+    for (const std::string json :
+         {R"({"type": "sumOfGaussians", "gaussians": [{"varianceMm2": 1e-6, "weights": [0.5, 0.5, 0.5]}]})",
+          R"({"type": "normalizedDiffusion", "albedo": [1, 1, 1], "meanFreePathMm": [1e-3, 1e-3, 1e-3]})"}) {
+        const fs::path file = dir_ / "bound.json";
+        std::ofstream(file) << json;
+        const fs::path folder = dir_ / "bound";
+        fs::remove_all(folder);
+        const ProcessResult bake = run({"bake", "--profile", file.string(), "--size", "64", "--out", folder.string()});
+        ASSERT_EQ(bake.exitCode, 0) << json << "\n" << bake.err;
+        const ProcessResult use = run(render(kTriangle, {"--luts", folder.string(), "--skin", "all"}), kRenderMemory);
+        EXPECT_EQ(use.exitCode, 0) << json << "\n" << use.err;
+        fs::remove(out_);
+    }
+}
+
 // The largest accepted inputs give a finite image: the half-float EXR saturates at 65504.
 TEST_F(HostileInput, LargestAcceptedNumbersGiveAFiniteImage) {
     preskin::test::GltfBuilder b = preskin::test::triangleScene();
@@ -477,3 +523,121 @@ INSTANTIATE_TEST_SUITE_P(
     });
 
 }  // namespace
+
+// ---- lenient where the glTF spec is ---------------------------------------------------------
+
+// Files the Khronos glTF-Validator accepts (no error; at most a warning) but of which a part
+// cannot be used: the part is skipped with a warning naming the file and the field, and the rest
+// renders, with finite pixels. Files it reports errors for, but which are unambiguous, are read
+// with a warning too (a byte-order mark, a buffer data URI of another media type).
+namespace lenient {
+
+using Edit = std::function<void(preskin::test::GltfBuilder&)>;
+
+void addNode(preskin::test::GltfBuilder& b, nlohmann::json node) {
+    b.doc["nodes"].push_back(std::move(node));
+    b.doc["scenes"][0]["nodes"].push_back(b.doc["nodes"].size() - 1);
+}
+
+void addCamera(preskin::test::GltfBuilder& b, nlohmann::json camera, nlohmann::json node) {
+    b.doc["cameras"] = nlohmann::json::array({std::move(camera)});
+    node["camera"] = 0;
+    addNode(b, std::move(node));
+}
+
+void addLight(preskin::test::GltfBuilder& b, nlohmann::json light, nlohmann::json node) {
+    b.doc["extensionsUsed"] = {"KHR_lights_punctual"};
+    b.doc["extensions"]["KHR_lights_punctual"]["lights"] = nlohmann::json::array({std::move(light)});
+    node["extensions"]["KHR_lights_punctual"]["light"] = 0;
+    addNode(b, std::move(node));
+}
+
+const nlohmann::json kPerspective = {{"type", "perspective"}, {"perspective", {{"yfov", 0.8}, {"znear", 0.01}}}};
+
+}  // namespace lenient
+
+TEST_F(HostileInput, PartsTheSpecAllowsButNothingCanUseAreSkippedWithAWarning) {
+    using namespace lenient;
+    struct Case {
+        std::string name;
+        Edit edit;
+        std::string warning;  // after "<file>: "
+    };
+    const std::vector<Case> cases{
+        {"index_count_4", [](auto& b) { b.doc["meshes"][0]["primitives"][0]["indices"] = b.addIndices(std::vector<uint16_t>{0, 1, 2, 0}); },
+         "meshes[0].primitives[0].indices: index count 4 is not a multiple of 3 for a triangle list; the last 1 ignored"},
+        {"indices_without_view", [](auto& b) {
+             b.doc["accessors"].push_back({{"componentType", 5123}, {"count", 3}, {"type", "SCALAR"}});
+             b.doc["meshes"][0]["primitives"].push_back(b.doc["meshes"][0]["primitives"][0]);
+             b.doc["meshes"][0]["primitives"][1]["indices"] = 4; },
+         "meshes[0].primitives[1].indices: accessors[4] has no bufferView: its indices are all 0 and draw nothing; primitive skipped"},
+        {"camera_scale_0", [](auto& b) { addCamera(b, kPerspective, {{"scale", {0, 0, 0}}, {"translation", {0, 0, 3}}}); },
+         "nodes[1]: the node's transform collapses the camera's axes (scale 0); camera skipped"},
+        {"camera_type", [](auto& b) { addCamera(b, {{"type", "fisheye"}}, {{"translation", {0, 0, 3}}}); },
+         "cameras[0].type: \"fisheye\" is not perspective or orthographic; camera skipped"},
+        {"camera_yfov_tiny", [](auto& b) {
+             addCamera(b, {{"type", "perspective"}, {"perspective", {{"yfov", 1e-300}, {"znear", 0.01}}}}, {{"translation", {0, 0, 3}}}); },
+         "cameras[0].perspective.yfov: 1e-300 rad is too small a field of view to render; camera skipped"},
+        {"light_type", [](auto& b) { addLight(b, {{"type", "area"}}, {{"translation", {0, 0, 3}}}); },
+         "extensions.KHR_lights_punctual.lights[0].type: 'area' is not a KHR_lights_punctual type (directional, point or spot); light skipped"},
+        {"light_scale_0", [](auto& b) { addLight(b, {{"type", "directional"}}, {{"scale", {0, 0, 0}}}); },
+         "nodes[1]: the node's transform collapses the light's direction (scale 0); light skipped"},
+        {"sparse_float_indices", [](auto& b) {
+             const int idx = b.addFloats({0.0f}, "SCALAR");
+             const int val = b.addFloats({0.5f, 0.5f, 0.0f}, "VEC3");
+             b.doc["accessors"][0]["sparse"] = {{"count", 1},
+                                                {"indices", {{"bufferView", b.doc["accessors"][idx]["bufferView"]}, {"componentType", 5126}}},
+                                                {"values", {{"bufferView", b.doc["accessors"][val]["bufferView"]}}}}; },
+         "accessors[0].sparse.indices.componentType: FLOAT is not an unsigned integer type; the sparse substitution is ignored"},
+    };
+    for (const Case& c : cases) {
+        SCOPED_TRACE(c.name);
+        preskin::test::GltfBuilder b = preskin::test::triangleScene();
+        c.edit(b);
+        for (const bool glb : {false, true}) {
+            const fs::path file = glb ? b.writeGlb(dir_, c.name) : b.writeGltf(dir_, c.name);
+            std::vector<std::string> args = render(file);
+            args[3] = (dir_ / "out.exr").string();
+            const ProcessResult r = run(args, kRenderMemory);
+            EXPECT_EQ(r.exitCode, 0) << r.err;
+            EXPECT_NE(r.err.find("preskin: warning: " + file.string() + ": " + c.warning), std::string::npos) << r.err;
+            EXPECT_TRUE(fs::exists(dir_ / "out.exr"));
+            fs::remove(dir_ / "out.exr");
+        }
+    }
+    // A field of view the file allows that this image's aspect cannot show: refused naming the camera.
+    preskin::test::GltfBuilder wide = preskin::test::triangleScene();
+    addCamera(wide, {{"type", "perspective"}, {"perspective", {{"yfov", 3.14159}, {"znear", 0.01}}}},
+              {{"translation", {0, 0, 3}}, {"name", "wide"}});
+    const fs::path wideFile = wide.writeGltf(dir_, "wide");
+    expectRefused(run(render(wideFile, {"--camera", "wide"})),
+                  wideFile.string() + ": cameras[0] (camera 'wide': yfov 3.14159 rad at aspect 1): field-of-view angles must "
+                                      "be finite and within +-90 degrees");
+}
+
+TEST_F(HostileInput, UnambiguousFilesTheValidatorRefusesAreReadWithAWarning) {
+    preskin::test::GltfBuilder b = preskin::test::triangleScene();
+    const fs::path embedded = b.writeEmbedded(dir_, "text_plain");
+    {
+        std::string text = preskin::test::readFile(embedded);
+        const std::string from = "data:application/octet-stream;", to = "data:text/plain;";
+        text.replace(text.find(from), from.size(), to);
+        preskin::test::writeText(embedded, text);
+    }
+    ProcessResult r = run(render(embedded), kRenderMemory);
+    EXPECT_EQ(r.exitCode, 0) << r.err;
+    EXPECT_NE(r.err.find("preskin: warning: " + embedded.string() +
+                         ": buffers[0].uri: data URI media type 'text/plain' is not application/octet-stream or "
+                         "application/gltf-buffer; read as binary anyway"),
+              std::string::npos)
+        << r.err;
+    fs::remove(out_);
+    const fs::path bom = b.writeGltf(dir_, "bom");
+    preskin::test::writeText(bom, "\xEF\xBB\xBF" + preskin::test::readFile(bom));
+    r = run(render(bom), kRenderMemory);
+    EXPECT_EQ(r.exitCode, 0) << r.err;
+    EXPECT_NE(r.err.find("preskin: warning: " + bom.string() +
+                         ": JSON: starts with a UTF-8 byte-order mark, which glTF does not allow; read anyway"),
+              std::string::npos)
+        << r.err;
+}

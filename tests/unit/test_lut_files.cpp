@@ -230,7 +230,7 @@ TEST(LutFiles, ManifestProblemsNameTheField) {
         {[](nlohmann::json& j) { j["settings"]["diffuseNoLSize"] = 32; }, "tables.diffuse.width: 16x16 does not match the settings (32x16)"},
         {[](nlohmann::json& j) { j["settings"]["curvatureMaxPerMm"] = 2.0; }, "tables.diffuse.y.min: -1 does not match"},
         {[](nlohmann::json& j) { j["profile"]["gaussians"][0]["varianceMm2"] = -1; },
-         "profile.gaussians[0].varianceMm2: must be > 0, got -1"},
+         "profile.gaussians[0].varianceMm2: must be >= 1e-06 mm^2 (a Gaussian 1 um wide), got -1"},
         {[](nlohmann::json& j) { j["profile"]["gaussians"][5]["varianceMm2"] = 9.0; }, "does not match"},
         {[](nlohmann::json& j) { j["tables"]["diffuse"]["y"]["mapping"] = "linear"; },
          "tables.diffuse.y.mapping: expected \"splitSqrt\", got \"linear\""},

@@ -67,7 +67,7 @@ INSTANTIATE_TEST_SUITE_P(
     ::testing::Values(BadFile{"bad_negative_weight.json", "gaussians[1].weights[0]: must be >= 0, got -0.1"},
                       BadFile{"bad_nan_variance.json", "JSON: parse error at line 4"},
                       BadFile{"bad_infinite_variance.json", "JSON: number overflow parsing '1e999'"},
-                      BadFile{"bad_negative_variance.json", "gaussians[2].varianceMm2: must be > 0, got -1"},
+                      BadFile{"bad_negative_variance.json", "gaussians[2].varianceMm2: must be >= 1e-06 mm^2 (a Gaussian 1 um wide), got -1"},
                       BadFile{"bad_zero_albedo.json", "gaussians[*].weights[2]: channel B has zero albedo"},
                       BadFile{"bad_albedo_above_one.json", "gaussians[*].weights[0]: channel R has albedo 1.3 > 1 (the weights must sum to at most 1)"},
                       BadFile{"bad_missing_variance.json", "gaussians[0].varianceMm2: missing"},

@@ -173,6 +173,7 @@ struct Light {
 
 struct Camera {
     std::string name;
+    std::string source;  // "<file>: cameras[i]", for messages about it
     glm::mat4 worldFromView{1.0f};  // rigid (node scale removed); view looks down -Z, +Y up
     bool orthographic = false;
     float yfov = 0.6f;         // radians (perspective)

@@ -133,7 +133,16 @@ View cameraView(const Camera& camera, float aspect, const Bounds& sceneBounds) {
     const float nearM = std::max(camera.znear, 1e-5f);
     farM = std::max(farM, nearM * 2.0f);
     const float a = camera.aspectRatio > 0.0f ? camera.aspectRatio : aspect;
-    if (!camera.orthographic) return perspectiveView(camera.worldFromView, camera.yfov, a, nearM, farM);
+    if (!camera.orthographic) {
+        // A field of view the file allows may still not fit this aspect (yfov near pi at 16:9):
+        // say which camera and why.
+        const FovAngles fov = symmetricFov(camera.yfov, a);
+        const std::string what = fmt::format("{}{}camera '{}': yfov {} rad at aspect {}",
+                                             camera.source.empty() ? "" : camera.source, camera.source.empty() ? "" : " (",
+                                             camera.name, camera.yfov, a) + (camera.source.empty() ? "" : ")");
+        checkFov(fov, what.c_str());
+        return View(perspectiveEye(camera.worldFromView, fov, nearM, farM));
+    }
     Eye ortho;
     ortho.viewFromWorld = glm::inverse(camera.worldFromView);
     ortho.clipFromView = reversedOrthographic(camera.xmag, camera.ymag, nearM, farM);

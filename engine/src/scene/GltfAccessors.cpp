@@ -210,7 +210,10 @@ void readComponents(const LoadContext& ctx, const CheckedAccessor& c, Store&& st
         const size_t indexBytes = componentSize(indexType);
         if (indexType != TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE && indexType != TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT &&
             indexType != TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT) {
-            ctx.fail(where + ".indices.componentType", componentName(indexType) + " (must be an unsigned integer type)");
+            // The validator warns only: the substitution cannot be read, the dense values stay.
+            ctx.warn(where + ".indices.componentType",
+                     componentName(indexType) + " is not an unsigned integer type; the sparse substitution is ignored");
+            return;
         }
         if (a.sparse.indices.byteOffset < 0) ctx.fail(where + ".indices.byteOffset", "negative");
         if (a.sparse.values.byteOffset < 0) ctx.fail(where + ".values.byteOffset", "negative");

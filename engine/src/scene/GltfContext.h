@@ -27,6 +27,10 @@ struct LoadContext {
     Scene* scene = nullptr;
     // Per image: a description of its format when it is not decodable (then it has no pixels).
     std::vector<std::string> unsupportedImageFormat;
+    // Cameras the prepass found of no glTF type (warned there): nodes' references to them are dropped.
+    std::vector<size_t> skippedCameras;
+    // Primitives (mesh, primitive) the prepass found drawing nothing (warned there): left out.
+    std::vector<std::pair<size_t, size_t>> skippedPrimitives;
 
     [[noreturn]] void fail(const std::string& where, const std::string& what) const {
         gltf::fail(file, where, what);

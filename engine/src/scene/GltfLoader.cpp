@@ -27,6 +27,7 @@
 #include <cctype>
 #include <cmath>
 #include <numbers>
+#include <cstring>
 #include <optional>
 #include <sstream>
 
@@ -38,6 +39,10 @@ using scene::makeFlatNormals;
 using scene::orthonormalizeTangents;
 
 namespace {
+
+// The smallest perspective field of view a camera may have (radians): below it the projection
+// is not representable in single precision.
+constexpr float kMinCameraYfov = 1e-6f;
 
 // ---- tinygltf callbacks -------------------------------------------------------------------
 
@@ -135,9 +140,11 @@ std::vector<uint32_t> toTriangleList(const LoadContext& ctx, const std::vector<u
     std::vector<uint32_t> list;
     const size_t n = indices.size();
     if (mode == TINYGLTF_MODE_TRIANGLES) {
-        if (n % 3 != 0) {
-            ctx.fail(where, std::string(indexed ? "index" : "vertex") + " count " + std::to_string(n) +
-                                " is not a multiple of 3 for a triangle list");
+        if (n % 3 != 0) {  // the glTF validator's warning; the trailing indices make no triangle
+            ctx.warn(where, std::string(indexed ? "index" : "vertex") + " count " + std::to_string(n) +
+                                " is not a multiple of 3 for a triangle list; the last " + std::to_string(n % 3) +
+                                " ignored");
+            return std::vector<uint32_t>(indices.begin(), indices.end() - std::ptrdiff_t(n % 3));
         }
         return indices;
     }
@@ -189,6 +196,9 @@ void convertMeshes(const LoadContext& ctx) {
         for (size_t p = 0; p < in.primitives.size(); ++p) {
             const tinygltf::Primitive& prim = in.primitives[p];
             const std::string where = indexed("meshes", m) + indexed(".primitives", p);
+            if (std::find(ctx.skippedPrimitives.begin(), ctx.skippedPrimitives.end(), std::pair{m, p}) !=
+                ctx.skippedPrimitives.end())
+                continue;  // warned by the prepass
             const int mode = prim.mode == -1 ? TINYGLTF_MODE_TRIANGLES : prim.mode;
             if (mode >= TINYGLTF_MODE_POINTS && mode <= TINYGLTF_MODE_LINE_STRIP) {
                 ctx.warn(where + ".mode", std::to_string(mode) + " (points or lines) is not drawn; primitive skipped");
@@ -266,6 +276,7 @@ void convertMeshes(const LoadContext& ctx) {
 
             std::vector<uint32_t> indices;
             if (prim.indices >= 0) {
+
                 indices = readIndexAccessor(ctx, prim.indices, vertexCount, where + ".indices");
             } else {
                 indices.resize(vertexCount);
@@ -341,8 +352,10 @@ glm::mat4 localMatrix(const LoadContext& ctx, const tinygltf::Node& node, const 
     return t * r * s;
 }
 
-Light convertLight(const LoadContext& ctx, int lightIndex, const glm::mat4& world, const std::string& nodeName,
-                   const std::string& nodeWhere, bool& explicitShadowFlag) {
+// A light the file defines but that cannot light anything (an unknown type, a node scaled to
+// nothing): the validator allows it, so it is skipped with a warning.
+std::optional<Light> convertLight(const LoadContext& ctx, int lightIndex, const glm::mat4& world, const std::string& nodeName,
+                                  const std::string& nodeWhere, bool& explicitShadowFlag) {
     const tinygltf::Model& model = *ctx.model;
     if (lightIndex < 0 || static_cast<size_t>(lightIndex) >= model.lights.size()) {
         ctx.fail(nodeWhere + ".extensions.KHR_lights_punctual.light",
@@ -355,7 +368,10 @@ Light convertLight(const LoadContext& ctx, int lightIndex, const glm::mat4& worl
     if (in.type == "directional") out.type = LightType::Directional;
     else if (in.type == "point") out.type = LightType::Point;
     else if (in.type == "spot") out.type = LightType::Spot;
-    else ctx.fail(where + ".type", "'" + in.type + "' (expected directional, point or spot)");
+    else {
+        ctx.warn(where + ".type", "'" + in.type + "' is not a KHR_lights_punctual type (directional, point or spot); light skipped");
+        return std::nullopt;
+    }
     if (auto c = fixedArray(ctx, in.color, 3, where + ".color")) {
         out.color = glm::vec3(static_cast<float>((*c)[0]), static_cast<float>((*c)[1]), static_cast<float>((*c)[2]));
         if (glm::any(glm::lessThan(out.color, glm::vec3(0.0f)))) ctx.fail(where + ".color", "negative component");
@@ -375,8 +391,11 @@ Light convertLight(const LoadContext& ctx, int lightIndex, const glm::mat4& worl
     }
     out.positionWs = glm::vec3(world[3]);
     const glm::vec3 direction = glm::mat3(world) * glm::vec3(0.0f, 0.0f, -1.0f);
-    if (!(glm::length(direction) > 1e-12f)) ctx.fail(nodeWhere, "the light's node transform collapses its direction");
-    out.directionWs = glm::normalize(direction);
+    if (!(glm::length(direction) > 1e-12f) && out.type != LightType::Point) {
+        ctx.warn(nodeWhere, "the node's transform collapses the light's direction (scale 0); light skipped");
+        return std::nullopt;
+    }
+    out.directionWs = glm::length(direction) > 1e-12f ? glm::normalize(direction) : glm::vec3(0.0f, 0.0f, -1.0f);
     explicitShadowFlag = false;
     if (auto casts = boolField(ctx, in.extras, "castsShadow", where + ".extras")) {
         out.castsShadow = *casts;
@@ -385,8 +404,10 @@ Light convertLight(const LoadContext& ctx, int lightIndex, const glm::mat4& worl
     return out;
 }
 
-Camera convertCamera(const LoadContext& ctx, int cameraIndex, const glm::mat4& world, const std::string& nodeName,
-                     const std::string& nodeWhere) {
+// A camera the validator allows but that cannot show anything (a node scaled to nothing, a field
+// of view too small for single precision) is skipped with a warning.
+std::optional<Camera> convertCamera(const LoadContext& ctx, int cameraIndex, const glm::mat4& world, const std::string& nodeName,
+                                    const std::string& nodeWhere) {
     const tinygltf::Model& model = *ctx.model;
     if (cameraIndex < 0 || static_cast<size_t>(cameraIndex) >= model.cameras.size()) {
         ctx.fail(nodeWhere + ".camera", std::to_string(cameraIndex) + " is out of range: the file has " +
@@ -396,6 +417,7 @@ Camera convertCamera(const LoadContext& ctx, int cameraIndex, const glm::mat4& w
     const std::string where = indexed("cameras", static_cast<size_t>(cameraIndex));
     Camera out;
     out.name = in.name.empty() ? nodeName : in.name;
+    out.source = ctx.file + ": " + where;
     if (in.type == "perspective") {
         const auto& p = in.perspective;
         for (const auto& [value, name] : {std::pair{p.yfov, "yfov"}, std::pair{p.znear, "znear"},
@@ -409,6 +431,10 @@ Camera convertCamera(const LoadContext& ctx, int cameraIndex, const glm::mat4& w
         }
         if (!std::isfinite(p.aspectRatio) || p.aspectRatio < 0.0) ctx.fail(where + ".perspective.aspectRatio", "must be > 0");
         out.yfov = static_cast<float>(p.yfov);
+        if (!(out.yfov >= kMinCameraYfov)) {
+            ctx.warn(where + ".perspective.yfov", number(p.yfov) + " rad is too small a field of view to render; camera skipped");
+            return std::nullopt;
+        }
         out.znear = static_cast<float>(p.znear);
         out.zfar = static_cast<float>(p.zfar);
         out.aspectRatio = static_cast<float>(p.aspectRatio);
@@ -432,10 +458,12 @@ Camera convertCamera(const LoadContext& ctx, int cameraIndex, const glm::mat4& w
     }
     // Rigid part of the node transform: Gram-Schmidt on the view axes, scale dropped.
     const glm::vec3 z = glm::vec3(world[2]), x0 = glm::vec3(world[0]);
-    if (!(glm::length(z) > 1e-12f)) ctx.fail(nodeWhere, "the camera's node transform is degenerate");
-    const glm::vec3 zn = glm::normalize(z);
+    const glm::vec3 zn = glm::length(z) > 1e-12f ? glm::normalize(z) : glm::vec3(0.0f);
     const glm::vec3 xo = x0 - zn * glm::dot(zn, x0);
-    if (!(glm::length(xo) > 1e-12f)) ctx.fail(nodeWhere, "the camera's node transform is degenerate");
+    if (!(glm::length(z) > 1e-12f) || !(glm::length(xo) > 1e-12f)) {
+        ctx.warn(nodeWhere, "the node's transform collapses the camera's axes (scale 0); camera skipped");
+        return std::nullopt;
+    }
     const glm::vec3 xn = glm::normalize(xo);
     const glm::vec3 yn = glm::cross(zn, xn);
     out.worldFromView = glm::mat4(glm::vec4(xn, 0.0f), glm::vec4(yn, 0.0f), glm::vec4(zn, 0.0f), world[3]);
@@ -560,14 +588,20 @@ void convertNodes(const LoadContext& ctx) {
         } else if (node.mesh < -1) {
             ctx.fail(where + ".mesh", std::to_string(node.mesh) + " is out of range");
         }
-        if (node.camera >= 0 || node.camera < -1) scene.cameras.push_back(convertCamera(ctx, node.camera, world, nodeName, where));
+        const bool cameraSkipped = std::find(ctx.skippedCameras.begin(), ctx.skippedCameras.end(),
+                                             static_cast<size_t>(std::max(node.camera, 0))) != ctx.skippedCameras.end();
+        if ((node.camera >= 0 && !cameraSkipped) || node.camera < -1) {
+            if (auto camera = convertCamera(ctx, node.camera, world, nodeName, where)) scene.cameras.push_back(std::move(*camera));
+        }
         if (auto it = node.extensions.find("KHR_lights_punctual"); it != node.extensions.end()) {
             const std::string at = where + ".extensions.KHR_lights_punctual";
             const auto light = integerField(ctx, it->second, "light", at);
             if (!light) ctx.fail(at + ".light", "missing");
             bool isExplicit = false;
-            scene.lights.push_back(convertLight(ctx, *light, world, nodeName, where, isExplicit));
-            explicitShadow.push_back(isExplicit ? 1 : 0);
+            if (auto converted = convertLight(ctx, *light, world, nodeName, where, isExplicit)) {
+                scene.lights.push_back(std::move(*converted));
+                explicitShadow.push_back(isExplicit ? 1 : 0);
+            }
         }
         for (auto child = node.children.rbegin(); child != node.children.rend(); ++child) {
             stack.push_back({*child, world});
@@ -600,6 +634,31 @@ std::string extensionOf(const fs::path& path) {
     return extension;
 }
 
+// A .glb with `json` as its JSON chunk and the BIN chunk of `glb` (glTF 2.0, "Binary glTF Layout").
+std::vector<uint8_t> rebuildGlb(std::string json, const GlbChunks& glb) {
+    while (json.size() % 4 != 0) json += ' ';
+    const size_t binChunk = glb.hasBin ? 8 + glb.bin.size() : 0;
+    const size_t total = 12 + 8 + json.size() + binChunk;
+    std::string out;
+    out.reserve(total);
+    auto put = [&](const void* data, size_t size) { out.append(static_cast<const char*>(data), size); };
+    auto u32 = [&](uint32_t v) {
+        for (int i = 0; i < 4; ++i) out.push_back(static_cast<char>((v >> (8 * i)) & 0xffu));
+    };
+    u32(0x46546C67u);  // "glTF"
+    u32(2);
+    u32(static_cast<uint32_t>(total));
+    u32(static_cast<uint32_t>(json.size()));
+    u32(0x4E4F534Au);  // "JSON"
+    put(json.data(), json.size());
+    if (glb.hasBin) {
+        u32(static_cast<uint32_t>(glb.bin.size()));
+        u32(0x004E4942u);  // "BIN\0"
+        if (!glb.bin.empty()) put(glb.bin.data(), glb.bin.size());
+    }
+    return std::vector<uint8_t>(out.begin(), out.end());
+}
+
 }  // namespace
 
 Scene loadScene(const fs::path& path, const SceneLoadOptions& options) {
@@ -618,6 +677,7 @@ Scene loadSceneBytes(std::vector<uint8_t> bytes, const fs::path& path, const Sce
     const fs::path folder = absolute.lexically_normal().parent_path();
 
     const bool isGlb = extension == ".glb";
+    std::string bomWarning;
     GlbChunks glb;
     std::span<const uint8_t> jsonText(bytes);
     if (isGlb) {
@@ -635,8 +695,21 @@ Scene loadSceneBytes(std::vector<uint8_t> bytes, const fs::path& path, const Sce
     }
     // The bounded parse comes first: tinygltf parses the same text again, and walks it
     // recursively, only once depth and size are known to be within the limits.
-    const PrepassResult prepass =
-        checkDocument(io::parseJson(jsonText, file), file, folder, isGlb ? &glb : nullptr, options.allowLinksOutsideFolder);
+    if (jsonText.size() >= 3 && jsonText[0] == 0xEF && jsonText[1] == 0xBB && jsonText[2] == 0xBF)
+        bomWarning = file + ": JSON: starts with a UTF-8 byte-order mark, which glTF does not allow; read anyway";
+    nlohmann::json doc = io::parseJson(jsonText, file);
+    const PrepassResult prepass = checkDocument(doc, file, folder, isGlb ? &glb : nullptr, options.allowLinksOutsideFolder);
+    if (!prepass.skippedCameras.empty() || !prepass.skippedPrimitives.empty()) {
+        // tinygltf refuses a camera type it does not know: stand a valid one in its place (the
+        // loader leaves it out) and hand tinygltf the edited document.
+        for (size_t i : prepass.skippedCameras)
+            doc["cameras"][i] = {{"type", "perspective"}, {"perspective", {{"yfov", 1.0}, {"znear", 1.0}}}};
+        for (const auto& [m, p] : prepass.skippedPrimitives) doc["meshes"][m]["primitives"][p].erase("indices");
+        bytes = isGlb ? rebuildGlb(doc.dump(), glb) : [&] {
+            const std::string text = doc.dump();
+            return std::vector<uint8_t>(text.begin(), text.end());
+        }();
+    }
 
     tinygltf::TinyGLTF loader;
     FsState fsState{folder, options.allowLinksOutsideFolder};
@@ -656,7 +729,8 @@ Scene loadSceneBytes(std::vector<uint8_t> bytes, const fs::path& path, const Sce
 
     Scene scene;
     scene.sourcePath = path;
-    scene.warnings = std::move(prepass.warnings);
+    if (!bomWarning.empty()) scene.warnings.push_back(bomWarning);
+    scene.warnings.insert(scene.warnings.end(), prepass.warnings.begin(), prepass.warnings.end());
     {
         std::istringstream lines(warn);
         for (std::string line; std::getline(lines, line);) {
@@ -674,6 +748,8 @@ Scene loadSceneBytes(std::vector<uint8_t> bytes, const fs::path& path, const Sce
     ctx.allowOutsideLinks = options.allowLinksOutsideFolder;
     ctx.model = &model;
     ctx.scene = &scene;
+    ctx.skippedCameras = prepass.skippedCameras;
+    ctx.skippedPrimitives = prepass.skippedPrimitives;
     ctx.unsupportedImageFormat = std::move(imageState.unsupported);
     ctx.unsupportedImageFormat.resize(model.images.size());
 

@@ -202,7 +202,15 @@ void checkCounts(const Checker& c, const json& doc) {
     }
 }
 
-void checkBuffers(const Checker& c, const json& doc, const GlbChunks* glb, std::vector<uint64_t>& bufferLength) {
+// The media types a buffer's data URI may have (glTF 2.0, "Buffers and Buffer Views").
+bool isBufferMediaType(const std::string& uri) {
+    for (const char* type : {"data:application/octet-stream;", "data:application/gltf-buffer;"})
+        if (uri.rfind(type, 0) == 0) return true;
+    return false;
+}
+
+void checkBuffers(const Checker& c, const json& doc, const GlbChunks* glb, std::vector<uint64_t>& bufferLength,
+                  std::vector<std::string>& warnings) {
     const json& buffers = c.array(doc, "buffers", "");
     bufferLength.assign(buffers.size(), 0);
     for (size_t i = 0; i < buffers.size(); ++i) {
@@ -237,6 +245,11 @@ void checkBuffers(const Checker& c, const json& doc, const GlbChunks* glb, std::
             if (decoded.size() != byteLength) {
                 c.error(where + ".uri", "data URI holds " + std::to_string(decoded.size()) + " bytes, byteLength says " +
                                             std::to_string(byteLength));
+            }
+            if (!isBufferMediaType(text)) {
+                warnings.push_back(c.file + ": " + where + ".uri: data URI media type '" +
+                                   io::messageText(text.substr(5, text.find_first_of(";,") - 5)) +
+                                   "' is not application/octet-stream or application/gltf-buffer; read as binary anyway");
             }
             continue;
         }
@@ -328,10 +341,8 @@ void checkAccessors(const Checker& c, const json& doc, const std::vector<uint64_
         const json* indices = Checker::member(*sparse, "indices");
         if (!indices || !indices->is_object()) c.error(at + ".indices", "missing or not an object");
         checkViewOffset(c, *indices, at + ".indices", viewLength);
-        const uint64_t indexType = c.requiredUnsigned(*indices, "componentType", at + ".indices");
-        if (indexType != 5121 && indexType != 5123 && indexType != 5125) {
-            c.error(at + ".indices.componentType", std::to_string(indexType) + " (must be 5121, 5123 or 5125)");
-        }
+        // Another index type is a validator warning: the loader ignores the substitution and says so.
+        c.requiredUnsigned(*indices, "componentType", at + ".indices");
         const json* values = Checker::member(*sparse, "values");
         if (!values || !values->is_object()) c.error(at + ".values", "missing or not an object");
         checkViewOffset(c, *values, at + ".values", viewLength);
@@ -400,7 +411,6 @@ void checkMeshes(const Checker& c, const json& doc) {
     const json& meshes = c.array(doc, "meshes", "");
     const size_t accessors = c.array(doc, "accessors", "").size();
     const size_t materials = c.array(doc, "materials", "").size();
-    const json& accessorArray = c.array(doc, "accessors", "");
     uint64_t primitiveCount = 0;
     for (size_t m = 0; m < meshes.size(); ++m) {
         const std::string meshWhere = Checker::indexed("meshes", m);
@@ -419,9 +429,6 @@ void checkMeshes(const Checker& c, const json& doc) {
             if (c.member(primitive, "indices")) {
                 const uint64_t indices = c.unsignedField(primitive, "indices", where).value();
                 c.checkIndex(indices, accessors, where + ".indices", "accessors");
-                if (!c.unsignedField(accessorArray[indices], "bufferView", "accessors[" + std::to_string(indices) + "]")) {
-                    c.error(where + ".indices", "accessors[" + std::to_string(indices) + "] has no bufferView");
-                }
             }
             c.idField(primitive, "material", materials, where, "materials");
             if (auto mode = c.unsignedField(primitive, "mode", where); mode && *mode > 6) {
@@ -516,10 +523,9 @@ void checkLights(const Checker& c, const json& doc) {
             const json& light = c.object(lights, i, base + ".lights");
             const json* type = Checker::member(light, "type");
             if (!type) c.error(where + ".type", "missing");
-            const std::string typeName = type->is_string() ? type->get<std::string>() : "";
-            if (typeName != "directional" && typeName != "point" && typeName != "spot") {
-                c.error(where + ".type", io::jsonExcerpt(*type) + " (expected directional, point or spot)");
-            }
+            // A type string glTF does not define is a validator warning: the loader skips the light.
+            if (!type->is_string()) c.error(where + ".type", io::jsonExcerpt(*type) + " is not a string");
+            const std::string typeName = type->get<std::string>();
             if (const json* color = Checker::member(light, "color")) {
                 if (!color->is_array() || color->size() != 3) c.error(where + ".color", "not an array of 3 numbers");
                 for (size_t k = 0; k < 3; ++k) {
@@ -697,7 +703,36 @@ PrepassResult checkDocument(const json& doc, const std::string& file, const fs::
     checkCounts(c, doc);
 
     std::vector<uint64_t> bufferLength;
-    checkBuffers(c, doc, glb, bufferLength);
+    checkBuffers(c, doc, glb, bufferLength, result.warnings);
+    // Index accessors without a bufferView hold zeros (valid glTF, but every triangle is
+    // degenerate): the primitive is skipped, and its indices removed before tinygltf, which
+    // refuses them, parses the file.
+    const json& accessorList = c.array(doc, "accessors", "");
+    const json& meshList = c.array(doc, "meshes", "");
+    for (size_t m = 0; m < meshList.size(); ++m) {
+        const json* primitives = Checker::member(meshList[m], "primitives");
+        for (size_t p = 0; primitives && p < primitives->size(); ++p) {
+            const json* indices = Checker::member((*primitives)[p], "indices");
+            if (!indices || !indices->is_number_unsigned()) continue;
+            const json& accessor = accessorList[indices->get<size_t>()];
+            if (Checker::member(accessor, "bufferView") || Checker::member(accessor, "sparse")) continue;
+            result.skippedPrimitives.emplace_back(m, p);
+            result.warnings.push_back(file + ": " + Checker::indexed("meshes", m) + Checker::indexed(".primitives", p) +
+                                      ".indices: accessors[" + std::to_string(indices->get<size_t>()) +
+                                      "] has no bufferView: its indices are all 0 and draw nothing; primitive skipped");
+        }
+    }
+    // Cameras of a type glTF does not define: the validator warns only, so they are skipped (and
+    // replaced before tinygltf, which refuses them, parses the file).
+    const json& cameras = c.array(doc, "cameras", "");
+    for (size_t i = 0; i < cameras.size(); ++i) {
+        const json* type = cameras[i].is_object() ? Checker::member(cameras[i], "type") : nullptr;
+        if (type && type->is_string() && (*type == "perspective" || *type == "orthographic")) continue;
+        result.skippedCameras.push_back(i);
+        result.warnings.push_back(file + ": " + Checker::indexed("cameras", i) + ".type: " +
+                                  (type ? io::jsonExcerpt(*type) : std::string("missing")) +
+                                  " is not perspective or orthographic; camera skipped");
+    }
     const std::vector<uint64_t> viewLength = checkBufferViews(c, doc, bufferLength);
     checkAccessors(c, doc, viewLength);
     checkImagesAndTextures(c, doc, viewLength.size());

@@ -27,6 +27,7 @@
 #include <filesystem>
 #include <optional>
 #include <string>
+#include <utility>
 #include <vector>
 
 namespace preskin::gltf {
@@ -40,6 +41,8 @@ struct PrepassResult {
     float environmentRotation = 0.0f;
     std::vector<SkinProfile> profiles;  // the root PRESKIN_materials_skin extension's
     std::vector<std::string> warnings;
+    std::vector<size_t> skippedCameras;  // cameras of no glTF type: the loader leaves them out
+    std::vector<std::pair<size_t, size_t>> skippedPrimitives;  // (mesh, primitive) that draw nothing
 };
 
 // `glb` is set for binary files; its BIN chunk size bounds buffer 0.

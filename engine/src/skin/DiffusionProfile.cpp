@@ -51,7 +51,8 @@ void checkGaussians(const std::vector<GaussianTerm>& terms, std::string_view sou
         const double v = terms[i].varianceMm2;
         const std::string at = fmt::format("{}[{}]", field, i);
         if (!std::isfinite(v)) fail(source, at + ".varianceMm2", fmt::format("must be finite, got {}", v));
-        if (!(v > 0.0)) fail(source, at + ".varianceMm2", fmt::format("must be > 0, got {}", v));
+        if (!(v >= skin::kMinVarianceMm2))
+            fail(source, at + ".varianceMm2", fmt::format("must be >= {} mm^2 (a Gaussian 1 um wide), got {}", skin::kMinVarianceMm2, v));
         if (v > skin::kMaxVarianceMm2)
             fail(source, at + ".varianceMm2", fmt::format("must be <= {} mm^2, got {}", skin::kMaxVarianceMm2, v));
         for (int c = 0; c < 3; ++c) {
@@ -80,7 +81,8 @@ void checkBurley(glm::dvec3 albedo, glm::dvec3 meanFreePathMm, std::string_view 
         const std::string lf = fmt::format("{}meanFreePathMm[{}]", prefix, c);
         const double l = meanFreePathMm[c];
         if (!std::isfinite(l)) fail(source, lf, fmt::format("must be finite, got {}", l));
-        if (!(l > 0.0)) fail(source, lf, fmt::format("must be > 0, got {}", l));
+        if (!(l >= skin::kMinMeanFreePathMm))
+            fail(source, lf, fmt::format("must be >= {} mm (1 um), got {}", skin::kMinMeanFreePathMm, l));
         if (l > skin::kMaxMeanFreePathMm) fail(source, lf, fmt::format("must be <= {} mm, got {}", skin::kMaxMeanFreePathMm, l));
     }
 }

@@ -57,6 +57,10 @@ void storeHalf(LutTable& table, int ix, int iy, glm::dvec3 value) {
 
 }  // namespace
 
+size_t nonFiniteValues(const LutTable& table) {
+    return size_t(std::count_if(table.rgb.begin(), table.rgb.end(), [](float v) { return !std::isfinite(v); }));
+}
+
 void validateBakeSettings(const LutBakeSettings& s, std::string_view source, std::string_view prefix) {
     const std::string p(prefix);
     checkSize(s.diffuseNoLSize, source, p + "diffuseNoLSize");
@@ -186,6 +190,14 @@ LutSet LutSet::bake(const DiffusionProfile& profile, const LutBakeSettings& sett
         }
         finishUnit();
     });
+    // No table with a non-finite value leaves the bake (the profile's bounds keep it finite;
+    // this is the last guard, not the rule).
+    for (const LutTable* table : {&set.diffuse_, &set.penumbra_, &set.shTransfer_, &set.transmittance_}) {
+        const size_t bad = skin::nonFiniteValues(*table);
+        if (bad > 0)
+            throw Error(fmt::format("{}: LUT bake: table {}: {} values are not finite; nothing baked", profile.name(),
+                                    table->name, bad));
+    }
     return set;
 }
 

@@ -420,6 +420,11 @@ struct LutSetAccess {
 };
 
 void LutSet::save(const fs::path& dir, const LutSaveOptions& options) const {
+    for (const LutTable* table : {&diffuse_, &penumbra_, &shTransfer_, &transmittance_}) {
+        const size_t bad = skin::nonFiniteValues(*table);
+        if (bad > 0)
+            throw Error(fmt::format("{}: table {}: {} values are not finite; nothing written", shown(dir), table->name, bad));
+    }
     struct Pending {
         fs::path finalPath;
         std::function<void(const fs::path& temp)> write;

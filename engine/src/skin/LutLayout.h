@@ -29,6 +29,9 @@ struct LutLayout {
 
 LutLayout makeLutLayout(const DiffusionProfile& profile, const LutBakeSettings& settings);
 
+// How many of the table's values are NaN or infinite (none may be baked, written or drawn).
+size_t nonFiniteValues(const LutTable& table);
+
 // Throws preskin::Error "<source>: <prefix><field>: must be ..., got ...".
 void validateBakeSettings(const LutBakeSettings& settings, std::string_view source, std::string_view prefix);
 

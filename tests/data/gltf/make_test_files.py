@@ -39,7 +39,8 @@ def triangle_doc(buffer_uri, byte_length=104):
             {"buffer": 0, "byteOffset": 96, "byteLength": 6},
         ],
         "accessors": [
-            {"bufferView": 0, "componentType": 5126, "count": 3, "type": "VEC3"},
+            # POSITION carries its bounds (glTF requires them; the default triangle's)
+            {"bufferView": 0, "componentType": 5126, "count": 3, "type": "VEC3", "min": [0, 0, 0], "max": [1, 1, 0]},
             {"bufferView": 1, "componentType": 5126, "count": 3, "type": "VEC3"},
             {"bufferView": 2, "componentType": 5126, "count": 3, "type": "VEC2"},
             {"bufferView": 3, "componentType": 5123, "count": 3, "type": "SCALAR"},
