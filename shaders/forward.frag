@@ -57,11 +57,6 @@ layout(location = 13) in vec3 inNormalBlueWs;
 
 layout(location = 0) out vec4 outColor;
 
-vec2 transformUv(GpuUvTransform t, vec2 uv) {
-    vec3 p = vec3(uv, 1.0);
-    return vec2(dot(t.row0.xyz, p), dot(t.row1.xyz, p));
-}
-
 // Tangent-space normal map sample -> world space (glTF convention: +Y up in the map).
 vec3 perturbNormal(vec3 mapValue, float scale, vec3 N, vec4 T) {
     vec3 n = mapValue * 2.0 - 1.0;

@@ -109,6 +109,7 @@ Renderer::Impl::~Impl() {
     vkDeviceWaitIdle(d);
     for (auto& [key, p] : pipelines) vkDestroyPipeline(d, p, nullptr);
     if (shadowPipeline) vkDestroyPipeline(d, shadowPipeline, nullptr);
+    if (shadowMaskPipeline) vkDestroyPipeline(d, shadowMaskPipeline, nullptr);
     for (Slot& s : slots)
         if (s.queries) vkDestroyQueryPool(d, s.queries, nullptr);
     if (framePool) vkDestroyDescriptorPool(d, framePool, nullptr);
@@ -230,19 +231,23 @@ void Renderer::Impl::setShaderOverrides(const std::map<std::string, std::vector<
     vkDeviceWaitIdle(dev.device());
     auto previous = std::exchange(shaderOverrides, spirv);
     std::map<PipelineKey, VkPipeline> rebuilt;
-    VkPipeline rebuiltShadow = VK_NULL_HANDLE;
+    VkPipeline rebuiltShadow = VK_NULL_HANDLE, rebuiltShadowMask = VK_NULL_HANDLE;
     try {
         for (const auto& [key, p] : pipelines) rebuilt.emplace(key, createForwardPipeline(key));
-        rebuiltShadow = createShadowPipeline();
+        rebuiltShadow = createShadowPipeline(false);
+        if (shadowMaskPipeline) rebuiltShadowMask = createShadowPipeline(true);
     } catch (...) {
         for (auto& [key, p] : rebuilt) vkDestroyPipeline(dev.device(), p, nullptr);
+        if (rebuiltShadow) vkDestroyPipeline(dev.device(), rebuiltShadow, nullptr);
         shaderOverrides = std::move(previous);
         throw;
     }
     for (auto& [key, p] : pipelines) vkDestroyPipeline(dev.device(), p, nullptr);
     if (shadowPipeline) vkDestroyPipeline(dev.device(), shadowPipeline, nullptr);
+    if (shadowMaskPipeline) vkDestroyPipeline(dev.device(), shadowMaskPipeline, nullptr);
     pipelines = std::move(rebuilt);
     shadowPipeline = rebuiltShadow;
+    shadowMaskPipeline = rebuiltShadowMask;
 }
 
 void Renderer::Impl::setPose(ScenePose p) {

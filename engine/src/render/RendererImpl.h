@@ -98,7 +98,8 @@ struct Renderer::Impl {
     vk::Image depth;        // one layer per eye, msaaSamples samples
     vk::Image msaaColor;    // MSAA only: one layer per eye, resolved into the target
     std::map<PipelineKey, VkPipeline> pipelines;
-    VkPipeline shadowPipeline = VK_NULL_HANDLE;
+    VkPipeline shadowPipeline = VK_NULL_HANDLE;      // depth only
+    VkPipeline shadowMaskPipeline = VK_NULL_HANDLE;  // alpha-masked materials
     std::map<std::string, std::vector<uint32_t>> shaderOverrides;
     // Headless render target and readback.
     vk::Image colorTarget;
@@ -153,13 +154,13 @@ struct Renderer::Impl {
 
     VkPipeline createForwardPipeline(const PipelineKey& key) const;
 
-    VkPipeline createShadowPipeline() const;
+    VkPipeline createShadowPipeline(bool masked) const;
 
     void setShaderOverrides(const std::map<std::string, std::vector<uint32_t>>& spirv);
 
     void setPose(ScenePose p);
 
-    VkPipeline depthOnlyPipeline();
+    VkPipeline depthOnlyPipeline(bool masked);
 
     // The forward pass's own attachments: depth (unless the host's is used), and with MSAA the
     // multisampled colour. Replaced ones are retired, never waited for.

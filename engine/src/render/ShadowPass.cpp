@@ -1,5 +1,6 @@
 // The shadow pass of the sample renderer: the directional light's orthographic shadow map
-// (fitted to the skin in view, render/ShadowFit.h), its depth-only pipeline and its recording, and
+// (fitted to the skin in view, render/ShadowFit.h), its depth-only pipeline (and the alpha-tested
+// one of masked materials) and its recording, and
 // for scenes with skin the wide map reduced from it (shaders/shadow_reduce.comp). The forward pass
 // samples both with preskin/shadow.glsl's Gaussian PCF.
 #include "render/RendererImpl.h"
@@ -76,22 +77,27 @@ void Renderer::Impl::recordWideShadow(VkCommandBuffer cmd, Slot& slot) {
                      VK_ACCESS_2_SHADER_SAMPLED_READ_BIT);
 }
 
-VkPipeline Renderer::Impl::createShadowPipeline() const {
+// Depth only, or for alpha-masked materials with shadow_mask.frag, which reads the material's set
+// (the forward layout) and discards below the cutoff.
+VkPipeline Renderer::Impl::createShadowPipeline(bool masked) const {
     vk::GraphicsPipelineDesc desc;
     desc.vertexSpirv = shader("shadow.vert");
+    if (masked) desc.fragmentSpirv = shader("shadow_mask.frag");
     desc.vertexBindings = {{0, sizeof(Vertex), VK_VERTEX_INPUT_RATE_VERTEX}};
-    desc.vertexAttributes = {{gpu::kAttributePosition, 0, VK_FORMAT_R32G32B32_SFLOAT, offsetof(Vertex, positionOs)}};
+    desc.vertexAttributes = {{gpu::kAttributePosition, 0, VK_FORMAT_R32G32B32_SFLOAT, offsetof(Vertex, positionOs)},
+                             {gpu::kAttributeUv0, 0, VK_FORMAT_R32G32_SFLOAT, offsetof(Vertex, uv0)}};
     desc.depthFormat = kDepthFormat;
     desc.cullMode = VK_CULL_MODE_NONE;  // the nearest surface of either facing: thickness needs it
     desc.depthCompare = VK_COMPARE_OP_LESS_OR_EQUAL;
     desc.depthBias = true;
-    desc.layout = shadowLayout;
+    desc.layout = masked ? forwardLayout : shadowLayout;
     return vk::createGraphicsPipeline(dev, desc);
 }
 
-VkPipeline Renderer::Impl::depthOnlyPipeline() {
-    if (!shadowPipeline) shadowPipeline = createShadowPipeline();
-    return shadowPipeline;
+VkPipeline Renderer::Impl::depthOnlyPipeline(bool masked) {
+    VkPipeline& p = masked ? shadowMaskPipeline : shadowPipeline;
+    if (!p) p = createShadowPipeline(masked);
+    return p;
 }
 
 void Renderer::Impl::recordShadowPass(VkCommandBuffer cmd, Slot& slot, uint32_t slotIndex) {
@@ -117,17 +123,32 @@ void Renderer::Impl::recordShadowPass(VkCommandBuffer cmd, Slot& slot, uint32_t 
     vkCmdSetViewport(cmd, 0, 1, &viewport);
     vkCmdSetScissor(cmd, 0, 1, &scissor);
     vkCmdSetDepthBias(cmd, 1.0f, 0.0f, 1.5f);
-    vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, depthOnlyPipeline());
-    vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, shadowLayout, 0, 1, &slot.set, 0, nullptr);
     VkBuffer boundVertices = VK_NULL_HANDLE;
     bindGeometry(cmd, boundVertices);
-    for (const DrawItem& d : scene->draws) {
-        if (scene->materials[d.material].alphaMode == AlphaMode::Blend) continue;
-        const int32_t vertexOffset = bindDrawVertices(cmd, slotIndex, d, boundVertices);
-        const gpu::DrawPush push{glm::uvec4(d.instance, d.material, 0, 0)};
-        vkCmdPushConstants(cmd, shadowLayout, VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_FRAGMENT_BIT, 0,
-                           sizeof(push), &push);
-        vkCmdDrawIndexed(cmd, d.indexCount, 1, d.firstIndex, vertexOffset, 0);
+    // Opaque draws depth only, then alpha-masked ones through shadow_mask.frag; blended ones cast
+    // no shadow.
+    for (const bool masked : {false, true}) {
+        const VkPipelineLayout layout = masked ? forwardLayout : shadowLayout;
+        bool bound = false;
+        uint32_t boundMaterial = UINT32_MAX;
+        for (const DrawItem& d : scene->draws) {
+            const GpuMaterial& m = scene->materials[d.material];
+            if (m.alphaMode == AlphaMode::Blend || (m.alphaMode == AlphaMode::Mask) != masked) continue;
+            if (!bound) {
+                vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, depthOnlyPipeline(masked));
+                vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, layout, 0, 1, &slot.set, 0, nullptr);
+                bound = true;
+            }
+            if (masked && d.material != boundMaterial) {
+                vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, layout, 1, 1, &m.set, 0, nullptr);
+                boundMaterial = d.material;
+            }
+            const int32_t vertexOffset = bindDrawVertices(cmd, slotIndex, d, boundVertices);
+            const gpu::DrawPush push{glm::uvec4(d.instance, d.material, 0, 0)};
+            vkCmdPushConstants(cmd, layout, VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_FRAGMENT_BIT, 0, sizeof(push),
+                               &push);
+            vkCmdDrawIndexed(cmd, d.indexCount, 1, d.firstIndex, vertexOffset, 0);
+        }
     }
     vkCmdEndRendering(cmd);
     vk::imageBarrier(cmd, shadowMap.handle(), VK_IMAGE_ASPECT_DEPTH_BIT, VK_IMAGE_LAYOUT_DEPTH_ATTACHMENT_OPTIMAL,

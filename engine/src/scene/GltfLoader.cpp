@@ -26,10 +26,13 @@
 #include <algorithm>
 #include <cctype>
 #include <cmath>
-#include <numbers>
 #include <cstring>
+#include <map>
+#include <numbers>
 #include <optional>
+#include <set>
 #include <sstream>
+#include <tuple>
 
 namespace preskin::gltf {
 
@@ -193,9 +196,19 @@ void convertMeshes(const LoadContext& ctx) {
         const tinygltf::Mesh& in = model.meshes[m];
         Mesh mesh;
         mesh.name = in.name.empty() ? indexed("meshes", m) : in.name;
+        // A primitive that repeats an earlier one of the mesh (same accessors, material and mode)
+        // draws the same triangles again: drawn once (a file of 100,000 copies would otherwise
+        // multiply the frame's work).
+        using PrimitiveKey = std::tuple<std::map<std::string, int>, int, int, int, std::vector<std::map<std::string, int>>>;
+        std::set<PrimitiveKey> seen;
+        size_t repeated = 0;
         for (size_t p = 0; p < in.primitives.size(); ++p) {
             const tinygltf::Primitive& prim = in.primitives[p];
             const std::string where = indexed("meshes", m) + indexed(".primitives", p);
+            if (!seen.emplace(prim.attributes, prim.indices, prim.material, prim.mode, prim.targets).second) {
+                ++repeated;
+                continue;
+            }
             if (std::find(ctx.skippedPrimitives.begin(), ctx.skippedPrimitives.end(), std::pair{m, p}) !=
                 ctx.skippedPrimitives.end())
                 continue;  // warned by the prepass
@@ -310,6 +323,9 @@ void convertMeshes(const LoadContext& ctx) {
             for (const Vertex& v : out.vertices) out.boundsOs.extend(v.positionOs);
             mesh.primitives.push_back(std::move(out));
         }
+        if (repeated > 0)
+            ctx.warn(indexed("meshes", m) + ".primitives", std::to_string(repeated) +
+                                                               " primitives repeat an earlier one (same accessors, material and mode); drawn once");
         convertMorphWeights(ctx, m, mesh);
         updateMeshCurvature(mesh);
         ctx.scene->meshes.push_back(std::move(mesh));
