@@ -704,24 +704,6 @@ PrepassResult checkDocument(const json& doc, const std::string& file, const fs::
 
     std::vector<uint64_t> bufferLength;
     checkBuffers(c, doc, glb, bufferLength, result.warnings);
-    // Index accessors without a bufferView hold zeros (valid glTF, but every triangle is
-    // degenerate): the primitive is skipped, and its indices removed before tinygltf, which
-    // refuses them, parses the file.
-    const json& accessorList = c.array(doc, "accessors", "");
-    const json& meshList = c.array(doc, "meshes", "");
-    for (size_t m = 0; m < meshList.size(); ++m) {
-        const json* primitives = Checker::member(meshList[m], "primitives");
-        for (size_t p = 0; primitives && p < primitives->size(); ++p) {
-            const json* indices = Checker::member((*primitives)[p], "indices");
-            if (!indices || !indices->is_number_unsigned()) continue;
-            const json& accessor = accessorList[indices->get<size_t>()];
-            if (Checker::member(accessor, "bufferView") || Checker::member(accessor, "sparse")) continue;
-            result.skippedPrimitives.emplace_back(m, p);
-            result.warnings.push_back(file + ": " + Checker::indexed("meshes", m) + Checker::indexed(".primitives", p) +
-                                      ".indices: accessors[" + std::to_string(indices->get<size_t>()) +
-                                      "] has no bufferView: its indices are all 0 and draw nothing; primitive skipped");
-        }
-    }
     // Cameras of a type glTF does not define: the validator warns only, so they are skipped (and
     // replaced before tinygltf, which refuses them, parses the file).
     const json& cameras = c.array(doc, "cameras", "");
@@ -738,6 +720,24 @@ PrepassResult checkDocument(const json& doc, const std::string& file, const fs::
     checkImagesAndTextures(c, doc, viewLength.size());
     checkMaterials(c, doc);
     checkMeshes(c, doc);
+    // Index accessors without a bufferView hold zeros (valid glTF, but every triangle is
+    // degenerate): the primitive is skipped, and its indices removed before tinygltf, which
+    // refuses them, parses the file.
+    const json& accessorList = c.array(doc, "accessors", "");
+    const json& meshList = c.array(doc, "meshes", "");
+    for (size_t m = 0; m < meshList.size(); ++m) {
+        const json* primitives = Checker::member(meshList[m], "primitives");
+        for (size_t p = 0; primitives && p < primitives->size(); ++p) {
+            const json* indices = Checker::member((*primitives)[p], "indices");
+            if (!indices || !indices->is_number_unsigned() || indices->get<uint64_t>() >= accessorList.size()) continue;
+            const json& accessor = accessorList[indices->get<size_t>()];
+            if (Checker::member(accessor, "bufferView") || Checker::member(accessor, "sparse")) continue;
+            result.skippedPrimitives.emplace_back(m, p);
+            result.warnings.push_back(file + ": " + Checker::indexed("meshes", m) + Checker::indexed(".primitives", p) +
+                                      ".indices: accessors[" + std::to_string(indices->get<size_t>()) +
+                                      "] has no bufferView: its indices are all 0 and draw nothing; primitive skipped");
+        }
+    }
     checkNodesAndScenes(c, doc);
     checkLights(c, doc);
     checkEnvironment(c, doc, result);
