@@ -28,6 +28,25 @@
 namespace preskin::test {
 namespace {
 
+// Skin's RMSE over Lambert's against the reference, pooled over R, G, B, over the skin pixels
+// `counts` keeps (all by default); `pixels` is how many it kept.
+template <typename Keep>
+double skinOverLambert(const ReferenceImage& truth, const RenderedImage& skin, const RenderedImage& lambert, size_t& pixels,
+                       Keep counts) {
+    double skinSquared = 0.0, lambertSquared = 0.0;
+    pixels = 0;
+    for (size_t i = 0; i < truth.skin.size(); ++i) {
+        if (!truth.skin[i] || !counts(i)) continue;
+        for (int c = 0; c < 3; ++c) {
+            const double want = double(truth.rgba32f[4 * i + size_t(c)]);
+            skinSquared += std::pow(double(skin.rgba32f[4 * i + size_t(c)]) - want, 2.0);
+            lambertSquared += std::pow(double(lambert.rgba32f[4 * i + size_t(c)]) - want, 2.0);
+        }
+        ++pixels;
+    }
+    return std::sqrt(skinSquared / lambertSquared);
+}
+
 class SkinFidelity : public GpuTest {
 protected:
     void SetUp() override {
@@ -113,18 +132,8 @@ TEST_F(SkinFidelity, WholeSphereIsFarCloserToTheReferenceThanLambert) {
     const RenderedImage lambert = renderer.render(view_, kSize, kSize, OutputEncoding::LinearFloat);
     const DiffusionReference reference(scene_, scene_.lights, ShRgb{}, LutSet::loadDefault().profile());
     const ReferenceImage truth = reference.render(view_.eye(), kSize, kSize);
-    double skinSquared = 0.0, lambertSquared = 0.0;
     size_t pixels = 0;
-    for (size_t i = 0; i < size_t(kSize) * kSize; ++i) {
-        if (!truth.skin[i]) continue;
-        for (int c = 0; c < 3; ++c) {
-            const double want = double(truth.rgba32f[4 * i + size_t(c)]);
-            skinSquared += std::pow(double(skin.rgba32f[4 * i + size_t(c)]) - want, 2.0);
-            lambertSquared += std::pow(double(lambert.rgba32f[4 * i + size_t(c)]) - want, 2.0);
-        }
-        ++pixels;
-    }
-    const double ratio = std::sqrt(skinSquared / lambertSquared);
+    const double ratio = skinOverLambert(truth, skin, lambert, pixels, [](size_t) { return true; });
     std::printf("[ fidelity ] 10 mm sphere (%zu pixels): skin / Lambert RMSE %.3f\n", pixels, ratio);
     EXPECT_GT(pixels, size_t(kSize) * 20);
     EXPECT_LT(ratio, 0.3);
@@ -320,18 +329,9 @@ TEST_F(SkinFidelity, ConcaveGrooveIsCloserToTheReferenceThanLambert) {
     coarse.momentTolerance = 1e-5;
     const DiffusionReference reference(scene, scene.lights, dark.radianceSh(), LutSet::loadDefault().profile(), coarse);
     const ReferenceImage truth = reference.render(view.eye(), size, size);
-    double skinSquared = 0.0, lambertSquared = 0.0;
     size_t pixels = 0;
-    for (size_t i = 0; i < size_t(size) * size; ++i) {
-        if (!truth.skin[i] || truth.curvaturePerMm[i] > -0.01f) continue;
-        for (int c = 0; c < 3; ++c) {
-            const double want = double(truth.rgba32f[4 * i + size_t(c)]);
-            skinSquared += std::pow(double(skin.rgba32f[4 * i + size_t(c)]) - want, 2.0);
-            lambertSquared += std::pow(double(lambert.rgba32f[4 * i + size_t(c)]) - want, 2.0);
-        }
-        ++pixels;
-    }
-    const double ratio = std::sqrt(skinSquared / lambertSquared);
+    const double ratio =
+        skinOverLambert(truth, skin, lambert, pixels, [&](size_t i) { return truth.curvaturePerMm[i] <= -0.01f; });
     std::printf("[ fidelity ] groove floor: %zu concave pixels, skin / Lambert RMSE %.3f\n", pixels, ratio);
     EXPECT_GT(pixels, size_t(size) * 10);
     EXPECT_LT(ratio, 0.6);
