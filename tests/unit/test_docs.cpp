@@ -16,6 +16,7 @@
 #include <fmt/core.h>
 
 #include <algorithm>
+#include <chrono>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
@@ -210,10 +211,12 @@ TEST_F(Docs, EveryShownCommandRunsAsWritten) {
             continue;
         }
         const std::string line = shellQuoted(args);
+        const auto start = std::chrono::steady_clock::now();
         const ProcessResult r =
             runProcess("/bin/sh", {"-c", line}, {"XDG_CACHE_HOME=" + (dir_ / "cache").string()}, dir_, 300.0);
+        const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
         ++ran;
-        std::printf("[ docs     ] %s:%d: %s -> %d\n", c.file.c_str(), c.line, line.c_str(), r.exitCode);
+        std::printf("[ docs     ] %s:%d: %s -> %d (%.1f s)\n", c.file.c_str(), c.line, line.c_str(), r.exitCode, seconds);
         if (r.exitCode != 0) {
             const std::string err = r.err.size() > 400 ? r.err.substr(r.err.size() - 400) : r.err;
             failures.push_back(fmt::format("{}:{}: {}\n  ran: {}\n  exit {}: {}", c.file, c.line, c.text, line, r.exitCode, err));
