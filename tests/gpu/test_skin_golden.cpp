@@ -60,7 +60,7 @@ TEST_F(SkinGolden, HeadSceneMatchesDriverGolden) {
     const std::filesystem::path rendered = dir / "head_256.png";
     const ProcessResult run = runCli({"render", "--width", "256", "--height", "256", "--validation", "--device", device,
                                       "--out", rendered.string()},
-                                     dir, underAddressSanitizer() ? 900.0 : 120.0);  // the sanitizer build is ~10x slower
+                                     dir, 120.0);
     ASSERT_EQ(run.exitCode, 0) << run.out << run.err;
     std::string error;
     const RenderedImage image = readPng(rendered, error);
