@@ -291,17 +291,19 @@ Environment loadEnvironment(const Scene& scene, const CommonOptions& o) {
     return Environment::constant(glm::vec3(0.25f) * (o.envIntensity >= 0.0f ? o.envIntensity : 1.0f));
 }
 
+Light defaultKeyLight() {
+    Light key;
+    key.name = "default key";
+    key.type = LightType::Directional;
+    key.directionWs = glm::normalize(glm::vec3(0.5f, -0.6f, -0.65f));
+    key.intensity = 3.0f;
+    key.castsShadow = true;
+    return key;
+}
+
 std::vector<Light> sceneLights(const Scene& scene, const CommonOptions& o) {
     std::vector<Light> lights = scene.lights;
-    if (lights.empty()) {
-        Light key;
-        key.name = "default key";
-        key.type = LightType::Directional;
-        key.directionWs = glm::normalize(glm::vec3(0.5f, -0.6f, -0.65f));
-        key.intensity = 3.0f;
-        key.castsShadow = true;
-        lights.push_back(key);
-    }
+    if (lights.empty()) lights.push_back(defaultKeyLight());
     if (o.lights > 0) {
         const auto scattered = scatterLights(scene.worldBounds(), o.lights, o.seed);
         lights.insert(lights.end(), scattered.begin(), scattered.end());

@@ -119,6 +119,8 @@ void applySkinOption(Scene& scene, const CommonOptions& o);
 bool removeSkin(Scene& scene);
 // --env, else the scene's PRESKIN_environment, else a dim uniform grey.
 Environment loadEnvironment(const Scene& scene, const CommonOptions& o);
+// The key light of a scene that has none: directional from the upper right front, shadowed.
+Light defaultKeyLight();
 // The scene's lights plus --lights N scattered ones; a scene without any light gets a key light.
 std::vector<Light> sceneLights(const Scene& scene, const CommonOptions& o);
 void applyLightOptions(Renderer& renderer, const Scene& scene, const CommonOptions& o);

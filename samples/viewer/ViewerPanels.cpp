@@ -391,13 +391,7 @@ void Viewer::panelLights() {
     } else {
         ImGui::TextDisabled("no directional light in the scene");
         if (ImGui::Button("Add a key light")) {
-            Light light;
-            light.name = "key";
-            light.type = LightType::Directional;
-            light.directionWs = glm::normalize(glm::vec3(0.5f, -0.6f, -0.65f));
-            light.intensity = 3.0f;
-            light.castsShadow = true;
-            sceneLights_.push_back(light);
+            sceneLights_.push_back(cli::defaultKeyLight());
             keyLight_ = static_cast<int>(sceneLights_.size()) - 1;
             changed = true;
         }
