@@ -7,30 +7,6 @@
 
 namespace preskin::viewer {
 
-namespace {
-
-void barrier(const VulkanFunctions& vk, VkCommandBuffer cmd, VkImage image, uint32_t layers, VkImageLayout from,
-             VkImageLayout to, VkPipelineStageFlags2 srcStage, VkAccessFlags2 srcAccess, VkPipelineStageFlags2 dstStage,
-             VkAccessFlags2 dstAccess) {
-    VkImageMemoryBarrier2 b{VK_STRUCTURE_TYPE_IMAGE_MEMORY_BARRIER_2};
-    b.srcStageMask = srcStage;
-    b.srcAccessMask = srcAccess;
-    b.dstStageMask = dstStage;
-    b.dstAccessMask = dstAccess;
-    b.oldLayout = from;
-    b.newLayout = to;
-    b.srcQueueFamilyIndex = VK_QUEUE_FAMILY_IGNORED;
-    b.dstQueueFamilyIndex = VK_QUEUE_FAMILY_IGNORED;
-    b.image = image;
-    b.subresourceRange = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 1, 0, layers};
-    VkDependencyInfo dep{VK_STRUCTURE_TYPE_DEPENDENCY_INFO};
-    dep.imageMemoryBarrierCount = 1;
-    dep.pImageMemoryBarriers = &b;
-    vk.vkCmdPipelineBarrier2(cmd, &dep);
-}
-
-}  // namespace
-
 void StereoPreview::release() {
     if (view_) vk_.vkDestroyImageView(vk_.device, view_, nullptr);
     if (image_) vk_.vkDestroyImage(vk_.device, image_, nullptr);
@@ -83,13 +59,13 @@ void StereoPreview::ensure(VkExtent2D eye, VkFormat format) {
 
 void StereoPreview::copyToWindow(VkCommandBuffer cmd, VkImage window, VkExtent2D windowExtent,
                                  VkImageLayout windowLayoutAfter) const {
-    barrier(vk_, cmd, window, 1, VK_IMAGE_LAYOUT_UNDEFINED, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL,
+    imageBarrier(vk_, cmd, window, 1, VK_IMAGE_LAYOUT_UNDEFINED, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL,
             VK_PIPELINE_STAGE_2_COLOR_ATTACHMENT_OUTPUT_BIT, VK_ACCESS_2_NONE, VK_PIPELINE_STAGE_2_ALL_TRANSFER_BIT,
             VK_ACCESS_2_TRANSFER_WRITE_BIT);
     const VkClearColorValue clear{{0.045f, 0.045f, 0.05f, 1.0f}};
     const VkImageSubresourceRange range{VK_IMAGE_ASPECT_COLOR_BIT, 0, 1, 0, 1};
     vk_.vkCmdClearColorImage(cmd, window, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, &clear, 1, &range);
-    barrier(vk_, cmd, window, 1, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL,
+    imageBarrier(vk_, cmd, window, 1, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL,
             VK_PIPELINE_STAGE_2_ALL_TRANSFER_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT, VK_PIPELINE_STAGE_2_ALL_TRANSFER_BIT,
             VK_ACCESS_2_TRANSFER_WRITE_BIT);
     VkImageCopy regions[2]{};
@@ -102,7 +78,7 @@ void StereoPreview::copyToWindow(VkCommandBuffer cmd, VkImage window, VkExtent2D
     vk_.vkCmdCopyImage(cmd, image_, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, window, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL,
                        2, regions);
     const bool toCopy = windowLayoutAfter == VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL;
-    barrier(vk_, cmd, window, 1, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, windowLayoutAfter,
+    imageBarrier(vk_, cmd, window, 1, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, windowLayoutAfter,
             VK_PIPELINE_STAGE_2_ALL_TRANSFER_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT,
             toCopy ? VK_PIPELINE_STAGE_2_ALL_TRANSFER_BIT : VK_PIPELINE_STAGE_2_COLOR_ATTACHMENT_OUTPUT_BIT,
             toCopy ? VK_ACCESS_2_TRANSFER_READ_BIT

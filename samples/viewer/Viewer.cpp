@@ -34,26 +34,6 @@ std::string lowerExtension(const std::filesystem::path& p) {
     return ext;
 }
 
-void imageBarrier(const VulkanFunctions& vk, VkCommandBuffer cmd, VkImage image, VkImageLayout from, VkImageLayout to,
-                  VkPipelineStageFlags2 srcStage, VkAccessFlags2 srcAccess, VkPipelineStageFlags2 dstStage,
-                  VkAccessFlags2 dstAccess) {
-    VkImageMemoryBarrier2 b{VK_STRUCTURE_TYPE_IMAGE_MEMORY_BARRIER_2};
-    b.srcStageMask = srcStage;
-    b.srcAccessMask = srcAccess;
-    b.dstStageMask = dstStage;
-    b.dstAccessMask = dstAccess;
-    b.oldLayout = from;
-    b.newLayout = to;
-    b.srcQueueFamilyIndex = VK_QUEUE_FAMILY_IGNORED;
-    b.dstQueueFamilyIndex = VK_QUEUE_FAMILY_IGNORED;
-    b.image = image;
-    b.subresourceRange = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 1, 0, 1};
-    VkDependencyInfo dep{VK_STRUCTURE_TYPE_DEPENDENCY_INFO};
-    dep.imageMemoryBarrierCount = 1;
-    dep.pImageMemoryBarriers = &b;
-    vk.vkCmdPipelineBarrier2(cmd, &dep);
-}
-
 // The shadow-casting directional light (as the renderer picks it), else the first directional.
 int findKeyLight(const std::vector<Light>& lights) {
     for (size_t i = 0; i < lights.size(); ++i)
@@ -841,14 +821,14 @@ void Viewer::recordFrame(Frame& frame, uint32_t imageIndex) {
 
     if (captureScene) {
         capture_->record(frame.cmd, slot_, image, target.format, swapchain_->extent(), *captureNext_, false);
-        imageBarrier(vk_, frame.cmd, image, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL,
+        imageBarrier(vk_, frame.cmd, image, 1, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL,
                      VK_PIPELINE_STAGE_2_COPY_BIT, VK_ACCESS_2_NONE, VK_PIPELINE_STAGE_2_COLOR_ATTACHMENT_OUTPUT_BIT,
                      VK_ACCESS_2_COLOR_ATTACHMENT_READ_BIT | VK_ACCESS_2_COLOR_ATTACHMENT_WRITE_BIT);
     }
     overlay_->record(frame.cmd, imageIndex, captureUi, !rendered);
     if (captureUi) {
         capture_->record(frame.cmd, slot_, image, target.format, swapchain_->extent(), *captureNext_, true);
-        imageBarrier(vk_, frame.cmd, image, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, VK_IMAGE_LAYOUT_PRESENT_SRC_KHR,
+        imageBarrier(vk_, frame.cmd, image, 1, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, VK_IMAGE_LAYOUT_PRESENT_SRC_KHR,
                      VK_PIPELINE_STAGE_2_COPY_BIT, VK_ACCESS_2_NONE, VK_PIPELINE_STAGE_2_NONE, VK_ACCESS_2_NONE);
     }
     if (captureScene || captureUi) captureNext_.reset();

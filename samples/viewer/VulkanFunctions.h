@@ -83,4 +83,9 @@ struct VulkanFunctions {
 // Throws preskin::Error "<what>: <VkResult>" unless `result` is VK_SUCCESS.
 void check(VkResult result, const char* what);
 
+// One layout transition of the first `layers` layers of a colour image's first mip level.
+void imageBarrier(const VulkanFunctions& vk, VkCommandBuffer cmd, VkImage image, uint32_t layers, VkImageLayout from,
+                  VkImageLayout to, VkPipelineStageFlags2 srcStage, VkAccessFlags2 srcAccess,
+                  VkPipelineStageFlags2 dstStage, VkAccessFlags2 dstAccess);
+
 }  // namespace preskin::viewer
