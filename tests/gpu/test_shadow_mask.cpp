@@ -4,6 +4,7 @@
 // is lit like open floor; where the opaque half's falls it is dark. Before the shadow pass read the
 // mask, the whole quad cast a square shadow. Opaque and blended quads are the controls.
 #include "support/GpuTest.h"
+#include "support/TestLights.h"
 #include "support/TestScenes.h"
 
 #include <preskin/Environment.h>
@@ -57,12 +58,7 @@ TEST_F(ShadowMask, TransparentTexelsCastNoShadow) {
         scene.meshes[1].primitives[0].material = 1;
         scene.images.push_back(halves);
         scene.materials[1].baseColor.image = 0;
-        Light sun;
-        sun.type = LightType::Directional;
-        sun.directionWs = glm::normalize(glm::vec3(2.0f, -1.0f, 0.0f));  // a shadow 1 m to the right of its caster
-        sun.intensity = 3.0f;
-        sun.castsShadow = true;
-        scene.lights = {sun};
+        scene.lights = {shadowedDirectionalLight({2.0f, -1.0f, 0.0f}, 3.0f)};  // a shadow 1 m right of its caster
         const View view = perspectiveView(glm::inverse(glm::lookAt(glm::vec3(0.5f, 4.0f, 0.0f), glm::vec3(0.5f, 0.0f, 0.0f),
                                                                    glm::vec3(0.0f, 0.0f, -1.0f))),
                                           0.9f, 1.0f, 0.1f, 20.0f);

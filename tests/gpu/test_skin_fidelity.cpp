@@ -14,6 +14,7 @@
 #include "support/GpuTest.h"
 #include "support/ImageCompare.h"
 #include "support/SkinTestSupport.h"
+#include "support/TestLights.h"
 #include "support/TestScenes.h"
 
 #include <preskin/DiffusionReference.h>
@@ -54,16 +55,8 @@ protected:
         Primitive sphere = makeSphere(float(kRadiusM), 64, 32);
         recomputeCurvature(sphere);
         sphere.material = 0;
-        Material material;
-        material.baseColorFactor = glm::vec4(0.8f, 0.6f, 0.5f, 1.0f);
-        material.metallicFactor = 0.0f;
-        material.skin = SkinMaterial{};
-        scene_ = makeScene({{sphere, glm::mat4(1.0f)}}, {material});
-        Light light;
-        light.type = LightType::Directional;
-        light.directionWs = glm::normalize(glm::vec3(0.8f, -0.35f, -0.5f));
-        light.intensity = 3.0f;
-        light.castsShadow = true;
+        scene_ = makeScene({{sphere, glm::mat4(1.0f)}}, {skinMaterial({0.8f, 0.6f, 0.5f})});
+        const Light light = shadowedDirectionalLight({0.8f, -0.35f, -0.5f}, 3.0f);
         scene_.lights = {light};
         L_ = -glm::dvec3(light.directionWs);
         view_ = orbitView(scene_.worldBounds(), 0.0f, 8.0f, 0.0f, 1.0f);
@@ -300,16 +293,8 @@ TEST_F(SkinFidelity, ConcaveGrooveIsCloserToTheReferenceThanLambert) {
         }
     recomputeCurvature(groove);
     groove.material = 0;
-    Material material;
-    material.baseColorFactor = glm::vec4(0.8f, 0.6f, 0.5f, 1.0f);
-    material.metallicFactor = 0.0f;
-    material.skin = SkinMaterial{};
-    Scene scene = makeScene({{groove, glm::mat4(1.0f)}}, {material});
-    Light light;
-    light.type = LightType::Directional;
-    light.directionWs = glm::normalize(glm::vec3(0.6f, 0.0f, -0.8f));
-    light.intensity = 3.0f;
-    light.castsShadow = true;
+    Scene scene = makeScene({{groove, glm::mat4(1.0f)}}, {skinMaterial({0.8f, 0.6f, 0.5f})});
+    const Light light = shadowedDirectionalLight({0.6f, 0.0f, -0.8f}, 3.0f);
     scene.lights = {light};
     const uint32_t size = 64;
     const View view = perspectiveView(

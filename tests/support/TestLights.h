@@ -21,6 +21,16 @@ inline glm::vec3 randomDirection(std::mt19937& rng) {
     }
 }
 
+// The one shadow-casting directional light, travelling along `travelDirection`.
+inline Light shadowedDirectionalLight(const glm::vec3& travelDirection, float intensity) {
+    Light l;
+    l.type = LightType::Directional;
+    l.directionWs = glm::normalize(travelDirection);
+    l.intensity = intensity;
+    l.castsShadow = true;
+    return l;
+}
+
 inline Light pointLight(const glm::vec3& p, float rangeM, const glm::vec3& color = glm::vec3(1.0f),
                         float intensity = 1.0f) {
     Light l;

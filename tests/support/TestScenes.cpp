@@ -75,6 +75,15 @@ Primitive makeBox(const glm::vec3& sizeM) {
     return p;
 }
 
+Material skinMaterial(const glm::vec3& albedo, float scatterScale) {
+    Material m;
+    m.baseColorFactor = glm::vec4(albedo, 1.0f);
+    m.metallicFactor = 0.0f;
+    m.skin = SkinMaterial{};
+    m.skin->scatterScale = scatterScale;
+    return m;
+}
+
 Scene makeScene(const std::vector<std::pair<Primitive, glm::mat4>>& parts, const std::vector<Material>& materials) {
     Scene scene;
     scene.materials = materials;

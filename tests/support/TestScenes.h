@@ -11,6 +11,8 @@ Primitive makeSphere(float radiusM, uint32_t segments, uint32_t rings);
 Primitive makeQuad(float sizeM, uint32_t n);
 // Axis-aligned box centred at the origin with outward faces.
 Primitive makeBox(const glm::vec3& sizeM);
+// A dielectric skin material (default SkinMaterial) of the given albedo and scatter scale.
+Material skinMaterial(const glm::vec3& albedo, float scatterScale = 1.0f);
 // A scene holding each primitive as one mesh instance with its own transform.
 Scene makeScene(const std::vector<std::pair<Primitive, glm::mat4>>& parts, const std::vector<Material>& materials);
 

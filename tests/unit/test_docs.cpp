@@ -39,7 +39,7 @@ struct ShownCommand {
     std::string file;  // relative to the repository root
     int line = 0;
     std::string text;      // the command as shown, comment removed, continuation lines joined
-    bool synopsis = false;  // shows placeholders ([optional], a|b) rather than a command to run
+    bool synopsis = false;  // a usage line ([optional] parts, a|b choices), not a command to run
 };
 
 std::vector<fs::path> documentationFiles() {

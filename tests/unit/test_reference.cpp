@@ -9,6 +9,7 @@
 //  - results are bitwise identical on 1 and 2 threads and from run to run.
 #include "unit/test_lut_reference.h"
 #include "support/SkinTestSupport.h"
+#include "support/TestLights.h"
 #include "support/TestScenes.h"
 
 #include <preskin/DiffusionReference.h>
@@ -25,24 +26,6 @@
 
 namespace preskin::test {
 namespace {
-
-Material skinMaterial(const glm::vec3& albedo, float scatterScale) {
-    Material m;
-    m.baseColorFactor = glm::vec4(albedo, 1.0f);
-    m.metallicFactor = 0.0f;
-    m.skin = SkinMaterial{};
-    m.skin->scatterScale = scatterScale;
-    return m;
-}
-
-Light keyLight(const glm::vec3& travelDirection, float intensity) {
-    Light l;
-    l.type = LightType::Directional;
-    l.directionWs = glm::normalize(travelDirection);
-    l.intensity = intensity;
-    l.castsShadow = true;
-    return l;
-}
 
 // Azimuthal integral of the clamped cosine: int_0^2pi max(A + B cos(phi), 0) dphi, B >= 0.
 double azimuthalClampedCosine(double A, double B) {
@@ -97,7 +80,7 @@ TEST_P(DiffusionReferencePlane, EqualsLambertWithin1e3) {
     Primitive plane = makeQuad(0.2f, 4);
     plane.material = 0;
     Scene scene = makeScene({{plane, glm::mat4(1.0f)}}, {skinMaterial(albedo, c.scatterScale)});
-    const Light light = keyLight(glm::vec3(0.6f, -0.3f, -0.74f), 2.0f);
+    const Light light = shadowedDirectionalLight(glm::vec3(0.6f, -0.3f, -0.74f), 2.0f);
     const glm::vec3 ambient(0.3f, 0.25f, 0.2f);
     const Environment env = Environment::constant(ambient);
     const DiffusionReference reference(scene, {light}, env.radianceSh(), profile);
@@ -129,7 +112,7 @@ double sphereError(const DiffusionProfile& profile, double radiusM, uint32_t seg
     recomputeCurvature(sphere);
     Scene scene = makeScene({{sphere, glm::mat4(1.0f)}}, {skinMaterial(glm::vec3(1.0f), 1.0f)});
     const glm::dvec3 L = glm::normalize(glm::dvec3(-0.3, 0.8, 0.52));
-    const Light light = keyLight(-glm::vec3(L), 1.0f);
+    const Light light = shadowedDirectionalLight(-glm::vec3(L), 1.0f);
     const DiffusionReference reference(scene, {light}, ShRgb{}, profile, settings);
     // A direction perpendicular to L: points at angle theta from L lie in the plane (L, u),
     // turned a little about L so they avoid the mesh's symmetry planes.
@@ -230,7 +213,7 @@ TEST(DiffusionReference, RenderIsBitwiseReproducibleAndThreadIndependent) {
                              {floor, glm::rotate(glm::translate(glm::mat4(1.0f), glm::vec3(0.0f, -0.012f, 0.0f)),
                                                  -1.5707963f, glm::vec3(1.0f, 0.0f, 0.0f))}},
                             {skinMaterial(glm::vec3(0.8f, 0.6f, 0.5f), 1.0f)});
-    const Light light = keyLight(glm::vec3(0.4f, -1.0f, -0.3f), 2.0f);
+    const Light light = shadowedDirectionalLight(glm::vec3(0.4f, -1.0f, -0.3f), 2.0f);
     const Environment env = Environment::constant(glm::vec3(0.1f));
     ReferenceSettings coarse;  // determinism does not depend on the accuracy: keep the test fast
     coarse.leafRatio = 1.0;

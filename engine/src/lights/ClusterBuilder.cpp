@@ -79,18 +79,8 @@ void ClusterBuilder::createPipelines() {
     pipelineLayout_ = vk::createPipelineLayout(device_, std::span(&setLayout_, 1), 0, 0);
     const VkDescriptorPoolSize sizes[] = {{VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, kSlots},
                                           {VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 6 * kSlots}};
-    VkDescriptorPoolCreateInfo poolInfo{VK_STRUCTURE_TYPE_DESCRIPTOR_POOL_CREATE_INFO};
-    poolInfo.maxSets = kSlots;
-    poolInfo.poolSizeCount = 2;
-    poolInfo.pPoolSizes = sizes;
-    PRESKIN_VK(vkCreateDescriptorPool(device_.device(), &poolInfo, nullptr, &pool_));
-    for (Slot& s : slots_) {
-        VkDescriptorSetAllocateInfo alloc{VK_STRUCTURE_TYPE_DESCRIPTOR_SET_ALLOCATE_INFO};
-        alloc.descriptorPool = pool_;
-        alloc.descriptorSetCount = 1;
-        alloc.pSetLayouts = &setLayout_;
-        PRESKIN_VK(vkAllocateDescriptorSets(device_.device(), &alloc, &s.set));
-    }
+    pool_ = vk::createDescriptorPool(device_, sizes, kSlots);
+    for (Slot& s : slots_) s.set = vk::allocateDescriptorSet(device_, pool_, setLayout_);
     const auto code = shaders::spirv("cluster_build.comp");
     if (code.empty()) throw Error("internal: shader cluster_build.comp is not compiled into the library");
     vk::Specialization spec;

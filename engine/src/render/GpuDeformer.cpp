@@ -233,17 +233,9 @@ void GpuDeformer::createPipelines() {
     curvatureLayout_ = vk::createPipelineLayout(device_, std::span(&setLayout_, 1), sizeof(gpu::CurvaturePush), cs);
     constexpr uint32_t kBindings = 10;
     const VkDescriptorPoolSize size{VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, kBindings * kSlots};
-    VkDescriptorPoolCreateInfo poolInfo{VK_STRUCTURE_TYPE_DESCRIPTOR_POOL_CREATE_INFO};
-    poolInfo.maxSets = kSlots;
-    poolInfo.poolSizeCount = 1;
-    poolInfo.pPoolSizes = &size;
-    PRESKIN_VK(vkCreateDescriptorPool(device_.device(), &poolInfo, nullptr, &pool_));
+    pool_ = vk::createDescriptorPool(device_, std::span(&size, 1), kSlots);
     for (Slot& s : slots_) {
-        VkDescriptorSetAllocateInfo alloc{VK_STRUCTURE_TYPE_DESCRIPTOR_SET_ALLOCATE_INFO};
-        alloc.descriptorPool = pool_;
-        alloc.descriptorSetCount = 1;
-        alloc.pSetLayouts = &setLayout_;
-        PRESKIN_VK(vkAllocateDescriptorSets(device_.device(), &alloc, &s.set));
+        s.set = vk::allocateDescriptorSet(device_, pool_, setLayout_);
         const VkBuffer buffers[kBindings] = {rest_.handle(),     deltas_.handle(),   influences_.handle(),
                                              s.weights.handle(), s.joints.handle(),  s.output.handle(),
                                              topology_.handle(), scratch_.handle(),  restNormalBasis_.handle(),

@@ -207,11 +207,7 @@ GpuScene::GpuScene(const vk::Device& device, const Scene& scene)
     const uint32_t setCount = defaultMaterial + 1;
     const VkDescriptorPoolSize sizes[] = {{VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, setCount},
                                           {VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, setCount * gpu::kMaterialTextureCount}};
-    VkDescriptorPoolCreateInfo poolInfo{VK_STRUCTURE_TYPE_DESCRIPTOR_POOL_CREATE_INFO};
-    poolInfo.maxSets = setCount;
-    poolInfo.poolSizeCount = 2;
-    poolInfo.pPoolSizes = sizes;
-    PRESKIN_VK(vkCreateDescriptorPool(dev, &poolInfo, nullptr, &pool_));
+    pool_ = vk::createDescriptorPool(device, sizes, setCount);
 
     const VkDeviceSize align = device.properties().limits.minUniformBufferOffsetAlignment;
     uniformStride_ = (sizeof(gpu::MaterialUniforms) + align - 1) / align * align;
@@ -241,11 +237,7 @@ GpuScene::GpuScene(const vk::Device& device, const Scene& scene)
             gm.texelsPerMm = texelsPerMm(uvArea[i], worldArea[i], img.width, img.height) *
                              std::sqrt(std::abs(mat.normal.uvScale.x * mat.normal.uvScale.y));
         }
-        VkDescriptorSetAllocateInfo alloc{VK_STRUCTURE_TYPE_DESCRIPTOR_SET_ALLOCATE_INFO};
-        alloc.descriptorPool = pool_;
-        alloc.descriptorSetCount = 1;
-        alloc.pSetLayouts = &materialLayout_;
-        PRESKIN_VK(vkAllocateDescriptorSets(dev, &alloc, &gm.set));
+        gm.set = vk::allocateDescriptorSet(device, pool_, materialLayout_);
 
         struct Slot {
             uint32_t binding;

@@ -118,7 +118,6 @@ Renderer::Impl::~Impl() {
     if (frameLayout) vkDestroyDescriptorSetLayout(d, frameLayout, nullptr);
     if (shadowSampler) vkDestroySampler(d, shadowSampler, nullptr);
     if (reducePipeline) vkDestroyPipeline(d, reducePipeline, nullptr);
-    if (reducePool) vkDestroyDescriptorPool(d, reducePool, nullptr);
     if (reduceLayout) vkDestroyPipelineLayout(d, reduceLayout, nullptr);
     if (reduceSetLayout) vkDestroyDescriptorSetLayout(d, reduceSetLayout, nullptr);
 }
@@ -145,20 +144,22 @@ void Renderer::Impl::createLayouts() {
     forwardLayout = vk::createPipelineLayout(dev, forwardSets, sizeof(gpu::DrawPush), all);
     shadowLayout = vk::createPipelineLayout(dev, std::span(forwardSets, 1), sizeof(gpu::DrawPush), all);
 
+    // The wide shadow map's reduction: the shadow map in, the wide map out.
+    const vk::Binding reduceBindings[] = {{0, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, VK_SHADER_STAGE_COMPUTE_BIT},
+                                          {1, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, VK_SHADER_STAGE_COMPUTE_BIT}};
+    reduceSetLayout = vk::createSetLayout(dev, reduceBindings);
+    reduceLayout = vk::createPipelineLayout(dev, std::span(&reduceSetLayout, 1), sizeof(uint32_t), VK_SHADER_STAGE_COMPUTE_BIT);
+    reducePipeline = vk::createComputePipeline(dev, shader("shadow_reduce.comp"), reduceLayout);
+
+    // Per slot: the frame's set (6 images) and the reduction's (1 image in, 1 out).
     const VkDescriptorPoolSize sizes[] = {{VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, kSlotCount},
                                           {VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 4 * kSlotCount},
-                                          {VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 6 * kSlotCount}};
-    VkDescriptorPoolCreateInfo poolInfo{VK_STRUCTURE_TYPE_DESCRIPTOR_POOL_CREATE_INFO};
-    poolInfo.maxSets = kSlotCount;
-    poolInfo.poolSizeCount = 3;
-    poolInfo.pPoolSizes = sizes;
-    PRESKIN_VK(vkCreateDescriptorPool(d, &poolInfo, nullptr, &framePool));
+                                          {VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 7 * kSlotCount},
+                                          {VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, kSlotCount}};
+    framePool = vk::createDescriptorPool(dev, sizes, 2 * kSlotCount);
     for (Slot& s : slots) {
-        VkDescriptorSetAllocateInfo alloc{VK_STRUCTURE_TYPE_DESCRIPTOR_SET_ALLOCATE_INFO};
-        alloc.descriptorPool = framePool;
-        alloc.descriptorSetCount = 1;
-        alloc.pSetLayouts = &frameLayout;
-        PRESKIN_VK(vkAllocateDescriptorSets(d, &alloc, &s.set));
+        s.set = vk::allocateDescriptorSet(dev, framePool, frameLayout);
+        s.reduceSet = vk::allocateDescriptorSet(dev, framePool, reduceSetLayout);
         s.frameUniforms = vk::Buffer(dev, sizeof(gpu::FrameUniforms), VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT, true);
         s.lights = vk::Buffer(dev, 64 * sizeof(gpu::GpuLight), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, true);
         s.instances = vk::Buffer(dev, std::max<size_t>(scene->restInstances.size(), 1) * sizeof(gpu::GpuInstance),
@@ -176,27 +177,6 @@ void Renderer::Impl::createLayouts() {
     nearest.mipmapMode = VK_SAMPLER_MIPMAP_MODE_NEAREST;
     nearest.addressModeU = nearest.addressModeV = nearest.addressModeW = VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_EDGE;
     PRESKIN_VK(vkCreateSampler(d, &nearest, nullptr, &shadowSampler));
-
-    // The wide shadow map's reduction: the shadow map in, the wide map out.
-    const vk::Binding reduceBindings[] = {{0, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, VK_SHADER_STAGE_COMPUTE_BIT},
-                                          {1, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, VK_SHADER_STAGE_COMPUTE_BIT}};
-    reduceSetLayout = vk::createSetLayout(dev, reduceBindings);
-    reduceLayout = vk::createPipelineLayout(dev, std::span(&reduceSetLayout, 1), sizeof(uint32_t), VK_SHADER_STAGE_COMPUTE_BIT);
-    reducePipeline = vk::createComputePipeline(dev, shader("shadow_reduce.comp"), reduceLayout);
-    const VkDescriptorPoolSize reduceSizes[] = {{VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, kSlotCount},
-                                                {VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, kSlotCount}};
-    VkDescriptorPoolCreateInfo reducePoolInfo{VK_STRUCTURE_TYPE_DESCRIPTOR_POOL_CREATE_INFO};
-    reducePoolInfo.maxSets = kSlotCount;
-    reducePoolInfo.poolSizeCount = 2;
-    reducePoolInfo.pPoolSizes = reduceSizes;
-    PRESKIN_VK(vkCreateDescriptorPool(d, &reducePoolInfo, nullptr, &reducePool));
-    for (Slot& s : slots) {
-        VkDescriptorSetAllocateInfo reduceAlloc{VK_STRUCTURE_TYPE_DESCRIPTOR_SET_ALLOCATE_INFO};
-        reduceAlloc.descriptorPool = reducePool;
-        reduceAlloc.descriptorSetCount = 1;
-        reduceAlloc.pSetLayouts = &reduceSetLayout;
-        PRESKIN_VK(vkAllocateDescriptorSets(d, &reduceAlloc, &s.reduceSet));
-    }
 }
 
 // Replaces an attachment without waiting: the old image lives on until every other slot

@@ -93,7 +93,6 @@ struct Renderer::Impl {
     VkDescriptorSetLayout reduceSetLayout = VK_NULL_HANDLE;
     VkPipelineLayout reduceLayout = VK_NULL_HANDLE;
     VkPipeline reducePipeline = VK_NULL_HANDLE;
-    VkDescriptorPool reducePool = VK_NULL_HANDLE;
     bool sceneHasSkin = false;
     vk::Image depth;        // one layer per eye, msaaSamples samples
     vk::Image msaaColor;    // MSAA only: one layer per eye, resolved into the target

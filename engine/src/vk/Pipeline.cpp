@@ -164,4 +164,24 @@ VkPipelineLayout createPipelineLayout(const Device& device, std::span<const VkDe
     return layout;
 }
 
+VkDescriptorPool createDescriptorPool(const Device& device, std::span<const VkDescriptorPoolSize> sizes, uint32_t maxSets) {
+    VkDescriptorPoolCreateInfo info{VK_STRUCTURE_TYPE_DESCRIPTOR_POOL_CREATE_INFO};
+    info.maxSets = maxSets;
+    info.poolSizeCount = static_cast<uint32_t>(sizes.size());
+    info.pPoolSizes = sizes.data();
+    VkDescriptorPool pool = VK_NULL_HANDLE;
+    PRESKIN_VK(vkCreateDescriptorPool(device.device(), &info, nullptr, &pool));
+    return pool;
+}
+
+VkDescriptorSet allocateDescriptorSet(const Device& device, VkDescriptorPool pool, VkDescriptorSetLayout layout) {
+    VkDescriptorSetAllocateInfo info{VK_STRUCTURE_TYPE_DESCRIPTOR_SET_ALLOCATE_INFO};
+    info.descriptorPool = pool;
+    info.descriptorSetCount = 1;
+    info.pSetLayouts = &layout;
+    VkDescriptorSet set = VK_NULL_HANDLE;
+    PRESKIN_VK(vkAllocateDescriptorSets(device.device(), &info, &set));
+    return set;
+}
+
 }  // namespace preskin::vk
