@@ -146,12 +146,11 @@ void run(const RenderOptions& o) {
     applySkinOption(scene, o.common);
     const Environment environment = loadEnvironment(scene, o.common);
     const ProfileLibrary profiles = loadProfiles(scene, o.common);  // every input file is read before any GPU work
+    const View view = applyStereoOptions(makeView(scene, scenePath, o.view), o.stereo);  // and the camera checked
     auto context = Context::create(contextDesc(o.common));
     checkMsaaOption(*context, o.common.msaa);
     Renderer renderer(*context, scene, environment, profiles, renderSettings(o.common));
     applyLightOptions(renderer, scene, o.common);
-
-    const View view = applyStereoOptions(makeView(scene, scenePath, o.view), o.stereo);
     const uint32_t width = o.view.width, height = o.view.height;
 
     const Animation* animation = nullptr;
