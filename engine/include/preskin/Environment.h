@@ -51,6 +51,33 @@ PRESKIN_API ShRgb projectEquirect(const EquirectImage& image, float rotationY = 
 // Direction d of the image turned by rotationY radians about +Y.
 PRESKIN_API glm::vec3 rotateY(const glm::vec3& d, float rotationY);
 
+// One of the environment's dominant lights (extractEnvironmentLights): a directional light that
+// carries the radiance of the texels it was cut from.
+struct EnvironmentLight {
+    glm::vec3 directionWs{0.0f, -1.0f, 0.0f};  // the direction the light travels (world, rotation applied)
+    glm::vec3 irradiance{0.0f};   // at normal incidence: the integral of its texels' radiance over their solid angle
+    float solidAngleSr = 0.0f;    // of its texels
+};
+
+// The environment's dominant lights and what is left for the L2 SH ambient.
+struct EnvironmentLights {
+    std::vector<EnvironmentLight> lights;  // strongest (luminance of irradiance) first
+    ShRgb residualSh;                      // radianceSh() less the projection of every light's texels
+};
+
+class Environment;
+// Up to `count` (at most kMaxEnvironmentLights) dominant lights of the environment, found by
+// median cut (Debevec 2005, "A Median Cut Algorithm for Light Probe Sampling"): the image (at
+// most 1024 texels wide) is split into 64 regions of equal luminous energy on a solid-angle
+// weighted summed-area table; the densest region seeds a light if its mean radiance is at least
+// 4 times the environment's; the light grows from that region's brightest texel over connected
+// texels at least a tenth as bright, brightest first, up to 0.25 sr, and those texels leave the
+// image before the next light is sought. Fewer lights come back when no concentration is left
+// (a constant or smooth environment gives none). Every light's texels are removed from the SH,
+// so a light and the ambient never count the same radiance twice.
+PRESKIN_API EnvironmentLights extractEnvironmentLights(const Environment& environment, uint32_t count);
+inline constexpr uint32_t kMaxEnvironmentLights = 16;
+
 class PRESKIN_API Environment {
 public:
     // Reads an equirectangular Radiance .hdr or OpenEXR file (recognised by its content) of at
@@ -58,6 +85,9 @@ public:
     // unreadable, oversized or non-2:1 image, or a pixel or argument that the input-number rule
     // refuses (not finite, or beyond 1e6 in magnitude).
     static Environment load(const std::filesystem::path& path, float intensity = 1.0f, float rotationY = 0.0f);
+    // An image the host decoded itself (linear RGB radiance, width twice the height), turned by
+    // rotationY; throws preskin::Error on a size or texel load() would refuse.
+    static Environment fromImage(EquirectImage image, float rotationY = 0.0f);
     // Uniform radiance in every direction.
     static Environment constant(const glm::vec3& radiance);
 

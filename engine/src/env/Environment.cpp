@@ -160,6 +160,24 @@ glm::vec3 Environment::radiance(const glm::vec3& directionWs) const {
     return image_.texel(x, y);
 }
 
+Environment Environment::fromImage(EquirectImage image, float rotationY) {
+    if (image.width == 0 || image.width != 2 * image.height || image.width > limits::kMaxEnvironmentWidth ||
+        image.rgb.size() != size_t(image.width) * image.height * 3)
+        throw Error(fmt::format("environment image: size: {}x{} with {} values is not an equirectangular RGB image of "
+                                "at most {}x{}", image.width, image.height, image.rgb.size(),
+                                limits::kMaxEnvironmentWidth, limits::kMaxEnvironmentHeight));
+    if (auto problem = io::numberProblem(rotationY)) throw Error(fmt::format("environment image: rotation: {}", *problem));
+    for (size_t i = 0; i < image.rgb.size(); ++i)
+        if (auto problem = io::numberProblem(image.rgb[i]); problem || image.rgb[i] < 0.0f)
+            throw Error(fmt::format("environment image: pixel ({}, {}): radiance {}", (i / 3) % image.width,
+                                    (i / 3) / image.width, problem ? *problem : std::string("is negative")));
+    Environment env;
+    env.image_ = std::move(image);
+    env.radianceSh_ = projectEquirect(env.image_, rotationY);
+    env.rotationY_ = rotationY;
+    return env;
+}
+
 Environment Environment::constant(const glm::vec3& radiance) {
     Environment env;
     // A constant function c has only c_00 = c * sqrt(4 pi).
