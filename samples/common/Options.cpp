@@ -30,6 +30,10 @@ void addSceneOptions(CLI::App& cmd, CommonOptions& o) {
     cmd.add_option("--env-intensity", o.envIntensity, "Environment radiance scale")->check(numberIn(0.0, 1e6));
     cmd.add_option("--env-rotation", o.envRotationDeg, "Turn the environment about +Y, degrees")
         ->check(numberIn(-3600.0, 3600.0));
+    cmd.add_option("--env-lights", o.envLights,
+                   "Directional lights extracted from the environment (median cut), with shadows; default: 1 when "
+                   "the scene has an environment image and no lights, else 0")
+        ->check(wholeNumberIn(0, kMaxEnvironmentLights));
     cmd.add_option("--skin", o.skin,
                    "Shade this material (or 'all') as skin with default parameters; 'none': no material is skin "
                    "(the standard glTF material everywhere)");
@@ -301,9 +305,15 @@ Light defaultKeyLight() {
     return key;
 }
 
+int environmentLightCount(const Scene& scene, const CommonOptions& o) {
+    if (o.envLights >= 0) return o.envLights;
+    const bool environmentImage = !o.env.empty() || scene.environmentPath.has_value();
+    return scene.lights.empty() && environmentImage ? 1 : 0;
+}
+
 std::vector<Light> sceneLights(const Scene& scene, const CommonOptions& o) {
     std::vector<Light> lights = scene.lights;
-    if (lights.empty()) lights.push_back(defaultKeyLight());
+    if (lights.empty() && environmentLightCount(scene, o) == 0) lights.push_back(defaultKeyLight());
     if (o.lights > 0) {
         const auto scattered = scatterLights(scene.worldBounds(), o.lights, o.seed);
         lights.insert(lights.end(), scattered.begin(), scattered.end());
@@ -312,6 +322,9 @@ std::vector<Light> sceneLights(const Scene& scene, const CommonOptions& o) {
 }
 
 void applyLightOptions(Renderer& renderer, const Scene& scene, const CommonOptions& o) {
+    RenderSettings settings = renderer.settings();
+    settings.environmentLights = environmentLightCount(scene, o);
+    renderer.setSettings(settings);
     renderer.setLights(sceneLights(scene, o));
 }
 

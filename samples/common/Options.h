@@ -24,6 +24,7 @@ struct CommonOptions {
     std::string env;
     float envIntensity = -1.0f;  // < 0: the scene's (or 1)
     std::optional<float> envRotationDeg;  // unset: the scene's (or 0)
+    int envLights = -1;  // < 0: environmentLightCount's default
     std::string device;
     bool validation = false;
     std::string skin;  // material name, "all" or "none"
@@ -122,6 +123,11 @@ Environment loadEnvironment(const Scene& scene, const CommonOptions& o);
 // The key light of a scene that has none: directional from the upper right front, shadowed.
 Light defaultKeyLight();
 // The scene's lights plus --lights N scattered ones; a scene without any light gets a key light.
+// The lights the environment gives (--env-lights): by default one when the scene has an
+// environment image and no lights of its own.
+int environmentLightCount(const Scene& scene, const CommonOptions& o);
+// The scene's lights, the default key light when it has none and the environment gives none,
+// and --lights' scattered ones.
 std::vector<Light> sceneLights(const Scene& scene, const CommonOptions& o);
 void applyLightOptions(Renderer& renderer, const Scene& scene, const CommonOptions& o);
 // Refuses --msaa N unless the context's device offers N samples, naming the option and the

@@ -88,6 +88,12 @@ struct RenderSettings {
     // SH transfer, the shadow lookup's lift, the transmittance the diffuse LUT already holds:
     // preskin/skin_vertex.glsl) is found per vertex and interpolated; false: per fragment.
     bool skinTermsPerVertex = true;
+    // Directional lights extracted from the environment (extractEnvironmentLights in
+    // <preskin/Environment.h>), shaded like any directional light (skin's LUT diffuse, penumbra
+    // and transmission); the ambient SH is the environment's less their radiance. The strongest
+    // casts the shadow when no light of the scene does. -1: one when the renderer has no lights
+    // of its own, none otherwise; 0 .. kMaxEnvironmentLights: that many at most.
+    int environmentLights = -1;
 };
 
 enum class OutputEncoding {
@@ -190,7 +196,12 @@ public:
     // Replaces the lights (the scene's lights are the initial set).
     void setLights(const std::vector<Light>& lights);
     const std::vector<Light>& lights() const;
+    // Replaces the environment: its SH ambient, its dominant lights (RenderSettings::
+    // environmentLights) and its maps for specular reflection and the background.
     void setEnvironment(const Environment& environment);
+    // The lights extracted from the environment that frames add to lights() (directional,
+    // strongest first; see RenderSettings::environmentLights).
+    const std::vector<Light>& environmentLights() const;
     void setLuts(const LutSet* luts);
     void setProfiles(const ProfileLibrary& profiles);
     // Replaces the tables of one layer (a re-baked profile: layer p + 1 for Scene::profiles[p])

@@ -2,7 +2,10 @@
 #include "render/InputChecks.h"
 #include "io/NumberRule.h"
 
+#include <preskin/Environment.h>
 #include <preskin/Error.h>
+
+#include <fmt/core.h>
 
 #include <string>
 
@@ -28,6 +31,9 @@ void checkRenderSettings(const RenderSettings& settings) {
     if (!(settings.shadowSoftnessTexels > 0.0f)) throw Error("RenderSettings: shadowSoftnessTexels: must be > 0");
     check(settings.skinShadowReachMm, "RenderSettings: skinShadowReachMm");
     if (settings.skinShadowReachMm < 0.0f) throw Error("RenderSettings: skinShadowReachMm: must be >= 0");
+    if (settings.environmentLights < -1 || settings.environmentLights > int(kMaxEnvironmentLights))
+        throw Error(fmt::format("RenderSettings: environmentLights: {} is outside -1..{}", settings.environmentLights,
+                                kMaxEnvironmentLights));
 }
 
 void checkLights(const std::vector<Light>& lights) {

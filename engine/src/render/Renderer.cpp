@@ -84,10 +84,11 @@ uint32_t SkinFeatures::mask() const {
 
 Renderer::Impl::Impl(Context& ctx, const Scene& s, const Environment& env, const std::vector<const LutSet*>& lutLayers,
                      const RenderSettings& rs)
-    : context(ctx), dev(ContextAccess::core(ctx)), settings(rs), lights(s.lights), bounds(s.worldBounds()),
-      radianceSh(env.radianceSh()), sceneName(s.sourcePath.empty() ? std::string("scene") : s.sourcePath.string()) {
+    : context(ctx), dev(ContextAccess::core(ctx)), settings(rs), lights(s.lights), environment(env),
+      bounds(s.worldBounds()), sceneName(s.sourcePath.empty() ? std::string("scene") : s.sourcePath.string()) {
     checkRenderSettings(rs);
     checkLights(s.lights);
+    updateEnvironmentLights(true);
     scene = std::make_unique<GpuScene>(dev, s);
     sceneHasSkin = std::any_of(s.materials.begin(), s.materials.end(), [](const Material& m) { return m.skin.has_value(); });
     poseBounds = std::make_unique<PoseBounds>(s);
@@ -179,6 +180,31 @@ void Renderer::Impl::createLayouts() {
     PRESKIN_VK(vkCreateSampler(d, &nearest, nullptr, &shadowSampler));
 }
 
+void Renderer::Impl::updateEnvironmentLights(bool environmentChanged) {
+    const int count = settings.environmentLights >= 0 ? settings.environmentLights : (lights.empty() ? 1 : 0);
+    if (environmentChanged || count != extractedCount) {
+        extracted = extractEnvironmentLights(environment, uint32_t(count));
+        extractedCount = count;
+        extractedLights.clear();
+        for (size_t i = 0; i < extracted.lights.size(); ++i) {
+            const EnvironmentLight& e = extracted.lights[i];
+            Light l;
+            l.name = fmt::format("environment light {}", i + 1);
+            l.type = LightType::Directional;
+            l.intensity = std::max({e.irradiance.r, e.irradiance.g, e.irradiance.b});
+            l.color = l.intensity > 0.0f ? e.irradiance / l.intensity : glm::vec3(1.0f);
+            l.directionWs = e.directionWs;
+            extractedLights.push_back(l);
+        }
+    }
+    frameLights = lights;
+    const bool sceneShadow = shadowLightIndex(lights) >= 0;
+    for (size_t i = 0; i < extractedLights.size(); ++i) {
+        frameLights.push_back(extractedLights[i]);
+        frameLights.back().castsShadow = i == 0 && !sceneShadow;
+    }
+}
+
 // Replaces an attachment without waiting: the old image lives on until every other slot
 // whose last frame was recorded with it has been recorded again (the host's slot contract).
 void Renderer::Impl::retire(vk::Image& image, uint32_t slotIndex) {
@@ -255,22 +281,22 @@ bool Renderer::Impl::prepareFrame(Slot& slot, uint32_t slotIndex, const View& vi
         slot.instancesPose = poseVersion;
     }
     deformer->prepare(slotIndex, pose);
-    const int shadowLight = settings.shadows ? shadowLightIndex(lights) : -1;
+    const int shadowLight = settings.shadows ? shadowLightIndex(frameLights) : -1;
     std::vector<gpu::GpuLight> gpuLights;
-    gpuLights.reserve(lights.size());
+    gpuLights.reserve(frameLights.size());
     // Directional lights first, the shadow light (if any) at index 0: forward.frag shades it on
     // its own and loops over the rest.
     uint32_t directional = 0;
     if (shadowLight >= 0) {
-        gpuLights.push_back(toGpuLight(lights[size_t(shadowLight)], true));
+        gpuLights.push_back(toGpuLight(frameLights[size_t(shadowLight)], true));
         ++directional;
     }
-    for (size_t i = 0; i < lights.size(); ++i)
-        if (lights[i].type == LightType::Directional && int(i) != shadowLight) {
-            gpuLights.push_back(toGpuLight(lights[i], false));
+    for (size_t i = 0; i < frameLights.size(); ++i)
+        if (frameLights[i].type == LightType::Directional && int(i) != shadowLight) {
+            gpuLights.push_back(toGpuLight(frameLights[i], false));
             ++directional;
         }
-    for (const Light& l : lights)
+    for (const Light& l : frameLights)
         if (l.type != LightType::Directional) gpuLights.push_back(toGpuLight(l, false));
     const VkDeviceSize bytes = std::max<size_t>(gpuLights.size(), 1) * sizeof(gpu::GpuLight);
     if (bytes > slot.lights.size())
@@ -293,8 +319,8 @@ bool Renderer::Impl::prepareFrame(Slot& slot, uint32_t slotIndex, const View& vi
     fit.texelSizeM = 2.0f / float(mapSize);
     fit.depthRangeM = 2.0f;
     if (shadowLight >= 0) {
-        const glm::vec3 dir = glm::length(lights[size_t(shadowLight)].directionWs) > 0.0f
-                                  ? glm::normalize(lights[size_t(shadowLight)].directionWs)
+        const glm::vec3 dir = glm::length(frameLights[size_t(shadowLight)].directionWs) > 0.0f
+                                  ? glm::normalize(frameLights[size_t(shadowLight)].directionWs)
                                   : glm::vec3(0.0f, 0.0f, -1.0f);
         fit = fitDirectionalShadow(bounds, settings.fitShadowToSkin ? receivers : Bounds{}, view, dir, mapSize);
         shadowClipFromWorld = fit.clipFromWorld;
@@ -312,7 +338,7 @@ bool Renderer::Impl::prepareFrame(Slot& slot, uint32_t slotIndex, const View& vi
     const uint32_t wideSize = wideShadowSize();
     u.wideShadow = glm::vec4(float(mapSize) / float(wideSize * wideFactor), float(wideSize),
                              fit.texelSizeM * float(wideFactor), float(wideFactor));
-    for (int i = 0; i < 9; ++i) u.shRadiance[i] = glm::vec4(radianceSh.c[size_t(i)], 0.0f);
+    for (int i = 0; i < 9; ++i) u.shRadiance[i] = glm::vec4(extracted.residualSh.c[size_t(i)], 0.0f);
     u.lightCounts = glm::uvec4(slot.lightCount, directional, 0u, 0u);
     if (settings.lightLoop == LightLoop::Clustered)
         clusters->prepare(slotIndex, settings.clusters, clusterCamera(view, extent.width, extent.height), bounds,
@@ -548,6 +574,7 @@ const RenderSettings& Renderer::settings() const { return impl_->settings; }
 void Renderer::setSettings(const RenderSettings& settings) {
     checkRenderSettings(settings);
     impl_->settings = settings;
+    impl_->updateEnvironmentLights(false);
     impl_->resolveEyeDrawing();
 }
 
@@ -558,9 +585,14 @@ const ScenePose& Renderer::pose() const { return impl_->pose; }
 void Renderer::setLights(const std::vector<Light>& lights) {
     checkLights(lights);
     impl_->lights = lights;
+    impl_->updateEnvironmentLights(false);
 }
 const std::vector<Light>& Renderer::lights() const { return impl_->lights; }
-void Renderer::setEnvironment(const Environment& environment) { impl_->radianceSh = environment.radianceSh(); }
+void Renderer::setEnvironment(const Environment& environment) {
+    impl_->environment = environment;
+    impl_->updateEnvironmentLights(true);
+}
+const std::vector<Light>& Renderer::environmentLights() const { return impl_->extractedLights; }
 
 void Renderer::setLuts(const LutSet* luts) { impl_->setLutLayers(layersOf(luts)); }
 

@@ -60,10 +60,16 @@ struct Renderer::Impl {
     const vk::Device& dev;
     RenderSettings settings;
     EyeDrawing resolvedEyeDrawing = EyeDrawing::Multiview;
-    std::vector<Light> lights;
+    std::vector<Light> lights;  // the scene's or the host's (setLights)
+    Environment environment;
+    // The environment's dominant lights for settings.environmentLights (-1: resolved), and the
+    // lights a frame shades: lights, then the extracted ones.
+    int extractedCount = -2;
+    EnvironmentLights extracted;
+    std::vector<Light> extractedLights;
+    std::vector<Light> frameLights;
     Bounds bounds;     // of the scene in the current pose
     Bounds receivers;  // of the skin in the current pose: what the shadow map is fitted to (render/ShadowFit.h)
-    ShRgb radianceSh;
     std::string sceneName;  // for messages
     std::unique_ptr<GpuScene> scene;
     ScenePose pose;
@@ -111,6 +117,10 @@ struct Renderer::Impl {
     ~Impl();
 
     void createLayouts();
+
+    // Extracts the environment's lights again when their count or the environment changed, and
+    // makes frameLights; the strongest extracted light casts the shadow when no light does.
+    void updateEnvironmentLights(bool environmentChanged);
 
     // Every skin material's profiles must have a layer (when there are LUTs at all).
     void checkProfileLayers(size_t layerCount) const;
