@@ -1,7 +1,7 @@
 #version 460
 // forward.frag: the one forward pass. Standard glTF metal-rough materials and (kModelSkin)
-// pre-integrated skin, for every light of the fragment's light list, plus L2 SH ambient and
-// emissive; tone-mapped here when the target is an 8-bit display format. Everything skin needs
+// pre-integrated skin, for every light of the fragment's light list, plus the environment (L2 SH
+// diffuse, prefiltered specular: preskin/ibl.glsl) and emissive; tone-mapped here when the target is an 8-bit display format. Everything skin needs
 // happens in this shader: no extra passes, no extra render targets. Each eye (inEye, from the
 // vertex stage) has its own camera position (view vector, specular); the light grid is shared
 // by all eyes and found by projecting the fragment's world position with the grid's camera.
@@ -22,6 +22,8 @@ layout(set = 0, binding = kBindingTransmittanceLut) uniform sampler2DArray trans
 layout(std430, set = 0, binding = kBindingClusterRanges) readonly buffer ClusterRanges { uvec2 clusterRanges[]; };
 layout(std430, set = 0, binding = kBindingClusterIndices) readonly buffer ClusterIndices { uint clusterIndices[]; };
 layout(set = 0, binding = kBindingWideShadowMap) uniform sampler2D wideShadowMap;
+layout(set = 0, binding = kBindingPrefilteredEnvironment) uniform samplerCube prefilteredEnvironment;
+layout(set = 0, binding = kBindingDfgTable) uniform sampler2D dfgTable;
 
 layout(set = 1, binding = kBindingBaseColorTexture) uniform sampler2D baseColorTexture;
 layout(set = 1, binding = kBindingMetallicRoughnessTexture) uniform sampler2D metallicRoughnessTexture;
@@ -34,6 +36,7 @@ layout(set = 1, binding = kBindingCurvatureTexture) uniform sampler2D curvatureT
 layout(set = 1, binding = kBindingProfileWeightTexture) uniform sampler2D profileWeightTexture;
 
 #include "preskin/brdf.glsl"
+#include "preskin/ibl.glsl"
 #include "preskin/lights.glsl"
 #include "preskin/shadow.glsl"
 #include "preskin/sh.glsl"
@@ -210,6 +213,7 @@ void main() {
     uint shadowLights = hasShadowLight ? 1u : 0u;
     uint loopCount = lightTotal - shadowLights;
 
+    PreskinIbl ibl = PreskinIbl(frame.environment.xy, frame.environment.z);
     vec3 color = vec3(0.0);
     vec3 debugColor = vec3(0.0);
     vec3 diffuseColor;
@@ -291,7 +295,8 @@ void main() {
         PreskinShTransfer shTransfer;
         if (kSkinShPerVertex) shTransfer = PreskinShTransfer(inShTransferRed, inShTransferGreen, inShTransferBlue);
         else shTransfer = preskinSkinShTransfer(profiles, shTransferLut, skin.curvaturePerMm, features);
-        color += preskinSkinAmbient(skin, shTransfer, frame.shRadiance, V, features, ambientDiffuse) * occlusion;
+        color += preskinSkinAmbient(skin, shTransfer, frame.shRadiance, prefilteredEnvironment, dfgTable, ibl, V, features,
+                                    ambientDiffuse) * occlusion;
         ambientDiffuse *= occlusion;
         if (kDebugView == kDebugCurvature) debugColor = curvatureHeat(abs(skin.curvaturePerMm));
         else if (kDebugView == kDebugNormals)
@@ -319,15 +324,16 @@ void main() {
                 color += preskinStandardLight(surface, N, V, L, irradiance);
             } while (++i < loopCount);
         }
-        // Ambient: SH irradiance for diffuse; for specular the cosine-convolved SH in the
-        // reflection direction, exact for rough surfaces and too blurry for glossy ones.
+        // Ambient: SH irradiance for diffuse; specular from the prefiltered environment by the
+        // split sum (preskin/ibl.glsl).
         vec3 irradianceSh = max(preskinShEvaluate(frame.shRadiance, N, PRESKIN_SH_LAMBERT), vec3(0.0));
         vec3 R = reflect(-V, N);
-        vec3 specularSh = max(preskinShEvaluate(frame.shRadiance, R, PRESKIN_SH_LAMBERT), vec3(0.0)) / PRESKIN_PI;
-        vec3 envBrdf = preskinEnvBrdfApprox(surface.F0, roughness, NoV) * surface.specularWeight;
+        vec2 ab = preskinDfg(dfgTable, NoV, roughness);
+        vec3 envBrdf = (surface.F0 * ab.x + ab.y) * surface.specularWeight;
+        vec3 specularIbl = preskinPrefilteredRadiance(prefilteredEnvironment, ibl, R, roughness);
         diffuseColor = surface.diffuseColor;
         ambientDiffuse = surface.diffuseColor * irradianceSh / PRESKIN_PI * (vec3(1.0) - envBrdf) * occlusion;
-        color += ambientDiffuse + specularSh * envBrdf * occlusion;
+        color += ambientDiffuse + specularIbl * envBrdf * occlusion;
         if (kDebugView == kDebugCurvature) debugColor = curvatureHeat(abs(inCurvaturePerM) * 0.001);
         else if (kDebugView == kDebugNormals) debugColor = N * 0.5 + 0.5;
         else if (kDebugView == kDebugPenumbra) debugColor = vec3(shadow.visibility);

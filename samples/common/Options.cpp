@@ -65,6 +65,10 @@ void addCommonOptions(CLI::App& cmd, CommonOptions& o) {
     addSkinTechniqueOptions(cmd, o);
     cmd.add_flag("--no-specular", o.noSpecular,
                  "No specular at all, every material: diffuse without Fresnel (what `preskin reference` models)");
+    cmd.add_option("--background", o.background,
+                   "What is shown where no surface is: env (the environment, exposed and tone-mapped), "
+                   "transparent (alpha 0), or color R,G,B (linear, 0..1e6); default: color 0.045,0.045,0.05")
+        ->expected(1, 2);
     cmd.add_option("--debug", o.debug,
                    "Debug view: none, curvature, normals, shadow, penumbra, lightcount, shambient, transmission")
         ->capture_default_str();
@@ -265,7 +269,25 @@ RenderSettings renderSettings(const CommonOptions& o) {
     s.shadowMapSize = o.shadowMapSize;
     s.shadows = !o.noShadows;
     s.msaaSamples = o.msaa;
+    s.background = parseBackground(o.background);
     return s;
+}
+
+Background parseBackground(const std::vector<std::string>& words) {
+    Background b;
+    if (words.empty()) return b;
+    const std::string mode = lower(words[0]);
+    if (words.size() == 1 && (mode == "env" || mode == "environment")) b.mode = BackgroundMode::Environment;
+    else if (words.size() == 1 && mode == "transparent") b.mode = BackgroundMode::Transparent;
+    else if (words.size() == 2 && mode == "color") {
+        const std::vector<float> c = parseFloats(words[1], 3, "--background color");
+        for (float v : c)
+            if (!(v >= 0.0f && v <= 1e6f))
+                throw Error(fmt::format("--background color {}: each value must be within 0..1e6", words[1]));
+        b.color = glm::vec3(c[0], c[1], c[2]);
+    } else
+        throw Error(fmt::format("--background {}: expected env, transparent or color R,G,B", fmt::join(words, " ")));
+    return b;
 }
 
 bool removeSkin(Scene& scene) {

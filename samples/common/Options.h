@@ -38,6 +38,7 @@ struct CommonOptions {
     bool skinTermsPerFragment = false;
     bool noSpecular = false;
     std::string debug = "none";
+    std::vector<std::string> background;  // --background: empty (the default colour), env, transparent, color R,G,B
     uint32_t lights = 0;
     uint32_t seed = 1;
     std::string lightLoop = "clustered";
@@ -114,6 +115,8 @@ LutSet loadLuts(const CommonOptions& o);
 // `defaultLuts`: layer 0, or loadLuts(o) when null.
 ProfileLibrary loadProfiles(const Scene& scene, const CommonOptions& o, std::shared_ptr<const LutSet> defaultLuts = {});
 RenderSettings renderSettings(const CommonOptions& o);
+// --background's words as RenderSettings::background; throws naming the option.
+Background parseBackground(const std::vector<std::string>& words);
 // --skin: makes the named material (or every one) skin, or with "none" removes skin from every
 // material (removeSkin: returns whether any was skin).
 void applySkinOption(Scene& scene, const CommonOptions& o);

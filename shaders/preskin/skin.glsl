@@ -39,6 +39,7 @@
 #define PRESKIN_SKIN_GLSL
 
 #include "preskin/brdf.glsl"
+#include "preskin/ibl.glsl"
 #include "preskin/lut.glsl"
 #include "preskin/sh.glsl"
 #include "preskin/skin_surface.glsl"
@@ -256,6 +257,29 @@ vec3 preskinSkinAmbient(PreskinSkinSurface s, PreskinShTransfer t, vec4 sh[9], v
     vec3 specularSh = max(preskinShEvaluate(sh, R, PRESKIN_SH_LAMBERT), vec3(0.0)) / PRESKIN_PI;
     diffuseOut = s.albedo * preskinSkinAmbientIrradiance(s, t, sh, features) / PRESKIN_PI * (vec3(1.0) - envBrdf);
     return diffuseOut + specularSh * envBrdf;
+}
+
+// Ambient light with the environment's specular reflection from its prefiltered cube (preskin/
+// ibl.glsl): each specular lobe (two with dual specular, mixed as for lights) reads the cube at
+// its roughness and weighs it by the DFG table's environment BRDF; diffuse as above, less what
+// the specular takes. diffuseOut: the diffuse part alone. Multiply both by ambient occlusion.
+vec3 preskinSkinAmbient(PreskinSkinSurface s, PreskinShTransfer t, vec4 sh[9], samplerCube prefiltered, sampler2D dfg,
+                        PreskinIbl ibl, vec3 V, uint features, out vec3 diffuseOut) {
+    float NoV = max(dot(s.normalSpecular, V), 1e-4);
+    vec3 R = reflect(-V, s.normalSpecular);
+    vec2 r = (features & kSkinDualSpecular) != 0u ? clamp(s.roughness * s.lobes.xy, 0.03, 1.0) : vec2(s.roughness);
+    vec2 ab0 = preskinDfg(dfg, NoV, r.x);
+    vec3 envBrdf0 = (s.F0 * ab0.x + ab0.y) * s.specularWeight;
+    vec3 specular = preskinPrefilteredRadiance(prefiltered, ibl, R, r.x) * envBrdf0;
+    vec3 envBrdf = envBrdf0;
+    if ((features & kSkinDualSpecular) != 0u) {
+        vec2 ab1 = preskinDfg(dfg, NoV, r.y);
+        vec3 envBrdf1 = (s.F0 * ab1.x + ab1.y) * s.specularWeight;
+        specular = mix(specular, preskinPrefilteredRadiance(prefiltered, ibl, R, r.y) * envBrdf1, s.lobes.z);
+        envBrdf = mix(envBrdf0, envBrdf1, s.lobes.z);
+    }
+    diffuseOut = s.albedo * preskinSkinAmbientIrradiance(s, t, sh, features) / PRESKIN_PI * (vec3(1.0) - envBrdf);
+    return diffuseOut + specular;
 }
 
 // The same, the transfer looked up at the surface's curvature.

@@ -24,6 +24,11 @@ PRESKIN_CONST(uint, kBindingTransmittanceLut, 7)  // T(thickness)
 PRESKIN_CONST(uint, kBindingClusterRanges, 8)  // uvec2 (offset, count) per cluster
 PRESKIN_CONST(uint, kBindingClusterIndices, 9) // uint light indices
 PRESKIN_CONST(uint, kBindingWideShadowMap, 10)    // skin: the shadow map's nearest depth per block (R32F; shadow_reduce.comp)
+// The environment (render/GpuEnvironment.cpp, preskin/ibl.glsl): its equirectangular image with
+// mips (the background), the prefiltered specular cube and the split-sum DFG table.
+PRESKIN_CONST(uint, kBindingEnvironmentImage, 11)
+PRESKIN_CONST(uint, kBindingPrefilteredEnvironment, 12)
+PRESKIN_CONST(uint, kBindingDfgTable, 13)
 
 // ---- descriptor set 1: per material ----------------------------------------------------------
 PRESKIN_CONST(uint, kBindingMaterial, 0)  // MaterialUniforms (uniform buffer)
@@ -64,6 +69,7 @@ PRESKIN_CONST(uint, kSkinInputSpecularFromLevels, 2048u)  // the unbiased normal
 
 PRESKIN_CONST(uint, kModelStandard, 0)
 PRESKIN_CONST(uint, kModelSkin, 1)
+PRESKIN_CONST(uint, kModelBackground, 2)  // the renderer's backdrop pipeline (background.frag), not a material model
 PRESKIN_CONST(uint, kOutputLinear, 0)
 PRESKIN_CONST(uint, kOutputTonemapped, 1)
 PRESKIN_CONST(uint, kLightLoopAll, 0)
@@ -102,8 +108,10 @@ struct FrameUniforms {
     uvec4 clusterDims;          // x, y, z clusters; w: max lights per cluster
     vec4 wideShadow;            // skin's wide shadow map: x its uv per shadow-map uv, y its size (texels), z its
                                 // texel size (m), w shadow-map texels per side of its texels
+    vec4 environment;           // x, y: cos and sin of the environment's turn about +Y, z: the prefiltered cube's
+                                // last mip level (roughness 1), w unused
 };
-PRESKIN_CHECK_SIZE(FrameUniforms, 6 * 96 + 2 * 64 + 4 * 16 + 9 * 16 + 4 * 16)
+PRESKIN_CHECK_SIZE(FrameUniforms, 6 * 96 + 2 * 64 + 4 * 16 + 9 * 16 + 5 * 16)
 
 // Per-texture transform rows (KHR_texture_transform): uv' = (dot(r0.xyz, (u,v,1)), dot(r1.xyz, (u,v,1))).
 struct GpuUvTransform {

@@ -83,6 +83,8 @@ TEST(GpuLayout, ForwardShaderStructsMatchCpp) {
     PRESKIN_EXPECT_MEMBER(l, FrameUniforms, lightCounts);
     PRESKIN_EXPECT_MEMBER(l, FrameUniforms, clusterScale);
     PRESKIN_EXPECT_MEMBER(l, FrameUniforms, clusterDims);
+    PRESKIN_EXPECT_MEMBER(l, FrameUniforms, wideShadow);
+    PRESKIN_EXPECT_MEMBER(l, FrameUniforms, environment);
     PRESKIN_EXPECT_MEMBER(l, EyeUniforms, clipFromWorld);
     PRESKIN_EXPECT_MEMBER(l, EyeUniforms, positionWs);
     PRESKIN_EXPECT_MEMBER(l, EyeUniforms, viewDepthFromWorld);

@@ -63,6 +63,9 @@ struct EnvironmentLight {
 struct EnvironmentLights {
     std::vector<EnvironmentLight> lights;  // strongest (luminance of irradiance) first
     ShRgb residualSh;                      // radianceSh() less the projection of every light's texels
+    // The image the search ran on (at most 1024 texels wide, box-filtered) less every light's
+    // texels: what specular reflection of the environment shows (empty for constant environments).
+    EquirectImage residualImage;
 };
 
 class Environment;

@@ -55,6 +55,19 @@ enum class DebugView { None, Curvature, Normals, Shadow, Penumbra, LightCount, S
 //    shaderOutputLayer.
 enum class EyeDrawing { Auto, Multiview, InstancedLayers };
 
+// What the forward pass shows where no surface is drawn.
+//  - Color: the colour (linear; an 8-bit sRGB target encodes it), not exposed or tone-mapped;
+//  - Environment: the environment's radiance in each pixel's direction (its image, turned by its
+//    rotation), exposed and tone-mapped like surfaces, drawn in the forward pass as one triangle
+//    at the far plane after the opaque draws (no extra pass), in every eye, with MSAA;
+//  - Transparent: RGBA 0 (alpha 0), for compositing.
+// A host that keeps its own colour (RenderTarget::loadColor) gets no clear; Environment still draws.
+enum class BackgroundMode { Color, Environment, Transparent };
+struct Background {
+    BackgroundMode mode = BackgroundMode::Color;
+    glm::vec3 color{0.045f, 0.045f, 0.05f};
+};
+
 // How the forward pass finds the local (point and spot) lights of a fragment.
 enum class LightLoop { Clustered, All };
 
@@ -94,6 +107,7 @@ struct RenderSettings {
     // casts the shadow when no light of the scene does. -1: one when the renderer has no lights
     // of its own, none otherwise; 0 .. kMaxEnvironmentLights: that many at most.
     int environmentLights = -1;
+    Background background;
 };
 
 enum class OutputEncoding {
@@ -209,7 +223,7 @@ public:
     // is larger than the arrays' (setProfiles rebuilds them).
     void setProfileLayer(size_t layer, const LutSet& luts);
     // Replaces the SPIR-V of built-in shader stages by file name ("forward.vert", "forward_layers.vert", "forward.frag",
-    // "shadow.vert"); stages missing from the map use the code built into the library. Every
+    // "shadow.vert", "background.vert", "background_layers.vert", "background.frag"); stages missing from the map use the code built into the library. Every
     // pipeline in use is rebuilt at once; when that fails, throws preskin::Error and keeps the
     // previous code and pipelines (so a host can hot-reload shaders and survive bad edits).
     void setShaderOverrides(const std::map<std::string, std::vector<uint32_t>>& spirvByFile);

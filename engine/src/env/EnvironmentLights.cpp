@@ -135,7 +135,7 @@ EnvironmentLights extractEnvironmentLights(const Environment& environment, uint3
     EnvironmentLights result;
     result.residualSh = environment.radianceSh();
     const EquirectImage& source = environment.image();
-    if (count == 0 || source.width == 0 || source.height == 0) return result;
+    if (source.width == 0 || source.height == 0) return result;
 
     WorkImage image = workImage(source);
     const float rotationY = environment.rotationY();
@@ -212,6 +212,10 @@ EnvironmentLights extractEnvironmentLights(const Environment& environment, uint3
         }
         result.lights.push_back(out);
     }
+    result.residualImage.width = image.width;
+    result.residualImage.height = image.height;
+    result.residualImage.rgb.reserve(image.radiance.size() * 3);
+    for (const glm::vec3& l : image.radiance) result.residualImage.rgb.insert(result.residualImage.rgb.end(), {l.r, l.g, l.b});
     std::stable_sort(result.lights.begin(), result.lights.end(), [](const EnvironmentLight& a, const EnvironmentLight& b) {
         return luminance(a.irradiance) > luminance(b.irradiance);
     });

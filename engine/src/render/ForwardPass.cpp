@@ -117,6 +117,39 @@ VkPipeline Renderer::Impl::createForwardPipeline(const PipelineKey& key) const {
     return vk::createGraphicsPipeline(dev, desc);
 }
 
+VkPipeline Renderer::Impl::backgroundPipeline(VkFormat format, VkFormat depthFormat, uint32_t eyes) {
+    PipelineKey key{};
+    key.model = gpu::kModelBackground;
+    key.format = static_cast<uint32_t>(format);
+    key.depthFormat = static_cast<uint32_t>(depthFormat);
+    key.eyes = eyes;
+    key.samples = settings.msaaSamples;
+    key.layered = eyeDrawing() == EyeDrawing::InstancedLayers ? 1u : 0u;
+    auto it = pipelines.find(key);
+    if (it != pipelines.end()) return it->second;
+    VkPipeline p = createBackgroundPipeline(key);
+    pipelines.emplace(key, p);
+    return p;
+}
+
+VkPipeline Renderer::Impl::createBackgroundPipeline(const PipelineKey& key) const {
+    const VkFormat format = static_cast<VkFormat>(key.format);
+    vk::GraphicsPipelineDesc desc;
+    desc.vertexSpirv = shader(key.layered ? "background_layers.vert" : "background.vert");
+    desc.fragmentSpirv = shader("background.frag");
+    desc.specialization.values.resize(gpu::kSpecCount);
+    desc.specialization.values[gpu::kSpecOutputMode] = isDisplayFormat(format) ? gpu::kOutputTonemapped
+                                                                               : gpu::kOutputLinear;
+    desc.colorFormats = {format};
+    desc.depthFormat = static_cast<VkFormat>(key.depthFormat);
+    desc.viewMask = key.layered ? 0u : (1u << key.eyes) - 1u;
+    desc.samples = static_cast<VkSampleCountFlagBits>(key.samples);
+    desc.cullMode = VK_CULL_MODE_NONE;
+    desc.depthWrite = false;  // at the far plane: drawn only where the depth is still cleared
+    desc.layout = forwardLayout;
+    return vk::createGraphicsPipeline(dev, desc);
+}
+
 // The forward pass's own attachments: depth (unless the host's is used), and with MSAA the
 // multisampled colour. Replaced ones are retired, never waited for.
 void Renderer::Impl::ensureAttachments(VkExtent2D extent, uint32_t eyes, VkFormat colorFormat, bool ownDepth, uint32_t slotIndex) {
@@ -174,7 +207,11 @@ void Renderer::Impl::recordForwardPass(VkCommandBuffer cmd, Slot& slot, uint32_t
     color.imageLayout = VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL;
     color.loadOp = target.loadColor ? VK_ATTACHMENT_LOAD_OP_LOAD : VK_ATTACHMENT_LOAD_OP_CLEAR;
     color.storeOp = msaa ? VK_ATTACHMENT_STORE_OP_DONT_CARE : VK_ATTACHMENT_STORE_OP_STORE;
-    color.clearValue.color = {{0.045f, 0.045f, 0.05f, 1.0f}};
+    const Background& background = settings.background;
+    const glm::vec4 clear = background.mode == BackgroundMode::Color         ? glm::vec4(background.color, 1.0f)
+                            : background.mode == BackgroundMode::Transparent ? glm::vec4(0.0f)
+                                                                             : glm::vec4(0.0f, 0.0f, 0.0f, 1.0f);
+    color.clearValue.color = {{clear.r, clear.g, clear.b, clear.a}};
     if (msaa) {
         color.resolveMode = VK_RESOLVE_MODE_AVERAGE_BIT;
         color.resolveImageView = target.view;
@@ -217,9 +254,20 @@ void Renderer::Impl::recordForwardPass(VkCommandBuffer cmd, Slot& slot, uint32_t
     });
     VkPipeline bound = VK_NULL_HANDLE;
     uint32_t boundMaterial = UINT32_MAX;
+    const VkFormat depthFormat = hostDepth ? target.depth.format : kDepthFormat;
+    // The backdrop after the opaque and masked draws (the depth test leaves only what they did
+    // not cover), before the blended ones (which blend over it).
+    bool backgroundDrawn = background.mode != BackgroundMode::Environment;
+    auto drawBackground = [&] {
+        vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, backgroundPipeline(target.format, depthFormat, eyes));
+        bound = VK_NULL_HANDLE;
+        vkCmdDraw(cmd, 3, layered ? eyes : 1u, 0, 0);
+        backgroundDrawn = true;
+    };
     for (const DrawItem* d : order) {
         const GpuMaterial& m = scene->materials[d->material];
-        VkPipeline p = forwardPipeline(m, target.format, hostDepth ? target.depth.format : kDepthFormat, eyes);
+        if (!backgroundDrawn && m.alphaMode == AlphaMode::Blend) drawBackground();
+        VkPipeline p = forwardPipeline(m, target.format, depthFormat, eyes);
         if (p != bound) {
             vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, p);
             bound = p;
@@ -234,6 +282,7 @@ void Renderer::Impl::recordForwardPass(VkCommandBuffer cmd, Slot& slot, uint32_t
         const int32_t vertexOffset = bindDrawVertices(cmd, slotIndex, *d, boundVertices);
         vkCmdDrawIndexed(cmd, d->indexCount, layered ? eyes : 1u, d->firstIndex, vertexOffset, 0);
     }
+    if (!backgroundDrawn) drawBackground();
     vkCmdEndRendering(cmd);
     vk::imageBarrier(cmd, target.image, VK_IMAGE_ASPECT_COLOR_BIT, VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL,
                      target.layoutAfter, VK_PIPELINE_STAGE_2_COLOR_ATTACHMENT_OUTPUT_BIT,

@@ -34,6 +34,9 @@ void checkRenderSettings(const RenderSettings& settings) {
     if (settings.environmentLights < -1 || settings.environmentLights > int(kMaxEnvironmentLights))
         throw Error(fmt::format("RenderSettings: environmentLights: {} is outside -1..{}", settings.environmentLights,
                                 kMaxEnvironmentLights));
+    check(settings.background.color, "RenderSettings: background.color");
+    if (glm::any(glm::lessThan(settings.background.color, glm::vec3(0.0f))))
+        throw Error("RenderSettings: background.color: must be >= 0");
 }
 
 void checkLights(const std::vector<Light>& lights) {

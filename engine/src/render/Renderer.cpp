@@ -139,6 +139,9 @@ void Renderer::Impl::createLayouts() {
         {gpu::kBindingClusterRanges, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, fs},
         {gpu::kBindingClusterIndices, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, fs},
         {gpu::kBindingWideShadowMap, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, fs},
+        {gpu::kBindingEnvironmentImage, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, fs},
+        {gpu::kBindingPrefilteredEnvironment, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, fs},
+        {gpu::kBindingDfgTable, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, fs},
     };
     frameLayout = vk::createSetLayout(dev, bindings);
     const VkDescriptorSetLayout forwardSets[] = {frameLayout, scene->materialLayout()};
@@ -152,10 +155,10 @@ void Renderer::Impl::createLayouts() {
     reduceLayout = vk::createPipelineLayout(dev, std::span(&reduceSetLayout, 1), sizeof(uint32_t), VK_SHADER_STAGE_COMPUTE_BIT);
     reducePipeline = vk::createComputePipeline(dev, shader("shadow_reduce.comp"), reduceLayout);
 
-    // Per slot: the frame's set (6 images) and the reduction's (1 image in, 1 out).
+    // Per slot: the frame's set (9 images) and the reduction's (1 image in, 1 out).
     const VkDescriptorPoolSize sizes[] = {{VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, kSlotCount},
                                           {VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 4 * kSlotCount},
-                                          {VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 7 * kSlotCount},
+                                          {VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 10 * kSlotCount},
                                           {VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, kSlotCount}};
     framePool = vk::createDescriptorPool(dev, sizes, 2 * kSlotCount);
     for (Slot& s : slots) {
@@ -185,6 +188,8 @@ void Renderer::Impl::updateEnvironmentLights(bool environmentChanged) {
     if (environmentChanged || count != extractedCount) {
         extracted = extractEnvironmentLights(environment, uint32_t(count));
         extractedCount = count;
+        if (!environmentMaps) environmentMaps = std::make_unique<GpuEnvironment>(dev);
+        environmentMaps->set(environment, extracted.residualImage);
         extractedLights.clear();
         for (size_t i = 0; i < extracted.lights.size(); ++i) {
             const EnvironmentLight& e = extracted.lights[i];
@@ -239,7 +244,8 @@ void Renderer::Impl::setShaderOverrides(const std::map<std::string, std::vector<
     std::map<PipelineKey, VkPipeline> rebuilt;
     VkPipeline rebuiltShadow = VK_NULL_HANDLE, rebuiltShadowMask = VK_NULL_HANDLE;
     try {
-        for (const auto& [key, p] : pipelines) rebuilt.emplace(key, createForwardPipeline(key));
+        for (const auto& [key, p] : pipelines)
+            rebuilt.emplace(key, key.model == gpu::kModelBackground ? createBackgroundPipeline(key) : createForwardPipeline(key));
         rebuiltShadow = createShadowPipeline(false);
         if (shadowMaskPipeline) rebuiltShadowMask = createShadowPipeline(true);
     } catch (...) {
@@ -340,6 +346,8 @@ bool Renderer::Impl::prepareFrame(Slot& slot, uint32_t slotIndex, const View& vi
                              fit.texelSizeM * float(wideFactor), float(wideFactor));
     for (int i = 0; i < 9; ++i) u.shRadiance[i] = glm::vec4(extracted.residualSh.c[size_t(i)], 0.0f);
     u.lightCounts = glm::uvec4(slot.lightCount, directional, 0u, 0u);
+    u.environment = glm::vec4(std::cos(environment.rotationY()), std::sin(environment.rotationY()),
+                              environmentMaps->maxLevel(), 0.0f);
     if (settings.lightLoop == LightLoop::Clustered)
         clusters->prepare(slotIndex, settings.clusters, clusterCamera(view, extent.width, extent.height), bounds,
                           gpuLights, directional, slot.lights, u);
@@ -386,6 +394,11 @@ void Renderer::Impl::updateFrameSet(Slot& slot, uint32_t slotIndex) {
     image(gpu::kBindingPenumbraLut, &lutInfos[1]);
     image(gpu::kBindingShTransferLut, &lutInfos[2]);
     image(gpu::kBindingTransmittanceLut, &lutInfos[3]);
+    const VkDescriptorImageInfo environmentInfos[] = {environmentMaps->imageInfo(), environmentMaps->prefilteredInfo(),
+                                                      environmentMaps->dfgInfo()};
+    image(gpu::kBindingEnvironmentImage, &environmentInfos[0]);
+    image(gpu::kBindingPrefilteredEnvironment, &environmentInfos[1]);
+    image(gpu::kBindingDfgTable, &environmentInfos[2]);
     vkUpdateDescriptorSets(dev.device(), static_cast<uint32_t>(writes.size()), writes.data(), 0, nullptr);
 }
 

@@ -7,6 +7,7 @@
 
 #include "lights/ClusterBuilder.h"
 #include "render/GpuDeformer.h"
+#include "render/GpuEnvironment.h"
 #include "render/GpuLuts.h"
 #include "render/GpuScene.h"
 #include "render/PoseBounds.h"
@@ -68,6 +69,7 @@ struct Renderer::Impl {
     EnvironmentLights extracted;
     std::vector<Light> extractedLights;
     std::vector<Light> frameLights;
+    std::unique_ptr<GpuEnvironment> environmentMaps;  // the backdrop, the prefiltered cube, the DFG table
     Bounds bounds;     // of the scene in the current pose
     Bounds receivers;  // of the skin in the current pose: what the shadow map is fitted to (render/ShadowFit.h)
     std::string sceneName;  // for messages
@@ -162,6 +164,10 @@ struct Renderer::Impl {
     VkPipeline forwardPipeline(const GpuMaterial& m, VkFormat format, VkFormat depthFormat, uint32_t eyes);
 
     VkPipeline createForwardPipeline(const PipelineKey& key) const;
+    // The backdrop's pipeline (background*.vert, background.frag) for a target, eye count, samples
+    // and eye drawing; kept with the forward pipelines under model kModelBackground.
+    VkPipeline backgroundPipeline(VkFormat format, VkFormat depthFormat, uint32_t eyes);
+    VkPipeline createBackgroundPipeline(const PipelineKey& key) const;
 
     VkPipeline createShadowPipeline(bool masked) const;
 

@@ -88,6 +88,7 @@ Image::Image(const Device& device, const ImageDesc& desc) : device_(&device), de
     info.usage = desc.usage;
     info.sharingMode = VK_SHARING_MODE_EXCLUSIVE;
     info.initialLayout = VK_IMAGE_LAYOUT_UNDEFINED;
+    if (desc.cube) info.flags = VK_IMAGE_CREATE_CUBE_COMPATIBLE_BIT;
     PRESKIN_VK(vkCreateImage(device.device(), &info, nullptr, &image_));
     try {
         VkMemoryRequirements req;
@@ -99,7 +100,9 @@ Image::Image(const Device& device, const ImageDesc& desc) : device_(&device), de
         PRESKIN_VK(vkBindImageMemory(device.device(), image_, memory_, 0));
         VkImageViewCreateInfo viewInfo{VK_STRUCTURE_TYPE_IMAGE_VIEW_CREATE_INFO};
         viewInfo.image = image_;
-        viewInfo.viewType = desc.layers > 1 || desc.arrayView ? VK_IMAGE_VIEW_TYPE_2D_ARRAY : VK_IMAGE_VIEW_TYPE_2D;
+        viewInfo.viewType = desc.cube ? VK_IMAGE_VIEW_TYPE_CUBE
+                            : desc.layers > 1 || desc.arrayView ? VK_IMAGE_VIEW_TYPE_2D_ARRAY
+                                                                : VK_IMAGE_VIEW_TYPE_2D;
         viewInfo.format = desc.format;
         viewInfo.subresourceRange = {desc.aspect, 0, desc.mipLevels, 0, std::max(desc.layers, 1u)};
         PRESKIN_VK(vkCreateImageView(device.device(), &viewInfo, nullptr, &view_));

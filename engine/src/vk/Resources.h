@@ -47,6 +47,7 @@ struct ImageDesc {
     uint32_t layers = 1;  // > 1: a 2D array image with a 2D_ARRAY view of every layer
     VkSampleCountFlagBits samples = VK_SAMPLE_COUNT_1_BIT;
     bool arrayView = false;  // a 2D_ARRAY view even for one layer (sampler2DArray)
+    bool cube = false;       // 6 layers, cube compatible, a CUBE view (samplerCube)
 };
 
 class Image {
