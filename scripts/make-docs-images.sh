@@ -4,7 +4,8 @@
 # the nose's shadow on the cheek and the ear. Also docs/stereo-head.png: the head as a stereo
 # pair (README, VR); docs/profiles-side-by-side.png: four diffusion profiles in one scene
 # (README, Profiles); docs/fidelity-closeup.png: `preskin compare` of the cheek and nose close up
-# at 768x768, shown at a third of its size (README, Fidelity; its reference takes minutes).
+# at 768x768, shown at a third of its size (README, Fidelity; its reference takes minutes);
+# docs/environment-lighting.png: the head under two environments, background on (README).
 # Needs ImageMagick (convert, montage): scripts/install-deps.sh --docs installs it.
 set -euo pipefail
 cd "$(dirname "$0")/.."
@@ -38,3 +39,12 @@ echo "wrote docs/profiles-side-by-side.png"
 "$bin" compare --camera cheek_nose --width 768 --height 768 --json "$tmp/closeup.json" --image "$tmp/closeup.png" >/dev/null
 convert "$tmp/closeup.png" -resize 33.333% -depth 8 docs/fidelity-closeup.png
 echo "wrote docs/fidelity-closeup.png"
+# Environment lighting (README): the head lit by an environment alone (its extracted light casts
+# the shadow), the environment as background: the synthetic sunny sky and the studio.
+render --width 480 --height 480 --env samples/assets/sky/sunny_sky_1k.hdr --no-scene-lights --background env \
+  --exposure 0.5 --out "$tmp/env_sky.png"
+render --width 480 --height 480 --env samples/assets/head/studio_small_05_1k.hdr --no-scene-lights --background env \
+  --out "$tmp/env_studio.png"
+montage "$tmp/env_sky.png" "$tmp/env_studio.png" -tile 2x1 -geometry +4+4 -background '#202022' -depth 8 \
+  docs/environment-lighting.png
+echo "wrote docs/environment-lighting.png"

@@ -254,7 +254,7 @@ void main() {
         skin.roughness = roughness;
         float specularMap = kSkinSpecularMap ? texture(specularTexture, uvBase).r : 1.0;
         skin.F0 = preskinSkinF0(material.skinSpecular.x, specularMap);
-        skin.specularWeight = float(kSpecular);
+        skin.specularWeight = kSpecularWeight;
         skin.lobes = material.skinSpecular.yzww;
         skin.transmissionTint = material.skinScatter.w * material.skinTransmission.rgb;
         skin.thicknessScale = material.skinTransmission.w;
@@ -295,8 +295,11 @@ void main() {
         PreskinShTransfer shTransfer;
         if (kSkinShPerVertex) shTransfer = PreskinShTransfer(inShTransferRed, inShTransferGreen, inShTransferBlue);
         else shTransfer = preskinSkinShTransfer(profiles, shTransferLut, skin.curvaturePerMm, features);
-        color += preskinSkinAmbient(skin, shTransfer, frame.shRadiance, prefilteredEnvironment, dfgTable, ibl, V, features,
-                                    ambientDiffuse) * occlusion;
+        if (kSpecular == kSpecularIbl)
+            color += preskinSkinAmbient(skin, shTransfer, frame.shRadiance, prefilteredEnvironment, dfgTable, ibl, V,
+                                        features, ambientDiffuse) * occlusion;
+        else
+            color += preskinSkinAmbient(skin, shTransfer, frame.shRadiance, V, features, ambientDiffuse) * occlusion;
         ambientDiffuse *= occlusion;
         if (kDebugView == kDebugCurvature) debugColor = curvatureHeat(abs(skin.curvaturePerMm));
         else if (kDebugView == kDebugNormals)
@@ -308,7 +311,7 @@ void main() {
         surface.diffuseColor = baseColor.rgb * (1.0 - metallic);
         surface.F0 = mix(vec3(0.04), baseColor.rgb, metallic);
         surface.roughness = roughness;
-        surface.specularWeight = float(kSpecular);
+        surface.specularWeight = kSpecularWeight;
         if (hasShadowLight) {
             vec3 L;
             vec3 irradiance;
@@ -325,12 +328,20 @@ void main() {
             } while (++i < loopCount);
         }
         // Ambient: SH irradiance for diffuse; specular from the prefiltered environment by the
-        // split sum (preskin/ibl.glsl).
+        // split sum (preskin/ibl.glsl), or (kSpecularSh) the cosine-convolved SH in the reflection
+        // direction with the analytic environment BRDF.
         vec3 irradianceSh = max(preskinShEvaluate(frame.shRadiance, N, PRESKIN_SH_LAMBERT), vec3(0.0));
         vec3 R = reflect(-V, N);
-        vec2 ab = preskinDfg(dfgTable, NoV, roughness);
-        vec3 envBrdf = (surface.F0 * ab.x + ab.y) * surface.specularWeight;
-        vec3 specularIbl = preskinPrefilteredRadiance(prefilteredEnvironment, ibl, R, roughness);
+        vec3 envBrdf;
+        vec3 specularIbl;
+        if (kSpecular == kSpecularIbl) {
+            vec2 ab = preskinDfg(dfgTable, NoV, roughness);
+            envBrdf = (surface.F0 * ab.x + ab.y) * surface.specularWeight;
+            specularIbl = preskinPrefilteredRadiance(prefilteredEnvironment, ibl, R, roughness);
+        } else {
+            envBrdf = preskinEnvBrdfApprox(surface.F0, roughness, NoV) * surface.specularWeight;
+            specularIbl = max(preskinShEvaluate(frame.shRadiance, R, PRESKIN_SH_LAMBERT), vec3(0.0)) / PRESKIN_PI;
+        }
         diffuseColor = surface.diffuseColor;
         ambientDiffuse = surface.diffuseColor * irradianceSh / PRESKIN_PI * (vec3(1.0) - envBrdf) * occlusion;
         color += ambientDiffuse + specularIbl * envBrdf * occlusion;

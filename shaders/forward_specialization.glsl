@@ -16,7 +16,8 @@ layout(constant_id = kSpecAlphaMode) const uint kAlphaMode = 0;
 layout(constant_id = kSpecSkinFeatures) const uint kSkinFeatures = kSkinAll;
 layout(constant_id = kSpecLightLoop) const uint kLightLoop = kLightLoopAll;
 layout(constant_id = kSpecAlphaToCoverage) const uint kAlphaToCoverage = 0;
-layout(constant_id = kSpecSpecular) const uint kSpecular = 1;
+layout(constant_id = kSpecSpecular) const uint kSpecular = kSpecularIbl;
+const float kSpecularWeight = kSpecular != kSpecularOff ? 1.0 : 0.0;
 layout(constant_id = kSpecProfileMix) const uint kProfileMix = 4;
 // What a skin material reads (kSpecSkinInputs): a pipeline for a material without a detail map or
 // with per-vertex curvature has no code for the others.

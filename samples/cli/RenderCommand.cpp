@@ -151,6 +151,13 @@ void run(const RenderOptions& o) {
     checkMsaaOption(*context, o.common.msaa);
     Renderer renderer(*context, scene, environment, profiles, renderSettings(o.common));
     applyLightOptions(renderer, scene, o.common);
+    const bool sceneShadow = std::any_of(renderer.lights().begin(), renderer.lights().end(), [](const Light& l) {
+        return l.type == LightType::Directional && l.castsShadow;
+    });
+    for (const Light& l : renderer.environmentLights())
+        fmt::print("preskin: {}: towards ({:.3f}, {:.3f}, {:.3f}), {:.3g} lux{}\n", l.name, -l.directionWs.x,
+                   -l.directionWs.y, -l.directionWs.z, l.intensity,
+                   !sceneShadow && &l == &renderer.environmentLights().front() ? ", casts the shadow" : "");
     const uint32_t width = o.view.width, height = o.view.height;
 
     const Animation* animation = nullptr;

@@ -34,6 +34,9 @@ void addSceneOptions(CLI::App& cmd, CommonOptions& o) {
                    "Directional lights extracted from the environment (median cut), with shadows; default: 1 when "
                    "the scene has an environment image and no lights, else 0")
         ->check(wholeNumberIn(0, kMaxEnvironmentLights));
+    cmd.add_flag("--no-scene-lights", o.noSceneLights,
+                 "Leave out the scene's own lights (KHR_lights_punctual): the environment's extracted light (or the "
+                 "default key light) takes their place");
     cmd.add_option("--skin", o.skin,
                    "Shade this material (or 'all') as skin with default parameters; 'none': no material is skin "
                    "(the standard glTF material everywhere)");
@@ -63,6 +66,8 @@ void addCommonOptions(CLI::App& cmd, CommonOptions& o) {
     addDeviceOptions(cmd, o);
     cmd.add_flag("--standard", o.standard, "Turn every skin technique off (standard shading, for comparison)");
     addSkinTechniqueOptions(cmd, o);
+    cmd.add_flag("--no-specular-ibl", o.noSpecularIbl,
+                 "The environment's specular reflection from its L2 SH instead of the prefiltered environment");
     cmd.add_flag("--no-specular", o.noSpecular,
                  "No specular at all, every material: diffuse without Fresnel (what `preskin reference` models)");
     cmd.add_option("--background", o.background,
@@ -253,6 +258,7 @@ RenderSettings renderSettings(const CommonOptions& o) {
     s.skinTermsPerVertex = !o.skinTermsPerFragment;
     if (o.standard) s.skin = SkinFeatures::none();
     s.specular = !o.noSpecular;
+    s.specularIbl = !o.noSpecularIbl;
     const std::string d = lower(o.debug);
     if (d == "none") s.debugView = DebugView::None;
     else if (d == "curvature") s.debugView = DebugView::Curvature;
@@ -330,11 +336,11 @@ Light defaultKeyLight() {
 int environmentLightCount(const Scene& scene, const CommonOptions& o) {
     if (o.envLights >= 0) return o.envLights;
     const bool environmentImage = !o.env.empty() || scene.environmentPath.has_value();
-    return scene.lights.empty() && environmentImage ? 1 : 0;
+    return (scene.lights.empty() || o.noSceneLights) && environmentImage ? 1 : 0;
 }
 
 std::vector<Light> sceneLights(const Scene& scene, const CommonOptions& o) {
-    std::vector<Light> lights = scene.lights;
+    std::vector<Light> lights = o.noSceneLights ? std::vector<Light>{} : scene.lights;
     if (lights.empty() && environmentLightCount(scene, o) == 0) lights.push_back(defaultKeyLight());
     if (o.lights > 0) {
         const auto scattered = scatterLights(scene.worldBounds(), o.lights, o.seed);

@@ -25,6 +25,7 @@ struct CommonOptions {
     float envIntensity = -1.0f;  // < 0: the scene's (or 1)
     std::optional<float> envRotationDeg;  // unset: the scene's (or 0)
     int envLights = -1;  // < 0: environmentLightCount's default
+    bool noSceneLights = false;
     std::string device;
     bool validation = false;
     std::string skin;  // material name, "all" or "none"
@@ -37,6 +38,7 @@ struct CommonOptions {
     bool noDualSpecular = false;
     bool skinTermsPerFragment = false;
     bool noSpecular = false;
+    bool noSpecularIbl = false;
     std::string debug = "none";
     std::vector<std::string> background;  // --background: empty (the default colour), env, transparent, color R,G,B
     uint32_t lights = 0;

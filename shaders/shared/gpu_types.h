@@ -51,7 +51,7 @@ PRESKIN_CONST(uint, kSpecAlphaMode, 3)      // kAlphaOpaque, kAlphaMask, kAlphaB
 PRESKIN_CONST(uint, kSpecSkinFeatures, 4)   // bit mask of kSkin* (shared/skin_features.h)
 PRESKIN_CONST(uint, kSpecLightLoop, 5)      // kLightLoopClustered or kLightLoopAll
 PRESKIN_CONST(uint, kSpecAlphaToCoverage, 6)  // 1: alpha-mask coverage from alpha (MSAA), 0: discard
-PRESKIN_CONST(uint, kSpecSpecular, 7)       // 1: specular and Fresnel on; 0: diffuse only (RenderSettings::specular)
+PRESKIN_CONST(uint, kSpecSpecular, 7)       // kSpecular* below (RenderSettings::specular, specularIbl)
 PRESKIN_CONST(uint, kSpecProfileMix, 8)     // entries of a skin material's profile mix: 1 (its own), 2..4 (blended)
 PRESKIN_CONST(uint, kSpecSkinInputs, 9)     // a skin material's inputs and how to read them: kSkinInput* below
 PRESKIN_CONST(uint, kSpecLutMapping, 10)    // 32 ids: a skin material's own profile's LutMapping, member by member (xyzw)
@@ -74,6 +74,9 @@ PRESKIN_CONST(uint, kOutputLinear, 0)
 PRESKIN_CONST(uint, kOutputTonemapped, 1)
 PRESKIN_CONST(uint, kLightLoopAll, 0)
 PRESKIN_CONST(uint, kLightLoopClustered, 1)
+PRESKIN_CONST(uint, kSpecularOff, 0)  // diffuse only, no Fresnel taken from it
+PRESKIN_CONST(uint, kSpecularSh, 1)   // specular; the environment's from its L2 SH
+PRESKIN_CONST(uint, kSpecularIbl, 2)  // specular; the environment's from the prefiltered cube (preskin/ibl.glsl)
 
 
 struct GpuInstance {

@@ -129,6 +129,8 @@ TEST_F(SkinShAmbient, SphereMatchesBruteForceIntegrationWithSkinTransfer) {
     Scene scene = makeScene({{sphere, glm::mat4(1.0f)}}, {material});
     RenderSettings settings;
     settings.shadows = false;
+    settings.environmentLights = 0;  // the whole environment stays in the SH
+    settings.specularIbl = false;    // the specular term modelled here is the SH one
     Renderer renderer(context(), scene, environment, &luts, settings);
     const uint32_t size = 128;
     const glm::mat4 worldFromView = glm::inverse(glm::lookAt(glm::vec3(-0.8f, 1.1f, 3.3f), glm::vec3(0.0f),

@@ -92,6 +92,10 @@ struct RenderSettings {
     // false: no specular reflection for any material, and diffuse without the Fresnel factors
     // (1 - F) that specular takes from it: pure diffuse, what DiffusionReference models.
     bool specular = true;
+    // true: the environment's specular reflection from its GGX-prefiltered cube and the split-sum
+    // DFG table (preskin/ibl.glsl); false: from the cosine-convolved L2 SH in the reflection
+    // direction (exact for rough surfaces, too blurry for glossy ones; no cube lookups).
+    bool specularIbl = true;
     // Samples per pixel of the forward pass (any count of Renderer::msaaSampleCounts()), resolved
     // into the target by averaging. Shading stays per pixel; alpha-mask materials use
     // alpha-to-coverage when this is above 1.

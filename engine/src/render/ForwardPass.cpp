@@ -54,7 +54,7 @@ PipelineKey Renderer::Impl::pipelineKey(const GpuMaterial& m, VkFormat format, V
                        static_cast<uint32_t>(settings.debugView),
                        skin ? settings.skin.mask() : 0u,
                        settings.lightLoop == LightLoop::Clustered ? gpu::kLightLoopClustered : gpu::kLightLoopAll,
-                       settings.specular ? 1u : 0u,
+                       !settings.specular ? gpu::kSpecularOff : settings.specularIbl ? gpu::kSpecularIbl : gpu::kSpecularSh,
                        eyes,
                        settings.msaaSamples,
                        eyeDrawing() == EyeDrawing::InstancedLayers ? 1u : 0u,
