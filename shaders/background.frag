@@ -20,7 +20,7 @@ void main() {
     // The pixel's angle (radians) over the image's texel angle (2 pi / width).
     float pixelAngle = length(fwidth(d));
     float width = float(textureSize(environmentImage, 0).x);
-    float lod = log2(max(pixelAngle * width / (2.0 * PRESKIN_PI), 1e-6));
+    float lod = floor(log2(max(pixelAngle * width / (2.0 * PRESKIN_PI), 1e-6)) + 0.5);  // one level: bilinear
     vec3 color = textureLod(environmentImage, preskinEquirectUv(d), lod).rgb * frame.params.x;
     outColor = vec4(kOutputMode == kOutputTonemapped ? preskinTonemapNeutral(max(color, vec3(0.0))) : color, 1.0);
 }

@@ -111,6 +111,7 @@ struct BenchOptions {
     bool noAnimation = false;
     bool noTechniques = false;
     bool noProfiles = false;
+    bool noEnvironment = false;
     int profileLutSize = 256;
     std::string animatedScene;
     uint32_t vrWidth = 640;
@@ -805,6 +806,46 @@ void run(const BenchOptions& o) {
         fmt::print(stderr, "preskin bench: the scene has no skin material; skipping skin vs standard\n");
     }
 
+    // The environment: the frame with specular IBL and the environment as background against the
+    // frame with neither (SH specular, cleared background), interleaved with the scene's own
+    // lights; and the environment's update (light extraction, upload, prefiltering on the device).
+    if (!o.noEnvironment) {
+        const std::vector<Light> lights = sceneLights(scene, common);
+        RenderSettings full = base, noBackground = base, neither = base;
+        full.background.mode = BackgroundMode::Environment;
+        neither.specularIbl = false;
+        const std::vector<Measurement> measured =
+            bench.measure({{&renderer, full, "specular IBL and background", 0.0},
+                           {&renderer, noBackground, "specular IBL, cleared background", 0.0},
+                           {&renderer, neither, "SH specular, cleared background", 0.0}},
+                          lights);
+        std::vector<double> updateMs;
+        for (int i = 0; i < 3; ++i) {
+            const auto start = std::chrono::steady_clock::now();
+            renderer.setEnvironment(environment);
+            updateMs.push_back(std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count());
+        }
+        std::sort(updateMs.begin(), updateMs.end());
+        j.key("environment");
+        j.beginObject();
+        j.field("method",
+                "frames with the prefiltered specular and the environment as background, with the prefiltered "
+                "specular alone and with neither (SH specular, cleared background), interleaved; the update: "
+                "Renderer::setEnvironment (dominant lights, upload, GGX prefiltering), median of 3");
+        j.field("image_width", environment.image().width);
+        j.key("ibl_and_background");
+        writeMeasurement(j, measured[0]);
+        j.key("ibl");
+        writeMeasurement(j, measured[1]);
+        j.key("neither");
+        writeMeasurement(j, measured[2]);
+        j.field("ibl_and_background_share_of_frame", (measured[0].wallMs() - measured[2].wallMs()) / measured[0].wallMs());
+        j.field("ibl_and_background_share_of_forward_gpu",
+                (measured[0].passMs("forward") - measured[2].passMs("forward")) / measured[0].passMs("forward"));
+        j.field("update_ms", updateMs[1]);
+        j.endObject();
+    }
+
     // VR: a stereo frame against the two mono frames of its eyes, the light grid built for both
     // eyes (one grid through the cluster camera) against a grid per eye, and MSAA 4x against 1x.
     struct VrRun {
@@ -1149,6 +1190,8 @@ void addBenchCommand(CLI::App& app) {
     cmd->add_flag("--no-vr", o->noVr, "Skip stereo vs two mono frames, the stereo light grid and MSAA 4x vs 1x");
     cmd->add_flag("--no-techniques", o->noTechniques, "Skip the skin frame with each technique off in turn");
     cmd->add_flag("--no-animation", o->noAnimation, "Skip the deformation and curvature passes of an animated scene");
+    cmd->add_flag("--no-environment", o->noEnvironment,
+                  "Skip the prefiltered specular and background against neither, and the environment's update");
     cmd->add_flag("--no-profiles", o->noProfiles,
                   "Skip the diffusion-profile figures (one bake, 64 cached profiles, 8 profiles in view)");
     cmd->add_option("--profile-lut-size", o->profileLutSize, "Table size of the profiles baked for the profile figures")
