@@ -226,6 +226,7 @@ void Viewer::loadStartupContent() {
     environmentFromScene_ = options_.common.env.empty();
     try {
         environment_ = cli::loadEnvironment(scene, options_.common);
+        environmentRotationDeg_ = glm::degrees(environment_.rotationY());
         environmentName_ = !options_.common.env.empty() ? options_.common.env
                            : scene.environmentPath      ? scene.environmentPath->string()
                                                         : "uniform grey";
@@ -315,6 +316,7 @@ void Viewer::adoptScene(Scene scene, const std::filesystem::path& path) {
     cli::CommonOptions withoutScatter = options_.common;
     withoutScatter.lights = 0;
     sceneLights_ = cli::sceneLights(scene_, withoutScatter);
+    settings_.environmentLights = cli::environmentLightCount(scene_, options_.common);
     keyLight_ = findKeyLight(sceneLights_);
     selectedMaterial_ = -1;
     for (size_t i = 0; i < scene_.materials.size() && selectedMaterial_ < 0; ++i)
@@ -454,7 +456,8 @@ void Viewer::startSceneLoad(const std::filesystem::path& path) {
     });
 }
 
-void Viewer::startEnvironmentLoad(std::optional<std::filesystem::path> path, float intensity) {
+void Viewer::startEnvironmentLoad(std::optional<std::filesystem::path> path, float intensity,
+                                  std::optional<float> rotationDeg) {
     if (environmentJob_.valid()) {
         error("an environment is still loading; try again when it is done");
         return;
@@ -463,9 +466,11 @@ void Viewer::startEnvironmentLoad(std::optional<std::filesystem::path> path, flo
     cli::CommonOptions common = options_.common;
     common.env = path ? path->string() : std::string();
     common.envIntensity = intensity;
+    if (rotationDeg) common.envRotationDeg = rotationDeg;
     Scene sceneEnvironment;  // only the scene's environment fields
     sceneEnvironment.environmentPath = scene_.environmentPath;
     sceneEnvironment.environmentIntensity = scene_.environmentIntensity;
+    sceneEnvironment.environmentRotation = scene_.environmentRotation;
     const std::string name = path                      ? path->string()
                              : scene_.environmentPath ? scene_.environmentPath->string()
                                                       : std::string("uniform grey");
@@ -588,6 +593,7 @@ void Viewer::pollJobs() {
             environmentPathInput_ = loaded.name;
             environmentIntensity_ = loaded.intensity;
             environmentFromScene_ = loaded.fromScene;
+            environmentRotationDeg_ = glm::degrees(environment_.rotationY());
             if (renderer_) renderer_->setEnvironment(environment_);
             info(fmt::format("environment {} (intensity {:.2f})", loaded.name, loaded.intensity));
         }

@@ -142,7 +142,9 @@ private:
     // Content changes.
     void loadFile(const std::filesystem::path& path);
     void startSceneLoad(const std::filesystem::path& path);
-    void startEnvironmentLoad(std::optional<std::filesystem::path> path, float intensity);
+    // rotationDeg: the turn about +Y; unset: --env-rotation's, or the scene's.
+    void startEnvironmentLoad(std::optional<std::filesystem::path> path, float intensity,
+                              std::optional<float> rotationDeg = std::nullopt);
     void adoptScene(Scene scene, const std::filesystem::path& path);
     void rebuildRenderer(const char* why);
     void applyLights();
@@ -206,6 +208,7 @@ private:
     std::string environmentName_;
     bool environmentFromScene_ = false;
     float environmentIntensity_ = 1.0f;
+    float environmentRotationDeg_ = 0.0f;  // the loaded environment's turn, as the panel's slider shows it
     std::optional<LutSet> luts_;  // the default set (layer 0) as loaded
     std::string lutsName_;
     std::optional<ProfileLibrary> profiles_;                     // what the renderer's LUT arrays hold

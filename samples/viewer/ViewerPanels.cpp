@@ -103,8 +103,27 @@ void Viewer::panelScene() {
     if (ImGui::IsItemDeactivatedAfterEdit())
         startEnvironmentLoad(environmentFromScene_ ? std::nullopt
                                                    : std::optional<std::filesystem::path>(environmentName_),
-                             environmentIntensity_);
+                             environmentIntensity_, environmentRotationDeg_);
+    const std::optional<std::filesystem::path> loadedPath =
+        environmentFromScene_ ? std::nullopt : std::optional<std::filesystem::path>(environmentName_);
+    ImGui::SliderFloat("Rotation##env", &environmentRotationDeg_, -180.0f, 180.0f, "%.0f deg");
+    tooltip("Turn the environment about +Y: its SH, specular map, background and extracted lights together "
+            "(applied when released)");
+    if (ImGui::IsItemDeactivatedAfterEdit()) startEnvironmentLoad(loadedPath, environmentIntensity_, environmentRotationDeg_);
     if (environmentJob_.valid()) ImGui::TextColored(kWarnColor, "loading environment...");
+    int background = static_cast<int>(settings_.background.mode);
+    if (ImGui::Combo("Background", &background, "colour\0environment\0transparent\0"))
+        settings_.background.mode = static_cast<BackgroundMode>(background);
+    ImGui::Checkbox("Prefiltered specular", &settings_.specularIbl);
+    tooltip("The environment's specular reflection from its GGX-prefiltered map; off: from its L2 SH");
+    ImGui::SliderInt("Environment lights", &settings_.environmentLights, -1, int(kMaxEnvironmentLights),
+                     settings_.environmentLights < 0 ? "auto" : "%d");
+    tooltip("Directional lights extracted from the environment by median cut, with the shadow when no scene light "
+            "casts it; auto: one when the scene has no lights");
+    if (renderer_)
+        for (const Light& l : renderer_->environmentLights())
+            ImGui::TextDisabled("%s: towards (%.2f, %.2f, %.2f), %.3g lux", l.name.c_str(), double(-l.directionWs.x),
+                                double(-l.directionWs.y), double(-l.directionWs.z), double(l.intensity));
 }
 
 void Viewer::panelCamera() {
