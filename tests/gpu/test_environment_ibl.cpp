@@ -3,6 +3,8 @@
 //  - a white furnace: metallic white spheres (F0 = 1) of roughness 0.1 .. 1 in a uniform
 //    environment reflect the environment times the directional albedo A + B of their GGX lobe at
 //    each pixel's NoV (found here by intersecting the pixel's ray with the sphere);
+//  - a glossy metal sphere reflects the sky in its reflection direction, turned with the
+//    environment's rotation;
 //  - the background: each pixel, in each eye of a stereo view and with MSAA, shows the
 //    environment's radiance in its direction (an analytic sky, turned by the environment's
 //    rotation), linear and tone-mapped; a transparent background writes alpha 0.
@@ -208,6 +210,47 @@ TEST_F(EnvironmentIbl, BackgroundShowsTheEnvironmentInEveryEye) {
                     ++checked;
                 }
         EXPECT_GT(checked, 2 * int(width * height) * 3 / 4);
+    }
+}
+
+TEST_F(EnvironmentIbl, ReflectionTurnsWithTheEnvironment) {
+    // A glossy white metal sphere reflects the sky in each pixel's reflection direction, turned by
+    // the environment's rotation, times the directional albedo A + B.
+    const float radius = 0.1f, roughness = 0.05f;
+    const uint32_t size = 64;
+    Primitive sphere = makeSphere(radius, 128, 64);
+    sphere.material = 0;
+    Material metal;
+    metal.baseColorFactor = glm::vec4(1.0f);
+    metal.metallicFactor = 1.0f;
+    metal.roughnessFactor = roughness;
+    const Scene scene = makeScene({{sphere, glm::mat4(1.0f)}}, {metal});
+    const View view = frontView(0.25f, size, size);
+    for (float rotationY : {0.0f, 1.1f, -2.4f}) {
+        RenderSettings settings;
+        settings.environmentLights = 0;
+        Renderer renderer(context(), scene, skyEnvironment(rotationY), static_cast<const LutSet*>(nullptr), settings);
+        const RenderedImage image = renderer.render(view, size, size, OutputEncoding::LinearFloat);
+        int checked = 0;
+        for (uint32_t y = 0; y < size; y += 2)
+            for (uint32_t x = 0; x < size; x += 2) {
+                glm::vec3 o, d;
+                pixelRay(view.eyes[0], x, y, size, size, o, d);
+                const float b = glm::dot(o, d), c = glm::dot(o, o) - radius * radius, disc = b * b - c;
+                if (disc <= 0.0f) continue;
+                const glm::vec3 n = glm::normalize(o + d * (-b - std::sqrt(disc)));
+                const float NoV = glm::dot(n, -d);
+                if (NoV < 0.5f) continue;
+                const glm::vec3 r = glm::reflect(d, n);
+                const glm::vec2 ab = env::dfgIntegral(NoV, roughness, 2048, 32);
+                const glm::vec3 expected = sky(rotateY(r, -rotationY)) * (ab.x + ab.y);
+                const float* p = &image.rgba32f[(size_t(y) * size + x) * 4];
+                for (int ch = 0; ch < 3; ++ch)
+                    EXPECT_NEAR(p[ch], expected[ch], 0.03f * expected[ch])
+                        << "rotation " << rotationY << " pixel " << x << "," << y;
+                ++checked;
+            }
+        EXPECT_GT(checked, 100);
     }
 }
 

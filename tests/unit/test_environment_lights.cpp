@@ -6,6 +6,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <limits>
 
 namespace preskin {
 namespace {
@@ -120,6 +121,26 @@ TEST(EnvironmentLights, SeveralDiscsComeOutStrongestFirst) {
     EXPECT_GT(glm::dot(-found.lights[0].directionWs, glm::normalize(glm::vec3(1.0f, 1.0f, 0.0f))), 0.999f);
     EXPECT_GT(glm::dot(-found.lights[1].directionWs, glm::normalize(glm::vec3(-1.0f, 0.5f, -1.0f))), 0.999f);
     EXPECT_NEAR(found.lights[1].irradiance.r / found.lights[0].irradiance.r, 0.25f, 0.01f);
+}
+
+TEST(EnvironmentLights, FromImageRefusesWhatLoadRefuses) {
+    const auto image = [](uint32_t w, uint32_t h, float value) {
+        EquirectImage e;
+        e.width = w;
+        e.height = h;
+        e.rgb.assign(size_t(w) * h * 3, value);
+        return e;
+    };
+    EXPECT_THROW(Environment::fromImage(image(0, 0, 1.0f)), Error);
+    EXPECT_THROW(Environment::fromImage(image(6, 2, 1.0f)), Error);     // not 2:1
+    EXPECT_THROW(Environment::fromImage(image(16384, 8192, 0.0f)), Error);  // beyond 8192 x 4096
+    EXPECT_THROW(Environment::fromImage(image(8, 4, std::nanf(""))), Error);
+    EXPECT_THROW(Environment::fromImage(image(8, 4, -1.0f)), Error);
+    EXPECT_THROW(Environment::fromImage(image(8, 4, 1.0f), std::numeric_limits<float>::infinity()), Error);
+    EquirectImage short_ = image(8, 4, 1.0f);
+    short_.rgb.pop_back();
+    EXPECT_THROW(Environment::fromImage(short_), Error);
+    EXPECT_NO_THROW(Environment::fromImage(image(8, 4, 1.0f), 0.5f));
 }
 
 }  // namespace
