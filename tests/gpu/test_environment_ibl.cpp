@@ -254,6 +254,43 @@ TEST_F(EnvironmentIbl, ReflectionTurnsWithTheEnvironment) {
     }
 }
 
+TEST_F(EnvironmentIbl, ExtractedLightsComeAfterTheScenesOwn) {
+    // The sky with a sun: a bright disc towards +Y+Z.
+    EquirectImage image;
+    image.width = 256;
+    image.height = 128;
+    const glm::vec3 sun = glm::normalize(glm::vec3(0.0f, 1.0f, 1.0f));
+    for (uint32_t y = 0; y < image.height; ++y)
+        for (uint32_t x = 0; x < image.width; ++x) {
+            const glm::vec3 d = EquirectImage::directionAt((float(x) + 0.5f) / float(image.width),
+                                                           (float(y) + 0.5f) / float(image.height));
+            const glm::vec3 l = sky(d) + (glm::dot(d, sun) > 0.999f ? glm::vec3(500.0f) : glm::vec3(0.0f));
+            image.rgb.insert(image.rgb.end(), {l.r, l.g, l.b});
+        }
+    const Environment environment = Environment::fromImage(image);
+    Primitive sphere = makeSphere(0.1f, 32, 16);
+    sphere.material = 0;
+    Scene scene = makeScene({{sphere, glm::mat4(1.0f)}}, {Material{}});
+    // No lights of its own: one light from the environment by default, towards the sun.
+    Renderer lightless(context(), scene, environment, static_cast<const LutSet*>(nullptr));
+    ASSERT_EQ(lightless.environmentLights().size(), 1u);
+    EXPECT_GT(glm::dot(-lightless.environmentLights()[0].directionWs, sun), 0.999f);
+    // With a light of its own: none by default; asked for, they come after the scene's lights.
+    Light key;
+    key.castsShadow = true;
+    scene.lights.push_back(key);
+    Renderer lit(context(), scene, environment, static_cast<const LutSet*>(nullptr));
+    EXPECT_TRUE(lit.environmentLights().empty());
+    RenderSettings settings;
+    settings.environmentLights = 2;
+    lit.setSettings(settings);
+    EXPECT_EQ(lit.environmentLights().size(), 1u);  // the sky holds one concentration only
+    EXPECT_EQ(lit.lights().size(), 1u);              // the host's lights stay as they were set
+    settings.environmentLights = 0;
+    lit.setSettings(settings);
+    EXPECT_TRUE(lit.environmentLights().empty());
+}
+
 TEST_F(EnvironmentIbl, TransparentBackgroundWritesAlphaZero) {
     Primitive sphere = makeSphere(0.1f, 32, 16);
     sphere.material = 0;
