@@ -1,13 +1,16 @@
 # `cmake --install` in GNUInstallDirs places:
 #   lib/libpreskin.so*                      the library (public API only, hidden internals)
 #   include/preskin/*.h                      its public headers
+#   lib/libpreskin_reference.so*, include/preskin/DiffusionReference.h
+#                                            component `reference`: the diffusion reference (Embree)
 #   share/preskin/shaders/                   the GLSL include root: preskin/*.glsl (the host library),
 #                                            shared/*.h (structs and constants read by C++ and GLSL),
 #                                            and the renderer's own entry points (forward.frag, ...)
 #   share/preskin/luts/                      the default LUT set and its manifest
 #   share/preskin/samples/assets/head/       the sample scene the tools render by default
 #   bin/preskin, bin/preskin-viewer          the tools (they find share/preskin beside them)
-#   lib/cmake/preskin/                       find_package(preskin CONFIG): preskin::preskin, version file
+#   lib/cmake/preskin/                       find_package(preskin CONFIG): preskin::preskin (and
+#                                            preskin::reference when that component is installed), version file
 #   lib/pkgconfig/preskin.pc                 pkg-config
 include(CMakePackageConfigHelpers)
 set(PRESKIN_INSTALL_CMAKEDIR ${CMAKE_INSTALL_LIBDIR}/cmake/preskin)
@@ -15,6 +18,11 @@ set(PRESKIN_INSTALL_CMAKEDIR ${CMAKE_INSTALL_LIBDIR}/cmake/preskin)
 install(TARGETS preskin EXPORT preskinTargets
   LIBRARY DESTINATION ${CMAKE_INSTALL_LIBDIR} NAMELINK_COMPONENT Development)
 install(DIRECTORY ${PROJECT_SOURCE_DIR}/engine/include/preskin DESTINATION ${CMAKE_INSTALL_INCLUDEDIR})
+install(TARGETS preskin_reference EXPORT preskinReferenceTargets
+  LIBRARY DESTINATION ${CMAKE_INSTALL_LIBDIR} COMPONENT reference NAMELINK_COMPONENT reference)
+install(DIRECTORY ${PROJECT_SOURCE_DIR}/engine/reference/include/preskin DESTINATION ${CMAKE_INSTALL_INCLUDEDIR}
+  COMPONENT reference)
+install(EXPORT preskinReferenceTargets NAMESPACE preskin:: DESTINATION ${PRESKIN_INSTALL_CMAKEDIR} COMPONENT reference)
 install(DIRECTORY ${PROJECT_SOURCE_DIR}/shaders/ DESTINATION ${PRESKIN_INSTALL_SHADERDIR}
   FILES_MATCHING PATTERN "*.glsl" PATTERN "*.h" PATTERN "*.vert" PATTERN "*.frag" PATTERN "*.comp")
 install(DIRECTORY ${PROJECT_SOURCE_DIR}/luts/ DESTINATION ${PRESKIN_INSTALL_DATADIR}/luts

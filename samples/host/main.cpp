@@ -12,6 +12,7 @@
 #include <vulkan/vulkan.h>
 
 #include <preskin/Environment.h>
+#include <preskin/LightRecord.h>
 #include <preskin/Error.h>
 #include <preskin/LutSet.h>
 #include <preskin/NormalBasis.h>
@@ -352,16 +353,7 @@ int main(int argc, char** argv) {
             lodBias, float(preskin::normalLevelCount(lodBias, mipCount(normalImage.width, normalImage.height))));
         for (const preskin::Light& l : scene.lights) {
             if (frame.lightCount.x == 8) break;
-            preskin::gpu::GpuLight& g = frame.lights[frame.lightCount.x++];
-            const float cosOuter = std::cos(l.outerConeAngle);
-            const float spotScale = 1.0f / std::max(1e-3f, std::cos(std::min(l.innerConeAngle, l.outerConeAngle)) - cosOuter);
-            const uint32_t type = l.type == preskin::LightType::Point  ? preskin::gpu::kLightPoint
-                                  : l.type == preskin::LightType::Spot ? preskin::gpu::kLightSpot
-                                                                       : preskin::gpu::kLightDirectional;
-            g.positionRange = glm::vec4(l.positionWs, std::max(l.range, 0.0f));
-            g.directionType = glm::vec4(glm::normalize(l.directionWs), float(type));
-            g.colorIntensity = glm::vec4(l.color * l.intensity, -1.0f);
-            g.spotScaleOffset = glm::vec4(spotScale, -cosOuter * spotScale, 0.0f, 0.0f);
+            frame.lights[frame.lightCount.x++] = preskin::toGpuLight(l, false);  // no shadow pass here
         }
 
         // The host's own Vulkan objects.

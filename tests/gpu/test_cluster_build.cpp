@@ -4,7 +4,7 @@
 // within 1/255 for standard and skin materials, with lights straddling froxel edges, at the near
 // plane and beyond the far slices, and spots aimed across clusters; the light-count debug view
 // reports each pixel's list length.
-#include "render/GpuLights.h"
+#include <preskin/LightRecord.h>
 #include "support/GpuTest.h"
 #include "support/TestLights.h"
 #include "support/ImageCompare.h"

@@ -11,7 +11,7 @@
 
 #include "lights/ClusterBuilder.h"
 #include "render/GpuDeformer.h"
-#include "render/GpuLights.h"
+#include <preskin/LightRecord.h>
 #include "render/GpuLuts.h"
 #include "render/GpuScene.h"
 #include "render/InputChecks.h"

@@ -1,5 +1,5 @@
 // The environment's traced irradiance for the diffusion reference (see TracedEnvironment.h).
-#include "reference/TracedEnvironment.h"
+#include "TracedEnvironment.h"
 
 #include <algorithm>
 #include <cmath>

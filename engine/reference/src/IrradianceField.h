@@ -18,10 +18,10 @@
 // across triangles (refine the mesh to resolve occlusion finer than it).
 #pragma once
 
-#include "reference/RayScene.h"
-#include "reference/ReferenceMaterials.h"
-#include "reference/ReferenceMesh.h"
-#include "reference/TracedEnvironment.h"
+#include "RayScene.h"
+#include "ReferenceMaterials.h"
+#include "ReferenceMesh.h"
+#include "TracedEnvironment.h"
 #include "shared/gpu_types.h"
 
 #include <preskin/Environment.h>

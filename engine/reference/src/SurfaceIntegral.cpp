@@ -1,6 +1,6 @@
 // The diffusion reference's surface integral: graded irradiance pieces and adaptive profile
 // moments (see SurfaceIntegral.h).
-#include "reference/SurfaceIntegral.h"
+#include "SurfaceIntegral.h"
 
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>

@@ -8,7 +8,7 @@
 // read: the reference has no specular and shades the smooth surface.
 #pragma once
 
-#include "reference/ReferenceTexture.h"
+#include "ReferenceTexture.h"
 
 #include <preskin/Scene.h>
 

@@ -1,4 +1,5 @@
-#include "render/GpuLights.h"
+// Scene lights as GPU light records; see <preskin/LightRecord.h>.
+#include <preskin/LightRecord.h>
 
 #include <algorithm>
 #include <cmath>

@@ -1,7 +1,7 @@
 // Irradiance at surface points for the diffusion reference (see IrradianceField.h).
-#include "reference/IrradianceField.h"
+#include "IrradianceField.h"
 
-#include "render/GpuLights.h"
+#include <preskin/LightRecord.h>
 
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>

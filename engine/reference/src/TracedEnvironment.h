@@ -11,7 +11,7 @@
 // point on the flat triangle the caller gives.
 #pragma once
 
-#include "reference/RayScene.h"
+#include "RayScene.h"
 
 #include <preskin/Environment.h>
 

@@ -1,5 +1,5 @@
 // CPU texture sampling matching the renderer's samplers (see ReferenceTexture.h).
-#include "reference/ReferenceTexture.h"
+#include "ReferenceTexture.h"
 
 #include <algorithm>
 #include <cmath>

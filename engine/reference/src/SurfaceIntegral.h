@@ -20,9 +20,9 @@
 // measured in docs/reference.md.
 #pragma once
 
-#include "reference/IrradianceField.h"
-#include "reference/RayScene.h"
-#include "reference/ReferenceMesh.h"
+#include "IrradianceField.h"
+#include "RayScene.h"
+#include "ReferenceMesh.h"
 
 #include <preskin/DiffusionProfile.h>
 

@@ -8,7 +8,7 @@
 // once (no deformation). The device runs Embree's own threads for the build only.
 #pragma once
 
-#include "reference/ReferenceMesh.h"
+#include "ReferenceMesh.h"
 
 #include <glm/glm.hpp>
 

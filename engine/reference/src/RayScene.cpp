@@ -1,5 +1,5 @@
 // Embree 3 ray queries for the diffusion reference (see RayScene.h).
-#include "reference/RayScene.h"
+#include "RayScene.h"
 
 #include <preskin/Error.h>
 

@@ -1,5 +1,5 @@
 // Flattening a Scene into the reference's world-space triangle list (see ReferenceMesh.h).
-#include "reference/ReferenceMesh.h"
+#include "ReferenceMesh.h"
 
 #include <glm/gtc/matrix_inverse.hpp>
 

@@ -1,6 +1,6 @@
 // Material parameters for the diffusion reference, read like forward.frag reads them (see
 // ReferenceMaterials.h).
-#include "reference/ReferenceMaterials.h"
+#include "ReferenceMaterials.h"
 
 #include <algorithm>
 

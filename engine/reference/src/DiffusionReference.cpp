@@ -4,12 +4,12 @@
 #include <preskin/DiffusionReference.h>
 #include <preskin/Error.h>
 
-#include "reference/IrradianceField.h"
-#include "reference/RayScene.h"
-#include "reference/ReferenceMaterials.h"
-#include "reference/ReferenceMesh.h"
-#include "reference/SurfaceIntegral.h"
-#include "reference/TracedEnvironment.h"
+#include "IrradianceField.h"
+#include "RayScene.h"
+#include "ReferenceMaterials.h"
+#include "ReferenceMesh.h"
+#include "SurfaceIntegral.h"
+#include "TracedEnvironment.h"
 
 #include <fmt/core.h>
 #include <tbb/blocked_range.h>
