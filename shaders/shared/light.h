@@ -1,5 +1,5 @@
 // One punctual light as the shaders read it (KHR_lights_punctual: directional, point, spot),
-// shared by C++ (engine/src/render/GpuLights) and GLSL (preskin/lights.glsl, which needs nothing
+// shared by C++ (<preskin/LightRecord.h>) and GLSL (preskin/lights.glsl, which needs nothing
 // else, so a host can fill its own light buffer with this struct).
 #ifndef PRESKIN_SHARED_LIGHT_H
 #define PRESKIN_SHARED_LIGHT_H
