@@ -215,7 +215,8 @@ public:
     void setLights(const std::vector<Light>& lights);
     const std::vector<Light>& lights() const;
     // Replaces the environment: its SH ambient, its dominant lights (RenderSettings::
-    // environmentLights) and its maps for specular reflection and the background.
+    // environmentLights) and its maps for specular reflection and the background, prefiltered
+    // on the device at once (waits for the device: call it between frames, not per frame).
     void setEnvironment(const Environment& environment);
     // The lights extracted from the environment that frames add to lights() (directional,
     // strongest first; see RenderSettings::environmentLights).

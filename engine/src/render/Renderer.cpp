@@ -586,8 +586,9 @@ const RenderSettings& Renderer::settings() const { return impl_->settings; }
 
 void Renderer::setSettings(const RenderSettings& settings) {
     checkRenderSettings(settings);
+    const bool newLightCount = settings.environmentLights != impl_->settings.environmentLights;
     impl_->settings = settings;
-    impl_->updateEnvironmentLights(false);
+    if (newLightCount) impl_->updateEnvironmentLights(false);  // hosts set settings every frame
     impl_->resolveEyeDrawing();
 }
 
