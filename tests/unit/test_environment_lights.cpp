@@ -123,6 +123,34 @@ TEST(EnvironmentLights, SeveralDiscsComeOutStrongestFirst) {
     EXPECT_NEAR(found.lights[1].irradiance.r / found.lights[0].irradiance.r, 0.25f, 0.01f);
 }
 
+TEST(EnvironmentLights, DownsampledKeepsTheSphereAndTheRadiance) {
+    // A 1000 x 500 image (not a power of two) of the disc sky: at most 256 wide is 250 x 125,
+    // each texel the mean of the 4 x 4 it covers; the SH stays the original's.
+    EquirectImage image = discSky(glm::normalize(glm::vec3(0.3f, 0.8f, -0.5f)));
+    EquirectImage odd;
+    odd.width = 1000;
+    odd.height = 500;
+    for (uint32_t y = 0; y < odd.height; ++y)
+        for (uint32_t x = 0; x < odd.width; ++x) {
+            const glm::vec3 l = image.texel(x, y);
+            odd.rgb.insert(odd.rgb.end(), {l.r, l.g, l.b});
+        }
+    const Environment env = Environment::fromImage(odd, 0.4f);
+    const Environment small = env.downsampled(256);
+    ASSERT_EQ(small.image().width, 250u);
+    ASSERT_EQ(small.image().height, 125u);
+    EXPECT_EQ(small.rotationY(), env.rotationY());
+    for (size_t c = 0; c < 9; ++c) EXPECT_EQ(small.radianceSh().c[c], env.radianceSh().c[c]);
+    for (uint32_t y : {0u, 37u, 124u})
+        for (uint32_t x : {0u, 101u, 249u}) {
+            glm::dvec3 mean(0.0);
+            for (uint32_t sy = 0; sy < 4; ++sy)
+                for (uint32_t sx = 0; sx < 4; ++sx) mean += glm::dvec3(odd.texel(4 * x + sx, 4 * y + sy)) / 16.0;
+            for (int c = 0; c < 3; ++c) EXPECT_NEAR(double(small.image().texel(x, y)[c]), mean[c], 1e-5 * (1.0 + mean[c]));
+        }
+    EXPECT_EQ(env.downsampled(4096).image().width, 1000u);  // narrower already: unchanged
+}
+
 TEST(EnvironmentLights, FromImageRefusesWhatLoadRefuses) {
     const auto image = [](uint32_t w, uint32_t h, float value) {
         EquirectImage e;

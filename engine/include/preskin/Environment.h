@@ -45,6 +45,10 @@ struct EquirectImage {
     static glm::vec3 directionAt(float u, float v);
 };
 
+// The image box-filtered by powers of two until it is at most maxWidth texels wide (each texel
+// the mean of the source texels it covers, so radiance is kept); the image itself when narrower.
+PRESKIN_API EquirectImage boxFiltered(const EquirectImage& image, uint32_t maxWidth);
+
 // Projects radiance onto SH by integrating over every texel with its exact solid angle. The
 // image is turned by rotationY radians about +Y first (right-handed: +Z turns towards +X).
 PRESKIN_API ShRgb projectEquirect(const EquirectImage& image, float rotationY = 0.0f);
@@ -93,6 +97,9 @@ public:
     static Environment fromImage(EquirectImage image, float rotationY = 0.0f);
     // Uniform radiance in every direction.
     static Environment constant(const glm::vec3& radiance);
+    // The same environment (its SH, intensity and rotation unchanged) holding its image
+    // box-filtered to at most maxWidth texels wide (boxFiltered): what a renderer keeps.
+    Environment downsampled(uint32_t maxWidth) const;
 
     const ShRgb& radianceSh() const { return radianceSh_; }
     // The decoded image (empty for constant environments); kept for CPU references.

@@ -51,6 +51,40 @@ glm::vec3 rotateY(const glm::vec3& d, float rotationY) {
     return {c * d.x + s * d.z, d.y, -s * d.x + c * d.z};
 }
 
+EquirectImage boxFiltered(const EquirectImage& image, uint32_t maxWidth) {
+    uint32_t factor = 1;
+    while (image.width / factor > maxWidth && image.height / factor >= 2) factor *= 2;
+    if (factor == 1) return image;
+    EquirectImage out;
+    out.width = std::max(image.width / factor, 1u);
+    out.height = std::max(image.height / factor, 1u);
+    out.rgb.resize(size_t(out.width) * out.height * 3);
+    for (uint32_t y = 0; y < out.height; ++y) {
+        const uint32_t sy0 = uint32_t(uint64_t(y) * image.height / out.height);
+        const uint32_t sy1 = std::max(uint32_t(uint64_t(y + 1) * image.height / out.height), sy0 + 1);
+        for (uint32_t x = 0; x < out.width; ++x) {
+            const uint32_t sx0 = uint32_t(uint64_t(x) * image.width / out.width);
+            const uint32_t sx1 = std::max(uint32_t(uint64_t(x + 1) * image.width / out.width), sx0 + 1);
+            glm::dvec3 sum(0.0);
+            for (uint32_t sy = sy0; sy < sy1; ++sy)
+                for (uint32_t sx = sx0; sx < sx1; ++sx) sum += glm::dvec3(image.texel(sx, sy));
+            const glm::vec3 mean(sum / double((sy1 - sy0) * (sx1 - sx0)));
+            for (int c = 0; c < 3; ++c) out.rgb[(size_t(y) * out.width + x) * 3 + size_t(c)] = mean[c];
+        }
+    }
+    return out;
+}
+
+Environment Environment::downsampled(uint32_t maxWidth) const {
+    Environment out;
+    out.radianceSh_ = radianceSh_;
+    out.image_ = boxFiltered(image_, maxWidth);
+    out.intensity_ = intensity_;
+    out.rotationY_ = rotationY_;
+    out.constant_ = constant_;
+    return out;
+}
+
 ShRgb projectEquirect(const EquirectImage& image, float rotationY) {
     // Row y spans theta in [pi y/H, pi (y+1)/H]; its exact solid angle per texel is
     // (2 pi / W) (cos(theta0) - cos(theta1)).

@@ -21,8 +21,8 @@ constexpr double kMaxLightSolidAngle = 0.25;  // sr
 
 float luminance(const glm::vec3& c) { return 0.2126f * c.r + 0.7152f * c.g + 0.0722f * c.b; }
 
-// The image box-filtered to at most kWorkWidth texels wide (each work texel averages the source
-// texels it covers), with every row's texel solid angle.
+// The image box-filtered to at most kWorkWidth texels wide (boxFiltered), with every row's texel
+// solid angle.
 struct WorkImage {
     uint32_t width = 0, height = 0;
     std::vector<glm::vec3> radiance;
@@ -33,25 +33,14 @@ struct WorkImage {
     }
 };
 
-WorkImage workImage(const EquirectImage& image) {
+WorkImage workImage(const EquirectImage& source) {
+    const EquirectImage image = boxFiltered(source, kWorkWidth);
     WorkImage w;
-    uint32_t factor = 1;
-    while (image.width / factor > kWorkWidth && image.height / factor >= 2) factor *= 2;
-    w.width = std::max(image.width / factor, 1u);
-    w.height = std::max(image.height / factor, 1u);
+    w.width = image.width;
+    w.height = image.height;
     w.radiance.resize(size_t(w.width) * w.height);
-    for (uint32_t y = 0; y < w.height; ++y) {
-        const uint32_t sy0 = uint32_t(uint64_t(y) * image.height / w.height);
-        const uint32_t sy1 = std::max(uint32_t(uint64_t(y + 1) * image.height / w.height), sy0 + 1);
-        for (uint32_t x = 0; x < w.width; ++x) {
-            const uint32_t sx0 = uint32_t(uint64_t(x) * image.width / w.width);
-            const uint32_t sx1 = std::max(uint32_t(uint64_t(x + 1) * image.width / w.width), sx0 + 1);
-            glm::dvec3 sum(0.0);
-            for (uint32_t sy = sy0; sy < sy1; ++sy)
-                for (uint32_t sx = sx0; sx < sx1; ++sx) sum += glm::dvec3(image.texel(sx, sy));
-            w.radiance[size_t(y) * w.width + x] = glm::vec3(sum / double((sy1 - sy0) * (sx1 - sx0)));
-        }
-    }
+    for (uint32_t y = 0; y < w.height; ++y)
+        for (uint32_t x = 0; x < w.width; ++x) w.radiance[size_t(y) * w.width + x] = image.texel(x, y);
     w.rowSolidAngle.resize(w.height);
     for (uint32_t y = 0; y < w.height; ++y)
         w.rowSolidAngle[y] = 2.0 * M_PI / w.width * (std::cos(M_PI * y / w.height) - std::cos(M_PI * (y + 1) / w.height));

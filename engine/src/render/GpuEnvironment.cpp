@@ -25,29 +25,15 @@ constexpr uint32_t kMaxImageWidth = 2048;  // the backdrop's image: box-filtered
 constexpr uint32_t kMaxFaceSize = 256;     // the prefiltered cube's level 0
 constexpr uint32_t kMinFaceSize = 8;       // its last level (roughness 1)
 
-// The image box-filtered by 2 until it is at most maxWidth wide, as RGBA half floats (radiance
+// The image box-filtered to at most maxWidth wide (boxFiltered), as RGBA half floats (radiance
 // above the half range saturates).
 std::vector<uint16_t> halfTexels(const EquirectImage& source, uint32_t maxWidth, uint32_t& width, uint32_t& height) {
-    std::vector<float> rgb = source.rgb;
-    width = source.width;
-    height = source.height;
-    while (width > maxWidth && height >= 2) {
-        const uint32_t w = width / 2, h = height / 2;
-        std::vector<float> next(size_t(w) * h * 3);
-        for (uint32_t y = 0; y < h; ++y)
-            for (uint32_t x = 0; x < w; ++x)
-                for (uint32_t c = 0; c < 3; ++c) {
-                    const auto at = [&](uint32_t sx, uint32_t sy) { return rgb[(size_t(sy) * width + sx) * 3 + c]; };
-                    next[(size_t(y) * w + x) * 3 + c] =
-                        0.25f * (at(2 * x, 2 * y) + at(2 * x + 1, 2 * y) + at(2 * x, 2 * y + 1) + at(2 * x + 1, 2 * y + 1));
-                }
-        rgb = std::move(next);
-        width = w;
-        height = h;
-    }
+    const EquirectImage image = boxFiltered(source, maxWidth);
+    width = image.width;
+    height = image.height;
     std::vector<uint16_t> out(size_t(width) * height * 4);
     for (size_t i = 0; i < size_t(width) * height; ++i) {
-        for (size_t c = 0; c < 3; ++c) out[i * 4 + c] = glm::packHalf1x16(std::min(rgb[i * 3 + c], 65504.0f));
+        for (size_t c = 0; c < 3; ++c) out[i * 4 + c] = glm::packHalf1x16(std::min(image.rgb[i * 3 + c], 65504.0f));
         out[i * 4 + 3] = glm::packHalf1x16(1.0f);
     }
     return out;

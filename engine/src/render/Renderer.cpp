@@ -84,7 +84,8 @@ uint32_t SkinFeatures::mask() const {
 
 Renderer::Impl::Impl(Context& ctx, const Scene& s, const Environment& env, const std::vector<const LutSet*>& lutLayers,
                      const RenderSettings& rs)
-    : context(ctx), dev(ContextAccess::core(ctx)), settings(rs), lights(s.lights), environment(env),
+    : context(ctx), dev(ContextAccess::core(ctx)), settings(rs), lights(s.lights),
+      environment(env.downsampled(kEnvironmentKeptWidth)),
       bounds(s.worldBounds()), sceneName(s.sourcePath.empty() ? std::string("scene") : s.sourcePath.string()) {
     checkRenderSettings(rs);
     checkLights(s.lights);
@@ -603,7 +604,7 @@ void Renderer::setLights(const std::vector<Light>& lights) {
 }
 const std::vector<Light>& Renderer::lights() const { return impl_->lights; }
 void Renderer::setEnvironment(const Environment& environment) {
-    impl_->environment = environment;
+    impl_->environment = environment.downsampled(kEnvironmentKeptWidth);
     impl_->updateEnvironmentLights(true);
 }
 const std::vector<Light>& Renderer::environmentLights() const { return impl_->extractedLights; }

@@ -27,6 +27,9 @@ inline constexpr VkFormat kDepthFormat = VK_FORMAT_D32_SFLOAT;
 inline constexpr uint32_t kSlotCount = 2;
 // start, after deformation, after curvature, after shadow, after clustering, after forward
 inline constexpr uint32_t kQueryCount = 6;
+// The widest environment image the renderer keeps (the backdrop's; the lights' search and the
+// specular map read narrower copies): an 8192-wide image would hold 400 MB.
+inline constexpr uint32_t kEnvironmentKeptWidth = 2048;
 
 // What makes one forward pipeline differ from another.
 struct PipelineKey {
@@ -62,7 +65,7 @@ struct Renderer::Impl {
     RenderSettings settings;
     EyeDrawing resolvedEyeDrawing = EyeDrawing::Multiview;
     std::vector<Light> lights;  // the scene's or the host's (setLights)
-    Environment environment;
+    Environment environment;  // its image at most kEnvironmentKeptWidth wide: all the renderer reads
     // The environment's dominant lights for settings.environmentLights (-1: resolved), and the
     // lights a frame shades: lights, then the extracted ones.
     int extractedCount = -2;
