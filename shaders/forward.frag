@@ -1,10 +1,11 @@
 #version 460
 // forward.frag: the one forward pass. Standard glTF metal-rough materials and (kModelSkin)
 // pre-integrated skin, for every light of the fragment's light list, plus the environment (L2 SH
-// diffuse, prefiltered specular: preskin/ibl.glsl) and emissive; tone-mapped here when the target is an 8-bit display format. Everything skin needs
-// happens in this shader: no extra passes, no extra render targets. Each eye (inEye, from the
-// vertex stage) has its own camera position (view vector, specular); the light grid is shared
-// by all eyes and found by projecting the fragment's world position with the grid's camera.
+// diffuse, prefiltered specular: preskin/ibl.glsl) and emissive; tone-mapped here when the target
+// is an 8-bit display format. Everything skin needs happens in this shader: no extra passes, no
+// extra render targets. Each eye (inEye, from the vertex stage) has its own camera position
+// (view vector, specular); the light grid is shared by all eyes and found by projecting the
+// fragment's world position with the grid's camera.
 // The derivative curvature fallback (preskinCurvatureFromDerivatives) is per eye: screen-space
 // derivatives differ between the eyes, per-vertex and texture curvature do not.
 #extension GL_GOOGLE_include_directive : require
