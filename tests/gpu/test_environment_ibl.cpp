@@ -88,6 +88,17 @@ void pixelRay(const Eye& eye, uint32_t x, uint32_t y, uint32_t width, uint32_t h
     direction = glm::normalize(glm::vec3(farWs) / farWs.w - origin);
 }
 
+// Where pixel (x, y)'s ray meets the sphere of `radius` at the origin: its normal (the
+// tessellated sphere's normals are the exact ones) and the ray's direction; false on a miss.
+bool sphereHit(const Eye& eye, uint32_t x, uint32_t y, uint32_t size, float radius, glm::vec3& n, glm::vec3& d) {
+    glm::vec3 o;
+    pixelRay(eye, x, y, size, size, o, d);
+    const float b = glm::dot(o, d), c = glm::dot(o, o) - radius * radius, disc = b * b - c;
+    if (disc <= 0.0f) return false;
+    n = glm::normalize(o + d * (-b - std::sqrt(disc)));
+    return true;
+}
+
 TEST_F(EnvironmentIbl, ConstantEnvironmentPrefiltersToItselfAtEveryLevel) {
     const glm::vec3 radiance(0.5f, 1.0f, 2.0f);
     EquirectImage image;
@@ -127,12 +138,8 @@ TEST_F(EnvironmentIbl, WhiteFurnaceReflectsTheDirectionalAlbedo) {
         int checked = 0;
         for (uint32_t y = 0; y < size; y += 3)
             for (uint32_t x = 0; x < size; x += 3) {
-                glm::vec3 o, d;
-                pixelRay(view.eyes[0], x, y, size, size, o, d);
-                // Ray-sphere intersection (the tessellated sphere's normals are the exact ones).
-                const float b = glm::dot(o, d), c = glm::dot(o, o) - radius * radius, disc = b * b - c;
-                if (disc <= 0.0f) continue;
-                const glm::vec3 n = glm::normalize(o + d * (-b - std::sqrt(disc)));
+                glm::vec3 n, d;
+                if (!sphereHit(view.eyes[0], x, y, size, radius, n, d)) continue;
                 const float NoV = glm::dot(n, -d);
                 if (NoV < 0.3f) continue;  // the silhouette: facets and the table's steep edge
                 const glm::vec2 ab = env::dfgIntegral(NoV, roughness, 2048, 32);
@@ -234,11 +241,8 @@ TEST_F(EnvironmentIbl, ReflectionTurnsWithTheEnvironment) {
         int checked = 0;
         for (uint32_t y = 0; y < size; y += 2)
             for (uint32_t x = 0; x < size; x += 2) {
-                glm::vec3 o, d;
-                pixelRay(view.eyes[0], x, y, size, size, o, d);
-                const float b = glm::dot(o, d), c = glm::dot(o, o) - radius * radius, disc = b * b - c;
-                if (disc <= 0.0f) continue;
-                const glm::vec3 n = glm::normalize(o + d * (-b - std::sqrt(disc)));
+                glm::vec3 n, d;
+                if (!sphereHit(view.eyes[0], x, y, size, radius, n, d)) continue;
                 const float NoV = glm::dot(n, -d);
                 if (NoV < 0.5f) continue;
                 const glm::vec3 r = glm::reflect(d, n);

@@ -63,24 +63,39 @@ PipelineKey Renderer::Impl::pipelineKey(const GpuMaterial& m, VkFormat format, V
                        skin ? std::bit_cast<std::array<uint32_t, 32>>(m.lutMapping) : std::array<uint32_t, 32>{}};
 }
 
-VkPipeline Renderer::Impl::forwardPipeline(const GpuMaterial& m, VkFormat format, VkFormat depthFormat, uint32_t eyes) {
-    const PipelineKey key = pipelineKey(m, format, depthFormat, eyes);
+VkPipeline Renderer::Impl::pipeline(const PipelineKey& key) {
     auto it = pipelines.find(key);
     if (it != pipelines.end()) return it->second;
-    VkPipeline p = createForwardPipeline(key);
+    VkPipeline p = createPipeline(key);
     pipelines.emplace(key, p);
     return p;
 }
 
-VkPipeline Renderer::Impl::createForwardPipeline(const PipelineKey& key) const {
+VkPipeline Renderer::Impl::createPipeline(const PipelineKey& key) const {
+    return key.model == gpu::kModelBackground ? createBackgroundPipeline(key) : createForwardPipeline(key);
+}
+
+// What every pipeline of the forward pass shares: the target's formats and output mode, the
+// eyes, the samples and the layout.
+vk::GraphicsPipelineDesc Renderer::Impl::forwardPassDesc(const PipelineKey& key) const {
     const VkFormat format = static_cast<VkFormat>(key.format);
     vk::GraphicsPipelineDesc desc;
-    desc.vertexSpirv = shader(key.layered ? "forward_layers.vert" : "forward.vert");
-    desc.fragmentSpirv = shader("forward.frag");
     desc.specialization.values.resize(gpu::kSpecCount);
-    desc.specialization.values[gpu::kSpecMaterialModel] = key.model;
     desc.specialization.values[gpu::kSpecOutputMode] = isDisplayFormat(format) ? gpu::kOutputTonemapped
                                                                                : gpu::kOutputLinear;
+    desc.colorFormats = {format};
+    desc.depthFormat = static_cast<VkFormat>(key.depthFormat);
+    desc.viewMask = key.layered ? 0u : (1u << key.eyes) - 1u;
+    desc.samples = static_cast<VkSampleCountFlagBits>(key.samples);
+    desc.layout = forwardLayout;
+    return desc;
+}
+
+VkPipeline Renderer::Impl::createForwardPipeline(const PipelineKey& key) const {
+    vk::GraphicsPipelineDesc desc = forwardPassDesc(key);
+    desc.vertexSpirv = shader(key.layered ? "forward_layers.vert" : "forward.vert");
+    desc.fragmentSpirv = shader("forward.frag");
+    desc.specialization.values[gpu::kSpecMaterialModel] = key.model;
     desc.specialization.values[gpu::kSpecDebugView] = key.debugView;
     desc.specialization.values[gpu::kSpecAlphaMode] = key.alphaMode;
     desc.specialization.values[gpu::kSpecSkinFeatures] = key.skinMask;
@@ -104,20 +119,15 @@ VkPipeline Renderer::Impl::createForwardPipeline(const PipelineKey& key) const {
     for (uint32_t b = 0; b < gpu::kNormalBasisCount; ++b)
         desc.vertexAttributes.push_back(
             {gpu::kAttributeNormalBasis + b, 1, VK_FORMAT_R32G32B32_SFLOAT, uint32_t(b * sizeof(glm::vec3))});
-    desc.colorFormats = {format};
-    desc.depthFormat = static_cast<VkFormat>(key.depthFormat);
-    desc.viewMask = key.layered ? 0u : (1u << key.eyes) - 1u;
-    desc.samples = static_cast<VkSampleCountFlagBits>(key.samples);
     desc.alphaToCoverage = alphaToCoverage;
     desc.alphaToOne = alphaToCoverage && dev.alphaToOne();
     desc.cullMode = key.doubleSided ? VK_CULL_MODE_NONE : VK_CULL_MODE_BACK_BIT;
     desc.depthWrite = alphaMode != AlphaMode::Blend;
     desc.alphaBlend = alphaMode == AlphaMode::Blend;
-    desc.layout = forwardLayout;
     return vk::createGraphicsPipeline(dev, desc);
 }
 
-VkPipeline Renderer::Impl::backgroundPipeline(VkFormat format, VkFormat depthFormat, uint32_t eyes) {
+PipelineKey Renderer::Impl::backgroundKey(VkFormat format, VkFormat depthFormat, uint32_t eyes) const {
     PipelineKey key{};
     key.model = gpu::kModelBackground;
     key.format = static_cast<uint32_t>(format);
@@ -125,28 +135,15 @@ VkPipeline Renderer::Impl::backgroundPipeline(VkFormat format, VkFormat depthFor
     key.eyes = eyes;
     key.samples = settings.msaaSamples;
     key.layered = eyeDrawing() == EyeDrawing::InstancedLayers ? 1u : 0u;
-    auto it = pipelines.find(key);
-    if (it != pipelines.end()) return it->second;
-    VkPipeline p = createBackgroundPipeline(key);
-    pipelines.emplace(key, p);
-    return p;
+    return key;
 }
 
 VkPipeline Renderer::Impl::createBackgroundPipeline(const PipelineKey& key) const {
-    const VkFormat format = static_cast<VkFormat>(key.format);
-    vk::GraphicsPipelineDesc desc;
+    vk::GraphicsPipelineDesc desc = forwardPassDesc(key);
     desc.vertexSpirv = shader(key.layered ? "background_layers.vert" : "background.vert");
     desc.fragmentSpirv = shader("background.frag");
-    desc.specialization.values.resize(gpu::kSpecCount);
-    desc.specialization.values[gpu::kSpecOutputMode] = isDisplayFormat(format) ? gpu::kOutputTonemapped
-                                                                               : gpu::kOutputLinear;
-    desc.colorFormats = {format};
-    desc.depthFormat = static_cast<VkFormat>(key.depthFormat);
-    desc.viewMask = key.layered ? 0u : (1u << key.eyes) - 1u;
-    desc.samples = static_cast<VkSampleCountFlagBits>(key.samples);
     desc.cullMode = VK_CULL_MODE_NONE;
     desc.depthWrite = false;  // at the far plane: drawn only where the depth is still cleared
-    desc.layout = forwardLayout;
     return vk::createGraphicsPipeline(dev, desc);
 }
 
@@ -259,7 +256,7 @@ void Renderer::Impl::recordForwardPass(VkCommandBuffer cmd, Slot& slot, uint32_t
     // not cover), before the blended ones (which blend over it).
     bool backgroundDrawn = background.mode != BackgroundMode::Environment;
     auto drawBackground = [&] {
-        vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, backgroundPipeline(target.format, depthFormat, eyes));
+        vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, pipeline(backgroundKey(target.format, depthFormat, eyes)));
         bound = VK_NULL_HANDLE;
         vkCmdDraw(cmd, 3, layered ? eyes : 1u, 0, 0);
         backgroundDrawn = true;
@@ -267,7 +264,7 @@ void Renderer::Impl::recordForwardPass(VkCommandBuffer cmd, Slot& slot, uint32_t
     for (const DrawItem* d : order) {
         const GpuMaterial& m = scene->materials[d->material];
         if (!backgroundDrawn && m.alphaMode == AlphaMode::Blend) drawBackground();
-        VkPipeline p = forwardPipeline(m, target.format, depthFormat, eyes);
+        VkPipeline p = pipeline(pipelineKey(m, target.format, depthFormat, eyes));
         if (p != bound) {
             vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, p);
             bound = p;

@@ -245,8 +245,7 @@ void Renderer::Impl::setShaderOverrides(const std::map<std::string, std::vector<
     std::map<PipelineKey, VkPipeline> rebuilt;
     VkPipeline rebuiltShadow = VK_NULL_HANDLE, rebuiltShadowMask = VK_NULL_HANDLE;
     try {
-        for (const auto& [key, p] : pipelines)
-            rebuilt.emplace(key, key.model == gpu::kModelBackground ? createBackgroundPipeline(key) : createForwardPipeline(key));
+        for (const auto& [key, p] : pipelines) rebuilt.emplace(key, createPipeline(key));
         rebuiltShadow = createShadowPipeline(false);
         if (shadowMaskPipeline) rebuiltShadowMask = createShadowPipeline(true);
     } catch (...) {

@@ -11,6 +11,7 @@
 #include "render/GpuLuts.h"
 #include "render/GpuScene.h"
 #include "render/PoseBounds.h"
+#include "vk/Pipeline.h"
 #include "vk/Resources.h"
 
 #include <array>
@@ -164,12 +165,14 @@ struct Renderer::Impl {
 
     void resolveEyeDrawing();
 
-    VkPipeline forwardPipeline(const GpuMaterial& m, VkFormat format, VkFormat depthFormat, uint32_t eyes);
-
+    // The forward pass's pipeline for a key, made when first drawn (kept in `pipelines`).
+    VkPipeline pipeline(const PipelineKey& key);
+    VkPipeline createPipeline(const PipelineKey& key) const;
+    vk::GraphicsPipelineDesc forwardPassDesc(const PipelineKey& key) const;
     VkPipeline createForwardPipeline(const PipelineKey& key) const;
-    // The backdrop's pipeline (background*.vert, background.frag) for a target, eye count, samples
-    // and eye drawing; kept with the forward pipelines under model kModelBackground.
-    VkPipeline backgroundPipeline(VkFormat format, VkFormat depthFormat, uint32_t eyes);
+    // The backdrop's key (background*.vert, background.frag) for a target, eye count, samples and
+    // eye drawing: model kModelBackground.
+    PipelineKey backgroundKey(VkFormat format, VkFormat depthFormat, uint32_t eyes) const;
     VkPipeline createBackgroundPipeline(const PipelineKey& key) const;
 
     VkPipeline createShadowPipeline(bool masked) const;
