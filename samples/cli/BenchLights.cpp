@@ -74,11 +74,7 @@ void BenchRun::lightLoopSection(const std::vector<uint32_t>& counts) {
             bruteHistory.emplace_back(n, row.brute->wallMs());
         }
         if (!o.noPerPixel) {
-            RenderSettings debug = clustered;
-            debug.debugView = DebugView::LightCount;
-            renderer.setSettings(debug);
-            renderer.setLights(lights);
-            const RenderedImage counted = renderer.render(view, o.width, o.height, OutputEncoding::LinearFloat);
+            const RenderedImage counted = lightCountImage(renderer, clustered, view, o.width, o.height, lights);
             row.perPixel = countPerPixel(counted, view.eye(), lights);
             reportValidation(context);
         }

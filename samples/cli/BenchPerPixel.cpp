@@ -27,6 +27,15 @@ bool lightTouches(const Light& l, const glm::dvec3& p) {
 
 }  // namespace
 
+RenderedImage lightCountImage(Renderer& renderer, const RenderSettings& settings, const View& view, uint32_t width,
+                              uint32_t height, const std::vector<Light>& lights) {
+    RenderSettings debug = settings;
+    debug.debugView = DebugView::LightCount;
+    renderer.setSettings(debug);
+    renderer.setLights(lights);
+    return renderer.render(view, width, height, OutputEncoding::LinearFloat);
+}
+
 PerPixel countPerPixel(const RenderedImage& image, const Eye& view, const std::vector<Light>& lights,
                        const ClusterGrid* other) {
     const glm::dmat4 clipFromView(view.clipFromView);

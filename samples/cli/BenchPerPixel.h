@@ -24,6 +24,11 @@ struct PerPixel {
     double otherListedMean = 0.0;   // the list length another grid (countPerPixel's `other`) gives
 };
 
+// The light-count debug view of `view` in linear output with `lights` (the renderer keeps the
+// debug settings and lights afterwards).
+RenderedImage lightCountImage(Renderer& renderer, const RenderSettings& settings, const View& view, uint32_t width,
+                              uint32_t height, const std::vector<Light>& lights);
+
 // `image`: the light-count debug view in linear output (r: lights listed, b: view depth in m).
 // `other`, when given: a second grid over the same lights, whose list length at each pixel's
 // surface point is averaged too.

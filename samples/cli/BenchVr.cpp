@@ -98,11 +98,7 @@ void BenchRun::vrSection() {
         run.combinedBuildMs = median(combined);
         run.perEyeBuildMs = median(perEye);
         if (!o.noPerPixel) {
-            RenderSettings debug = base;
-            debug.debugView = DebugView::LightCount;
-            stereoRenderer.setSettings(debug);
-            stereoRenderer.setLights(lights);
-            const RenderedImage counted = stereoRenderer.render(stereo, o.vrWidth, o.vrHeight, OutputEncoding::LinearFloat);
+            const RenderedImage counted = lightCountImage(stereoRenderer, base, stereo, o.vrWidth, o.vrHeight, lights);
             for (uint32_t e = 0; e < 2; ++e)
                 run.perPixel[e] = countPerPixel(eyeImage(counted, e), stereo.eyes[e], lights, &eyeGrids[e]);
             reportValidation(context);

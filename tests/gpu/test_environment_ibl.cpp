@@ -99,6 +99,17 @@ bool sphereHit(const Eye& eye, uint32_t x, uint32_t y, uint32_t size, float radi
     return true;
 }
 
+// A white metal sphere (F0 = 1: it reflects the environment times A + B) at the origin.
+Scene metalSphere(float radius, float roughness, uint32_t segments) {
+    Primitive sphere = makeSphere(radius, segments, segments / 2);
+    sphere.material = 0;
+    Material metal;
+    metal.baseColorFactor = glm::vec4(1.0f);
+    metal.metallicFactor = 1.0f;
+    metal.roughnessFactor = roughness;
+    return makeScene({{sphere, glm::mat4(1.0f)}}, {metal});
+}
+
 TEST_F(EnvironmentIbl, ConstantEnvironmentPrefiltersToItselfAtEveryLevel) {
     const glm::vec3 radiance(0.5f, 1.0f, 2.0f);
     EquirectImage image;
@@ -123,13 +134,7 @@ TEST_F(EnvironmentIbl, WhiteFurnaceReflectsTheDirectionalAlbedo) {
     const float radius = 0.1f;
     const uint32_t size = 64;
     for (float roughness : {0.1f, 0.4f, 0.7f, 1.0f}) {
-        Primitive sphere = makeSphere(radius, 96, 48);
-        sphere.material = 0;
-        Material white;
-        white.baseColorFactor = glm::vec4(1.0f);
-        white.metallicFactor = 1.0f;
-        white.roughnessFactor = roughness;
-        const Scene scene = makeScene({{sphere, glm::mat4(1.0f)}}, {white});
+        const Scene scene = metalSphere(radius, roughness, 96);
         RenderSettings settings;
         settings.environmentLights = 0;
         Renderer renderer(context(), scene, environment, static_cast<const LutSet*>(nullptr), settings);
@@ -225,13 +230,7 @@ TEST_F(EnvironmentIbl, ReflectionTurnsWithTheEnvironment) {
     // the environment's rotation, times the directional albedo A + B.
     const float radius = 0.1f, roughness = 0.05f;
     const uint32_t size = 64;
-    Primitive sphere = makeSphere(radius, 128, 64);
-    sphere.material = 0;
-    Material metal;
-    metal.baseColorFactor = glm::vec4(1.0f);
-    metal.metallicFactor = 1.0f;
-    metal.roughnessFactor = roughness;
-    const Scene scene = makeScene({{sphere, glm::mat4(1.0f)}}, {metal});
+    const Scene scene = metalSphere(radius, roughness, 128);
     const View view = frontView(0.25f, size, size);
     for (float rotationY : {0.0f, 1.1f, -2.4f}) {
         RenderSettings settings;
