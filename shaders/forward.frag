@@ -43,6 +43,7 @@ layout(set = 1, binding = kBindingProfileWeightTexture) uniform sampler2D profil
 #include "preskin/sh.glsl"
 #include "preskin/skin.glsl"
 #include "preskin/tonemap.glsl"
+#include "shared/cluster_lookup.h"
 
 layout(location = 0) in vec3 inPositionWs;
 layout(location = 1) in vec3 inNormalWs;
@@ -74,12 +75,8 @@ vec3 perturbNormal(vec3 mapValue, float scale, vec3 N, vec4 T) {
 void localLightRange(out uint first, out uint count, out bool indirect) {
     uint directional = frame.lightCounts.y;
     if (kLightLoop == kLightLoopClustered) {
-        // The grid's camera holds every eye (ClusterGrid::froxelAt is the CPU twin of this).
-        vec4 g = frame.clusterFromWorld * vec4(inPositionWs, 1.0);
-        vec2 tile = (g.xy / g.w + 1.0) * frame.clusterScale.xy;
-        float slice = log2(max(g.z, 1e-6)) * frame.clusterScale.z + frame.clusterScale.w;
-        uvec3 c = uvec3(clamp(ivec3(ivec2(tile), int(floor(slice))), ivec3(0), ivec3(frame.clusterDims.xyz) - 1));
-        uint cluster = (c.z * frame.clusterDims.y + c.y) * frame.clusterDims.x + c.x;
+        // The grid's camera holds every eye (shared/cluster_lookup.h, ClusterGrid::froxelAt on the CPU).
+        uint cluster = preskinFroxelIndex(frame.clusterFromWorld, frame.clusterScale, frame.clusterDims, inPositionWs);
         uvec2 range = clusterRanges[cluster];
         first = range.x;
         count = range.y;

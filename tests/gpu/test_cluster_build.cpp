@@ -51,11 +51,14 @@ ClusterGrid buildLists(Context& context, ClusterSettings settings, ClusterBuild 
     lightBuffer.upload(gpuLights.data(), gpuLights.size() * sizeof(gpu::GpuLight));
     ClusterBuilder builder(device);
     settings.build = build;
-    gpu::FrameUniforms frame{};
-    builder.prepare(0, settings, clusterCamera(view, kWidth, kHeight), Bounds{}, gpuLights, firstLocal, lightBuffer, frame);
+    const ClusterBuilder::FrameGrid frame = builder.prepare(0, settings, clusterCamera(view, kWidth, kHeight), Bounds{},
+                                                           std::span(lights).subspan(firstLocal), firstLocal, lightBuffer);
     device.submitAndWait([&](VkCommandBuffer cmd) { builder.record(cmd, 0); });
     EXPECT_EQ(builder.usesGpu(0), build == ClusterBuild::Gpu);
-    return builder.readBack(0);
+    ClusterGrid grid = builder.readBack(0);
+    EXPECT_EQ(glm::uvec3(frame.dims), grid.shape.dims);
+    EXPECT_EQ(frame.lookupScale, grid.shape.lookupScale());
+    return grid;
 }
 
 std::vector<Light> randomLights(uint32_t count, uint32_t seed) { return preskin::test::randomLights(count, seed, 3.8f); }

@@ -103,6 +103,12 @@ struct ClusterGridShape {
         if (z >= dims.z) return std::numeric_limits<float>::infinity();
         return std::exp2((float(z) - sliceBias) / sliceScale);
     }
+    // The froxel lookup's scale (shared/cluster_lookup.h): x, y tiles per unit of NDC, z, w the
+    // slices' log2 scale and bias.
+    glm::vec4 lookupScale() const {
+        const glm::vec2 tilesPerNdc = 0.5f * glm::vec2(extentPx) / float(tileSizePx);
+        return glm::vec4(tilesPerNdc, sliceScale, sliceBias);
+    }
     // The slice of a view depth, exactly as the forward shader computes it.
     uint32_t sliceOf(float viewDepthM) const {
         const float s = std::floor(std::log2(std::max(viewDepthM, 1e-6f)) * sliceScale + sliceBias);

@@ -37,6 +37,10 @@ struct ClusterLight {
     uint32_t index = 0;  // the value written into the lists
 };
 
+// A point or spot light as the grid bounds it, `index` the value its lists hold (LightRecord.cpp,
+// beside the GPU record: the one place a scene light is converted).
+ClusterLight clusterLight(const Light& light, uint32_t index);
+
 // A light in view space with its bounding sphere and the box of froxels it may touch.
 struct ClusterLightBounds {
     glm::vec3 centerVs{0.0f};

@@ -32,18 +32,6 @@ void ensureBuffer(const vk::Device& device, vk::Buffer& buffer, VkDeviceSize byt
     buffer = vk::Buffer(device, bytes + bytes / 2, usage, hostVisible);
 }
 
-ClusterLight fromGpu(const gpu::GpuLight& g, uint32_t index) {
-    ClusterLight c;
-    c.positionWs = glm::vec3(g.positionRange);
-    c.rangeM = g.positionRange.w;
-    c.directionWs = glm::vec3(g.directionType);
-    c.spot = static_cast<uint32_t>(g.directionType.w) == gpu::kLightSpot;
-    // The shader's cone attenuation saturate(cd * scale + offset) is zero from cd = -offset / scale.
-    c.cosOuter = c.spot ? -g.spotScaleOffset.y / g.spotScaleOffset.x : -1.0f;
-    c.index = index;
-    return c;
-}
-
 }  // namespace
 
 ClusterBuilder::ClusterBuilder(const vk::Device& device) : device_(device) {}
@@ -90,25 +78,25 @@ void ClusterBuilder::createPipelines() {
     assignPipeline_ = vk::createComputePipeline(device_, code, pipelineLayout_, spec);
 }
 
-void ClusterBuilder::prepare(uint32_t slot, const ClusterSettings& settings, const ClusterCamera& camera,
-                             const Bounds& sceneBounds, std::span<const gpu::GpuLight> lights, uint32_t firstLocal,
-                             const vk::Buffer& lightBuffer, gpu::FrameUniforms& frame) {
+ClusterBuilder::FrameGrid ClusterBuilder::prepare(uint32_t slot, const ClusterSettings& settings,
+                                                  const ClusterCamera& camera, const Bounds& sceneBounds,
+                                                  std::span<const Light> localLights, uint32_t firstLocal,
+                                                  const vk::Buffer& lightBuffer) {
     const auto start = std::chrono::steady_clock::now();
     Slot& s = slots_[slot];
     const Eye& view = camera.eye;
     const ClusterGeometry geometry = clusterGeometry(clusterGridShape(settings, camera, sceneBounds), view);
+    const uint32_t localCount = static_cast<uint32_t>(localLights.size());
     s.camera = camera;
-    const uint32_t localCount = static_cast<uint32_t>(lights.size()) - std::min<uint32_t>(firstLocal, uint32_t(lights.size()));
     s.shape = geometry.shape;
     s.localLights = localCount;
     s.gpu = useGpu(settings);
     s.pending = false;
     if (s.gpu) {
         prepareGpu(s, settings, geometry, view, firstLocal, localCount, lightBuffer);
-        frame.lightCounts.z = s.indexCapacity;
     } else {
         local_.clear();
-        for (uint32_t i = firstLocal; i < lights.size(); ++i) local_.push_back(fromGpu(lights[i], i));
+        for (uint32_t i = 0; i < localCount; ++i) local_.push_back(clusterLight(localLights[i], firstLocal + i));
         assigner_.build(settings, geometry, view.viewFromWorld, local_, cpuGrid_);
         ensureBuffer(device_, s.cpuRanges, cpuGrid_.ranges.size() * sizeof(glm::uvec2), kStorage, true);
         ensureBuffer(device_, s.cpuIndices, cpuGrid_.indices.size() * sizeof(uint32_t), kStorage, true);
@@ -116,14 +104,14 @@ void ClusterBuilder::prepare(uint32_t slot, const ClusterSettings& settings, con
         s.cpuIndices.upload(cpuGrid_.indices.data(), cpuGrid_.indices.size() * sizeof(uint32_t));
         s.overflows = cpuGrid_.overflowedClusters;
         s.indexCapacity = static_cast<uint32_t>(cpuGrid_.indices.size());
-        frame.lightCounts.z = s.indexCapacity;
     }
-    const ClusterGridShape& shape = geometry.shape;
-    const glm::vec2 tilesPerNdc = 0.5f * glm::vec2(shape.extentPx) / float(shape.tileSizePx);
-    frame.clusterFromWorld = camera.clusterFromWorld();
-    frame.clusterScale = glm::vec4(tilesPerNdc, shape.sliceScale, shape.sliceBias);
-    frame.clusterDims = glm::uvec4(shape.dims, std::max<uint32_t>(settings.maxLightsPerCluster, 1));
+    FrameGrid grid;
+    grid.clusterFromWorld = camera.clusterFromWorld();
+    grid.lookupScale = geometry.shape.lookupScale();
+    grid.dims = glm::uvec4(geometry.shape.dims, std::max<uint32_t>(settings.maxLightsPerCluster, 1));
+    grid.indexCapacity = s.indexCapacity;
     s.buildMs = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+    return grid;
 }
 
 void ClusterBuilder::prepareGpu(Slot& s, const ClusterSettings& settings, const ClusterGeometry& g, const Eye& view,

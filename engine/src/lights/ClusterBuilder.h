@@ -9,7 +9,6 @@
 
 #include "lights/ClusterAssign.h"
 #include "lights/ClusterGeometry.h"
-#include "shared/gpu_types.h"
 #include "vk/Resources.h"
 
 #include <array>
@@ -27,13 +26,22 @@ public:
     ClusterBuilder(const ClusterBuilder&) = delete;
     ClusterBuilder& operator=(const ClusterBuilder&) = delete;
 
+    // What the forward pass needs to read the lists of one prepare(): the froxel lookup's
+    // parameters (shared/cluster_lookup.h) and the index list's capacity.
+    struct FrameGrid {
+        glm::mat4 clusterFromWorld{1.0f};
+        glm::vec4 lookupScale{1.0f};
+        glm::uvec4 dims{1u};  // xyz froxels, w the per-froxel cap
+        uint32_t indexCapacity = 0;
+    };
+
     // This frame's lists for `slot`, for the cluster camera of the frame's view: the CPU build
     // runs (and uploads) here; the compute build's inputs are written here and its passes
-    // recorded by record(). `lights` is the frame's light array (directional ones first,
-    // [firstLocal, size) local), `lightBuffer` its GPU copy. Fills the cluster fields of `frame`.
-    void prepare(uint32_t slot, const ClusterSettings& settings, const ClusterCamera& camera,
-                 const Bounds& sceneBounds, std::span<const gpu::GpuLight> lights, uint32_t firstLocal,
-                 const vk::Buffer& lightBuffer, gpu::FrameUniforms& frame);
+    // recorded by record(). `localLights` are the frame's point and spot lights, which the light
+    // array the shaders read (`lightBuffer`) holds from index `firstLocal` on.
+    FrameGrid prepare(uint32_t slot, const ClusterSettings& settings, const ClusterCamera& camera,
+                      const Bounds& sceneBounds, std::span<const Light> localLights, uint32_t firstLocal,
+                      const vk::Buffer& lightBuffer);
     // Records the compute build of the last prepare() of this slot (nothing for a CPU build),
     // ending with a barrier that makes the lists visible to fragment shaders.
     void record(VkCommandBuffer cmd, uint32_t slot);

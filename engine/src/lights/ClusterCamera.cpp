@@ -4,7 +4,7 @@
 
 #include <preskin/Error.h>
 
-#include "render/Projection.h"
+#include "view/Projection.h"
 
 #include <fmt/core.h>
 

@@ -1,15 +1,25 @@
-// Scene lights as GPU light records; see <preskin/LightRecord.h>.
+// Scene lights as GPU light records (<preskin/LightRecord.h>) and as the light grid bounds them
+// (lights/ClusterAssign.h).
 #include <preskin/LightRecord.h>
+
+#include "lights/ClusterAssign.h"
 
 #include <algorithm>
 #include <cmath>
 
 namespace preskin {
 
+namespace {
+
+glm::vec3 unitDirection(const Light& light) {
+    return glm::length(light.directionWs) > 0.0f ? glm::normalize(light.directionWs) : glm::vec3(0.0f, 0.0f, -1.0f);
+}
+
+}  // namespace
+
 gpu::GpuLight toGpuLight(const Light& light, bool shadowed) {
     gpu::GpuLight g{};
-    const glm::vec3 dir = glm::length(light.directionWs) > 0.0f ? glm::normalize(light.directionWs)
-                                                                 : glm::vec3(0.0f, 0.0f, -1.0f);
+    const glm::vec3 dir = unitDirection(light);
     uint32_t type = gpu::kLightDirectional;
     if (light.type == LightType::Point) type = gpu::kLightPoint;
     if (light.type == LightType::Spot) type = gpu::kLightSpot;
@@ -21,6 +31,17 @@ gpu::GpuLight toGpuLight(const Light& light, bool shadowed) {
     const float scale = 1.0f / std::max(1e-3f, cosInner - cosOuter);
     g.spotScaleOffset = glm::vec4(scale, -cosOuter * scale, 0.0f, 0.0f);
     return g;
+}
+
+ClusterLight clusterLight(const Light& light, uint32_t index) {
+    ClusterLight c;
+    c.positionWs = light.positionWs;
+    c.rangeM = std::max(light.range, 0.0f);
+    c.directionWs = unitDirection(light);
+    c.spot = light.type == LightType::Spot;
+    c.cosOuter = c.spot ? std::cos(light.outerConeAngle) : -1.0f;
+    c.index = index;
+    return c;
 }
 
 int shadowLightIndex(const std::vector<Light>& lights) {

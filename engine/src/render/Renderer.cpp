@@ -288,22 +288,19 @@ bool Renderer::Impl::prepareFrame(Slot& slot, uint32_t slotIndex, const View& vi
     }
     deformer->prepare(slotIndex, pose);
     const int shadowLight = settings.shadows ? shadowLightIndex(frameLights) : -1;
-    std::vector<gpu::GpuLight> gpuLights;
-    gpuLights.reserve(frameLights.size());
     // Directional lights first, the shadow light (if any) at index 0: forward.frag shades it on
-    // its own and loops over the rest.
-    uint32_t directional = 0;
-    if (shadowLight >= 0) {
-        gpuLights.push_back(toGpuLight(frameLights[size_t(shadowLight)], true));
-        ++directional;
-    }
+    // its own and loops over the rest; then the point and spot lights the grid lists.
+    std::vector<Light>& ordered = orderedLights;
+    ordered.clear();
+    if (shadowLight >= 0) ordered.push_back(frameLights[size_t(shadowLight)]);
     for (size_t i = 0; i < frameLights.size(); ++i)
-        if (frameLights[i].type == LightType::Directional && int(i) != shadowLight) {
-            gpuLights.push_back(toGpuLight(frameLights[i], false));
-            ++directional;
-        }
+        if (frameLights[i].type == LightType::Directional && int(i) != shadowLight) ordered.push_back(frameLights[i]);
+    const uint32_t directional = static_cast<uint32_t>(ordered.size());
     for (const Light& l : frameLights)
-        if (l.type != LightType::Directional) gpuLights.push_back(toGpuLight(l, false));
+        if (l.type != LightType::Directional) ordered.push_back(l);
+    std::vector<gpu::GpuLight> gpuLights;
+    gpuLights.reserve(ordered.size());
+    for (size_t i = 0; i < ordered.size(); ++i) gpuLights.push_back(toGpuLight(ordered[i], i == 0 && shadowLight >= 0));
     const VkDeviceSize bytes = std::max<size_t>(gpuLights.size(), 1) * sizeof(gpu::GpuLight);
     if (bytes > slot.lights.size())
         slot.lights = vk::Buffer(dev, bytes * 2, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, true);
@@ -348,9 +345,15 @@ bool Renderer::Impl::prepareFrame(Slot& slot, uint32_t slotIndex, const View& vi
     u.lightCounts = glm::uvec4(slot.lightCount, directional, 0u, 0u);
     u.environment = glm::vec4(std::cos(environment.rotationY()), std::sin(environment.rotationY()),
                               environmentMaps->maxLevel(), 0.0f);
-    if (settings.lightLoop == LightLoop::Clustered)
-        clusters->prepare(slotIndex, settings.clusters, clusterCamera(view, extent.width, extent.height), bounds,
-                          gpuLights, directional, slot.lights, u);
+    if (settings.lightLoop == LightLoop::Clustered) {
+        const ClusterBuilder::FrameGrid grid =
+            clusters->prepare(slotIndex, settings.clusters, clusterCamera(view, extent.width, extent.height), bounds,
+                              std::span(ordered).subspan(directional), directional, slot.lights);
+        u.clusterFromWorld = grid.clusterFromWorld;
+        u.clusterScale = grid.lookupScale;
+        u.clusterDims = grid.dims;
+        u.lightCounts.z = grid.indexCapacity;
+    }
     slot.frameUniforms.upload(&u, sizeof(u));
     return shadowLight >= 0;
 }
