@@ -1,8 +1,9 @@
 # `cmake --install` in GNUInstallDirs places:
 #   lib/libpreskin.so*                      the library (public API only, hidden internals)
 #   include/preskin/*.h                      its public headers
-#   lib/libpreskin_reference.so*, include/preskin/DiffusionReference.h
+#   lib/libpreskin_reference.so*, include/preskin/DiffusionReference.h, Deformation.h
 #                                            component `reference`: the diffusion reference (Embree)
+#                                            and the CPU deformation
 #   share/preskin/shaders/                   the GLSL include root: preskin/*.glsl (the host library),
 #                                            shared/*.h (structs and constants read by C++ and GLSL),
 #                                            and the renderer's own entry points (forward.frag, ...)

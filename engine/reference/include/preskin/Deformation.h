@@ -1,6 +1,7 @@
 // The CPU deformation of a primitive in a pose (<preskin/Animation.h>): morph targets, then linear
 // blend skinning, as the renderer's deformation compute pass does it on the GPU. The reference for
-// that pass's tests, and for hosts that need deformed geometry on the CPU (picking, physics).
+// that pass's tests, and for hosts that need deformed geometry on the CPU (picking, physics); in
+// libpreskin_reference (preskin::reference) with the diffusion reference.
 #pragma once
 
 #include <preskin/Animation.h>
