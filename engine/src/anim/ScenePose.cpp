@@ -5,6 +5,7 @@
 #include <preskin/Error.h>
 #include <preskin/Scene.h>
 
+#include "anim/NodeHierarchy.h"
 #include "anim/Printable.h"
 
 #include <algorithm>
@@ -31,34 +32,19 @@ std::string nodeName(const Scene& scene, size_t i) {
     return "node " + std::to_string(i) + (scene.nodes[i].name.empty() ? "" : " '" + anim::printable(scene.nodes[i].name) + "'");
 }
 
-// worldFromNode of every node: parents first, each chain followed up to its root once.
+// worldFromNode of every node (the hierarchy's one walk, anim/NodeHierarchy.h).
 std::vector<glm::mat4> worldTransforms(const Scene& scene, const NodePose& pose) {
-    const size_t count = scene.nodes.size();
-    std::vector<glm::mat4> world(count, glm::mat4(1.0f));
-    std::vector<uint8_t> done(count, 0);
-    std::vector<size_t> chain;
-    for (size_t start = 0; start < count; ++start) {
-        chain.clear();
-        size_t n = start;
-        while (!done[n]) {
-            chain.push_back(n);
-            if (chain.size() > count) throw Error("node pose: " + nodeName(scene, start) + " is part of a cycle of parents");
-            const int parent = scene.nodes[n].parent;
-            if (parent < 0) break;
-            if (static_cast<size_t>(parent) >= count) {
-                throw Error("node pose: " + nodeName(scene, n) + " has parent " + std::to_string(parent) +
-                            ", out of range of " + std::to_string(count) + " nodes");
-            }
-            n = static_cast<size_t>(parent);
-        }
-        for (auto it = chain.rbegin(); it != chain.rend(); ++it) {
-            const Node& node = scene.nodes[*it];
-            const glm::mat4 local = node.matrix ? *node.matrix : pose.transforms[*it].matrix();
-            world[*it] = node.parent < 0 ? local : world[static_cast<size_t>(node.parent)] * local;
-            done[*it] = 1;
-        }
+    if (const auto problem = anim::hierarchyProblem(scene.nodes)) {
+        const Node& node = scene.nodes[problem->node];
+        if (problem->kind == anim::HierarchyProblem::Kind::Cycle)
+            throw Error("node pose: " + nodeName(scene, problem->node) + " is part of a cycle of parents");
+        throw Error("node pose: " + nodeName(scene, problem->node) + " has parent " + std::to_string(node.parent) +
+                    ", out of range of " + std::to_string(scene.nodes.size()) + " nodes");
     }
-    return world;
+    std::vector<glm::mat4> local(scene.nodes.size());
+    for (size_t i = 0; i < local.size(); ++i)
+        local[i] = scene.nodes[i].matrix ? *scene.nodes[i].matrix : pose.transforms[i].matrix();
+    return anim::worldTransforms(scene.nodes, local);
 }
 
 size_t targetCount(const Mesh& mesh) {

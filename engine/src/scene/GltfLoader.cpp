@@ -1,45 +1,35 @@
 // glTF 2.0 loading: file and container checks, tinygltf with confined file access and an
 // OpenImageIO image callback, then meshes, nodes, lights and cameras (see GltfLoader.h).
 #include "scene/GltfLoader.h"
+#include "anim/NodeHierarchy.h"
 #include "io/FolderConfinement.h"
 #include "io/InputFile.h"
 #include "io/JsonDocument.h"
-#include "scene/GltfAccessors.h"
 #include "scene/GltfAnimations.h"
 #include "scene/GltfContext.h"
 #include "scene/GltfFiles.h"
 #include "scene/GltfMaterials.h"
-#include "scene/GltfMorphTargets.h"
+#include "scene/GltfMeshes.h"
 #include "scene/GltfNodes.h"
 #include "scene/GltfPrepass.h"
 #include "scene/GltfSkins.h"
 #include "scene/ImageDecoder.h"
-#include "scene/TangentFrames.h"
 
-#include <preskin/Curvature.h>
 #include <preskin/Error.h>
 #include <preskin/Limits.h>
 
 #include <glm/gtc/quaternion.hpp>
-#include <glm/gtc/type_ptr.hpp>
 
 #include <algorithm>
 #include <cctype>
 #include <cmath>
-#include <cstring>
-#include <map>
 #include <numbers>
 #include <optional>
-#include <set>
 #include <sstream>
-#include <tuple>
 
 namespace preskin::gltf {
 
 namespace fs = std::filesystem;
-using scene::generateTangents;
-using scene::makeFlatNormals;
-using scene::orthonormalizeTangents;
 
 namespace {
 
@@ -133,202 +123,6 @@ bool loadImage(tinygltf::Image* image, const int index, std::string* err, std::s
         state.error = where + ": " + e.what();
         if (err) *err += *state.error;
         return false;
-    }
-}
-
-// ---- meshes -------------------------------------------------------------------------------
-
-std::vector<uint32_t> toTriangleList(const LoadContext& ctx, const std::vector<uint32_t>& indices, int mode,
-                                     bool indexed, const std::string& where) {
-    std::vector<uint32_t> list;
-    const size_t n = indices.size();
-    if (mode == TINYGLTF_MODE_TRIANGLES) {
-        if (n % 3 != 0) {  // the glTF validator's warning; the trailing indices make no triangle
-            ctx.warn(where, std::string(indexed ? "index" : "vertex") + " count " + std::to_string(n) +
-                                " is not a multiple of 3 for a triangle list; the last " + std::to_string(n % 3) +
-                                " ignored");
-            return std::vector<uint32_t>(indices.begin(), indices.end() - std::ptrdiff_t(n % 3));
-        }
-        return indices;
-    }
-    if (n < 3) return list;
-    list.reserve((n - 2) * 3);
-    for (size_t i = 0; i + 2 < n; ++i) {
-        if (mode == TINYGLTF_MODE_TRIANGLE_STRIP) {  // p_i = {v_i, v_{i+(1+i%2)}, v_{i+(2-i%2)}}
-            list.insert(list.end(), {indices[i], indices[i + 1 + i % 2], indices[i + 2 - i % 2]});
-        } else {  // fan: p_i = {v_{i+1}, v_{i+2}, v_0}
-            list.insert(list.end(), {indices[i + 1], indices[i + 2], indices[0]});
-        }
-    }
-    return list;
-}
-
-size_t repairNormals(Primitive& primitive) {
-    std::vector<size_t> broken;
-    for (size_t i = 0; i < primitive.vertices.size(); ++i) {
-        glm::vec3& n = primitive.vertices[i].normalOs;
-        const float len = glm::length(n);
-        if (len > 1e-12f) n /= len;
-        else broken.push_back(i);
-    }
-    if (broken.empty()) return 0;
-    std::vector<glm::vec3> faceSum(primitive.vertices.size(), glm::vec3(0.0f));
-    for (size_t t = 0; t + 2 < primitive.indices.size(); t += 3) {
-        const uint32_t a = primitive.indices[t], b = primitive.indices[t + 1], c = primitive.indices[t + 2];
-        const glm::vec3 areaNormal = glm::cross(primitive.vertices[b].positionOs - primitive.vertices[a].positionOs,
-                                                primitive.vertices[c].positionOs - primitive.vertices[a].positionOs);
-        faceSum[a] += areaNormal;
-        faceSum[b] += areaNormal;
-        faceSum[c] += areaNormal;
-    }
-    for (size_t i : broken) {
-        const float len = glm::length(faceSum[i]);
-        primitive.vertices[i].normalOs = len > 0.0f ? faceSum[i] / len : glm::vec3(0.0f, 0.0f, 1.0f);
-    }
-    return broken.size();
-}
-
-void convertMeshes(const LoadContext& ctx) {
-    const tinygltf::Model& model = *ctx.model;
-    uint64_t totalVertices = 0;
-    uint64_t totalIndices = 0;
-    for (size_t m = 0; m < model.meshes.size(); ++m) {
-        const tinygltf::Mesh& in = model.meshes[m];
-        Mesh mesh;
-        mesh.name = in.name.empty() ? indexed("meshes", m) : in.name;
-        // A primitive that repeats an earlier one of the mesh (same accessors, material and mode)
-        // draws the same triangles again: drawn once (a file of 100,000 copies would otherwise
-        // multiply the frame's work).
-        using PrimitiveKey = std::tuple<std::map<std::string, int>, int, int, int, std::vector<std::map<std::string, int>>>;
-        std::set<PrimitiveKey> seen;
-        size_t repeated = 0;
-        for (size_t p = 0; p < in.primitives.size(); ++p) {
-            const tinygltf::Primitive& prim = in.primitives[p];
-            const std::string where = indexed("meshes", m) + indexed(".primitives", p);
-            if (!seen.emplace(prim.attributes, prim.indices, prim.material, prim.mode, prim.targets).second) {
-                ++repeated;
-                continue;
-            }
-            if (std::find(ctx.skippedPrimitives.begin(), ctx.skippedPrimitives.end(), std::pair{m, p}) !=
-                ctx.skippedPrimitives.end())
-                continue;  // warned by the prepass
-            const int mode = prim.mode == -1 ? TINYGLTF_MODE_TRIANGLES : prim.mode;
-            if (mode >= TINYGLTF_MODE_POINTS && mode <= TINYGLTF_MODE_LINE_STRIP) {
-                ctx.warn(where + ".mode", std::to_string(mode) + " (points or lines) is not drawn; primitive skipped");
-                continue;
-            }
-            if (mode != TINYGLTF_MODE_TRIANGLES && mode != TINYGLTF_MODE_TRIANGLE_STRIP &&
-                mode != TINYGLTF_MODE_TRIANGLE_FAN) {
-                ctx.fail(where + ".mode", std::to_string(mode) + " is not a glTF primitive mode");
-            }
-            if (prim.material < -1 || prim.material >= static_cast<int>(model.materials.size())) {
-                ctx.fail(where + ".material", std::to_string(prim.material) + " is out of range: the file has " +
-                                                  std::to_string(model.materials.size()) + " materials");
-            }
-            auto attribute = [&](const char* name) {
-                auto it = prim.attributes.find(name);
-                return it == prim.attributes.end() ? -1 : it->second;
-            };
-            const int positionIndex = attribute("POSITION");
-            if (positionIndex < 0) ctx.fail(where + ".attributes", "no POSITION");
-            // Counts first: every total is checked before the memory it needs is allocated.
-            const size_t vertexCount = accessorCount(ctx, positionIndex, where + ".attributes.POSITION");
-            totalVertices += vertexCount;
-            if (totalVertices > limits::kMaxSceneVertices) {
-                ctx.fail(where + ".attributes.POSITION",
-                         indexed("accessors", static_cast<size_t>(positionIndex)) + " brings the scene to " +
-                             std::to_string(totalVertices) + " vertices, over the limit of " +
-                             std::to_string(limits::kMaxSceneVertices));
-            }
-            for (const char* name : {"NORMAL", "TEXCOORD_0", "TANGENT"}) {
-                const int index = attribute(name);
-                if (index < 0) continue;
-                const std::string at = where + ".attributes." + name;
-                if (const size_t count = accessorCount(ctx, index, at); count != vertexCount) {
-                    ctx.fail(at, "accessors[" + std::to_string(index) + "] has " + std::to_string(count) +
-                                     " elements, POSITION has " + std::to_string(vertexCount));
-                }
-            }
-            const size_t indexCount = prim.indices >= 0 ? accessorCount(ctx, prim.indices, where + ".indices", AccessorUse::Indices) : vertexCount;
-            const size_t listCount = mode == TINYGLTF_MODE_TRIANGLES ? indexCount : indexCount < 3 ? 0 : (indexCount - 2) * 3;
-            if (totalIndices + listCount > limits::kMaxSceneIndices) {
-                ctx.fail(prim.indices >= 0 ? where + ".indices" : where,
-                         std::to_string(listCount) + " triangle-list indices bring the scene over the limit of " +
-                             std::to_string(limits::kMaxSceneIndices));
-            }
-            const FloatAccessor positions = readFloatAccessor(ctx, positionIndex, {3}, where + ".attributes.POSITION");
-
-            Primitive out;
-            out.material = prim.material;
-            out.vertices.resize(vertexCount);
-            for (size_t i = 0; i < vertexCount; ++i) {
-                out.vertices[i].positionOs = glm::make_vec3(&positions.values[i * 3]);
-            }
-            auto readMatching = [&](const char* name, int components) -> std::optional<FloatAccessor> {
-                const int index = attribute(name);
-                if (index < 0) return std::nullopt;
-                const std::string at = where + ".attributes." + name;
-                FloatAccessor a = readFloatAccessor(ctx, index, {components}, at);
-                if (a.count != vertexCount) {
-                    ctx.fail(at, "accessors[" + std::to_string(index) + "] has " + std::to_string(a.count) +
-                                     " elements, POSITION has " + std::to_string(vertexCount));
-                }
-                return a;
-            };
-            const auto normals = readMatching("NORMAL", 3);
-            const auto uvs = readMatching("TEXCOORD_0", 2);
-            const auto tangents = readMatching("TANGENT", 4);
-            for (size_t i = 0; i < vertexCount; ++i) {
-                Vertex& v = out.vertices[i];
-                if (normals) v.normalOs = glm::make_vec3(&normals->values[i * 3]);
-                if (uvs) v.uv0 = glm::make_vec2(&uvs->values[i * 2]);
-                if (tangents) v.tangentOs = glm::make_vec4(&tangents->values[i * 4]);
-            }
-            readMorphTargets(ctx, prim, where, vertexCount, out);
-            readJointInfluences(ctx, m, prim, where, vertexCount, out);
-
-            std::vector<uint32_t> indices;
-            if (prim.indices >= 0) {
-
-                indices = readIndexAccessor(ctx, prim.indices, vertexCount, where + ".indices");
-            } else {
-                indices.resize(vertexCount);
-                for (size_t i = 0; i < vertexCount; ++i) indices[i] = static_cast<uint32_t>(i);
-            }
-            out.indices = toTriangleList(ctx, indices, mode, prim.indices >= 0, prim.indices >= 0 ? where + ".indices" : where);
-            totalIndices += out.indices.size();
-            if (out.indices.empty()) {
-                ctx.warn(where, "no triangles; primitive skipped");
-                continue;
-            }
-
-            if (!normals) {
-                makeFlatNormals(out);
-            } else if (const size_t fixed = repairNormals(out); fixed > 0) {
-                ctx.warn(where + ".attributes.NORMAL", std::to_string(fixed) +
-                                                           " zero-length normals replaced by the mean face normal");
-            }
-            if (tangents) {
-                if (const size_t fixed = orthonormalizeTangents(out); fixed > 0) {
-                    ctx.warn(where + ".attributes.TANGENT",
-                             std::to_string(fixed) + " degenerate tangents replaced by a perpendicular to the normal");
-                }
-            } else {
-                const size_t fallbacks = generateTangents(out);
-                if (fallbacks > 0 && uvs) {
-                    ctx.warn(where + ".attributes.TEXCOORD_0", std::to_string(fallbacks) +
-                                                                  " vertices have no usable UV direction; their tangent is arbitrary");
-                }
-            }
-            for (const Vertex& v : out.vertices) out.boundsOs.extend(v.positionOs);
-            mesh.primitives.push_back(std::move(out));
-        }
-        if (repeated > 0)
-            ctx.warn(indexed("meshes", m) + ".primitives", std::to_string(repeated) +
-                                                               " primitives repeat an earlier one (same accessors, material and mode); drawn once");
-        convertMorphWeights(ctx, m, mesh);
-        updateMeshCurvature(mesh);
-        ctx.scene->meshes.push_back(std::move(mesh));
     }
 }
 
@@ -489,43 +283,9 @@ std::optional<Camera> convertCamera(const LoadContext& ctx, int cameraIndex, con
 void convertNodes(const LoadContext& ctx) {
     const tinygltf::Model& model = *ctx.model;
     const size_t nodeCount = model.nodes.size();
-    // The node graph must be a forest (glTF 2.0, "Nodes and Hierarchy"): one parent per node and
-    // no cycles, whether or not the file has scenes.
-    std::vector<int> parent(nodeCount, -1);
-    for (size_t i = 0; i < nodeCount; ++i) {
-        const auto& children = model.nodes[i].children;
-        for (size_t k = 0; k < children.size(); ++k) {
-            if (children[k] < 0 || static_cast<size_t>(children[k]) >= nodeCount) {
-                ctx.fail(indexed("nodes", i) + indexed(".children", k),
-                         std::to_string(children[k]) + " is out of range: the file has " + std::to_string(nodeCount) + " nodes");
-            }
-            int& p = parent[static_cast<size_t>(children[k])];
-            if (p >= 0) {
-                ctx.fail(indexed("nodes", i) + indexed(".children", k),
-                         "nodes[" + std::to_string(children[k]) + "] is already a child of nodes[" + std::to_string(p) +
-                             "] (a node has at most one parent)");
-            }
-            p = static_cast<int>(i);
-        }
-    }
-    {
-        // Follow each node's parents up to a root; meeting the current path again is a cycle.
-        std::vector<uint8_t> state(nodeCount, 0);  // 0 unseen, 1 on the current path, 2 leads to a root
-        std::vector<size_t> path;
-        for (size_t start = 0; start < nodeCount; ++start) {
-            size_t n = start;
-            while (state[n] == 0) {
-                state[n] = 1;
-                path.push_back(n);
-                if (parent[n] < 0) break;
-                n = static_cast<size_t>(parent[n]);
-            }
-            if (state[n] == 1 && parent[n] >= 0) ctx.fail(indexed("nodes", n), "is part of a cycle of children");
-            for (size_t visited : path) state[visited] = 2;
-            path.clear();
-        }
-    }
+    const std::vector<Node>& nodes = ctx.scene->nodes;  // a forest (convertNodeHierarchy)
 
+    // The roots drawn: the default scene's (scene 0 without one), or every root without scenes.
     std::vector<int> roots;
     if (model.defaultScene >= 0 || !model.scenes.empty()) {
         const int sceneIndex = model.defaultScene >= 0 ? model.defaultScene : 0;
@@ -533,23 +293,32 @@ void convertNodes(const LoadContext& ctx) {
             ctx.fail("scene", std::to_string(sceneIndex) + " is out of range: the file has " +
                                   std::to_string(model.scenes.size()) + " scenes");
         }
-        const auto& nodes = model.scenes[static_cast<size_t>(sceneIndex)].nodes;
-        for (size_t k = 0; k < nodes.size(); ++k) {
-            if (nodes[k] < 0 || static_cast<size_t>(nodes[k]) >= nodeCount) {
-                ctx.fail(indexed("scenes", static_cast<size_t>(sceneIndex)) + indexed(".nodes", k),
-                         std::to_string(nodes[k]) + " is out of range: the file has " + std::to_string(nodeCount) + " nodes");
+        const auto& sceneNodes = model.scenes[static_cast<size_t>(sceneIndex)].nodes;
+        std::vector<uint8_t> listed(nodeCount, 0);
+        for (size_t k = 0; k < sceneNodes.size(); ++k) {
+            const std::string at = indexed("scenes", static_cast<size_t>(sceneIndex)) + indexed(".nodes", k);
+            if (sceneNodes[k] < 0 || static_cast<size_t>(sceneNodes[k]) >= nodeCount) {
+                ctx.fail(at, std::to_string(sceneNodes[k]) + " is out of range: the file has " + std::to_string(nodeCount) +
+                                 " nodes");
             }
-            if (const int p = parent[static_cast<size_t>(nodes[k])]; p >= 0) {
-                ctx.fail(indexed("scenes", static_cast<size_t>(sceneIndex)) + indexed(".nodes", k),
-                         "nodes[" + std::to_string(nodes[k]) + "] is not a root node: it is a child of nodes[" +
-                             std::to_string(p) + "]");
+            const auto n = static_cast<size_t>(sceneNodes[k]);
+            if (const int p = nodes[n].parent; p >= 0) {
+                ctx.fail(at, "nodes[" + std::to_string(n) + "] is not a root node: it is a child of nodes[" +
+                                 std::to_string(p) + "]");
             }
-            roots.push_back(nodes[k]);
+            if (listed[n]) ctx.fail(indexed("nodes", n), "reached twice: the scene lists it twice");
+            listed[n] = 1;
+            roots.push_back(sceneNodes[k]);
         }
     } else {
         for (size_t i = 0; i < nodeCount; ++i)
-            if (parent[i] < 0) roots.push_back(static_cast<int>(i));
+            if (nodes[i].parent < 0) roots.push_back(static_cast<int>(i));
     }
+
+    // The rest pose's world transforms, by the walk posing uses.
+    std::vector<glm::mat4> local(nodeCount);
+    for (size_t i = 0; i < nodeCount; ++i) local[i] = localMatrix(ctx, model.nodes[i], indexed("nodes", i));
+    const std::vector<glm::mat4> worldFromNode = anim::worldTransforms(nodes, local);
 
     Scene& scene = *ctx.scene;
     std::vector<uint64_t> meshTriangles(scene.meshes.size(), 0);
@@ -557,36 +326,22 @@ void convertNodes(const LoadContext& ctx) {
         for (const Primitive& p : scene.meshes[m].primitives) meshTriangles[m] += p.indices.size() / 3;
     uint64_t draws = 0;
     uint64_t drawnTriangles = 0;
-    std::vector<uint8_t> visited(nodeCount, 0);
     std::vector<uint8_t> explicitShadow;
-    struct Pending {
-        int node;
-        glm::mat4 parentWorld;
-    };
-    std::vector<Pending> stack;
-    for (auto it = roots.rbegin(); it != roots.rend(); ++it) stack.push_back({*it, glm::mat4(1.0f)});
+    // Depth first from the roots, each node before its children, in the file's order.
+    std::vector<int> stack(roots.rbegin(), roots.rend());
     while (!stack.empty()) {
-        const Pending item = stack.back();
+        const auto index = static_cast<size_t>(stack.back());
         stack.pop_back();
-        const auto index = static_cast<size_t>(item.node);
         const std::string where = indexed("nodes", index);
-        if (visited[index]) {
-            ctx.fail(where, "reached twice: the node graph has a cycle, a node with two parents, or a node listed twice");
-        }
-        visited[index] = 1;
         const tinygltf::Node& node = model.nodes[index];
         const std::string nodeName = node.name.empty() ? where : node.name;
-        const glm::mat4 world = item.parentWorld * localMatrix(ctx, node, where);
+        const glm::mat4& world = worldFromNode[index];
         if (!withinInputRange(world)) {
             ctx.fail(where, "its world transform (the product of its parents' transforms) has an element that is not "
                             "finite or exceeds the limit of " + number(limits::kMaxInputMagnitude) + " in magnitude");
         }
 
-        if (node.mesh >= 0) {
-            if (static_cast<size_t>(node.mesh) >= model.meshes.size()) {
-                ctx.fail(where + ".mesh", std::to_string(node.mesh) + " is out of range: the file has " +
-                                              std::to_string(model.meshes.size()) + " meshes");
-            }
+        if (node.mesh >= 0) {  // in range (convertNodeHierarchy)
             const auto mesh = static_cast<size_t>(node.mesh);
             draws += scene.meshes[mesh].primitives.size();
             drawnTriangles += meshTriangles[mesh];
@@ -599,10 +354,8 @@ void convertNodes(const LoadContext& ctx) {
                                               std::to_string(limits::kMaxDrawnTriangles) + " triangles (instances included)");
             }
             scene.instances.push_back(MeshInstance{node.mesh, world, nodeName});
-            scene.instances.back().node = item.node;
+            scene.instances.back().node = static_cast<int>(index);
             scene.instances.back().skin = node.skin;
-        } else if (node.mesh < -1) {
-            ctx.fail(where + ".mesh", std::to_string(node.mesh) + " is out of range");
         }
         const bool cameraSkipped = std::find(ctx.skippedCameras.begin(), ctx.skippedCameras.end(),
                                              static_cast<size_t>(std::max(node.camera, 0))) != ctx.skippedCameras.end();
@@ -619,9 +372,7 @@ void convertNodes(const LoadContext& ctx) {
                 explicitShadow.push_back(isExplicit ? 1 : 0);
             }
         }
-        for (auto child = node.children.rbegin(); child != node.children.rend(); ++child) {
-            stack.push_back({*child, world});
-        }
+        stack.insert(stack.end(), node.children.rbegin(), node.children.rend());
     }
 
     // Without any explicit castsShadow, the first directional light casts shadows.
@@ -788,8 +539,8 @@ Scene loadSceneBytes(std::vector<uint8_t> bytes, const fs::path& path, const Sce
     convertSamplers(ctx);
     convertMaterials(ctx);
     convertMeshes(ctx);
-    convertNodes(ctx);
     convertNodeHierarchy(ctx);
+    convertNodes(ctx);
     convertSkins(ctx);
     convertAnimations(ctx);
     if (scene.instances.empty())

@@ -10,10 +10,7 @@
 // or all root nodes when the file has no scenes) flattened into world-space instances, lights and
 // cameras.
 //
-// Meshes: POSITION (required), NORMAL (flat normals when missing, as the spec asks), TEXCOORD_0,
-// TANGENT (generated when missing, TangentFrames.h); all index widths and non-indexed primitives;
-// normalized integer attributes; sparse accessors. Triangle strips and fans become lists; points
-// and lines are skipped with a warning. Curvature is computed per mesh (Curvature.h).
+// Meshes: GltfMeshes.h (per-mesh curvature included).
 // Animation data (<preskin/Animation.h>): morph targets (GltfMorphTargets), joint influences and
 // skins (GltfSkins), the node hierarchy (GltfNodes) and animations (GltfAnimations); instances
 // keep the rest pose in MeshInstance::worldFromObject and name their node and skin.

@@ -1,6 +1,8 @@
 // Scene::nodes from the file's nodes (see GltfNodes.h).
 #include "scene/GltfNodes.h"
 
+#include "anim/NodeHierarchy.h"
+
 #include <glm/gtc/quaternion.hpp>
 
 #include <cmath>
@@ -40,7 +42,8 @@ void convertNodeHierarchy(const LoadContext& ctx) {
             if (childNode.parent >= 0) {
                 ctx.fail(where + indexed(".children", k), indexed("nodes", static_cast<size_t>(child)) +
                                                               " is already a child of " +
-                                                              indexed("nodes", static_cast<size_t>(childNode.parent)));
+                                                              indexed("nodes", static_cast<size_t>(childNode.parent)) +
+                                                              " (a node has at most one parent)");
             }
             childNode.parent = static_cast<int>(i);
             out.children.push_back(child);
@@ -93,19 +96,10 @@ void convertNodeHierarchy(const LoadContext& ctx) {
         }
     }
 
-    // Every node reaches a root through its parents (no cycle of children).
-    std::vector<uint8_t> reachesRoot(count, 0);
-    for (size_t start = 0; start < count; ++start) {
-        size_t n = start, steps = 0;
-        while (!reachesRoot[n] && scene.nodes[n].parent >= 0) {
-            if (++steps > count) ctx.fail(indexed("nodes", start), "is part of a cycle of children");
-            n = static_cast<size_t>(scene.nodes[n].parent);
-        }
-        for (n = start; !reachesRoot[n]; n = static_cast<size_t>(scene.nodes[n].parent)) {
-            reachesRoot[n] = 1;
-            if (scene.nodes[n].parent < 0) break;
-        }
-    }
+    // Every node reaches a root through its parents (no cycle of children): the hierarchy's one
+    // check, which posing repeats for scenes built in code.
+    if (const auto problem = anim::hierarchyProblem(scene.nodes))
+        ctx.fail(indexed("nodes", problem->node), "is part of a cycle of children");
 }
 
 }  // namespace preskin::gltf

@@ -1,8 +1,9 @@
-// The node hierarchy as the file has it (glTF 2.0, "Nodes and Hierarchy"), for animation:
-// Scene::nodes holds every node of the file at its glTF index, with its parent, children, rest
-// transform (TRS; a matrix is kept in Node::matrix and decomposed into Node::transform), mesh,
-// skin and morph weights. The flattened world-space instances, lights and cameras of the default
-// scene are made by GltfLoader.cpp, which links each instance to its node and skin.
+// The node hierarchy as the file has it (glTF 2.0, "Nodes and Hierarchy"): Scene::nodes holds
+// every node of the file at its glTF index, with its parent, children, rest transform (TRS; a
+// matrix is kept in Node::matrix and decomposed into Node::transform), mesh, skin and morph
+// weights. The loader then flattens the default scene into world-space instances, lights and
+// cameras (GltfLoader.cpp, with the hierarchy's world transforms of anim/NodeHierarchy.h, as
+// posing does), linking each instance to its node and skin.
 // Errors: a node with two parents or in a cycle, a zero-length rotation, a skin without a mesh
 // on the node, node weights whose count differs from the mesh's morph target count.
 #pragma once
@@ -13,7 +14,8 @@
 
 namespace preskin::gltf {
 
-// Fills Scene::nodes; runs after the meshes are converted (their target counts).
+// Fills Scene::nodes and checks that they form a forest; runs after the meshes are converted
+// (their target counts) and before the default scene is flattened.
 void convertNodeHierarchy(const LoadContext& ctx);
 
 // Translation, rotation and scale of a matrix without shear or projection, as glTF requires of
