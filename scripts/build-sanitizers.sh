@@ -5,6 +5,6 @@
 set -euo pipefail
 cd "$(dirname "$0")/.."
 CC=clang CXX=clang++ cmake -S . -B build-asan -G Ninja -DCMAKE_BUILD_TYPE=Release \
-  -DCMAKE_C_FLAGS_RELEASE="-O0 -DNDEBUG" -DCMAKE_CXX_FLAGS_RELEASE="-O0 -DNDEBUG" \
+  -DCMAKE_C_FLAGS_RELEASE="-O1 -DNDEBUG" -DCMAKE_CXX_FLAGS_RELEASE="-O1 -DNDEBUG" \
   -DPRESKIN_SANITIZE=ON -DPRESKIN_BUILD_FUZZERS=ON -DPRESKIN_BUILD_VIEWER=OFF -DPRESKIN_WARNINGS_AS_ERRORS=OFF "$@" >/dev/null
 cmake --build build-asan -j"$(nproc)" --target preskin_cli preskin_tests fuzz_gltf fuzz_profile fuzz_environment

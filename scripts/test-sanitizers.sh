@@ -1,12 +1,11 @@
 #!/usr/bin/env bash
 # The sanitizer job of CI: builds build-asan (clang, AddressSanitizer + UndefinedBehaviorSanitizer,
-# every report fatal; scripts/build-sanitizers.sh), runs its tests there: everything that reads
-# input (glTF loading and its errors, profiles, LUT files, environments, the input layer, the
-# command-line tools end to end, every hostile-input class) and GPU tests on lavapipe that render
-# real scenes (the head golden, the BRDF sphere, draw merging); tests/CMakeLists.txt lists what
-# stays with the regular build. Then every fuzz target runs for FUZZ_SECONDS (default 30) from
-# the seed corpora (scripts/fuzz.sh). The tests run in one process per core (gtest shards):
-# starting a sanitized process costs seconds. Prints the time each step took.
+# every report fatal; scripts/build-sanitizers.sh), runs its tests there: the folders tests/unit,
+# tests/gpu and tests/e2e (the code that reads input, the renderer on real scenes, the tools end to
+# end; tests/CMakeLists.txt says why the other kinds stay with the regular build). Then every
+# fuzz target runs for FUZZ_SECONDS (default 30) from the seed corpora (scripts/fuzz.sh). The
+# tests run in one process per core (gtest shards): starting a sanitized process costs seconds.
+# Prints the time each step took.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 fuzzSeconds="${FUZZ_SECONDS:-30}"

@@ -76,7 +76,8 @@ DiffusionProfile selectProfile(const BakeOptions& o) {
         throw Error(fmt::format("--albedo and --mfp apply only to --profile burley (got --profile {})", o.profile));
     if (burley) {
         if (o.albedo.empty() || o.meanFreePath.empty())
-            throw Error("--profile burley: needs --albedo R,G,B (surface albedo, 0..1) and --mfp R,G,B (mean free path, mm)");
+            throw Error(
+                "--profile burley: needs --albedo R,G,B (surface albedo, 0..1) and --mfp R,G,B (mean free path, mm)");
         const glm::dvec3 albedo = parseRgb(o.albedo, "--albedo");
         const glm::dvec3 meanFreePathMm = parseRgb(o.meanFreePath, "--mfp");
         return DiffusionProfile::burley(albedo, meanFreePathMm);
@@ -87,10 +88,11 @@ DiffusionProfile selectProfile(const BakeOptions& o) {
         std::string lower = o.profile;
         for (char& c : lower) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
         const bool keyword = lower == "deon" || lower == "burley";
-        throw Error(fmt::format("--profile {}: value: neither a keyword (deon or burley{}) nor a profile JSON file "
-                                "(looked for {})",
-                                o.profile, keyword ? "; did you mean " + lower + "?" : "",
-                                std::filesystem::absolute(o.profile, ec).lexically_normal().string()));
+        throw Error(
+            fmt::format("--profile {}: value: neither a keyword (deon or burley{}) nor a profile JSON file "
+                        "(looked for {})",
+                        o.profile, keyword ? "; did you mean " + lower + "?" : "",
+                        std::filesystem::absolute(o.profile, ec).lexically_normal().string()));
     }
     return DiffusionProfile::fromJsonFile(o.profile);
 }
@@ -112,11 +114,12 @@ void runBake(const BakeOptions& o) {
     auto ms = [](auto d) { return std::chrono::duration<double, std::milli>(d).count(); };
     const glm::dvec3 width = profile.widthMm();
     fmt::print("profile: {} (RMS width R {:.3f} G {:.3f} B {:.3f} mm)\n", profile.name(), width.r, width.g, width.b);
-    fmt::print("baked in {:.1f} ms on {} hardware threads: diffuse {}x{}, penumbra {}x{}, SH transfer {}x{}, "
-               "transmittance {}x{}\n",
-               ms(baked - start), std::thread::hardware_concurrency(), luts.diffuse().width(), luts.diffuse().height(),
-               luts.penumbra().width(), luts.penumbra().height(), luts.shTransfer().width(), luts.shTransfer().height(),
-               luts.transmittance().width(), luts.transmittance().height());
+    fmt::print(
+        "baked in {:.1f} ms on {} hardware threads: diffuse {}x{}, penumbra {}x{}, SH transfer {}x{}, "
+        "transmittance {}x{}\n",
+        ms(baked - start), std::thread::hardware_concurrency(), luts.diffuse().width(), luts.diffuse().height(),
+        luts.penumbra().width(), luts.penumbra().height(), luts.shTransfer().width(), luts.shTransfer().height(),
+        luts.transmittance().width(), luts.transmittance().height());
     fmt::print("wrote {} in {:.1f} ms{}\n", o.out, ms(saved - baked), o.preview ? " (with preview_*.png)" : "");
 }
 
@@ -125,9 +128,10 @@ void runBake(const BakeOptions& o) {
 void addBakeCommand(CLI::App& app) {
     auto options = std::make_shared<BakeOptions>();
     CLI::App* command = app.add_subcommand("bake", "Bake the pre-integrated skin LUTs of a diffusion profile");
-    command->add_option("--profile", options->profile,
-                        "deon (d'Eon & Luebke 2007 six-Gaussian skin), burley (Christensen & Burley 2015, needs --albedo "
-                        "and --mfp) or a profile JSON file")
+    command
+        ->add_option("--profile", options->profile,
+                     "deon (d'Eon & Luebke 2007 six-Gaussian skin), burley (Christensen & Burley 2015, needs --albedo "
+                     "and --mfp) or a profile JSON file")
         ->capture_default_str();
     command->add_option("--albedo", options->albedo, "burley: surface albedo per channel, R,G,B in (0, 1]");
     command->add_option("--mfp", options->meanFreePath, "burley: mean free path per channel in mm, R,G,B");

@@ -2,21 +2,21 @@
 // animated scene, and the GPU curvature pass against recomputing curvature on the CPU.
 #include "BenchSections.h"
 
+#include <preskin/Animation.h>
+#include <preskin/Curvature.h>
+#include <preskin/Deformation.h>
 #include <preskin/Environment.h>
 #include <preskin/LutSet.h>
 #include <preskin/ProfileLibrary.h>
 #include <preskin/Scene.h>
-#include <preskin/Animation.h>
-#include <preskin/Curvature.h>
-#include <preskin/Deformation.h>
 
 #include <fmt/core.h>
 
 #include <algorithm>
 #include <cmath>
+#include <optional>
 #include <string>
 #include <vector>
-#include <optional>
 
 namespace preskin::cli::bench {
 
@@ -33,8 +33,8 @@ void BenchRun::animationSection() {
     std::optional<AnimationRun> animation;
     if (!o.noAnimation) {
         const std::filesystem::path animatedPath = !o.animatedScene.empty() ? std::filesystem::path(o.animatedScene)
-                                                   : !scene.animations.empty() ? scenePath
-                                                                               : defaultAnimatedScenePath();
+            : !scene.animations.empty()                                     ? scenePath
+                                                                            : defaultAnimatedScenePath();
         const Scene animated = animatedPath == scenePath ? scene : loadScene(animatedPath, common);
         if (animated.animations.empty()) {
             fmt::print(stderr, "preskin bench: {} has no animation; skipping animation\n", animatedPath.string());

@@ -66,7 +66,8 @@ std::vector<uint32_t> parseCounts(const std::string& text, const char* flag) {
 void run(const BenchOptions& o) {
     const auto started = Clock::now();
     const std::vector<uint32_t> counts = parseCounts(o.counts, "--counts");
-    const std::vector<uint32_t> skinCounts = o.noSkin ? std::vector<uint32_t>{} : parseCounts(o.skinCounts, "--skin-counts");
+    const std::vector<uint32_t> skinCounts =
+        o.noSkin ? std::vector<uint32_t>{} : parseCounts(o.skinCounts, "--skin-counts");
     if (!o.out.empty()) checkOutputFile(o.out);
 
     CommonOptions common;
@@ -88,7 +89,9 @@ void run(const BenchOptions& o) {
 
     RenderSettings base;
     base.clusters = o.clusters;
-    base.clusters.build = o.build == "cpu" ? ClusterBuild::Cpu : o.build == "gpu" ? ClusterBuild::Gpu : ClusterBuild::Auto;
+    base.clusters.build = o.build == "cpu" ? ClusterBuild::Cpu
+        : o.build == "gpu"                 ? ClusterBuild::Gpu
+                                           : ClusterBuild::Auto;
     Renderer renderer(*context, scene, environment, profiles, base);
     Bench bench(o, *context, view);
 
@@ -122,17 +125,17 @@ void run(const BenchOptions& o) {
     j.field("warmup", o.warmup);
     j.field("budget_s_per_point", o.budgetS);
     j.field("speedup", "brute-force median wall ms / clustered median wall ms");
-    j.field("cluster_build_share", "(build CPU ms + compute pass GPU ms when built on the GPU) / clustered median wall ms");
+    j.field("cluster_build_share",
+            "(build CPU ms + compute pass GPU ms when built on the GPU) / clustered median wall ms");
     j.field("per_pixel",
             "listed: the fragment's cluster list length; exact: lights whose range sphere (and spot cone) contains "
             "the pixel's surface point");
     j.field("standard_material", "the same scene with the skin extension removed (glTF metal-rough shading)");
     j.endObject();
 
-
     std::vector<Goal> goals;
-    BenchRun r{o, common, scenePath, scene, standardScene, hasSkin, environment, luts, profiles, *context, view, base,
-               renderer, bench, j, goals};
+    BenchRun r{o,        common,   scenePath, scene, standardScene, hasSkin, environment, luts,
+               profiles, *context, view,      base,  renderer,      bench,   j,           goals};
     // The LUT bake first (lut_bake), the profiles' figures at the end (profiles).
     if (!o.noLutBake) r.lutBakeSection();
     r.lightLoopSection(counts);
@@ -158,8 +161,10 @@ void run(const BenchOptions& o) {
     j.endObject();
 
     const std::string json = j.text() + "\n";
-    if (o.out.empty()) std::fwrite(json.data(), 1, json.size(), stdout);
-    else writeTextFile(o.out, json);
+    if (o.out.empty())
+        std::fwrite(json.data(), 1, json.size(), stdout);
+    else
+        writeTextFile(o.out, json);
 
     if (!o.out.empty()) fmt::print(stderr, "preskin bench: wrote {}\n", o.out);
 }
@@ -172,18 +177,34 @@ void addBenchCommand(CLI::App& app) {
         "bench", "Measure clustered vs brute-force lighting, the light grid, skin vs standard and the LUT bake (JSON)");
     cmd->add_option("scene", o->scene, "glTF scene; default: the bundled head scene");
     cmd->add_option("--out,-o", o->out, "Write the JSON here instead of stdout");
-    cmd->add_option("--width", o->width, "Image width in pixels")->capture_default_str()->check(wholeNumberIn(1, 16384));
-    cmd->add_option("--height", o->height, "Image height in pixels")->capture_default_str()->check(wholeNumberIn(1, 16384));
+    cmd->add_option("--width", o->width, "Image width in pixels")
+        ->capture_default_str()
+        ->check(wholeNumberIn(1, 16384));
+    cmd->add_option("--height", o->height, "Image height in pixels")
+        ->capture_default_str()
+        ->check(wholeNumberIn(1, 16384));
     cmd->add_option("--counts", o->counts, "Scattered light counts, comma-separated")->capture_default_str();
-    cmd->add_option("--skin-counts", o->skinCounts, "Light counts for skin vs standard material")->capture_default_str();
-    cmd->add_option("--seed", o->seed, "Seed of the scattered lights")->capture_default_str()->check(wholeNumberIn(0, UINT32_MAX));
-    cmd->add_option("--warmup", o->warmup, "Warm-up frames per point")->capture_default_str()->check(wholeNumberIn(0, 100));
-    cmd->add_option("--reps", o->reps, "Measured frames per point (median)")->capture_default_str()->check(wholeNumberIn(1, 1000));
-    cmd->add_option("--budget-s", o->budgetS, "Seconds per point before warm-up and repetitions are cut (at least one frame)")
+    cmd->add_option("--skin-counts", o->skinCounts, "Light counts for skin vs standard material")
+        ->capture_default_str();
+    cmd->add_option("--seed", o->seed, "Seed of the scattered lights")
+        ->capture_default_str()
+        ->check(wholeNumberIn(0, UINT32_MAX));
+    cmd->add_option("--warmup", o->warmup, "Warm-up frames per point")
+        ->capture_default_str()
+        ->check(wholeNumberIn(0, 100));
+    cmd->add_option("--reps", o->reps, "Measured frames per point (median)")
+        ->capture_default_str()
+        ->check(wholeNumberIn(1, 1000));
+    cmd->add_option("--budget-s", o->budgetS,
+                    "Seconds per point before warm-up and repetitions are cut (at least one frame)")
         ->capture_default_str()
         ->check(numberIn(0.0, 1e6));
-    cmd->add_option("--tile", o->clusters.tileSizePx, "Cluster tile size in pixels")->capture_default_str()->check(wholeNumberIn(4, 256));
-    cmd->add_option("--slices", o->clusters.depthSlices, "Cluster depth slices")->capture_default_str()->check(wholeNumberIn(2, 256));
+    cmd->add_option("--tile", o->clusters.tileSizePx, "Cluster tile size in pixels")
+        ->capture_default_str()
+        ->check(wholeNumberIn(4, 256));
+    cmd->add_option("--slices", o->clusters.depthSlices, "Cluster depth slices")
+        ->capture_default_str()
+        ->check(wholeNumberIn(2, 256));
     cmd->add_option("--near-slice", o->clusters.nearSliceM, "Depth where the first slice ends at the earliest (m)")
         ->capture_default_str()
         ->check(numberIn(0.0, 1e6));
@@ -211,16 +232,22 @@ void addBenchCommand(CLI::App& app) {
     cmd->add_option("--animated-scene", o->animatedScene,
                     "Animated glTF scene for the animation figures; default: the bench scene when it is animated, "
                     "else the bundled animated head");
-    cmd->add_option("--vr-width", o->vrWidth, "Stereo: width per eye")->capture_default_str()->check(wholeNumberIn(1, 16384));
-    cmd->add_option("--vr-height", o->vrHeight, "Stereo: height per eye")->capture_default_str()->check(wholeNumberIn(1, 16384));
+    cmd->add_option("--vr-width", o->vrWidth, "Stereo: width per eye")
+        ->capture_default_str()
+        ->check(wholeNumberIn(1, 16384));
+    cmd->add_option("--vr-height", o->vrHeight, "Stereo: height per eye")
+        ->capture_default_str()
+        ->check(wholeNumberIn(1, 16384));
     cmd->add_option("--vr-lights", o->vrLights, "Stereo and MSAA: scattered lights")
         ->capture_default_str()
         ->check(wholeNumberIn(0, 1 << 20));
-    cmd->add_option("--ipd", o->ipdM, "Stereo: interpupillary distance, metres")->capture_default_str()->check(numberIn(0.0, 1.0));
-    cmd->add_option("--device", o->device, "Vulkan device: index or part of its name (default: best GPU, else lavapipe)");
+    cmd->add_option("--ipd", o->ipdM, "Stereo: interpupillary distance, metres")
+        ->capture_default_str()
+        ->check(numberIn(0.0, 1.0));
+    cmd->add_option("--device", o->device,
+                    "Vulkan device: index or part of its name (default: best GPU, else lavapipe)");
     cmd->add_flag("--validation", o->validation, "Enable Vulkan validation layers; any message makes the run fail");
     cmd->callback([o] { run(*o); });
 }
 
 }  // namespace preskin::cli
-

@@ -52,10 +52,9 @@ void BenchRun::environmentSection() {
             (measured[0].passMs("forward") - measured[2].passMs("forward")) / measured[0].passMs("forward"));
     j.field("update_ms", updateMs[1]);
     j.endObject();
-    goal("specular IBL and background / frame <= 0.08", (measured[0].wallMs() - measured[2].wallMs()) / measured[0].wallMs(),
-     0.08, true);
+    goal("specular IBL and background / frame <= 0.08",
+         (measured[0].wallMs() - measured[2].wallMs()) / measured[0].wallMs(), 0.08, true);
     goal("environment update (dominant lights, upload, prefiltering) <= 1000 ms", updateMs[1], 1000.0, true);
-
 }
 
 }  // namespace preskin::cli::bench

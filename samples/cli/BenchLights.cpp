@@ -1,8 +1,8 @@
 // `preskin bench`, the light loop: clustered against brute force at each --counts N, the light
 // grid's build (CPU and compute, its share of the frame) and lights listed per pixel against the
 // exact count.
-#include "BenchSections.h"
 #include "BenchPerPixel.h"
+#include "BenchSections.h"
 
 #include <preskin/Environment.h>
 #include <preskin/LutSet.h>
@@ -13,9 +13,9 @@
 
 #include <algorithm>
 #include <cmath>
+#include <optional>
 #include <string>
 #include <vector>
-#include <optional>
 
 namespace preskin::cli::bench {
 
@@ -48,18 +48,21 @@ void BenchRun::lightLoopSection(const std::vector<uint32_t>& counts) {
         std::vector<Config> configs;
         RenderSettings clustered = base;
         clustered.lightLoop = LightLoop::Clustered;
-        configs.push_back({&renderer, clustered, fmt::format("{} lights, clustered", n), predictFrameMs(clusteredHistory, n)});
+        configs.push_back(
+            {&renderer, clustered, fmt::format("{} lights, clustered", n), predictFrameMs(clusteredHistory, n)});
         if (!o.noBuildCompare) {
             RenderSettings other = clustered;
             other.clusters.build = otherBuild;
-            configs.push_back({&renderer, other,
-                               fmt::format("{} lights, clustered, {} build", n, otherBuild == ClusterBuild::Gpu ? "gpu" : "cpu"),
-                               predictFrameMs(otherHistory, n)});
+            configs.push_back(
+                {&renderer, other,
+                 fmt::format("{} lights, clustered, {} build", n, otherBuild == ClusterBuild::Gpu ? "gpu" : "cpu"),
+                 predictFrameMs(otherHistory, n)});
         }
         if (!o.noBrute) {
             RenderSettings brute = base;
             brute.lightLoop = LightLoop::All;
-            configs.push_back({&renderer, brute, fmt::format("{} lights, brute force", n), predictFrameMs(bruteHistory, n)});
+            configs.push_back(
+                {&renderer, brute, fmt::format("{} lights, brute force", n), predictFrameMs(bruteHistory, n)});
         }
         std::vector<Measurement> measured = bench.measure(configs, lights);
         size_t next = 0;
@@ -136,7 +139,6 @@ void BenchRun::lightLoopSection(const std::vector<uint32_t>& counts) {
         j.endArray();
     }
 
-
     for (const Row& row : rows) {
         if (row.brute && (row.lights == 256 || row.lights == 1024))
             goal(fmt::format("clustered speedup over brute force at {} lights >= {}", row.lights,
@@ -149,8 +151,8 @@ void BenchRun::lightLoopSection(const std::vector<uint32_t>& counts) {
                  row.perPixel->listedMean / row.perPixel->exactMean, 1.5, true);
     for (const Row& row : rows)
         if (row.lights == 1024)
-            goal("cluster build share of the frame at 1024 lights <= 0.10", row.clustered.buildMs() / row.clustered.wallMs(),
-                 0.10, true);
+            goal("cluster build share of the frame at 1024 lights <= 0.10",
+                 row.clustered.buildMs() / row.clustered.wallMs(), 0.10, true);
 }
 
 }  // namespace preskin::cli::bench

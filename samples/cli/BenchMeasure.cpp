@@ -43,7 +43,8 @@ void writeMeasurement(JsonWriter& j, const Measurement& m) {
     j.field("record_cpu_ms", m.recordCpuMs());
     if (!m.frames.empty()) {
         j.field("eyes", m.frames.back().eyes);
-        j.field("eye_drawing", m.frames.back().eyeDrawing == EyeDrawing::InstancedLayers ? "instanced layers" : "multiview");
+        j.field("eye_drawing",
+                m.frames.back().eyeDrawing == EyeDrawing::InstancedLayers ? "instanced layers" : "multiview");
     }
     j.field("overflowed_clusters", m.overflows());
     j.key("wall_ms_each");

@@ -29,7 +29,9 @@ namespace preskin::cli::bench {
 
 using Clock = std::chrono::steady_clock;
 
-inline double secondsSince(Clock::time_point start) { return std::chrono::duration<double>(Clock::now() - start).count(); }
+inline double secondsSince(Clock::time_point start) {
+    return std::chrono::duration<double>(Clock::now() - start).count();
+}
 
 // CPU time of the whole process (all threads), ms.
 double processCpuMs();
@@ -73,7 +75,6 @@ std::string reportedPath(const std::filesystem::path& path);
 
 double median(std::vector<double> v);
 
-
 // The frames of one configuration; its figures are medians.
 struct Measurement {
     uint32_t warmup = 0;
@@ -81,10 +82,18 @@ struct Measurement {
     std::vector<double> cpuMsEach;  // the process's CPU time over each frame
 
     double cpuMs() const { return median(cpuMsEach); }
-    double wallMs() const { return medianOf([](const FrameStats& s) { return s.wallMs; }); }
-    double gpuMs() const { return medianOf([](const FrameStats& s) { return s.gpuMs; }); }
-    double buildCpuMs() const { return medianOf([](const FrameStats& s) { return s.clusterBuildCpuMs; }); }
-    double recordCpuMs() const { return medianOf([](const FrameStats& s) { return s.recordCpuMs; }); }
+    double wallMs() const {
+        return medianOf([](const FrameStats& s) { return s.wallMs; });
+    }
+    double gpuMs() const {
+        return medianOf([](const FrameStats& s) { return s.gpuMs; });
+    }
+    double buildCpuMs() const {
+        return medianOf([](const FrameStats& s) { return s.clusterBuildCpuMs; });
+    }
+    double recordCpuMs() const {
+        return medianOf([](const FrameStats& s) { return s.recordCpuMs; });
+    }
     double passMs(const std::string& name) const {
         return medianOf([&](const FrameStats& s) {
             for (const PassTime& p : s.passes)
@@ -111,7 +120,6 @@ struct Measurement {
         return median(v);
     }
 };
-
 
 void writeMeasurement(JsonWriter& j, const Measurement& m);
 

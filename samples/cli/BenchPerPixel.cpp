@@ -20,8 +20,8 @@ bool lightTouches(const Light& l, const glm::dvec3& p) {
     if (l.type != LightType::Spot) return true;
     const double d = std::sqrt(d2);
     if (d <= 0.0) return true;
-    const glm::dvec3 dir = glm::length(l.directionWs) > 0.0f ? glm::normalize(glm::dvec3(l.directionWs))
-                                                             : glm::dvec3(0.0, 0.0, -1.0);
+    const glm::dvec3 dir =
+        glm::length(l.directionWs) > 0.0f ? glm::normalize(glm::dvec3(l.directionWs)) : glm::dvec3(0.0, 0.0, -1.0);
     return glm::dot(dir, toPoint) / d > std::cos(double(l.outerConeAngle));
 }
 

@@ -3,23 +3,23 @@
 // the scene side by side whose skin materials use one profile against one profile per copy.
 #include "BenchSections.h"
 
+#include <preskin/DiffusionProfile.h>
 #include <preskin/Environment.h>
 #include <preskin/Error.h>
 #include <preskin/LutSet.h>
 #include <preskin/ProfileLibrary.h>
 #include <preskin/Scene.h>
-#include <preskin/DiffusionProfile.h>
 #include <glm/gtc/matrix_transform.hpp>
 
 #include <fmt/core.h>
 
 #include <algorithm>
 #include <cmath>
-#include <string>
-#include <vector>
-#include <optional>
 #include <cstdlib>
 #include <memory>
+#include <optional>
+#include <string>
+#include <vector>
 
 namespace preskin::cli::bench {
 
@@ -60,7 +60,8 @@ Scene sideBySideCopies(const Scene& scene, int copies, bool oneProfile) {
         const float offset = (float(k) - 0.5f * float(copies - 1)) * stepM;
         for (MeshInstance instance : scene.instances) {
             instance.mesh += firstMesh;
-            instance.worldFromObject = glm::translate(glm::mat4(1.0f), glm::vec3(offset, 0.0f, 0.0f)) * instance.worldFromObject;
+            instance.worldFromObject =
+                glm::translate(glm::mat4(1.0f), glm::vec3(offset, 0.0f, 0.0f)) * instance.worldFromObject;
             instance.skin = -1;
             out.instances.push_back(std::move(instance));
         }
@@ -81,10 +82,10 @@ ProfileFigures measureProfiles(const BenchOptions& o, Bench& bench, Context& con
 
     Scene many;
     for (int i = 0; i < f.cachedCount; ++i)
-        many.profiles.push_back({fmt::format("p{}", i),
-                                 DiffusionProfile::burley({0.5 + 0.5 * i / (f.cachedCount - 1.0), 0.55, 0.45},
-                                                          {1.0 + 0.05 * i, 0.6, 0.35}),
-                                 {}});
+        many.profiles.push_back(
+            {fmt::format("p{}", i),
+             DiffusionProfile::burley({0.5 + 0.5 * i / (f.cachedCount - 1.0), 0.55, 0.45}, {1.0 + 0.05 * i, 0.6, 0.35}),
+             {}});
     char pattern[] = "/tmp/preskin-bench-cache-XXXXXX";
     if (!mkdtemp(pattern)) throw Error("preskin bench: cannot create a temporary cache folder");
     const std::filesystem::path cacheFolder = pattern;
@@ -120,11 +121,11 @@ ProfileFigures measureProfiles(const BenchOptions& o, Bench& bench, Context& con
     Renderer oneRenderer(context, one, environment, library, base);
     Renderer eightRenderer(context, eight, environment, library, base);
     const View view = frameBoundsView(one.worldBounds(), float(o.width) / float(o.height));
-    std::vector<Measurement> measured =
-        bench.measure({{&oneRenderer, base, fmt::format("{} copies, one profile", f.copies), 0.0, &view, o.width, o.height},
-                       {&eightRenderer, base, fmt::format("{} copies, {} profiles", f.copies, f.copies), 0.0, &view,
-                        o.width, o.height}},
-                      sceneLights(one, CommonOptions{}));
+    std::vector<Measurement> measured = bench.measure(
+        {{&oneRenderer, base, fmt::format("{} copies, one profile", f.copies), 0.0, &view, o.width, o.height},
+         {&eightRenderer, base, fmt::format("{} copies, {} profiles", f.copies, f.copies), 0.0, &view, o.width,
+          o.height}},
+        sceneLights(one, CommonOptions{}));
     f.single = std::move(measured[0]);
     f.eight = std::move(measured[1]);
     return f;

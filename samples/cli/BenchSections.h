@@ -40,7 +40,7 @@ struct BenchRun {
         goals.push_back({std::move(name), measured, target, atMost});
     }
 
-    void lutBakeSection();                                      // lut_bake (BenchProfiles.cpp)
+    void lutBakeSection();                                       // lut_bake (BenchProfiles.cpp)
     void lightLoopSection(const std::vector<uint32_t>& counts);  // light_loop, cluster_build (BenchLights.cpp)
     void skinSection(const std::vector<uint32_t>& skinCounts);   // skin_vs_standard, skin_techniques (BenchSkin.cpp)
     void environmentSection();                                   // environment (BenchEnvironment.cpp)

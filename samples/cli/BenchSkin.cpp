@@ -71,12 +71,10 @@ void BenchRun::skinSection(const std::vector<uint32_t>& skinCounts) {
                 const char* name;
                 bool SkinFeatures::*flag;
             };
-            const Technique techniques[] = {{"lut_diffuse", &SkinFeatures::lutDiffuse},
-                                            {"normal_prefilter", &SkinFeatures::normalPrefilter},
-                                            {"penumbra", &SkinFeatures::penumbra},
-                                            {"sh_ambient", &SkinFeatures::shAmbient},
-                                            {"transmission", &SkinFeatures::transmission},
-                                            {"dual_specular", &SkinFeatures::dualSpecular}};
+            const Technique techniques[] = {
+                {"lut_diffuse", &SkinFeatures::lutDiffuse},    {"normal_prefilter", &SkinFeatures::normalPrefilter},
+                {"penumbra", &SkinFeatures::penumbra},         {"sh_ambient", &SkinFeatures::shAmbient},
+                {"transmission", &SkinFeatures::transmission}, {"dual_specular", &SkinFeatures::dualSpecular}};
             std::vector<Config> configs{{&renderer, base, fmt::format("{} lights, skin", n), 0.0},
                                         {&standardRenderer, base, fmt::format("{} lights, standard material", n), 0.0}};
             for (const Technique& t : techniques) {
@@ -114,7 +112,6 @@ void BenchRun::skinSection(const std::vector<uint32_t>& skinCounts) {
     } else if (!skinCounts.empty()) {
         fmt::print(stderr, "preskin bench: the scene has no skin material; skipping skin vs standard\n");
     }
-
 
     // Skin against standard: <= 1.3 on a software device (wall time: lavapipe shades on the same
     // cores the host runs on), <= 1.10 on a GPU (its timestamps, the frame's GPU time).

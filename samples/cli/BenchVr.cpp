@@ -1,8 +1,8 @@
 // `preskin bench`, VR: a stereo frame against the two mono frames of its eyes, CPU recording
 // stereo against mono, the light grid built once for both eyes against a grid per eye, and MSAA
 // 4x against 1x.
-#include "BenchSections.h"
 #include "BenchPerPixel.h"
+#include "BenchSections.h"
 
 #include <preskin/Environment.h>
 #include <preskin/LutSet.h>
@@ -13,9 +13,9 @@
 
 #include <algorithm>
 #include <cmath>
+#include <optional>
 #include <string>
 #include <vector>
-#include <optional>
 
 namespace preskin::cli::bench {
 
@@ -72,10 +72,10 @@ void BenchRun::vrSection() {
             RenderSettings four = base;
             four.msaaSamples = 4;
             Renderer msaaRenderer(context, scene, environment, profiles, four);
-            std::vector<Measurement> msaa = bench.measure(
-                {{&renderer, base, fmt::format("{} lights, MSAA 1x", o.vrLights), 0.0},
-                 {&msaaRenderer, four, fmt::format("{} lights, MSAA 4x", o.vrLights), 0.0}},
-                lights);
+            std::vector<Measurement> msaa =
+                bench.measure({{&renderer, base, fmt::format("{} lights, MSAA 1x", o.vrLights), 0.0},
+                               {&msaaRenderer, four, fmt::format("{} lights, MSAA 4x", o.vrLights), 0.0}},
+                              lights);
             run.msaa1 = std::move(msaa[0]);
             run.msaa4 = std::move(msaa[1]);
         }
@@ -145,7 +145,8 @@ void BenchRun::vrSection() {
             const PerPixel& b = vr->perPixel[1];
             const double pixels = double(a.pixels + b.pixels);
             auto mean = [&](double PerPixel::*field) {
-                return pixels > 0.0 ? (a.*field * double(a.pixels) + b.*field * double(b.pixels)) / pixels : std::nan("");
+                return pixels > 0.0 ? (a.*field * double(a.pixels) + b.*field * double(b.pixels)) / pixels
+                                    : std::nan("");
             };
             j.field("pixels", a.pixels + b.pixels);
             j.field("exact_mean", mean(&PerPixel::exactMean));

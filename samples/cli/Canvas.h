@@ -71,5 +71,4 @@ struct Canvas {
     void writePng(const std::filesystem::path& path) const;
 };
 
-
 }  // namespace preskin::cli

@@ -6,8 +6,8 @@
 // RMSE of skin and of Lambert against the reference and their ratio, as JSON (every field:
 // docs/reference.md), plus a side-by-side PNG with error heat maps. The JSON holds no timings,
 // so a run on the same machine and driver reproduces it exactly.
-#include "Commands.h"
 #include "CommandLine.h"  // samples/common
+#include "Commands.h"
 #include "CompareMetrics.h"
 #include "ComparePicture.h"
 #include "JsonWriter.h"
@@ -78,7 +78,8 @@ void run(const Options& o) {
     const std::filesystem::path jsonPath(o.json), imagePath(o.image);
     if (jsonPath.extension() != ".json") throw Error(fmt::format("{}: --json: the report is written as .json", o.json));
     checkOutputFile(jsonPath);
-    if (imagePath.extension() != ".png") throw Error(fmt::format("{}: --image: the picture is written as .png", o.image));
+    if (imagePath.extension() != ".png")
+        throw Error(fmt::format("{}: --image: the picture is written as .png", o.image));
     checkOutputPath(imagePath, OutputEncoding::DisplaySrgb8);
     checkViewOptions(o.view);
     const std::filesystem::path scenePath = o.scene.empty() ? defaultScenePath() : std::filesystem::path(o.scene);
@@ -95,7 +96,8 @@ void run(const Options& o) {
     std::error_code ec;
     const bool reuseReference = !o.referenceFile.empty() && std::filesystem::exists(referencePath, ec);
     if (!o.referenceFile.empty() && !reuseReference) checkOutputPath(referencePath, OutputEncoding::LinearFloat);
-    const std::filesystem::path skinRenderPath = o.renders + ".skin.exr", lambertRenderPath = o.renders + ".lambert.exr";
+    const std::filesystem::path skinRenderPath = o.renders + ".skin.exr",
+                                lambertRenderPath = o.renders + ".lambert.exr";
     if (!o.renders.empty()) {
         checkOutputPath(skinRenderPath, OutputEncoding::LinearFloat);
         checkOutputPath(lambertRenderPath, OutputEncoding::LinearFloat);
@@ -111,9 +113,10 @@ void run(const Options& o) {
             auto it = std::find_if(made.begin(), made.end(), [&](const auto& kv) { return kv.first == field.first; });
             const std::string was = it == made.end() ? std::string("(not recorded)") : it->second;
             if (was != field.second)
-                throw Error(fmt::format("{}: --reference: {}: the file was made for '{}', this run needs '{}' (remove "
-                                        "the file to compute it again)",
-                                        o.referenceFile, field.first, was, field.second));
+                throw Error(
+                    fmt::format("{}: --reference: {}: the file was made for '{}', this run needs '{}' (remove "
+                                "the file to compute it again)",
+                                o.referenceFile, field.first, was, field.second));
         }
     }
     double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
@@ -144,9 +147,10 @@ void run(const Options& o) {
     j.field("scene", scenePath.string());
     j.field("width", width);
     j.field("height", height);
-    j.field("view", !o.view.camera.empty() ? "camera " + o.view.camera
-                    : !o.view.orbit.empty() ? "orbit " + o.view.orbit
-                                            : std::string("default framing"));
+    j.field("view",
+            !o.view.camera.empty()      ? "camera " + o.view.camera
+                : !o.view.orbit.empty() ? "orbit " + o.view.orbit
+                                        : std::string("default framing"));
     j.field("device", context->deviceName());
     j.field("profile", luts.profile().name());
     j.field("exposure", o.common.exposure);
@@ -179,12 +183,13 @@ void run(const Options& o) {
         rgb(j, "referenceMean", regionMean(ref, region));
         stats(j, "skin", s);
         stats(j, "lambert", l);
-        rgb(j, "ratioToLambert", glm::dvec3(ratio(s.rmse.r, l.rmse.r), ratio(s.rmse.g, l.rmse.g), ratio(s.rmse.b, l.rmse.b)));
+        rgb(j, "ratioToLambert",
+            glm::dvec3(ratio(s.rmse.r, l.rmse.r), ratio(s.rmse.g, l.rmse.g), ratio(s.rmse.b, l.rmse.b)));
         j.field("ratioToLambertPooled", ratio(s.rmsePooled, l.rmsePooled));
         j.endObject();
         fmt::print("  {:<11} {:>7}  {:.4f} {:.4f} {:.4f} ({:.4f})  {:.4f} {:.4f} {:.4f} ({:.4f})  {:>14.3f}\n",
-                   region.name, region.pixels, s.rmse.r, s.rmse.g, s.rmse.b, s.rmsePooled, l.rmse.r, l.rmse.g,
-                   l.rmse.b, l.rmsePooled, ratio(s.rmsePooled, l.rmsePooled));
+                   region.name, region.pixels, s.rmse.r, s.rmse.g, s.rmse.b, s.rmsePooled, l.rmse.r, l.rmse.g, l.rmse.b,
+                   l.rmsePooled, ratio(s.rmsePooled, l.rmsePooled));
     }
     j.endObject();
     j.endObject();
@@ -218,7 +223,8 @@ void addCompareCommand(CLI::App& app) {
         "compare", "RMSE of skin and of Lambert against the diffusion reference (no specular), JSON and PNG");
     cmd->add_option("scene", options->scene, "glTF scene (.gltf or .glb); default: the bundled head scene");
     cmd->add_option("--json", options->json, "Report (.json)")->capture_default_str();
-    cmd->add_option("--image", options->image, "Side-by-side picture with error heat maps (.png)")->capture_default_str();
+    cmd->add_option("--image", options->image, "Side-by-side picture with error heat maps (.png)")
+        ->capture_default_str();
     cmd->add_option("--curvature-class", options->curvatureClassPerMm,
                     "Signed mean curvature (profile 1/mm) beyond which skin counts as convex or concave")
         ->check(numberIn(0.0, 100.0))

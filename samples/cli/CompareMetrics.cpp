@@ -11,8 +11,8 @@ std::vector<Region> compareRegions(const ReferenceImage& reference, double curva
     for (size_t i = 0; i < count; ++i) {
         if (!(reference.rgba32f[4 * i + 3] > 0.0f) || !reference.skin[i]) continue;
         const double curvature = reference.curvaturePerMm[i];
-        const bool in[4] = {true, reference.nearShadowEdge[i] != 0, curvature < -curvatureClassPerMm,
-                            curvature > curvatureClassPerMm};
+        const bool in[4] = {true, reference.nearShadowEdge[i] != 0,
+                            curvature<-curvatureClassPerMm, curvature> curvatureClassPerMm};
         for (size_t r = 0; r < regions.size(); ++r)
             if (in[r]) {
                 regions[r].mask[i] = 1;

@@ -26,8 +26,8 @@ std::vector<Region> compareRegions(const ReferenceImage& reference, double curva
 
 struct ErrorStats {
     glm::dvec3 rmse{0.0};
-    double rmsePooled = 0.0;     // sqrt of the mean over R, G, B of the mean squared error
-    glm::dvec3 meanError{0.0};   // mean of render - reference
+    double rmsePooled = 0.0;    // sqrt of the mean over R, G, B of the mean squared error
+    glm::dvec3 meanError{0.0};  // mean of render - reference
 };
 
 // `image`: RGBA linear floats of the reference's size.

@@ -84,8 +84,8 @@ void writeComparePicture(const std::filesystem::path& path, const std::string& t
     };
     auto toned = [&](const std::vector<float>& image) {
         return [&image](size_t i) {
-            const glm::dvec3 t = tonemapNeutral(glm::max(glm::dvec3(image[4 * i], image[4 * i + 1], image[4 * i + 2]),
-                                                         glm::dvec3(0.0)));
+            const glm::dvec3 t =
+                tonemapNeutral(glm::max(glm::dvec3(image[4 * i], image[4 * i + 1], image[4 * i + 2]), glm::dvec3(0.0)));
             return glm::u8vec3(encodeSrgb(t.r), encodeSrgb(t.g), encodeSrgb(t.b));
         };
     };

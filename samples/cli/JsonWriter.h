@@ -29,10 +29,14 @@ public:
     template <typename T>
     void field(std::string_view k, T v) {
         key(k);
-        if constexpr (std::is_same_v<T, bool>) boolean(v);
-        else if constexpr (std::is_integral_v<T>) integer(static_cast<uint64_t>(v));
-        else if constexpr (std::is_floating_point_v<T>) number(double(v));
-        else string(v);
+        if constexpr (std::is_same_v<T, bool>)
+            boolean(v);
+        else if constexpr (std::is_integral_v<T>)
+            integer(static_cast<uint64_t>(v));
+        else if constexpr (std::is_floating_point_v<T>)
+            number(double(v));
+        else
+            string(v);
     }
     std::string text() const { return root_.dump(2); }
 

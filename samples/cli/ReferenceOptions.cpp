@@ -13,7 +13,8 @@ namespace preskin::cli {
 
 void addReferenceOptions(CLI::App& cmd, ReferenceOptions& o) {
     ReferenceSettings& s = o.settings;
-    cmd.add_option("--tail-fraction", s.tailFraction, "Reference: profile energy left out beyond the integration radius")
+    cmd.add_option("--tail-fraction", s.tailFraction,
+                   "Reference: profile energy left out beyond the integration radius")
         ->check(numberIn(1e-9, 0.1))
         ->capture_default_str();
     cmd.add_option("--leaf-ratio", s.leafRatio, "Reference: irradiance piece size over its distance from the point")
@@ -23,7 +24,8 @@ void addReferenceOptions(CLI::App& cmd, ReferenceOptions& o) {
                    "Reference: smallest irradiance piece over the profile's narrowest scale")
         ->check(numberIn(1e-3, 100.0))
         ->capture_default_str();
-    cmd.add_option("--moment-tolerance", s.momentTolerance, "Reference: adaptive profile quadrature tolerance per piece")
+    cmd.add_option("--moment-tolerance", s.momentTolerance,
+                   "Reference: adaptive profile quadrature tolerance per piece")
         ->check(numberIn(1e-12, 1e-2))
         ->capture_default_str();
     cmd.add_option("--trace-environment", s.environmentSamples,
@@ -77,7 +79,10 @@ ReferenceKey referenceKey(const std::filesystem::path& scenePath, const ViewOpti
         {"scene", (ec ? scenePath : scene).string()},
         {"sceneHash", fileHash(scenePath)},
         {"size", fmt::format("{}x{}", view.width, view.height)},
-        {"view", !view.camera.empty() ? "camera " + view.camera : !view.orbit.empty() ? "orbit " + view.orbit : "default"},
+        {"view",
+         !view.camera.empty()      ? "camera " + view.camera
+             : !view.orbit.empty() ? "orbit " + view.orbit
+                                   : "default"},
         {"env", common.env.empty() ? "scene" : common.env},
         {"envIntensity", common.envIntensity < 0.0f ? "scene" : fmt::format("{}", common.envIntensity)},
         {"envRotation", common.envRotationDeg ? fmt::format("{}", *common.envRotationDeg) : "scene"},
@@ -86,12 +91,14 @@ ReferenceKey referenceKey(const std::filesystem::path& scenePath, const ViewOpti
         {"exposure", fmt::format("{}", common.exposure)},
         {"shadows", common.noShadows ? "off" : "on"},
         {"profile", luts.profile().name()},
-        {"profileHash", [&] {
+        {"profileHash",
+         [&] {
              const std::string json = luts.profile().toJson();
              return fmt::format("{:016x}", fnv1a(kFnvOffset, json.data(), json.size()));
          }()},
-        {"quadrature", fmt::format("tail {} leaf {} finest {} moments {} edge {}", s.tailFraction, s.leafRatio,
-                                   s.finestLeafRatio, s.momentTolerance, s.shadowEdgeWidths)},
+        {"quadrature",
+         fmt::format("tail {} leaf {} finest {} moments {} edge {}", s.tailFraction, s.leafRatio, s.finestLeafRatio,
+                     s.momentTolerance, s.shadowEdgeWidths)},
         {"ambient", s.environmentSamples > 0 ? fmt::format("traced {}", s.environmentSamples) : std::string("sh")},
     };
 }

@@ -2,8 +2,8 @@
 // headless (mono, or both eyes of a stereo pair side by side) and writes it as PNG (tone-mapped)
 // or EXR (linear), printing the frame time. Animated scenes: --animation and --time pose the
 // scene; --sequence renders a range of times into numbered files, with a progress bar.
-#include "Commands.h"
 #include "CommandLine.h"  // samples/common
+#include "Commands.h"
 #include "Options.h"
 
 #include <preskin/Context.h>
@@ -32,10 +32,10 @@
 #include <cmath>
 #include <cstdlib>
 #include <functional>
-#include <optional>
-#include <vector>
 #include <memory>
+#include <optional>
 #include <string>
+#include <vector>
 
 namespace preskin::cli {
 
@@ -48,7 +48,7 @@ struct RenderOptions {
     uint32_t frames = 1;
     std::string animation;  // name or index; "" with --time/--sequence: the scene's first
     std::optional<float> timeS;
-    std::string sequence;   // START:END:FPS
+    std::string sequence;  // START:END:FPS
     StereoOptions stereo;
     CommonOptions common;
 };
@@ -86,14 +86,15 @@ std::filesystem::path framePath(const std::string& pattern, uint32_t frame) {
     bool valid = d != std::string::npos && pattern.find('%', percent + 1) == std::string::npos;
     for (size_t i = percent + 1; valid && i < d; ++i) valid = std::isdigit(static_cast<unsigned char>(pattern[i])) != 0;
     if (!valid || d - percent > 3)
-        throw Error(fmt::format("--out {}: a sequence needs one frame-number field such as %04d in the file name",
-                                pattern));
+        throw Error(
+            fmt::format("--out {}: a sequence needs one frame-number field such as %04d in the file name", pattern));
     const int width = d - percent > 1 ? std::stoi(pattern.substr(percent + 1, d - percent - 1)) : 0;
     return pattern.substr(0, percent) + fmt::format("{:0{}}", frame, width) + pattern.substr(d + 1);
 }
 
 void renderSequence(Renderer& renderer, Context& context, const View& view, const RenderOptions& o,
-                    const std::vector<float>& times, const std::function<void(float)>& poseAt, OutputEncoding encoding) {
+                    const std::vector<float>& times, const std::function<void(float)>& poseAt,
+                    OutputEncoding encoding) {
     std::vector<std::filesystem::path> written;
     const bool tty = ::isatty(2) != 0;
     const auto start = std::chrono::steady_clock::now();
@@ -162,8 +163,7 @@ void run(const RenderOptions& o) {
 
     const Animation* animation = nullptr;
     if (!o.animation.empty() || o.timeS || !times.empty()) {
-        if (scene.animations.empty())
-            throw Error(fmt::format("--animation: {} has no animations", scenePath.string()));
+        if (scene.animations.empty()) throw Error(fmt::format("--animation: {} has no animations", scenePath.string()));
         animation = &findAnimation(scene, o.animation.empty() ? std::string("0") : o.animation);
     }
     auto poseAt = [&](float t) { renderer.setPose(posedScene(scene, animationNodePose(scene, *animation, t))); };

@@ -56,7 +56,8 @@ size_t editDistance(const std::string& a, const std::string& b) {
     for (size_t i = 1; i <= a.size(); ++i) {
         for (size_t j = 1; j <= b.size(); ++j) {
             d[i][j] = std::min({d[i - 1][j] + 1, d[i][j - 1] + 1, d[i - 1][j - 1] + (a[i - 1] == b[j - 1] ? 0 : 1)});
-            if (i > 1 && j > 1 && a[i - 1] == b[j - 2] && a[i - 2] == b[j - 1]) d[i][j] = std::min(d[i][j], d[i - 2][j - 2] + 1);
+            if (i > 1 && j > 1 && a[i - 1] == b[j - 2] && a[i - 2] == b[j - 1])
+                d[i][j] = std::min(d[i][j], d[i - 2][j - 2] + 1);
         }
     }
     return d[a.size()][b.size()];
@@ -196,8 +197,10 @@ std::string describeParseError(const CLI::ParseError& error, const CLI::App& app
         if (what.find("subcommand") != std::string::npos) {
             const std::vector<std::string> rest = app.remaining();
             if (!rest.empty() && !rest.front().empty()) {
-                return shown(rest.front()) + (rest.front()[0] == '-' ? ": option: unknown here (see --help)"
-                                                                     : ": command: unknown" + nearest(rest.front(), commandNames(app)) + " (see --help)");
+                return shown(rest.front()) +
+                    (rest.front()[0] == '-'
+                         ? ": option: unknown here (see --help)"
+                         : ": command: unknown" + nearest(rest.front(), commandNames(app)) + " (see --help)");
             }
             return "command: subcommand: missing (see --help)";
         }
@@ -232,7 +235,8 @@ std::string describeParseError(const CLI::ParseError& error, const CLI::App& app
     }
     if (dynamic_cast<const CLI::ExcludesError*>(&error)) {
         const size_t at = what.find(" excludes ");
-        if (at != std::string::npos) return what.substr(0, at) + ": option: cannot be combined with " + what.substr(at + 10);
+        if (at != std::string::npos)
+            return what.substr(0, at) + ": option: cannot be combined with " + what.substr(at + 10);
     }
     if (dynamic_cast<const CLI::RequiresError*>(&error)) {
         const size_t at = what.find(" requires ");

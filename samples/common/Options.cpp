@@ -2,12 +2,11 @@
 #include "CommandLine.h"
 
 #include <preskin/Error.h>
-#include <preskin/Limits.h>
 #include <preskin/LightScatter.h>
+#include <preskin/Limits.h>
 
 #include <fmt/core.h>
 #include <fmt/format.h>
-
 
 #include <algorithm>
 #include <cmath>
@@ -107,8 +106,10 @@ void addLutOptions(CLI::App& cmd, CommonOptions& o) {
 }
 
 void addProfileBakeOptions(CLI::App& cmd, CommonOptions& o) {
-    cmd.add_flag("--no-cache", o.noCache, "Bake the scene's diffusion profiles without reading or writing the LUT cache");
-    cmd.add_option("--cache-dir", o.cacheDir, "LUT cache folder (default: $XDG_CACHE_HOME/preskin/luts or ~/.cache/preskin/luts)");
+    cmd.add_flag("--no-cache", o.noCache,
+                 "Bake the scene's diffusion profiles without reading or writing the LUT cache");
+    cmd.add_option("--cache-dir", o.cacheDir,
+                   "LUT cache folder (default: $XDG_CACHE_HOME/preskin/luts or ~/.cache/preskin/luts)");
     cmd.add_option("--profile-lut-size", o.profileLutSize, "Table size of the scene's baked profiles")
         ->check(wholeNumberIn(LutBakeSettings::kMinSize, LutBakeSettings::kMaxSize))
         ->capture_default_str();
@@ -122,7 +123,9 @@ Scene loadScene(const std::filesystem::path& path, const CommonOptions& o) {
 
 void addViewOptions(CLI::App& cmd, ViewOptions& o) {
     cmd.add_option("--width", o.width, "Image width in pixels")->capture_default_str()->check(wholeNumberIn(1, 16384));
-    cmd.add_option("--height", o.height, "Image height in pixels")->capture_default_str()->check(wholeNumberIn(1, 16384));
+    cmd.add_option("--height", o.height, "Image height in pixels")
+        ->capture_default_str()
+        ->check(wholeNumberIn(1, 16384));
     auto* camera = cmd.add_option("--camera", o.camera, "Use the scene's camera of this name");
     auto* orbit = cmd.add_option("--orbit", o.orbit,
                                  "Orbit the scene's centre: YAW,PITCH,DIST in degrees, degrees, metres (DIST 0: fit)");
@@ -137,15 +140,18 @@ size_t findSceneCamera(const Scene& scene, const std::filesystem::path& scenePat
     std::vector<std::string> names;
     for (size_t i = 0; i < scene.cameras.size(); ++i) {
         if (scene.cameras[i].name == name) return i;
-        names.push_back(scene.cameras[i].name.empty() ? fmt::format("cameras[{}] (no name)", i) : scene.cameras[i].name);
+        names.push_back(scene.cameras[i].name.empty() ? fmt::format("cameras[{}] (no name)", i)
+                                                      : scene.cameras[i].name);
     }
     throw Error(fmt::format("--camera {}: {} has no camera of that name ({})", name, scenePath.string(),
-                            names.empty() ? std::string("it has no cameras") : "its cameras: " + fmt::format("{}", fmt::join(names, ", "))));
+                            names.empty() ? std::string("it has no cameras")
+                                          : "its cameras: " + fmt::format("{}", fmt::join(names, ", "))));
 }
 
 View makeView(const Scene& scene, const std::filesystem::path& scenePath, const ViewOptions& o) {
     const float aspect = float(o.width) / float(o.height);
-    if (!o.camera.empty()) return cameraView(scene.cameras[findSceneCamera(scene, scenePath, o.camera)], aspect, scene.worldBounds());
+    if (!o.camera.empty())
+        return cameraView(scene.cameras[findSceneCamera(scene, scenePath, o.camera)], aspect, scene.worldBounds());
     if (!o.orbit.empty()) {
         const auto v = parseFloats(o.orbit, 3, "--orbit");
         return orbitView(scene.worldBounds(), v[0], v[1], v[2], aspect);
@@ -154,8 +160,8 @@ View makeView(const Scene& scene, const std::filesystem::path& scenePath, const 
 }
 
 void addStereoOptions(CLI::App& cmd, StereoOptions& o) {
-    auto* stereo =
-        cmd.add_flag("--stereo", o.stereo, "Render a stereo pair (one multiview pass), eyes side by side, left eye left");
+    auto* stereo = cmd.add_flag("--stereo", o.stereo,
+                                "Render a stereo pair (one multiview pass), eyes side by side, left eye left");
     cmd.add_option("--ipd", o.ipdM, "Interpupillary distance of --stereo and --eye, metres")
         ->check(numberIn(0.0, 1.0))
         ->capture_default_str();
@@ -260,15 +266,24 @@ RenderSettings renderSettings(const CommonOptions& o) {
     s.specular = !o.noSpecular;
     s.specularIbl = !o.noSpecularIbl;
     const std::string d = lower(o.debug);
-    if (d == "none") s.debugView = DebugView::None;
-    else if (d == "curvature") s.debugView = DebugView::Curvature;
-    else if (d == "normals") s.debugView = DebugView::Normals;
-    else if (d == "shadow") s.debugView = DebugView::Shadow;
-    else if (d == "penumbra") s.debugView = DebugView::Penumbra;
-    else if (d == "lightcount") s.debugView = DebugView::LightCount;
-    else if (d == "shambient") s.debugView = DebugView::ShAmbient;
-    else if (d == "transmission") s.debugView = DebugView::Transmission;
-    else throw Error(fmt::format("--debug {}: unknown debug view", o.debug));
+    if (d == "none")
+        s.debugView = DebugView::None;
+    else if (d == "curvature")
+        s.debugView = DebugView::Curvature;
+    else if (d == "normals")
+        s.debugView = DebugView::Normals;
+    else if (d == "shadow")
+        s.debugView = DebugView::Shadow;
+    else if (d == "penumbra")
+        s.debugView = DebugView::Penumbra;
+    else if (d == "lightcount")
+        s.debugView = DebugView::LightCount;
+    else if (d == "shambient")
+        s.debugView = DebugView::ShAmbient;
+    else if (d == "transmission")
+        s.debugView = DebugView::Transmission;
+    else
+        throw Error(fmt::format("--debug {}: unknown debug view", o.debug));
     s.lightLoop = o.lightLoop == "all" ? LightLoop::All : LightLoop::Clustered;
     s.exposure = o.exposure;
     s.shadowSoftnessTexels = o.shadowSoftness;
@@ -283,8 +298,10 @@ Background parseBackground(const std::vector<std::string>& words) {
     Background b;
     if (words.empty()) return b;
     const std::string mode = lower(words[0]);
-    if (words.size() == 1 && (mode == "env" || mode == "environment")) b.mode = BackgroundMode::Environment;
-    else if (words.size() == 1 && mode == "transparent") b.mode = BackgroundMode::Transparent;
+    if (words.size() == 1 && (mode == "env" || mode == "environment"))
+        b.mode = BackgroundMode::Environment;
+    else if (words.size() == 1 && mode == "transparent")
+        b.mode = BackgroundMode::Transparent;
     else if (words.size() == 2 && mode == "color") {
         const std::vector<float> c = parseFloats(words[1], 3, "--background color");
         for (float v : c)
@@ -370,11 +387,13 @@ void reportValidation(const Context& context) {
 
 std::string formatStats(const FrameStats& stats) {
     std::string passes;
-    for (const PassTime& p : stats.passes) passes += fmt::format("{}{} {:.2f}", passes.empty() ? "" : ", ", p.name, p.gpuMs);
-    std::string text = stats.passes.empty() ? "gpu timestamps unavailable"
-                                            : fmt::format("gpu {:.2f} ms ({})", stats.gpuMs, passes);
+    for (const PassTime& p : stats.passes)
+        passes += fmt::format("{}{} {:.2f}", passes.empty() ? "" : ", ", p.name, p.gpuMs);
+    std::string text =
+        stats.passes.empty() ? "gpu timestamps unavailable" : fmt::format("gpu {:.2f} ms ({})", stats.gpuMs, passes);
     text += fmt::format(", wall {:.2f} ms", stats.wallMs);
-    if (stats.clusterBuildCpuMs > 0.0) text += fmt::format(" (light grid build {:.2f} ms cpu)", stats.clusterBuildCpuMs);
+    if (stats.clusterBuildCpuMs > 0.0)
+        text += fmt::format(" (light grid build {:.2f} ms cpu)", stats.clusterBuildCpuMs);
     return text;
 }
 

@@ -22,9 +22,9 @@ namespace preskin::cli {
 
 struct CommonOptions {
     std::string env;
-    float envIntensity = -1.0f;  // < 0: the scene's (or 1)
+    float envIntensity = -1.0f;           // < 0: the scene's (or 1)
     std::optional<float> envRotationDeg;  // unset: the scene's (or 0)
-    int envLights = -1;  // < 0: environmentLightCount's default
+    int envLights = -1;                   // < 0: environmentLightCount's default
     bool noSceneLights = false;
     std::string device;
     bool validation = false;
@@ -49,7 +49,7 @@ struct CommonOptions {
     uint32_t shadowMapSize = 2048;
     bool noShadows = false;
     uint32_t msaa = 1;
-    std::string luts;  // LUT set folder; default: the committed luts/ (d'Eon)
+    std::string luts;                // LUT set folder; default: the committed luts/ (d'Eon)
     bool allowOutsideLinks = false;  // SceneLoadOptions::allowLinksOutsideFolder
     bool noCache = false;            // bake the scene's profiles without the on-disk cache
     std::string cacheDir;            // profile cache folder; default: the XDG cache folder

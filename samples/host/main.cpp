@@ -12,8 +12,8 @@
 #include <vulkan/vulkan.h>
 
 #include <preskin/Environment.h>
-#include <preskin/LightRecord.h>
 #include <preskin/Error.h>
+#include <preskin/LightRecord.h>
 #include <preskin/LutSet.h>
 #include <preskin/NormalBasis.h>
 #include <preskin/Renderer.h>  // writeImage
@@ -150,7 +150,8 @@ public:
         cleanup.push_back([this, buffer] { vkDestroyBuffer(device, buffer, nullptr); });
         VkMemoryRequirements req;
         vkGetBufferMemoryRequirements(device, buffer, &req);
-        VkDeviceMemory memory = allocate(req, VK_MEMORY_PROPERTY_HOST_VISIBLE_BIT | VK_MEMORY_PROPERTY_HOST_COHERENT_BIT);
+        VkDeviceMemory memory =
+            allocate(req, VK_MEMORY_PROPERTY_HOST_VISIBLE_BIT | VK_MEMORY_PROPERTY_HOST_COHERENT_BIT);
         vkBindBufferMemory(device, buffer, memory, 0);
         void* p = nullptr;
         vkMapMemory(device, memory, 0, size, 0, &p);
@@ -230,9 +231,10 @@ public:
     VkImageView texture(VkFormat format, uint32_t width, uint32_t height, const void* pixels, size_t bytes,
                         bool mipmapped, VkImageViewType viewType = VK_IMAGE_VIEW_TYPE_2D) {
         const uint32_t mips = mipmapped ? mipCount(width, height) : 1u;
-        const Image img = image(format, width, height, mips,
-                                VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_DST_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT,
-                                VK_IMAGE_ASPECT_COLOR_BIT, viewType);
+        const Image img =
+            image(format, width, height, mips,
+                  VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_DST_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT,
+                  VK_IMAGE_ASPECT_COLOR_BIT, viewType);
         const VkBuffer staging = buffer(bytes, VK_BUFFER_USAGE_TRANSFER_SRC_BIT, pixels);
         submit([&](VkCommandBuffer cmd) {
             barrier(cmd, img.image, VK_IMAGE_ASPECT_COLOR_BIT, 0, mips, VK_IMAGE_LAYOUT_UNDEFINED,
@@ -246,7 +248,8 @@ public:
                         VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL);
                 VkImageBlit blit{};
                 blit.srcSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, level - 1, 0, 1};
-                blit.srcOffsets[1] = {std::max(1, int32_t(width >> (level - 1))), std::max(1, int32_t(height >> (level - 1))), 1};
+                blit.srcOffsets[1] = {std::max(1, int32_t(width >> (level - 1))),
+                                      std::max(1, int32_t(height >> (level - 1))), 1};
                 blit.dstSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, level, 0, 1};
                 blit.dstOffsets[1] = {std::max(1, int32_t(width >> level)), std::max(1, int32_t(height >> level)), 1};
                 vkCmdBlitImage(cmd, img.image, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, img.image,
@@ -304,9 +307,12 @@ int main(int argc, char** argv) {
             return 1;
         }
         const std::string value = argv[i + 1];
-        if (flag == "--scene") scenePath = value;
-        else if (flag == "--out") out = value;
-        else if (flag == "--device") deviceName = value;
+        if (flag == "--scene")
+            scenePath = value;
+        else if (flag == "--out")
+            out = value;
+        else if (flag == "--device")
+            deviceName = value;
         else {
             char* end = nullptr;
             const unsigned long n = std::strtoul(value.c_str(), &end, 10);
@@ -322,13 +328,13 @@ int main(int argc, char** argv) {
         // What preskin gives a host: the scene, LUTs and their mapping, environment SH, the view.
         const preskin::Scene scene = preskin::Scene::load(scenePath);
         const preskin::LutSet luts = preskin::LutSet::load(PRESKIN_DATA_DIR "/luts");
-        const preskin::Environment env =
-            scene.environmentPath ? preskin::Environment::load(*scene.environmentPath, scene.environmentIntensity,
-                                                               scene.environmentRotation)
-                                  : preskin::Environment::constant(glm::vec3(0.25f));
+        const preskin::Environment env = scene.environmentPath
+            ? preskin::Environment::load(*scene.environmentPath, scene.environmentIntensity, scene.environmentRotation)
+            : preskin::Environment::constant(glm::vec3(0.25f));
         const preskin::Eye eye = preskin::frameBoundsView(scene.worldBounds(), float(width) / float(height)).eyes[0];
         if (scene.materials.empty() || !scene.materials[0].baseColor.valid() || !scene.materials[0].normal.valid())
-            throw std::runtime_error(scenePath + ": the host sample needs a first material with base colour and normal maps");
+            throw std::runtime_error(scenePath +
+                                     ": the host sample needs a first material with base colour and normal maps");
         const preskin::Material& material = scene.materials[0];
         const preskin::SkinMaterial skin = material.skin.value_or(preskin::SkinMaterial{});
 
@@ -345,9 +351,9 @@ int main(int argc, char** argv) {
             for (const preskin::Primitive& p : scene.meshes[size_t(inst.mesh)].primitives)
                 preskin::accumulateTexelDensity(p, inst.worldFromObject, uvArea, areaMm2);
         const preskin::Image& normalImage = scene.images[size_t(material.normal.image)];
-        const glm::vec3 lodBias = skin.normalLodBias.value_or(preskin::normalLodBias(
-            glm::vec3(luts.profile().widthMm()), skin.scatterScale,
-            preskin::texelsPerMm(uvArea, areaMm2, normalImage.width, normalImage.height)));
+        const glm::vec3 lodBias = skin.normalLodBias.value_or(
+            preskin::normalLodBias(glm::vec3(luts.profile().widthMm()), skin.scatterScale,
+                                   preskin::texelsPerMm(uvArea, areaMm2, normalImage.width, normalImage.height)));
         // The whole mip levels the biased samples blend; the map has a full chain (texture() below).
         frame.lodBias = glm::vec4(
             lodBias, float(preskin::normalLevelCount(lodBias, mipCount(normalImage.width, normalImage.height))));
@@ -460,7 +466,8 @@ int main(int argc, char** argv) {
         dai.pSetLayouts = &setLayout;
         VkDescriptorSet set;
         check(vkAllocateDescriptorSets(dev, &dai, &set), "vkAllocateDescriptorSets");
-        const VkDescriptorBufferInfo bufferInfos[2] = {{frameBuffer, 0, sizeof(Frame)}, {cameraBuffer, 0, sizeof(Camera)}};
+        const VkDescriptorBufferInfo bufferInfos[2] = {{frameBuffer, 0, sizeof(Frame)},
+                                                       {cameraBuffer, 0, sizeof(Camera)}};
         VkDescriptorImageInfo imageInfos[5];
         VkWriteDescriptorSet writes[7];
         for (uint32_t b = 0; b < 7; ++b) {
@@ -473,7 +480,8 @@ int main(int argc, char** argv) {
                 writes[b].pBufferInfo = &bufferInfos[b == 0 ? 0 : 1];
                 continue;
             }
-            imageInfos[b - 1] = {b <= 3 ? materialSampler : lutSampler, views[b - 1], VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL};
+            imageInfos[b - 1] = {b <= 3 ? materialSampler : lutSampler, views[b - 1],
+                                 VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL};
             writes[b].pImageInfo = &imageInfos[b - 1];
         }
         vkUpdateDescriptorSets(dev, 7, writes, 0, nullptr);
@@ -558,13 +566,14 @@ int main(int argc, char** argv) {
         check(vkCreateGraphicsPipelines(dev, VK_NULL_HANDLE, 1, &gpi, nullptr, &pipeline), "vkCreateGraphicsPipelines");
 
         // The offscreen target, one frame, read back.
-        const Gpu::Image color = gpu.image(colorFormat, width, height, 1,
-                                           VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT,
-                                           VK_IMAGE_ASPECT_COLOR_BIT);
+        const Gpu::Image color =
+            gpu.image(colorFormat, width, height, 1,
+                      VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT, VK_IMAGE_ASPECT_COLOR_BIT);
         const Gpu::Image depth = gpu.image(depthFormat, width, height, 1, VK_IMAGE_USAGE_DEPTH_STENCIL_ATTACHMENT_BIT,
                                            VK_IMAGE_ASPECT_DEPTH_BIT);
         void* pixels = nullptr;
-        const VkBuffer readback = gpu.buffer(VkDeviceSize(width) * height * 4, VK_BUFFER_USAGE_TRANSFER_DST_BIT, nullptr, &pixels);
+        const VkBuffer readback =
+            gpu.buffer(VkDeviceSize(width) * height * 4, VK_BUFFER_USAGE_TRANSFER_DST_BIT, nullptr, &pixels);
         gpu.submit([&](VkCommandBuffer cmd) {
             Gpu::barrier(cmd, color.image, VK_IMAGE_ASPECT_COLOR_BIT, 0, 1, VK_IMAGE_LAYOUT_UNDEFINED,
                          VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL);
@@ -611,7 +620,8 @@ int main(int argc, char** argv) {
         preskin::RenderedImage image;
         image.width = width;
         image.height = height;
-        image.rgba8.assign(static_cast<const uint8_t*>(pixels), static_cast<const uint8_t*>(pixels) + size_t(width) * height * 4);
+        image.rgba8.assign(static_cast<const uint8_t*>(pixels),
+                           static_cast<const uint8_t*>(pixels) + size_t(width) * height * 4);
         preskin::writeImage(out, image);
 
         vkDestroyPipeline(dev, pipeline, nullptr);

@@ -77,8 +77,8 @@ void CameraController::update(const CameraInput& input, float dtS, float aspect)
         flySpeedMps_ = std::clamp(flySpeedMps_ * std::pow(1.2f, input.wheelSteps), radiusM_ * 0.01f, radiusM_ * 100.0f);
     const glm::vec3 forward = flyForward();
     const glm::vec3 right = glm::normalize(glm::cross(forward, glm::vec3(0.0f, 1.0f, 0.0f)));
-    const glm::vec3 move = right * input.moveAxes.x + glm::vec3(0.0f, 1.0f, 0.0f) * input.moveAxes.y +
-                           forward * input.moveAxes.z;
+    const glm::vec3 move =
+        right * input.moveAxes.x + glm::vec3(0.0f, 1.0f, 0.0f) * input.moveAxes.y + forward * input.moveAxes.z;
     flyPositionWs_ += move * flySpeedMps_ * (input.fast ? 4.0f : 1.0f) * dtS;
 }
 
@@ -87,8 +87,8 @@ View CameraController::view(float aspect) const {
         return cameraView(cameras_[size_t(sceneCamera_)], aspect, bounds_);
     if (mode_ != CameraMode::Fly) return orbitView(bounds_, yawDeg_, pitchDeg_, distanceM_, aspect, kYfov);
     const glm::vec3 center = bounds_.empty() ? glm::vec3(0.0f) : bounds_.center();
-    const glm::mat4 worldFromView = glm::inverse(
-        glm::lookAt(flyPositionWs_, flyPositionWs_ + flyForward(), glm::vec3(0.0f, 1.0f, 0.0f)));
+    const glm::mat4 worldFromView =
+        glm::inverse(glm::lookAt(flyPositionWs_, flyPositionWs_ + flyForward(), glm::vec3(0.0f, 1.0f, 0.0f)));
     const float nearM = std::max(radiusM_ * 0.005f, 1e-4f);
     const float farM = std::max(glm::length(flyPositionWs_ - center) + 2.0f * radiusM_, nearM * 2.0f);
     return perspectiveView(worldFromView, kYfov, aspect, nearM, farM);

@@ -32,8 +32,7 @@ void LutBaker::start(Request request) {
         } catch (const std::exception& e) {
             result.error = e.what();
         }
-        result.bakeMs =
-            std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - begin).count();
+        result.bakeMs = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - begin).count();
         return result;
     });
 }

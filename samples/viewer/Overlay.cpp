@@ -18,9 +18,7 @@ void checkImGuiVk(VkResult result) {
     if (result != VK_SUCCESS) std::fprintf(stderr, "preskin-viewer: Dear ImGui Vulkan backend: VkResult %d\n", result);
 }
 
-float srgbToLinear(float c) {
-    return c <= 0.04045f ? c / 12.92f : std::pow((c + 0.055f) / 1.055f, 2.4f);
-}
+float srgbToLinear(float c) { return c <= 0.04045f ? c / 12.92f : std::pow((c + 0.055f) / 1.055f, 2.4f); }
 
 }  // namespace
 

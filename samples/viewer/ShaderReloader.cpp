@@ -157,7 +157,8 @@ void ShaderReloader::poll() {
                     pendingChanges_.push_back(path.lexically_relative(dir_).string());
             }
             for (const auto& [path, stamp] : known_)
-                if (!current.count(path)) pendingChanges_.push_back(path.lexically_relative(dir_).string() + " (removed)");
+                if (!current.count(path))
+                    pendingChanges_.push_back(path.lexically_relative(dir_).string() + " (removed)");
             known_ = std::move(current);
             changedAt_ = now;
         }
@@ -198,8 +199,10 @@ void ShaderReloader::start(std::vector<std::string> changed) {
             std::sort(entries.begin(), entries.end());
             for (const auto& file : entries) {
                 std::vector<uint32_t> spirv = compileGlsl(file, dir, build.log);
-                if (spirv.empty()) build.ok = false;
-                else build.spirvByFile[file.filename().string()] = std::move(spirv);
+                if (spirv.empty())
+                    build.ok = false;
+                else
+                    build.spirvByFile[file.filename().string()] = std::move(spirv);
             }
             if (entries.empty()) {
                 build.ok = false;

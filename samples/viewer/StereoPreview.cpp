@@ -37,7 +37,8 @@ void StereoPreview::ensure(VkExtent2D eye, VkFormat format) {
     vk_.vkGetPhysicalDeviceMemoryProperties(vk_.physicalDevice, &props);
     uint32_t type = UINT32_MAX;
     for (uint32_t i = 0; i < props.memoryTypeCount && type == UINT32_MAX; ++i)
-        if ((req.memoryTypeBits & (1u << i)) && (props.memoryTypes[i].propertyFlags & VK_MEMORY_PROPERTY_DEVICE_LOCAL_BIT))
+        if ((req.memoryTypeBits & (1u << i)) &&
+            (props.memoryTypes[i].propertyFlags & VK_MEMORY_PROPERTY_DEVICE_LOCAL_BIT))
             type = i;
     for (uint32_t i = 0; i < props.memoryTypeCount && type == UINT32_MAX; ++i)
         if (req.memoryTypeBits & (1u << i)) type = i;
@@ -60,14 +61,14 @@ void StereoPreview::ensure(VkExtent2D eye, VkFormat format) {
 void StereoPreview::copyToWindow(VkCommandBuffer cmd, VkImage window, VkExtent2D windowExtent,
                                  VkImageLayout windowLayoutAfter) const {
     imageBarrier(vk_, cmd, window, 1, VK_IMAGE_LAYOUT_UNDEFINED, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL,
-            VK_PIPELINE_STAGE_2_COLOR_ATTACHMENT_OUTPUT_BIT, VK_ACCESS_2_NONE, VK_PIPELINE_STAGE_2_ALL_TRANSFER_BIT,
-            VK_ACCESS_2_TRANSFER_WRITE_BIT);
+                 VK_PIPELINE_STAGE_2_COLOR_ATTACHMENT_OUTPUT_BIT, VK_ACCESS_2_NONE,
+                 VK_PIPELINE_STAGE_2_ALL_TRANSFER_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT);
     const VkClearColorValue clear{{0.045f, 0.045f, 0.05f, 1.0f}};
     const VkImageSubresourceRange range{VK_IMAGE_ASPECT_COLOR_BIT, 0, 1, 0, 1};
     vk_.vkCmdClearColorImage(cmd, window, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, &clear, 1, &range);
     imageBarrier(vk_, cmd, window, 1, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL,
-            VK_PIPELINE_STAGE_2_ALL_TRANSFER_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT, VK_PIPELINE_STAGE_2_ALL_TRANSFER_BIT,
-            VK_ACCESS_2_TRANSFER_WRITE_BIT);
+                 VK_PIPELINE_STAGE_2_ALL_TRANSFER_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT,
+                 VK_PIPELINE_STAGE_2_ALL_TRANSFER_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT);
     VkImageCopy regions[2]{};
     for (uint32_t e = 0; e < 2; ++e) {
         regions[e].srcSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, 0, e, 1};
@@ -79,10 +80,10 @@ void StereoPreview::copyToWindow(VkCommandBuffer cmd, VkImage window, VkExtent2D
                        2, regions);
     const bool toCopy = windowLayoutAfter == VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL;
     imageBarrier(vk_, cmd, window, 1, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, windowLayoutAfter,
-            VK_PIPELINE_STAGE_2_ALL_TRANSFER_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT,
-            toCopy ? VK_PIPELINE_STAGE_2_ALL_TRANSFER_BIT : VK_PIPELINE_STAGE_2_COLOR_ATTACHMENT_OUTPUT_BIT,
-            toCopy ? VK_ACCESS_2_TRANSFER_READ_BIT
-                   : VK_ACCESS_2_COLOR_ATTACHMENT_READ_BIT | VK_ACCESS_2_COLOR_ATTACHMENT_WRITE_BIT);
+                 VK_PIPELINE_STAGE_2_ALL_TRANSFER_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT,
+                 toCopy ? VK_PIPELINE_STAGE_2_ALL_TRANSFER_BIT : VK_PIPELINE_STAGE_2_COLOR_ATTACHMENT_OUTPUT_BIT,
+                 toCopy ? VK_ACCESS_2_TRANSFER_READ_BIT
+                        : VK_ACCESS_2_COLOR_ATTACHMENT_READ_BIT | VK_ACCESS_2_COLOR_ATTACHMENT_WRITE_BIT);
 }
 
 }  // namespace preskin::viewer

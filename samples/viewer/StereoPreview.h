@@ -22,7 +22,9 @@ public:
     StereoPreview& operator=(const StereoPreview&) = delete;
 
     // Per-eye extent for a window of `window` pixels: half its width, its height.
-    static VkExtent2D eyeExtent(VkExtent2D window) { return {window.width / 2 > 0 ? window.width / 2 : 1, window.height}; }
+    static VkExtent2D eyeExtent(VkExtent2D window) {
+        return {window.width / 2 > 0 ? window.width / 2 : 1, window.height};
+    }
 
     // The 2-layer image (and its 2D_ARRAY view) for eyes of `eye` pixels in `format`; recreated
     // when either changes (the device must be idle then, as after a swapchain change).
@@ -32,7 +34,8 @@ public:
 
     // After the renderer left the layers in TRANSFER_SRC_OPTIMAL: clears the window image and
     // copies layer e into its half e, leaving the window image in `windowLayoutAfter`.
-    void copyToWindow(VkCommandBuffer cmd, VkImage window, VkExtent2D windowExtent, VkImageLayout windowLayoutAfter) const;
+    void copyToWindow(VkCommandBuffer cmd, VkImage window, VkExtent2D windowExtent,
+                      VkImageLayout windowLayoutAfter) const;
 
 private:
     void release();

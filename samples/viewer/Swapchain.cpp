@@ -114,12 +114,12 @@ bool Swapchain::recreate(VkExtent2D sizePx, bool vsync) {
     if (transferDestination_) info.imageUsage |= VK_IMAGE_USAGE_TRANSFER_DST_BIT;  // the stereo preview's copies
     info.imageSharingMode = VK_SHARING_MODE_EXCLUSIVE;
     info.preTransform = (caps.supportedTransforms & VK_SURFACE_TRANSFORM_IDENTITY_BIT_KHR)
-                            ? VK_SURFACE_TRANSFORM_IDENTITY_BIT_KHR
-                            : caps.currentTransform;
+        ? VK_SURFACE_TRANSFORM_IDENTITY_BIT_KHR
+        : caps.currentTransform;
     info.compositeAlpha = VK_COMPOSITE_ALPHA_OPAQUE_BIT_KHR;
-    for (VkCompositeAlphaFlagBitsKHR a : {VK_COMPOSITE_ALPHA_OPAQUE_BIT_KHR, VK_COMPOSITE_ALPHA_INHERIT_BIT_KHR,
-                                          VK_COMPOSITE_ALPHA_PRE_MULTIPLIED_BIT_KHR,
-                                          VK_COMPOSITE_ALPHA_POST_MULTIPLIED_BIT_KHR})
+    for (VkCompositeAlphaFlagBitsKHR a :
+         {VK_COMPOSITE_ALPHA_OPAQUE_BIT_KHR, VK_COMPOSITE_ALPHA_INHERIT_BIT_KHR,
+          VK_COMPOSITE_ALPHA_PRE_MULTIPLIED_BIT_KHR, VK_COMPOSITE_ALPHA_POST_MULTIPLIED_BIT_KHR})
         if (caps.supportedCompositeAlpha & a) {
             info.compositeAlpha = a;
             break;

@@ -52,8 +52,10 @@ Viewer::Viewer(ViewerOptions options) : options_(std::move(options)) {
         shaders_ = std::make_unique<ShaderReloader>(cli::dataDir() / "shaders");
         shaders_->setWatching(!options_.noShaderReload);
         if (options_.compileShaders) {
-            if (shaders_->enabled()) shaders_->requestBuild();
-            else error("--compile-shaders: no shader sources to compile");
+            if (shaders_->enabled())
+                shaders_->requestBuild();
+            else
+                error("--compile-shaders: no shader sources to compile");
         }
         if (!shaders_->enabled())
             info(fmt::format("shader hot reload is off: {} does not exist (set PRESKIN_DATA_DIR to a source tree)",
@@ -95,8 +97,10 @@ void Viewer::createWindow() {
     static std::string glfwReason;
     static bool windowOpen = false;
     glfwSetErrorCallback([](int code, const char* text) {
-        if (windowOpen) fmt::print(stderr, "preskin-viewer: GLFW {}: {}\n", code, text);
-        else glfwReason = text ? text : "";
+        if (windowOpen)
+            fmt::print(stderr, "preskin-viewer: GLFW {}: {}\n", code, text);
+        else
+            glfwReason = text ? text : "";
     });
     auto failed = [](const char* field, const char* otherwise, const char* hint) {
         return Error(fmt::format("GLFW: {}: {}{}", field, glfwReason.empty() ? otherwise : glfwReason, hint));
@@ -104,8 +108,8 @@ void Viewer::createWindow() {
     if (!glfwInit()) throw failed("display", "cannot open it", " (without a display, run under xvfb-run)");
     if (!glfwVulkanSupported()) throw failed("Vulkan", "no Vulkan loader or driver found", "");
     glfwWindowHint(GLFW_CLIENT_API, GLFW_NO_API);
-    window_ = glfwCreateWindow(static_cast<int>(options_.widthPx), static_cast<int>(options_.heightPx), "preskin-viewer",
-                               nullptr, nullptr);
+    window_ = glfwCreateWindow(static_cast<int>(options_.widthPx), static_cast<int>(options_.heightPx),
+                               "preskin-viewer", nullptr, nullptr);
     if (!window_) throw failed("window", "cannot create it", "");
     windowOpen = true;
     glfwSetWindowUserPointer(window_, this);
@@ -206,14 +210,14 @@ void Viewer::loadStartupContent() {
     }
 
     environmentIntensity_ = options_.common.envIntensity >= 0.0f ? options_.common.envIntensity
-                            : (options_.common.env.empty() && scene.environmentPath) ? scene.environmentIntensity
-                                                                                     : 1.0f;
+        : (options_.common.env.empty() && scene.environmentPath) ? scene.environmentIntensity
+                                                                 : 1.0f;
     environmentFromScene_ = options_.common.env.empty();
     try {
         environment_ = cli::loadEnvironment(scene, options_.common);
         environmentRotationDeg_ = glm::degrees(environment_.rotationY());
         environmentName_ = !options_.common.env.empty() ? options_.common.env
-                           : scene.environmentPath      ? scene.environmentPath->string()
+            : scene.environmentPath                     ? scene.environmentPath->string()
                                                         : "uniform grey";
     } catch (const std::exception& e) {
         error(fmt::format("environment not loaded: {} (using a uniform grey)", e.what()));
@@ -236,7 +240,8 @@ void Viewer::loadStartupContent() {
     if (!options_.animation.empty() || options_.timeS || options_.play) {
         try {
             if (scene_.animations.empty()) throw Error("the scene has no animations");
-            const Animation& a = findAnimation(scene_, options_.animation.empty() ? std::string("0") : options_.animation);
+            const Animation& a =
+                findAnimation(scene_, options_.animation.empty() ? std::string("0") : options_.animation);
             animation_ = static_cast<int>(&a - scene_.animations.data());
             animationTimeS_ = options_.timeS.value_or(a.startS());
             playing_ = options_.play;
@@ -386,7 +391,8 @@ void Viewer::recreateSwapchain() {
     swapchain_->recreate({uint32_t(w), uint32_t(h)}, vsync_);
     overlay_->onSwapchainRecreated();
     swapchainDirty_ = false;
-    if (swapchain_->presentMode() != before) info(fmt::format("present mode: {}", presentModeName(swapchain_->presentMode())));
+    if (swapchain_->presentMode() != before)
+        info(fmt::format("present mode: {}", presentModeName(swapchain_->presentMode())));
 }
 
 void Viewer::handleInput(float dtS) {
@@ -427,14 +433,16 @@ bool Viewer::drawFrame() {
         frame.submitted = false;
     }
     uint32_t imageIndex = 0;
-    const VkResult acquired =
-        vk_.vkAcquireNextImageKHR(vk_.device, swapchain_->handle(), UINT64_MAX, frame.acquired, VK_NULL_HANDLE, &imageIndex);
+    const VkResult acquired = vk_.vkAcquireNextImageKHR(vk_.device, swapchain_->handle(), UINT64_MAX, frame.acquired,
+                                                        VK_NULL_HANDLE, &imageIndex);
     if (acquired == VK_ERROR_OUT_OF_DATE_KHR) {
         swapchainDirty_ = true;
         return false;
     }
-    if (acquired == VK_SUBOPTIMAL_KHR) swapchainDirty_ = true;
-    else check(acquired, "vkAcquireNextImageKHR");
+    if (acquired == VK_SUBOPTIMAL_KHR)
+        swapchainDirty_ = true;
+    else
+        check(acquired, "vkAcquireNextImageKHR");
     const double waitMs = msSince(waitBegin);
 
     const auto cpuBegin = Clock::now();
@@ -448,8 +456,8 @@ bool Viewer::drawFrame() {
 
     Timing t;
     t.intervalMs = lastFrameStart_ == Clock::time_point{}
-                       ? 0.0
-                       : std::chrono::duration<double, std::milli>(waitBegin - lastFrameStart_).count();
+        ? 0.0
+        : std::chrono::duration<double, std::milli>(waitBegin - lastFrameStart_).count();
     lastFrameStart_ = waitBegin;
     t.cpuMs = cpuMs;
     t.waitMs = waitMs;
@@ -518,8 +526,9 @@ void Viewer::recordFrame(Frame& frame, uint32_t imageIndex) {
 
     if (captureScene) {
         capture_->record(frame.cmd, slot_, image, target.format, swapchain_->extent(), *captureNext_, false);
-        imageBarrier(vk_, frame.cmd, image, 1, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL,
-                     VK_PIPELINE_STAGE_2_COPY_BIT, VK_ACCESS_2_NONE, VK_PIPELINE_STAGE_2_COLOR_ATTACHMENT_OUTPUT_BIT,
+        imageBarrier(vk_, frame.cmd, image, 1, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL,
+                     VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL, VK_PIPELINE_STAGE_2_COPY_BIT, VK_ACCESS_2_NONE,
+                     VK_PIPELINE_STAGE_2_COLOR_ATTACHMENT_OUTPUT_BIT,
                      VK_ACCESS_2_COLOR_ATTACHMENT_READ_BIT | VK_ACCESS_2_COLOR_ATTACHMENT_WRITE_BIT);
     }
     overlay_->record(frame.cmd, imageIndex, captureUi, !rendered);
@@ -562,8 +571,10 @@ void Viewer::present(uint32_t imageIndex) {
     info.pSwapchains = &swapchain;
     info.pImageIndices = &imageIndex;
     const VkResult presented = vk_.vkQueuePresentKHR(context_->queue(), &info);
-    if (presented == VK_ERROR_OUT_OF_DATE_KHR || presented == VK_SUBOPTIMAL_KHR) swapchainDirty_ = true;
-    else check(presented, "vkQueuePresentKHR");
+    if (presented == VK_ERROR_OUT_OF_DATE_KHR || presented == VK_SUBOPTIMAL_KHR)
+        swapchainDirty_ = true;
+    else
+        check(presented, "vkQueuePresentKHR");
 }
 
 void Viewer::finishSlot(uint32_t slot) {
@@ -607,11 +618,12 @@ void Viewer::printSummary() const {
     std::string passText;
     for (const auto& [name, sum] : passes)
         passText += fmt::format("{}{} {:.2f}", passText.empty() ? "" : ", ", name, sum.first / double(sum.second));
-    fmt::print("preskin-viewer: {} frames at {}x{} on {} ({}): frame {:.2f} ms, cpu {:.2f} ms, present {:.2f} ms, "
-               "gpu {:.2f} ms ({})\n",
-               n, swapchain_->extent().width, swapchain_->extent().height, context_->deviceName(),
-               presentModeName(swapchain_->presentMode()), interval / double(n), cpu / double(n), present / double(n),
-               gpuN ? gpu / double(gpuN) : 0.0, passText.empty() ? "no timestamps" : passText);
+    fmt::print(
+        "preskin-viewer: {} frames at {}x{} on {} ({}): frame {:.2f} ms, cpu {:.2f} ms, present {:.2f} ms, "
+        "gpu {:.2f} ms ({})\n",
+        n, swapchain_->extent().width, swapchain_->extent().height, context_->deviceName(),
+        presentModeName(swapchain_->presentMode()), interval / double(n), cpu / double(n), present / double(n),
+        gpuN ? gpu / double(gpuN) : 0.0, passText.empty() ? "no timestamps" : passText);
 }
 
 }  // namespace preskin::viewer

@@ -88,9 +88,9 @@ private:
     };
     struct Timing {
         double intervalMs = 0.0;  // from the previous frame's start
-        double cpuMs = 0.0;   // panels, recording, submission
-        double waitMs = 0.0;  // waiting for the frame slot's fence and the swapchain image
-        double presentMs = 0.0;  // in vkQueuePresentKHR
+        double cpuMs = 0.0;       // panels, recording, submission
+        double waitMs = 0.0;      // waiting for the frame slot's fence and the swapchain image
+        double presentMs = 0.0;   // in vkQueuePresentKHR
         double gpuMs = 0.0;
         std::vector<PassTime> passes;
     };
@@ -134,8 +134,8 @@ private:
     void handleInput(float dtS);
     void handleDrops();
     void pollJobs();
-    float aspect() const;       // of the window, or of one eye in the stereo preview
-    View frameView() const;     // the camera's view, its stereo pair, or one eye of the pair
+    float aspect() const;    // of the window, or of one eye in the stereo preview
+    View frameView() const;  // the camera's view, its stereo pair, or one eye of the pair
     bool jobsPending() const;
     void printSummary() const;
 
@@ -150,8 +150,8 @@ private:
     void applyLights();
     void applyPose(float dtS);  // advances playback and gives the renderer this frame's pose
     void applyShaderBuild(ShaderBuild build);
-    void prepareProfiles();        // the scene's profiles as LUT layers (ProfileLibrary)
-    size_t editedLayer() const;    // the LUT layer of the selected material's profile
+    void prepareProfiles();      // the scene's profiles as LUT layers (ProfileLibrary)
+    size_t editedLayer() const;  // the LUT layer of the selected material's profile
     void requestBake(size_t layer);
     void applyBakedLayer(size_t layer, std::shared_ptr<const LutSet> luts);
     void requestScreenshot(std::optional<std::filesystem::path> path, bool withUi);
@@ -201,7 +201,7 @@ private:
     std::vector<std::filesystem::path> dropped_;
 
     // Content and what the renderer was built from.
-    Scene scene_;  // with the viewer's material edits
+    Scene scene_;                            // with the viewer's material edits
     std::vector<Material> loadedMaterials_;  // as loaded, for "reset edits"
     std::filesystem::path scenePath_;
     Environment environment_;
@@ -209,7 +209,7 @@ private:
     bool environmentFromScene_ = false;
     float environmentIntensity_ = 1.0f;
     float environmentRotationDeg_ = 0.0f;  // the loaded environment's turn, as the panel's slider shows it
-    std::optional<LutSet> luts_;  // the default set (layer 0) as loaded
+    std::optional<LutSet> luts_;           // the default set (layer 0) as loaded
     std::string lutsName_;
     std::optional<ProfileLibrary> profiles_;                     // what the renderer's LUT arrays hold
     std::vector<std::shared_ptr<const LutSet>> preparedLayers_;  // the layers as prepared, for "as loaded"

@@ -107,8 +107,9 @@ void Viewer::rebuildRenderer(const char* why) {
     const auto begin = Clock::now();
     renderer_.reset();  // waits for the device; frees the old scene's memory before the upload
     try {
-        renderer_ = profiles_ ? std::make_unique<Renderer>(*context_, scene_, environment_, *profiles_, settings_)
-                              : std::make_unique<Renderer>(*context_, scene_, environment_, luts_ ? &*luts_ : nullptr, settings_);
+        renderer_ = profiles_
+            ? std::make_unique<Renderer>(*context_, scene_, environment_, *profiles_, settings_)
+            : std::make_unique<Renderer>(*context_, scene_, environment_, luts_ ? &*luts_ : nullptr, settings_);
     } catch (const std::exception& e) {
         error(fmt::format("renderer: {}", e.what()));
         return;
@@ -127,16 +128,20 @@ void Viewer::rebuildRenderer(const char* why) {
 
 void Viewer::applyPose(float dtS) {
     if (!renderer_) return;
-    const Animation* animation =
-        animation_ >= 0 && size_t(animation_) < scene_.animations.size() ? &scene_.animations[size_t(animation_)] : nullptr;
+    const Animation* animation = animation_ >= 0 && size_t(animation_) < scene_.animations.size()
+        ? &scene_.animations[size_t(animation_)]
+        : nullptr;
     if (animation && playing_) {
         const float start = animation->startS();
         const float length = animation->endS() - start;
         animationTimeS_ += dtS * playbackSpeed_;
-        if (length > 0.0f) animationTimeS_ = start + std::fmod(std::fmod(animationTimeS_ - start, length) + length, length);
-        else animationTimeS_ = start;
+        if (length > 0.0f)
+            animationTimeS_ = start + std::fmod(std::fmod(animationTimeS_ - start, length) + length, length);
+        else
+            animationTimeS_ = start;
     }
-    ScenePose pose = posedScene(scene_, animation ? animationNodePose(scene_, *animation, animationTimeS_) : restNodePose(scene_));
+    ScenePose pose =
+        posedScene(scene_, animation ? animationNodePose(scene_, *animation, animationTimeS_) : restNodePose(scene_));
     for (size_t i = 0; i < pose.instances.size() && i < morphOverrides_.size(); ++i)
         if (!morphOverrides_[i].empty()) pose.instances[i].morphWeights = morphOverrides_[i];
     try {
@@ -159,9 +164,12 @@ void Viewer::applyLights() {
 
 void Viewer::loadFile(const std::filesystem::path& path) {
     const std::string ext = lowerExtension(path);
-    if (ext == ".gltf" || ext == ".glb") startSceneLoad(path);
-    else if (ext == ".hdr" || ext == ".exr") startEnvironmentLoad(path, environmentIntensity_);
-    else error(fmt::format("{}: not a scene (.gltf, .glb) or an environment (.hdr, .exr)", path.string()));
+    if (ext == ".gltf" || ext == ".glb")
+        startSceneLoad(path);
+    else if (ext == ".hdr" || ext == ".exr")
+        startEnvironmentLoad(path, environmentIntensity_);
+    else
+        error(fmt::format("{}: not a scene (.gltf, .glb) or an environment (.hdr, .exr)", path.string()));
 }
 
 void Viewer::startSceneLoad(const std::filesystem::path& path) {
@@ -202,9 +210,9 @@ void Viewer::startEnvironmentLoad(std::optional<std::filesystem::path> path, flo
     sceneEnvironment.environmentPath = scene_.environmentPath;
     sceneEnvironment.environmentIntensity = scene_.environmentIntensity;
     sceneEnvironment.environmentRotation = scene_.environmentRotation;
-    const std::string name = path                      ? path->string()
-                             : scene_.environmentPath ? scene_.environmentPath->string()
-                                                      : std::string("uniform grey");
+    const std::string name = path ? path->string()
+        : scene_.environmentPath  ? scene_.environmentPath->string()
+                                  : std::string("uniform grey");
     environmentJob_ = std::async(std::launch::async, [common, sceneEnvironment, name, intensity, fromScene = !path] {
         EnvironmentLoad result;
         result.name = name;
@@ -234,9 +242,9 @@ void Viewer::applyShaderBuild(ShaderBuild build) {
     try {
         if (renderer_) renderer_->setShaderOverrides(build.spirvByFile);
         shaderOverrides_ = std::move(build.spirvByFile);
-        shaderLog_ = build.log.empty() ? fmt::format("compiled {} stages in {:.0f} ms", shaderOverrides_.size(),
-                                                     build.compileMs)
-                                       : build.log;
+        shaderLog_ = build.log.empty()
+            ? fmt::format("compiled {} stages in {:.0f} ms", shaderOverrides_.size(), build.compileMs)
+            : build.log;
         shaderLogIsError_ = false;
         info(fmt::format("shaders reloaded ({}) in {:.0f} ms", changed, build.compileMs));
     } catch (const std::exception& e) {
@@ -255,11 +263,10 @@ void Viewer::requestBake(size_t layer) {
         return;
     }
     try {
-        const DiffusionProfile profile =
-            edit.choice == ProfileChoice::Burley
-                ? DiffusionProfile::burley(glm::dvec3(edit.albedo[0], edit.albedo[1], edit.albedo[2]),
-                                           glm::dvec3(edit.mfpMm[0], edit.mfpMm[1], edit.mfpMm[2]))
-                : DiffusionProfile::deonLuebke();
+        const DiffusionProfile profile = edit.choice == ProfileChoice::Burley
+            ? DiffusionProfile::burley(glm::dvec3(edit.albedo[0], edit.albedo[1], edit.albedo[2]),
+                                       glm::dvec3(edit.mfpMm[0], edit.mfpMm[1], edit.mfpMm[2]))
+            : DiffusionProfile::deonLuebke();
         baker_.request(layer, profile, LutBakeSettings::withSize(lutSize_));
     } catch (const std::exception& e) {
         error(fmt::format("profile: {}", e.what()));
@@ -307,7 +314,8 @@ void Viewer::pollJobs() {
         } else {
             for (const std::string& w : loaded.scene->warnings) info("warning: " + w);
             info(fmt::format("{} loaded in {:.0f} ms", loaded.path.string(), loaded.loadMs));
-            const bool newEnvironment = environmentFromScene_ && (loaded.scene->environmentPath || scene_.environmentPath);
+            const bool newEnvironment =
+                environmentFromScene_ && (loaded.scene->environmentPath || scene_.environmentPath);
             scenePathInput_ = loaded.path.string();
             adoptScene(std::move(*loaded.scene), loaded.path);
             if (newEnvironment) startEnvironmentLoad(std::nullopt, scene_.environmentIntensity);
@@ -330,6 +338,5 @@ void Viewer::pollJobs() {
         }
     }
 }
-
 
 }  // namespace preskin::viewer

@@ -6,7 +6,9 @@ namespace preskin::viewer {
 
 void addViewerOptions(CLI::App& app, ViewerOptions& o) {
     app.add_option("scene", o.scene, "glTF scene (.gltf or .glb); default: the bundled head scene");
-    app.add_option("--width", o.widthPx, "Window width in pixels")->capture_default_str()->check(cli::wholeNumberIn(64, 16384));
+    app.add_option("--width", o.widthPx, "Window width in pixels")
+        ->capture_default_str()
+        ->check(cli::wholeNumberIn(64, 16384));
     app.add_option("--height", o.heightPx, "Window height in pixels")
         ->capture_default_str()
         ->check(cli::wholeNumberIn(64, 16384));

@@ -20,23 +20,23 @@ struct ViewerOptions {
     uint32_t widthPx = 1280;
     uint32_t heightPx = 720;
     bool noVsync = false;
-    std::string camera;  // a glTF camera's name
-    std::string orbit;   // YAW,PITCH,DIST (degrees, degrees, metres; DIST 0 fits)
-    uint32_t frames = 0;  // > 0: draw this many frames, then exit
-    std::string screenshot;  // from the last of `frames`; without frames, from a frame drawn at closing
+    std::string camera;         // a glTF camera's name
+    std::string orbit;          // YAW,PITCH,DIST (degrees, degrees, metres; DIST 0 fits)
+    uint32_t frames = 0;        // > 0: draw this many frames, then exit
+    std::string screenshot;     // from the last of `frames`; without frames, from a frame drawn at closing
     bool screenshotUi = false;  // the screenshot includes the panels
     bool hideUi = false;
     bool noShaderReload = false;
-    bool compileShaders = false;     // compile shaders/ at start, as a hot reload would
-    std::vector<std::string> drops;  // files loaded at start as if dropped on the window
-    std::string profile;             // "deon" or "burley": re-bake the LUTs at start, as the panel does
+    bool compileShaders = false;            // compile shaders/ at start, as a hot reload would
+    std::vector<std::string> drops;         // files loaded at start as if dropped on the window
+    std::string profile;                    // "deon" or "burley": re-bake the LUTs at start, as the panel does
     std::string albedo = "0.83,0.57,0.45";  // burley: R,G,B surface albedo
     std::string mfp = "1.2,0.5,0.25";       // burley: R,G,B mean free path, mm
     int lutSize = 256;
     cli::StereoOptions stereo;  // --stereo starts the side-by-side preview, --eye shows one eye
     std::string animation;      // start with this animation (name or index) at --time
     std::optional<float> timeS;
-    bool play = false;          // start playing it
+    bool play = false;  // start playing it
     cli::CommonOptions common;
 };
 

@@ -101,15 +101,17 @@ void Viewer::panelScene() {
     ImGui::SliderFloat("Intensity##env", &environmentIntensity_, 0.01f, 16.0f, "%.2f", ImGuiSliderFlags_Logarithmic);
     tooltip("Environment radiance scale (re-projects the environment when released)");
     if (ImGui::IsItemDeactivatedAfterEdit())
-        startEnvironmentLoad(environmentFromScene_ ? std::nullopt
-                                                   : std::optional<std::filesystem::path>(environmentName_),
-                             environmentIntensity_, environmentRotationDeg_);
+        startEnvironmentLoad(
+            environmentFromScene_ ? std::nullopt : std::optional<std::filesystem::path>(environmentName_),
+            environmentIntensity_, environmentRotationDeg_);
     const std::optional<std::filesystem::path> loadedPath =
         environmentFromScene_ ? std::nullopt : std::optional<std::filesystem::path>(environmentName_);
     ImGui::SliderFloat("Rotation##env", &environmentRotationDeg_, -180.0f, 180.0f, "%.0f deg");
-    tooltip("Turn the environment about +Y: its SH, specular map, background and extracted lights together "
-            "(applied when released)");
-    if (ImGui::IsItemDeactivatedAfterEdit()) startEnvironmentLoad(loadedPath, environmentIntensity_, environmentRotationDeg_);
+    tooltip(
+        "Turn the environment about +Y: its SH, specular map, background and extracted lights together "
+        "(applied when released)");
+    if (ImGui::IsItemDeactivatedAfterEdit())
+        startEnvironmentLoad(loadedPath, environmentIntensity_, environmentRotationDeg_);
     if (environmentJob_.valid()) ImGui::TextColored(kWarnColor, "loading environment...");
     int background = static_cast<int>(settings_.background.mode);
     if (ImGui::Combo("Background", &background, "colour\0environment\0transparent\0"))
@@ -118,8 +120,9 @@ void Viewer::panelScene() {
     tooltip("The environment's specular reflection from its GGX-prefiltered map; off: from its L2 SH");
     ImGui::SliderInt("Environment lights", &settings_.environmentLights, -1, int(kMaxEnvironmentLights),
                      settings_.environmentLights < 0 ? "auto" : "%d");
-    tooltip("Directional lights extracted from the environment by median cut, with the shadow when no scene light "
-            "casts it; auto: one when the scene has no lights");
+    tooltip(
+        "Directional lights extracted from the environment by median cut, with the shadow when no scene light "
+        "casts it; auto: one when the scene has no lights");
     if (renderer_)
         for (const Light& l : renderer_->environmentLights())
             ImGui::TextDisabled("%s: towards (%.2f, %.2f, %.2f), %.3g lux", l.name.c_str(), double(-l.directionWs.x),
@@ -173,7 +176,8 @@ void Viewer::panelCamera() {
         }
         std::vector<const char*> names;
         for (const std::string& l : labels) names.push_back(l.c_str());
-        if (ImGui::Combo("MSAA", &current, names.data(), int(names.size()))) settings_.msaaSamples = counts[size_t(current)];
+        if (ImGui::Combo("MSAA", &current, names.data(), int(names.size())))
+            settings_.msaaSamples = counts[size_t(current)];
     }
     ImGui::TextDisabled("Orbit: drag to turn, wheel to zoom.");
     ImGui::TextDisabled("Fly: drag to look, W/A/S/D move, Q/E down/up,");
@@ -211,13 +215,15 @@ void Viewer::panelAnimation() {
         if (targets == 0) continue;
         ImGui::PushID(int(i));
         bool byHand = !morphOverrides_[i].empty();
-        if (ImGui::Checkbox(fmt::format("Morph weights of {} by hand", inst.nodeName.empty() ? mesh.name : inst.nodeName).c_str(),
-                            &byHand))
+        if (ImGui::Checkbox(
+                fmt::format("Morph weights of {} by hand", inst.nodeName.empty() ? mesh.name : inst.nodeName).c_str(),
+                &byHand))
             morphOverrides_[i] = byHand ? pose.instances[i].morphWeights : std::vector<float>{};
         if (byHand) {
             morphOverrides_[i].resize(targets, 0.0f);
             for (size_t t = 0; t < targets; ++t) {
-                const std::string name = t < mesh.targetNames.size() ? mesh.targetNames[t] : fmt::format("target {}", t);
+                const std::string name =
+                    t < mesh.targetNames.size() ? mesh.targetNames[t] : fmt::format("target {}", t);
                 ImGui::SliderFloat(name.c_str(), &morphOverrides_[i][t], 0.0f, 1.0f, "%.2f");
             }
         }
@@ -254,9 +260,9 @@ void Viewer::panelMaterial() {
     selectedMaterial_ = std::clamp(selectedMaterial_, 0, static_cast<int>(scene_.materials.size()) - 1);
     std::vector<std::string> labels;
     for (size_t i = 0; i < scene_.materials.size(); ++i)
-        labels.push_back(fmt::format("{}{}", scene_.materials[i].name.empty() ? fmt::format("material {}", i)
-                                                                              : scene_.materials[i].name,
-                                     scene_.materials[i].skin ? " (skin)" : ""));
+        labels.push_back(fmt::format(
+            "{}{}", scene_.materials[i].name.empty() ? fmt::format("material {}", i) : scene_.materials[i].name,
+            scene_.materials[i].skin ? " (skin)" : ""));
     std::vector<const char*> names;
     for (const std::string& l : labels) names.push_back(l.c_str());
     ImGui::Combo("Material", &selectedMaterial_, names.data(), static_cast<int>(names.size()));
@@ -287,8 +293,9 @@ void Viewer::panelMaterial() {
             }
         }
         ImGui::SliderFloat("Scatter scale", &skin.scatterScale, 0.05f, 20.0f, "%.2f", ImGuiSliderFlags_Logarithmic);
-        tooltip("Profile millimetres per world millimetre: scales curvature, penumbra width and thickness "
-                "(1 for a life-size head in metres)");
+        tooltip(
+            "Profile millimetres per world millimetre: scales curvature, penumbra width and thickness "
+            "(1 for a life-size head in metres)");
         rebuild |= ImGui::IsItemDeactivatedAfterEdit();
         if (skin.curvatureSource == CurvatureSource::Texture) {
             ImGui::SliderFloat("Curvature texture scale", &skin.curvatureTextureScalePerM, 1.0f, 2000.0f, "%.0f 1/m",
@@ -298,12 +305,15 @@ void Viewer::panelMaterial() {
         }
         bool overrideBias = skin.normalLodBias.has_value();
         if (ImGui::Checkbox("Override normal-map LOD biases", &overrideBias)) {
-            if (overrideBias) skin.normalLodBias = glm::vec3(2.0f, 1.0f, 0.5f);
-            else skin.normalLodBias.reset();
+            if (overrideBias)
+                skin.normalLodBias = glm::vec3(2.0f, 1.0f, 0.5f);
+            else
+                skin.normalLodBias.reset();
             rebuild = true;
         }
-        tooltip("Per-channel mip bias of the prefiltered normal (red blurred most). Unset: derived from the "
-                "profile's per-channel width and the normal map's texel density");
+        tooltip(
+            "Per-channel mip bias of the prefiltered normal (red blurred most). Unset: derived from the "
+            "profile's per-channel width and the normal map's texel density");
         if (skin.normalLodBias) {
             ImGui::SliderFloat3("LOD bias R G B", &skin.normalLodBias->x, 0.0f, 8.0f, "%.2f");
             rebuild |= ImGui::IsItemDeactivatedAfterEdit();
@@ -329,7 +339,7 @@ void Viewer::panelProfile() {
     if (!ImGui::CollapsingHeader("Diffusion profile", ImGuiTreeNodeFlags_DefaultOpen)) return;
     // The selected material's profile: the default set or one of the scene's (a LUT layer each).
     const bool skinSelected = selectedMaterial_ >= 0 && size_t(selectedMaterial_) < scene_.materials.size() &&
-                              scene_.materials[size_t(selectedMaterial_)].skin;
+        scene_.materials[size_t(selectedMaterial_)].skin;
     if (skinSelected && profiles_) {
         SkinMaterial& skin = *scene_.materials[size_t(selectedMaterial_)].skin;
         std::vector<std::string> labels = {fmt::format("default: {}", lutsName_)};
@@ -404,8 +414,8 @@ void Viewer::panelLights() {
             changed = true;
         }
         changed |= ImGui::ColorEdit3("Colour", &key.color.x, ImGuiColorEditFlags_Float);
-        changed |= ImGui::SliderFloat("Intensity", &key.intensity, 0.01f, 100.0f, "%.2f lux",
-                                      ImGuiSliderFlags_Logarithmic);
+        changed |=
+            ImGui::SliderFloat("Intensity", &key.intensity, 0.01f, 100.0f, "%.2f lux", ImGuiSliderFlags_Logarithmic);
         changed |= ImGui::Checkbox("Casts shadow", &key.castsShadow);
     } else {
         ImGui::TextDisabled("no directional light in the scene");
@@ -450,15 +460,21 @@ void Viewer::panelLights() {
     }
     ImGui::TextDisabled("%u lights in the frame, %u clusters overflowed", lastStats_.lightCount,
                         lastStats_.clusterOverflows);
-    if (lastStats_.clusterBuildCpuMs > 0.0) ImGui::TextDisabled("light grid build %.2f ms (cpu)", lastStats_.clusterBuildCpuMs);
+    if (lastStats_.clusterBuildCpuMs > 0.0)
+        ImGui::TextDisabled("light grid build %.2f ms (cpu)", lastStats_.clusterBuildCpuMs);
     if (changed) applyLights();
 }
 
 void Viewer::panelDebug() {
     if (!ImGui::CollapsingHeader("Debug view", ImGuiTreeNodeFlags_DefaultOpen)) return;
-    const char* views[] = {"None (final image)",  "Curvature",           "Normals (per channel)",
-                           "Shadow",              "Penumbra",            "Cluster heat map (lights per pixel)",
-                           "SH ambient alone",    "Transmission"};
+    const char* views[] = {"None (final image)",
+                           "Curvature",
+                           "Normals (per channel)",
+                           "Shadow",
+                           "Penumbra",
+                           "Cluster heat map (lights per pixel)",
+                           "SH ambient alone",
+                           "Transmission"};
     int view = static_cast<int>(settings_.debugView);
     if (ImGui::Combo("Show", &view, views, static_cast<int>(std::size(views))))
         settings_.debugView = static_cast<DebugView>(view);
@@ -490,10 +506,10 @@ void Viewer::panelShaders() {
     }
     ImGui::EndDisabled();
     if (shaders_->compiling()) ImGui::TextColored(kWarnColor, "compiling...");
-    ImGui::TextDisabled("%s", shaderOverrides_.empty() ? "running the built-in shaders"
-                                                       : fmt::format("running reloaded shaders ({} stages)",
-                                                                     shaderOverrides_.size())
-                                                             .c_str());
+    ImGui::TextDisabled("%s",
+                        shaderOverrides_.empty()
+                            ? "running the built-in shaders"
+                            : fmt::format("running reloaded shaders ({} stages)", shaderOverrides_.size()).c_str());
     if (!shaderLog_.empty()) {
         ImGui::BeginChild("shaderlog", ImVec2(0.0f, 160.0f), true, ImGuiWindowFlags_HorizontalScrollbar);
         if (shaderLogIsError_) ImGui::PushStyleColor(ImGuiCol_Text, kErrorColor);
@@ -527,12 +543,14 @@ void Viewer::panelTiming() {
     }
     if (n > 0) {
         const double scale = 1.0 / double(n);
-        ImGui::Text("Frame %.2f ms (%.1f fps), mean of %zu", interval * scale, interval > 0.0 ? 1000.0 / (interval * scale) : 0.0, n);
+        ImGui::Text("Frame %.2f ms (%.1f fps), mean of %zu", interval * scale,
+                    interval > 0.0 ? 1000.0 / (interval * scale) : 0.0, n);
         ImGui::Text("CPU %.2f ms (panels %.2f ms)", cpu * scale, uiMs_);
         tooltip("Building the panels, recording the renderer and the overlay, submitting");
         ImGui::Text("Waiting: frame slot %.2f ms, present %.2f ms", wait * scale, present * scale);
-        tooltip("For the frame two back to finish and a swapchain image; in vkQueuePresentKHR "
-                "(software drivers finish the frame there)");
+        tooltip(
+            "For the frame two back to finish and a swapchain image; in vkQueuePresentKHR "
+            "(software drivers finish the frame there)");
     }
     if (lastStats_.passes.empty()) {
         ImGui::TextDisabled("GPU timestamps unavailable");
@@ -576,7 +594,8 @@ void Viewer::statusBar() {
     if (environmentJob_.valid()) lines.emplace_back("loading environment...", false);
     if (baker_.busy()) lines.emplace_back(fmt::format("baking LUTs {:.0f}%", baker_.progress() * 100.0), false);
     if (shaders_->compiling()) lines.emplace_back("compiling shaders...", false);
-    if (shaderLogIsError_) lines.emplace_back("shader error: the last good pipelines are running (see Shader hot reload)", true);
+    if (shaderLogIsError_)
+        lines.emplace_back("shader error: the last good pipelines are running (see Shader hot reload)", true);
     const double nowS = std::chrono::duration<double>(std::chrono::steady_clock::now() - start_).count();
     if (!messages_.empty() && messages_.back().error && nowS - messages_.back().timeS < 8.0)
         lines.emplace_back(messages_.back().text, true);
@@ -586,13 +605,15 @@ void Viewer::statusBar() {
     ImGui::SetNextWindowBgAlpha(0.75f);
     ImGui::SetNextWindowSizeConstraints(ImVec2(0.0f, 0.0f), ImVec2(display.x * 0.6f, display.y * 0.3f));
     const ImGuiWindowFlags flags = ImGuiWindowFlags_NoDecoration | ImGuiWindowFlags_AlwaysAutoResize |
-                                   ImGuiWindowFlags_NoInputs | ImGuiWindowFlags_NoFocusOnAppearing |
-                                   ImGuiWindowFlags_NoNav | ImGuiWindowFlags_NoSavedSettings;
+        ImGuiWindowFlags_NoInputs | ImGuiWindowFlags_NoFocusOnAppearing | ImGuiWindowFlags_NoNav |
+        ImGuiWindowFlags_NoSavedSettings;
     if (ImGui::Begin("##status", nullptr, flags)) {
         ImGui::PushTextWrapPos(display.x * 0.55f);
         for (const auto& [text, isError] : lines) {
-            if (isError) ImGui::TextColored(kErrorColor, "%s", text.c_str());
-            else ImGui::TextUnformatted(text.c_str());
+            if (isError)
+                ImGui::TextColored(kErrorColor, "%s", text.c_str());
+            else
+                ImGui::TextUnformatted(text.c_str());
         }
         ImGui::PopTextWrapPos();
     }

@@ -9,13 +9,13 @@
 
 namespace preskin::viewer {
 
-#define PRESKIN_VIEWER_INSTANCE_FUNCTIONS(X)      \
-    X(vkGetDeviceProcAddr)                        \
-    X(vkDestroySurfaceKHR)                        \
-    X(vkGetPhysicalDeviceSurfaceSupportKHR)       \
-    X(vkGetPhysicalDeviceSurfaceCapabilitiesKHR)  \
-    X(vkGetPhysicalDeviceSurfaceFormatsKHR)       \
-    X(vkGetPhysicalDeviceSurfacePresentModesKHR)  \
+#define PRESKIN_VIEWER_INSTANCE_FUNCTIONS(X)     \
+    X(vkGetDeviceProcAddr)                       \
+    X(vkDestroySurfaceKHR)                       \
+    X(vkGetPhysicalDeviceSurfaceSupportKHR)      \
+    X(vkGetPhysicalDeviceSurfaceCapabilitiesKHR) \
+    X(vkGetPhysicalDeviceSurfaceFormatsKHR)      \
+    X(vkGetPhysicalDeviceSurfacePresentModesKHR) \
     X(vkGetPhysicalDeviceMemoryProperties)
 
 #define PRESKIN_VIEWER_DEVICE_FUNCTIONS(X) \

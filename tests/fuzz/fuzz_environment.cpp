@@ -12,7 +12,6 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
     preskin::fuzz::writeFile(path, data, size);
     try {
         preskin::Environment::load(path);
-    } catch (const preskin::Error&) {
-    }
+    } catch (const preskin::Error&) {}
     return 0;
 }

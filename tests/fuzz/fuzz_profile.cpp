@@ -29,13 +29,12 @@ const std::filesystem::path& lutFolder() {
 
 extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
     try {
-        preskin::DiffusionProfile::fromJsonText(std::string_view(reinterpret_cast<const char*>(data), size), "fuzz.json");
-    } catch (const preskin::Error&) {
-    }
+        preskin::DiffusionProfile::fromJsonText(std::string_view(reinterpret_cast<const char*>(data), size),
+                                                "fuzz.json");
+    } catch (const preskin::Error&) {}
     preskin::fuzz::writeFile(lutFolder() / "manifest.json", data, size);
     try {
         preskin::LutSet::load(lutFolder());
-    } catch (const preskin::Error&) {
-    }
+    } catch (const preskin::Error&) {}
     return 0;
 }

@@ -17,11 +17,11 @@
 #include <glm/gtc/matrix_transform.hpp>
 #include <glm/gtc/type_ptr.hpp>
 
+#include <unistd.h>
 #include <algorithm>
 #include <cstring>
 #include <filesystem>
 #include <string>
-#include <unistd.h>
 #include <vector>
 
 namespace preskin::test {
@@ -98,10 +98,9 @@ void writeStaticGltf(const fs::path& path, const Scene& scene, const ScenePose& 
             prim.attributes["TEXCOORD_0"] =
                 addAccessor(model, addView(model, uvs.data(), n * 8, TINYGLTF_TARGET_ARRAY_BUFFER),
                             TINYGLTF_COMPONENT_TYPE_FLOAT, TINYGLTF_TYPE_VEC2, n);
-            prim.indices = addAccessor(model,
-                                       addView(model, p.indices.data(), p.indices.size() * 4,
-                                               TINYGLTF_TARGET_ELEMENT_ARRAY_BUFFER),
-                                       TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT, TINYGLTF_TYPE_SCALAR, p.indices.size());
+            prim.indices = addAccessor(
+                model, addView(model, p.indices.data(), p.indices.size() * 4, TINYGLTF_TARGET_ELEMENT_ARRAY_BUFFER),
+                TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT, TINYGLTF_TYPE_SCALAR, p.indices.size());
             prim.material = p.material;
             prim.mode = TINYGLTF_MODE_TRIANGLES;
             mesh.primitives.push_back(prim);
@@ -177,7 +176,8 @@ protected:
             size_t differing = 0, covered = 0;
             for (size_t i = 0; i < moving.rgba8.size(); i += 4) {
                 int d = 0;
-                for (int c = 0; c < 3; ++c) d = std::max(d, std::abs(int(moving.rgba8[i + size_t(c)]) - int(reference.rgba8[i + size_t(c)])));
+                for (int c = 0; c < 3; ++c)
+                    d = std::max(d, std::abs(int(moving.rgba8[i + size_t(c)]) - int(reference.rgba8[i + size_t(c)])));
                 differing += d > 5;
                 covered += moving.rgba8[i] != moving.rgba8[0];
             }
@@ -190,7 +190,8 @@ protected:
 };
 
 TEST_F(AnimationRender, TubeAtTimeEqualsStaticDeformedTube) {
-    expectStaticEqualsAnimated(fs::path(PRESKIN_SOURCE_DIR) / "samples/assets/tube/tube.gltf", "bend", {0.0f, 0.6f, 1.0f});
+    expectStaticEqualsAnimated(fs::path(PRESKIN_SOURCE_DIR) / "samples/assets/tube/tube.gltf", "bend",
+                               {0.0f, 0.6f, 1.0f});
 }
 
 TEST_F(AnimationRender, AnimatedHeadAtTimeEqualsStaticDeformedHead) {
@@ -199,7 +200,8 @@ TEST_F(AnimationRender, AnimatedHeadAtTimeEqualsStaticDeformedHead) {
     const Scene scene = Scene::load(head);
     ASSERT_FALSE(scene.animations.empty());
     const Animation& animation = scene.animations[0];
-    expectStaticEqualsAnimated(head, "0", {animation.startS(), 0.5f * (animation.startS() + animation.endS()), animation.endS()});
+    expectStaticEqualsAnimated(head, "0",
+                               {animation.startS(), 0.5f * (animation.startS() + animation.endS()), animation.endS()});
 }
 
 }  // namespace

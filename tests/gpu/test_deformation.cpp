@@ -27,8 +27,8 @@
 #include "vk/Resources.h"
 
 #include <algorithm>
-#include <cstdio>
 #include <cmath>
+#include <cstdio>
 #include <cstring>
 #include <string>
 #include <vector>
@@ -41,7 +41,8 @@ const std::string kTube = std::string(PRESKIN_SOURCE_DIR) + "/samples/assets/tub
 // The deformer's output for a pose: every deformed vertex of instance 0, in mesh order (and its
 // normal basis, and the rest one, when asked).
 std::vector<Vertex> gpuDeform(Context& context, const Scene& scene, const ScenePose& pose,
-                              std::vector<NormalBasis>* basis = nullptr, std::vector<NormalBasis>* restBasis = nullptr) {
+                              std::vector<NormalBasis>* basis = nullptr,
+                              std::vector<NormalBasis>* restBasis = nullptr) {
     const vk::Device& device = ContextAccess::core(context);
     GpuScene gpuScene(device, scene);
     GpuDeformer deformer(device, scene, gpuScene.vertices, gpuScene.normalBasis, gpuScene.meshFirstVertex);
@@ -59,11 +60,11 @@ std::vector<Vertex> gpuDeform(Context& context, const Scene& scene, const SceneP
         vkCmdCopyBuffer(cmd, deformer.output(0).handle(), host.handle(), 1, &region);
         const VkBufferCopy basisRegion{0, 0, count * sizeof(NormalBasis)};
         vkCmdCopyBuffer(cmd, deformer.normalBasisOutput(0).handle(), hostBasis.handle(), 1, &basisRegion);
-        const VkBufferCopy restRegion{gpuScene.meshFirstVertex[size_t(scene.instances[0].mesh)] * sizeof(NormalBasis), 0,
-                                      count * sizeof(NormalBasis)};
+        const VkBufferCopy restRegion{gpuScene.meshFirstVertex[size_t(scene.instances[0].mesh)] * sizeof(NormalBasis),
+                                      0, count * sizeof(NormalBasis)};
         vkCmdCopyBuffer(cmd, gpuScene.normalBasis.handle(), hostRest.handle(), 1, &restRegion);
-        vk::memoryBarrier(cmd, VK_PIPELINE_STAGE_2_COPY_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT, VK_PIPELINE_STAGE_2_HOST_BIT,
-                          VK_ACCESS_2_HOST_READ_BIT);
+        vk::memoryBarrier(cmd, VK_PIPELINE_STAGE_2_COPY_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT,
+                          VK_PIPELINE_STAGE_2_HOST_BIT, VK_ACCESS_2_HOST_READ_BIT);
     });
     std::vector<Vertex> out(count);
     std::memcpy(out.data(), host.mapped(), count * sizeof(Vertex));
@@ -150,7 +151,8 @@ TEST_F(GpuDeformation, GpuMatchesCpuDeformation) {
             for (size_t i = 0; i < cpu.size(); ++i) {
                 worstP = std::max(worstP, double(glm::length(gpu[i].positionOs - cpu[i].positionOs)) / scale);
                 worstN = std::max(worstN, double(glm::length(gpu[i].normalOs - cpu[i].normalOs)));
-                worstT = std::max(worstT, double(glm::length(glm::vec3(gpu[i].tangentOs) - glm::vec3(cpu[i].tangentOs))));
+                worstT =
+                    std::max(worstT, double(glm::length(glm::vec3(gpu[i].tangentOs) - glm::vec3(cpu[i].tangentOs))));
                 EXPECT_EQ(gpu[i].tangentOs.w, cpu[i].tangentOs.w);
                 EXPECT_EQ(gpu[i].uv0, cpu[i].uv0);
             }
@@ -274,7 +276,8 @@ TEST_F(GpuDeformation, GpuCurvatureIsSignedLikeTheCpuEstimator) {
         Primitive sphere = makeSphere(radiusM, 32, 16);
         if (inside) {
             for (Vertex& v : sphere.vertices) v.normalOs = -v.normalOs;
-            for (size_t i = 0; i + 2 < sphere.indices.size(); i += 3) std::swap(sphere.indices[i + 1], sphere.indices[i + 2]);
+            for (size_t i = 0; i + 2 < sphere.indices.size(); i += 3)
+                std::swap(sphere.indices[i + 1], sphere.indices[i + 2]);
         }
         MorphTarget still;
         still.positionDeltas.assign(sphere.vertices.size(), glm::vec3(0.0f));

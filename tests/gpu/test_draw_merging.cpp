@@ -49,7 +49,8 @@ TEST_F(DrawMerging, RunsOfOneMaterialAreOneDrawAndLookTheSame) {
     // Merged: quads 0-2 red, 3 blended, 4-5 red: per instance draws {0-2}, {3}, {4-5}.
     const Scene merged = rowOfQuads(kQuads, {red, blended}, [](uint32_t i) { return i == 3 ? 1 : 0; });
     // Reference: materials 0 and 2 alternate (identical values), so no two neighbours merge.
-    const Scene reference = rowOfQuads(kQuads, {red, blended, red}, [](uint32_t i) { return i == 3 ? 1 : int(i % 2) * 2; });
+    const Scene reference =
+        rowOfQuads(kQuads, {red, blended, red}, [](uint32_t i) { return i == 3 ? 1 : int(i % 2) * 2; });
 
     {
         const GpuScene gpu(ContextAccess::core(context()), merged);
@@ -64,8 +65,8 @@ TEST_F(DrawMerging, RunsOfOneMaterialAreOneDrawAndLookTheSame) {
 
     RenderSettings settings;
     settings.shadows = false;
-    const glm::mat4 worldFromView =
-        glm::inverse(glm::lookAt(glm::vec3(0.2f, 0.3f, 3.0f), glm::vec3(0.0f, 0.3f, 0.0f), glm::vec3(0.0f, 1.0f, 0.0f)));
+    const glm::mat4 worldFromView = glm::inverse(
+        glm::lookAt(glm::vec3(0.2f, 0.3f, 3.0f), glm::vec3(0.0f, 0.3f, 0.0f), glm::vec3(0.0f, 1.0f, 0.0f)));
     const View view = perspectiveView(worldFromView, 0.9f, 1.5f, 0.1f, 10.0f);
     const Environment ambient = Environment::constant(glm::vec3(0.2f));
     Renderer mergedRenderer(context(), merged, ambient, nullptr, settings);

@@ -33,8 +33,10 @@ std::string driverFolderName(const std::string& deviceName) {
     std::string folder;
     for (char c : name) {
         const auto u = static_cast<unsigned char>(c);
-        if (std::isalnum(u)) folder += static_cast<char>(std::tolower(u));
-        else if (!folder.empty() && folder.back() != '-') folder += '-';
+        if (std::isalnum(u))
+            folder += static_cast<char>(std::tolower(u));
+        else if (!folder.empty() && folder.back() != '-')
+            folder += '-';
     }
     while (!folder.empty() && folder.back() == '-') folder.pop_back();
     return folder.empty() ? "unknown" : folder;
@@ -54,13 +56,13 @@ TEST_F(SkinGolden, HeadSceneMatchesDriverGolden) {
                      << "); create it with scripts/update-goldens.sh '" << device << "'";
 
     // Render with the CLI, as a user would.
-    const std::filesystem::path dir = std::filesystem::temp_directory_path() /
-                                      ("preskin_test_golden_" + std::to_string(::getpid()));
+    const std::filesystem::path dir =
+        std::filesystem::temp_directory_path() / ("preskin_test_golden_" + std::to_string(::getpid()));
     std::filesystem::create_directories(dir);
     const std::filesystem::path rendered = dir / "head_256.png";
-    const ProcessResult run = runCli({"render", "--width", "256", "--height", "256", "--validation", "--device", device,
-                                      "--out", rendered.string()},
-                                     dir, 120.0);
+    const ProcessResult run = runCli(
+        {"render", "--width", "256", "--height", "256", "--validation", "--device", device, "--out", rendered.string()},
+        dir, 120.0);
     ASSERT_EQ(run.exitCode, 0) << run.out << run.err;
     std::string error;
     const RenderedImage image = readPng(rendered, error);

@@ -69,8 +69,8 @@ ToggleScene sphereScene() {
     const glm::vec3 toLight = glm::normalize(glm::vec3(1.0f, 0.6f, 0.7f));
     // The caster sits towards the light, shifted sideways so its shadow edge crosses the lit side.
     const glm::vec3 side = glm::normalize(glm::cross(toLight, glm::vec3(0.0f, 1.0f, 0.0f)));
-    const glm::mat4 casterFrame = glm::inverse(glm::lookAt(0.05f * toLight + 0.027f * side, glm::vec3(0.0f),
-                                                           glm::vec3(0.0f, 1.0f, 0.0f)));
+    const glm::mat4 casterFrame =
+        glm::inverse(glm::lookAt(0.05f * toLight + 0.027f * side, glm::vec3(0.0f), glm::vec3(0.0f, 1.0f, 0.0f)));
     s.scene = makeScene({{sphere, glm::mat4(1.0f)}, {caster, casterFrame}}, {skin, standard});
     // Bumps of about 10 texels: the red channel's prefiltered normal (derived mip bias ~3.5) loses them.
     const int normalMap = addNormalMap(s.scene, 128, 64, [](glm::vec2 uv) {
@@ -87,7 +87,8 @@ ToggleScene sphereScene() {
     key.castsShadow = true;
     s.scene.lights = {key};
     s.environment = makeEnvironment(64, [](const glm::vec3& d) {
-        return glm::vec3(0.4f, 0.34f, 0.3f) * (1.0f + 0.8f * d.y + 0.2f * d.x * d.z) + glm::vec3(0.0f, 0.05f, 0.1f) * d.x;
+        return glm::vec3(0.4f, 0.34f, 0.3f) * (1.0f + 0.8f * d.y + 0.2f * d.x * d.z) +
+            glm::vec3(0.0f, 0.05f, 0.1f) * d.x;
     });
     s.view = lookAtView(glm::vec3(0.0f, 0.01f, 0.1f), glm::vec3(0.0f), 0.5f, 0.01f);
     return s;
@@ -100,9 +101,9 @@ ToggleScene penumbraScene() {
     plane.material = 0;
     Primitive caster = makeBox(glm::vec3(0.2f, 0.5f, 0.01f));
     caster.material = 0;
-    s.scene = makeScene({{plane, glm::mat4(1.0f)},
-                         {caster, glm::translate(glm::mat4(1.0f), glm::vec3(0.15f, 0.0f, 0.1f))}},
-                        {skinMaterial({0.8f, 0.8f, 0.8f}, 0.7f, 0.5f)});
+    s.scene =
+        makeScene({{plane, glm::mat4(1.0f)}, {caster, glm::translate(glm::mat4(1.0f), glm::vec3(0.15f, 0.0f, 0.1f))}},
+                  {skinMaterial({0.8f, 0.8f, 0.8f}, 0.7f, 0.5f)});
     Light light;
     light.type = LightType::Directional;
     light.directionWs = glm::normalize(glm::vec3(-1.0f, 0.0f, -1.0f));
@@ -202,8 +203,9 @@ TEST_F(SkinToggles, MaterialInputsReachTheImage) {
     const RenderedImage flat = render(textured);
     const size_t textureVsVertex = countDifferingPixels(vertex, fromTexture, 2.0);
     const size_t flatVsVertex = countDifferingPixels(vertex, flat, 2.0);
-    std::printf("[ skin     ] curvature texture: %zu pixels differ from per-vertex curvature by > 2/255; a flat one: %zu\n",
-                textureVsVertex, flatVsVertex);
+    std::printf(
+        "[ skin     ] curvature texture: %zu pixels differ from per-vertex curvature by > 2/255; a flat one: %zu\n",
+        textureVsVertex, flatVsVertex);
     EXPECT_LE(textureVsVertex, size_t(kSize * kSize / 200));
     EXPECT_GE(flatVsVertex, size_t(kSize * kSize / 100));
     // A detail normal map: flat (128, 128, 255) leaves the image as it is, a tilted one changes it.
@@ -258,9 +260,10 @@ TEST_F(SkinToggles, ShadowLightIsTheCasterWhereverItIsListed) {
             const size_t g = p * 4 + 1;
             if (keyAlone.rgba32f[g] < 0.02f * fillAlone.rgba32f[g] && fillAlone.rgba32f[g] > 0.05f) ++keyShadowed;
         }
-        std::printf("[ lights   ] %s: fill + key against the sum of each alone: largest relative difference %.2e; "
-                    "%zu pixels in the key's shadow and the fill's light\n",
-                    skin ? "skin" : "standard", worst, keyShadowed);
+        std::printf(
+            "[ lights   ] %s: fill + key against the sum of each alone: largest relative difference %.2e; "
+            "%zu pixels in the key's shadow and the fill's light\n",
+            skin ? "skin" : "standard", worst, keyShadowed);
         EXPECT_LT(worst, 1e-3) << (skin ? "skin" : "standard");
         EXPECT_GE(keyShadowed, size_t(kSize * kSize / 50)) << (skin ? "skin" : "standard");
     }
@@ -290,8 +293,8 @@ TEST_F(SkinToggles, AllOffEqualsStandardPath) {
             for (uint32_t x = 0; x < kSize; ++x)
                 if (srgbDifference(pixelLinear(standardImage, x, y), background) > 10.0) ++lit;
         const double worst = maxSrgbDifference(skinImage, standardImage);
-        std::printf("[ skin     ] all techniques off vs standard (%s): worst %.3f/255 over %zu scene pixels\n", s.name.c_str(),
-                    worst, lit);
+        std::printf("[ skin     ] all techniques off vs standard (%s): worst %.3f/255 over %zu scene pixels\n",
+                    s.name.c_str(), worst, lit);
         EXPECT_GT(lit, size_t(kSize * kSize / 4)) << s.name;
         EXPECT_LE(worst, 1.0) << s.name << ": skin with every technique off should equal the standard path";
     }

@@ -91,13 +91,15 @@ Scene roomScene() {
     masked.alphaMode = AlphaMode::Mask;
     masked.alphaCutoff = 0.5f;
     masked.doubleSided = true;
-    Scene scene = makeScene({{makeQuad(6.0f, 1), glm::translate(glm::mat4(1.0f), glm::vec3(0.0f, 0.0f, kWallZ))},
-                             {makeQuad(6.0f, 1), glm::translate(glm::mat4(1.0f), glm::vec3(0.0f, -0.6f, 1.8f)) *
-                                                     glm::rotate(glm::mat4(1.0f), -1.5708f, glm::vec3(1, 0, 0))},
-                             {makeSphere(0.22f, 48, 24), glm::translate(glm::mat4(1.0f), glm::vec3(0.08f, -0.2f, -0.7f))},
-                             {makeQuad(0.4f, 1), glm::translate(glm::mat4(1.0f), glm::vec3(-0.35f, 0.15f, -0.9f))}},
-                            {material({0.7f, 0.7f, 0.72f}, 0.6f), material({0.5f, 0.45f, 0.4f}, 0.8f),
-                             material({0.8f, 0.55f, 0.45f}, 0.4f), masked});
+    Scene scene =
+        makeScene({{makeQuad(6.0f, 1), glm::translate(glm::mat4(1.0f), glm::vec3(0.0f, 0.0f, kWallZ))},
+                   {makeQuad(6.0f, 1),
+                    glm::translate(glm::mat4(1.0f), glm::vec3(0.0f, -0.6f, 1.8f)) *
+                        glm::rotate(glm::mat4(1.0f), -1.5708f, glm::vec3(1, 0, 0))},
+                   {makeSphere(0.22f, 48, 24), glm::translate(glm::mat4(1.0f), glm::vec3(0.08f, -0.2f, -0.7f))},
+                   {makeQuad(0.4f, 1), glm::translate(glm::mat4(1.0f), glm::vec3(-0.35f, 0.15f, -0.9f))}},
+                  {material({0.7f, 0.7f, 0.72f}, 0.6f), material({0.5f, 0.45f, 0.4f}, 0.8f),
+                   material({0.8f, 0.55f, 0.45f}, 0.4f), masked});
     for (size_t i = 0; i < scene.meshes.size(); ++i) scene.meshes[i].primitives[0].material = int(i);
     scene.materials[3].baseColor.image = addRadialAlpha(scene);
     for (Mesh& mesh : scene.meshes)
@@ -106,11 +108,11 @@ Scene roomScene() {
 }
 
 View roomView() {
-    const glm::mat4 head = glm::inverse(glm::lookAt(glm::vec3(0.0f, 0.05f, 0.25f), glm::vec3(0.0f, -0.05f, -1.0f),
-                                                    glm::vec3(0.0f, 1.0f, 0.0f)));
+    const glm::mat4 head = glm::inverse(
+        glm::lookAt(glm::vec3(0.0f, 0.05f, 0.25f), glm::vec3(0.0f, -0.05f, -1.0f), glm::vec3(0.0f, 1.0f, 0.0f)));
     // HMD-like angles: the inner (nasal) side narrower than the outer one.
-    return stereoView(head, 0.064f, FovAngles{-0.62f, 0.5f, 0.55f, -0.6f}, FovAngles{-0.5f, 0.62f, 0.55f, -0.6f},
-                      0.05f, 10.0f);
+    return stereoView(head, 0.064f, FovAngles{-0.62f, 0.5f, 0.55f, -0.6f}, FovAngles{-0.5f, 0.62f, 0.55f, -0.6f}, 0.05f,
+                      10.0f);
 }
 
 // The direction of eye pixel (px, py)'s ray (pixel edges at integers).
@@ -148,8 +150,11 @@ std::vector<Light> roomLights(const View& view, bool withEdgeLights) {
     for (int i = 0; i < 40; ++i) {
         const glm::vec3 p(uniform(rng, -1.2f, 1.2f), uniform(rng, -0.55f, 1.0f), uniform(rng, -1.15f, 0.1f));
         const glm::vec3 color(uniform(rng, 0.2f, 1.0f), uniform(rng, 0.2f, 1.0f), uniform(rng, 0.2f, 1.0f));
-        if (i % 3 == 2) lights.push_back(spotLight(p, randomDirection(rng), uniform(rng, 0.3f, 1.0f), uniform(rng, 0.2f, 0.8f), 0.8f));
-        else lights.push_back(pointLight(p, uniform(rng, 0.15f, 0.5f), color, 0.3f));
+        if (i % 3 == 2)
+            lights.push_back(
+                spotLight(p, randomDirection(rng), uniform(rng, 0.3f, 1.0f), uniform(rng, 0.2f, 0.8f), 0.8f));
+        else
+            lights.push_back(pointLight(p, uniform(rng, 0.15f, 0.5f), color, 0.3f));
     }
     if (withEdgeLights) {
         const std::vector<Light> edge = edgeLights(view);
@@ -188,7 +193,8 @@ TEST_F(Stereo, EachEyeEqualsItsMonoFrame) {
             dumpImage(std::string("stereo_") + (skin ? "skin" : "standard") + "_msaa" + std::to_string(samples),
                       sideBySide(stereo));
             for (uint32_t e = 0; e < 2; ++e) {
-                const RenderedImage mono = renderer.render(View(view.eyes[e]), kWidth, kHeight, OutputEncoding::DisplaySrgb8);
+                const RenderedImage mono =
+                    renderer.render(View(view.eyes[e]), kWidth, kHeight, OutputEncoding::DisplaySrgb8);
                 dumpImage(std::string("mono_") + (skin ? "skin" : "standard") + "_msaa" + std::to_string(samples) +
                               "_eye" + std::to_string(e),
                           mono);
@@ -204,10 +210,9 @@ TEST_F(Stereo, EachEyeEqualsItsMonoFrame) {
 // every eye sees whole (nothing to clip), where this driver's multiview is sound too.
 TEST_F(Stereo, MultiviewEyesEqualMonoFrames) {
     const Scene scene = emissiveSphere(0.3f);
-    const View view = stereoView(glm::inverse(glm::lookAt(glm::vec3(0.0f, 0.1f, 1.5f), glm::vec3(0.0f),
-                                                          glm::vec3(0.0f, 1.0f, 0.0f))),
-                                 0.064f, FovAngles{-0.62f, 0.5f, 0.55f, -0.6f}, FovAngles{-0.5f, 0.62f, 0.55f, -0.6f},
-                                 0.05f, 10.0f);
+    const View view =
+        stereoView(glm::inverse(glm::lookAt(glm::vec3(0.0f, 0.1f, 1.5f), glm::vec3(0.0f), glm::vec3(0.0f, 1.0f, 0.0f))),
+                   0.064f, FovAngles{-0.62f, 0.5f, 0.55f, -0.6f}, FovAngles{-0.5f, 0.62f, 0.55f, -0.6f}, 0.05f, 10.0f);
     for (uint32_t samples : {1u, 4u}) {
         RenderSettings settings;
         settings.msaaSamples = samples;
@@ -217,9 +222,9 @@ TEST_F(Stereo, MultiviewEyesEqualMonoFrames) {
         const RenderedImage stereo = renderer.render(view, kWidth, kHeight, OutputEncoding::DisplaySrgb8);
         EXPECT_EQ(renderer.frameStats().eyeDrawing, EyeDrawing::Multiview);
         for (uint32_t e = 0; e < 2; ++e)
-            expectWithinGoldenTolerance(eyeImage(stereo, e),
-                                        renderer.render(View(view.eyes[e]), kWidth, kHeight, OutputEncoding::DisplaySrgb8),
-                                        "multiview, MSAA " + std::to_string(samples) + ", eye " + std::to_string(e));
+            expectWithinGoldenTolerance(
+                eyeImage(stereo, e), renderer.render(View(view.eyes[e]), kWidth, kHeight, OutputEncoding::DisplaySrgb8),
+                "multiview, MSAA " + std::to_string(samples) + ", eye " + std::to_string(e));
     }
 }
 
@@ -237,11 +242,13 @@ TEST_F(Stereo, MultiviewProbeMatchesTheDevice) {
     dumpImage("stereo_multiview_room", sideBySide(stereo));
     size_t differing = 0;
     for (uint32_t e = 0; e < 2; ++e)
-        differing += countAbove(pixelDifferences(eyeImage(stereo, e), renderer.render(View(view.eyes[e]), kWidth, kHeight,
-                                                                                      OutputEncoding::DisplaySrgb8)),
-                                0);
+        differing += countAbove(
+            pixelDifferences(eyeImage(stereo, e),
+                             renderer.render(View(view.eyes[e]), kWidth, kHeight, OutputEncoding::DisplaySrgb8)),
+            0);
     const bool sound = multiviewClipsEveryView(ContextAccess::core(context()));
-    EXPECT_EQ(differing == 0, sound) << differing << " pixels differ; probe: multiview " << (sound ? "sound" : "unsound");
+    EXPECT_EQ(differing == 0, sound) << differing << " pixels differ; probe: multiview "
+                                     << (sound ? "sound" : "unsound");
     renderer.setSettings(RenderSettings{});
     renderer.render(view, 16, 16, OutputEncoding::DisplaySrgb8);
     const bool layered = ContextAccess::core(context()).shaderOutputLayer() && !sound;
@@ -275,9 +282,9 @@ TEST_F(Stereo, EdgeLightsLightBothEyes) {
 TEST_F(Stereo, Msaa4BlendsSilhouettesAndKeepsInteriors) {
     const float radius = 0.3f;
     const Scene scene = emissiveSphere(radius);
-    const View mono = perspectiveView(glm::inverse(glm::lookAt(glm::vec3(0.0f, 0.0f, 1.2f), glm::vec3(0.0f),
-                                                               glm::vec3(0.0f, 1.0f, 0.0f))),
-                                      0.7f, float(kWidth) / float(kHeight), 0.1f, 10.0f);
+    const View mono = perspectiveView(
+        glm::inverse(glm::lookAt(glm::vec3(0.0f, 0.0f, 1.2f), glm::vec3(0.0f), glm::vec3(0.0f, 1.0f, 0.0f))), 0.7f,
+        float(kWidth) / float(kHeight), 0.1f, 10.0f);
     const View stereo = stereoFromMono(mono, 0.064f);
     for (const View* view : {&mono, &stereo}) {
         RenderSettings one;
@@ -292,7 +299,8 @@ TEST_F(Stereo, Msaa4BlendsSilhouettesAndKeepsInteriors) {
         for (uint32_t e = 0; e < view->eyeCount(); ++e) {
             const RenderedImage a = eyeImage(i1, e);
             const RenderedImage b = eyeImage(i4, e);
-            const std::vector<SphereHit> hits = traceSphere(View(view->eyes[e]), kWidth, kHeight, glm::dvec3(0.0), radius);
+            const std::vector<SphereHit> hits =
+                traceSphere(View(view->eyes[e]), kWidth, kHeight, glm::dvec3(0.0), radius);
             const int background = a.rgba8[1];  // the top-left corner misses the sphere
             ASSERT_FALSE(hits[0].interior);
             int sphere = -1;
@@ -321,7 +329,8 @@ TEST_F(Stereo, Msaa4BlendsSilhouettesAndKeepsInteriors) {
                     // points a quarter pixel in from its corners disagree).
                     int corners = 0;
                     for (int c = 0; c < 4; ++c)
-                        corners += hitsSphere(float(x) + ((c & 1) ? 0.75f : 0.25f), float(y) + ((c & 2) ? 0.75f : 0.25f));
+                        corners +=
+                            hitsSphere(float(x) + ((c & 1) ? 0.75f : 0.25f), float(y) + ((c & 2) ? 0.75f : 0.25f));
                     if (corners == 0 || corners == 4) continue;
                     ++silhouette;
                     const size_t i = size_t(y) * kWidth + x;
@@ -344,9 +353,9 @@ TEST_F(Stereo, AlphaMaskUsesCoverageUnderMsaa) {
     Scene scene = makeScene({{makeQuad(1.0f, 1), glm::mat4(1.0f)}}, {disc});
     scene.meshes[0].primitives[0].material = 0;
     scene.materials[0].baseColor.image = addRadialAlpha(scene);
-    const View view = perspectiveView(glm::inverse(glm::lookAt(glm::vec3(0.0f, 0.0f, 1.0f), glm::vec3(0.0f),
-                                                               glm::vec3(0.0f, 1.0f, 0.0f))),
-                                      0.9f, float(kWidth) / float(kHeight), 0.1f, 10.0f);
+    const View view = perspectiveView(
+        glm::inverse(glm::lookAt(glm::vec3(0.0f, 0.0f, 1.0f), glm::vec3(0.0f), glm::vec3(0.0f, 1.0f, 0.0f))), 0.9f,
+        float(kWidth) / float(kHeight), 0.1f, 10.0f);
     size_t blended[2] = {0, 0};
     int full = 0;
     for (uint32_t samples : {1u, 4u}) {
@@ -363,8 +372,8 @@ TEST_F(Stereo, AlphaMaskUsesCoverageUnderMsaa) {
             EXPECT_EQ(image.rgba8[i * 4 + 3], 255) << "alpha of pixel " << i << " with " << samples << " samples";
         }
     }
-    EXPECT_EQ(blended[0], 0u);    // discard: every pixel is disc or background
-    EXPECT_GT(blended[1], 60u);   // coverage: the disc's rim is blended
+    EXPECT_EQ(blended[0], 0u);   // discard: every pixel is disc or background
+    EXPECT_GT(blended[1], 60u);  // coverage: the disc's rim is blended
 }
 
 TEST_F(Stereo, RefusesWhatTheDeviceCannotDraw) {
@@ -388,14 +397,15 @@ TEST_F(Stereo, RefusesWhatTheDeviceCannotDraw) {
     // Six eyes, as many as lavapipe's multiview offers, render each like its mono frame.
     View six;
     for (int i = 0; i < int(std::min(renderer.maxEyes(), kMaxEyes)); ++i)
-        six.eyes.push_back(perspectiveView(glm::inverse(glm::lookAt(glm::vec3(0.2f * float(i) - 0.5f, 0.0f, 1.2f), glm::vec3(0.0f),
-                                                                    glm::vec3(0.0f, 1.0f, 0.0f))),
+        six.eyes.push_back(perspectiveView(glm::inverse(glm::lookAt(glm::vec3(0.2f * float(i) - 0.5f, 0.0f, 1.2f),
+                                                                    glm::vec3(0.0f), glm::vec3(0.0f, 1.0f, 0.0f))),
                                            0.7f, 1.0f, 0.1f, 10.0f)
                                .eye());
     renderer.setSettings(RenderSettings{});
     const RenderedImage all = renderer.render(six, 24, 24, OutputEncoding::DisplaySrgb8);
     for (uint32_t e = 0; e < six.eyeCount(); ++e)
-        expectWithinGoldenTolerance(eyeImage(all, e), renderer.render(View(six.eyes[e]), 24, 24, OutputEncoding::DisplaySrgb8),
+        expectWithinGoldenTolerance(eyeImage(all, e),
+                                    renderer.render(View(six.eyes[e]), 24, 24, OutputEncoding::DisplaySrgb8),
                                     "eye " + std::to_string(e) + " of " + std::to_string(six.eyeCount()));
 }
 

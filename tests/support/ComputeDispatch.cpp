@@ -56,8 +56,10 @@ void dispatchCompute(const vk::Device& device, std::string_view shader, std::spa
         writes[i].dstBinding = i;
         writes[i].descriptorCount = 1;
         writes[i].descriptorType = resources[i].type;
-        if (resources[i].type == VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER) writes[i].pImageInfo = &resources[i].image;
-        else writes[i].pBufferInfo = &resources[i].buffer;
+        if (resources[i].type == VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER)
+            writes[i].pImageInfo = &resources[i].image;
+        else
+            writes[i].pBufferInfo = &resources[i].buffer;
     }
     vkUpdateDescriptorSets(d, static_cast<uint32_t>(writes.size()), writes.data(), 0, nullptr);
 

@@ -1,4 +1,4 @@
-// One dispatch of a test compute shader (tests/gpu/shaders/*.comp) with its resources bound at
+// One dispatch of a test compute shader (tests/reference/shaders/*.comp) with its resources bound at
 // set 0, bindings 0, 1, 2, ... in order, and push constants; waits for it and makes its storage
 // writes visible to the host.
 #pragma once

@@ -20,9 +20,9 @@ void GpuTest::SetUp() { messagesAtStart_ = gpuContext().validationMessageCount()
 
 void GpuTest::TearDown() {
     const auto messages = gpuContext().validationMessages();
-    EXPECT_EQ(messages.size(), messagesAtStart_) << "Vulkan validation reported messages during this test; first new: "
-                                                 << (messages.size() > messagesAtStart_ ? messages[messagesAtStart_]
-                                                                                        : std::string());
+    EXPECT_EQ(messages.size(), messagesAtStart_)
+        << "Vulkan validation reported messages during this test; first new: "
+        << (messages.size() > messagesAtStart_ ? messages[messagesAtStart_] : std::string());
 }
 
 }  // namespace preskin::test

@@ -16,8 +16,8 @@ void dumpImage(const std::string& name, const RenderedImage& image) {
         png.encoding = OutputEncoding::DisplaySrgb8;
         png.rgba8.resize(image.rgba32f.size());
         for (size_t i = 0; i < image.rgba32f.size(); ++i)
-            png.rgba8[i] = static_cast<uint8_t>(
-                std::lround(i % 4 == 3 ? std::clamp(double(image.rgba32f[i]), 0.0, 1.0) * 255.0 : srgb255(image.rgba32f[i])));
+            png.rgba8[i] = static_cast<uint8_t>(std::lround(
+                i % 4 == 3 ? std::clamp(double(image.rgba32f[i]), 0.0, 1.0) * 255.0 : srgb255(image.rgba32f[i])));
         png.rgba32f.clear();
     }
     std::filesystem::create_directories(dir);
@@ -43,7 +43,8 @@ RenderedImage readPng(const std::filesystem::path& path, std::string& error) {
         return {};
     }
     for (size_t p = 0; p < size_t(image.width) * image.height; ++p)
-        for (int c = 0; c < std::min(spec.nchannels, 4); ++c) image.rgba8[p * 4 + size_t(c)] = pixels[p * size_t(spec.nchannels) + size_t(c)];
+        for (int c = 0; c < std::min(spec.nchannels, 4); ++c)
+            image.rgba8[p * 4 + size_t(c)] = pixels[p * size_t(spec.nchannels) + size_t(c)];
     return image;
 }
 

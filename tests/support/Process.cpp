@@ -44,8 +44,8 @@ std::string testDevice() {
     return device && *device ? device : "llvmpipe";
 }
 
-Process::Process(const fs::path& program, const std::vector<std::string>& args, const std::vector<std::string>& extraEnv,
-                 const fs::path& dir)
+Process::Process(const fs::path& program, const std::vector<std::string>& args,
+                 const std::vector<std::string>& extraEnv, const fs::path& dir)
     : dir_(dir) {
     std::vector<std::string> argStore{program.string()};
     argStore.insert(argStore.end(), args.begin(), args.end());
@@ -145,11 +145,11 @@ ProcessResult runWithMemoryLimit(const fs::path& program, const std::vector<std:
     // limit cannot apply; its own resident-memory limit ends the program with a report instead.
     const char* options = std::getenv("ASAN_OPTIONS");
     const std::string limit = "hard_rss_limit_mb=" + std::to_string(memoryBytes >> 20);
-    return runProcess(program, args, {"ASAN_OPTIONS=" + (options && *options ? std::string(options) + ":" : "") + limit},
-                      dir, limitS);
+    return runProcess(program, args,
+                      {"ASAN_OPTIONS=" + (options && *options ? std::string(options) + ":" : "") + limit}, dir, limitS);
 #else
-    std::vector<std::string> shellArgs{"-c", "ulimit -v " + std::to_string(memoryBytes / 1024) + " && exec \"$0\" \"$@\"",
-                                       program.string()};
+    std::vector<std::string> shellArgs{
+        "-c", "ulimit -v " + std::to_string(memoryBytes / 1024) + " && exec \"$0\" \"$@\"", program.string()};
     shellArgs.insert(shellArgs.end(), args.begin(), args.end());
     return runProcess("/bin/sh", shellArgs, {}, dir, limitS);
 #endif

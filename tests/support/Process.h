@@ -3,10 +3,10 @@
 // folder, and a time limit after which the process is killed.
 #pragma once
 
+#include <sys/types.h>
 #include <cstdint>
 #include <filesystem>
 #include <string>
-#include <sys/types.h>
 #include <vector>
 
 namespace preskin::test {

@@ -69,7 +69,7 @@ Environment makeEnvironment(uint32_t width, const std::function<glm::vec3(const 
             px[3] = 1.0f;
         }
     const std::filesystem::path dir = std::filesystem::temp_directory_path() /
-                                      ("preskin_test_env_" + std::to_string(::getpid()) + "_" + std::to_string(counter++));
+        ("preskin_test_env_" + std::to_string(::getpid()) + "_" + std::to_string(counter++));
     std::filesystem::create_directories(dir);
     const std::filesystem::path file = dir / "environment.exr";
     try {
@@ -95,7 +95,8 @@ int addNormalMap(Scene& scene, uint32_t width, uint32_t height, const std::funct
             const glm::vec2 uv((float(x) + 0.5f) / float(width), (float(y) + 0.5f) / float(height));
             const glm::vec3 n = glm::normalize(normalAt(uv)) * 0.5f + 0.5f;
             uint8_t* px = &image.rgba8[(size_t(y) * width + x) * 4];
-            for (int c = 0; c < 3; ++c) px[c] = static_cast<uint8_t>(std::lround(std::clamp(n[c], 0.0f, 1.0f) * 255.0f));
+            for (int c = 0; c < 3; ++c)
+                px[c] = static_cast<uint8_t>(std::lround(std::clamp(n[c], 0.0f, 1.0f) * 255.0f));
             px[3] = 255;
         }
     scene.images.push_back(std::move(image));
@@ -154,7 +155,8 @@ glm::dvec3 ggxLobe(double F0, double r, double NoL, double NoV, double NoH, doub
     const double a2 = alpha * alpha;
     const double denom = NoH * NoH * (a2 - 1.0) + 1.0;
     const double D = a2 / (kPiD * denom * denom);
-    const double Vis = 0.5 / (NoL * std::sqrt(NoV * NoV * (1.0 - a2) + a2) + NoV * std::sqrt(NoL * NoL * (1.0 - a2) + a2));
+    const double Vis =
+        0.5 / (NoL * std::sqrt(NoV * NoV * (1.0 - a2) + a2) + NoV * std::sqrt(NoL * NoL * (1.0 - a2) + a2));
     return D * Vis * schlick(F0, VoH);
 }
 
@@ -210,7 +212,8 @@ SphereAgreement compareWithSkinReference(const RenderedImage& image, const View&
                 const double r0 = std::clamp(roughness * double(skin.lobeRoughness0), 0.03, 1.0);
                 const double r1 = std::clamp(roughness * double(skin.lobeRoughness1), 0.03, 1.0);
                 specular = glm::mix(ggxLobe(F0, r0, NoL, NoV, NoH, VoH), ggxLobe(F0, r1, NoL, NoV, NoH, VoH),
-                                    double(skin.lobeMix)) * NoL * E;
+                                    double(skin.lobeMix)) *
+                    NoL * E;
             }
             const glm::dvec3 expected = diffuseScale * D + specular;
             const glm::dvec3 lambert = diffuseScale * std::clamp(NoL, 0.0, 1.0) + specular;

@@ -1,4 +1,4 @@
-// Helpers for the skin shading tests (tests/gpu/test_skin_*.cpp): analytic sphere hits per pixel
+// Helpers for the skin shading tests (tests/reference/test_skin_*.cpp): analytic sphere hits per pixel
 // for CPU references, synthetic environments, procedural normal maps, and image comparisons in
 // 8-bit sRGB steps.
 #pragma once

@@ -11,7 +11,9 @@
 
 namespace preskin::test {
 
-inline float uniform(std::mt19937& rng, float lo, float hi) { return std::uniform_real_distribution<float>(lo, hi)(rng); }
+inline float uniform(std::mt19937& rng, float lo, float hi) {
+    return std::uniform_real_distribution<float>(lo, hi)(rng);
+}
 
 inline glm::vec3 randomDirection(std::mt19937& rng) {
     for (;;) {
@@ -42,7 +44,8 @@ inline Light pointLight(const glm::vec3& p, float rangeM, const glm::vec3& color
     return l;
 }
 
-inline Light spotLight(const glm::vec3& p, const glm::vec3& dir, float rangeM, float outerAngle, float intensity = 1.0f) {
+inline Light spotLight(const glm::vec3& p, const glm::vec3& dir, float rangeM, float outerAngle,
+                       float intensity = 1.0f) {
     Light l = pointLight(p, rangeM, glm::vec3(1.0f), intensity);
     l.type = LightType::Spot;
     l.directionWs = glm::normalize(dir);
@@ -62,8 +65,10 @@ inline std::vector<Light> randomLights(uint32_t count, uint32_t seed, float zMax
     for (uint32_t i = 0; i < count; ++i) {
         const glm::vec3 p(uniform(rng, -3.0f, 3.0f), uniform(rng, -2.0f, 3.0f), uniform(rng, -7.0f, zMaxM));
         const float range = uniform(rng, 0.08f, 1.3f);
-        if (rng() % 5 < 2) lights.push_back(spotLight(p, randomDirection(rng), range, uniform(rng, 0.08f, 1.45f)));
-        else lights.push_back(pointLight(p, range));
+        if (rng() % 5 < 2)
+            lights.push_back(spotLight(p, randomDirection(rng), range, uniform(rng, 0.08f, 1.45f)));
+        else
+            lights.push_back(pointLight(p, range));
     }
     return lights;
 }

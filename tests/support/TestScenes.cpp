@@ -57,7 +57,8 @@ Primitive makeBox(const glm::vec3& sizeM) {
     const glm::vec3 h = 0.5f * sizeM;
     const glm::vec3 normals[6] = {{1, 0, 0}, {-1, 0, 0}, {0, 1, 0}, {0, -1, 0}, {0, 0, 1}, {0, 0, -1}};
     for (const glm::vec3& n : normals) {
-        const glm::vec3 t = std::abs(n.y) > 0.5f ? glm::vec3(1, 0, 0) : glm::normalize(glm::cross(glm::vec3(0, 1, 0), n));
+        const glm::vec3 t =
+            std::abs(n.y) > 0.5f ? glm::vec3(1, 0, 0) : glm::normalize(glm::cross(glm::vec3(0, 1, 0), n));
         const glm::vec3 b = glm::cross(n, t);
         const uint32_t base = static_cast<uint32_t>(p.vertices.size());
         const glm::vec2 corners[4] = {{-1, -1}, {1, -1}, {1, 1}, {-1, 1}};

@@ -1,4 +1,4 @@
-// The SPIR-V of the test compute shaders in tests/gpu/shaders/*.comp, compiled at build time
+// The SPIR-V of the test compute shaders in tests/reference/shaders/*.comp, compiled at build time
 // (include path: shaders/) and embedded in the test binary by tests/CMakeLists.txt.
 #pragma once
 

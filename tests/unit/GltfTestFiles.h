@@ -222,7 +222,8 @@ inline GltfBuilder triangleScene() {
     const int normal = b.addFloats({0, 0, 1, 0, 0, 1, 0, 0, 1}, "VEC3");
     const int uv = b.addFloats({0, 1, 1, 1, 0, 0}, "VEC2");
     const int indices = b.addIndices(std::vector<uint16_t>{0, 1, 2});
-    b.addMeshNode({{"attributes", {{"POSITION", position}, {"NORMAL", normal}, {"TEXCOORD_0", uv}}}, {"indices", indices}});
+    b.addMeshNode(
+        {{"attributes", {{"POSITION", position}, {"NORMAL", normal}, {"TEXCOORD_0", uv}}}, {"indices", indices}});
     return b;
 }
 

@@ -4,8 +4,8 @@
 #include <preskin/Error.h>
 #include <preskin/Scene.h>
 
-#include <glm/gtc/quaternion.hpp>
 #include <gtest/gtest.h>
+#include <glm/gtc/quaternion.hpp>
 
 #include <cmath>
 #include <numbers>

@@ -171,7 +171,8 @@ TEST(Curvature, QuadricSignFollowsTheNormal) {
         const float half = 0.2f;
         for (int j = 0; j <= n; ++j)
             for (int i = 0; i <= n; ++i) {
-                const float x = half * (2.0f * float(i) / float(n) - 1.0f), y = half * (2.0f * float(j) / float(n) - 1.0f);
+                const float x = half * (2.0f * float(i) / float(n) - 1.0f),
+                            y = half * (2.0f * float(j) / float(n) - 1.0f);
                 m.positions.push_back(glm::vec3(x, y, 0.5f * (k1 * x * x + k2 * y * y)));
                 m.normals.push_back(glm::normalize(glm::vec3(-k1 * x, -k2 * y, 1.0f)));
             }
@@ -203,7 +204,8 @@ TEST(Curvature, PlaneGivesZero) {
             m.indices.insert(m.indices.end(), {a, b, c, b, d, c});
         }
     for (float k : preskin::computeVertexCurvature(m.positions, m.normals, m.indices)) EXPECT_NEAR(k, 0.0f, 1e-5f);
-    for (float k : preskin::computeVertexCurvature(m.positions, averagedNormals(m), m.indices)) EXPECT_NEAR(k, 0.0f, 1e-5f);
+    for (float k : preskin::computeVertexCurvature(m.positions, averagedNormals(m), m.indices))
+        EXPECT_NEAR(k, 0.0f, 1e-5f);
 }
 
 TEST(Curvature, CylinderGivesHalfInverseRadius) {

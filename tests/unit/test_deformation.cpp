@@ -4,8 +4,8 @@
 #include <preskin/Deformation.h>
 #include <preskin/Error.h>
 
-#include <glm/gtc/matrix_transform.hpp>
 #include <gtest/gtest.h>
+#include <glm/gtc/matrix_transform.hpp>
 
 #include <cmath>
 #include <numbers>
@@ -65,8 +65,8 @@ TEST(Deformation, MorphTargetsAddWeightedDeltas) {
     std::vector<Vertex> out;
     preskin::deformPrimitive(primitive, pose, out);
     ASSERT_EQ(out.size(), 2u);
-    expectNear(out[0].positionOs, {0.5f, 0.0f, 4.0f});    // 0.5 (1,0,0) + 2 (0,0,2)
-    expectNear(out[1].positionOs, {-1.0f, 0.5f, 1.0f});   // (1,2,3) + 0.5 (0,1,0) + 2 (-1,-1,-1)
+    expectNear(out[0].positionOs, {0.5f, 0.0f, 4.0f});   // 0.5 (1,0,0) + 2 (0,0,2)
+    expectNear(out[1].positionOs, {-1.0f, 0.5f, 1.0f});  // (1,2,3) + 0.5 (0,1,0) + 2 (-1,-1,-1)
     expectNear(out[0].normalOs, glm::normalize(glm::vec3(0.5f, 0.0f, 1.0f)));
     expectNear(glm::vec3(out[0].tangentOs), glm::normalize(glm::vec3(1.0f, 1.0f, 0.0f)));
     EXPECT_EQ(out[0].tangentOs.w, 1.0f);
@@ -77,7 +77,8 @@ TEST(Deformation, MorphTargetsAddWeightedDeltas) {
 
 TEST(Deformation, TwoJointSkinTurningNinetyDegrees) {
     Primitive primitive;
-    primitive.vertices = {vertex({1, 0, 0}), vertex({1, 2, 0}), vertex({1, 1, 0}), vertex({0, 2, 1}, {0, 0, 1}, {1, 0, 0, 1})};
+    primitive.vertices = {vertex({1, 0, 0}), vertex({1, 2, 0}), vertex({1, 1, 0}),
+                          vertex({0, 2, 1}, {0, 0, 1}, {1, 0, 0, 1})};
     preskin::JointInfluences half;
     half.joints[0] = {0, 1, 0, 0};
     half.weights[0] = {0.5f, 0.5f, 0.0f, 0.0f};
@@ -117,7 +118,8 @@ TEST(Deformation, MorphTargetsComeBeforeSkinning) {
 
 TEST(Deformation, NormalsTakeTheInverseTransposeUnderNonUniformScale) {
     Primitive primitive;
-    primitive.vertices = {vertex({1, 1, 1}, glm::normalize(glm::vec3(1, 1, 0)), {std::sqrt(0.5f), -std::sqrt(0.5f), 0, 1})};
+    primitive.vertices = {
+        vertex({1, 1, 1}, glm::normalize(glm::vec3(1, 1, 0)), {std::sqrt(0.5f), -std::sqrt(0.5f), 0, 1})};
     primitive.influences = {only(0)};
     InstancePose pose;
     pose.jointMatrices = {glm::scale(glm::mat4(1.0f), glm::vec3(2, 1, 1))};

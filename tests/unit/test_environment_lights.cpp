@@ -40,7 +40,8 @@ EquirectImage discSky(const glm::vec3& discDir) {
             if (double(glm::dot(center, discDir)) > std::cos(kDiscRadius + 0.02))
                 for (int sy = 0; sy < 4; ++sy)
                     for (int sx = 0; sx < 4; ++sx) {
-                        const glm::vec3 d = texelDirection(image, x, y, (float(sx) + 0.5f) / 4.0f, (float(sy) + 0.5f) / 4.0f);
+                        const glm::vec3 d =
+                            texelDirection(image, x, y, (float(sx) + 0.5f) / 4.0f, (float(sy) + 0.5f) / 4.0f);
                         coverage += glm::dot(d, discDir) >= cosRadius ? 1.0f / 16.0f : 0.0f;
                     }
             const glm::vec3 l = skyRadiance(center) + coverage * kDiscRadiance;
@@ -53,8 +54,8 @@ EquirectImage discSky(const glm::vec3& discDir) {
 glm::dvec3 trueIrradiance(const EquirectImage& image, float rotationY, const glm::vec3& n) {
     glm::dvec3 sum(0.0);
     for (uint32_t y = 0; y < image.height; ++y) {
-        const double omega = 2.0 * M_PI / image.width *
-                             (std::cos(M_PI * y / image.height) - std::cos(M_PI * (y + 1) / image.height));
+        const double omega =
+            2.0 * M_PI / image.width * (std::cos(M_PI * y / image.height) - std::cos(M_PI * (y + 1) / image.height));
         for (uint32_t x = 0; x < image.width; ++x) {
             const glm::vec3 d = rotateY(texelDirection(image, x, y), rotationY);
             const double c = double(glm::dot(d, n));
@@ -74,11 +75,14 @@ TEST(EnvironmentLights, MedianCutFindsASmallBrightDiscWithItsEnergy) {
     ASSERT_EQ(found.lights.size(), 1u);
     const EnvironmentLight& light = found.lights[0];
     const glm::vec3 expectedTowards = rotateY(discDir, rotationY);
-    const double errorDeg = std::acos(std::clamp(double(glm::dot(-light.directionWs, expectedTowards)), -1.0, 1.0)) * 180.0 / M_PI;
+    const double errorDeg =
+        std::acos(std::clamp(double(glm::dot(-light.directionWs, expectedTowards)), -1.0, 1.0)) * 180.0 / M_PI;
     EXPECT_LT(errorDeg, 2.0);
     const double discOmega = 2.0 * M_PI * (1.0 - std::cos(kDiscRadius));
     for (int c = 0; c < 3; ++c)
-        EXPECT_NEAR(double(light.irradiance[c]), double(kDiscRadiance[c]) * discOmega, 0.02 * double(kDiscRadiance[c]) * discOmega) << "channel " << c;
+        EXPECT_NEAR(double(light.irradiance[c]), double(kDiscRadiance[c]) * discOmega,
+                    0.02 * double(kDiscRadiance[c]) * discOmega)
+            << "channel " << c;
     EXPECT_LT(light.solidAngleSr, 2.0 * discOmega);
 
     // The light plus the residual SH give the environment's irradiance in 64 directions.
@@ -89,8 +93,9 @@ TEST(EnvironmentLights, MedianCutFindsASmallBrightDiscWithItsEnergy) {
         const glm::vec3 n(r * std::cos(a), z, r * std::sin(a));
         const glm::dvec3 truth = trueIrradiance(image, rotationY, n);
         const glm::vec3 approx = light.irradiance * std::max(glm::dot(n, -light.directionWs), 0.0f) +
-                                 evaluateSh(found.residualSh, n, kLambertBands);
-        for (int c = 0; c < 3; ++c) EXPECT_NEAR(approx[c], truth[c], 0.02 * truth[c]) << "direction " << i << " channel " << c;
+            evaluateSh(found.residualSh, n, kLambertBands);
+        for (int c = 0; c < 3; ++c)
+            EXPECT_NEAR(approx[c], truth[c], 0.02 * truth[c]) << "direction " << i << " channel " << c;
     }
 }
 
@@ -146,7 +151,8 @@ TEST(EnvironmentLights, DownsampledKeepsTheSphereAndTheRadiance) {
             glm::dvec3 mean(0.0);
             for (uint32_t sy = 0; sy < 4; ++sy)
                 for (uint32_t sx = 0; sx < 4; ++sx) mean += glm::dvec3(odd.texel(4 * x + sx, 4 * y + sy)) / 16.0;
-            for (int c = 0; c < 3; ++c) EXPECT_NEAR(double(small.image().texel(x, y)[c]), mean[c], 1e-5 * (1.0 + mean[c]));
+            for (int c = 0; c < 3; ++c)
+                EXPECT_NEAR(double(small.image().texel(x, y)[c]), mean[c], 1e-5 * (1.0 + mean[c]));
         }
     EXPECT_EQ(env.downsampled(4096).image().width, 1000u);  // narrower already: unchanged
 }
@@ -160,7 +166,7 @@ TEST(EnvironmentLights, FromImageRefusesWhatLoadRefuses) {
         return e;
     };
     EXPECT_THROW(Environment::fromImage(image(0, 0, 1.0f)), Error);
-    EXPECT_THROW(Environment::fromImage(image(6, 2, 1.0f)), Error);     // not 2:1
+    EXPECT_THROW(Environment::fromImage(image(6, 2, 1.0f)), Error);         // not 2:1
     EXPECT_THROW(Environment::fromImage(image(16384, 8192, 0.0f)), Error);  // beyond 8192 x 4096
     EXPECT_THROW(Environment::fromImage(image(8, 4, std::nanf(""))), Error);
     EXPECT_THROW(Environment::fromImage(image(8, 4, -1.0f)), Error);

@@ -10,16 +10,16 @@
 #include <preskin/Error.h>
 #include <preskin/Scene.h>
 
-#include <glm/gtc/matrix_transform.hpp>
 #include <gtest/gtest.h>
+#include <glm/gtc/matrix_transform.hpp>
 
 #include <cmath>
 #include <filesystem>
 #include <numbers>
 
+using nlohmann::json;
 using preskin::test::GltfBuilder;
 using preskin::test::TempDir;
-using nlohmann::json;
 namespace fs = std::filesystem;
 
 namespace {
@@ -46,7 +46,8 @@ GltfBuilder skinnedTriangle(int jointsAccessorType, const std::vector<uint8_t>& 
                             const std::vector<uint8_t>& weightBytes, bool normalizedWeights) {
     GltfBuilder b = preskin::test::triangleScene();
     const int joints = b.addAccessor(b.addView(jointBytes), jointsAccessorType, 3, "VEC4");
-    const int weights = b.addAccessor(b.addView(weightBytes), weightsType, 3, "VEC4", {{"normalized", normalizedWeights}});
+    const int weights =
+        b.addAccessor(b.addView(weightBytes), weightsType, 3, "VEC4", {{"normalized", normalizedWeights}});
     b.doc["meshes"][0]["primitives"][0]["attributes"]["JOINTS_0"] = joints;
     b.doc["meshes"][0]["primitives"][0]["attributes"]["WEIGHTS_0"] = weights;
     b.doc["nodes"][0]["skin"] = 0;
@@ -89,8 +90,11 @@ TEST(GltfAnimation, HierarchyWithMatrixAndTrsMatchesTheFlattenedInstances) {
     // under nodes[2] (TRS).
     const float m[16] = {2, 0, 0, 0, 0, 0, 2, 0, 0, -2, 0, 0, 1, 2, 3, 1};
     b.doc["nodes"].push_back({{"name", "matrix"}, {"matrix", std::vector<float>(m, m + 16)}, {"children", {0}}});
-    b.doc["nodes"].push_back({{"name", "trs"}, {"translation", {0, 0, -1}}, {"rotation", {0, 0.6, 0, 0.8}},
-                              {"scale", {1, 3, 1}}, {"children", {1}}});
+    b.doc["nodes"].push_back({{"name", "trs"},
+                              {"translation", {0, 0, -1}},
+                              {"rotation", {0, 0.6, 0, 0.8}},
+                              {"scale", {1, 3, 1}},
+                              {"children", {1}}});
     b.doc["scenes"][0]["nodes"] = {2};
     const auto s = preskin::Scene::load(b.writeGltf(dir.path()));
     ASSERT_EQ(s.nodes.size(), 3u);
@@ -122,7 +126,8 @@ TEST(GltfAnimation, NormalizedByteWeightsAreNormalisedWithOneWarning) {
     const auto s = preskin::Scene::load(path);
     const auto warnings = warningsWith(s, "WEIGHTS_0");
     ASSERT_EQ(warnings.size(), 1u);
-    EXPECT_EQ(warnings[0].rfind(path.string() + ": meshes[0].primitives[0].attributes.WEIGHTS_0: 2 of 3 vertices", 0), 0u)
+    EXPECT_EQ(warnings[0].rfind(path.string() + ": meshes[0].primitives[0].attributes.WEIGHTS_0: 2 of 3 vertices", 0),
+              0u)
         << warnings[0];
     const auto& influences = s.meshes[0].primitives[0].influences;
     ASSERT_EQ(influences.size(), 3u);
@@ -143,7 +148,8 @@ TEST(GltfAnimation, SecondInfluenceSetWithShortJointsAndFloatWeights) {
     TempDir dir;
     GltfBuilder b = skinnedTriangle(5123, bytesOf(std::vector<uint16_t>{0, 0, 0, 0, 1, 0, 0, 0, 0, 0, 0, 0}), 5126,
                                     bytesOf(std::vector<float>{0.25f, 0, 0, 0, 1, 0, 0, 0, 0.5f, 0, 0, 0}), false);
-    const int joints1 = b.addAccessor(b.addView(std::vector<uint16_t>{1, 0, 0, 0, 0, 0, 0, 0, 1, 0, 0, 0}), 5123, 3, "VEC4");
+    const int joints1 =
+        b.addAccessor(b.addView(std::vector<uint16_t>{1, 0, 0, 0, 0, 0, 0, 0, 1, 0, 0, 0}), 5123, 3, "VEC4");
     const int weights1 = b.addFloats({0.75f, 0, 0, 0, 0, 0, 0, 0, 0.5f, 0, 0, 0}, "VEC4");
     b.doc["meshes"][0]["primitives"][0]["attributes"]["JOINTS_1"] = joints1;
     b.doc["meshes"][0]["primitives"][0]["attributes"]["WEIGHTS_1"] = weights1;
@@ -160,7 +166,8 @@ TEST(GltfAnimation, InverseBindMatricesAndSkeleton) {
     TempDir dir;
     GltfBuilder b = skinnedTriangle(5121, std::vector<uint8_t>(12, 0), 5126,
                                     bytesOf(std::vector<float>{1, 0, 0, 0, 1, 0, 0, 0, 1, 0, 0, 0}), false);
-    std::vector<float> ibm = {1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 0, -1, 0, 1};
+    std::vector<float> ibm = {1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 0, 0,  0, 1,
+                              1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 0, -1, 0, 1};
     b.doc["skins"][0]["inverseBindMatrices"] = b.addAccessor(b.addView(ibm), 5126, 2, "MAT4");
     b.doc["skins"][0]["skeleton"] = 1;
     const auto s = preskin::Scene::load(b.writeGltf(dir.path()));
@@ -181,15 +188,17 @@ TEST(GltfAnimation, MorphTargetsDenseSparseNamedAndWeighted) {
     const int sparseIndices = b.addView(std::vector<uint8_t>{2, 0, 0, 0});
     const int sparseValues = b.addView(std::vector<float>{0.5f, 0, 0});
     const int sparse = b.addAccessor(-1, 5126, 3, "VEC3",
-                                     {{"sparse", {{"count", 1},
-                                                  {"indices", {{"bufferView", sparseIndices}, {"componentType", 5121}}},
-                                                  {"values", {{"bufferView", sparseValues}}}}}});
+                                     {{"sparse",
+                                       {{"count", 1},
+                                        {"indices", {{"bufferView", sparseIndices}, {"componentType", 5121}}},
+                                        {"values", {{"bufferView", sparseValues}}}}}});
     const int normalIndices = b.addView(std::vector<uint8_t>{1, 0, 0, 0});
     const int normalValues = b.addView(std::vector<float>{1, 0, 0});
     const int sparseNormals = b.addAccessor(-1, 5126, 3, "VEC3",
-                                            {{"sparse", {{"count", 1},
-                                                         {"indices", {{"bufferView", normalIndices}, {"componentType", 5121}}},
-                                                         {"values", {{"bufferView", normalValues}}}}}});
+                                            {{"sparse",
+                                              {{"count", 1},
+                                               {"indices", {{"bufferView", normalIndices}, {"componentType", 5121}}},
+                                               {"values", {{"bufferView", normalValues}}}}}});
     const int uvDelta = b.addFloats({0, 0, 0, 0, 0, 0}, "VEC2");
     b.doc["meshes"][0]["primitives"][0]["targets"] = json::array(
         {{{"POSITION", dense}}, {{"POSITION", sparse}, {"NORMAL", sparseNormals}, {"TEXCOORD_0", uvDelta}}});
@@ -222,14 +231,16 @@ TEST(GltfAnimation, FlatShadedPrimitivesKeepTheirDeltasAndInfluences) {
     const int position = b.addFloats({0, 0, 0, 1, 0, 0, 0, 1, 0, 1, 1, 0}, "VEC3");
     const int indices = b.addIndices(std::vector<uint16_t>{0, 1, 2, 2, 1, 3});
     const int delta = b.addFloats({0, 0, 0, 0, 0, 1, 0, 0, 2, 0, 0, 3}, "VEC3");
-    b.addMeshNode({{"attributes", {{"POSITION", position}}}, {"indices", indices}, {"targets", {{{"POSITION", delta}}}}});
+    b.addMeshNode(
+        {{"attributes", {{"POSITION", position}}}, {"indices", indices}, {"targets", {{{"POSITION", delta}}}}});
     const auto s = preskin::Scene::load(b.writeGltf(dir.path()));
     const preskin::Primitive& p = s.meshes.at(0).primitives.at(0);
     ASSERT_EQ(p.vertices.size(), 6u);
     ASSERT_EQ(p.targets.at(0).positionDeltas.size(), 6u);
     for (size_t i = 0; i < 6; ++i) {
         const glm::vec3 position0 = p.vertices[i].positionOs;
-        EXPECT_EQ(p.targets[0].positionDeltas[i].z, position0.x + 2.0f * position0.y) << i;  // delta z = index of the source vertex
+        EXPECT_EQ(p.targets[0].positionDeltas[i].z, position0.x + 2.0f * position0.y)
+            << i;  // delta z = index of the source vertex
     }
 }
 
@@ -240,8 +251,8 @@ TEST(GltfAnimation, AnimationsWithEveryPathAndInterpolation) {
     b.doc["meshes"][0]["primitives"][0]["targets"] = json::array({{{"POSITION", target}}});
     b.doc["nodes"].push_back({{"name", "mover"}});
     b.doc["scenes"][0]["nodes"].push_back(1);
-    const int times = b.addAccessor(b.addView(std::vector<float>{0.5f, 1.5f}), 5126, 2, "SCALAR",
-                                    {{"min", {0.5}}, {"max", {1.5}}});
+    const int times =
+        b.addAccessor(b.addView(std::vector<float>{0.5f, 1.5f}), 5126, 2, "SCALAR", {{"min", {0.5}}, {"max", {1.5}}});
     const int translations = b.addFloats({0, 0, 0, 2, 0, 0}, "VEC3");
     // Rotations as normalized shorts: identity and 90 degrees about +Z (0, 0, 0.7071, 0.7071).
     const auto q = static_cast<int16_t>(std::lround(32767 * std::sqrt(0.5)));
@@ -250,17 +261,18 @@ TEST(GltfAnimation, AnimationsWithEveryPathAndInterpolation) {
     // CUBICSPLINE scale: (in, value, out) per key.
     const int scales = b.addFloats({0, 0, 0, 1, 1, 1, 0, 0, 0, 0, 0, 0, 3, 3, 3, 0, 0, 0}, "VEC3");
     const int weights = b.addFloats({0, 1}, "SCALAR");
-    b.doc["animations"] = json::array(
-        {{{"name", "all"},
-          {"samplers", {{{"input", times}, {"output", translations}},
-                        {{"input", times}, {"output", rotations}},
-                        {{"input", times}, {"output", scales}, {"interpolation", "CUBICSPLINE"}},
-                        {{"input", times}, {"output", weights}, {"interpolation", "STEP"}}}},
-          {"channels", {{{"sampler", 0}, {"target", {{"node", 1}, {"path", "translation"}}}},
-                        {{"sampler", 1}, {"target", {{"node", 1}, {"path", "rotation"}}}},
-                        {{"sampler", 2}, {"target", {{"node", 1}, {"path", "scale"}}}},
-                        {{"sampler", 3}, {"target", {{"node", 0}, {"path", "weights"}}}},
-                        {{"sampler", 0}, {"target", {{"node", 1}, {"path", "pointer"}}}}}}}});
+    b.doc["animations"] = json::array({{{"name", "all"},
+                                        {"samplers",
+                                         {{{"input", times}, {"output", translations}},
+                                          {{"input", times}, {"output", rotations}},
+                                          {{"input", times}, {"output", scales}, {"interpolation", "CUBICSPLINE"}},
+                                          {{"input", times}, {"output", weights}, {"interpolation", "STEP"}}}},
+                                        {"channels",
+                                         {{{"sampler", 0}, {"target", {{"node", 1}, {"path", "translation"}}}},
+                                          {{"sampler", 1}, {"target", {{"node", 1}, {"path", "rotation"}}}},
+                                          {{"sampler", 2}, {"target", {{"node", 1}, {"path", "scale"}}}},
+                                          {{"sampler", 3}, {"target", {{"node", 0}, {"path", "weights"}}}},
+                                          {{"sampler", 0}, {"target", {{"node", 1}, {"path", "pointer"}}}}}}}});
     const fs::path path = b.writeGltf(dir.path());
     const auto s = preskin::Scene::load(path);
     ASSERT_EQ(s.animations.size(), 1u);
@@ -281,7 +293,7 @@ TEST(GltfAnimation, AnimationsWithEveryPathAndInterpolation) {
     const glm::vec3 x = pose.transforms[1].rotation * glm::vec3(1, 0, 0);
     expectNear(x, {std::cos(0.25f * std::numbers::pi_v<float>), std::sin(0.25f * std::numbers::pi_v<float>), 0}, 1e-4f);
     expectNear(pose.transforms[1].scale, {2, 2, 2}, 1e-6f);  // Hermite with zero tangents, half-way
-    EXPECT_EQ(pose.weights[0], std::vector<float>{0.0f});     // STEP: still the first key
+    EXPECT_EQ(pose.weights[0], std::vector<float>{0.0f});    // STEP: still the first key
     EXPECT_EQ(preskin::animationNodePose(s, a, 2.0f).weights[0], std::vector<float>{1.0f});
 }
 
@@ -359,7 +371,8 @@ INSTANTIATE_TEST_SUITE_P(
     Committed, GltfAnimationErrors,
     ::testing::Values(
         BadCase{"skin_joint_out_of_range.gltf",
-                {"meshes[0].primitives[0].attributes.JOINTS_0: ", "joint 2 at vertex 1 is out of range", "skins[0], which has 2 joints"}},
+                {"meshes[0].primitives[0].attributes.JOINTS_0: ", "joint 2 at vertex 1 is out of range",
+                 "skins[0], which has 2 joints"}},
         BadCase{"skin_no_joints.gltf", {"skins[0].joints: ", "empty"}},
         BadCase{"skin_joints_missing.gltf", {"skins[0].joints: ", "missing"}},
         BadCase{"skin_inverse_bind_count.gltf", {"skins[0].inverseBindMatrices: ", "1 matrices for 2 joints"}},
@@ -368,10 +381,13 @@ INSTANTIATE_TEST_SUITE_P(
         // The element and component named are the NaN and the infinity (the wording of the number
         // problem itself is the accessor reader's).
         BadCase{"anim_nan_time.gltf", {"accessors[7]: ", "element 1 (component 0) of animations[0].samplers[0].input"}},
-        BadCase{"anim_infinite_value.gltf", {"accessors[8]: ", "element 1 (component 1) of animations[0].samplers[0].output", "finite"}},
-        BadCase{"anim_times_not_increasing.gltf", {"animations[0].samplers[0].input: ", "key 1 is not after", "times must increase"}},
+        BadCase{"anim_infinite_value.gltf",
+                {"accessors[8]: ", "element 1 (component 1) of animations[0].samplers[0].output", "finite"}},
+        BadCase{"anim_times_not_increasing.gltf",
+                {"animations[0].samplers[0].input: ", "key 1 is not after", "times must increase"}},
         BadCase{"anim_matrix_node.gltf", {"animations[0].channels[0].target.node: ", "nodes[2] has a matrix"}},
-        BadCase{"morph_target_count_mismatch.gltf", {"meshes[0].primitives[1].targets: ", "2 morph targets, primitives[0] has 1"}},
+        BadCase{"morph_target_count_mismatch.gltf",
+                {"meshes[0].primitives[1].targets: ", "2 morph targets, primitives[0] has 1"}},
         BadCase{"morph_weights_length.gltf", {"meshes[0].weights: ", "2 weights for 1 morph targets"}}));
 
 TEST(GltfAnimation, MoreBadCasesGeneratedHere) {
@@ -389,7 +405,8 @@ TEST(GltfAnimation, MoreBadCasesGeneratedHere) {
     b = skinnedTriangle(5121, joints, 5126, bytesOf(std::vector<float>{1, 0, 0, 0, 0, 0, 0, 0, 1, 0, 0, 0}), false);
     expectError(b, "zero", {"attributes.WEIGHTS_0: ", "vertex 1 has no joint weight"});
 
-    b = skinnedTriangle(5121, joints, 5126, bytesOf(std::vector<float>{1, 0, 0, 0, 1.5f, -0.5f, 0, 0, 1, 0, 0, 0}), false);
+    b = skinnedTriangle(5121, joints, 5126, bytesOf(std::vector<float>{1, 0, 0, 0, 1.5f, -0.5f, 0, 0, 1, 0, 0, 0}),
+                        false);
     expectError(b, "negative", {"attributes.WEIGHTS_0: ", "negative weight -0.5 at vertex 1"});
 
     b = skinnedTriangle(5126, bytesOf(std::vector<float>(12, 0.0f)), 5126, weights, false);
@@ -398,7 +415,8 @@ TEST(GltfAnimation, MoreBadCasesGeneratedHere) {
     b = skinnedTriangle(5121, joints, 5126, weights, false);
     b.doc["meshes"][0]["primitives"][0]["attributes"].erase("JOINTS_0");
     b.doc["meshes"][0]["primitives"][0]["attributes"].erase("WEIGHTS_0");
-    expectError(b, "unskinnable", {"meshes[0].primitives[0].attributes: ", "no JOINTS_0", "nodes[0] draws meshes[0] with skins[0]"});
+    expectError(b, "unskinnable",
+                {"meshes[0].primitives[0].attributes: ", "no JOINTS_0", "nodes[0] draws meshes[0] with skins[0]"});
 
     b = skinnedTriangle(5121, joints, 5126, weights, false);
     b.doc["skins"][0]["joints"] = {1, 9};
@@ -416,12 +434,14 @@ TEST(GltfAnimation, MoreBadCasesGeneratedHere) {
     b = preskin::test::triangleScene();
     const int times = b.addFloats({0, 1}, "SCALAR");
     const int zero = b.addFloats({0, 0, 0, 1, 0, 0, 0, 0}, "VEC4");
-    b.doc["animations"] = json::array({{{"samplers", {{{"input", times}, {"output", zero}}}},
-                                        {"channels", {{{"sampler", 0}, {"target", {{"node", 0}, {"path", "rotation"}}}}}}}});
+    b.doc["animations"] =
+        json::array({{{"samplers", {{{"input", times}, {"output", zero}}}},
+                      {"channels", {{{"sampler", 0}, {"target", {{"node", 0}, {"path", "rotation"}}}}}}}});
     expectError(b, "zero_rotation", {"animations[0].samplers[0].output: ", "key 1 is a zero quaternion"});
 
     b.doc["animations"][0]["channels"][0]["target"]["path"] = "weights";
-    expectError(b, "weights_without_targets", {"animations[0].channels[0].target.node: ", "no mesh with morph targets"});
+    expectError(b, "weights_without_targets",
+                {"animations[0].channels[0].target.node: ", "no mesh with morph targets"});
 
     b.doc["animations"][0]["channels"][0]["target"]["path"] = "translation";
     expectError(b, "wrong_type", {".type: ", "VEC4, but animations[0].samplers[0].output needs VEC3"});

@@ -12,9 +12,9 @@
 #include <filesystem>
 #include <limits>
 
+using nlohmann::json;
 using preskin::test::GltfBuilder;
 using preskin::test::TempDir;
-using nlohmann::json;
 namespace fs = std::filesystem;
 
 namespace {
@@ -71,7 +71,8 @@ TEST_P(GltfErrorFiles, NamesFileFieldAndProblem) {
     const std::string message = loadError(kData / c.file);
     EXPECT_EQ(message.rfind((kData / c.file).string() + ": ", 0), 0u) << message;
     EXPECT_EQ(message.find('\n'), std::string::npos) << message;
-    for (const char* fragment : c.fragments) EXPECT_NE(message.find(fragment), std::string::npos) << fragment << " | " << message;
+    for (const char* fragment : c.fragments)
+        EXPECT_NE(message.find(fragment), std::string::npos) << fragment << " | " << message;
 }
 
 INSTANTIATE_TEST_SUITE_P(
@@ -83,11 +84,13 @@ INSTANTIATE_TEST_SUITE_P(
         CommittedCase{"bad_json.gltf", {"JSON", "parse error"}},
         CommittedCase{"missing_buffer.gltf", {"buffers[0].uri", "'absent.bin' not found"}},
         CommittedCase{"missing_image.gltf", {"images[0].uri", "'absent.png' not found"}},
-        CommittedCase{"required_extension.gltf", {"extensionsRequired[0]", "KHR_draco_mesh_compression", "not supported"}},
+        CommittedCase{"required_extension.gltf",
+                      {"extensionsRequired[0]", "KHR_draco_mesh_compression", "not supported"}},
         CommittedCase{"accessor_out_of_range.gltf", {"accessors[0]", "100 elements", "exceeds bufferViews[0]"}},
         CommittedCase{"bufferview_out_of_range.gltf", {"bufferViews[2]", "exceeds buffers[0] (104 bytes)"}},
         CommittedCase{"huge_count.gltf", {"accessors[0].count", "4294967295", "limit"}},
-        CommittedCase{"index_out_of_range.gltf", {"accessors[3]", "index 7", "vertex count 3", "meshes[0].primitives[0].indices"}},
+        CommittedCase{"index_out_of_range.gltf",
+                      {"accessors[3]", "index 7", "vertex count 3", "meshes[0].primitives[0].indices"}},
         CommittedCase{"nan_position.gltf", {"accessors[0]", "nan is not a finite number", "element 1", "POSITION"}},
         CommittedCase{"uri_parent.gltf", {"buffers[0].uri", "leaves the scene's folder"}},
         CommittedCase{"uri_absolute.gltf", {"buffers[0].uri", "absolute path"}},
@@ -268,10 +271,12 @@ TEST(GltfErrors, AccessorAndIndexProblems) {
                 {"accessors[0].count", "0"});
     expectError(withChange("f", [](GltfBuilder& b) { b.doc["meshes"][0]["primitives"][0]["indices"] = 9; }),
                 {"meshes[0].primitives[0].indices", "9 is out of range"});
-    expectError(withChange("g", [](GltfBuilder& b) { b.doc["meshes"][0]["primitives"][0]["attributes"]["POSITION"] = 42; }),
-                {"attributes.POSITION", "42 is out of range"});
-    expectError(withChange("h", [](GltfBuilder& b) { b.doc["meshes"][0]["primitives"][0]["attributes"].erase("POSITION"); }),
-                {"meshes[0].primitives[0].attributes", "no POSITION"});
+    expectError(
+        withChange("g", [](GltfBuilder& b) { b.doc["meshes"][0]["primitives"][0]["attributes"]["POSITION"] = 42; }),
+        {"attributes.POSITION", "42 is out of range"});
+    expectError(
+        withChange("h", [](GltfBuilder& b) { b.doc["meshes"][0]["primitives"][0]["attributes"].erase("POSITION"); }),
+        {"meshes[0].primitives[0].attributes", "no POSITION"});
     expectError(withChange("i", [](GltfBuilder& b) { b.doc["meshes"][0]["primitives"][0]["mode"] = 9; }),
                 {"meshes[0].primitives[0].mode", "9"});
     {
@@ -280,24 +285,30 @@ TEST(GltfErrors, AccessorAndIndexProblems) {
         const preskin::Scene scene = preskin::Scene::load(j);
         std::string warnings;
         for (const std::string& w : scene.warnings) warnings += w + "\n";
-        EXPECT_NE(warnings.find(j.string() + ": meshes[0].primitives[0].indices: index count 2 is not a multiple of 3 for a "
-                                             "triangle list; the last 2 ignored"),
+        EXPECT_NE(warnings.find(j.string() +
+                                ": meshes[0].primitives[0].indices: index count 2 is not a multiple of 3 for a "
+                                "triangle list; the last 2 ignored"),
                   std::string::npos)
             << warnings;
-        EXPECT_NE(warnings.find("meshes[0].primitives[0]: no triangles; primitive skipped"), std::string::npos) << warnings;
+        EXPECT_NE(warnings.find("meshes[0].primitives[0]: no triangles; primitive skipped"), std::string::npos)
+            << warnings;
     }
     expectError(withChange("k", [](GltfBuilder& b) { b.doc["accessors"][0]["bufferView"] = 17; }),
                 {"accessors[0].bufferView", "17 is out of range"});
     // Non-finite normals and UVs.
-    expectError(withChange("l", [](GltfBuilder& b) {
-                    const float inf = std::numeric_limits<float>::infinity();
-                    b.doc["meshes"][0]["primitives"][0]["attributes"]["NORMAL"] = b.addFloats({0, 0, 1, 0, inf, 1, 0, 0, 1}, "VEC3");
-                }),
+    expectError(withChange("l",
+                           [](GltfBuilder& b) {
+                               const float inf = std::numeric_limits<float>::infinity();
+                               b.doc["meshes"][0]["primitives"][0]["attributes"]["NORMAL"] =
+                                   b.addFloats({0, 0, 1, 0, inf, 1, 0, 0, 1}, "VEC3");
+                           }),
                 {"inf is not a finite number", "element 1", "NORMAL"});
-    expectError(withChange("m", [](GltfBuilder& b) {
-                    const float nan = std::numeric_limits<float>::quiet_NaN();
-                    b.doc["meshes"][0]["primitives"][0]["attributes"]["TEXCOORD_0"] = b.addFloats({0, 0, 1, 0, 0, nan}, "VEC2");
-                }),
+    expectError(withChange("m",
+                           [](GltfBuilder& b) {
+                               const float nan = std::numeric_limits<float>::quiet_NaN();
+                               b.doc["meshes"][0]["primitives"][0]["attributes"]["TEXCOORD_0"] =
+                                   b.addFloats({0, 0, 1, 0, 0, nan}, "VEC2");
+                           }),
                 {"nan is not a finite number", "element 2", "TEXCOORD_0"});
     // Sparse substitutions out of range and unordered.
     auto sparse = [](std::vector<uint16_t> indices) {
@@ -322,58 +333,92 @@ TEST(GltfErrors, ReferenceProblems) {
     };
     expectError(withChange("a", [](GltfBuilder& b) { b.doc["meshes"][0]["primitives"][0]["material"] = 3; }),
                 {"meshes[0].primitives[0].material", "3 is out of range"});
-    expectError(withChange("b", [](GltfBuilder& b) {
-                    b.doc["materials"] = json::array({{{"pbrMetallicRoughness", {{"baseColorTexture", {{"index", 4}}}}}}});
-                }),
-                {"materials[0].pbrMetallicRoughness.baseColorTexture.index", "4 is out of range"});
+    expectError(
+        withChange(
+            "b",
+            [](GltfBuilder& b) {
+                b.doc["materials"] = json::array({{{"pbrMetallicRoughness", {{"baseColorTexture", {{"index", 4}}}}}}});
+            }),
+        {"materials[0].pbrMetallicRoughness.baseColorTexture.index", "4 is out of range"});
     expectError(withChange("c", [](GltfBuilder& b) { b.doc["scene"] = 5; }), {"scene", "5 is out of range"});
     expectError(withChange("d", [](GltfBuilder& b) { b.doc["nodes"][0]["children"] = {7}; }),
                 {"nodes[0].children[0]", "7 is out of range"});
-    expectError(withChange("e", [](GltfBuilder& b) { b.doc["nodes"][0]["mesh"] = 2; }), {"nodes[0].mesh", "2 is out of range"});
-    expectError(withChange("f", [](GltfBuilder& b) { b.doc["scenes"][0]["nodes"] = {0, 0}; }), {"nodes[0]", "reached twice"});
-    expectError(withChange("g", [](GltfBuilder& b) { b.doc["nodes"][0]["rotation"] = {0, 0, 0, 0}; }),
+    expectError(withChange("e", [](GltfBuilder& b) { b.doc["nodes"][0]["mesh"] = 2; }),
+                {"nodes[0].mesh", "2 is out of range"});
+    expectError(withChange("f",
+                           [](GltfBuilder& b) {
+                               b.doc["scenes"][0]["nodes"] = {0, 0};
+                           }),
+                {"nodes[0]", "reached twice"});
+    expectError(withChange("g",
+                           [](GltfBuilder& b) {
+                               b.doc["nodes"][0]["rotation"] = {0, 0, 0, 0};
+                           }),
                 {"nodes[0].rotation", "zero-length quaternion"});
-    expectError(withChange("h", [](GltfBuilder& b) { b.doc["nodes"][0]["matrix"] = {1, 0, 0}; }),
+    expectError(withChange("h",
+                           [](GltfBuilder& b) {
+                               b.doc["nodes"][0]["matrix"] = {1, 0, 0};
+                           }),
                 {"nodes[0].matrix", "3 numbers, expected 16"});
-    expectError(withChange("i", [](GltfBuilder& b) {
-                    b.doc["nodes"][0]["extensions"] = {{"KHR_lights_punctual", {{"light", 0}}}};
-                }),
+    expectError(withChange("i",
+                           [](GltfBuilder& b) {
+                               b.doc["nodes"][0]["extensions"] = {{"KHR_lights_punctual", {{"light", 0}}}};
+                           }),
                 {"nodes[0].extensions.KHR_lights_punctual.light", "0 is out of range"});
-    expectError(withChange("j", [](GltfBuilder& b) {
-                    b.doc["extensions"]["KHR_lights_punctual"]["lights"] = {{{"type", "spot"}, {"spot", {{"innerConeAngle", 1.0}, {"outerConeAngle", 0.5}}}}};
-                    b.doc["nodes"][0]["extensions"] = {{"KHR_lights_punctual", {{"light", 0}}}};
-                }),
+    expectError(withChange("j",
+                           [](GltfBuilder& b) {
+                               b.doc["extensions"]["KHR_lights_punctual"]["lights"] = {
+                                   {{"type", "spot"}, {"spot", {{"innerConeAngle", 1.0}, {"outerConeAngle", 0.5}}}}};
+                               b.doc["nodes"][0]["extensions"] = {{"KHR_lights_punctual", {{"light", 0}}}};
+                           }),
                 {"extensions.KHR_lights_punctual.lights[0].spot", "cone angles inner 1, outer 0.5"});
-    expectError(withChange("k", [](GltfBuilder& b) {
-                    b.doc["cameras"] = {{{"type", "perspective"}, {"perspective", {{"yfov", 0.5}, {"znear", 0.0}}}}};
-                    b.doc["nodes"][0]["camera"] = 0;
-                }),
-                {"cameras[0].perspective.znear"});
-    expectError(withChange("l", [](GltfBuilder& b) {
-                    b.doc["samplers"] = {{{"wrapS", 1234}}};
-                }),
+    expectError(
+        withChange("k",
+                   [](GltfBuilder& b) {
+                       b.doc["cameras"] = {{{"type", "perspective"}, {"perspective", {{"yfov", 0.5}, {"znear", 0.0}}}}};
+                       b.doc["nodes"][0]["camera"] = 0;
+                   }),
+        {"cameras[0].perspective.znear"});
+    expectError(withChange("l",
+                           [](GltfBuilder& b) {
+                               b.doc["samplers"] = {{{"wrapS", 1234}}};
+                           }),
                 {"samplers[0].wrapS", "1234"});
-    expectError(withChange("m", [](GltfBuilder& b) {
-                    b.doc["materials"] = {{{"extensions", {{"PRESKIN_materials_skin", {{"lobeMix", 2.0}}}}}}};
-                }),
-                {"materials[0].extensions.PRESKIN_materials_skin.lobeMix", "2 is outside [0, 1]"});
-    expectError(withChange("n", [](GltfBuilder& b) {
-                    b.doc["materials"] = {{{"extensions", {{"PRESKIN_materials_skin", {{"curvatureSource", "texture"}}}}}}};
-                }),
-                {"PRESKIN_materials_skin.curvatureSource", "no usable curvatureTexture"});
-    expectError(withChange("o", [](GltfBuilder& b) {
-                    b.doc["materials"] = {{{"extensions", {{"PRESKIN_materials_skin", {{"transmissionColor", {1, 0}}}}}}}};
-                }),
-                {"PRESKIN_materials_skin.transmissionColor", "array of 3 numbers"});
-    expectError(withChange("p", [](GltfBuilder& b) { b.doc["materials"] = {{{"alphaMode", "CUTOUT"}}}; }),
+    expectError(
+        withChange("m",
+                   [](GltfBuilder& b) {
+                       b.doc["materials"] = {{{"extensions", {{"PRESKIN_materials_skin", {{"lobeMix", 2.0}}}}}}};
+                   }),
+        {"materials[0].extensions.PRESKIN_materials_skin.lobeMix", "2 is outside [0, 1]"});
+    expectError(
+        withChange(
+            "n",
+            [](GltfBuilder& b) {
+                b.doc["materials"] = {{{"extensions", {{"PRESKIN_materials_skin", {{"curvatureSource", "texture"}}}}}}};
+            }),
+        {"PRESKIN_materials_skin.curvatureSource", "no usable curvatureTexture"});
+    expectError(
+        withChange(
+            "o",
+            [](GltfBuilder& b) {
+                b.doc["materials"] = {{{"extensions", {{"PRESKIN_materials_skin", {{"transmissionColor", {1, 0}}}}}}}};
+            }),
+        {"PRESKIN_materials_skin.transmissionColor", "array of 3 numbers"});
+    expectError(withChange("p",
+                           [](GltfBuilder& b) {
+                               b.doc["materials"] = {{{"alphaMode", "CUTOUT"}}};
+                           }),
                 {"materials[0].alphaMode", "'CUTOUT'"});
 }
 
 TEST(GltfErrors, ImageProblems) {
     TempDir dir;
     // A truncated JPEG file referenced by URI.
-    const std::vector<uint8_t> jpeg = preskin::test::encodeImage(dir.path(), "full.jpg", 64, 64, 3, std::vector<uint8_t>(64 * 64 * 3, 90));
-    preskin::test::writeBytes(dir / "cut.jpg", std::vector<uint8_t>(jpeg.begin(), jpeg.begin() + static_cast<std::ptrdiff_t>(jpeg.size() / 2)));
+    const std::vector<uint8_t> jpeg =
+        preskin::test::encodeImage(dir.path(), "full.jpg", 64, 64, 3, std::vector<uint8_t>(64 * 64 * 3, 90));
+    preskin::test::writeBytes(
+        dir / "cut.jpg",
+        std::vector<uint8_t>(jpeg.begin(), jpeg.begin() + static_cast<std::ptrdiff_t>(jpeg.size() / 2)));
     GltfBuilder b = preskin::test::triangleScene();
     b.doc["images"] = json::array({{{"uri", "cut.jpg"}}});
     expectError(b.writeGltf(dir.path(), "cut"), {"images[0] ('cut.jpg')", "cannot decode the JPEG data"});
@@ -398,7 +443,8 @@ TEST(GltfErrors, ImageProblems) {
     d.doc["images"] = json::array({{{"uri", "x.webp"}}});
     d.doc["textures"] = json::array({{{"source", 0}}});
     d.doc["materials"] = json::array({{{"normalTexture", {{"index", 0}}}}});
-    expectError(d.writeGltf(dir.path(), "webp"), {"materials[0].normalTexture", "images[0] is WebP", "unsupported image format"});
+    expectError(d.writeGltf(dir.path(), "webp"),
+                {"materials[0].normalTexture", "images[0] is WebP", "unsupported image format"});
 }
 
 TEST(GltfErrors, RandomCorruptionOnlyEverThrowsPreskinErrors) {
@@ -406,7 +452,8 @@ TEST(GltfErrors, RandomCorruptionOnlyEverThrowsPreskinErrors) {
     // succeeds or throws preskin::Error naming the file; nothing else escapes, nothing crashes.
     TempDir dir;
     GltfBuilder b = preskin::test::triangleScene();
-    const std::vector<uint8_t> png = preskin::test::encodeImage(dir.path(), "i.png", 2, 2, 4, std::vector<uint8_t>(16, 7));
+    const std::vector<uint8_t> png =
+        preskin::test::encodeImage(dir.path(), "i.png", 2, 2, 4, std::vector<uint8_t>(16, 7));
     const int view = b.addView(png);
     b.doc["images"] = json::array({{{"bufferView", view}, {"mimeType", "image/png"}}});
     b.doc["textures"] = json::array({{{"source", 0}}});

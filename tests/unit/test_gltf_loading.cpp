@@ -14,9 +14,9 @@
 #include <cmath>
 #include <numbers>
 
+using nlohmann::json;
 using preskin::test::GltfBuilder;
 using preskin::test::TempDir;
-using nlohmann::json;
 
 namespace {
 
@@ -35,7 +35,8 @@ GltfBuilder quadScene(const std::vector<float>& uvs) {
     const int normal = b.addFloats({0, 0, 1, 0, 0, 1, 0, 0, 1, 0, 0, 1}, "VEC3");
     const int uv = b.addFloats(uvs, "VEC2");
     const int indices = b.addIndices(std::vector<uint16_t>{0, 1, 2, 0, 2, 3});
-    b.addMeshNode({{"attributes", {{"POSITION", position}, {"NORMAL", normal}, {"TEXCOORD_0", uv}}}, {"indices", indices}});
+    b.addMeshNode(
+        {{"attributes", {{"POSITION", position}, {"NORMAL", normal}, {"TEXCOORD_0", uv}}}, {"indices", indices}});
     return b;
 }
 
@@ -136,11 +137,11 @@ TEST(GltfLoading, SparseAccessorOverridesValues) {
     const int base = b.addView(std::vector<float>{0, 0, 0, 1, 0, 0, 0, 1, 0, 5, 5, 5});
     const int sparseIndices = b.addView(std::vector<uint16_t>{1, 3});
     const int sparseValues = b.addView(std::vector<float>{2, 0, 0, 1, 1, 0});
-    const int position = b.addAccessor(
-        base, 5126, 4, "VEC3",
-        {{"sparse", {{"count", 2},
-                     {"indices", {{"bufferView", sparseIndices}, {"componentType", 5123}}},
-                     {"values", {{"bufferView", sparseValues}}}}}});
+    const int position = b.addAccessor(base, 5126, 4, "VEC3",
+                                       {{"sparse",
+                                         {{"count", 2},
+                                          {"indices", {{"bufferView", sparseIndices}, {"componentType", 5123}}},
+                                          {"values", {{"bufferView", sparseValues}}}}}});
     const int indices = b.addIndices(std::vector<uint16_t>{0, 1, 3});
     b.addMeshNode({{"attributes", {{"POSITION", position}}}, {"indices", indices}});
     const auto s = preskin::Scene::load(b.writeGltf(dir.path()));
@@ -163,8 +164,10 @@ TEST(GltfLoading, StripsAndFansBecomeLists) {
         const auto s = preskin::Scene::load(b.writeGltf(dir.path()));
         const auto& idx = s.meshes[0].primitives.at(0).indices;
         // glTF 2.0, 3.7.2.1: strip p_i = {v_i, v_{i+(1+i%2)}, v_{i+(2-i%2)}}; fan p_i = {v_{i+1}, v_{i+2}, v_0}.
-        if (mode == 5) EXPECT_EQ(idx, (std::vector<uint32_t>{0, 1, 2, 1, 3, 2, 2, 3, 4}));
-        else EXPECT_EQ(idx, (std::vector<uint32_t>{1, 2, 0, 2, 3, 0, 3, 4, 0}));
+        if (mode == 5)
+            EXPECT_EQ(idx, (std::vector<uint32_t>{0, 1, 2, 1, 3, 2, 2, 3, 4}));
+        else
+            EXPECT_EQ(idx, (std::vector<uint32_t>{1, 2, 0, 2, 3, 0, 3, 4, 0}));
     }
 }
 
@@ -201,7 +204,8 @@ TEST(GltfLoading, GeneratedTangentsFollowUAndTheGltfHandedness) {
 
 TEST(GltfLoading, DegenerateUvsStillGiveAnOrthonormalFrame) {
     TempDir dir;
-    const auto s = preskin::Scene::load(quadScene({0.5f, 0.5f, 0.5f, 0.5f, 0.5f, 0.5f, 0.5f, 0.5f}).writeGltf(dir.path()));
+    const auto s =
+        preskin::Scene::load(quadScene({0.5f, 0.5f, 0.5f, 0.5f, 0.5f, 0.5f, 0.5f, 0.5f}).writeGltf(dir.path()));
     for (const auto& v : s.meshes[0].primitives[0].vertices) {
         EXPECT_NEAR(glm::length(glm::vec3(v.tangentOs)), 1.0f, 1e-6f);
         EXPECT_NEAR(glm::dot(glm::vec3(v.tangentOs), v.normalOs), 0.0f, 1e-6f);
@@ -228,7 +232,11 @@ TEST(GltfLoading, NodeHierarchyWithTrsAndMatrix) {
     const float h = std::sqrt(0.5f);
     // Parent: T(1, 2, 3) * R(90 degrees about +Y) * S(2); child: matrix with translation (0, 0, 1).
     b.doc["nodes"] = json::array({
-        {{"name", "parent"}, {"translation", {1, 2, 3}}, {"rotation", {0, h, 0, h}}, {"scale", {2, 2, 2}}, {"children", {1}}},
+        {{"name", "parent"},
+         {"translation", {1, 2, 3}},
+         {"rotation", {0, h, 0, h}},
+         {"scale", {2, 2, 2}},
+         {"children", {1}}},
         {{"name", "child"}, {"mesh", 0}, {"matrix", {1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 0, 0, 1, 1}}},
     });
     b.doc["scenes"] = json::array({{{"nodes", {0}}}});
@@ -251,7 +259,8 @@ TEST(GltfLoading, NodeHierarchyWithTrsAndMatrix) {
 TEST(GltfLoading, SceneSelection) {
     TempDir dir;
     GltfBuilder b = preskin::test::triangleScene();
-    b.doc["nodes"] = json::array({{{"mesh", 0}, {"name", "a"}}, {{"mesh", 0}, {"name", "b"}}, {{"mesh", 0}, {"name", "c"}, {"children", {1}}}});
+    b.doc["nodes"] = json::array(
+        {{{"mesh", 0}, {"name", "a"}}, {{"mesh", 0}, {"name", "b"}}, {{"mesh", 0}, {"name", "c"}, {"children", {1}}}});
     b.doc["scenes"] = json::array({{{"nodes", {0}}}, {{"nodes", {2}}}});
     b.doc["scene"] = 1;
     auto s = preskin::Scene::load(b.writeGltf(dir.path(), "a"));
@@ -270,15 +279,17 @@ TEST(GltfLoading, SceneSelection) {
 TEST(GltfLoading, TextureTransformMatchesTheSpecFormula) {
     TempDir dir;
     GltfBuilder b = preskin::test::triangleScene();
-    const std::vector<uint8_t> png = preskin::test::encodeImage(dir.path(), "t.png", 2, 2, 3, std::vector<uint8_t>(12, 100));
+    const std::vector<uint8_t> png =
+        preskin::test::encodeImage(dir.path(), "t.png", 2, 2, 3, std::vector<uint8_t>(12, 100));
     b.doc["images"] = json::array({{{"uri", "t.png"}}});
     b.doc["textures"] = json::array({{{"source", 0}}});
-    b.doc["materials"] = json::array({{{"pbrMetallicRoughness",
-                                        {{"baseColorTexture",
-                                          {{"index", 0},
-                                           {"extensions",
-                                            {{"KHR_texture_transform",
-                                              {{"offset", {0.25, -0.5}}, {"rotation", 0.3}, {"scale", {2.0, 3.0}}, {"texCoord", 1}}}}}}}}}}});
+    b.doc["materials"] = json::array(
+        {{{"pbrMetallicRoughness",
+           {{"baseColorTexture",
+             {{"index", 0},
+              {"extensions",
+               {{"KHR_texture_transform",
+                 {{"offset", {0.25, -0.5}}, {"rotation", 0.3}, {"scale", {2.0, 3.0}}, {"texCoord", 1}}}}}}}}}}});
     b.doc["meshes"][0]["primitives"][0]["material"] = 0;
     const auto s = preskin::Scene::load(b.writeGltf(dir.path()));
     const preskin::TextureRef& t = s.materials.at(0).baseColor;
@@ -318,15 +329,19 @@ TEST(GltfLoading, MaterialsSamplersAndImages) {
     b.doc["images"] = json::array({{{"uri", "c.png"}},
                                    {{"uri", "g.jpg"}},
                                    {{"uri", "data:image/png;base64," + preskin::test::base64(embeddedPng)}}});
-    b.doc["samplers"] = json::array({{{"magFilter", 9728}, {"minFilter", 9986}, {"wrapS", 33071}, {"wrapT", 33648}},
-                                     {{"minFilter", 9729}}});
-    b.doc["textures"] = json::array({{{"source", 0}, {"sampler", 0}}, {{"source", 1}, {"sampler", 1}}, {{"source", 2}}});
+    b.doc["samplers"] = json::array(
+        {{{"magFilter", 9728}, {"minFilter", 9986}, {"wrapS", 33071}, {"wrapT", 33648}}, {{"minFilter", 9729}}});
+    b.doc["textures"] =
+        json::array({{{"source", 0}, {"sampler", 0}}, {{"source", 1}, {"sampler", 1}}, {{"source", 2}}});
     b.doc["extensionsUsed"] = {"KHR_materials_emissive_strength"};
     b.doc["materials"] = json::array({{
         {"name", "m"},
         {"pbrMetallicRoughness",
-         {{"baseColorFactor", {0.5, 0.25, 1.0, 0.75}}, {"baseColorTexture", {{"index", 0}}}, {"metallicFactor", 0.2},
-          {"roughnessFactor", 0.6}, {"metallicRoughnessTexture", {{"index", 1}}}}},
+         {{"baseColorFactor", {0.5, 0.25, 1.0, 0.75}},
+          {"baseColorTexture", {{"index", 0}}},
+          {"metallicFactor", 0.2},
+          {"roughnessFactor", 0.6},
+          {"metallicRoughnessTexture", {{"index", 1}}}}},
         {"normalTexture", {{"index", 2}, {"scale", 0.5}}},
         {"occlusionTexture", {{"index", 1}, {"strength", 0.25}}},
         {"emissiveTexture", {{"index", 0}}},
@@ -343,7 +358,8 @@ TEST(GltfLoading, MaterialsSamplersAndImages) {
     ASSERT_EQ(s.images.size(), 3u);
     EXPECT_EQ(s.images[0].name, "c.png");
     EXPECT_EQ(s.images[0].width, 2u);
-    EXPECT_EQ(s.images[0].rgba8, (std::vector<uint8_t>{255, 0, 0, 255, 0, 255, 0, 255, 0, 0, 255, 255, 10, 20, 30, 255}));
+    EXPECT_EQ(s.images[0].rgba8,
+              (std::vector<uint8_t>{255, 0, 0, 255, 0, 255, 0, 255, 0, 0, 255, 255, 10, 20, 30, 255}));
     EXPECT_EQ(s.images[1].width, 8u);
     EXPECT_NEAR(s.images[1].rgba8[0], 128, 2);  // grey JPEG: R = G = B, A = 255
     EXPECT_EQ(s.images[1].rgba8[0], s.images[1].rgba8[2]);
@@ -442,7 +458,9 @@ TEST(GltfLoading, CamerasAreRigidAndKeepTheirProjection) {
     TempDir dir;
     GltfBuilder b = preskin::test::triangleScene();
     b.doc["cameras"] = json::array({
-        {{"type", "perspective"}, {"name", "p"}, {"perspective", {{"yfov", 0.7}, {"znear", 0.1}, {"aspectRatio", 1.5}}}},
+        {{"type", "perspective"},
+         {"name", "p"},
+         {"perspective", {{"yfov", 0.7}, {"znear", 0.1}, {"aspectRatio", 1.5}}}},
         {{"type", "orthographic"}, {"orthographic", {{"xmag", 2}, {"ymag", 1}, {"znear", 0.5}, {"zfar", 10}}}},
     });
     b.doc["nodes"].push_back({{"camera", 0}, {"translation", {0, 0, 5}}, {"scale", {3, 3, 3}}});
@@ -456,7 +474,8 @@ TEST(GltfLoading, CamerasAreRigidAndKeepTheirProjection) {
     EXPECT_FLOAT_EQ(p.yfov, 0.7f);
     EXPECT_FLOAT_EQ(p.aspectRatio, 1.5f);
     EXPECT_FLOAT_EQ(p.zfar, 0.0f);  // infinite
-    EXPECT_EQ(p.worldFromView, glm::mat4(glm::vec4(1, 0, 0, 0), glm::vec4(0, 1, 0, 0), glm::vec4(0, 0, 1, 0), glm::vec4(0, 0, 5, 1)));
+    EXPECT_EQ(p.worldFromView,
+              glm::mat4(glm::vec4(1, 0, 0, 0), glm::vec4(0, 1, 0, 0), glm::vec4(0, 0, 1, 0), glm::vec4(0, 0, 5, 1)));
     const preskin::Camera& o = s.cameras[1];
     EXPECT_EQ(o.name, "ortho");
     EXPECT_TRUE(o.orthographic);
@@ -475,12 +494,21 @@ TEST(GltfLoading, SkinExtensionAndKhrTransmission) {
         {{"name", "face"},
          {"extensions",
           {{"PRESKIN_materials_skin",
-            {{"scatterScale", 2.0}, {"curvatureSource", "texture"}, {"curvatureTexture", {{"index", 0}}},
-             {"curvatureTextureScalePerM", 50.0}, {"normalLodBias", {1.5, 0.5, 0.0}},
-             {"detailNormalTexture", {{"index", 0}, {"scale", 0.3}}}, {"detailUvScale", 16.0},
-             {"transmissionColor", {1.0, 0.3, 0.2}}, {"specularIntensity", 0.8}, {"specularTexture", {{"index", 0}}},
-             {"lobeRoughness0", 0.5}, {"lobeRoughness1", 1.5}, {"lobeMix", 0.25}}},
-           {"KHR_materials_diffuse_transmission", {{"diffuseTransmissionFactor", 0.4}, {"diffuseTransmissionColorFactor", {0.9, 0.1, 0.1}}}},
+            {{"scatterScale", 2.0},
+             {"curvatureSource", "texture"},
+             {"curvatureTexture", {{"index", 0}}},
+             {"curvatureTextureScalePerM", 50.0},
+             {"normalLodBias", {1.5, 0.5, 0.0}},
+             {"detailNormalTexture", {{"index", 0}, {"scale", 0.3}}},
+             {"detailUvScale", 16.0},
+             {"transmissionColor", {1.0, 0.3, 0.2}},
+             {"specularIntensity", 0.8},
+             {"specularTexture", {{"index", 0}}},
+             {"lobeRoughness0", 0.5},
+             {"lobeRoughness1", 1.5},
+             {"lobeMix", 0.25}}},
+           {"KHR_materials_diffuse_transmission",
+            {{"diffuseTransmissionFactor", 0.4}, {"diffuseTransmissionColorFactor", {0.9, 0.1, 0.1}}}},
            {"KHR_materials_volume", {{"thicknessFactor", 0.02}}}}}},
         {{"name", "plain"},
          {"extensions", {{"KHR_materials_diffuse_transmission", {{"diffuseTransmissionFactor", 0.7}}}}}},
@@ -499,9 +527,9 @@ TEST(GltfLoading, SkinExtensionAndKhrTransmission) {
     EXPECT_EQ(k.detailNormalTexture.image, 0);
     EXPECT_FLOAT_EQ(k.detailNormalScale, 0.3f);
     EXPECT_FLOAT_EQ(k.detailUvScale, 16.0f);
-    EXPECT_FLOAT_EQ(k.transmission, 0.4f);                          // from KHR (not set in the extension)
-    EXPECT_EQ(k.transmissionColor, glm::vec3(1.0f, 0.3f, 0.2f));   // the extension wins over KHR
-    EXPECT_FLOAT_EQ(k.thicknessScale, 0.02f);                      // KHR_materials_volume
+    EXPECT_FLOAT_EQ(k.transmission, 0.4f);                        // from KHR (not set in the extension)
+    EXPECT_EQ(k.transmissionColor, glm::vec3(1.0f, 0.3f, 0.2f));  // the extension wins over KHR
+    EXPECT_FLOAT_EQ(k.thicknessScale, 0.02f);                     // KHR_materials_volume
     EXPECT_FLOAT_EQ(k.specularIntensity, 0.8f);
     EXPECT_EQ(k.specularTexture.image, 0);
     EXPECT_FLOAT_EQ(k.lobeRoughness0, 0.5f);

@@ -30,14 +30,16 @@ const fs::path kSource = PRESKIN_SOURCE_DIR;
 
 // Valid by the validator, refused by the loader on purpose.
 const std::map<std::string, std::string> kRefusedThoughValid{
-    {"hostile/emissive_strength_1e300.gltf", "a number beyond 1e6 in magnitude (the input-number rule, docs/limits.md)"},
+    {"hostile/emissive_strength_1e300.gltf",
+     "a number beyond 1e6 in magnitude (the input-number rule, docs/limits.md)"},
     {"hostile/light_intensity_1e300.gltf", "a number beyond 1e6 in magnitude (the input-number rule)"},
     {"hostile/skin_specular_1e300.gltf", "a number beyond 1e6 in magnitude (the input-number rule)"},
     {"hostile/texture_transform_1e300.gltf", "a number beyond 1e6 in magnitude (the input-number rule)"},
     {"hostile/huge_png.gltf", "an image larger than the texture limit (docs/limits.md), refused from its header"},
     {"hostile/png_bad_crc.gltf", "PNG data that does not decode (the validator reads image headers only)"},
     {"hostile/accessor_without_view_huge.gltf", "more vertices than the scene limit (docs/limits.md)"},
-    {"gltf/required_extension.gltf", "a required extension preskin does not implement: glTF says a loader must refuse it"},
+    {"gltf/required_extension.gltf",
+     "a required extension preskin does not implement: glTF says a loader must refuse it"},
     {"gltf/uri_parent.gltf", "a URI that leaves the scene's folder (the URI policy, docs/gltf-extensions.md)"},
 };
 
@@ -60,11 +62,14 @@ TEST(GltfValidator, ShippedScenesAreValidAndEveryRefusalIsInvalidOrAPolicy) {
     const std::vector<fs::path> files = gltfFiles();
     std::vector<std::string> args{(kSource / "scripts" / "validate-gltf.js").string()};
     for (const fs::path& f : files) args.push_back(f.string());
-    const ProcessResult r = runProcess("/usr/bin/env", [&] {
-        std::vector<std::string> a{"node"};
-        a.insert(a.end(), args.begin(), args.end());
-        return a;
-    }(), {}, fs::temp_directory_path(), 300.0);
+    const ProcessResult r = runProcess(
+        "/usr/bin/env",
+        [&] {
+            std::vector<std::string> a{"node"};
+            a.insert(a.end(), args.begin(), args.end());
+            return a;
+        }(),
+        {}, fs::temp_directory_path(), 300.0);
     if (r.exitCode == 2) GTEST_SKIP() << r.err << " (set PRESKIN_GLTF_VALIDATOR to its folder)";
     ASSERT_EQ(r.exitCode, 0) << r.err;
 
@@ -94,14 +99,17 @@ TEST(GltfValidator, ShippedScenesAreValidAndEveryRefusalIsInvalidOrAPolicy) {
         } else if (!loadError.empty()) {
             ++refused;
             if (valid) {
-                EXPECT_TRUE(kRefusedThoughValid.count(key)) << key << " is valid glTF (" << v.dump() << ") but refused: " << loadError;
+                EXPECT_TRUE(kRefusedThoughValid.count(key))
+                    << key << " is valid glTF (" << v.dump() << ") but refused: " << loadError;
             } else {
-                EXPECT_FALSE(kRefusedThoughValid.count(key)) << key << " is listed as valid but the validator says " << v.dump();
+                EXPECT_FALSE(kRefusedThoughValid.count(key))
+                    << key << " is listed as valid but the validator says " << v.dump();
             }
         } else {
             ++accepted;
             if (!valid) {
-                EXPECT_TRUE(kAcceptedThoughInvalid.count(key)) << key << " is invalid glTF (" << v.dump() << ") but loads";
+                EXPECT_TRUE(kAcceptedThoughInvalid.count(key))
+                    << key << " is invalid glTF (" << v.dump() << ") but loads";
             }
         }
     }

@@ -51,7 +51,8 @@ Layouts reflect(std::span<const uint32_t> code) {
         const auto operands = code.subspan(i + 1, count - 1);
         if (op == kOpName) typeNames[operands[0]] = literalString(operands.subspan(1));
         if (op == kOpMemberName) memberNames[operands[0]][operands[1]] = literalString(operands.subspan(2));
-        if (op == kOpMemberDecorate && operands[2] == kDecorationOffset) memberOffsets[operands[0]][operands[1]] = operands[3];
+        if (op == kOpMemberDecorate && operands[2] == kDecorationOffset)
+            memberOffsets[operands[0]][operands[1]] = operands[3];
         i += count;
     }
     Layouts layouts;
@@ -63,10 +64,10 @@ Layouts reflect(std::span<const uint32_t> code) {
     return layouts;
 }
 
-#define PRESKIN_EXPECT_MEMBER(layouts, type, member)                                                     \
-    do {                                                                                                 \
-        ASSERT_TRUE(layouts.count(#type)) << #type " is not in the shader";                              \
-        ASSERT_TRUE(layouts.at(#type).count(#member)) << #type "." #member " is not in the shader";       \
+#define PRESKIN_EXPECT_MEMBER(layouts, type, member)                                                         \
+    do {                                                                                                     \
+        ASSERT_TRUE(layouts.count(#type)) << #type " is not in the shader";                                  \
+        ASSERT_TRUE(layouts.at(#type).count(#member)) << #type "." #member " is not in the shader";          \
         EXPECT_EQ(layouts.at(#type).at(#member), offsetof(preskin::gpu::type, member)) << #type "." #member; \
     } while (false)
 

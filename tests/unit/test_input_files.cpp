@@ -48,14 +48,16 @@ TEST(InputFile, ReadsRegularFilesWithinTheLimitOnly) {
               "a.txt: file: 100 bytes exceeds the limit of 99 bytes");
     EXPECT_EQ(errorOf([&] { io::readInputFile(dir / "none", "none", 99); }), "none: file: not found");
     EXPECT_EQ(errorOf([&] { io::readInputFile(dir.path(), "dir", 99); }), "dir: file: is a folder, not a file");
-    EXPECT_EQ(errorOf([&] { io::readInputFile("/dev/zero", "zero", 99); }), "zero: file: is a device, not a regular file");
+    EXPECT_EQ(errorOf([&] { io::readInputFile("/dev/zero", "zero", 99); }),
+              "zero: file: is a device, not a regular file");
     ASSERT_EQ(::mkfifo((dir / "fifo").c_str(), 0600), 0);
     EXPECT_EQ(errorOf([&] { io::readInputFile(dir / "fifo", "fifo", 99); }),
               "fifo: file: is a FIFO (named pipe), not a regular file");
     EXPECT_EQ(errorOf([&] { io::checkInputFile(dir / "fifo", "fifo", 99); }),
               "fifo: file: is a FIFO (named pipe), not a regular file");
     fs::create_symlink("/dev/zero", dir / "link");
-    EXPECT_EQ(errorOf([&] { io::readInputFile(dir / "link", "link", 99); }), "link: file: is a device, not a regular file");
+    EXPECT_EQ(errorOf([&] { io::readInputFile(dir / "link", "link", 99); }),
+              "link: file: is a device, not a regular file");
 }
 
 TEST(JsonDocument, RefusesDepthAndSizeBeyondTheLimits) {
@@ -63,15 +65,17 @@ TEST(JsonDocument, RefusesDepthAndSizeBeyondTheLimits) {
     EXPECT_NO_THROW(io::parseJson(nested(64), "j"));
     EXPECT_EQ(errorOf([&] { io::parseJson(nested(65), "j"); }), "j: JSON: nested deeper than the limit of 64 levels");
     // Far past the limit, as deep as the input that overflowed the stack of a recursive dump.
-    EXPECT_EQ(errorOf([&] { io::parseJson(nested(1000000), "j"); }), "j: JSON: nested deeper than the limit of 64 levels");
+    EXPECT_EQ(errorOf([&] { io::parseJson(nested(1000000), "j"); }),
+              "j: JSON: nested deeper than the limit of 64 levels");
     io::JsonLimits small;
     small.maxValues = 4;
     EXPECT_NO_THROW(io::parseJson(std::string("[1, 2, 3]"), "j", small));
     EXPECT_EQ(errorOf([&] { io::parseJson(std::string("[1, 2, 3, 4]"), "j", small); }),
               "j: JSON: more than the limit of 4 values");
-    EXPECT_EQ(errorOf([&] { io::parseJson(std::string("{\"a\": }"), "j"); }),
-              "j: JSON: parse error at line 1, column 7: syntax error while parsing value - unexpected '}'; expected '[', "
-              "'{', or a literal");
+    EXPECT_EQ(
+        errorOf([&] { io::parseJson(std::string("{\"a\": }"), "j"); }),
+        "j: JSON: parse error at line 1, column 7: syntax error while parsing value - unexpected '}'; expected '[', "
+        "'{', or a literal");
     const nlohmann::json parsed = io::parseJson(std::string("{\"a\": [1, {\"b\": null}]}"), "j");
     EXPECT_EQ(parsed["a"][1]["b"], nullptr);
 }
@@ -116,11 +120,11 @@ TEST(FolderConfinement, FollowsLinksOnlyWhileTheyStayInside) {
         bool inside;
         const char* resolved;  // below `scene`, when inside
     };
-    for (const Case& c : {Case{"real.bin", true, "real.bin"}, Case{"relative.bin", true, "real.bin"},
-                          Case{"absolute_inside.bin", true, "real.bin"}, Case{"sub/up.bin", true, "real.bin"},
-                          Case{"subdir/up.bin", true, "real.bin"}, Case{"missing.bin", true, "missing.bin"},
-                          Case{"out.bin", false, ""}, Case{"sub/via.bin", false, ""},
-                          Case{"root/etc/hostname", false, ""}, Case{"loop_a", false, ""}}) {
+    for (const Case& c :
+         {Case{"real.bin", true, "real.bin"}, Case{"relative.bin", true, "real.bin"},
+          Case{"absolute_inside.bin", true, "real.bin"}, Case{"sub/up.bin", true, "real.bin"},
+          Case{"subdir/up.bin", true, "real.bin"}, Case{"missing.bin", true, "missing.bin"}, Case{"out.bin", false, ""},
+          Case{"sub/via.bin", false, ""}, Case{"root/etc/hostname", false, ""}, Case{"loop_a", false, ""}}) {
         SCOPED_TRACE(c.relative);
         const io::ConfinedPath p = io::resolveInsideFolder(scene, c.relative);
         EXPECT_EQ(p.inside, c.inside);
@@ -177,8 +181,9 @@ TEST(EnvironmentFiles, HdrAndExrDecodeToTheirSky) {
         for (uint32_t x = 0; x < sky.width; ++x) {
             const double up = 1.0 - (y + 0.5) / sky.height;
             const double bright = std::max(up - 0.5, 0.0) * 2.0;
-            sky.rgb.insert(sky.rgb.end(), {float(0.2 + 0.8 * bright), float(0.25 + 0.9 * bright),
-                                           float(0.3 + 1.2 * bright + 0.1 * std::sin(double(x)))});
+            sky.rgb.insert(sky.rgb.end(),
+                           {float(0.2 + 0.8 * bright), float(0.25 + 0.9 * bright),
+                            float(0.3 + 1.2 * bright + 0.1 * std::sin(double(x)))});
         }
     const ShRgb expected = projectEquirect(sky);
     const fs::path dir = fs::path(PRESKIN_SOURCE_DIR) / "tests" / "data" / "environments";

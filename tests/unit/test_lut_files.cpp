@@ -9,8 +9,8 @@
 
 #include <OpenImageIO/imageio.h>
 #include <fmt/core.h>
-#include <zlib.h>
 #include <gtest/gtest.h>
+#include <zlib.h>
 #include <nlohmann/json.hpp>
 
 #include <filesystem>
@@ -86,8 +86,9 @@ TEST(LutFiles, SaveLoadRoundTrip) {
     TempDir tmp;
     const fs::path dir = tmp.path() / "nested" / "set";
     smallSet().save(dir);
-    EXPECT_EQ(listing(dir), (std::vector<std::string>{"diffuse.exr", "manifest.json", "penumbra.exr", "sh_transfer.exr",
-                                                      "transmittance.exr"}));
+    EXPECT_EQ(listing(dir),
+              (std::vector<std::string>{"diffuse.exr", "manifest.json", "penumbra.exr", "sh_transfer.exr",
+                                        "transmittance.exr"}));
     const LutSet loaded = LutSet::load(dir);
     expectSameTables(smallSet(), loaded);
     EXPECT_EQ(loaded.profile().toJson(), smallSet().profile().toJson());
@@ -111,7 +112,8 @@ TEST(LutFiles, SaveLoadRoundTrip) {
 TEST(LutFiles, PreviewsAreWritten) {
     TempDir tmp;
     smallSet().save(tmp.path(), {.previewPngs = true});
-    for (const char* name : {"preview_diffuse.png", "preview_penumbra.png", "preview_sh_transfer.png", "preview_transmittance.png"}) {
+    for (const char* name :
+         {"preview_diffuse.png", "preview_penumbra.png", "preview_sh_transfer.png", "preview_transmittance.png"}) {
         auto in = OIIO::ImageInput::open((tmp.path() / name).string());
         ASSERT_TRUE(in) << name;
         EXPECT_EQ(in->spec().nchannels, 3) << name;
@@ -133,7 +135,8 @@ TEST(LutFiles, CommittedDefaultSetEqualsAFreshBake) {
         for (size_t i = 0; i < a.rgb.size(); ++i) {
             // Within one half-float step (libm differences across machines may flip a rounding).
             const float tolerance = std::max(std::abs(a.rgb[i]), std::abs(b.rgb[i])) * (1.0f / 1024.0f) + 6e-8f;
-            ASSERT_NEAR(a.rgb[i], b.rgb[i], tolerance) << a.name << " value " << i << ": regenerate with `preskin bake --out luts`";
+            ASSERT_NEAR(a.rgb[i], b.rgb[i], tolerance)
+                << a.name << " value " << i << ": regenerate with `preskin bake --out luts`";
             differing += a.rgb[i] != b.rgb[i];
         }
         EXPECT_LE(differing, a.rgb.size() / 100) << a.name;
@@ -147,8 +150,9 @@ TEST(LutFiles, RawTablesRoundTripAndDamageIsRefused) {
     TempDir tmp;
     const fs::path dir = tmp.path() / "raw";
     smallSet().save(dir, {.rawTables = true});
-    EXPECT_EQ(listing(dir), (std::vector<std::string>{"diffuse.f16", "manifest.json", "penumbra.f16", "sh_transfer.f16",
-                                                      "transmittance.f16"}));
+    EXPECT_EQ(listing(dir),
+              (std::vector<std::string>{"diffuse.f16", "manifest.json", "penumbra.f16", "sh_transfer.f16",
+                                        "transmittance.f16"}));
     EXPECT_EQ(fs::file_size(dir / "diffuse.f16"), smallSet().diffuse().rgb.size() * 2);
     const LutSet loaded = LutSet::load(dir);
     expectSameTables(smallSet(), loaded);
@@ -162,7 +166,8 @@ TEST(LutFiles, RawTablesRoundTripAndDamageIsRefused) {
             bytes.push_back(uint8_t(h & 0xff));
             bytes.push_back(uint8_t(h >> 8));
         }
-        EXPECT_EQ(manifest["tables"]["penumbra"]["crc32"], fmt::format("{:08x}", crc32_z(0, bytes.data(), bytes.size())));
+        EXPECT_EQ(manifest["tables"]["penumbra"]["crc32"],
+                  fmt::format("{:08x}", crc32_z(0, bytes.data(), bytes.size())));
     }
     const fs::path table = dir / "sh_transfer.f16";
     {
@@ -224,17 +229,21 @@ TEST(LutFiles, ManifestProblemsNameTheField) {
     };
     const std::vector<Case> cases{
         {[](nlohmann::json& j) { j["tables"]["diffuse"].erase("hash"); }, "tables.diffuse.hash: missing"},
-        {[](nlohmann::json& j) { j["tables"]["penumbra"]["width"] = 32; }, "tables.penumbra.width: 32x16 does not match"},
+        {[](nlohmann::json& j) { j["tables"]["penumbra"]["width"] = 32; },
+         "tables.penumbra.width: 32x16 does not match"},
         {[](nlohmann::json& j) { j["settings"]["diffuseNoLSize"] = 0; },
          "settings.diffuseNoLSize: must be an integer in [16, 4096], got 0"},
-        {[](nlohmann::json& j) { j["settings"]["diffuseNoLSize"] = 32; }, "tables.diffuse.width: 16x16 does not match the settings (32x16)"},
-        {[](nlohmann::json& j) { j["settings"]["curvatureMaxPerMm"] = 2.0; }, "tables.diffuse.y.min: -1 does not match"},
+        {[](nlohmann::json& j) { j["settings"]["diffuseNoLSize"] = 32; },
+         "tables.diffuse.width: 16x16 does not match the settings (32x16)"},
+        {[](nlohmann::json& j) { j["settings"]["curvatureMaxPerMm"] = 2.0; },
+         "tables.diffuse.y.min: -1 does not match"},
         {[](nlohmann::json& j) { j["profile"]["gaussians"][0]["varianceMm2"] = -1; },
          "profile.gaussians[0].varianceMm2: must be >= 1e-06 mm^2 (a Gaussian 1 um wide), got -1"},
         {[](nlohmann::json& j) { j["profile"]["gaussians"][5]["varianceMm2"] = 9.0; }, "does not match"},
         {[](nlohmann::json& j) { j["tables"]["diffuse"]["y"]["mapping"] = "linear"; },
          "tables.diffuse.y.mapping: expected \"splitSqrt\", got \"linear\""},
-        {[](nlohmann::json& j) { j["tables"]["diffuse"]["file"] = "../x.exr"; }, "tables.diffuse.file: expected \"diffuse.exr\""},
+        {[](nlohmann::json& j) { j["tables"]["diffuse"]["file"] = "../x.exr"; },
+         "tables.diffuse.file: expected \"diffuse.exr\""},
         {[](nlohmann::json& j) { j["version"] = 7; }, "version: unsupported version 7"},
         {[](nlohmann::json& j) { j.erase("tables"); }, "tables: missing"},
         {[](nlohmann::json& j) { j["format"] = "something"; }, "format: expected \"preskin-lut-set\""},
@@ -259,7 +268,8 @@ TEST(LutFiles, FailedSaveLeavesNothing) {
     // The output folder cannot be created (its parent is a file).
     const fs::path file = tmp.path() / "file.txt";
     std::ofstream(file) << "x";
-    EXPECT_NE(errorOf([&] { smallSet().save(file / "sub" / "set"); }).find((file / "sub" / "set").string()), std::string::npos);
+    EXPECT_NE(errorOf([&] { smallSet().save(file / "sub" / "set"); }).find((file / "sub" / "set").string()),
+              std::string::npos);
     EXPECT_EQ(listing(tmp.path()), std::vector<std::string>{"file.txt"});
     // The folder is a file.
     EXPECT_NE(errorOf([&] { smallSet().save(file); }).find(file.string()), std::string::npos);

@@ -2,7 +2,7 @@
 // normalized diffusion): normalisation to the albedo, and the line profile, edge response,
 // transmittance and RMS width against independent adaptive integrals of R(r); the library's
 // Bessel K0 and normal quantile against the standard library.
-#include "test_lut_reference.h"
+#include "reference/test_lut_reference.h"
 
 #include "skin/SpecialFunctions.h"
 
@@ -43,7 +43,8 @@ TEST(Profile, DeonLuebkeIsNormalisedToOne) {
 TEST(Profile, EveryProfileIntegratesToItsAlbedo) {
     for (const DiffusionProfile& p : profiles()) {
         for (int c = 0; c < 3; ++c) {
-            const double integral = radialIntegral(p, [&](double r) { return r == 0.0 ? 0.0 : 2.0 * kPi * r * p.R(r)[c]; });
+            const double integral =
+                radialIntegral(p, [&](double r) { return r == 0.0 ? 0.0 : 2.0 * kPi * r * p.R(r)[c]; });
             EXPECT_NEAR(integral, p.albedo()[c], 1e-4) << p.name() << " channel " << c;
             EXPECT_NEAR(integral, p.albedo()[c], 1e-8) << p.name() << " channel " << c;  // far tighter in fact
         }
@@ -63,9 +64,9 @@ TEST(Profile, LineProfileIsTheLineIntegralOfR) {
         for (double u : {0.003, 0.05, 0.4, 1.3, 5.0}) {
             const glm::dvec3 got = p.lineProfile(u);
             for (int c = 0; c < 3; ++c) {
-                const double want =
-                    2.0 * test::integrateGradedTowardsStart([&](double y) { return p.R(std::hypot(u, y))[c]; }, 0.0,
-                                                            outerRadiusMm(p), 1e-13);
+                const double want = 2.0 *
+                    test::integrateGradedTowardsStart([&](double y) { return p.R(std::hypot(u, y))[c]; }, 0.0,
+                                                      outerRadiusMm(p), 1e-13);
                 EXPECT_NEAR(got[c], want, 1e-6 * std::max(want, 1e-3)) << p.name() << " u " << u << " channel " << c;
                 EXPECT_NEAR(got[c], test::referenceLineProfile(p, c, u), 5e-7 * want + 1e-12);
             }
@@ -80,8 +81,9 @@ TEST(Profile, EdgeResponseIsTheCumulativeLineProfile) {
             const glm::dvec3 got = p.edgeResponse(x);
             for (int c = 0; c < 3; ++c) {
                 // Mass of the line profile beyond |x|, from the test's own closed form.
-                const double beyond = test::integrateGradedTowardsStart(
-                    [&](double t) { return test::referenceLineProfile(p, c, t); }, std::abs(x), outerRadiusMm(p), 1e-13);
+                const double beyond =
+                    test::integrateGradedTowardsStart([&](double t) { return test::referenceLineProfile(p, c, t); },
+                                                      std::abs(x), outerRadiusMm(p), 1e-13);
                 const double want = (x < 0.0 ? beyond : p.albedo()[c] - beyond) / p.albedo()[c];
                 EXPECT_NEAR(got[c], want, 2e-7) << p.name() << " x " << x << " channel " << c;
             }
@@ -96,7 +98,8 @@ TEST(Profile, TransmittanceIsThePlaneIntegralOfR) {
             const glm::dvec3 got = p.transmittance(d);
             for (int c = 0; c < 3; ++c) {
                 const double want =
-                    radialIntegral(p, [&](double r) { return 2.0 * kPi * r * p.R(std::hypot(r, d))[c]; }) / p.albedo()[c];
+                    radialIntegral(p, [&](double r) { return 2.0 * kPi * r * p.R(std::hypot(r, d))[c]; }) /
+                    p.albedo()[c];
                 EXPECT_NEAR(got[c], want, 1e-7) << p.name() << " d " << d << " channel " << c;
             }
         }
@@ -111,7 +114,8 @@ TEST(Profile, TransmittanceIsThePlaneIntegralOfR) {
 TEST(Profile, WidthIsTheRmsRadius) {
     for (const DiffusionProfile& p : profiles()) {
         for (int c = 0; c < 3; ++c) {
-            const double second = radialIntegral(p, [&](double r) { return r == 0.0 ? 0.0 : 2.0 * kPi * r * r * r * p.R(r)[c]; });
+            const double second =
+                radialIntegral(p, [&](double r) { return r == 0.0 ? 0.0 : 2.0 * kPi * r * r * r * p.R(r)[c]; });
             EXPECT_NEAR(p.widthMm()[c], std::sqrt(second / p.albedo()[c]), 1e-6 * p.widthMm()[c]) << p.name();
         }
         EXPECT_EQ(p.maxWidthMm(), std::max({p.widthMm().x, p.widthMm().y, p.widthMm().z}));

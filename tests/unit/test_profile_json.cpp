@@ -32,7 +32,8 @@ TEST(ProfileJson, GoodBurleyFileLoads) {
 }
 
 TEST(ProfileJson, RoundTrips) {
-    for (const DiffusionProfile& p : {DiffusionProfile::deonLuebke(), DiffusionProfile::burley({0.7, 0.4, 0.2}, {3.0, 1.0, 0.3})}) {
+    for (const DiffusionProfile& p :
+         {DiffusionProfile::deonLuebke(), DiffusionProfile::burley({0.7, 0.4, 0.2}, {3.0, 1.0, 0.3})}) {
         const DiffusionProfile back = DiffusionProfile::fromJsonText(p.toJson(), "round trip");
         EXPECT_EQ(back.name(), p.name());
         EXPECT_EQ(back.kind(), p.kind());
@@ -67,9 +68,12 @@ INSTANTIATE_TEST_SUITE_P(
     ::testing::Values(BadFile{"bad_negative_weight.json", "gaussians[1].weights[0]: must be >= 0, got -0.1"},
                       BadFile{"bad_nan_variance.json", "JSON: parse error at line 4"},
                       BadFile{"bad_infinite_variance.json", "JSON: number overflow parsing '1e999'"},
-                      BadFile{"bad_negative_variance.json", "gaussians[2].varianceMm2: must be >= 1e-06 mm^2 (a Gaussian 1 um wide), got -1"},
+                      BadFile{"bad_negative_variance.json",
+                              "gaussians[2].varianceMm2: must be >= 1e-06 mm^2 (a Gaussian 1 um wide), got -1"},
                       BadFile{"bad_zero_albedo.json", "gaussians[*].weights[2]: channel B has zero albedo"},
-                      BadFile{"bad_albedo_above_one.json", "gaussians[*].weights[0]: channel R has albedo 1.3 > 1 (the weights must sum to at most 1)"},
+                      BadFile{
+                          "bad_albedo_above_one.json",
+                          "gaussians[*].weights[0]: channel R has albedo 1.3 > 1 (the weights must sum to at most 1)"},
                       BadFile{"bad_missing_variance.json", "gaussians[0].varianceMm2: missing"},
                       BadFile{"bad_missing_type.json", "type: missing"},
                       BadFile{"bad_unknown_field.json", "gaussians[0].variance: unknown field"},
@@ -91,11 +95,13 @@ TEST(ProfileJson, NonObjectAndWrongTypesAreRefused) {
     EXPECT_THROW(DiffusionProfile::fromJsonText("[1, 2]", "x.json"), Error);
     EXPECT_THROW(DiffusionProfile::fromJsonText(R"({"type": 3})", "x.json"), Error);
     EXPECT_THROW(DiffusionProfile::fromJsonText(R"({"type": "dipole"})", "x.json"), Error);
-    EXPECT_THROW(DiffusionProfile::fromJsonText(R"({"type": "sumOfGaussians", "gaussians": [{"varianceMm2": "1", "weights": [1, 1, 1]}]})", "x.json"),
-                 Error);
+    EXPECT_THROW(
+        DiffusionProfile::fromJsonText(
+            R"({"type": "sumOfGaussians", "gaussians": [{"varianceMm2": "1", "weights": [1, 1, 1]}]})", "x.json"),
+        Error);
     try {
-        DiffusionProfile::fromJsonText(R"({"type": "normalizedDiffusion", "albedo": [0.5, 0.5, 0.5], "meanFreePathMm": [1, 1, 5000]})",
-                                       "p.json");
+        DiffusionProfile::fromJsonText(
+            R"({"type": "normalizedDiffusion", "albedo": [0.5, 0.5, 0.5], "meanFreePathMm": [1, 1, 5000]})", "p.json");
         FAIL();
     } catch (const Error& e) {
         EXPECT_STREQ(e.what(), "p.json: meanFreePathMm[2]: must be <= 1000 mm, got 5000");

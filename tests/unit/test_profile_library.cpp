@@ -22,20 +22,24 @@ namespace {
 LutBakeSettings smallSettings() { return LutBakeSettings::withSize(16); }
 
 std::shared_ptr<const LutSet> smallDefault() {
-    static const auto set = std::make_shared<const LutSet>(LutSet::bake(DiffusionProfile::deonLuebke(), smallSettings()));
+    static const auto set =
+        std::make_shared<const LutSet>(LutSet::bake(DiffusionProfile::deonLuebke(), smallSettings()));
     return set;
 }
 
 nlohmann::json burleyJson(double albedoR) {
-    return {{"type", "normalizedDiffusion"}, {"name", "burley"},
-            {"albedo", {albedoR, 0.5, 0.4}}, {"meanFreePathMm", {1.0, 0.4, 0.25}}};
+    return {{"type", "normalizedDiffusion"},
+            {"name", "burley"},
+            {"albedo", {albedoR, 0.5, 0.4}},
+            {"meanFreePathMm", {1.0, 0.4, 0.25}}};
 }
 
 nlohmann::json gaussiansJson() {
     return {{"type", "sumOfGaussians"},
             {"name", "two Gaussians"},
-            {"gaussians", {{{"varianceMm2", 0.02}, {"weights", {0.3, 0.5, 0.7}}},
-                           {{"varianceMm2", 0.6}, {"weights", {0.7, 0.5, 0.3}}}}}};
+            {"gaussians",
+             {{{"varianceMm2", 0.02}, {"weights", {0.3, 0.5, 0.7}}},
+              {{"varianceMm2", 0.6}, {"weights", {0.7, 0.5, 0.3}}}}}};
 }
 
 // The triangle scene with `profiles` at the root and one material using `skin`.
@@ -50,17 +54,20 @@ fs::path writeProfileScene(const fs::path& dir, const nlohmann::json& profiles, 
 
 bool sameTables(const LutSet& a, const LutSet& b) {
     return a.diffuse().rgb == b.diffuse().rgb && a.penumbra().rgb == b.penumbra().rgb &&
-           a.shTransfer().rgb == b.shTransfer().rgb && a.transmittance().rgb == b.transmittance().rgb;
+        a.shTransfer().rgb == b.shTransfer().rgb && a.transmittance().rgb == b.transmittance().rgb;
 }
 
 TEST(SceneProfiles, EveryKindLoadsFromGltf) {
     TempDir dir;
-    const LutSet baked = LutSet::bake(DiffusionProfile::burley({0.9, 0.6, 0.5}, {2.0, 1.0, 0.5}), LutBakeSettings::withSize(24));
+    const LutSet baked =
+        LutSet::bake(DiffusionProfile::burley({0.9, 0.6, 0.5}, {2.0, 1.0, 0.5}), LutBakeSettings::withSize(24));
     baked.save(dir / "baked");
-    const fs::path path = writeProfileScene(
-        dir.path(),
-        {{{"type", "deonLuebke"}}, burleyJson(0.8), gaussiansJson(), {{"type", "lutFolder"}, {"name", "baked"}, {"uri", "baked"}}},
-        {{"profile", 2}});
+    const fs::path path = writeProfileScene(dir.path(),
+                                            {{{"type", "deonLuebke"}},
+                                             burleyJson(0.8),
+                                             gaussiansJson(),
+                                             {{"type", "lutFolder"}, {"name", "baked"}, {"uri", "baked"}}},
+                                            {{"profile", 2}});
     const Scene scene = Scene::load(path);
     ASSERT_EQ(scene.profiles.size(), 4u);
     EXPECT_EQ(scene.profiles[0].name, "profiles[0]");
@@ -139,15 +146,29 @@ TEST(SceneProfiles, BadProfileDataIsOneLineNamingTheField) {
     // One-element lists are written as arrays explicitly: `{x}` of one json is a copy of x under
     // clang (CWG 2137) and an array of one under GCC.
     const std::vector<Case> cases = {
-        {"unknown_kind", nlohmann::json::array({{{"type", "dipole"}}}), nlohmann::json::object(), {profiles + "[0].type", "'dipole'"}},
-        {"albedo_above_one", {burleyJson(0.8), albedoAboveOne}, nlohmann::json::object(),
+        {"unknown_kind",
+         nlohmann::json::array({{{"type", "dipole"}}}),
+         nlohmann::json::object(),
+         {profiles + "[0].type", "'dipole'"}},
+        {"albedo_above_one",
+         {burleyJson(0.8), albedoAboveOne},
+         nlohmann::json::object(),
          {profiles + "[1].albedo[0]", "(0, 1]"}},
-        {"negative_variance", nlohmann::json::array({negativeVariance}), nlohmann::json::object(), {profiles + "[0].gaussians[1].varianceMm2"}},
-        {"missing_lut_folder", nlohmann::json::array({{{"type", "lutFolder"}, {"uri", "nowhere"}}}), nlohmann::json::object(),
+        {"negative_variance",
+         nlohmann::json::array({negativeVariance}),
+         nlohmann::json::object(),
+         {profiles + "[0].gaussians[1].varianceMm2"}},
+        {"missing_lut_folder",
+         nlohmann::json::array({{{"type", "lutFolder"}, {"uri", "nowhere"}}}),
+         nlohmann::json::object(),
          {profiles + "[0].uri", "'nowhere' not found"}},
-        {"layer_out_of_range", nlohmann::json::array({burleyJson(0.8)}), {{"profile", 1}},
+        {"layer_out_of_range",
+         nlohmann::json::array({burleyJson(0.8)}),
+         {{"profile", 1}},
          {"materials[0].extensions.PRESKIN_materials_skin.profile", "1 is out of range", "1 profiles"}},
-        {"blend_out_of_range", nlohmann::json::array({burleyJson(0.8)}), {{"profileBlend", {{"profiles", {0, 4}}, {"weightTexture", {{"index", 0}}}}}},
+        {"blend_out_of_range",
+         nlohmann::json::array({burleyJson(0.8)}),
+         {{"profileBlend", {{"profiles", {0, 4}}, {"weightTexture", {{"index", 0}}}}}},
          {"profileBlend.profiles[1]", "4 is out of range"}},
     };
     for (const Case& c : cases) {
@@ -159,7 +180,8 @@ TEST(SceneProfiles, BadProfileDataIsOneLineNamingTheField) {
         expectLoadError(writeProfileScene(sub, c.profiles, c.skin), fragments);
     }
     // NaN is not JSON: the file's JSON reader refuses it, naming the file.
-    const fs::path nanScene = writeProfileScene(dir.path(), nlohmann::json::array({burleyJson(0.8)}), nlohmann::json::object());
+    const fs::path nanScene =
+        writeProfileScene(dir.path(), nlohmann::json::array({burleyJson(0.8)}), nlohmann::json::object());
     std::string text = readFile(nanScene);
     text.replace(text.find("0.8"), 3, "NaN");
     writeText(nanScene, text);
@@ -214,7 +236,8 @@ TEST(ProfileLibrary, CacheMissHitAndDamagedEntry) {
     EXPECT_EQ(repaired.stats().damaged, 1);
     EXPECT_EQ(repaired.stats().baked, 1);
     ASSERT_EQ(repaired.warnings().size(), 1u);
-    EXPECT_NE(repaired.warnings()[0].find("profile 'b': damaged cache entry"), std::string::npos) << repaired.warnings()[0];
+    EXPECT_NE(repaired.warnings()[0].find("profile 'b': damaged cache entry"), std::string::npos)
+        << repaired.warnings()[0];
     EXPECT_NE(repaired.warnings()[0].find("penumbra.f16"), std::string::npos) << repaired.warnings()[0];
     EXPECT_NE(repaired.warnings()[0].find("CRC-32"), std::string::npos) << repaired.warnings()[0];
     EXPECT_TRUE(sameTables(repaired.layer(2), miss.layer(2)));
@@ -231,7 +254,8 @@ TEST(ProfileLibrary, CacheMissHitAndDamagedEntry) {
 
     // --no-cache: neither read nor written.
     TempDir unused;
-    const ProfileLibrary uncached = ProfileLibrary::forScene(scene, smallDefault(), smallSettings(), {false, unused.path()});
+    const ProfileLibrary uncached =
+        ProfileLibrary::forScene(scene, smallDefault(), smallSettings(), {false, unused.path()});
     EXPECT_EQ(uncached.stats().baked, 2);
     EXPECT_TRUE(fs::is_empty(unused.path()));
 }
@@ -239,7 +263,8 @@ TEST(ProfileLibrary, CacheMissHitAndDamagedEntry) {
 TEST(ProfileLibrary, UnwritableCacheFolderWarnsOnceAndBakes) {
     Scene scene;
     for (int i = 0; i < 3; ++i)
-        scene.profiles.push_back({fmt::format("p{}", i), DiffusionProfile::burley({0.8, 0.5, 0.4}, {1.0 + i, 0.4, 0.25}), {}});
+        scene.profiles.push_back(
+            {fmt::format("p{}", i), DiffusionProfile::burley({0.8, 0.5, 0.4}, {1.0 + i, 0.4, 0.25}), {}});
     TempDir dir;
     // A read-only folder (as root, which may write anyway, a folder below a regular file stands
     // in for it: it can be neither created nor written).
@@ -274,25 +299,27 @@ TEST(ProfileLibrary, CacheFolderFollowsXdg) {
         EXPECT_EQ(ProfileCacheOptions{}.resolvedFolder(), fs::path(home) / ".cache/preskin/luts");
     }
     EXPECT_EQ((ProfileCacheOptions{false, {}}.resolvedFolder()), fs::path());
-    if (saved) setenv("XDG_CACHE_HOME", restore.c_str(), 1);
-    else unsetenv("XDG_CACHE_HOME");
+    if (saved)
+        setenv("XDG_CACHE_HOME", restore.c_str(), 1);
+    else
+        unsetenv("XDG_CACHE_HOME");
 }
 
 // `preskin bake` writes a folder that loads as a scene profile, and a scene whose material names
 // a profile renders through the command line with the cache in a folder of the test's.
 TEST(ProfileLibrary, BakeCommandOutputLoadsAsProfile) {
     TempDir dir;
-    const ProcessResult bake =
-        runCli({"bake", "--profile", "burley", "--albedo", "0.9,0.6,0.5", "--mfp", "2,1,0.5", "--size", "16", "--out",
-                (dir / "lips").string()},
-               dir.path());
+    const ProcessResult bake = runCli({"bake", "--profile", "burley", "--albedo", "0.9,0.6,0.5", "--mfp", "2,1,0.5",
+                                       "--size", "16", "--out", (dir / "lips").string()},
+                                      dir.path());
     ASSERT_EQ(bake.exitCode, 0) << bake.err;
-    const fs::path path = writeProfileScene(dir.path(), {{{"type", "lutFolder"}, {"uri", "lips"}}, burleyJson(0.7)},
-                                            {{"profile", 0}});
+    const fs::path path =
+        writeProfileScene(dir.path(), {{{"type", "lutFolder"}, {"uri", "lips"}}, burleyJson(0.7)}, {{"profile", 0}});
     const Scene scene = Scene::load(path);
     const ProfileLibrary library = ProfileLibrary::forScene(scene, smallDefault(), smallSettings(), {false, {}});
-    EXPECT_TRUE(sameTables(library.layer(1),
-                           LutSet::bake(DiffusionProfile::burley({0.9, 0.6, 0.5}, {2.0, 1.0, 0.5}), LutBakeSettings::withSize(16))));
+    EXPECT_TRUE(sameTables(
+        library.layer(1),
+        LutSet::bake(DiffusionProfile::burley({0.9, 0.6, 0.5}, {2.0, 1.0, 0.5}), LutBakeSettings::withSize(16))));
 
     const ProcessResult render =
         runCli({"render", path.string(), "--width", "32", "--height", "32", "--profile-lut-size", "16", "--cache-dir",

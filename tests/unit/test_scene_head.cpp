@@ -36,8 +36,10 @@ TEST(SceneHead, CountsAndBoundsInMetres) {
     EXPECT_EQ(s.instances[0].worldFromObject, glm::mat4(1.0f));
 
     const preskin::Bounds b = s.worldBounds();
-    const glm::vec3 expectedMax = kMetresPerUnit * glm::vec3(4.276320934295654f, 3.9725468158721924f, 2.5903584957122803f);
-    const glm::vec3 expectedMin = kMetresPerUnit * glm::vec3(-4.276320934295654f, -3.9725465774536133f, -2.5903775691986084f);
+    const glm::vec3 expectedMax =
+        kMetresPerUnit * glm::vec3(4.276320934295654f, 3.9725468158721924f, 2.5903584957122803f);
+    const glm::vec3 expectedMin =
+        kMetresPerUnit * glm::vec3(-4.276320934295654f, -3.9725465774536133f, -2.5903775691986084f);
     for (int k = 0; k < 3; ++k) {
         EXPECT_NEAR(b.max[k], expectedMax[k], 1e-5f);
         EXPECT_NEAR(b.min[k], expectedMin[k], 1e-5f);
@@ -121,7 +123,8 @@ TEST(SceneHead, VFlipPutsTheLipsOnTheMouth) {
     const preskin::Image& spec = s.images[static_cast<size_t>(s.materials[0].skin->specularTexture.image)];
     auto texel = [&](glm::vec2 uv) {
         const auto x = std::min<uint32_t>(spec.width - 1, static_cast<uint32_t>(uv.x * static_cast<float>(spec.width)));
-        const auto y = std::min<uint32_t>(spec.height - 1, static_cast<uint32_t>(uv.y * static_cast<float>(spec.height)));
+        const auto y =
+            std::min<uint32_t>(spec.height - 1, static_cast<uint32_t>(uv.y * static_cast<float>(spec.height)));
         return spec.rgba8[(size_t(y) * spec.width + x) * 4];
     };
     // glTF UVs: (0, 0) is the image's top-left texel. The lips are pure white in the spec map.
@@ -135,7 +138,7 @@ TEST(SceneHead, VFlipPutsTheLipsOnTheMouth) {
         // The mouth: below the nose tip, above the chin, on the front, near the midline.
         const glm::vec3 q = v.positionOs;
         onMouth += q.y < noseTip->positionOs.y - 0.01f && q.y > noseTip->positionOs.y - 0.06f && q.z > 0.08f &&
-                   std::abs(q.x) < 0.04f;
+            std::abs(q.x) < 0.04f;
     }
     EXPECT_GT(bright, 200u);
     EXPECT_GT(onMouth, bright * 95 / 100);
@@ -205,7 +208,8 @@ TEST(SceneHead, KeyLightCameraAndEnvironment) {
         float hitM = -1.0f;
         const preskin::Bounds b = s.worldBounds();
         for (float t = 0.0f; t < 0.5f; t += 0.0005f)
-            if (glm::all(glm::greaterThanEqual(eye + t * look, b.min)) && glm::all(glm::lessThanEqual(eye + t * look, b.max))) {
+            if (glm::all(glm::greaterThanEqual(eye + t * look, b.min)) &&
+                glm::all(glm::lessThanEqual(eye + t * look, b.max))) {
                 hitM = t;
                 break;
             }

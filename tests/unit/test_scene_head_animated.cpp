@@ -37,7 +37,8 @@ float largestMove(const std::vector<preskin::Vertex>& out, Select select) {
     const auto& base = staticHead().meshes[0].primitives[0].vertices;
     float largest = 0.0f;
     for (size_t i = 0; i < out.size(); ++i)
-        if (select(base[i].positionOs)) largest = std::max(largest, glm::length(out[i].positionOs - base[i].positionOs));
+        if (select(base[i].positionOs))
+            largest = std::max(largest, glm::length(out[i].positionOs - base[i].positionOs));
     return largest;
 }
 
@@ -119,6 +120,6 @@ TEST(SceneHeadAnimated, TalkDrivesEveryTargetAndTurnsTheHead) {
         largestShoulderMove = std::max(largestShoulderMove, largestMove(out, [](glm::vec3 p) { return p.y < -0.15f; }));
     }
     for (size_t k = 0; k < 3; ++k) EXPECT_GT(peak[k], 0.3f) << s.meshes[0].targetNames[k];
-    EXPECT_GT(largestHeadMove, 0.03f);       // the crown swings by centimetres
+    EXPECT_GT(largestHeadMove, 0.03f);      // the crown swings by centimetres
     EXPECT_LT(largestShoulderMove, 1e-6f);  // the shoulders follow the chest joint, which does not move
 }

@@ -5,8 +5,8 @@
 #include <preskin/Error.h>
 #include <preskin/Scene.h>
 
-#include <glm/gtc/matrix_transform.hpp>
 #include <gtest/gtest.h>
+#include <glm/gtc/matrix_transform.hpp>
 
 #include <cmath>
 #include <numbers>

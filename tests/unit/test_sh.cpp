@@ -52,9 +52,15 @@ TEST(ShProjection, SingleBrightDirectionGivesItsBasisValues) {
     const glm::vec3 d = EquirectImage::directionAt((x0 + 0.5f) / float(w), (y0 + 0.5f) / float(h));
     // Independent basis: Ramamoorthi & Hanrahan 2001, eq. 3 constants written out here.
     const double x = double(d.x), y = double(d.y), z = double(d.z);
-    const double basis[9] = {0.282095,         0.488603 * y,     0.488603 * z,
-                             0.488603 * x,     1.092548 * x * y, 1.092548 * y * z,
-                             0.315392 * (3 * z * z - 1), 1.092548 * x * z, 0.546274 * (x * x - y * y)};
+    const double basis[9] = {0.282095,
+                             0.488603 * y,
+                             0.488603 * z,
+                             0.488603 * x,
+                             1.092548 * x * y,
+                             1.092548 * y * z,
+                             0.315392 * (3 * z * z - 1),
+                             1.092548 * x * z,
+                             0.546274 * (x * x - y * y)};
     for (int i = 0; i < 9; ++i) {
         const double expected = double(L0) * solidAngle * basis[i];
         EXPECT_NEAR(double(sh.c[size_t(i)].r), expected, 5e-3 * double(L0) * solidAngle) << "coefficient " << i;

@@ -15,7 +15,8 @@ namespace preskin {
 namespace {
 
 View lookAt(const glm::vec3& eye, const glm::vec3& target, float yfov) {
-    return perspectiveView(glm::inverse(glm::lookAt(eye, target, glm::vec3(0.0f, 1.0f, 0.0f))), yfov, 1.0f, 0.05f, 20.0f);
+    return perspectiveView(glm::inverse(glm::lookAt(eye, target, glm::vec3(0.0f, 1.0f, 0.0f))), yfov, 1.0f, 0.05f,
+                           20.0f);
 }
 
 TEST(ShadowFit, CoversTheSkinInViewAndTheCastersDepth) {
@@ -108,9 +109,8 @@ TEST(ShadowFit, ReceiversAreTheSkinPrimitives) {
     a.material = 0;
     Primitive b = test::makeBox(glm::vec3(1.0f));
     b.material = 1;
-    const Scene scene = test::makeScene({{a, glm::translate(glm::mat4(1.0f), glm::vec3(3.0f, 0.0f, 0.0f))},
-                                         {b, glm::mat4(1.0f)}},
-                                        {skin, other});
+    const Scene scene = test::makeScene(
+        {{a, glm::translate(glm::mat4(1.0f), glm::vec3(3.0f, 0.0f, 0.0f))}, {b, glm::mat4(1.0f)}}, {skin, other});
     const Bounds r = skinReceiverBounds(scene).worldBounds(restPose(scene));
     EXPECT_NEAR(r.min.x, 2.9f, 1e-5f);
     EXPECT_NEAR(r.max.x, 3.1f, 1e-5f);

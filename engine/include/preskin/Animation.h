@@ -60,7 +60,7 @@ enum class Interpolation { Step, Linear, CubicSpline };
 enum class AnimationPath { Translation, Rotation, Scale, Weights };
 
 struct AnimationSampler {
-    std::vector<float> times;   // seconds, finite and strictly increasing
+    std::vector<float> times;  // seconds, finite and strictly increasing
     // Per key `components` floats (3 for translation and scale, 4 for a rotation x, y, z, w, the
     // morph target count for weights); CUBICSPLINE keys hold in-tangent, value, out-tangent.
     std::vector<float> values;

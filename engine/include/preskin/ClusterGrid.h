@@ -52,12 +52,12 @@ namespace preskin {
 enum class ClusterBuild { Auto, Cpu, Gpu };
 
 struct ClusterSettings {
-    uint32_t tileSizePx = 16;            // screen tile edge, clamped to 4..256
-    uint32_t depthSlices = 32;           // clamped to 2..256
-    float nearSliceM = 0.05f;            // slice 0 ends here at the earliest
-    bool fitDepthToScene = true;         // logarithmic slices span the scene's depth range only
-    uint32_t maxLightsPerCluster = 256;  // per-froxel cap (overflow rule above), >= 1
-    uint32_t maxLightIndices = 1u << 23; // capacity of the index list (overflow rule above), >= 1
+    uint32_t tileSizePx = 16;             // screen tile edge, clamped to 4..256
+    uint32_t depthSlices = 32;            // clamped to 2..256
+    float nearSliceM = 0.05f;             // slice 0 ends here at the earliest
+    bool fitDepthToScene = true;          // logarithmic slices span the scene's depth range only
+    uint32_t maxLightsPerCluster = 256;   // per-froxel cap (overflow rule above), >= 1
+    uint32_t maxLightIndices = 1u << 23;  // capacity of the index list (overflow rule above), >= 1
     ClusterBuild build = ClusterBuild::Auto;
 };
 
@@ -86,12 +86,12 @@ struct ClusterCamera {
 PRESKIN_API ClusterCamera clusterCamera(const View& view, uint32_t eyeWidthPx, uint32_t eyeHeightPx);
 
 struct ClusterGridShape {
-    glm::uvec3 dims{1u};       // tiles across, tiles down, depth slices
+    glm::uvec3 dims{1u};  // tiles across, tiles down, depth slices
     uint32_t tileSizePx = 16;
-    glm::uvec2 extentPx{1u};   // the image the grid covers
-    float nearM = 0.01f;       // slice 0 starts here (the view's near plane)
-    float logStartM = 0.05f;   // slice 1 starts here
-    float logEndM = 100.0f;    // slice dims.z - 1 ends here (and also holds everything beyond)
+    glm::uvec2 extentPx{1u};  // the image the grid covers
+    float nearM = 0.01f;      // slice 0 starts here (the view's near plane)
+    float logStartM = 0.05f;  // slice 1 starts here
+    float logEndM = 100.0f;   // slice dims.z - 1 ends here (and also holds everything beyond)
     float sliceScale = 1.0f;
     float sliceBias = 0.0f;
 
@@ -120,10 +120,10 @@ struct ClusterGridShape {
 struct ClusterGrid {
     ClusterCamera camera;
     ClusterGridShape shape;
-    std::vector<glm::uvec2> ranges;  // per froxel (offset, count) into `indices`; x fastest, then y, z
-    std::vector<uint32_t> indices;   // light indices into the array given to the build
-    uint32_t overflowedClusters = 0; // froxels that lost lights to either cap
-    uint64_t requestedIndices = 0;   // entries before either cap applied
+    std::vector<glm::uvec2> ranges;   // per froxel (offset, count) into `indices`; x fastest, then y, z
+    std::vector<uint32_t> indices;    // light indices into the array given to the build
+    uint32_t overflowedClusters = 0;  // froxels that lost lights to either cap
+    uint64_t requestedIndices = 0;    // entries before either cap applied
 
     // The froxel whose list a fragment at this world position reads, computed as the forward
     // shader computes it (out-of-grid positions clamp to the nearest froxel).

@@ -59,8 +59,8 @@ PRESKIN_API glm::vec3 rotateY(const glm::vec3& d, float rotationY);
 // carries the radiance of the texels it was cut from.
 struct EnvironmentLight {
     glm::vec3 directionWs{0.0f, -1.0f, 0.0f};  // the direction the light travels (world, rotation applied)
-    glm::vec3 irradiance{0.0f};   // at normal incidence: the integral of its texels' radiance over their solid angle
-    float solidAngleSr = 0.0f;    // of its texels
+    glm::vec3 irradiance{0.0f};  // at normal incidence: the integral of its texels' radiance over their solid angle
+    float solidAngleSr = 0.0f;   // of its texels
 };
 
 // The environment's dominant lights and what is left for the L2 SH ambient.

@@ -32,14 +32,14 @@ inline constexpr uint64_t kMaxGltfObjects = 1ull << 20;
 inline constexpr uint64_t kMaxGltfLargeObjects = 1ull << 16;  // materials, textures, images, samplers, cameras, lights
 
 // Scene geometry, summed over the whole scene.
-inline constexpr uint64_t kMaxSceneVertices = 1ull << 23;     // 8,388,608
-inline constexpr uint64_t kMaxSceneIndices = 1ull << 25;      // triangle-list indices after strips and fans
-inline constexpr uint64_t kMaxScenePrimitives = 1ull << 18;   // 262,144 mesh primitives
-inline constexpr uint64_t kMaxSceneDraws = 1ull << 18;        // primitives times the instances drawing them
-inline constexpr uint64_t kMaxDrawnTriangles = 1ull << 26;    // triangles times instances, per frame
+inline constexpr uint64_t kMaxSceneVertices = 1ull << 23;    // 8,388,608
+inline constexpr uint64_t kMaxSceneIndices = 1ull << 25;     // triangle-list indices after strips and fans
+inline constexpr uint64_t kMaxScenePrimitives = 1ull << 18;  // 262,144 mesh primitives
+inline constexpr uint64_t kMaxSceneDraws = 1ull << 18;       // primitives times the instances drawing them
+inline constexpr uint64_t kMaxDrawnTriangles = 1ull << 26;   // triangles times instances, per frame
 
 // Images.
-inline constexpr uint64_t kMaxImagePixels = 1ull << 26;       // one texture: 8192 x 8192
+inline constexpr uint64_t kMaxImagePixels = 1ull << 26;  // one texture: 8192 x 8192
 inline constexpr uint32_t kMaxImageSide = 16384;
 inline constexpr uint64_t kMaxSceneImagePixels = 1ull << 27;  // all textures of a scene
 inline constexpr uint32_t kMaxEnvironmentWidth = 8192;        // equirectangular: 8192 x 4096

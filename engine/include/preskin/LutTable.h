@@ -42,8 +42,8 @@ struct PRESKIN_API LutAxis {
     std::string unit;      // "1", "1/mm", "mm"
     AxisMapping mapping = AxisMapping::Linear;
     double min = 0.0;
-    double max = 1.0;      // Rational: +infinity
-    double scale = 1.0;    // Log1p only
+    double max = 1.0;    // Rational: +infinity
+    double scale = 1.0;  // Log1p only
     int size = 0;
 
     // The axis value at node i (Rational: +infinity at the last node).

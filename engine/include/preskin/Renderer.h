@@ -144,12 +144,12 @@ struct FrameStats {
     double gpuMs = 0.0;            // first to last timestamp
     double wallMs = 0.0;           // CPU wall clock of record + submit + wait (headless only)
     uint32_t lightCount = 0;
-    uint32_t clusterOverflows = 0;  // clusters whose list was truncated (<preskin/ClusterGrid.h>)
+    uint32_t clusterOverflows = 0;   // clusters whose list was truncated (<preskin/ClusterGrid.h>)
     double clusterBuildCpuMs = 0.0;  // CPU time of the light-list build or its compute setup (part of wallMs)
     double recordCpuMs = 0.0;        // CPU time of Renderer::record without the light-list build
     uint32_t eyes = 0;               // eyes drawn
     EyeDrawing eyeDrawing = EyeDrawing::Multiview;  // how (never Auto)
-    bool clusterBuildGpu = false;    // the light lists came from the compute pass (ClusterSettings::build)
+    bool clusterBuildGpu = false;  // the light lists came from the compute pass (ClusterSettings::build)
 };
 
 // The host's depth attachment, when `record` should test against and write the host's depth

@@ -33,8 +33,16 @@ struct Bounds {
     glm::vec3 max{-std::numeric_limits<float>::max()};
 
     bool empty() const { return min.x > max.x; }
-    void extend(const glm::vec3& p) { min = glm::min(min, p); max = glm::max(max, p); }
-    void extend(const Bounds& b) { if (!b.empty()) { extend(b.min); extend(b.max); } }
+    void extend(const glm::vec3& p) {
+        min = glm::min(min, p);
+        max = glm::max(max, p);
+    }
+    void extend(const Bounds& b) {
+        if (!b.empty()) {
+            extend(b.min);
+            extend(b.max);
+        }
+    }
     glm::vec3 center() const { return 0.5f * (min + max); }
     glm::vec3 extent() const { return max - min; }
 };
@@ -68,7 +76,7 @@ struct Primitive {
     std::vector<uint32_t> indices;  // triangle list
     int material = -1;              // -1: the default material
     Bounds boundsOs;
-    std::vector<MorphTarget> targets;        // morph targets (Mesh::weights are their defaults)
+    std::vector<MorphTarget> targets;         // morph targets (Mesh::weights are their defaults)
     std::vector<JointInfluences> influences;  // empty, or one per vertex for a skinned primitive
 };
 
@@ -114,8 +122,8 @@ struct Image {
 
 // A material's reference to a texture: glTF textureInfo plus KHR_texture_transform.
 struct TextureRef {
-    int image = -1;    // index into Scene::images, -1: none
-    int sampler = -1;  // index into Scene::samplers, -1: default sampler
+    int image = -1;      // index into Scene::images, -1: none
+    int sampler = -1;    // index into Scene::samplers, -1: default sampler
     float scale = 1.0f;  // normalTexture.scale or occlusionTexture.strength
     glm::vec2 uvOffset{0.0f};
     float uvRotation = 0.0f;  // radians, counter-clockwise as in KHR_texture_transform
@@ -173,7 +181,7 @@ struct Light {
 
 struct Camera {
     std::string name;
-    std::string source;  // "<file>: cameras[i]", for messages about it
+    std::string source;             // "<file>: cameras[i]", for messages about it
     glm::mat4 worldFromView{1.0f};  // rigid (node scale removed); view looks down -Z, +Y up
     bool orthographic = false;
     float yfov = 0.6f;         // radians (perspective)
@@ -204,7 +212,7 @@ struct Scene {
     std::vector<Sampler> samplers;
     std::vector<Light> lights;
     std::vector<Camera> cameras;
-    std::vector<Node> nodes;             // the hierarchy (<preskin/Animation.h>)
+    std::vector<Node> nodes;  // the hierarchy (<preskin/Animation.h>)
     std::vector<Skin> skins;
     std::vector<Animation> animations;
     // Scene-level environment from the PRESKIN_environment extension (a file next to the scene).

@@ -48,7 +48,7 @@ struct SkinMaterial {
     float scatterScale = 1.0f;
     CurvatureSource curvatureSource = CurvatureSource::Vertex;
     SkinTextureRef curvatureTexture;
-    float curvatureTextureScalePerM = 100.0f;  // texture value 1.0 means this many 1/m
+    float curvatureTextureScalePerM = 100.0f;                             // texture value 1.0 means this many 1/m
     DeformedCurvature deformedCurvature = DeformedCurvature::Recomputed;  // with CurvatureSource::Vertex
     // Per-channel mip LOD bias of the normal map (R, G, B). Unset: derived from the profile's
     // per-channel scattering width and the mesh's texel density.

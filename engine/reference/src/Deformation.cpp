@@ -75,7 +75,8 @@ void deformPrimitive(const Primitive& primitive, const InstancePose& pose, std::
             glm::dmat4 m(0.0);
             const JointInfluences& influence = primitive.influences[v];
             for (int set = 0; set < 2; ++set)
-                for (int k = 0; k < 4; ++k) m += static_cast<double>(influence.weights[set][k]) * joints[influence.joints[set][k]];
+                for (int k = 0; k < 4; ++k)
+                    m += static_cast<double>(influence.weights[set][k]) * joints[influence.joints[set][k]];
             const glm::dmat3 m3(m);
             const double det = glm::determinant(m3);
             position = glm::dvec3(m * glm::dvec4(position, 1.0));

@@ -30,8 +30,8 @@ constexpr glm::vec3 kBackground(0.045f, 0.045f, 0.05f);
 void checkSetting(double value, double lo, double hi, const char* field, bool openLow = false) {
     const bool ok = std::isfinite(value) && (openLow ? value > lo : value >= lo) && value <= hi;
     if (!ok)
-        throw Error(fmt::format("ReferenceSettings.{}: must be in {}{}, {}], got {}", field, openLow ? "(" : "[", lo, hi,
-                                value));
+        throw Error(fmt::format("ReferenceSettings.{}: must be in {}{}, {}], got {}", field, openLow ? "(" : "[", lo,
+                                hi, value));
 }
 
 // Barycentric coordinates of q (in the triangle's plane) with respect to a, b, c.
@@ -77,8 +77,8 @@ void markShadowEdges(ReferenceImage& image, const std::vector<EdgePoint>& points
                 for (int ny = std::max(0, y - reach); ny <= std::min(h - 1, y + reach) && !found; ++ny)
                     for (int nx = std::max(0, x - reach); nx <= std::min(w - 1, x + reach) && !found; ++nx) {
                         const EdgePoint& q = points[size_t(ny) * size_t(w) + size_t(nx)];
-                        found = q.state != 0 && q.state != p.state &&
-                                glm::length(q.positionWs - p.positionWs) <= p.radiusM;
+                        found =
+                            q.state != 0 && q.state != p.state && glm::length(q.positionWs - p.positionWs) <= p.radiusM;
                     }
                 image.nearShadowEdge[size_t(y) * size_t(w) + size_t(x)] = found ? 1 : 0;
             }
@@ -108,7 +108,8 @@ struct DiffusionReference::Impl {
         if (s.environmentSamples > 0 && !environment)
             throw Error("ReferenceSettings: environmentSamples: tracing the environment needs the Environment");
         if (s.environmentSamples > (1u << 20))
-            throw Error(fmt::format("ReferenceSettings: environmentSamples: {} is above {}", s.environmentSamples, 1u << 20));
+            throw Error(
+                fmt::format("ReferenceSettings: environmentSamples: {} is above {}", s.environmentSamples, 1u << 20));
         checkSetting(s.tailFraction, 1e-9, 0.1, "tailFraction");
         checkSetting(s.leafRatio, 0.0, 2.0, "leafRatio", true);
         checkSetting(s.finestLeafRatio, 0.0, 100.0, "finestLeafRatio", true);
@@ -148,7 +149,8 @@ struct DiffusionReference::Impl {
         const Material& material = materials.material(m);
         if (material.skin) {
             const double scatterScale = std::max(double(material.skin->scatterScale), 1e-6);
-            const SurfaceIntegralResult r = integral->integrate(out.positionWs, 1000.0 * scatterScale, flip, caches.local());
+            const SurfaceIntegralResult r =
+                integral->integrate(out.positionWs, 1000.0 * scatterScale, flip, caches.local());
             out.radiance = base / kPiD * r.value;
             out.skin = true;
             out.curvaturePerMm = (flip ? -1.0 : 1.0) * mesh.curvature(p) * 0.001 / scatterScale;
@@ -180,7 +182,8 @@ DiffusionReference::~DiffusionReference() = default;
 
 double DiffusionReference::reachMm() const { return impl_->reachMm; }
 
-std::optional<ReferenceSample> DiffusionReference::trace(const glm::dvec3& originWs, const glm::dvec3& directionWs) const {
+std::optional<ReferenceSample> DiffusionReference::trace(const glm::dvec3& originWs,
+                                                         const glm::dvec3& directionWs) const {
     const glm::dvec3 dir = glm::normalize(directionWs);
     const auto hit = impl_->rays->intersect(originWs, dir);
     if (!hit) return std::nullopt;

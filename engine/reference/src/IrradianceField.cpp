@@ -53,7 +53,8 @@ IrradianceField::IrradianceField(const ReferenceMesh& mesh, const RayScene& rays
     std::vector<double> edge(mesh_.positionsWs.size(), 0.0);
     for (const MeshTriangle& t : mesh_.triangles)
         for (int k = 0; k < 3; ++k) {
-            const double l = glm::length(mesh_.positionsWs[t.v[size_t(k)]] - mesh_.positionsWs[t.v[size_t((k + 1) % 3)]]);
+            const double l =
+                glm::length(mesh_.positionsWs[t.v[size_t(k)]] - mesh_.positionsWs[t.v[size_t((k + 1) % 3)]]);
             edge[t.v[size_t(k)]] = std::max(edge[t.v[size_t(k)]], l);
             edge[t.v[size_t((k + 1) % 3)]] = std::max(edge[t.v[size_t((k + 1) % 3)]], l);
         }
@@ -114,9 +115,11 @@ IrradianceSample IrradianceField::at(const SurfacePoint& p, bool flipNormal) con
         }
         return out;
     }
-    const glm::dvec3 ambient = glm::max(glm::dvec3(evaluateSh(radianceSh_, glm::vec3(n), kLambertBands)), glm::dvec3(0.0));
+    const glm::dvec3 ambient =
+        glm::max(glm::dvec3(evaluateSh(radianceSh_, glm::vec3(n), kLambertBands)), glm::dvec3(0.0));
     const uint32_t material = mesh_.triangles[p.triangle].material;
-    out.irradiance += ambient * materials_.occlusion(material, UvFootprint{mesh_.uv(p), glm::dvec2(0.0), glm::dvec2(0.0)});
+    out.irradiance +=
+        ambient * materials_.occlusion(material, UvFootprint{mesh_.uv(p), glm::dvec2(0.0), glm::dvec2(0.0)});
     return out;
 }
 

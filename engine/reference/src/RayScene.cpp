@@ -78,7 +78,9 @@ double pointTriangleDistance(const glm::dvec3& p, const glm::dvec3& a, const glm
 
 RayScene::RayScene(const ReferenceMesh& mesh, HitFilter filter) : mesh_(mesh), filter_(std::move(filter)) {
     RTCDevice d = rtcNewDevice("set_affinity=0");
-    if (!d) throw Error(fmt::format("Embree: cannot create a device: error {}", static_cast<int>(rtcGetDeviceError(nullptr))));
+    if (!d)
+        throw Error(
+            fmt::format("Embree: cannot create a device: error {}", static_cast<int>(rtcGetDeviceError(nullptr))));
     device_ = d;
     RTCScene s = rtcNewScene(d);
     scene_ = s;

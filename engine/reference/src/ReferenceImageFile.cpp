@@ -78,9 +78,10 @@ ReferenceImage readReferenceImage(const std::filesystem::path& path, ReferenceKe
     for (size_t c = 0; c < kChannels.size(); ++c) {
         index[c] = spec.channelindex(kChannels[c]);
         if (index[c] < 0)
-            throw Error(fmt::format("{}: reference: channel {}: missing (write the file with `preskin compare "
-                                    "--reference` or `preskin reference`)",
-                                    name, kChannels[c]));
+            throw Error(
+                fmt::format("{}: reference: channel {}: missing (write the file with `preskin compare "
+                            "--reference` or `preskin reference`)",
+                            name, kChannels[c]));
     }
     key.clear();
     for (const OIIO::ParamValue& p : spec.extra_attribs) {

@@ -26,13 +26,14 @@ ReferenceMesh ReferenceMesh::fromScene(const Scene& scene) {
                 mesh.uvs.emplace_back(v.uv0);
                 mesh.curvaturePerM.push_back(double(v.curvaturePerM) * curvatureToWorld);
             }
-            const uint32_t material = primitive.material >= 0 && static_cast<size_t>(primitive.material) < scene.materials.size()
-                                          ? static_cast<uint32_t>(primitive.material)
-                                          : defaultMaterial;
+            const uint32_t material =
+                primitive.material >= 0 && static_cast<size_t>(primitive.material) < scene.materials.size()
+                ? static_cast<uint32_t>(primitive.material)
+                : defaultMaterial;
             for (size_t i = 0; i + 2 < primitive.indices.size(); i += 3)
-                mesh.triangles.push_back({{base + primitive.indices[i], base + primitive.indices[i + 1],
-                                           base + primitive.indices[i + 2]},
-                                          material});
+                mesh.triangles.push_back(
+                    {{base + primitive.indices[i], base + primitive.indices[i + 1], base + primitive.indices[i + 2]},
+                     material});
         }
     }
     return mesh;

@@ -49,9 +49,9 @@ ReferenceTexture::ReferenceTexture(const Image& image, const Sampler& sampler, b
             for (uint32_t x = 0; x < dst.width; ++x) {
                 const uint32_t x0 = std::min(2 * x, src.width - 1), x1 = std::min(2 * x + 1, src.width - 1);
                 const uint32_t y0 = std::min(2 * y, src.height - 1), y1 = std::min(2 * y + 1, src.height - 1);
-                dst.texels[size_t(y) * dst.width + x] =
-                    0.25f * (src.texels[size_t(y0) * src.width + x0] + src.texels[size_t(y0) * src.width + x1] +
-                             src.texels[size_t(y1) * src.width + x0] + src.texels[size_t(y1) * src.width + x1]);
+                dst.texels[size_t(y) * dst.width + x] = 0.25f *
+                    (src.texels[size_t(y0) * src.width + x0] + src.texels[size_t(y0) * src.width + x1] +
+                     src.texels[size_t(y1) * src.width + x0] + src.texels[size_t(y1) * src.width + x1]);
             }
         levels_.push_back(std::move(dst));
     }
@@ -74,7 +74,7 @@ glm::dvec4 ReferenceTexture::bilinear(const Level& level, const glm::dvec2& uv) 
     const double ax = x - fx, ay = y - fy;
     const auto x0 = int64_t(fx), y0 = int64_t(fy);
     return (1.0 - ay) * ((1.0 - ax) * texel(level, x0, y0) + ax * texel(level, x0 + 1, y0)) +
-           ay * ((1.0 - ax) * texel(level, x0, y0 + 1) + ax * texel(level, x0 + 1, y0 + 1));
+        ay * ((1.0 - ax) * texel(level, x0, y0 + 1) + ax * texel(level, x0 + 1, y0 + 1));
 }
 
 glm::dvec4 ReferenceTexture::sample(const glm::dvec2& uv, const glm::dvec2& duvDx, const glm::dvec2& duvDy) const {
@@ -91,7 +91,8 @@ glm::dvec4 ReferenceTexture::sample(const glm::dvec2& uv, const glm::dvec2& duvD
     auto at = [&](size_t level) {
         return sampler_.minFilter == Filter::Nearest ? nearest(levels_[level], uv) : bilinear(levels_[level], uv);
     };
-    if (sampler_.mipFilter == Filter::Nearest) return at(size_t(std::min(std::floor(d + 0.5), double(levels_.size() - 1))));
+    if (sampler_.mipFilter == Filter::Nearest)
+        return at(size_t(std::min(std::floor(d + 0.5), double(levels_.size() - 1))));
     const size_t lo = size_t(std::floor(d));
     const size_t hi = std::min(lo + 1, levels_.size() - 1);
     const double t = d - double(lo);

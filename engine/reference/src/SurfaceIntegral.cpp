@@ -53,7 +53,7 @@ double triangleArea(const glm::dvec3& a, const glm::dvec3& b, const glm::dvec3& 
 
 uint64_t latticeKey(uint32_t triangle, glm::ivec2 point, bool flip) {
     return (uint64_t(triangle) << 33) | (uint64_t(flip) << 32) | (uint64_t(uint32_t(point.x)) << 16) |
-           uint64_t(uint32_t(point.y));
+        uint64_t(uint32_t(point.y));
 }
 
 glm::dvec3 latticeBary(glm::ivec2 point) {
@@ -65,7 +65,8 @@ glm::dvec3 latticeBary(glm::ivec2 point) {
 
 ProfileKernel::ProfileKernel(const DiffusionProfile& profile) : profile_(profile), invAlbedo_(1.0 / profile.albedo()) {
     for (const GaussianTerm& g : profile.gaussians())
-        terms_.push_back({g.weight * invAlbedo_ / (2.0 * 3.14159265358979323846 * g.varianceMm2), -0.5 / g.varianceMm2});
+        terms_.push_back(
+            {g.weight * invAlbedo_ / (2.0 * 3.14159265358979323846 * g.varianceMm2), -0.5 / g.varianceMm2});
 }
 
 glm::dvec3 ProfileKernel::operator()(double rMm) const {
@@ -123,8 +124,13 @@ SurfaceIntegral::SurfaceIntegral(const ReferenceMesh& mesh, const RayScene& rays
                                  std::function<bool(uint32_t)> isSkinTriangle,
                                  std::function<bool(uint32_t)> isDoubleSidedTriangle, const DiffusionProfile& profile,
                                  const SurfaceIntegralSettings& settings)
-    : mesh_(mesh), rays_(rays), irradiance_(irradiance), isSkin_(std::move(isSkinTriangle)),
-      corners_(mesh, irradiance, isSkin_, isDoubleSidedTriangle), kernel_(profile), settings_(settings) {}
+    : mesh_(mesh),
+      rays_(rays),
+      irradiance_(irradiance),
+      isSkin_(std::move(isSkinTriangle)),
+      corners_(mesh, irradiance, isSkin_, isDoubleSidedTriangle),
+      kernel_(profile),
+      settings_(settings) {}
 
 SurfaceIntegralResult SurfaceIntegral::integrate(const glm::dvec3& x, double mmPerM, bool flipNormals,
                                                  IrradianceCache& cache) const {
@@ -144,7 +150,8 @@ void SurfaceIntegral::visitPiece(Context& c, uint32_t triangle, const std::array
     if (distanceMm > settings_.reachMm) return;
     const double areaMm2 = triangleArea(p[0], p[1], p[2]) * c.k * c.k;
     if (kernel_.bound(distanceMm) * areaMm2 <= 1e-3 * settings_.momentTolerance) return;
-    const double sizeMm = std::max({glm::length(p[1] - p[0]), glm::length(p[2] - p[1]), glm::length(p[0] - p[2])}) * c.k;
+    const double sizeMm =
+        std::max({glm::length(p[1] - p[0]), glm::length(p[2] - p[1]), glm::length(p[0] - p[2])}) * c.k;
     if (level < kLatticeBits && sizeMm > std::max(settings_.leafRatio * distanceMm, settings_.finestMm)) {
         const glm::ivec2 m01 = (lattice[0] + lattice[1]) / 2, m12 = (lattice[1] + lattice[2]) / 2,
                          m20 = (lattice[2] + lattice[0]) / 2;
@@ -156,20 +163,22 @@ void SurfaceIntegral::visitPiece(Context& c, uint32_t triangle, const std::array
     }
     const Moments moments = pieceMoments(c, p);
     for (size_t i = 0; i < 3; ++i) {
-        const int corner = lattice[i] == glm::ivec2(0, 0)               ? 0
-                           : lattice[i] == glm::ivec2(kLatticeSteps, 0) ? 1
-                           : lattice[i] == glm::ivec2(0, kLatticeSteps) ? 2
-                                                                        : -1;
+        const int corner = lattice[i] == glm::ivec2(0, 0) ? 0
+            : lattice[i] == glm::ivec2(kLatticeSteps, 0)  ? 1
+            : lattice[i] == glm::ivec2(0, kLatticeSteps)  ? 2
+                                                          : -1;
         const SurfacePoint point{triangle, latticeBary(lattice[i])};
-        const IrradianceSample& e =
-            corner >= 0 ? corners_.at(triangle, corner, c.flip)
-                        : c.cache->get(latticeKey(triangle, lattice[i], c.flip), [&] { return irradiance_.at(point, c.flip); },
-                                       c.result.irradianceSamples);
+        const IrradianceSample& e = corner >= 0
+            ? corners_.at(triangle, corner, c.flip)
+            : c.cache->get(
+                  latticeKey(triangle, lattice[i], c.flip), [&] { return irradiance_.at(point, c.flip); },
+                  c.result.irradianceSamples);
         c.result.value += moments[i] * e.irradiance;
     }
 }
 
-std::array<glm::dvec3, 3> SurfaceIntegral::pieceMoments(const Context& c, const std::array<glm::dvec3, 3>& corners) const {
+std::array<glm::dvec3, 3> SurfaceIntegral::pieceMoments(const Context& c,
+                                                        const std::array<glm::dvec3, 3>& corners) const {
     // Sub-triangles are given by their corners' barycentric coordinates in the piece.
     using Sub = std::array<glm::dvec3, 3>;
     const double pieceAreaMm2 = triangleArea(corners[0], corners[1], corners[2]) * c.k * c.k;

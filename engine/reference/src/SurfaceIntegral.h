@@ -90,7 +90,7 @@ struct SurfaceIntegralSettings {
 };
 
 struct SurfaceIntegralResult {
-    glm::dvec3 value{0.0};       // int Rn E dA, in irradiance units
+    glm::dvec3 value{0.0};  // int Rn E dA, in irradiance units
     uint32_t irradianceSamples = 0;
 };
 

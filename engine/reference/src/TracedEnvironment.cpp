@@ -150,7 +150,8 @@ glm::dvec3 TracedEnvironment::irradiance(const RayScene& rays, const glm::dvec3&
         double x = 0.0, y = 0.0;
         point(j, cosineCount, x, y);
         const double r = std::sqrt(y), phi = 2.0 * kPi * x;
-        add(tangent * (r * std::cos(phi)) + bitangent * (r * std::sin(phi)) + normal * std::sqrt(std::max(0.0, 1.0 - y)));
+        add(tangent * (r * std::cos(phi)) + bitangent * (r * std::sin(phi)) +
+            normal * std::sqrt(std::max(0.0, 1.0 - y)));
     }
     for (uint32_t j = 0; j < imageCount; ++j) {
         double x = 0.0, y = 0.0, pdf = 0.0;

@@ -37,9 +37,9 @@ private:
     uint32_t samples_ = 0;
     bool image_ = false;
     uint32_t cellsX_ = 0, cellsY_ = 0;
-    std::vector<double> rowCdf_;                 // cellsY + 1
-    std::vector<std::vector<double>> columnCdf_; // per row, cellsX + 1
-    std::vector<double> cellProbability_;        // per cell
+    std::vector<double> rowCdf_;                  // cellsY + 1
+    std::vector<std::vector<double>> columnCdf_;  // per row, cellsX + 1
+    std::vector<double> cellProbability_;         // per cell
 };
 
 }  // namespace preskin::reference

@@ -28,7 +28,7 @@ const Animation& findAnimation(const Scene& scene, const std::string& nameOrInde
     for (const Animation& animation : scene.animations)
         if (animation.name == nameOrIndex) return animation;
     const bool decimal = !nameOrIndex.empty() && nameOrIndex.size() <= 9 &&
-                         std::all_of(nameOrIndex.begin(), nameOrIndex.end(), [](char c) { return c >= '0' && c <= '9'; });
+        std::all_of(nameOrIndex.begin(), nameOrIndex.end(), [](char c) { return c >= '0' && c <= '9'; });
     if (decimal) {
         const size_t index = std::stoul(nameOrIndex);
         if (index < scene.animations.size()) return scene.animations[index];

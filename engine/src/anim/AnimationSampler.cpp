@@ -63,7 +63,9 @@ std::vector<float> AnimationSampler::sample(float timeS) const {
     if (rotation && n != 4) throw Error("animation sampler: a rotation needs 4 components, not " + std::to_string(n));
     if (!std::isfinite(timeS)) throw Error("animation sampler: the time is not a finite number");
 
-    auto at = [&](size_t key, size_t offset, size_t k) { return static_cast<double>(values[key * stride + offset + k]); };
+    auto at = [&](size_t key, size_t offset, size_t k) {
+        return static_cast<double>(values[key * stride + offset + k]);
+    };
     std::vector<double> result(n);
     auto keyValue = [&](size_t key) {
         for (size_t k = 0; k < n; ++k) result[k] = at(key, valueOffset, k);
@@ -101,7 +103,7 @@ std::vector<float> AnimationSampler::sample(float timeS) const {
             const double h01 = -2.0 * s3 + 3.0 * s2, h11 = s3 - s2;
             for (size_t c = 0; c < n; ++c) {
                 result[c] = h00 * at(k, n, c) + h10 * intervalS * at(k, 2 * n, c) + h01 * at(k + 1, n, c) +
-                            h11 * intervalS * at(k + 1, 0, c);
+                    h11 * intervalS * at(k + 1, 0, c);
             }
             break;
         }

@@ -17,7 +17,8 @@ std::optional<HierarchyProblem> hierarchyProblem(std::span<const Node> nodes) {
             path.push_back(n);
             const int parent = nodes[n].parent;
             if (parent < 0) break;
-            if (static_cast<size_t>(parent) >= count) return HierarchyProblem{HierarchyProblem::Kind::ParentOutOfRange, n};
+            if (static_cast<size_t>(parent) >= count)
+                return HierarchyProblem{HierarchyProblem::Kind::ParentOutOfRange, n};
             n = static_cast<size_t>(parent);
         }
         if (state[n] == 1 && nodes[n].parent >= 0) return HierarchyProblem{HierarchyProblem::Kind::Cycle, n};

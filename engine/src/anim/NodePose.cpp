@@ -49,7 +49,9 @@ NodePose animationNodePose(const Scene& scene, const Animation& animation, float
         const std::vector<float> v = animation.samplers[static_cast<size_t>(channel.sampler)].sample(timeS);
         const auto node = static_cast<size_t>(channel.node);
         NodeTransform& transform = pose.transforms[node];
-        const size_t expected = channel.path == AnimationPath::Rotation ? 4 : channel.path == AnimationPath::Weights ? v.size() : 3;
+        const size_t expected = channel.path == AnimationPath::Rotation ? 4
+            : channel.path == AnimationPath::Weights                    ? v.size()
+                                                                        : 3;
         if (v.size() != expected) {
             throw Error(at + ": the sampler gives " + std::to_string(v.size()) + " components, the path needs " +
                         std::to_string(expected));

@@ -29,7 +29,8 @@ bool finite(const std::vector<float>& values) {
 }
 
 std::string nodeName(const Scene& scene, size_t i) {
-    return "node " + std::to_string(i) + (scene.nodes[i].name.empty() ? "" : " '" + anim::printable(scene.nodes[i].name) + "'");
+    return "node " + std::to_string(i) +
+        (scene.nodes[i].name.empty() ? "" : " '" + anim::printable(scene.nodes[i].name) + "'");
 }
 
 // worldFromNode of every node (the hierarchy's one walk, anim/NodeHierarchy.h).
@@ -66,7 +67,8 @@ ScenePose posedScene(const Scene& scene, const NodePose& nodes) {
                     std::to_string(nodeCount) + " nodes");
     }
     for (size_t i = 0; i < nodeCount; ++i) {
-        if (!finite(nodes.transforms[i])) throw Error("node pose: the transform of " + nodeName(scene, i) + " is not finite");
+        if (!finite(nodes.transforms[i]))
+            throw Error("node pose: the transform of " + nodeName(scene, i) + " is not finite");
         if (!nodes.weights.empty() && !finite(nodes.weights[i])) {
             throw Error("node pose: a morph weight of " + nodeName(scene, i) + " is not finite");
         }
@@ -92,8 +94,10 @@ ScenePose posedScene(const Scene& scene, const NodePose& nodes) {
         // Morph weights: the pose's for the node, else the node's own, else the mesh's defaults.
         const size_t targets = targetCount(mesh);
         const std::vector<float>* weights = &mesh.weights;
-        if (instance.node >= 0 && !nodes.weights.empty() && !nodes.weights[node].empty()) weights = &nodes.weights[node];
-        else if (instance.node >= 0 && !scene.nodes[node].weights.empty()) weights = &scene.nodes[node].weights;
+        if (instance.node >= 0 && !nodes.weights.empty() && !nodes.weights[node].empty())
+            weights = &nodes.weights[node];
+        else if (instance.node >= 0 && !scene.nodes[node].weights.empty())
+            weights = &scene.nodes[node].weights;
         if (weights != &mesh.weights && weights->size() != targets) {
             throw Error(where + ": " + std::to_string(weights->size()) + " morph weights for a mesh of " +
                         std::to_string(targets) + " morph targets");
@@ -114,7 +118,8 @@ ScenePose posedScene(const Scene& scene, const NodePose& nodes) {
             for (size_t j = 0; j < skin.joints.size(); ++j) {
                 const int joint = skin.joints[j];
                 if (joint < 0 || static_cast<size_t>(joint) >= nodeCount) {
-                    throw Error(where + ": joint " + std::to_string(j) + " is node " + std::to_string(joint) + ", out of range");
+                    throw Error(where + ": joint " + std::to_string(j) + " is node " + std::to_string(joint) +
+                                ", out of range");
                 }
                 pose.jointMatrices[j] = world[static_cast<size_t>(joint)] * skin.inverseBindMatrices[j];
             }

@@ -10,7 +10,6 @@
 
 namespace preskin::env {
 
-
 glm::vec2 dfgIntegral(float NoV, float roughness, uint32_t heightSteps, uint32_t turnSteps) {
     const double alpha = std::max(double(roughness) * double(roughness), 1e-3);
     const double a2 = alpha * alpha;

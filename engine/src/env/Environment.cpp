@@ -10,8 +10,8 @@
 
 #include <OpenImageIO/imageio.h>
 #include <fmt/core.h>
-#include <tbb/parallel_reduce.h>
 #include <tbb/blocked_range.h>
+#include <tbb/parallel_reduce.h>
 
 #include <algorithm>
 #include <cmath>
@@ -132,8 +132,9 @@ Environment Environment::load(const std::filesystem::path& path, float intensity
     }
     if (header.width <= 0 || header.height <= 0 || header.width > limits::kMaxEnvironmentWidth ||
         header.height > limits::kMaxEnvironmentHeight)
-        throw Error(fmt::format("{}: size: {}x{} is not a supported environment size (at most {}x{})", name, header.width,
-                                header.height, limits::kMaxEnvironmentWidth, limits::kMaxEnvironmentHeight));
+        throw Error(fmt::format("{}: size: {}x{} is not a supported environment size (at most {}x{})", name,
+                                header.width, header.height, limits::kMaxEnvironmentWidth,
+                                limits::kMaxEnvironmentHeight));
     if (header.width != 2 * header.height)
         throw Error(fmt::format("{}: size: {}x{} is not equirectangular (width must be twice the height)", name,
                                 header.width, header.height));
@@ -149,8 +150,7 @@ Environment Environment::load(const std::filesystem::path& path, float intensity
     if (spec.width != header.width || spec.height != header.height || spec.depth > 1 || spec.deep)
         throw Error(fmt::format("{}: size: the decoder reads {}x{}, the header says {}x{}", name, spec.width,
                                 spec.height, header.width, header.height));
-    if (spec.nchannels < 3)
-        throw Error(fmt::format("{}: channels: {} channel(s), RGB needed", name, spec.nchannels));
+    if (spec.nchannels < 3) throw Error(fmt::format("{}: channels: {} channel(s), RGB needed", name, spec.nchannels));
     Environment env;
     env.intensity_ = intensity;
     env.image_.width = static_cast<uint32_t>(spec.width);
@@ -197,10 +197,12 @@ glm::vec3 Environment::radiance(const glm::vec3& directionWs) const {
 Environment Environment::fromImage(EquirectImage image, float rotationY) {
     if (image.width == 0 || image.width != 2 * image.height || image.width > limits::kMaxEnvironmentWidth ||
         image.rgb.size() != size_t(image.width) * image.height * 3)
-        throw Error(fmt::format("environment image: size: {}x{} with {} values is not an equirectangular RGB image of "
-                                "at most {}x{}", image.width, image.height, image.rgb.size(),
-                                limits::kMaxEnvironmentWidth, limits::kMaxEnvironmentHeight));
-    if (auto problem = io::numberProblem(rotationY)) throw Error(fmt::format("environment image: rotation: {}", *problem));
+        throw Error(fmt::format(
+            "environment image: size: {}x{} with {} values is not an equirectangular RGB image of "
+            "at most {}x{}",
+            image.width, image.height, image.rgb.size(), limits::kMaxEnvironmentWidth, limits::kMaxEnvironmentHeight));
+    if (auto problem = io::numberProblem(rotationY))
+        throw Error(fmt::format("environment image: rotation: {}", *problem));
     for (size_t i = 0; i < image.rgb.size(); ++i)
         if (auto problem = io::numberProblem(image.rgb[i]); problem || image.rgb[i] < 0.0f)
             throw Error(fmt::format("environment image: pixel ({}, {}): radiance {}", (i / 3) % image.width,

@@ -59,7 +59,8 @@ EnvironmentHeader openExr(std::span<const uint8_t> prefix) {
         if (i + 4 > prefix.size()) fail("header", "truncated OpenEXR attribute " + name);
         const int32_t size = readI32(prefix, i);
         i += 4;
-        if (size < 0 || static_cast<size_t>(size) > prefix.size() - i) fail("header", "truncated OpenEXR attribute " + name);
+        if (size < 0 || static_cast<size_t>(size) > prefix.size() - i)
+            fail("header", "truncated OpenEXR attribute " + name);
         if (name == "dataWindow") {
             if (type != "box2i" || size != 16) fail("dataWindow", "not a box2i");
             const int64_t xMin = readI32(prefix, i), yMin = readI32(prefix, i + 4);

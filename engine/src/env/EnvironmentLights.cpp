@@ -13,10 +13,10 @@ namespace preskin {
 
 namespace {
 
-constexpr uint32_t kWorkWidth = 1024;  // the widest image the search runs on
-constexpr int kCutDepth = 6;           // 2^6 = 64 median-cut regions
-constexpr double kMinContrast = 4.0;   // a seed region's mean radiance over the environment's
-constexpr float kGrowFraction = 0.1f;  // a light's texels: at least this fraction of its peak
+constexpr uint32_t kWorkWidth = 1024;         // the widest image the search runs on
+constexpr int kCutDepth = 6;                  // 2^6 = 64 median-cut regions
+constexpr double kMinContrast = 4.0;          // a seed region's mean radiance over the environment's
+constexpr float kGrowFraction = 0.1f;         // a light's texels: at least this fraction of its peak
 constexpr double kMaxLightSolidAngle = 0.25;  // sr
 
 float luminance(const glm::vec3& c) { return 0.2126f * c.r + 0.7152f * c.g + 0.0722f * c.b; }
@@ -43,7 +43,8 @@ WorkImage workImage(const EquirectImage& source) {
         for (uint32_t x = 0; x < w.width; ++x) w.radiance[size_t(y) * w.width + x] = image.texel(x, y);
     w.rowSolidAngle.resize(w.height);
     for (uint32_t y = 0; y < w.height; ++y)
-        w.rowSolidAngle[y] = 2.0 * M_PI / w.width * (std::cos(M_PI * y / w.height) - std::cos(M_PI * (y + 1) / w.height));
+        w.rowSolidAngle[y] =
+            2.0 * M_PI / w.width * (std::cos(M_PI * y / w.height) - std::cos(M_PI * (y + 1) / w.height));
     return w;
 }
 
@@ -54,7 +55,8 @@ struct Region {
 // Summed-area table of luminous energy (luminance times solid angle) per texel.
 class EnergyTable {
 public:
-    explicit EnergyTable(const WorkImage& image) : width_(image.width + 1), sum_(size_t(image.width + 1) * (image.height + 1), 0.0) {
+    explicit EnergyTable(const WorkImage& image)
+        : width_(image.width + 1), sum_(size_t(image.width + 1) * (image.height + 1), 0.0) {
         for (uint32_t y = 0; y < image.height; ++y) {
             double row = 0.0;
             for (uint32_t x = 0; x < image.width; ++x) {
@@ -63,9 +65,7 @@ public:
             }
         }
     }
-    double energy(const Region& r) const {
-        return at(r.x1, r.y1) - at(r.x0, r.y1) - at(r.x1, r.y0) + at(r.x0, r.y0);
-    }
+    double energy(const Region& r) const { return at(r.x1, r.y1) - at(r.x0, r.y1) - at(r.x1, r.y0) + at(r.x0, r.y0); }
 
 private:
     double at(uint32_t x, uint32_t y) const { return sum_[size_t(y) * width_ + x]; }
@@ -94,8 +94,10 @@ std::vector<Region> medianCut(const WorkImage& image, const EnergyTable& table) 
             while (lo < hi) {  // the first cut with at least half the energy before it
                 const uint32_t mid = (lo + hi) / 2;
                 const Region before = cutColumns ? Region{r.x0, mid, r.y0, r.y1} : Region{r.x0, r.x1, r.y0, mid};
-                if (table.energy(before) >= half) hi = mid;
-                else lo = mid + 1;
+                if (table.energy(before) >= half)
+                    hi = mid;
+                else
+                    lo = mid + 1;
             }
             if (cutColumns) {
                 next.push_back({r.x0, lo, r.y0, r.y1});
@@ -176,7 +178,8 @@ EnvironmentLights extractEnvironmentLights(const Environment& environment, uint3
             const double texelOmega = image.rowSolidAngle[y];
             const glm::dvec3 radiance(image.radiance[i]);
             irradiance += radiance * texelOmega;
-            weightedDirection += glm::dvec3(image.direction(x, y)) * (double(luminance(image.radiance[i])) * texelOmega);
+            weightedDirection +=
+                glm::dvec3(image.direction(x, y)) * (double(luminance(image.radiance[i])) * texelOmega);
             omega += texelOmega;
             texels.push_back(i);
             for (int dy = -1; dy <= 1; ++dy)
@@ -204,10 +207,12 @@ EnvironmentLights extractEnvironmentLights(const Environment& environment, uint3
     result.residualImage.width = image.width;
     result.residualImage.height = image.height;
     result.residualImage.rgb.reserve(image.radiance.size() * 3);
-    for (const glm::vec3& l : image.radiance) result.residualImage.rgb.insert(result.residualImage.rgb.end(), {l.r, l.g, l.b});
-    std::stable_sort(result.lights.begin(), result.lights.end(), [](const EnvironmentLight& a, const EnvironmentLight& b) {
-        return luminance(a.irradiance) > luminance(b.irradiance);
-    });
+    for (const glm::vec3& l : image.radiance)
+        result.residualImage.rgb.insert(result.residualImage.rgb.end(), {l.r, l.g, l.b});
+    std::stable_sort(result.lights.begin(), result.lights.end(),
+                     [](const EnvironmentLight& a, const EnvironmentLight& b) {
+                         return luminance(a.irradiance) > luminance(b.irradiance);
+                     });
     return result;
 }
 

@@ -61,7 +61,8 @@ ConfinedPath resolveInsideFolder(const fs::path& folder, const fs::path& relativ
         if (n < 0 || static_cast<size_t>(n) >= target.size()) return {candidate, false};
         target.resize(static_cast<size_t>(n));
         // `current` holds no links, so ".." in the target is resolved correctly by lexical rules.
-        const fs::path resolved = (fs::path(target).is_absolute() ? fs::path(target) : current / target).lexically_normal();
+        const fs::path resolved =
+            (fs::path(target).is_absolute() ? fs::path(target) : current / target).lexically_normal();
         if (!lexicallyInside(resolved, root)) return {candidate, false};
         std::deque<fs::path> rest = components(resolved.lexically_relative(root));
         rest.insert(rest.end(), pending.begin(), pending.end());

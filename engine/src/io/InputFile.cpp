@@ -38,8 +38,9 @@ uint64_t statPath(const std::filesystem::path& path, const std::string& label, u
         if (errno == ENOENT || errno == ENOTDIR) {
             std::error_code ec;
             const std::filesystem::path absolute = std::filesystem::absolute(path, ec);
-            fail(label, path.is_relative() && !ec ? "not found (looked for " + absolute.lexically_normal().string() + ")"
-                                                  : std::string("not found"));
+            fail(label,
+                 path.is_relative() && !ec ? "not found (looked for " + absolute.lexically_normal().string() + ")"
+                                           : std::string("not found"));
         }
         fail(label, std::string("cannot read: ") + std::strerror(errno));
     }

@@ -17,7 +17,8 @@
 namespace preskin::io {
 
 // Reads the whole file.
-PRESKIN_API std::vector<uint8_t> readInputFile(const std::filesystem::path& path, const std::string& label, uint64_t maxBytes);
+PRESKIN_API std::vector<uint8_t> readInputFile(const std::filesystem::path& path, const std::string& label,
+                                               uint64_t maxBytes);
 
 // Checks the whole file, reads only its first `count` bytes (fewer when it is shorter): the
 // header of a file a third-party reader then opens by name.

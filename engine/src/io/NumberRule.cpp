@@ -8,9 +8,7 @@
 
 namespace preskin::io {
 
-bool acceptedNumber(double value) {
-    return std::isfinite(value) && std::abs(value) <= limits::kMaxInputMagnitude;
-}
+bool acceptedNumber(double value) { return std::isfinite(value) && std::abs(value) <= limits::kMaxInputMagnitude; }
 
 std::string numberText(double value) {
     std::ostringstream out;

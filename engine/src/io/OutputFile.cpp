@@ -69,8 +69,8 @@ void writeOutputFile(const fs::path& path, const std::function<void(const fs::pa
             throw Error(fmt::format("{}: output: cannot make folder {}: {}", path.string(), dir.string(), why));
         }
     }
-    const fs::path temp = folderOf(path) / fmt::format(".{}.{}.partial{}", path.filename().string(), ::getpid(),
-                                                       path.extension().string());
+    const fs::path temp = folderOf(path) /
+        fmt::format(".{}.{}.partial{}", path.filename().string(), ::getpid(), path.extension().string());
     auto fail = [&](const std::string& what) {
         fs::remove(temp, ec);
         removeMade();

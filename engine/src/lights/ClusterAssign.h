@@ -46,13 +46,13 @@ struct ClusterLightBounds {
     glm::vec3 centerVs{0.0f};
     float radiusM = 0.0f;  // infinity for unlimited lights
     glm::vec3 apexVs{0.0f};
-    float rangeM = 0.0f;   // infinity for unlimited lights
+    float rangeM = 0.0f;  // infinity for unlimited lights
     glm::vec3 axisVs{0.0f, 0.0f, -1.0f};
     float cosOuter = -1.0f;
     float sinOuter = 0.0f;
-    bool cone = false;     // spot with a cone narrower than a half space
+    bool cone = false;  // spot with a cone narrower than a half space
     uint32_t index = 0;
-    glm::uvec3 lo{1u};     // inclusive froxel box; empty when any lo > hi
+    glm::uvec3 lo{1u};  // inclusive froxel box; empty when any lo > hi
     glm::uvec3 hi{0u};
 };
 
@@ -69,10 +69,10 @@ public:
 
 private:
     struct SliceScratch {
-        std::vector<uint32_t> froxel;  // froxel within the slice (y * dims.x + x), per entry
-        std::vector<uint32_t> light;   // light index, per entry
-        std::vector<uint32_t> count;   // entries per froxel of the slice
-        std::vector<glm::vec4> sphere; // bounding sphere per froxel of the slice, for spots
+        std::vector<uint32_t> froxel;   // froxel within the slice (y * dims.x + x), per entry
+        std::vector<uint32_t> light;    // light index, per entry
+        std::vector<uint32_t> count;    // entries per froxel of the slice
+        std::vector<glm::vec4> sphere;  // bounding sphere per froxel of the slice, for spots
     };
     std::vector<ClusterLightBounds> bounds_;
     std::vector<SliceScratch> slices_;

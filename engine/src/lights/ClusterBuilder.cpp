@@ -122,7 +122,8 @@ void ClusterBuilder::prepareGpu(Slot& s, const ClusterSettings& settings, const 
     const uint64_t perCluster = std::max<uint32_t>(settings.maxLightsPerCluster, 1);
     // The index list never needs more than every froxel full.
     const uint64_t needed = froxels * std::min<uint64_t>(perCluster, localCount);
-    s.indexCapacity = static_cast<uint32_t>(std::max<uint64_t>(std::min<uint64_t>(settings.maxLightIndices, needed), 1));
+    s.indexCapacity =
+        static_cast<uint32_t>(std::max<uint64_t>(std::min<uint64_t>(settings.maxLightIndices, needed), 1));
 
     // Geometry: column planes, row planes, slice starts, corner lines (origin, direction).
     std::vector<glm::vec4> data;
@@ -150,20 +151,21 @@ void ClusterBuilder::prepareGpu(Slot& s, const ClusterSettings& settings, const 
     ensureBuffer(device_, s.counters, sizeof(gpu::ClusterCounters), kStorage | VK_BUFFER_USAGE_TRANSFER_DST_BIT, true);
     ensureBuffer(device_, s.volumes, VkDeviceSize(std::max(localCount, 1u)) * sizeof(gpu::ClusterLightVolume), kStorage,
                  false);
-    ensureBuffer(device_, s.gpuRanges, froxels * sizeof(glm::uvec2), kStorage | VK_BUFFER_USAGE_TRANSFER_SRC_BIT, false);
+    ensureBuffer(device_, s.gpuRanges, froxels * sizeof(glm::uvec2), kStorage | VK_BUFFER_USAGE_TRANSFER_SRC_BIT,
+                 false);
     ensureBuffer(device_, s.gpuIndices, VkDeviceSize(s.indexCapacity) * sizeof(uint32_t),
                  kStorage | VK_BUFFER_USAGE_TRANSFER_SRC_BIT, false);
     s.params.upload(&p, sizeof(p));
     s.geometry.upload(data.data(), data.size() * sizeof(glm::vec4));
 
     const VkDescriptorBufferInfo infos[] = {
-        {s.params.handle(), 0, sizeof(p)},          {lightBuffer.handle(), 0, VK_WHOLE_SIZE},
-        {s.geometry.handle(), 0, VK_WHOLE_SIZE},    {s.volumes.handle(), 0, VK_WHOLE_SIZE},
-        {s.gpuRanges.handle(), 0, VK_WHOLE_SIZE},   {s.gpuIndices.handle(), 0, VK_WHOLE_SIZE},
+        {s.params.handle(), 0, sizeof(p)},        {lightBuffer.handle(), 0, VK_WHOLE_SIZE},
+        {s.geometry.handle(), 0, VK_WHOLE_SIZE},  {s.volumes.handle(), 0, VK_WHOLE_SIZE},
+        {s.gpuRanges.handle(), 0, VK_WHOLE_SIZE}, {s.gpuIndices.handle(), 0, VK_WHOLE_SIZE},
         {s.counters.handle(), 0, VK_WHOLE_SIZE},
     };
-    const uint32_t bindings[] = {gpu::kClusterBindingParams,  gpu::kClusterBindingLights,  gpu::kClusterBindingGeometry,
-                                 gpu::kClusterBindingVolumes, gpu::kClusterBindingRanges,  gpu::kClusterBindingIndices,
+    const uint32_t bindings[] = {gpu::kClusterBindingParams,  gpu::kClusterBindingLights, gpu::kClusterBindingGeometry,
+                                 gpu::kClusterBindingVolumes, gpu::kClusterBindingRanges, gpu::kClusterBindingIndices,
                                  gpu::kClusterBindingCounters};
     std::array<VkWriteDescriptorSet, 7> writes{};
     for (size_t i = 0; i < writes.size(); ++i) {
@@ -196,9 +198,10 @@ void ClusterBuilder::record(VkCommandBuffer cmd, uint32_t slot) {
     }
     vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, assignPipeline_);
     vkCmdDispatch(cmd, s.shape.dims.x, s.shape.dims.y, 1);
-    vk::memoryBarrier(cmd, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT,
-                      VK_PIPELINE_STAGE_2_FRAGMENT_SHADER_BIT | VK_PIPELINE_STAGE_2_COPY_BIT | VK_PIPELINE_STAGE_2_HOST_BIT,
-                      VK_ACCESS_2_SHADER_STORAGE_READ_BIT | VK_ACCESS_2_TRANSFER_READ_BIT | VK_ACCESS_2_HOST_READ_BIT);
+    vk::memoryBarrier(
+        cmd, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT,
+        VK_PIPELINE_STAGE_2_FRAGMENT_SHADER_BIT | VK_PIPELINE_STAGE_2_COPY_BIT | VK_PIPELINE_STAGE_2_HOST_BIT,
+        VK_ACCESS_2_SHADER_STORAGE_READ_BIT | VK_ACCESS_2_TRANSFER_READ_BIT | VK_ACCESS_2_HOST_READ_BIT);
 }
 
 const vk::Buffer& ClusterBuilder::ranges(uint32_t slot) {
@@ -244,8 +247,8 @@ ClusterGrid ClusterBuilder::readBack(uint32_t slot) {
         vkCmdCopyBuffer(cmd, s.gpuRanges.handle(), host.handle(), 1, &rangeCopy);
         const VkBufferCopy indexCopy{0, rangeBytes, indexBytes};
         vkCmdCopyBuffer(cmd, s.gpuIndices.handle(), host.handle(), 1, &indexCopy);
-        vk::memoryBarrier(cmd, VK_PIPELINE_STAGE_2_COPY_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT, VK_PIPELINE_STAGE_2_HOST_BIT,
-                          VK_ACCESS_2_HOST_READ_BIT);
+        vk::memoryBarrier(cmd, VK_PIPELINE_STAGE_2_COPY_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT,
+                          VK_PIPELINE_STAGE_2_HOST_BIT, VK_ACCESS_2_HOST_READ_BIT);
     });
     grid.ranges.resize(s.shape.froxelCount());
     std::memcpy(grid.ranges.data(), host.mapped(), rangeBytes);

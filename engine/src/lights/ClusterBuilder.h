@@ -67,8 +67,8 @@ private:
         ClusterGridShape shape;
         uint32_t localLights = 0;
         uint32_t indexCapacity = 0;
-        vk::Buffer cpuRanges, cpuIndices;  // host-visible, CPU build
-        vk::Buffer params, geometry, counters;  // host-visible, compute build
+        vk::Buffer cpuRanges, cpuIndices;           // host-visible, CPU build
+        vk::Buffer params, geometry, counters;      // host-visible, compute build
         vk::Buffer volumes, gpuRanges, gpuIndices;  // device-local, compute build
         VkDescriptorSet set = VK_NULL_HANDLE;
     };

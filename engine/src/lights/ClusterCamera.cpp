@@ -77,10 +77,13 @@ ClusterCamera clusterCamera(const View& view, uint32_t eyeWidthPx, uint32_t eyeH
     if (glm::length(forward) < 1e-9) throw Error("view: the eyes look in opposite directions");
     forward = glm::normalize(forward);
     glm::dvec3 right = glm::cross(forward, up);
-    if (glm::length(right) < 1e-9) right = glm::cross(forward, std::abs(forward.y) < 0.9 ? glm::dvec3(0, 1, 0) : glm::dvec3(1, 0, 0));
+    if (glm::length(right) < 1e-9)
+        right = glm::cross(forward, std::abs(forward.y) < 0.9 ? glm::dvec3(0, 1, 0) : glm::dvec3(1, 0, 0));
     right = glm::normalize(right);
     up = glm::cross(right, forward);
-    auto local = [&](const glm::dvec3& v) { return glm::dvec3(glm::dot(v, right), glm::dot(v, up), glm::dot(v, forward)); };
+    auto local = [&](const glm::dvec3& v) {
+        return glm::dvec3(glm::dot(v, right), glm::dot(v, up), glm::dot(v, forward));
+    };
 
     // The tangents of every eye's edge directions, and the mean direction (tangent 0) so that
     // moving the apex back always works.
@@ -115,7 +118,8 @@ ClusterCamera clusterCamera(const View& view, uint32_t eyeWidthPx, uint32_t eyeH
     double farM = 0.0;
     for (size_t e = 0; e < eyes; ++e) {
         const EyeFrustum& f = frusta[e];
-        for (const glm::dvec3& edge : f.edges) nearM = std::min(nearM, glm::dot(f.apex + edge * f.nearM - apex, forward));
+        for (const glm::dvec3& edge : f.edges)
+            nearM = std::min(nearM, glm::dot(f.apex + edge * f.nearM - apex, forward));
         farM = std::max(farM, double(view.eyes[e].farM) + glm::length(f.apex - apex));
     }
     nearM = std::max(nearM * (1.0 - 1e-3), 1e-6);
@@ -127,7 +131,8 @@ ClusterCamera clusterCamera(const View& view, uint32_t eyeWidthPx, uint32_t eyeH
         viewFromWorld[i][1] = float(up[i]);
         viewFromWorld[i][2] = float(-forward[i]);
     }
-    viewFromWorld[3] = glm::vec4(float(-glm::dot(right, apex)), float(-glm::dot(up, apex)), float(glm::dot(forward, apex)), 1.0f);
+    viewFromWorld[3] =
+        glm::vec4(float(-glm::dot(right, apex)), float(-glm::dot(up, apex)), float(glm::dot(forward, apex)), 1.0f);
     camera.eye.viewFromWorld = viewFromWorld;
     camera.eye.clipFromView =
         reversedInfinitePerspective(float(lo[0]), float(hi[0]), float(hi[1]), float(lo[1]), float(nearM));

@@ -20,11 +20,11 @@ namespace preskin {
 
 struct ClusterGeometry {
     ClusterGridShape shape;
-    std::vector<glm::vec4> xPlanes;      // dims.x + 1
-    std::vector<glm::vec4> yPlanes;      // dims.y + 1
-    std::vector<float> sliceStartM;      // dims.z + 1; the last entry is +infinity
-    std::vector<glm::vec4> cornerOrigin; // (dims.x + 1) * (dims.y + 1), x fastest; w unused
-    std::vector<glm::vec4> cornerDir;    // same layout
+    std::vector<glm::vec4> xPlanes;       // dims.x + 1
+    std::vector<glm::vec4> yPlanes;       // dims.y + 1
+    std::vector<float> sliceStartM;       // dims.z + 1; the last entry is +infinity
+    std::vector<glm::vec4> cornerOrigin;  // (dims.x + 1) * (dims.y + 1), x fastest; w unused
+    std::vector<glm::vec4> cornerDir;     // same layout
 
     uint32_t cornerIndex(uint32_t i, uint32_t j) const { return j * (shape.dims.x + 1) + i; }
 };

@@ -9,7 +9,8 @@
 namespace preskin {
 
 uint32_t ClusterGrid::froxelAt(const glm::vec3& positionWs) const {
-    return gpu::preskinFroxelIndex(camera.clusterFromWorld(), shape.lookupScale(), glm::uvec4(shape.dims, 0u), positionWs);
+    return gpu::preskinFroxelIndex(camera.clusterFromWorld(), shape.lookupScale(), glm::uvec4(shape.dims, 0u),
+                                   positionWs);
 }
 
 ClusterGrid buildClusterGrid(const ClusterSettings& settings, const View& view, uint32_t widthPx, uint32_t heightPx,
@@ -19,7 +20,8 @@ ClusterGrid buildClusterGrid(const ClusterSettings& settings, const View& view, 
     std::vector<ClusterLight> local;
     local.reserve(lights.size());
     for (size_t i = 0; i < lights.size(); ++i)
-        if (lights[i].type != LightType::Directional) local.push_back(clusterLight(lights[i], static_cast<uint32_t>(i)));
+        if (lights[i].type != LightType::Directional)
+            local.push_back(clusterLight(lights[i], static_cast<uint32_t>(i)));
     ClusterGrid grid;
     grid.camera = camera;
     ClusterAssigner assigner;

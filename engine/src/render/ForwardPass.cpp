@@ -44,23 +44,27 @@ VkImageAspectFlags depthAspect(VkFormat format) {
 
 }  // namespace
 
-PipelineKey Renderer::Impl::pipelineKey(const GpuMaterial& m, VkFormat format, VkFormat depthFormat, uint32_t eyes) const {
+PipelineKey Renderer::Impl::pipelineKey(const GpuMaterial& m, VkFormat format, VkFormat depthFormat,
+                                        uint32_t eyes) const {
     const bool skin = m.skin && luts->valid();
-    return PipelineKey{skin ? gpu::kModelSkin : gpu::kModelStandard,
-                       static_cast<uint32_t>(m.alphaMode),
-                       m.doubleSided ? 1u : 0u,
-                       static_cast<uint32_t>(format),
-                       static_cast<uint32_t>(depthFormat),
-                       static_cast<uint32_t>(settings.debugView),
-                       skin ? settings.skin.mask() : 0u,
-                       settings.lightLoop == LightLoop::Clustered ? gpu::kLightLoopClustered : gpu::kLightLoopAll,
-                       !settings.specular ? gpu::kSpecularOff : settings.specularIbl ? gpu::kSpecularIbl : gpu::kSpecularSh,
-                       eyes,
-                       settings.msaaSamples,
-                       eyeDrawing() == EyeDrawing::InstancedLayers ? 1u : 0u,
-                       skin ? m.profileMix : 1u,
-                       skin ? m.skinInputBits() | (settings.skinTermsPerVertex ? 0u : gpu::kSkinInputTermsPerFragment) : 0u,
-                       skin ? std::bit_cast<std::array<uint32_t, 32>>(m.lutMapping) : std::array<uint32_t, 32>{}};
+    return PipelineKey{
+        skin ? gpu::kModelSkin : gpu::kModelStandard,
+        static_cast<uint32_t>(m.alphaMode),
+        m.doubleSided ? 1u : 0u,
+        static_cast<uint32_t>(format),
+        static_cast<uint32_t>(depthFormat),
+        static_cast<uint32_t>(settings.debugView),
+        skin ? settings.skin.mask() : 0u,
+        settings.lightLoop == LightLoop::Clustered ? gpu::kLightLoopClustered : gpu::kLightLoopAll,
+        !settings.specular         ? gpu::kSpecularOff
+            : settings.specularIbl ? gpu::kSpecularIbl
+                                   : gpu::kSpecularSh,
+        eyes,
+        settings.msaaSamples,
+        eyeDrawing() == EyeDrawing::InstancedLayers ? 1u : 0u,
+        skin ? m.profileMix : 1u,
+        skin ? m.skinInputBits() | (settings.skinTermsPerVertex ? 0u : gpu::kSkinInputTermsPerFragment) : 0u,
+        skin ? std::bit_cast<std::array<uint32_t, 32>>(m.lutMapping) : std::array<uint32_t, 32>{}};
 }
 
 VkPipeline Renderer::Impl::pipeline(const PipelineKey& key) {
@@ -81,8 +85,8 @@ vk::GraphicsPipelineDesc Renderer::Impl::forwardPassDesc(const PipelineKey& key)
     const VkFormat format = static_cast<VkFormat>(key.format);
     vk::GraphicsPipelineDesc desc;
     desc.specialization.values.resize(gpu::kSpecCount);
-    desc.specialization.values[gpu::kSpecOutputMode] = isDisplayFormat(format) ? gpu::kOutputTonemapped
-                                                                               : gpu::kOutputLinear;
+    desc.specialization.values[gpu::kSpecOutputMode] =
+        isDisplayFormat(format) ? gpu::kOutputTonemapped : gpu::kOutputLinear;
     desc.colorFormats = {format};
     desc.depthFormat = static_cast<VkFormat>(key.depthFormat);
     desc.viewMask = key.layered ? 0u : (1u << key.eyes) - 1u;
@@ -149,18 +153,25 @@ VkPipeline Renderer::Impl::createBackgroundPipeline(const PipelineKey& key) cons
 
 // The forward pass's own attachments: depth (unless the host's is used), and with MSAA the
 // multisampled colour. Replaced ones are retired, never waited for.
-void Renderer::Impl::ensureAttachments(VkExtent2D extent, uint32_t eyes, VkFormat colorFormat, bool ownDepth, uint32_t slotIndex) {
+void Renderer::Impl::ensureAttachments(VkExtent2D extent, uint32_t eyes, VkFormat colorFormat, bool ownDepth,
+                                       uint32_t slotIndex) {
     const auto matches = [&](const vk::Image& image, VkFormat format) {
         const vk::ImageDesc& d = image.desc();
         return image && d.width == extent.width && d.height == extent.height && d.layers == eyes &&
-               d.samples == samples() && d.format == format;
+            d.samples == samples() && d.format == format;
     };
     const bool msaa = settings.msaaSamples > 1;
     if ((!ownDepth || matches(depth, kDepthFormat)) && (!msaa || matches(msaaColor, colorFormat))) return;
     retire(depth, slotIndex);
     retire(msaaColor, slotIndex);
-    vk::ImageDesc d{kDepthFormat, extent.width, extent.height, 1, VK_IMAGE_USAGE_DEPTH_STENCIL_ATTACHMENT_BIT,
-                    VK_IMAGE_ASPECT_DEPTH_BIT, eyes, samples()};
+    vk::ImageDesc d{kDepthFormat,
+                    extent.width,
+                    extent.height,
+                    1,
+                    VK_IMAGE_USAGE_DEPTH_STENCIL_ATTACHMENT_BIT,
+                    VK_IMAGE_ASPECT_DEPTH_BIT,
+                    eyes,
+                    samples()};
     if (ownDepth) depth = vk::Image(dev, d);
     if (msaa) {
         d.format = colorFormat;
@@ -171,12 +182,13 @@ void Renderer::Impl::ensureAttachments(VkExtent2D extent, uint32_t eyes, VkForma
 }
 
 void Renderer::Impl::recordForwardPass(VkCommandBuffer cmd, Slot& slot, uint32_t slotIndex, const RenderTarget& target,
-                       const View& view) {
+                                       const View& view) {
     const uint32_t eyes = view.eyeCount();
     const bool msaa = settings.msaaSamples > 1;
     constexpr VkPipelineStageFlags2 kDepthStages =
         VK_PIPELINE_STAGE_2_EARLY_FRAGMENT_TESTS_BIT | VK_PIPELINE_STAGE_2_LATE_FRAGMENT_TESTS_BIT;
-    constexpr VkAccessFlags2 kColorAccess = VK_ACCESS_2_COLOR_ATTACHMENT_READ_BIT | VK_ACCESS_2_COLOR_ATTACHMENT_WRITE_BIT;
+    constexpr VkAccessFlags2 kColorAccess =
+        VK_ACCESS_2_COLOR_ATTACHMENT_READ_BIT | VK_ACCESS_2_COLOR_ATTACHMENT_WRITE_BIT;
     vk::imageBarrier(cmd, target.image, VK_IMAGE_ASPECT_COLOR_BIT, target.layoutBefore,
                      VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL, VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT,
                      VK_ACCESS_2_MEMORY_READ_BIT | VK_ACCESS_2_MEMORY_WRITE_BIT,
@@ -205,9 +217,9 @@ void Renderer::Impl::recordForwardPass(VkCommandBuffer cmd, Slot& slot, uint32_t
     color.loadOp = target.loadColor ? VK_ATTACHMENT_LOAD_OP_LOAD : VK_ATTACHMENT_LOAD_OP_CLEAR;
     color.storeOp = msaa ? VK_ATTACHMENT_STORE_OP_DONT_CARE : VK_ATTACHMENT_STORE_OP_STORE;
     const Background& background = settings.background;
-    const glm::vec4 clear = background.mode == BackgroundMode::Color         ? glm::vec4(background.color, 1.0f)
-                            : background.mode == BackgroundMode::Transparent ? glm::vec4(0.0f)
-                                                                             : glm::vec4(0.0f, 0.0f, 0.0f, 1.0f);
+    const glm::vec4 clear = background.mode == BackgroundMode::Color ? glm::vec4(background.color, 1.0f)
+        : background.mode == BackgroundMode::Transparent             ? glm::vec4(0.0f)
+                                                                     : glm::vec4(0.0f, 0.0f, 0.0f, 1.0f);
     color.clearValue.color = {{clear.r, clear.g, clear.b, clear.a}};
     if (msaa) {
         color.resolveMode = VK_RESOLVE_MODE_AVERAGE_BIT;
@@ -256,7 +268,8 @@ void Renderer::Impl::recordForwardPass(VkCommandBuffer cmd, Slot& slot, uint32_t
     // not cover), before the blended ones (which blend over it).
     bool backgroundDrawn = background.mode != BackgroundMode::Environment;
     auto drawBackground = [&] {
-        vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, pipeline(backgroundKey(target.format, depthFormat, eyes)));
+        vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS,
+                          pipeline(backgroundKey(target.format, depthFormat, eyes)));
         bound = VK_NULL_HANDLE;
         vkCmdDraw(cmd, 3, layered ? eyes : 1u, 0, 0);
         backgroundDrawn = true;
@@ -295,8 +308,9 @@ void Renderer::Impl::recordForwardPass(VkCommandBuffer cmd, Slot& slot, uint32_t
 // Throws preskin::Error unless `record` can draw into the host's target as described.
 void Renderer::Impl::checkTarget(const RenderTarget& target) const {
     if (target.loadColor && settings.msaaSamples > 1)
-        throw Error("RenderTarget: loadColor needs msaaSamples 1 (with MSAA preskin draws into its own "
-                    "multisampled colour and resolves it over the target)");
+        throw Error(
+            "RenderTarget: loadColor needs msaaSamples 1 (with MSAA preskin draws into its own "
+            "multisampled colour and resolves it over the target)");
     if (target.loadColor && target.layoutBefore == VK_IMAGE_LAYOUT_UNDEFINED)
         throw Error("RenderTarget: loadColor needs the layout the host's colour is in (layoutBefore is UNDEFINED)");
     const DepthTarget& d = target.depth;

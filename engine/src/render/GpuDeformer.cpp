@@ -39,7 +39,7 @@ bool primitiveRecomputes(const Scene& scene, const Primitive& p) {
     if (p.material < 0 || size_t(p.material) >= scene.materials.size()) return false;
     const std::optional<SkinMaterial>& skin = scene.materials[size_t(p.material)].skin;
     return skin && skin->curvatureSource == CurvatureSource::Vertex &&
-           skin->deformedCurvature == DeformedCurvature::Recomputed;
+        skin->deformedCurvature == DeformedCurvature::Recomputed;
 }
 
 uint32_t groups(uint32_t n) { return (n + gpu::kDeformGroupSize - 1) / gpu::kDeformGroupSize; }
@@ -90,7 +90,8 @@ GpuDeformer::GpuDeformer(const vk::Device& device, const Scene& scene, const vk:
             data.vertexCount += r.vertexCount;
             data.primitives.push_back(r);
         }
-        for (const Primitive& p : scene.meshes[m].primitives) data.curvature = data.curvature || primitiveRecomputes(scene, p);
+        for (const Primitive& p : scene.meshes[m].primitives)
+            data.curvature = data.curvature || primitiveRecomputes(scene, p);
         if (data.curvature) buildTopology(scene, uint32_t(m), topology);
     }
 
@@ -134,8 +135,9 @@ GpuDeformer::GpuDeformer(const vk::Device& device, const Scene& scene, const vk:
                               kStorage | VK_BUFFER_USAGE_VERTEX_BUFFER_BIT | VK_BUFFER_USAGE_TRANSFER_SRC_BIT, false);
         s.weights = vk::Buffer(device_, std::max<VkDeviceSize>(weightCount_ * sizeof(float), 16), kStorage, true);
         s.joints = vk::Buffer(device_, std::max<VkDeviceSize>(jointCount_ * sizeof(glm::mat4), 64), kStorage, true);
-        s.normalBasis = vk::Buffer(device_, VkDeviceSize(std::max(outputVertices_, 1u)) * gpu::kNormalBasisFloats * sizeof(float),
-                                   kStorage | VK_BUFFER_USAGE_VERTEX_BUFFER_BIT | VK_BUFFER_USAGE_TRANSFER_SRC_BIT, false);
+        s.normalBasis =
+            vk::Buffer(device_, VkDeviceSize(std::max(outputVertices_, 1u)) * gpu::kNormalBasisFloats * sizeof(float),
+                       kStorage | VK_BUFFER_USAGE_VERTEX_BUFFER_BIT | VK_BUFFER_USAGE_TRANSFER_SRC_BIT, false);
     }
     createPipelines();
 }
@@ -174,10 +176,12 @@ void GpuDeformer::buildTopology(const Scene& scene, uint32_t meshIndex, std::vec
     std::vector<uint32_t> triangles;
     std::vector<std::pair<uint32_t, uint32_t>> edges;
     for (size_t t = 0; t + 2 < indices.size(); t += 3) {
-        const uint32_t a = weld.weldedOf[indices[t]], b = weld.weldedOf[indices[t + 1]], c = weld.weldedOf[indices[t + 2]];
+        const uint32_t a = weld.weldedOf[indices[t]], b = weld.weldedOf[indices[t + 1]],
+                       c = weld.weldedOf[indices[t + 2]];
         if (a == b || b == c || c == a) continue;
         triangles.insert(triangles.end(), {a, b, c});
-        for (auto [i, j] : {std::pair(a, b), std::pair(b, c), std::pair(c, a)}) edges.emplace_back(std::min(i, j), std::max(i, j));
+        for (auto [i, j] : {std::pair(a, b), std::pair(b, c), std::pair(c, a)})
+            edges.emplace_back(std::min(i, j), std::max(i, j));
     }
     std::sort(edges.begin(), edges.end());
     edges.erase(std::unique(edges.begin(), edges.end()), edges.end());
@@ -236,9 +240,9 @@ void GpuDeformer::createPipelines() {
     pool_ = vk::createDescriptorPool(device_, std::span(&size, 1), kSlots);
     for (Slot& s : slots_) {
         s.set = vk::allocateDescriptorSet(device_, pool_, setLayout_);
-        const VkBuffer buffers[kBindings] = {rest_.handle(),     deltas_.handle(),   influences_.handle(),
-                                             s.weights.handle(), s.joints.handle(),  s.output.handle(),
-                                             topology_.handle(), scratch_.handle(),  restNormalBasis_.handle(),
+        const VkBuffer buffers[kBindings] = {rest_.handle(),        deltas_.handle(),  influences_.handle(),
+                                             s.weights.handle(),    s.joints.handle(), s.output.handle(),
+                                             topology_.handle(),    scratch_.handle(), restNormalBasis_.handle(),
                                              s.normalBasis.handle()};
         VkDescriptorBufferInfo infos[kBindings];
         VkWriteDescriptorSet writes[kBindings];
@@ -327,9 +331,10 @@ void GpuDeformer::recordDeformation(VkCommandBuffer cmd, uint32_t slotIndex) {
         for (const PrimitiveRange& r : meshes_[d.mesh].primitives) {
             if (r.vertexCount == 0) continue;
             gpu::DeformPush push{};
-            push.vertices = glm::uvec4(meshFirst + r.firstVertex, d.outputFirst + r.firstVertex, r.vertexCount, r.targets);
-            push.offsets = glm::uvec4(r.deltaOffset, d.skinned ? r.influenceOffset : 0xffffffffu, d.weightOffset,
-                                      d.jointOffset);
+            push.vertices =
+                glm::uvec4(meshFirst + r.firstVertex, d.outputFirst + r.firstVertex, r.vertexCount, r.targets);
+            push.offsets =
+                glm::uvec4(r.deltaOffset, d.skinned ? r.influenceOffset : 0xffffffffu, d.weightOffset, d.jointOffset);
             vkCmdPushConstants(cmd, deformLayout_, VK_SHADER_STAGE_COMPUTE_BIT, 0, sizeof(push), &push);
             vkCmdDispatch(cmd, groups(r.vertexCount), 1, 1);
         }

@@ -66,14 +66,14 @@ private:
         uint32_t firstVertex = 0;  // within the mesh
         uint32_t vertexCount = 0;
         uint32_t targets = 0;
-        uint32_t deltaOffset = 0;                    // float index in the delta buffer
-        uint32_t influenceOffset = 0xffffffffu;      // DeformInfluences index, or none
+        uint32_t deltaOffset = 0;                // float index in the delta buffer
+        uint32_t influenceOffset = 0xffffffffu;  // DeformInfluences index, or none
     };
     struct MeshData {
         std::vector<PrimitiveRange> primitives;
         uint32_t vertexCount = 0;
         uint32_t targets = 0;
-        bool curvature = false;  // recomputes curvature
+        bool curvature = false;         // recomputes curvature
         gpu::CurvaturePush topology{};  // counts.x/y and the topology offsets; the rest per instance
         uint32_t scratchVec4s = 0;      // 3 W + T
     };

@@ -52,8 +52,9 @@ EquirectImage constantImage(const Environment& environment) {
 vk::Image uploadImage(const vk::Device& device, const EquirectImage& source, uint32_t maxWidth) {
     uint32_t width = 0, height = 0;
     const std::vector<uint16_t> texels = halfTexels(source, maxWidth, width, height);
-    vk::Image image(device, {VK_FORMAT_R16G16B16A16_SFLOAT, width, height, vk::mipLevelCount(width, height),
-                             VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT | VK_IMAGE_USAGE_TRANSFER_DST_BIT});
+    vk::Image image(device,
+                    {VK_FORMAT_R16G16B16A16_SFLOAT, width, height, vk::mipLevelCount(width, height),
+                     VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT | VK_IMAGE_USAGE_TRANSFER_DST_BIT});
     image.uploadAndGenerateMips(texels.data(), texels.size() * sizeof(uint16_t));
     return image;
 }
@@ -79,12 +80,14 @@ GpuEnvironment::GpuEnvironment(const vk::Device& device) : device_(device) {
     const vk::Binding bindings[] = {{0, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, VK_SHADER_STAGE_COMPUTE_BIT},
                                     {1, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, VK_SHADER_STAGE_COMPUTE_BIT}};
     setLayout_ = vk::createSetLayout(device, bindings);
-    layout_ = vk::createPipelineLayout(device, std::span(&setLayout_, 1), sizeof(glm::vec4), VK_SHADER_STAGE_COMPUTE_BIT);
+    layout_ =
+        vk::createPipelineLayout(device, std::span(&setLayout_, 1), sizeof(glm::vec4), VK_SHADER_STAGE_COMPUTE_BIT);
     pipeline_ = vk::createComputePipeline(device, shaders::spirv("env_prefilter.comp"), layout_);
 
     const std::vector<glm::vec2>& table = env::defaultDfgTable();
-    dfg_ = vk::Image(device, {VK_FORMAT_R32G32_SFLOAT, env::kDfgTableSize, env::kDfgTableSize, 1,
-                              VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_DST_BIT});
+    dfg_ = vk::Image(device,
+                     {VK_FORMAT_R32G32_SFLOAT, env::kDfgTableSize, env::kDfgTableSize, 1,
+                      VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_DST_BIT});
     dfg_.uploadAndGenerateMips(table.data(), table.size() * sizeof(glm::vec2));
     set(Environment::constant(glm::vec3(0.0f)), EquirectImage{});
 }
@@ -115,10 +118,10 @@ void GpuEnvironment::prefilter(const EquirectImage& image) {
     while (face * 2 <= std::min(kMaxFaceSize, image.width / 4)) face *= 2;
     const uint32_t levels = uint32_t(std::log2(double(face) / kMinFaceSize)) + 1;
     const vk::Image source = uploadImage(device_, image, 2 * kMaxFaceSize * 2);
-    prefiltered_ = vk::Image(device_, {VK_FORMAT_R16G16B16A16_SFLOAT, face, face, levels,
-                                       VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_STORAGE_BIT |
-                                           VK_IMAGE_USAGE_TRANSFER_SRC_BIT,
-                                       VK_IMAGE_ASPECT_COLOR_BIT, 6, VK_SAMPLE_COUNT_1_BIT, false, true});
+    prefiltered_ = vk::Image(device_,
+                             {VK_FORMAT_R16G16B16A16_SFLOAT, face, face, levels,
+                              VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_STORAGE_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT,
+                              VK_IMAGE_ASPECT_COLOR_BIT, 6, VK_SAMPLE_COUNT_1_BIT, false, true});
     const VkDevice d = device_.device();
     std::vector<VkImageView> views(levels, VK_NULL_HANDLE);
     const VkDescriptorPoolSize sizes[] = {{VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, levels},
@@ -186,17 +189,18 @@ std::vector<glm::vec4> GpuEnvironment::readPrefiltered() const {
     for (uint32_t level = 0; level < levels; ++level) texels += size_t(6) * (face >> level) * (face >> level);
     vk::Buffer readback(device_, texels * 4 * sizeof(uint16_t), VK_BUFFER_USAGE_TRANSFER_DST_BIT, true);
     device_.submitAndWait([&](VkCommandBuffer cmd) {
-        vk::imageBarrier(cmd, prefiltered_.handle(), VK_IMAGE_ASPECT_COLOR_BIT, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL,
-                         VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT,
-                         VK_ACCESS_2_MEMORY_WRITE_BIT, VK_PIPELINE_STAGE_2_TRANSFER_BIT, VK_ACCESS_2_TRANSFER_READ_BIT, 6);
+        vk::imageBarrier(cmd, prefiltered_.handle(), VK_IMAGE_ASPECT_COLOR_BIT,
+                         VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL,
+                         VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT, VK_ACCESS_2_MEMORY_WRITE_BIT,
+                         VK_PIPELINE_STAGE_2_TRANSFER_BIT, VK_ACCESS_2_TRANSFER_READ_BIT, 6);
         VkDeviceSize offset = 0;
         for (uint32_t level = 0; level < levels; ++level) {
             VkBufferImageCopy region{};
             region.bufferOffset = offset;
             region.imageSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, level, 0, 6};
             region.imageExtent = {face >> level, face >> level, 1};
-            vkCmdCopyImageToBuffer(cmd, prefiltered_.handle(), VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, readback.handle(), 1,
-                                   &region);
+            vkCmdCopyImageToBuffer(cmd, prefiltered_.handle(), VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, readback.handle(),
+                                   1, &region);
             offset += VkDeviceSize(6) * (face >> level) * (face >> level) * 4 * sizeof(uint16_t);
         }
         vk::imageBarrier(cmd, prefiltered_.handle(), VK_IMAGE_ASPECT_COLOR_BIT, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL,

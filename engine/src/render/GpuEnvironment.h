@@ -22,11 +22,15 @@ public:
     // environment's radiance). Waits for the device.
     void set(const Environment& environment, const EquirectImage& specularImage);
 
-    VkDescriptorImageInfo imageInfo() const { return {sampler_, image_.view(), VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL}; }
+    VkDescriptorImageInfo imageInfo() const {
+        return {sampler_, image_.view(), VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL};
+    }
     VkDescriptorImageInfo prefilteredInfo() const {
         return {sampler_, prefiltered_.view(), VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL};
     }
-    VkDescriptorImageInfo dfgInfo() const { return {clampSampler_, dfg_.view(), VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL}; }
+    VkDescriptorImageInfo dfgInfo() const {
+        return {clampSampler_, dfg_.view(), VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL};
+    }
     // The prefiltered cube's last level (roughness 1).
     float maxLevel() const { return float(prefiltered_.desc().mipLevels - 1); }
     uint32_t faceSize() const { return prefiltered_.desc().width; }

@@ -17,7 +17,9 @@ std::array<const LutTable*, 4> tablesOf(const LutSet& luts) {
     return {&luts.diffuse(), &luts.penumbra(), &luts.shTransfer(), &luts.transmittance()};
 }
 
-std::array<glm::ivec2*, 4> extentsOf(LutExtents& e) { return {&e.diffuse, &e.penumbra, &e.shTransfer, &e.transmittance}; }
+std::array<glm::ivec2*, 4> extentsOf(LutExtents& e) {
+    return {&e.diffuse, &e.penumbra, &e.shTransfer, &e.transmittance};
+}
 
 // RGBA half texels of `table` in an extent.x x extent.y texture: the table at (0, 0), its last
 // column and row repeated into the padding.
@@ -28,8 +30,10 @@ std::vector<uint16_t> paddedTexels(const LutTable& table, glm::ivec2 extent) {
     for (int y = 0; y < extent.y; ++y)
         for (int x = 0; x < extent.x; ++x) {
             const size_t from = (size_t(std::min(y, table.height() - 1)) * size_t(table.width()) +
-                                 size_t(std::min(x, table.width() - 1))) * 4;
-            std::copy_n(texels.begin() + std::ptrdiff_t(from), 4, out.begin() + std::ptrdiff_t((size_t(y) * size_t(extent.x) + size_t(x)) * 4));
+                                 size_t(std::min(x, table.width() - 1))) *
+                4;
+            std::copy_n(texels.begin() + std::ptrdiff_t(from), 4,
+                        out.begin() + std::ptrdiff_t((size_t(y) * size_t(extent.x) + size_t(x)) * 4));
         }
     return out;
 }
@@ -48,9 +52,10 @@ GpuLuts::GpuLuts(const vk::Device& device, const std::vector<const LutSet*>& lay
     if (layers.empty()) {
         const float one[3] = {1.0f, 1.0f, 1.0f};
         for (vk::Image& image : images_) {
-            image = vk::Image(device, {VK_FORMAT_R32_SFLOAT, 3, 1, 1,
-                                       VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_DST_BIT,
-                                       VK_IMAGE_ASPECT_COLOR_BIT, 1, VK_SAMPLE_COUNT_1_BIT, true});
+            image =
+                vk::Image(device,
+                          {VK_FORMAT_R32_SFLOAT, 3, 1, 1, VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_DST_BIT,
+                           VK_IMAGE_ASPECT_COLOR_BIT, 1, VK_SAMPLE_COUNT_1_BIT, true});
             image.uploadLayer(one, sizeof(one), 0, VK_IMAGE_LAYOUT_UNDEFINED);
         }
         return;
@@ -70,12 +75,14 @@ GpuLuts::GpuLuts(const vk::Device& device, const std::vector<const LutSet*>& lay
         // Each table as its channel planes (lutPlanes), three times as wide.
         const uint32_t width = 3u * uint32_t(extents[t]->x);
         if (width > maxWidth)
-            throw Error(fmt::format("Vulkan: a skin table {} texels wide needs a {}-texel image (its channel planes), "
-                                    "over the device's {}",
-                                    extents[t]->x, width, maxWidth));
-        images_[t] = vk::Image(device, {VK_FORMAT_R32_SFLOAT, width, uint32_t(extents[t]->y), 1,
-                                        VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_DST_BIT,
-                                        VK_IMAGE_ASPECT_COLOR_BIT, layerCount, VK_SAMPLE_COUNT_1_BIT, true});
+            throw Error(
+                fmt::format("Vulkan: a skin table {} texels wide needs a {}-texel image (its channel planes), "
+                            "over the device's {}",
+                            extents[t]->x, width, maxWidth));
+        images_[t] = vk::Image(device,
+                               {VK_FORMAT_R32_SFLOAT, width, uint32_t(extents[t]->y), 1,
+                                VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_DST_BIT, VK_IMAGE_ASPECT_COLOR_BIT,
+                                layerCount, VK_SAMPLE_COUNT_1_BIT, true});
     }
     layers_.resize(layerCount);
     for (uint32_t layer = 0; layer < layerCount; ++layer) uploadLayer(layer, *layers[layer], VK_IMAGE_LAYOUT_UNDEFINED);
@@ -89,7 +96,8 @@ void GpuLuts::uploadLayer(uint32_t layer, const LutSet& luts, VkImageLayout oldL
     const auto tables = tablesOf(luts);
     const auto extents = extentsOf(extents_);
     for (size_t t = 0; t < 4; ++t) {
-        const std::vector<float> planes = lutPlanes(paddedTexels(*tables[t], *extents[t]), extents[t]->x, extents[t]->y);
+        const std::vector<float> planes =
+            lutPlanes(paddedTexels(*tables[t], *extents[t]), extents[t]->x, extents[t]->y);
         images_[t].uploadLayer(planes.data(), planes.size() * sizeof(float), layer, oldLayout);
     }
     layers_[layer].mapping = lutMapping(luts, extents_);

@@ -48,8 +48,7 @@ gpu::GpuInstance toGpuInstance(const glm::mat4& worldFromObject) {
     return g;
 }
 
-GpuScene::GpuScene(const vk::Device& device, const Scene& scene)
-    : device_(device), sceneMaterials_(scene.materials) {
+GpuScene::GpuScene(const vk::Device& device, const Scene& scene) : device_(device), sceneMaterials_(scene.materials) {
     const VkDevice dev = device.device();
     // Geometry: one buffer each. Indices are stored rebased to the shared vertex buffer (every
     // draw has vertexOffset 0), so that consecutive primitives of a mesh that share a material
@@ -66,7 +65,8 @@ GpuScene::GpuScene(const vk::Device& device, const Scene& scene)
         meshFirstVertex.push_back(static_cast<uint32_t>(allVertices.size()));
         for (const Primitive& p : scene.meshes[m].primitives) {
             const auto base = static_cast<uint32_t>(allVertices.size());
-            meshRanges[m].push_back({static_cast<uint32_t>(allIndices.size()), static_cast<uint32_t>(p.indices.size()), 0});
+            meshRanges[m].push_back(
+                {static_cast<uint32_t>(allIndices.size()), static_cast<uint32_t>(p.indices.size()), 0});
             allVertices.insert(allVertices.end(), p.vertices.begin(), p.vertices.end());
             for (const uint32_t index : p.indices) allIndices.push_back(base + index);
         }
@@ -78,7 +78,7 @@ GpuScene::GpuScene(const vk::Device& device, const Scene& scene)
         const Mesh& mesh = scene.meshes[m];
         const bool skin = std::any_of(mesh.primitives.begin(), mesh.primitives.end(), [&](const Primitive& p) {
             return p.material >= 0 && size_t(p.material) < scene.materials.size() &&
-                   scene.materials[size_t(p.material)].skin.has_value();
+                scene.materials[size_t(p.material)].skin.has_value();
         });
         if (!skin) continue;
         double scale = 1.0;
@@ -101,10 +101,10 @@ GpuScene::GpuScene(const vk::Device& device, const Scene& scene)
         const std::vector<NormalBasis> basis = computeNormalBasis(positions, normals, meshIndices, 1000.0 * scale);
         std::copy(basis.begin(), basis.end(), allBasis.begin() + meshFirstVertex[m]);
     }
-    normalBasis = vk::Buffer(device, std::max<size_t>(allBasis.size(), 1) * sizeof(NormalBasis),
-                             VK_BUFFER_USAGE_VERTEX_BUFFER_BIT | VK_BUFFER_USAGE_STORAGE_BUFFER_BIT |
-                                 VK_BUFFER_USAGE_TRANSFER_SRC_BIT,
-                             false);
+    normalBasis = vk::Buffer(
+        device, std::max<size_t>(allBasis.size(), 1) * sizeof(NormalBasis),
+        VK_BUFFER_USAGE_VERTEX_BUFFER_BIT | VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_TRANSFER_SRC_BIT,
+        false);
     normalBasis.upload(allBasis.data(), allBasis.size() * sizeof(NormalBasis));
 
     // Also read by the deformation pass (GpuDeformer) as its rest pose.
@@ -132,15 +132,16 @@ GpuScene::GpuScene(const vk::Device& device, const Scene& scene)
             const PrimitiveRange& r = meshRanges[size_t(inst.mesh)][p];
             if (r.indexCount == 0) continue;
             const uint32_t material = prim.material >= 0 && size_t(prim.material) < scene.materials.size()
-                                          ? static_cast<uint32_t>(prim.material)
-                                          : defaultMaterial;
-            const glm::vec3 center = glm::vec3(inst.worldFromObject * glm::vec4(prim.boundsOs.empty() ? glm::vec3(0.0f)
-                                                                                    : prim.boundsOs.center(), 1.0f));
+                ? static_cast<uint32_t>(prim.material)
+                : defaultMaterial;
+            const glm::vec3 center =
+                glm::vec3(inst.worldFromObject *
+                          glm::vec4(prim.boundsOs.empty() ? glm::vec3(0.0f) : prim.boundsOs.center(), 1.0f));
             // Draw submission costs the same per call whatever its size (on lavapipe about 10 us
             // per draw and pass), so a run of primitives of one instance with one material
             // becomes one draw. Blended primitives stay apart: they are sorted back to front.
-            const bool blended = material < scene.materials.size() &&
-                                 scene.materials[material].alphaMode == AlphaMode::Blend;
+            const bool blended =
+                material < scene.materials.size() && scene.materials[material].alphaMode == AlphaMode::Blend;
             DrawItem* last = draws.empty() ? nullptr : &draws.back();
             if (!blended && last && last->instance == instanceIndex && last->material == material &&
                 last->firstIndex + last->indexCount == r.firstIndex && !lastBlended) {
@@ -157,12 +158,13 @@ GpuScene::GpuScene(const vk::Device& device, const Scene& scene)
     // Default textures.
     const uint8_t whitePixel[4] = {255, 255, 255, 255};
     const uint8_t flatPixel[4] = {128, 128, 255, 255};
-    white_ = vk::Image(device, {VK_FORMAT_R8G8B8A8_UNORM, 1, 1, 1,
-                                VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_DST_BIT, VK_IMAGE_ASPECT_COLOR_BIT});
+    white_ = vk::Image(device,
+                       {VK_FORMAT_R8G8B8A8_UNORM, 1, 1, 1, VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_DST_BIT,
+                        VK_IMAGE_ASPECT_COLOR_BIT});
     white_.uploadAndGenerateMips(whitePixel, 4);
-    flatNormal_ = vk::Image(device, {VK_FORMAT_R8G8B8A8_UNORM, 1, 1, 1,
-                                     VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_DST_BIT,
-                                     VK_IMAGE_ASPECT_COLOR_BIT});
+    flatNormal_ = vk::Image(device,
+                            {VK_FORMAT_R8G8B8A8_UNORM, 1, 1, 1,
+                             VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_DST_BIT, VK_IMAGE_ASPECT_COLOR_BIT});
     flatNormal_.uploadAndGenerateMips(flatPixel, 4);
 
     // Samplers: the scene's, then the default (linear, mipmapped, repeat).
@@ -170,15 +172,15 @@ GpuScene::GpuScene(const vk::Device& device, const Scene& scene)
     vkGetPhysicalDeviceFeatures(device.physicalDevice(), &features);
     // Anisotropic filtering on hardware only: lavapipe emulates it with many taps per sample,
     // which nearly doubled the forward pass of the head scene there.
-    const bool anisotropy = features.samplerAnisotropy &&
-                            device.properties().deviceType != VK_PHYSICAL_DEVICE_TYPE_CPU;
+    const bool anisotropy = features.samplerAnisotropy && device.properties().deviceType != VK_PHYSICAL_DEVICE_TYPE_CPU;
     std::vector<Sampler> samplerDescs = scene.samplers;
     samplerDescs.push_back(Sampler{});
     for (const Sampler& s : samplerDescs) {
         VkSamplerCreateInfo info{VK_STRUCTURE_TYPE_SAMPLER_CREATE_INFO};
         info.magFilter = toVk(s.magFilter);
         info.minFilter = toVk(s.minFilter);
-        info.mipmapMode = s.mipFilter == Filter::Nearest ? VK_SAMPLER_MIPMAP_MODE_NEAREST : VK_SAMPLER_MIPMAP_MODE_LINEAR;
+        info.mipmapMode =
+            s.mipFilter == Filter::Nearest ? VK_SAMPLER_MIPMAP_MODE_NEAREST : VK_SAMPLER_MIPMAP_MODE_LINEAR;
         info.addressModeU = toVk(s.wrapU);
         info.addressModeV = toVk(s.wrapV);
         info.addressModeW = VK_SAMPLER_ADDRESS_MODE_REPEAT;
@@ -205,8 +207,9 @@ GpuScene::GpuScene(const vk::Device& device, const Scene& scene)
                                 : VkShaderStageFlags(VK_SHADER_STAGE_FRAGMENT_BIT)});
     materialLayout_ = vk::createSetLayout(device, bindings);
     const uint32_t setCount = defaultMaterial + 1;
-    const VkDescriptorPoolSize sizes[] = {{VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, setCount},
-                                          {VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, setCount * gpu::kMaterialTextureCount}};
+    const VkDescriptorPoolSize sizes[] = {
+        {VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, setCount},
+        {VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, setCount * gpu::kMaterialTextureCount}};
     pool_ = vk::createDescriptorPool(device, sizes, setCount);
 
     const VkDeviceSize align = device.properties().limits.minUniformBufferOffsetAlignment;
@@ -222,12 +225,13 @@ GpuScene::GpuScene(const vk::Device& device, const Scene& scene)
         gm.doubleSided = mat.doubleSided;
         if (mat.skin)
             gm.skinInputs = (mat.skin->detailNormalTexture.valid() ? gpu::kSkinInputDetailNormals : 0u) |
-                            (uint32_t(static_cast<int>(mat.skin->curvatureSource)) << gpu::kSkinInputCurvatureShift) |
-                            (mat.skin->specularTexture.valid() ? gpu::kSkinInputSpecularMap : 0u);
+                (uint32_t(static_cast<int>(mat.skin->curvatureSource)) << gpu::kSkinInputCurvatureShift) |
+                (mat.skin->specularTexture.valid() ? gpu::kSkinInputSpecularMap : 0u);
         // Without anisotropic filtering the unbiased normal is the biased samples' levels blended
         // at the unbiased level of detail: the shader takes it from them.
         if (mat.skin && !samplerAnisotropic_[samplerSlot(mat.normal.sampler)] &&
-            !(mat.skin->detailNormalTexture.valid() && samplerAnisotropic_[samplerSlot(mat.skin->detailNormalTexture.sampler)]))
+            !(mat.skin->detailNormalTexture.valid() &&
+              samplerAnisotropic_[samplerSlot(mat.skin->detailNormalTexture.sampler)]))
             gm.skinInputs |= gpu::kSkinInputSpecularFromLevels;
         if (mat.skin && mat.skin->profileWeightTexture.valid())
             gm.profileMix = 1u + uint32_t(std::min(mat.skin->blendProfiles.size(), size_t(kMaxBlendedProfiles - 1)));
@@ -235,7 +239,7 @@ GpuScene::GpuScene(const vk::Device& device, const Scene& scene)
             const Image& img = scene.images[size_t(mat.normal.image)];
             // KHR_texture_transform's scale repeats the map: density grows with it.
             gm.texelsPerMm = texelsPerMm(uvArea[i], worldArea[i], img.width, img.height) *
-                             std::sqrt(std::abs(mat.normal.uvScale.x * mat.normal.uvScale.y));
+                std::sqrt(std::abs(mat.normal.uvScale.x * mat.normal.uvScale.y));
         }
         gm.set = vk::allocateDescriptorSet(device, pool_, materialLayout_);
 
@@ -258,8 +262,8 @@ GpuScene::GpuScene(const vk::Device& device, const Scene& scene)
             {gpu::kBindingDetailNormalTexture, skin.detailNormalTexture.image, skin.detailNormalTexture.sampler, false,
              &flatNormal_},
             {gpu::kBindingCurvatureTexture, skin.curvatureTexture.image, skin.curvatureTexture.sampler, false, &white_},
-            {gpu::kBindingProfileWeightTexture, skin.profileWeightTexture.image, skin.profileWeightTexture.sampler, false,
-             &white_},
+            {gpu::kBindingProfileWeightTexture, skin.profileWeightTexture.image, skin.profileWeightTexture.sampler,
+             false, &white_},
         };
         std::array<VkDescriptorImageInfo, gpu::kMaterialTextureCount> imageInfos{};
         std::array<VkWriteDescriptorSet, gpu::kMaterialTextureCount + 1> writes{};
@@ -344,9 +348,9 @@ gpu::MaterialUniforms GpuScene::uniformsFor(const Material& mat, const GpuMateri
         auto layerOf = [&](int index) {
             return index >= 0 && size_t(index) < layers.size() ? layers[size_t(index)] : ProfileLayer{};
         };
-        const glm::vec3 bias = s.normalLodBias ? *s.normalLodBias
-                                               : normalLodBias(layerOf(s.profile + 1).widthMm, s.scatterScale,
-                                                               gm.texelsPerMm);
+        const glm::vec3 bias = s.normalLodBias
+            ? *s.normalLodBias
+            : normalLodBias(layerOf(s.profile + 1).widthMm, s.scatterScale, gm.texelsPerMm);
         u.skinNormalLodBias = glm::vec4(bias, s.detailNormalScale);
         u.skinTransmission = glm::vec4(s.transmissionColor, s.thicknessScale);
         u.skinSpecular = glm::vec4(s.specularIntensity, s.lobeRoughness0, s.lobeRoughness1, s.lobeMix);
@@ -372,8 +376,9 @@ void GpuScene::updateMaterials(const std::vector<ProfileLayer>& layers) {
     for (size_t i = 0; i < materials.size(); ++i) {
         const Material& mat = i < sceneMaterials_.size() ? sceneMaterials_[i] : fallback;
         const gpu::MaterialUniforms u = uniformsFor(mat, materials[i], layers);
-        materials[i].normalLevels = uint32_t(normalLevelCount(glm::vec3(u.skinNormalLodBias), materials[i].normalMipLevels,
-                                                              (materials[i].skinInputs & gpu::kSkinInputSpecularFromLevels) != 0u));
+        materials[i].normalLevels =
+            uint32_t(normalLevelCount(glm::vec3(u.skinNormalLodBias), materials[i].normalMipLevels,
+                                      (materials[i].skinInputs & gpu::kSkinInputSpecularFromLevels) != 0u));
         materials[i].lutMapping = u.skinLuts[0];
         materialUniforms_.upload(&u, sizeof(u), uniformStride_ * i);
     }

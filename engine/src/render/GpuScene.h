@@ -22,7 +22,7 @@ struct DrawItem {
     uint32_t indexCount = 0;
     int32_t vertexOffset = 0;
     uint32_t instance = 0;
-    uint32_t material = 0;  // index into GpuScene::materials
+    uint32_t material = 0;     // index into GpuScene::materials
     glm::vec3 centerWs{0.0f};  // of the (first) primitive; sorts blended draws, which are never merged
 };
 
@@ -41,7 +41,7 @@ struct GpuMaterial {
     // The kSpecSkinInputs value of a skin material: skinInputs, the normal levels, double-sidedness.
     uint32_t skinInputBits() const {
         return skinInputs | (normalLevels << gpu::kSkinInputNormalLevelsShift) |
-               (doubleSided ? gpu::kSkinInputDoubleSided : 0u);
+            (doubleSided ? gpu::kSkinInputDoubleSided : 0u);
     }
 };
 
@@ -94,7 +94,7 @@ private:
     std::map<std::pair<int, bool>, vk::Image> textures_;
     vk::Image white_;
     vk::Image flatNormal_;
-    std::vector<VkSampler> samplers_;  // scene samplers, then the default
+    std::vector<VkSampler> samplers_;       // scene samplers, then the default
     std::vector<bool> samplerAnisotropic_;  // per entry of samplers_
     VkDescriptorSetLayout materialLayout_ = VK_NULL_HANDLE;
     VkDescriptorPool pool_ = VK_NULL_HANDLE;

@@ -11,9 +11,9 @@
 #include <unistd.h>
 
 #include <algorithm>
+#include <cctype>
 #include <cmath>
 #include <cstring>
-#include <cctype>
 #include <filesystem>
 #include <system_error>
 
@@ -35,8 +35,8 @@ void checkOutputPath(const std::filesystem::path& path, OutputEncoding encoding)
     const std::string ext = lowerExtension(path);
     const std::string wanted = encoding == OutputEncoding::DisplaySrgb8 ? ".png" : ".exr";
     if (ext != wanted)
-        throw Error(fmt::format("{}: output: type '{}' does not match the encoding (expected {})", path.string(), ext,
-                                wanted));
+        throw Error(
+            fmt::format("{}: output: type '{}' does not match the encoding (expected {})", path.string(), ext, wanted));
     checkOutputFile(path);
 }
 
@@ -82,8 +82,8 @@ void writeImage(const std::filesystem::path& path, const RenderedImage& eyes) {
     const bool display = image.encoding == OutputEncoding::DisplaySrgb8;
     const size_t expected = size_t(image.width) * image.height * 4;
     if (image.width == 0 || image.height == 0 || (display ? image.rgba8.size() : image.rgba32f.size()) != expected)
-        throw Error(fmt::format("{}: image data does not match its size {}x{}", path.string(), image.width,
-                                image.height));
+        throw Error(
+            fmt::format("{}: image data does not match its size {}x{}", path.string(), image.width, image.height));
     // Half floats end at 65504: brighter radiance saturates there instead of becoming infinite.
     std::vector<float> linear;
     if (!display) {
@@ -98,14 +98,16 @@ void writeImage(const std::filesystem::path& path, const RenderedImage& eyes) {
                                     path.string(), nonFinite));
     }
     const std::string format = display ? "png" : "openexr";
-    OIIO::ImageSpec spec(int(image.width), int(image.height), 4, display ? OIIO::TypeDesc::UINT8 : OIIO::TypeDesc::HALF);
+    OIIO::ImageSpec spec(int(image.width), int(image.height), 4,
+                         display ? OIIO::TypeDesc::UINT8 : OIIO::TypeDesc::HALF);
     spec.attribute("oiio:ColorSpace", display ? "sRGB" : "Linear");
     if (!display) spec.attribute("compression", "zip");
     spec.attribute("DateTime", "");  // no time stamp: the same image is the same bytes
     writeOutputFile(path, [&](const std::filesystem::path& temp) {
         auto out = OIIO::ImageOutput::create(format);
         if (!out) throw Error(fmt::format("{}: no {} writer: {}", path.string(), format, OIIO::geterror()));
-        if (!out->open(temp.string(), spec)) throw Error(fmt::format("{}: cannot create file: {}", path.string(), out->geterror()));
+        if (!out->open(temp.string(), spec))
+            throw Error(fmt::format("{}: cannot create file: {}", path.string(), out->geterror()));
         const bool ok = display ? out->write_image(OIIO::TypeDesc::UINT8, image.rgba8.data())
                                 : out->write_image(OIIO::TypeDesc::FLOAT, linear.data());
         if (!ok) {

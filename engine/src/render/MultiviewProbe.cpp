@@ -22,8 +22,9 @@ bool multiviewClipsEveryView(const vk::Device& device) {
     constexpr uint32_t kSize = 4;
     constexpr uint32_t kViews = 2;
     constexpr VkFormat kFormat = VK_FORMAT_R8G8B8A8_UNORM;
-    vk::Image target(device, {kFormat, kSize, kSize, 1, VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT,
-                              VK_IMAGE_ASPECT_COLOR_BIT, kViews});
+    vk::Image target(device,
+                     {kFormat, kSize, kSize, 1, VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT,
+                      VK_IMAGE_ASPECT_COLOR_BIT, kViews});
     vk::Buffer readback(device, kSize * kSize * 4 * kViews, VK_BUFFER_USAGE_TRANSFER_DST_BIT, true);
     const VkPipelineLayout layout = vk::createPipelineLayout(device, {}, 0, 0);
     VkPipeline pipeline = VK_NULL_HANDLE;

@@ -12,8 +12,9 @@ Bounds transformed(const Bounds& b, const glm::mat4& m) {
     Bounds out;
     if (b.empty()) return out;
     for (int i = 0; i < 8; ++i)
-        out.extend(glm::vec3(m * glm::vec4((i & 1) ? b.max.x : b.min.x, (i & 2) ? b.max.y : b.min.y,
-                                           (i & 4) ? b.max.z : b.min.z, 1.0f)));
+        out.extend(glm::vec3(
+            m *
+            glm::vec4((i & 1) ? b.max.x : b.min.x, (i & 2) ? b.max.y : b.min.y, (i & 4) ? b.max.z : b.min.z, 1.0f)));
     return out;
 }
 

@@ -27,9 +27,9 @@ public:
 
 private:
     struct MeshBounds {
-        Bounds object;                      // all primitives
-        std::vector<float> targetReach;     // per morph target: the largest |position delta|
-        std::vector<Bounds> jointBounds;    // per skin joint index: vertices it influences
+        Bounds object;                    // all primitives
+        std::vector<float> targetReach;   // per morph target: the largest |position delta|
+        std::vector<Bounds> jointBounds;  // per skin joint index: vertices it influences
     };
     std::vector<MeshBounds> meshes_;
     std::vector<int> instanceMesh_;

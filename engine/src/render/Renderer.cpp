@@ -9,9 +9,9 @@
 #include <preskin/Error.h>
 #include <preskin/ProfileLibrary.h>
 
+#include <preskin/LightRecord.h>
 #include "lights/ClusterBuilder.h"
 #include "render/GpuDeformer.h"
-#include <preskin/LightRecord.h>
 #include "render/GpuLuts.h"
 #include "render/GpuScene.h"
 #include "render/InputChecks.h"
@@ -25,9 +25,9 @@
 #include "vk/Resources.h"
 
 #include <fmt/core.h>
-#include <glm/gtc/matrix_access.hpp>
 #include <fmt/format.h>
 #include <fmt/ranges.h>
+#include <glm/gtc/matrix_access.hpp>
 
 #include <algorithm>
 #include <array>
@@ -78,20 +78,25 @@ bool finite(const glm::mat4& m) {
 
 uint32_t SkinFeatures::mask() const {
     return (lutDiffuse ? gpu::kSkinLutDiffuse : 0u) | (normalPrefilter ? gpu::kSkinNormalPrefilter : 0u) |
-           (penumbra ? gpu::kSkinPenumbra : 0u) | (shAmbient ? gpu::kSkinShAmbient : 0u) |
-           (transmission ? gpu::kSkinTransmission : 0u) | (dualSpecular ? gpu::kSkinDualSpecular : 0u);
+        (penumbra ? gpu::kSkinPenumbra : 0u) | (shAmbient ? gpu::kSkinShAmbient : 0u) |
+        (transmission ? gpu::kSkinTransmission : 0u) | (dualSpecular ? gpu::kSkinDualSpecular : 0u);
 }
 
 Renderer::Impl::Impl(Context& ctx, const Scene& s, const Environment& env, const std::vector<const LutSet*>& lutLayers,
                      const RenderSettings& rs)
-    : context(ctx), dev(ContextAccess::core(ctx)), settings(rs), lights(s.lights),
+    : context(ctx),
+      dev(ContextAccess::core(ctx)),
+      settings(rs),
+      lights(s.lights),
       environment(env.downsampled(kEnvironmentKeptWidth)),
-      bounds(s.worldBounds()), sceneName(s.sourcePath.empty() ? std::string("scene") : s.sourcePath.string()) {
+      bounds(s.worldBounds()),
+      sceneName(s.sourcePath.empty() ? std::string("scene") : s.sourcePath.string()) {
     checkRenderSettings(rs);
     checkLights(s.lights);
     updateEnvironmentLights(true);
     scene = std::make_unique<GpuScene>(dev, s);
-    sceneHasSkin = std::any_of(s.materials.begin(), s.materials.end(), [](const Material& m) { return m.skin.has_value(); });
+    sceneHasSkin =
+        std::any_of(s.materials.begin(), s.materials.end(), [](const Material& m) { return m.skin.has_value(); });
     poseBounds = std::make_unique<PoseBounds>(s);
     receiverPoseBounds = std::make_unique<PoseBounds>(skinReceiverBounds(s));
     deformer = std::make_unique<GpuDeformer>(dev, s, scene->vertices, scene->normalBasis, scene->meshFirstVertex);
@@ -135,7 +140,7 @@ void Renderer::Impl::createLayouts() {
         {gpu::kBindingShadowMap, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, fs},
         {gpu::kBindingDiffuseLut, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, fs},
         {gpu::kBindingPenumbraLut, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, fs},
-        {gpu::kBindingShTransferLut, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, all},  // per-vertex SH transfer
+        {gpu::kBindingShTransferLut, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, all},     // per-vertex SH transfer
         {gpu::kBindingTransmittanceLut, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, all},  // per-vertex sphere term
         {gpu::kBindingClusterRanges, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, fs},
         {gpu::kBindingClusterIndices, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, fs},
@@ -153,7 +158,8 @@ void Renderer::Impl::createLayouts() {
     const vk::Binding reduceBindings[] = {{0, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, VK_SHADER_STAGE_COMPUTE_BIT},
                                           {1, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, VK_SHADER_STAGE_COMPUTE_BIT}};
     reduceSetLayout = vk::createSetLayout(dev, reduceBindings);
-    reduceLayout = vk::createPipelineLayout(dev, std::span(&reduceSetLayout, 1), sizeof(uint32_t), VK_SHADER_STAGE_COMPUTE_BIT);
+    reduceLayout =
+        vk::createPipelineLayout(dev, std::span(&reduceSetLayout, 1), sizeof(uint32_t), VK_SHADER_STAGE_COMPUTE_BIT);
     reducePipeline = vk::createComputePipeline(dev, shader("shadow_reduce.comp"), reduceLayout);
 
     // Per slot: the frame's set (9 images) and the reduction's (1 image in, 1 out).
@@ -236,7 +242,7 @@ void Renderer::Impl::resolveEyeDrawing() {
     resolvedEyeDrawing = settings.eyeDrawing;
     if (resolvedEyeDrawing == EyeDrawing::Auto)
         resolvedEyeDrawing = dev.shaderOutputLayer() && !multiviewClipsEveryView(dev) ? EyeDrawing::InstancedLayers
-                                                                                       : EyeDrawing::Multiview;
+                                                                                      : EyeDrawing::Multiview;
 }
 
 void Renderer::Impl::setShaderOverrides(const std::map<std::string, std::vector<uint32_t>>& spirv) {
@@ -264,8 +270,8 @@ void Renderer::Impl::setShaderOverrides(const std::map<std::string, std::vector<
 
 void Renderer::Impl::setPose(ScenePose p) {
     if (p.instances.size() != scene->restInstances.size())
-        throw Error(fmt::format("pose: {} instances for a scene of {}", p.instances.size(),
-                                scene->restInstances.size()));
+        throw Error(
+            fmt::format("pose: {} instances for a scene of {}", p.instances.size(), scene->restInstances.size()));
     for (size_t i = 0; i < p.instances.size(); ++i)
         if (!finite(p.instances[i].worldFromObject))
             throw Error(fmt::format("pose: instance {}: its transform is not finite", i));
@@ -278,7 +284,7 @@ void Renderer::Impl::setPose(ScenePose p) {
 
 // Fills the slot's uniforms and light list; returns whether a shadow map is rendered.
 bool Renderer::Impl::prepareFrame(Slot& slot, uint32_t slotIndex, const View& view, VkExtent2D extent,
-                  glm::mat4& shadowClipFromWorld) {
+                                  glm::mat4& shadowClipFromWorld) {
     // The pose: instance transforms, and the deformation's weights and joint matrices.
     if (slot.instancesPose != poseVersion) {  // static scenes fill them once per slot
         auto* instances = static_cast<gpu::GpuInstance*>(slot.instances.mapped());
@@ -302,8 +308,7 @@ bool Renderer::Impl::prepareFrame(Slot& slot, uint32_t slotIndex, const View& vi
     gpuLights.reserve(ordered.size());
     for (size_t i = 0; i < ordered.size(); ++i) gpuLights.push_back(toGpuLight(ordered[i], i == 0 && shadowLight >= 0));
     const VkDeviceSize bytes = std::max<size_t>(gpuLights.size(), 1) * sizeof(gpu::GpuLight);
-    if (bytes > slot.lights.size())
-        slot.lights = vk::Buffer(dev, bytes * 2, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, true);
+    if (bytes > slot.lights.size()) slot.lights = vk::Buffer(dev, bytes * 2, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, true);
     slot.lights.upload(gpuLights.data(), gpuLights.size() * sizeof(gpu::GpuLight));
     slot.lightCount = static_cast<uint32_t>(gpuLights.size());
 
@@ -315,23 +320,23 @@ bool Renderer::Impl::prepareFrame(Slot& slot, uint32_t slotIndex, const View& vi
         u.eyes[e].viewDepthFromWorld = -glm::row(eye.viewFromWorld, 2);
     }
     u.params = glm::vec4(settings.exposure, float(view.eyeCount()), 0.0f, 0.0f);
-    u.viewport = glm::vec4(float(extent.width), float(extent.height), 1.0f / float(extent.width),
-                           1.0f / float(extent.height));
+    u.viewport =
+        glm::vec4(float(extent.width), float(extent.height), 1.0f / float(extent.width), 1.0f / float(extent.height));
     const uint32_t mapSize = shadowMap.desc().width;
     ShadowFit fit;  // without a shadow light: unit values, never sampled
     fit.texelSizeM = 2.0f / float(mapSize);
     fit.depthRangeM = 2.0f;
     if (shadowLight >= 0) {
         const glm::vec3 dir = glm::length(frameLights[size_t(shadowLight)].directionWs) > 0.0f
-                                  ? glm::normalize(frameLights[size_t(shadowLight)].directionWs)
-                                  : glm::vec3(0.0f, 0.0f, -1.0f);
+            ? glm::normalize(frameLights[size_t(shadowLight)].directionWs)
+            : glm::vec3(0.0f, 0.0f, -1.0f);
         fit = fitDirectionalShadow(bounds, settings.fitShadowToSkin ? receivers : Bounds{}, view, dir, mapSize);
         shadowClipFromWorld = fit.clipFromWorld;
         u.shadowClipFromWorld = shadowClipFromWorld;
         u.shadowDirectionWs = glm::vec4(dir, 1.0f);
     }
-    u.shadowParams = glm::vec4(fit.texelSizeM, std::max(settings.shadowSoftnessTexels, 0.25f), fit.depthRangeM,
-                               float(mapSize));
+    u.shadowParams =
+        glm::vec4(fit.texelSizeM, std::max(settings.shadowSoftnessTexels, 0.25f), fit.depthRangeM, float(mapSize));
     // Skin's wide map: blocks of the shadow map so large that its filter's footprint (3 wide
     // texels, preskin/skin.glsl) covers the distance the widest skin profile scatters.
     const double reachMm = settings.skinShadowReachMm > 0.0f ? double(settings.skinShadowReachMm) : skinReachMm;
@@ -418,8 +423,8 @@ int32_t Renderer::Impl::bindDrawVertices(VkCommandBuffer cmd, uint32_t slotIndex
     const VkBuffer vb = deformed ? deformer->output(slotIndex).handle() : scene->vertices.handle();
     if (vb != bound) {
         // Binding 1, the skin's normal basis, is laid out like the vertices.
-        const VkBuffer buffers[2] = {vb, deformed ? deformer->normalBasisOutput(slotIndex).handle()
-                                                  : scene->normalBasis.handle()};
+        const VkBuffer buffers[2] = {
+            vb, deformed ? deformer->normalBasisOutput(slotIndex).handle() : scene->normalBasis.handle()};
         const VkDeviceSize offsets[2] = {0, 0};
         vkCmdBindVertexBuffers(cmd, 0, 2, buffers, offsets);
         bound = vb;
@@ -454,8 +459,7 @@ void Renderer::Impl::timestamp(VkCommandBuffer cmd, Slot& slot, uint32_t query) 
 void Renderer::Impl::record(VkCommandBuffer cmd, const RenderTarget& target, const View& view, uint32_t slotIndex) {
     const auto start = std::chrono::steady_clock::now();
     if (slotIndex >= kSlotCount) throw Error(fmt::format("Renderer::record: frame slot {} (0 or 1)", slotIndex));
-    if (target.extent.width == 0 || target.extent.height == 0)
-        throw Error("Renderer::record: target extent is empty");
+    if (target.extent.width == 0 || target.extent.height == 0) throw Error("Renderer::record: target extent is empty");
     checkFrame(view);
     checkTarget(target);
     Slot& slot = slots[slotIndex];
@@ -503,7 +507,10 @@ FrameStats Renderer::Impl::stats(uint32_t slotIndex) const {
     if (r != VK_SUCCESS) return s;
     const double toMs = double(dev.timestampPeriodNs()) * 1e-6;
     auto ms = [&](int a, int b) { return double(ticks[size_t(b)] - ticks[size_t(a)]) * toMs; };
-    s.passes = {{"deform", ms(0, 1)}, {"curvature", ms(1, 2)}, {"shadow", ms(2, 3)}, {"clusters", ms(3, 4)},
+    s.passes = {{"deform", ms(0, 1)},
+                {"curvature", ms(1, 2)},
+                {"shadow", ms(2, 3)},
+                {"clusters", ms(3, 4)},
                 {"forward", ms(4, 5)}};
     s.gpuMs = ms(0, 5);
     return s;
@@ -518,9 +525,10 @@ void Renderer::Impl::checkProfileLayers(size_t layerCount) const {
         for (int p : materials[i].skin->blendProfiles) profiles.push_back(p);
         for (int p : profiles) {
             if (p >= -1 && size_t(p + 1) < layerCount) continue;
-            throw Error(fmt::format("{}: materials[{}] ('{}'): profile {} has no LUT layer: the renderer holds {} "
-                                    "(the default set and {} profiles)",
-                                    sceneName, i, materials[i].name, p, layerCount, layerCount - 1));
+            throw Error(
+                fmt::format("{}: materials[{}] ('{}'): profile {} has no LUT layer: the renderer holds {} "
+                            "(the default set and {} profiles)",
+                            sceneName, i, materials[i].name, p, layerCount, layerCount - 1));
         }
     }
 }
@@ -654,9 +662,10 @@ RenderedImage Renderer::render(const View& view, uint32_t width, uint32_t height
     if (!im.colorTarget || im.colorTarget.desc().width != width || im.colorTarget.desc().height != height ||
         im.colorTarget.desc().format != format || im.colorTarget.desc().layers != eyes) {
         vkDeviceWaitIdle(im.dev.device());
-        im.colorTarget = vk::Image(im.dev, {format, width, height, 1,
-                                            VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT,
-                                            VK_IMAGE_ASPECT_COLOR_BIT, eyes});
+        im.colorTarget =
+            vk::Image(im.dev,
+                      {format, width, height, 1, VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT,
+                       VK_IMAGE_ASPECT_COLOR_BIT, eyes});
         im.readback = vk::Buffer(im.dev, VkDeviceSize(width) * height * pixelBytes * eyes,
                                  VK_BUFFER_USAGE_TRANSFER_DST_BIT, true);
     }

@@ -34,8 +34,8 @@ inline constexpr uint32_t kEnvironmentKeptWidth = 2048;
 
 // What makes one forward pipeline differ from another.
 struct PipelineKey {
-    uint32_t model, alphaMode, doubleSided, format, depthFormat, debugView, skinMask, lightLoop, specular, eyes, samples,
-        layered, profileMix, skinInputs;
+    uint32_t model, alphaMode, doubleSided, format, depthFormat, debugView, skinMask, lightLoop, specular, eyes,
+        samples, layered, profileMix, skinInputs;
     std::array<uint32_t, 32> lutMapping;  // skin: the material's own LutMapping, as bits (kSpecLutMapping)
     auto tie() const {
         return std::tie(model, alphaMode, doubleSided, format, depthFormat, debugView, skinMask, lightLoop, specular,
@@ -48,7 +48,7 @@ struct Renderer::Impl {
     struct Slot {
         vk::Buffer frameUniforms;
         vk::Buffer lights;
-        vk::Buffer instances;  // GpuInstance per scene instance, from the pose
+        vk::Buffer instances;            // GpuInstance per scene instance, from the pose
         uint64_t instancesPose = ~0ull;  // the pose version they hold
         VkDescriptorSet set = VK_NULL_HANDLE;
         VkDescriptorSet reduceSet = VK_NULL_HANDLE;  // the wide shadow map's reduction: shadow map in, wide map out
@@ -66,17 +66,17 @@ struct Renderer::Impl {
     RenderSettings settings;
     EyeDrawing resolvedEyeDrawing = EyeDrawing::Multiview;
     std::vector<Light> lights;  // the scene's or the host's (setLights)
-    Environment environment;  // its image at most kEnvironmentKeptWidth wide: all the renderer reads
+    Environment environment;    // its image at most kEnvironmentKeptWidth wide: all the renderer reads
     // The environment's dominant lights for settings.environmentLights (-1: resolved), and the
     // lights a frame shades: lights, then the extracted ones.
     int extractedCount = -2;
     EnvironmentLights extracted;
     std::vector<Light> extractedLights;
     std::vector<Light> frameLights;
-    std::vector<Light> orderedLights;  // frameLights in the shaders' order (prepareFrame)
+    std::vector<Light> orderedLights;                 // frameLights in the shaders' order (prepareFrame)
     std::unique_ptr<GpuEnvironment> environmentMaps;  // the backdrop, the prefiltered cube, the DFG table
-    Bounds bounds;     // of the scene in the current pose
-    Bounds receivers;  // of the skin in the current pose: what the shadow map is fitted to (render/ShadowFit.h)
+    Bounds bounds;                                    // of the scene in the current pose
+    Bounds receivers;       // of the skin in the current pose: what the shadow map is fitted to (render/ShadowFit.h)
     std::string sceneName;  // for messages
     std::unique_ptr<GpuScene> scene;
     ScenePose pose;
@@ -100,15 +100,15 @@ struct Renderer::Impl {
     };
     std::vector<Retired> retired;
     vk::Image shadowMap;
-    vk::Image wideShadowMap;  // skin's: the shadow map's nearest depth per block of wideFactor^2 texels
-    uint32_t wideFactor = 8;  // this frame's (prepareFrame): the wide filter's footprint covers skinReachMm
+    vk::Image wideShadowMap;   // skin's: the shadow map's nearest depth per block of wideFactor^2 texels
+    uint32_t wideFactor = 8;   // this frame's (prepareFrame): the wide filter's footprint covers skinReachMm
     double skinReachMm = 0.0;  // world mm the widest skin profile scatters far enough to show (2 RMS widths)
     VkDescriptorSetLayout reduceSetLayout = VK_NULL_HANDLE;
     VkPipelineLayout reduceLayout = VK_NULL_HANDLE;
     VkPipeline reducePipeline = VK_NULL_HANDLE;
     bool sceneHasSkin = false;
-    vk::Image depth;        // one layer per eye, msaaSamples samples
-    vk::Image msaaColor;    // MSAA only: one layer per eye, resolved into the target
+    vk::Image depth;      // one layer per eye, msaaSamples samples
+    vk::Image msaaColor;  // MSAA only: one layer per eye, resolved into the target
     std::map<PipelineKey, VkPipeline> pipelines;
     VkPipeline shadowPipeline = VK_NULL_HANDLE;      // depth only
     VkPipeline shadowMaskPipeline = VK_NULL_HANDLE;  // alpha-masked materials
@@ -189,7 +189,8 @@ struct Renderer::Impl {
     void ensureAttachments(VkExtent2D extent, uint32_t eyes, VkFormat colorFormat, bool ownDepth, uint32_t slotIndex);
 
     // Fills the slot's uniforms and light list; returns whether a shadow map is rendered.
-    bool prepareFrame(Slot& slot, uint32_t slotIndex, const View& view, VkExtent2D extent, glm::mat4& shadowClipFromWorld);
+    bool prepareFrame(Slot& slot, uint32_t slotIndex, const View& view, VkExtent2D extent,
+                      glm::mat4& shadowClipFromWorld);
 
     void updateFrameSet(Slot& slot, uint32_t slotIndex);
 
@@ -202,7 +203,8 @@ struct Renderer::Impl {
 
     void recordShadowPass(VkCommandBuffer cmd, Slot& slot, uint32_t slotIndex);
 
-    void recordForwardPass(VkCommandBuffer cmd, Slot& slot, uint32_t slotIndex, const RenderTarget& target, const View& view);
+    void recordForwardPass(VkCommandBuffer cmd, Slot& slot, uint32_t slotIndex, const RenderTarget& target,
+                           const View& view);
 
     // Throws preskin::Error unless the view and settings can be drawn on this device.
     void checkFrame(const View& view) const;

@@ -36,8 +36,8 @@ glm::vec2 project(const LightAxes& a, const glm::vec3& p) { return {glm::dot(p, 
 Rect projectBounds(const LightAxes& a, const Bounds& b) {
     Rect r;
     for (int i = 0; i < 8; ++i)
-        r.extend(project(a, glm::vec3((i & 1) ? b.max.x : b.min.x, (i & 2) ? b.max.y : b.min.y,
-                                      (i & 4) ? b.max.z : b.min.z)));
+        r.extend(project(
+            a, glm::vec3((i & 1) ? b.max.x : b.min.x, (i & 2) ? b.max.y : b.min.y, (i & 4) ? b.max.z : b.min.z)));
     return r;
 }
 
@@ -47,10 +47,11 @@ Rect projectFrusta(const LightAxes& a, const View& view) {
     Rect r;
     for (const Eye& eye : view.eyes) {
         const glm::dmat4 worldFromClip = glm::inverse(glm::dmat4(eye.clipFromWorld()));
-        const double farDepth = eye.orthographic() ? 0.0 : double(eye.nearM) / std::max(double(eye.farM), double(eye.nearM));
+        const double farDepth =
+            eye.orthographic() ? 0.0 : double(eye.nearM) / std::max(double(eye.farM), double(eye.nearM));
         for (int i = 0; i < 8; ++i) {
-            const glm::dvec4 p = worldFromClip * glm::dvec4((i & 1) ? 1.0 : -1.0, (i & 2) ? 1.0 : -1.0,
-                                                            (i & 4) ? farDepth : 1.0, 1.0);
+            const glm::dvec4 p =
+                worldFromClip * glm::dvec4((i & 1) ? 1.0 : -1.0, (i & 2) ? 1.0 : -1.0, (i & 4) ? farDepth : 1.0, 1.0);
             r.extend(project(a, glm::vec3(glm::dvec3(p) / p.w)));
         }
     }
@@ -62,7 +63,7 @@ Rect projectFrusta(const LightAxes& a, const View& view) {
 PoseBounds skinReceiverBounds(const Scene& scene) {
     return PoseBounds(scene, [&scene](const Primitive& primitive) {
         return primitive.material >= 0 && static_cast<size_t>(primitive.material) < scene.materials.size() &&
-               scene.materials[static_cast<size_t>(primitive.material)].skin.has_value();
+            scene.materials[static_cast<size_t>(primitive.material)].skin.has_value();
     });
 }
 

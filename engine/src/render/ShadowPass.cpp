@@ -21,13 +21,14 @@ namespace preskin {
 void Renderer::Impl::createShadowMap(VkCommandBuffer cmd, uint32_t slotIndex) {
     const uint32_t size = std::clamp<uint32_t>(settings.shadowMapSize, 16, 8192);
     if (shadowMap && shadowMap.desc().width == size) return;
-    if (!dev.supportsFormat(kDepthFormat, VK_FORMAT_FEATURE_2_DEPTH_STENCIL_ATTACHMENT_BIT |
-                                              VK_FORMAT_FEATURE_2_SAMPLED_IMAGE_BIT))
+    if (!dev.supportsFormat(kDepthFormat,
+                            VK_FORMAT_FEATURE_2_DEPTH_STENCIL_ATTACHMENT_BIT | VK_FORMAT_FEATURE_2_SAMPLED_IMAGE_BIT))
         throw Error("Vulkan: the device cannot render and sample D32_SFLOAT depth");
     retire(shadowMap, slotIndex);
-    shadowMap = vk::Image(dev, {kDepthFormat, size, size, 1,
-                                VK_IMAGE_USAGE_DEPTH_STENCIL_ATTACHMENT_BIT | VK_IMAGE_USAGE_SAMPLED_BIT,
-                                VK_IMAGE_ASPECT_DEPTH_BIT});
+    shadowMap = vk::Image(
+        dev,
+        {kDepthFormat, size, size, 1, VK_IMAGE_USAGE_DEPTH_STENCIL_ATTACHMENT_BIT | VK_IMAGE_USAGE_SAMPLED_BIT,
+         VK_IMAGE_ASPECT_DEPTH_BIT});
     vk::imageBarrier(cmd, shadowMap.handle(), VK_IMAGE_ASPECT_DEPTH_BIT, VK_IMAGE_LAYOUT_UNDEFINED,
                      VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL, VK_PIPELINE_STAGE_2_NONE, VK_ACCESS_2_NONE,
                      VK_PIPELINE_STAGE_2_FRAGMENT_SHADER_BIT, VK_ACCESS_2_SHADER_SAMPLED_READ_BIT);
@@ -42,8 +43,9 @@ void Renderer::Impl::createWideShadowMap(VkCommandBuffer cmd, uint32_t slotIndex
     const uint32_t wideSize = wideShadowSize();
     if (wideShadowMap && wideShadowMap.desc().width == wideSize) return;
     retire(wideShadowMap, slotIndex);
-    wideShadowMap = vk::Image(dev, {VK_FORMAT_R32_SFLOAT, wideSize, wideSize, 1,
-                                    VK_IMAGE_USAGE_STORAGE_BIT | VK_IMAGE_USAGE_SAMPLED_BIT, VK_IMAGE_ASPECT_COLOR_BIT});
+    wideShadowMap = vk::Image(dev,
+                              {VK_FORMAT_R32_SFLOAT, wideSize, wideSize, 1,
+                               VK_IMAGE_USAGE_STORAGE_BIT | VK_IMAGE_USAGE_SAMPLED_BIT, VK_IMAGE_ASPECT_COLOR_BIT});
     vk::imageBarrier(cmd, wideShadowMap.handle(), VK_IMAGE_ASPECT_COLOR_BIT, VK_IMAGE_LAYOUT_UNDEFINED,
                      VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL, VK_PIPELINE_STAGE_2_NONE, VK_ACCESS_2_NONE,
                      VK_PIPELINE_STAGE_2_FRAGMENT_SHADER_BIT, VK_ACCESS_2_SHADER_SAMPLED_READ_BIT);
@@ -59,7 +61,8 @@ void Renderer::Impl::recordWideShadow(VkCommandBuffer cmd, Slot& slot) {
         writes[b].dstSet = slot.reduceSet;
         writes[b].dstBinding = b;
         writes[b].descriptorCount = 1;
-        writes[b].descriptorType = b == 0 ? VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER : VK_DESCRIPTOR_TYPE_STORAGE_IMAGE;
+        writes[b].descriptorType =
+            b == 0 ? VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER : VK_DESCRIPTOR_TYPE_STORAGE_IMAGE;
         writes[b].pImageInfo = b == 0 ? &read : &write;
     }
     vkUpdateDescriptorSets(dev.device(), 2, writes, 0, nullptr);

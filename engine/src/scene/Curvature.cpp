@@ -19,12 +19,10 @@ namespace {
 using dvec3 = glm::dvec3;
 
 // Solves the symmetric 3x3 system m x = r by Cramer's rule; false when (nearly) singular.
-bool solve3(const std::array<std::array<double, 3>, 3>& m, const std::array<double, 3>& r,
-            std::array<double, 3>& x) {
+bool solve3(const std::array<std::array<double, 3>, 3>& m, const std::array<double, 3>& r, std::array<double, 3>& x) {
     auto det3 = [](const std::array<std::array<double, 3>, 3>& a) {
-        return a[0][0] * (a[1][1] * a[2][2] - a[1][2] * a[2][1]) -
-               a[0][1] * (a[1][0] * a[2][2] - a[1][2] * a[2][0]) +
-               a[0][2] * (a[1][0] * a[2][1] - a[1][1] * a[2][0]);
+        return a[0][0] * (a[1][1] * a[2][2] - a[1][2] * a[2][1]) - a[0][1] * (a[1][0] * a[2][2] - a[1][2] * a[2][0]) +
+            a[0][2] * (a[1][0] * a[2][1] - a[1][1] * a[2][0]);
     };
     const double det = det3(m);
     double scale = 0.0;
@@ -41,8 +39,7 @@ bool solve3(const std::array<std::array<double, 3>, 3>& m, const std::array<doub
 
 }  // namespace
 
-std::vector<float> computeVertexCurvature(std::span<const glm::vec3> positions,
-                                          std::span<const glm::vec3> normals,
+std::vector<float> computeVertexCurvature(std::span<const glm::vec3> positions, std::span<const glm::vec3> normals,
                                           std::span<const uint32_t> indices) {
     const size_t vertexCount = positions.size();
     if (normals.size() != vertexCount) {
@@ -55,8 +52,8 @@ std::vector<float> computeVertexCurvature(std::span<const glm::vec3> positions,
     }
     for (size_t i = 0; i < indices.size(); ++i) {
         if (indices[i] >= vertexCount) {
-            throw Error("computeVertexCurvature: indices[" + std::to_string(i) + "] = " +
-                        std::to_string(indices[i]) + " >= vertex count " + std::to_string(vertexCount));
+            throw Error("computeVertexCurvature: indices[" + std::to_string(i) + "] = " + std::to_string(indices[i]) +
+                        " >= vertex count " + std::to_string(vertexCount));
         }
     }
 
@@ -103,8 +100,7 @@ std::vector<float> computeVertexCurvature(std::span<const glm::vec3> positions,
     std::vector<std::pair<uint32_t, uint32_t>> edges;
     edges.reserve(indices.size());
     for (size_t t = 0; t + 2 < indices.size(); t += 3) {
-        const std::array<uint32_t, 3> w = {weldedOf[indices[t]], weldedOf[indices[t + 1]],
-                                           weldedOf[indices[t + 2]]};
+        const std::array<uint32_t, 3> w = {weldedOf[indices[t]], weldedOf[indices[t + 1]], weldedOf[indices[t + 2]]};
         if (w[0] == w[1] || w[1] == w[2] || w[2] == w[0]) continue;
         for (size_t k = 0; k < 3; ++k) {
             const uint32_t i = w[k], j = w[(k + 1) % 3];

@@ -91,8 +91,9 @@ const uint8_t* viewBytes(const LoadContext& ctx, int viewIndex, uint64_t offset,
                          uint64_t stride, const std::string& where) {
     const tinygltf::Model& model = *ctx.model;
     if (viewIndex < 0 || static_cast<size_t>(viewIndex) >= model.bufferViews.size()) {
-        ctx.fail(where + ".bufferView", std::to_string(viewIndex) + " is out of range: the file has " +
-                                            std::to_string(model.bufferViews.size()) + " bufferViews");
+        ctx.fail(where + ".bufferView",
+                 std::to_string(viewIndex) + " is out of range: the file has " +
+                     std::to_string(model.bufferViews.size()) + " bufferViews");
     }
     const tinygltf::BufferView& view = model.bufferViews[static_cast<size_t>(viewIndex)];
     const std::string viewName = indexed("bufferViews", static_cast<size_t>(viewIndex));
@@ -102,17 +103,19 @@ const uint8_t* viewBytes(const LoadContext& ctx, int viewIndex, uint64_t offset,
     const tinygltf::Buffer& buffer = model.buffers[static_cast<size_t>(view.buffer)];
     const uint64_t bufferSize = buffer.data.size();
     if (view.byteOffset > bufferSize || view.byteLength > bufferSize - view.byteOffset) {
-        ctx.fail(viewName, "byteOffset " + std::to_string(view.byteOffset) + " + byteLength " +
-                               std::to_string(view.byteLength) + " exceeds buffers[" + std::to_string(view.buffer) +
-                               "] (" + std::to_string(bufferSize) + " bytes)");
+        ctx.fail(viewName,
+                 "byteOffset " + std::to_string(view.byteOffset) + " + byteLength " + std::to_string(view.byteLength) +
+                     " exceeds buffers[" + std::to_string(view.buffer) + "] (" + std::to_string(bufferSize) +
+                     " bytes)");
     }
     // count <= limits::kMaxSceneIndices and stride <= 2^8 (or elementSize <= 64), so no overflow.
     const uint64_t span = count == 0 ? 0 : (count - 1) * stride + elementSize;
     if (offset > view.byteLength || span > view.byteLength - offset) {
-        ctx.fail(where, "byteOffset " + std::to_string(offset) + " + " + std::to_string(count) + " elements of " +
-                            std::to_string(elementSize) + " bytes (stride " + std::to_string(stride) + ") = " +
-                            std::to_string(offset + span) + " bytes exceeds " + viewName + " (" +
-                            std::to_string(view.byteLength) + " bytes)");
+        ctx.fail(where,
+                 "byteOffset " + std::to_string(offset) + " + " + std::to_string(count) + " elements of " +
+                     std::to_string(elementSize) + " bytes (stride " + std::to_string(stride) +
+                     ") = " + std::to_string(offset + span) + " bytes exceeds " + viewName + " (" +
+                     std::to_string(view.byteLength) + " bytes)");
     }
     return buffer.data.data() + view.byteOffset + offset;
 }
@@ -127,8 +130,9 @@ struct CheckedAccessor {
 CheckedAccessor checkAccessor(const LoadContext& ctx, int index, const std::string& what) {
     const tinygltf::Model& model = *ctx.model;
     if (index < 0 || static_cast<size_t>(index) >= model.accessors.size()) {
-        ctx.fail(what, "accessor " + std::to_string(index) + " is out of range: the file has " +
-                           std::to_string(model.accessors.size()) + " accessors");
+        ctx.fail(what,
+                 "accessor " + std::to_string(index) + " is out of range: the file has " +
+                     std::to_string(model.accessors.size()) + " accessors");
     }
     CheckedAccessor c;
     c.accessor = &model.accessors[static_cast<size_t>(index)];
@@ -142,8 +146,9 @@ CheckedAccessor checkAccessor(const LoadContext& ctx, int index, const std::stri
     }
     if (a.count == 0) ctx.fail(c.name + ".count", "0 (must be at least 1)");
     if (a.count > limits::kMaxSceneIndices) {
-        ctx.fail(c.name + ".count", std::to_string(a.count) + " exceeds the limit of " +
-                                        std::to_string(limits::kMaxSceneIndices) + " elements");
+        ctx.fail(c.name + ".count",
+                 std::to_string(a.count) + " exceeds the limit of " + std::to_string(limits::kMaxSceneIndices) +
+                     " elements");
     }
     return c;
 }
@@ -181,8 +186,8 @@ ViewRange viewRange(const LoadContext& ctx, const CheckedAccessor& c) {
     const uint64_t stride = view.byteStride != 0 ? view.byteStride : elementSize;
     if (stride < elementSize) {
         ctx.fail(indexed("bufferViews", static_cast<size_t>(a.bufferView)) + ".byteStride",
-                 std::to_string(stride) + " is smaller than the element size " + std::to_string(elementSize) +
-                     " of " + c.name);
+                 std::to_string(stride) + " is smaller than the element size " + std::to_string(elementSize) + " of " +
+                     c.name);
     }
     return {viewBytes(ctx, a.bufferView, a.byteOffset, a.count, elementSize, stride, c.name), stride};
 }
@@ -229,12 +234,14 @@ void readComponents(const LoadContext& ctx, const CheckedAccessor& c, Store&& st
             const uint8_t* p = indexBase + s * indexBytes;
             const uint64_t target = loadUnsigned(p, indexBytes);
             if (target >= a.count) {
-                ctx.fail(where + ".indices", "element " + std::to_string(s) + " = " + std::to_string(target) +
-                                                 " >= the accessor's count " + std::to_string(a.count));
+                ctx.fail(where + ".indices",
+                         "element " + std::to_string(s) + " = " + std::to_string(target) + " >= the accessor's count " +
+                             std::to_string(a.count));
             }
             if (s > 0 && target <= previous) {
-                ctx.fail(where + ".indices", "element " + std::to_string(s) + " = " + std::to_string(target) +
-                                                 " is not greater than the one before");
+                ctx.fail(where + ".indices",
+                         "element " + std::to_string(s) + " = " + std::to_string(target) +
+                             " is not greater than the one before");
             }
             previous = target;
             for (size_t k = 0; k < components; ++k) {
@@ -247,7 +254,8 @@ void readComponents(const LoadContext& ctx, const CheckedAccessor& c, Store&& st
 }  // namespace
 
 size_t accessorCount(const LoadContext& ctx, int index, const std::string& what, AccessorUse use) {
-    const CheckedAccessor c = use == AccessorUse::Indices ? checkIndexAccessor(ctx, index, what) : checkAccessor(ctx, index, what);
+    const CheckedAccessor c =
+        use == AccessorUse::Indices ? checkIndexAccessor(ctx, index, what) : checkAccessor(ctx, index, what);
     viewRange(ctx, c);
     return c.accessor->count;
 }
@@ -273,15 +281,16 @@ FloatAccessor readFloatAccessor(const LoadContext& ctx, int index, std::initiali
     for (size_t i = 0; i < out.values.size(); ++i) {
         if (auto problem = io::numberProblem(out.values[i])) {
             const size_t element = i / static_cast<size_t>(c.components);
-            ctx.fail(c.name, "element " + std::to_string(element) + " (component " +
-                                 std::to_string(i % static_cast<size_t>(c.components)) + ") of " + what + ": " +
-                                 *problem);
+            ctx.fail(c.name,
+                     "element " + std::to_string(element) + " (component " +
+                         std::to_string(i % static_cast<size_t>(c.components)) + ") of " + what + ": " + *problem);
         }
     }
     return out;
 }
 
-std::vector<uint32_t> readIndexAccessor(const LoadContext& ctx, int index, size_t vertexCount, const std::string& what) {
+std::vector<uint32_t> readIndexAccessor(const LoadContext& ctx, int index, size_t vertexCount,
+                                        const std::string& what) {
     const CheckedAccessor c = checkIndexAccessor(ctx, index, what);
     std::vector<uint32_t> indices(c.accessor->count, 0);
     readComponents(ctx, c, [&](size_t element, size_t, const uint8_t* p) {
@@ -289,8 +298,9 @@ std::vector<uint32_t> readIndexAccessor(const LoadContext& ctx, int index, size_
     });
     for (size_t i = 0; i < indices.size(); ++i) {
         if (indices[i] >= vertexCount) {
-            ctx.fail(c.name, "index " + std::to_string(indices[i]) + " at element " + std::to_string(i) + " of " + what +
-                                 " >= vertex count " + std::to_string(vertexCount));
+            ctx.fail(c.name,
+                     "index " + std::to_string(indices[i]) + " at element " + std::to_string(i) + " of " + what +
+                         " >= vertex count " + std::to_string(vertexCount));
         }
     }
     return indices;

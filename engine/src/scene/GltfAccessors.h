@@ -17,8 +17,8 @@ namespace preskin::gltf {
 
 struct FloatAccessor {
     size_t count = 0;
-    int components = 0;          // 1..4, or 16 (MAT4, column-major)
-    std::vector<float> values;   // count * components
+    int components = 0;         // 1..4, or 16 (MAT4, column-major)
+    std::vector<float> values;  // count * components
 };
 
 // Reads accessor `index` as floats. `componentsAllowed` lists the accepted element sizes (e.g.
@@ -30,7 +30,8 @@ FloatAccessor readFloatAccessor(const LoadContext& ctx, int index, std::initiali
 // The element count of accessor `index` after the same checks as the readers, without reading
 // it: callers check their totals against the limits before anything is allocated.
 enum class AccessorUse { Attribute, Indices };
-size_t accessorCount(const LoadContext& ctx, int index, const std::string& what, AccessorUse use = AccessorUse::Attribute);
+size_t accessorCount(const LoadContext& ctx, int index, const std::string& what,
+                     AccessorUse use = AccessorUse::Attribute);
 
 // Reads an index accessor (SCALAR, unsigned byte/short/int) and checks every index < vertexCount.
 std::vector<uint32_t> readIndexAccessor(const LoadContext& ctx, int index, size_t vertexCount, const std::string& what);

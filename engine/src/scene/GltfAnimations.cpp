@@ -46,9 +46,9 @@ std::vector<float> readTimes(const LoadContext& ctx, int accessor, const std::st
             ctx.fail(at, "time " + number(input.values[k]) + " s at key " + std::to_string(k) + " is negative");
         }
         if (k > 0 && !(input.values[k] > input.values[k - 1])) {
-            ctx.fail(at, "time " + number(input.values[k]) + " s at key " + std::to_string(k) + " is not after " +
-                             number(input.values[k - 1]) + " s at key " + std::to_string(k - 1) +
-                             " (times must increase)");
+            ctx.fail(at,
+                     "time " + number(input.values[k]) + " s at key " + std::to_string(k) + " is not after " +
+                         number(input.values[k - 1]) + " s at key " + std::to_string(k - 1) + " (times must increase)");
         }
     }
     return input.values;
@@ -59,14 +59,13 @@ void checkOutputType(const LoadContext& ctx, int accessor, AnimationPath path, c
     const std::string name = indexed("accessors", static_cast<size_t>(accessor));
     if (a.componentType == TINYGLTF_COMPONENT_TYPE_FLOAT) return;
     const bool integer = a.componentType == TINYGLTF_COMPONENT_TYPE_BYTE ||
-                         a.componentType == TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE ||
-                         a.componentType == TINYGLTF_COMPONENT_TYPE_SHORT ||
-                         a.componentType == TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT;
+        a.componentType == TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE || a.componentType == TINYGLTF_COMPONENT_TYPE_SHORT ||
+        a.componentType == TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT;
     const bool quantizable = path == AnimationPath::Rotation || path == AnimationPath::Weights;
     if (!integer || !quantizable) {
-        ctx.fail(name + ".componentType", std::to_string(a.componentType) + ", but " + at + " (" + pathName(path) +
-                                              ") needs float (5126)" +
-                                              (quantizable ? " or a normalized 8- or 16-bit integer" : ""));
+        ctx.fail(name + ".componentType",
+                 std::to_string(a.componentType) + ", but " + at + " (" + pathName(path) + ") needs float (5126)" +
+                     (quantizable ? " or a normalized 8- or 16-bit integer" : ""));
     }
     if (!a.normalized) ctx.fail(name + ".normalized", "false, but integer " + at + " must be normalized");
 }
@@ -88,16 +87,18 @@ void convertAnimations(const LoadContext& ctx) {
             const tinygltf::AnimationChannel& channel = in.channels[c];
             const std::string at = where + indexed(".channels", c);
             if (channel.sampler < 0 || static_cast<size_t>(channel.sampler) >= in.samplers.size()) {
-                ctx.fail(at + ".sampler", std::to_string(channel.sampler) + " is out of range: the animation has " +
-                                              std::to_string(in.samplers.size()) + " samplers");
+                ctx.fail(at + ".sampler",
+                         std::to_string(channel.sampler) + " is out of range: the animation has " +
+                             std::to_string(in.samplers.size()) + " samplers");
             }
             if (channel.target_node < 0) {
                 ctx.warn(at + ".target", "no node; the channel is ignored");
                 continue;
             }
             if (static_cast<size_t>(channel.target_node) >= scene.nodes.size()) {
-                ctx.fail(at + ".target.node", std::to_string(channel.target_node) + " is out of range: the file has " +
-                                                  std::to_string(scene.nodes.size()) + " nodes");
+                ctx.fail(at + ".target.node",
+                         std::to_string(channel.target_node) + " is out of range: the file has " +
+                             std::to_string(scene.nodes.size()) + " nodes");
             }
             const std::optional<AnimationPath> path = pathFromName(channel.target_path);
             if (!path) {
@@ -108,8 +109,10 @@ void convertAnimations(const LoadContext& ctx) {
             const Node& node = scene.nodes[nodeIndex];
             const std::string nodeName = indexed("nodes", nodeIndex);
             if (node.matrix) {
-                ctx.fail(at + ".target.node", nodeName + " has a matrix; an animated node must use translation, "
-                                                         "rotation and scale");
+                ctx.fail(at + ".target.node",
+                         nodeName +
+                             " has a matrix; an animated node must use translation, "
+                             "rotation and scale");
             }
             uint32_t components = *path == AnimationPath::Rotation ? 4 : 3;
             if (*path == AnimationPath::Weights) {
@@ -120,11 +123,13 @@ void convertAnimations(const LoadContext& ctx) {
             auto& use = uses[static_cast<size_t>(channel.sampler)];
             const bool rotation = *path == AnimationPath::Rotation;
             const bool weights = *path == AnimationPath::Weights;
-            if (use && ((use->path == AnimationPath::Rotation) != rotation || (use->path == AnimationPath::Weights) != weights ||
-                        use->components != components)) {
-                ctx.fail(at + ".sampler", "samplers[" + std::to_string(channel.sampler) + "] also drives channels[" +
-                                              std::to_string(use->channel) + "] (" + pathName(use->path) +
-                                              "), whose values differ in kind from " + pathName(*path));
+            if (use &&
+                ((use->path == AnimationPath::Rotation) != rotation ||
+                 (use->path == AnimationPath::Weights) != weights || use->components != components)) {
+                ctx.fail(at + ".sampler",
+                         "samplers[" + std::to_string(channel.sampler) + "] also drives channels[" +
+                             std::to_string(use->channel) + "] (" + pathName(use->path) +
+                             "), whose values differ in kind from " + pathName(*path));
             }
             if (!use) use = SamplerUse{*path, components, c};
             out.channels.push_back(AnimationChannel{channel.sampler, channel.target_node, *path});
@@ -134,11 +139,15 @@ void convertAnimations(const LoadContext& ctx) {
             const tinygltf::AnimationSampler& sampler = in.samplers[s];
             const std::string at = where + indexed(".samplers", s);
             AnimationSampler result;
-            if (sampler.interpolation == "LINEAR" || sampler.interpolation.empty()) result.interpolation = Interpolation::Linear;
-            else if (sampler.interpolation == "STEP") result.interpolation = Interpolation::Step;
-            else if (sampler.interpolation == "CUBICSPLINE") result.interpolation = Interpolation::CubicSpline;
+            if (sampler.interpolation == "LINEAR" || sampler.interpolation.empty())
+                result.interpolation = Interpolation::Linear;
+            else if (sampler.interpolation == "STEP")
+                result.interpolation = Interpolation::Step;
+            else if (sampler.interpolation == "CUBICSPLINE")
+                result.interpolation = Interpolation::CubicSpline;
             else {
-                ctx.fail(at + ".interpolation", "'" + sampler.interpolation + "' (expected LINEAR, STEP or CUBICSPLINE)");
+                ctx.fail(at + ".interpolation",
+                         "'" + sampler.interpolation + "' (expected LINEAR, STEP or CUBICSPLINE)");
             }
             result.times = readTimes(ctx, sampler.input, at + ".input");
 
@@ -146,22 +155,23 @@ void convertAnimations(const LoadContext& ctx) {
             const std::optional<SamplerUse>& use = uses[s];
             const AnimationPath path = use ? use->path : AnimationPath::Translation;
             const bool cubic = result.interpolation == Interpolation::CubicSpline;
-            const FloatAccessor output =
-                use ? readFloatAccessor(ctx, sampler.output, {path == AnimationPath::Weights ? 1 : int(use->components)},
-                                        at + ".output")
-                    : readFloatAccessor(ctx, sampler.output, {1, 2, 3, 4}, at + ".output");
+            const FloatAccessor output = use
+                ? readFloatAccessor(ctx, sampler.output, {path == AnimationPath::Weights ? 1 : int(use->components)},
+                                    at + ".output")
+                : readFloatAccessor(ctx, sampler.output, {1, 2, 3, 4}, at + ".output");
             if (use) checkOutputType(ctx, sampler.output, path, at + ".output");
             result.components = use ? use->components : static_cast<uint32_t>(output.components);
             result.rotation = use && path == AnimationPath::Rotation;
             // Output elements per key: one value (a weights element is one target's weight), three for CUBICSPLINE.
             const size_t elementsPerKey = (path == AnimationPath::Weights ? result.components : 1) * (cubic ? 3 : 1);
             if (output.count != result.times.size() * elementsPerKey) {
-                ctx.fail(at, "input " + indexed("accessors", static_cast<size_t>(sampler.input)) + " has " +
-                                 std::to_string(result.times.size()) + " keys, but output " +
-                                 indexed("accessors", static_cast<size_t>(sampler.output)) + " has " +
-                                 std::to_string(output.count) + " elements (" +
-                                 (use ? std::string(pathName(path)) + ", " : std::string()) + sampler.interpolation +
-                                 ": " + std::to_string(elementsPerKey) + " per key)");
+                ctx.fail(at,
+                         "input " + indexed("accessors", static_cast<size_t>(sampler.input)) + " has " +
+                             std::to_string(result.times.size()) + " keys, but output " +
+                             indexed("accessors", static_cast<size_t>(sampler.output)) + " has " +
+                             std::to_string(output.count) + " elements (" +
+                             (use ? std::string(pathName(path)) + ", " : std::string()) + sampler.interpolation + ": " +
+                             std::to_string(elementsPerKey) + " per key)");
             }
             if (result.rotation) {
                 const size_t valueOffset = cubic ? 4 : 0, stride = cubic ? 12 : 4;

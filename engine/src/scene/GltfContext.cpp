@@ -77,8 +77,8 @@ std::optional<glm::vec3> vec3Field(const LoadContext& ctx, const tinygltf::Value
     return vecField<3>(ctx, object, key, where);
 }
 
-std::optional<std::vector<double>> fixedArray(const LoadContext& ctx, const std::vector<double>& values,
-                                              size_t length, const std::string& where) {
+std::optional<std::vector<double>> fixedArray(const LoadContext& ctx, const std::vector<double>& values, size_t length,
+                                              const std::string& where) {
     if (values.empty()) return std::nullopt;
     if (values.size() != length) {
         ctx.fail(where, std::to_string(values.size()) + " numbers, expected " + std::to_string(length));

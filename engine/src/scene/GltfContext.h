@@ -20,9 +20,9 @@
 namespace preskin::gltf {
 
 struct LoadContext {
-    std::string file;                  // the scene file as given, for messages
-    std::filesystem::path folder;      // absolute folder of the scene file
-    bool allowOutsideLinks = false;    // follow symbolic links that leave the folder
+    std::string file;                // the scene file as given, for messages
+    std::filesystem::path folder;    // absolute folder of the scene file
+    bool allowOutsideLinks = false;  // follow symbolic links that leave the folder
     const tinygltf::Model* model = nullptr;
     Scene* scene = nullptr;
     // Per image: a description of its format when it is not decodable (then it has no pixels).
@@ -32,9 +32,7 @@ struct LoadContext {
     // Primitives (mesh, primitive) the prepass found drawing nothing (warned there): left out.
     std::vector<std::pair<size_t, size_t>> skippedPrimitives;
 
-    [[noreturn]] void fail(const std::string& where, const std::string& what) const {
-        gltf::fail(file, where, what);
-    }
+    [[noreturn]] void fail(const std::string& where, const std::string& what) const { gltf::fail(file, where, what); }
     void warn(const std::string& where, const std::string& what) const {
         scene->warnings.push_back(file + ": " + where + ": " + io::messageText(what, 4 * io::kMessageExcerptChars));
     }
@@ -49,9 +47,7 @@ inline double checkedNumber(const LoadContext& ctx, double value, const std::str
     return value;
 }
 
-inline std::string indexed(const std::string& array, size_t index) {
-    return array + "[" + std::to_string(index) + "]";
-}
+inline std::string indexed(const std::string& array, size_t index) { return array + "[" + std::to_string(index) + "]"; }
 
 // Typed reads from a JSON object held as tinygltf::Value.
 std::optional<double> numberField(const LoadContext& ctx, const tinygltf::Value& object, const char* key,
@@ -69,7 +65,7 @@ std::optional<glm::vec3> vec3Field(const LoadContext& ctx, const tinygltf::Value
 
 // Components (passing the input-number rule) of a core glTF number array with an exact length,
 // or nullopt when empty.
-std::optional<std::vector<double>> fixedArray(const LoadContext& ctx, const std::vector<double>& values,
-                                              size_t length, const std::string& where);
+std::optional<std::vector<double>> fixedArray(const LoadContext& ctx, const std::vector<double>& values, size_t length,
+                                              const std::string& where);
 
 }  // namespace preskin::gltf

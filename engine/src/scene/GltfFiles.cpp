@@ -28,9 +28,9 @@ uint32_t readU32(std::span<const uint8_t> bytes, size_t offset) {
     return v;
 }
 
-constexpr uint32_t kGlbMagic = 0x46546C67;     // "glTF"
-constexpr uint32_t kChunkJson = 0x4E4F534A;    // "JSON"
-constexpr uint32_t kChunkBin = 0x004E4942;     // "BIN\0"
+constexpr uint32_t kGlbMagic = 0x46546C67;   // "glTF"
+constexpr uint32_t kChunkJson = 0x4E4F534A;  // "JSON"
+constexpr uint32_t kChunkBin = 0x004E4942;   // "BIN\0"
 
 }  // namespace
 
@@ -62,7 +62,8 @@ GlbChunks splitGlb(std::span<const uint8_t> bytes, const std::string& file) {
                  std::to_string(chunkLength) + " bytes runs past the end of the file (" +
                      std::to_string(length - payload) + " bytes left)");
         }
-        if (chunkLength % 4 != 0) fail(file, where + " length", std::to_string(chunkLength) + " is not a multiple of 4");
+        if (chunkLength % 4 != 0)
+            fail(file, where + " length", std::to_string(chunkLength) + " is not a multiple of 4");
         const auto data = bytes.subspan(static_cast<size_t>(payload), chunkLength);
         if (chunkIndex == 0) {
             if (chunkType != kChunkJson) fail(file, where + " type", "the first chunk must be JSON");
@@ -70,7 +71,8 @@ GlbChunks splitGlb(std::span<const uint8_t> bytes, const std::string& file) {
             chunks.json = data;
             haveJson = true;
         } else if (chunkType == kChunkBin) {
-            if (chunkIndex != 1) fail(file, where + " type", "a BIN chunk that does not directly follow the JSON chunk");
+            if (chunkIndex != 1)
+                fail(file, where + " type", "a BIN chunk that does not directly follow the JSON chunk");
             chunks.bin = data;
             chunks.hasBin = true;
         } else if (chunkType == kChunkJson) {
@@ -154,12 +156,14 @@ void checkRelativePath(const std::string& path, const std::string& raw, const st
     if (path.empty()) fail(file, where, std::string("empty URI") + form);
     if (path.find('\0') != std::string::npos) fail(file, where, quoted + " contains a NUL character" + form);
     if (hasScheme(path)) {
-        fail(file, where, quoted + " has a scheme or drive" + std::string(form) +
-                              "; only relative paths inside the scene's folder are allowed");
+        fail(file, where,
+             quoted + " has a scheme or drive" + std::string(form) +
+                 "; only relative paths inside the scene's folder are allowed");
     }
     if (path[0] == '/' || path[0] == '\\') {
-        fail(file, where, quoted + " is an absolute path" + std::string(form) +
-                              "; only relative paths inside the scene's folder are allowed");
+        fail(file, where,
+             quoted + " is an absolute path" + std::string(form) +
+                 "; only relative paths inside the scene's folder are allowed");
     }
     size_t start = 0;
     while (start <= path.size()) {
@@ -187,8 +191,10 @@ fs::path resolveUri(const std::string& uri, const fs::path& sceneFolder, const s
     if (allowOutsideLinks) return resolved;
     const io::ConfinedPath confined = io::resolveInsideFolder(sceneFolder, fs::path(decoded));
     if (!confined.inside) {
-        fail(file, where, "'" + uri + "' leads out of the scene's folder through a symbolic link (refused unless "
-                          "links out of the folder are allowed)");
+        fail(file, where,
+             "'" + uri +
+                 "' leads out of the scene's folder through a symbolic link (refused unless "
+                 "links out of the folder are allowed)");
     }
     return confined.path;
 }

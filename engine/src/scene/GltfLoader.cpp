@@ -101,7 +101,8 @@ bool loadImage(tinygltf::Image* image, const int index, std::string* err, std::s
     if (!image->uri.empty()) where += " ('" + image->uri + "')";
     try {
         if (index < 0 || size < 0) throw std::runtime_error("invalid image data");
-        if (state.unsupported.size() <= static_cast<size_t>(index)) state.unsupported.resize(static_cast<size_t>(index) + 1);
+        if (state.unsupported.size() <= static_cast<size_t>(index))
+            state.unsupported.resize(static_cast<size_t>(index) + 1);
         const std::span<const uint8_t> data(bytes, static_cast<size_t>(size));
         const ImageFormat format = sniffImageFormat(data);
         if (format == ImageFormat::Unsupported) {
@@ -164,22 +165,27 @@ glm::mat4 localMatrix(const LoadContext& ctx, const tinygltf::Node& node, const 
 
 // A light the file defines but that cannot light anything (an unknown type, a node scaled to
 // nothing): the validator allows it, so it is skipped with a warning.
-std::optional<Light> convertLight(const LoadContext& ctx, int lightIndex, const glm::mat4& world, const std::string& nodeName,
-                                  const std::string& nodeWhere, bool& explicitShadowFlag) {
+std::optional<Light> convertLight(const LoadContext& ctx, int lightIndex, const glm::mat4& world,
+                                  const std::string& nodeName, const std::string& nodeWhere, bool& explicitShadowFlag) {
     const tinygltf::Model& model = *ctx.model;
     if (lightIndex < 0 || static_cast<size_t>(lightIndex) >= model.lights.size()) {
         ctx.fail(nodeWhere + ".extensions.KHR_lights_punctual.light",
-                 std::to_string(lightIndex) + " is out of range: the file has " + std::to_string(model.lights.size()) + " lights");
+                 std::to_string(lightIndex) + " is out of range: the file has " + std::to_string(model.lights.size()) +
+                     " lights");
     }
     const tinygltf::Light& in = model.lights[static_cast<size_t>(lightIndex)];
     const std::string where = "extensions.KHR_lights_punctual.lights[" + std::to_string(lightIndex) + "]";
     Light out;
     out.name = in.name.empty() ? nodeName : in.name;
-    if (in.type == "directional") out.type = LightType::Directional;
-    else if (in.type == "point") out.type = LightType::Point;
-    else if (in.type == "spot") out.type = LightType::Spot;
+    if (in.type == "directional")
+        out.type = LightType::Directional;
+    else if (in.type == "point")
+        out.type = LightType::Point;
+    else if (in.type == "spot")
+        out.type = LightType::Spot;
     else {
-        ctx.warn(where + ".type", "'" + in.type + "' is not a KHR_lights_punctual type (directional, point or spot); light skipped");
+        ctx.warn(where + ".type",
+                 "'" + in.type + "' is not a KHR_lights_punctual type (directional, point or spot); light skipped");
         return std::nullopt;
     }
     if (auto c = fixedArray(ctx, in.color, 3, where + ".color")) {
@@ -193,8 +199,9 @@ std::optional<Light> convertLight(const LoadContext& ctx, int lightIndex, const 
     if (out.type == LightType::Spot) {
         const double inner = in.spot.innerConeAngle, outer = in.spot.outerConeAngle;
         if (!(inner >= 0.0 && inner < outer && outer <= std::numbers::pi / 2 + 1e-6)) {
-            ctx.fail(where + ".spot", "cone angles inner " + number(inner) + ", outer " + number(outer) +
-                                          " (need 0 <= inner < outer <= pi/2)");
+            ctx.fail(where + ".spot",
+                     "cone angles inner " + number(inner) + ", outer " + number(outer) +
+                         " (need 0 <= inner < outer <= pi/2)");
         }
         out.innerConeAngle = static_cast<float>(inner);
         out.outerConeAngle = static_cast<float>(outer);
@@ -216,12 +223,13 @@ std::optional<Light> convertLight(const LoadContext& ctx, int lightIndex, const 
 
 // A camera the validator allows but that cannot show anything (a node scaled to nothing, a field
 // of view too small for single precision) is skipped with a warning.
-std::optional<Camera> convertCamera(const LoadContext& ctx, int cameraIndex, const glm::mat4& world, const std::string& nodeName,
-                                    const std::string& nodeWhere) {
+std::optional<Camera> convertCamera(const LoadContext& ctx, int cameraIndex, const glm::mat4& world,
+                                    const std::string& nodeName, const std::string& nodeWhere) {
     const tinygltf::Model& model = *ctx.model;
     if (cameraIndex < 0 || static_cast<size_t>(cameraIndex) >= model.cameras.size()) {
-        ctx.fail(nodeWhere + ".camera", std::to_string(cameraIndex) + " is out of range: the file has " +
-                                            std::to_string(model.cameras.size()) + " cameras");
+        ctx.fail(nodeWhere + ".camera",
+                 std::to_string(cameraIndex) + " is out of range: the file has " +
+                     std::to_string(model.cameras.size()) + " cameras");
     }
     const tinygltf::Camera& in = model.cameras[static_cast<size_t>(cameraIndex)];
     const std::string where = indexed("cameras", static_cast<size_t>(cameraIndex));
@@ -239,10 +247,12 @@ std::optional<Camera> convertCamera(const LoadContext& ctx, int cameraIndex, con
         if (!std::isfinite(p.zfar) || (p.zfar != 0.0 && !(p.zfar > p.znear))) {
             ctx.fail(where + ".perspective.zfar", "must be greater than znear (or absent for infinite)");
         }
-        if (!std::isfinite(p.aspectRatio) || p.aspectRatio < 0.0) ctx.fail(where + ".perspective.aspectRatio", "must be > 0");
+        if (!std::isfinite(p.aspectRatio) || p.aspectRatio < 0.0)
+            ctx.fail(where + ".perspective.aspectRatio", "must be > 0");
         out.yfov = static_cast<float>(p.yfov);
         if (!(out.yfov >= kMinCameraYfov)) {
-            ctx.warn(where + ".perspective.yfov", number(p.yfov) + " rad is too small a field of view to render; camera skipped");
+            ctx.warn(where + ".perspective.yfov",
+                     number(p.yfov) + " rad is too small a field of view to render; camera skipped");
             return std::nullopt;
         }
         out.znear = static_cast<float>(p.znear);
@@ -254,10 +264,13 @@ std::optional<Camera> convertCamera(const LoadContext& ctx, int cameraIndex, con
                                           std::pair{o.znear, "znear"}, std::pair{o.zfar, "zfar"}}) {
             checkedNumber(ctx, value, where + ".orthographic." + name);
         }
-        if (!std::isfinite(o.xmag) || o.xmag == 0.0) ctx.fail(where + ".orthographic.xmag", "must be finite and non-zero");
-        if (!std::isfinite(o.ymag) || o.ymag == 0.0) ctx.fail(where + ".orthographic.ymag", "must be finite and non-zero");
+        if (!std::isfinite(o.xmag) || o.xmag == 0.0)
+            ctx.fail(where + ".orthographic.xmag", "must be finite and non-zero");
+        if (!std::isfinite(o.ymag) || o.ymag == 0.0)
+            ctx.fail(where + ".orthographic.ymag", "must be finite and non-zero");
         if (!(o.znear >= 0.0) || !std::isfinite(o.znear)) ctx.fail(where + ".orthographic.znear", "must be >= 0");
-        if (!(o.zfar > o.znear) || !std::isfinite(o.zfar)) ctx.fail(where + ".orthographic.zfar", "must be greater than znear");
+        if (!(o.zfar > o.znear) || !std::isfinite(o.zfar))
+            ctx.fail(where + ".orthographic.zfar", "must be greater than znear");
         out.orthographic = true;
         out.xmag = static_cast<float>(o.xmag);
         out.ymag = static_cast<float>(o.ymag);
@@ -290,21 +303,24 @@ void convertNodes(const LoadContext& ctx) {
     if (model.defaultScene >= 0 || !model.scenes.empty()) {
         const int sceneIndex = model.defaultScene >= 0 ? model.defaultScene : 0;
         if (static_cast<size_t>(sceneIndex) >= model.scenes.size()) {
-            ctx.fail("scene", std::to_string(sceneIndex) + " is out of range: the file has " +
-                                  std::to_string(model.scenes.size()) + " scenes");
+            ctx.fail("scene",
+                     std::to_string(sceneIndex) + " is out of range: the file has " +
+                         std::to_string(model.scenes.size()) + " scenes");
         }
         const auto& sceneNodes = model.scenes[static_cast<size_t>(sceneIndex)].nodes;
         std::vector<uint8_t> listed(nodeCount, 0);
         for (size_t k = 0; k < sceneNodes.size(); ++k) {
             const std::string at = indexed("scenes", static_cast<size_t>(sceneIndex)) + indexed(".nodes", k);
             if (sceneNodes[k] < 0 || static_cast<size_t>(sceneNodes[k]) >= nodeCount) {
-                ctx.fail(at, std::to_string(sceneNodes[k]) + " is out of range: the file has " + std::to_string(nodeCount) +
-                                 " nodes");
+                ctx.fail(at,
+                         std::to_string(sceneNodes[k]) + " is out of range: the file has " + std::to_string(nodeCount) +
+                             " nodes");
             }
             const auto n = static_cast<size_t>(sceneNodes[k]);
             if (const int p = nodes[n].parent; p >= 0) {
-                ctx.fail(at, "nodes[" + std::to_string(n) + "] is not a root node: it is a child of nodes[" +
-                                 std::to_string(p) + "]");
+                ctx.fail(at,
+                         "nodes[" + std::to_string(n) + "] is not a root node: it is a child of nodes[" +
+                             std::to_string(p) + "]");
             }
             if (listed[n]) ctx.fail(indexed("nodes", n), "reached twice: the scene lists it twice");
             listed[n] = 1;
@@ -337,8 +353,10 @@ void convertNodes(const LoadContext& ctx) {
         const std::string nodeName = node.name.empty() ? where : node.name;
         const glm::mat4& world = worldFromNode[index];
         if (!withinInputRange(world)) {
-            ctx.fail(where, "its world transform (the product of its parents' transforms) has an element that is not "
-                            "finite or exceeds the limit of " + number(limits::kMaxInputMagnitude) + " in magnitude");
+            ctx.fail(where,
+                     "its world transform (the product of its parents' transforms) has an element that is not "
+                     "finite or exceeds the limit of " +
+                         number(limits::kMaxInputMagnitude) + " in magnitude");
         }
 
         if (node.mesh >= 0) {  // in range (convertNodeHierarchy)
@@ -346,12 +364,14 @@ void convertNodes(const LoadContext& ctx) {
             draws += scene.meshes[mesh].primitives.size();
             drawnTriangles += meshTriangles[mesh];
             if (draws > limits::kMaxSceneDraws) {
-                ctx.fail(where + ".mesh", "the scene draws more than the limit of " +
-                                              std::to_string(limits::kMaxSceneDraws) + " primitives (instances included)");
+                ctx.fail(where + ".mesh",
+                         "the scene draws more than the limit of " + std::to_string(limits::kMaxSceneDraws) +
+                             " primitives (instances included)");
             }
             if (drawnTriangles > limits::kMaxDrawnTriangles) {
-                ctx.fail(where + ".mesh", "the scene draws more than the limit of " +
-                                              std::to_string(limits::kMaxDrawnTriangles) + " triangles (instances included)");
+                ctx.fail(where + ".mesh",
+                         "the scene draws more than the limit of " + std::to_string(limits::kMaxDrawnTriangles) +
+                             " triangles (instances included)");
             }
             scene.instances.push_back(MeshInstance{node.mesh, world, nodeName});
             scene.instances.back().node = static_cast<int>(index);
@@ -360,7 +380,8 @@ void convertNodes(const LoadContext& ctx) {
         const bool cameraSkipped = std::find(ctx.skippedCameras.begin(), ctx.skippedCameras.end(),
                                              static_cast<size_t>(std::max(node.camera, 0))) != ctx.skippedCameras.end();
         if ((node.camera >= 0 && !cameraSkipped) || node.camera < -1) {
-            if (auto camera = convertCamera(ctx, node.camera, world, nodeName, where)) scene.cameras.push_back(std::move(*camera));
+            if (auto camera = convertCamera(ctx, node.camera, world, nodeName, where))
+                scene.cameras.push_back(std::move(*camera));
         }
         if (auto it = node.extensions.find("KHR_lights_punctual"); it != node.extensions.end()) {
             const std::string at = where + ".extensions.KHR_lights_punctual";
@@ -430,9 +451,10 @@ std::vector<uint8_t> rebuildGlb(std::string json, const GlbChunks& glb) {
 
 Scene loadScene(const fs::path& path, const SceneLoadOptions& options) {
     const std::string extension = extensionOf(path);
-    return loadSceneBytes(io::readInputFile(path, path.string(),
-                                            extension == ".glb" ? limits::kMaxSceneFileBytes : limits::kMaxGltfJsonBytes),
-                          path, options);
+    return loadSceneBytes(
+        io::readInputFile(path, path.string(),
+                          extension == ".glb" ? limits::kMaxSceneFileBytes : limits::kMaxGltfJsonBytes),
+        path, options);
 }
 
 Scene loadSceneBytes(std::vector<uint8_t> bytes, const fs::path& path, const SceneLoadOptions& options) {
@@ -457,15 +479,17 @@ Scene loadSceneBytes(std::vector<uint8_t> bytes, const fs::path& path, const Sce
         }
     }
     if (jsonText.size() > limits::kMaxGltfJsonBytes) {
-        fail(file, "GLB chunk 0 length", std::to_string(jsonText.size()) + " bytes of JSON exceeds the limit of " +
-                                             std::to_string(limits::kMaxGltfJsonBytes));
+        fail(file, "GLB chunk 0 length",
+             std::to_string(jsonText.size()) + " bytes of JSON exceeds the limit of " +
+                 std::to_string(limits::kMaxGltfJsonBytes));
     }
     // The bounded parse comes first: tinygltf parses the same text again, and walks it
     // recursively, only once depth and size are known to be within the limits.
     if (jsonText.size() >= 3 && jsonText[0] == 0xEF && jsonText[1] == 0xBB && jsonText[2] == 0xBF)
         bomWarning = file + ": JSON: starts with a UTF-8 byte-order mark, which glTF does not allow; read anyway";
     nlohmann::json doc = io::parseJson(jsonText, file);
-    const PrepassResult prepass = checkDocument(doc, file, folder, isGlb ? &glb : nullptr, options.allowLinksOutsideFolder);
+    const PrepassResult prepass =
+        checkDocument(doc, file, folder, isGlb ? &glb : nullptr, options.allowLinksOutsideFolder);
     if (!prepass.skippedCameras.empty() || !prepass.skippedPrimitives.empty()) {
         // tinygltf refuses a camera type it does not know: stand a valid one in its place (the
         // loader leaves it out) and hand tinygltf the edited document.
@@ -480,16 +504,16 @@ Scene loadSceneBytes(std::vector<uint8_t> bytes, const fs::path& path, const Sce
 
     tinygltf::TinyGLTF loader;
     FsState fsState{folder, options.allowLinksOutsideFolder};
-    loader.SetFsCallbacks(tinygltf::FsCallbacks{&fileExists, &expandFilePath, &readWholeFile, &writeWholeFile, &fsState});
+    loader.SetFsCallbacks(
+        tinygltf::FsCallbacks{&fileExists, &expandFilePath, &readWholeFile, &writeWholeFile, &fsState});
     ImageState imageState;
     loader.SetImageLoader(&loadImage, &imageState);
     tinygltf::Model model;
     std::string err, warn;
-    const bool ok =
-        isGlb ? loader.LoadBinaryFromMemory(&model, &err, &warn, bytes.data(), static_cast<unsigned>(bytes.size()),
-                                            folder.string())
-              : loader.LoadASCIIFromString(&model, &err, &warn, reinterpret_cast<const char*>(bytes.data()),
-                                           static_cast<unsigned>(bytes.size()), folder.string());
+    const bool ok = isGlb ? loader.LoadBinaryFromMemory(&model, &err, &warn, bytes.data(),
+                                                        static_cast<unsigned>(bytes.size()), folder.string())
+                          : loader.LoadASCIIFromString(&model, &err, &warn, reinterpret_cast<const char*>(bytes.data()),
+                                                       static_cast<unsigned>(bytes.size()), folder.string());
     if (imageState.error) fail(file, "", *imageState.error);
     if (!ok) fail(file, "", "glTF parse error: " + (err.empty() ? std::string("unknown") : err));
     bytes = {};

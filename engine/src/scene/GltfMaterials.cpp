@@ -25,27 +25,31 @@ Wrap wrapOf(const LoadContext& ctx, int mode, const std::string& where) {
 std::pair<int, int> resolveTexture(const LoadContext& ctx, int textureIndex, const std::string& where) {
     const tinygltf::Model& model = *ctx.model;
     if (textureIndex < 0 || static_cast<size_t>(textureIndex) >= model.textures.size()) {
-        ctx.fail(where + ".index", std::to_string(textureIndex) + " is out of range: the file has " +
-                                       std::to_string(model.textures.size()) + " textures");
+        ctx.fail(where + ".index",
+                 std::to_string(textureIndex) + " is out of range: the file has " +
+                     std::to_string(model.textures.size()) + " textures");
     }
     const std::string textureName = indexed("textures", static_cast<size_t>(textureIndex));
     const tinygltf::Texture& texture = model.textures[static_cast<size_t>(textureIndex)];
     if (texture.sampler >= 0 && static_cast<size_t>(texture.sampler) >= model.samplers.size()) {
-        ctx.fail(textureName + ".sampler", std::to_string(texture.sampler) + " is out of range: the file has " +
-                                               std::to_string(model.samplers.size()) + " samplers");
+        ctx.fail(textureName + ".sampler",
+                 std::to_string(texture.sampler) + " is out of range: the file has " +
+                     std::to_string(model.samplers.size()) + " samplers");
     }
     if (texture.source < 0) {
         ctx.warn(where, textureName + " has no PNG or JPEG source (only an extension's); the texture is ignored");
         return {-1, -1};
     }
     if (static_cast<size_t>(texture.source) >= model.images.size()) {
-        ctx.fail(textureName + ".source", std::to_string(texture.source) + " is out of range: the file has " +
-                                              std::to_string(model.images.size()) + " images");
+        ctx.fail(textureName + ".source",
+                 std::to_string(texture.source) + " is out of range: the file has " +
+                     std::to_string(model.images.size()) + " images");
     }
     const auto image = static_cast<size_t>(texture.source);
     if (!ctx.unsupportedImageFormat[image].empty()) {
-        ctx.fail(where, indexed("images", image) + " is " + ctx.unsupportedImageFormat[image] +
-                            ", an unsupported image format (PNG and JPEG are supported)");
+        ctx.fail(where,
+                 indexed("images", image) + " is " + ctx.unsupportedImageFormat[image] +
+                     ", an unsupported image format (PNG and JPEG are supported)");
     }
     return {texture.source, texture.sampler};
 }
@@ -115,8 +119,9 @@ void skinNumber(const LoadContext& ctx, const tinygltf::Value& skin, const char*
     auto v = numberField(ctx, skin, key, where);
     if (!v) return;
     if (*v < lo || *v > hi || (loOpen && *v == lo)) {
-        ctx.fail(where + "." + key, number(*v) + " is outside " + (loOpen ? "(" : "[") + number(lo) + ", " +
-                                        (std::isinf(hi) ? "inf)" : number(hi) + "]"));
+        ctx.fail(where + "." + key,
+                 number(*v) + " is outside " + (loOpen ? "(" : "[") + number(lo) + ", " +
+                     (std::isinf(hi) ? "inf)" : number(hi) + "]"));
     }
     out = static_cast<float>(*v);
 }
@@ -127,14 +132,16 @@ int profileIndex(const LoadContext& ctx, const tinygltf::Value& value, const std
     const double index = value.IsInt() ? value.GetNumberAsInt() : value.GetNumberAsDouble();
     const size_t count = ctx.scene->profiles.size();
     if (index != std::floor(index) || index < 0.0 || index >= static_cast<double>(count)) {
-        ctx.fail(where, number(index) + " is out of range: the file has " + std::to_string(count) +
-                            " profiles (extensions.PRESKIN_materials_skin.profiles)");
+        ctx.fail(where,
+                 number(index) + " is out of range: the file has " + std::to_string(count) +
+                     " profiles (extensions.PRESKIN_materials_skin.profiles)");
     }
     return static_cast<int>(index);
 }
 
 // "profile": index; "profileBlend": {"profiles": [up to 3 indices], "weightTexture": textureInfo}.
-void parseProfileChoice(const LoadContext& ctx, const tinygltf::Value& skin, const std::string& where, SkinMaterial& s) {
+void parseProfileChoice(const LoadContext& ctx, const tinygltf::Value& skin, const std::string& where,
+                        SkinMaterial& s) {
     if (skin.Has("profile")) s.profile = profileIndex(ctx, skin.Get("profile"), where + ".profile");
     if (!skin.Has("profileBlend")) return;
     const tinygltf::Value& blend = skin.Get("profileBlend");
@@ -143,11 +150,13 @@ void parseProfileChoice(const LoadContext& ctx, const tinygltf::Value& skin, con
     for (const std::string& key : blend.Keys()) {
         if (key != "profiles" && key != "weightTexture") ctx.fail(at + "." + key, "unknown field");
     }
-    if (!blend.Has("profiles") || !blend.Get("profiles").IsArray()) ctx.fail(at + ".profiles", "missing or not an array");
+    if (!blend.Has("profiles") || !blend.Get("profiles").IsArray())
+        ctx.fail(at + ".profiles", "missing or not an array");
     const tinygltf::Value& list = blend.Get("profiles");
     if (list.ArrayLen() < 1 || list.ArrayLen() > size_t(kMaxBlendedProfiles - 1)) {
-        ctx.fail(at + ".profiles", std::to_string(list.ArrayLen()) + " entries (expected 1 to " +
-                                       std::to_string(kMaxBlendedProfiles - 1) + ", one per weight-texture channel)");
+        ctx.fail(at + ".profiles",
+                 std::to_string(list.ArrayLen()) + " entries (expected 1 to " +
+                     std::to_string(kMaxBlendedProfiles - 1) + ", one per weight-texture channel)");
     }
     for (size_t i = 0; i < list.ArrayLen(); ++i)
         s.blendProfiles.push_back(profileIndex(ctx, list.Get(static_cast<int>(i)), indexed(at + ".profiles", i)));
@@ -159,21 +168,26 @@ SkinMaterial parseSkinExtension(const LoadContext& ctx, const tinygltf::Value& s
                                 SkinMaterial s) {
     if (!skin.IsObject()) ctx.fail(where, "not an object");
     static const std::set<std::string> known = {
-        "scatterScale",     "curvatureSource",     "curvatureTexture",  "curvatureTextureScalePerM", "deformedCurvature",
-        "normalLodBias",    "detailNormalTexture", "detailUvScale",     "transmission",
-        "transmissionColor", "thicknessScale",     "specularIntensity", "specularTexture",
-        "lobeRoughness0",   "lobeRoughness1",      "lobeMix",           "profile",
-        "profileBlend"};
+        "scatterScale",      "curvatureSource",   "curvatureTexture",    "curvatureTextureScalePerM",
+        "deformedCurvature", "normalLodBias",     "detailNormalTexture", "detailUvScale",
+        "transmission",      "transmissionColor", "thicknessScale",      "specularIntensity",
+        "specularTexture",   "lobeRoughness0",    "lobeRoughness1",      "lobeMix",
+        "profile",           "profileBlend"};
     for (const std::string& key : skin.Keys()) {
-        if (!known.count(key) && key != "extensions" && key != "extras") ctx.warn(where + "." + key, "unknown field; ignored");
+        if (!known.count(key) && key != "extensions" && key != "extras")
+            ctx.warn(where + "." + key, "unknown field; ignored");
     }
     constexpr double inf = std::numeric_limits<double>::infinity();
     skinNumber(ctx, skin, "scatterScale", where, s.scatterScale, 0.0, inf, true);
     if (auto source = stringField(ctx, skin, "curvatureSource", where)) {
-        if (*source == "vertex") s.curvatureSource = CurvatureSource::Vertex;
-        else if (*source == "texture") s.curvatureSource = CurvatureSource::Texture;
-        else if (*source == "derivatives") s.curvatureSource = CurvatureSource::Derivatives;
-        else ctx.fail(where + ".curvatureSource", "'" + *source + "' (expected vertex, texture or derivatives)");
+        if (*source == "vertex")
+            s.curvatureSource = CurvatureSource::Vertex;
+        else if (*source == "texture")
+            s.curvatureSource = CurvatureSource::Texture;
+        else if (*source == "derivatives")
+            s.curvatureSource = CurvatureSource::Derivatives;
+        else
+            ctx.fail(where + ".curvatureSource", "'" + *source + "' (expected vertex, texture or derivatives)");
     }
     s.curvatureTexture = skinTextureRef(ctx, skin, "curvatureTexture", where, nullptr);
     if (s.curvatureSource == CurvatureSource::Texture && !s.curvatureTexture.valid()) {
@@ -181,16 +195,20 @@ SkinMaterial parseSkinExtension(const LoadContext& ctx, const tinygltf::Value& s
     }
     skinNumber(ctx, skin, "curvatureTextureScalePerM", where, s.curvatureTextureScalePerM, 0.0, inf);
     if (auto deformed = stringField(ctx, skin, "deformedCurvature", where)) {
-        if (*deformed == "recomputed") s.deformedCurvature = DeformedCurvature::Recomputed;
-        else if (*deformed == "bindPose") s.deformedCurvature = DeformedCurvature::BindPose;
-        else ctx.fail(where + ".deformedCurvature", "'" + *deformed + "' (expected recomputed or bindPose)");
+        if (*deformed == "recomputed")
+            s.deformedCurvature = DeformedCurvature::Recomputed;
+        else if (*deformed == "bindPose")
+            s.deformedCurvature = DeformedCurvature::BindPose;
+        else
+            ctx.fail(where + ".deformedCurvature", "'" + *deformed + "' (expected recomputed or bindPose)");
     }
     if (auto bias = vec3Field(ctx, skin, "normalLodBias", where)) s.normalLodBias = *bias;
     s.detailNormalTexture = skinTextureRef(ctx, skin, "detailNormalTexture", where, &s.detailNormalScale);
     skinNumber(ctx, skin, "detailUvScale", where, s.detailUvScale, 0.0, inf, true);
     skinNumber(ctx, skin, "transmission", where, s.transmission, 0.0, inf);
     if (auto color = vec3Field(ctx, skin, "transmissionColor", where)) {
-        if (glm::any(glm::lessThan(*color, glm::vec3(0.0f)))) ctx.fail(where + ".transmissionColor", "negative component");
+        if (glm::any(glm::lessThan(*color, glm::vec3(0.0f))))
+            ctx.fail(where + ".transmissionColor", "negative component");
         s.transmissionColor = *color;
     }
     skinNumber(ctx, skin, "thicknessScale", where, s.thicknessScale, 0.0, inf, true);
@@ -265,27 +283,37 @@ void convertMaterials(const LoadContext& ctx) {
                     clampedFactor(ctx, (*c)[static_cast<size_t>(k)], 0.0, 1.0, pbr + ".baseColorFactor");
             }
         }
-        out.metallicFactor = clampedFactor(ctx, in.pbrMetallicRoughness.metallicFactor, 0.0, 1.0, pbr + ".metallicFactor");
-        out.roughnessFactor = clampedFactor(ctx, in.pbrMetallicRoughness.roughnessFactor, 0.0, 1.0, pbr + ".roughnessFactor");
+        out.metallicFactor =
+            clampedFactor(ctx, in.pbrMetallicRoughness.metallicFactor, 0.0, 1.0, pbr + ".metallicFactor");
+        out.roughnessFactor =
+            clampedFactor(ctx, in.pbrMetallicRoughness.roughnessFactor, 0.0, 1.0, pbr + ".roughnessFactor");
         out.baseColor = textureRef(ctx, in.pbrMetallicRoughness.baseColorTexture, pbr + ".baseColorTexture");
         out.metallicRoughness =
             textureRef(ctx, in.pbrMetallicRoughness.metallicRoughnessTexture, pbr + ".metallicRoughnessTexture");
         out.normal = textureRef(ctx, in.normalTexture, where + ".normalTexture");
-        out.normal.scale = static_cast<float>(checkedNumber(ctx, in.normalTexture.scale, where + ".normalTexture.scale"));
+        out.normal.scale =
+            static_cast<float>(checkedNumber(ctx, in.normalTexture.scale, where + ".normalTexture.scale"));
         out.occlusion = textureRef(ctx, in.occlusionTexture, where + ".occlusionTexture");
-        out.occlusion.scale = clampedFactor(ctx, in.occlusionTexture.strength, 0.0, 1.0, where + ".occlusionTexture.strength");
+        out.occlusion.scale =
+            clampedFactor(ctx, in.occlusionTexture.strength, 0.0, 1.0, where + ".occlusionTexture.strength");
         out.emissive = textureRef(ctx, in.emissiveTexture, where + ".emissiveTexture");
         if (auto e = fixedArray(ctx, in.emissiveFactor, 3, where + ".emissiveFactor")) {
             for (int k = 0; k < 3; ++k) {
-                out.emissiveFactor[k] = clampedFactor(ctx, (*e)[static_cast<size_t>(k)], 0.0, 1.0, where + ".emissiveFactor");
+                out.emissiveFactor[k] =
+                    clampedFactor(ctx, (*e)[static_cast<size_t>(k)], 0.0, 1.0, where + ".emissiveFactor");
             }
         }
 
-        if (in.alphaMode == "OPAQUE") out.alphaMode = AlphaMode::Opaque;
-        else if (in.alphaMode == "MASK") out.alphaMode = AlphaMode::Mask;
-        else if (in.alphaMode == "BLEND") out.alphaMode = AlphaMode::Blend;
-        else ctx.fail(where + ".alphaMode", "'" + in.alphaMode + "' (expected OPAQUE, MASK or BLEND)");
-        if (checkedNumber(ctx, in.alphaCutoff, where + ".alphaCutoff") < 0.0) ctx.fail(where + ".alphaCutoff", "must be >= 0");
+        if (in.alphaMode == "OPAQUE")
+            out.alphaMode = AlphaMode::Opaque;
+        else if (in.alphaMode == "MASK")
+            out.alphaMode = AlphaMode::Mask;
+        else if (in.alphaMode == "BLEND")
+            out.alphaMode = AlphaMode::Blend;
+        else
+            ctx.fail(where + ".alphaMode", "'" + in.alphaMode + "' (expected OPAQUE, MASK or BLEND)");
+        if (checkedNumber(ctx, in.alphaCutoff, where + ".alphaCutoff") < 0.0)
+            ctx.fail(where + ".alphaCutoff", "must be >= 0");
         out.alphaCutoff = static_cast<float>(in.alphaCutoff);
         out.doubleSided = in.doubleSided;
 
@@ -298,12 +326,11 @@ void convertMaterials(const LoadContext& ctx) {
         }
         if (auto it = ext.find("KHR_materials_diffuse_transmission"); it != ext.end()) {
             const std::string at = where + ".extensions.KHR_materials_diffuse_transmission";
-            out.diffuseTransmissionFactor = clampedFactor(
-                ctx, numberField(ctx, it->second, "diffuseTransmissionFactor", at).value_or(0.0), 0.0, 1.0,
-                at + ".diffuseTransmissionFactor");
-            out.diffuseTransmissionColor =
-                glm::clamp(vec3Field(ctx, it->second, "diffuseTransmissionColorFactor", at).value_or(glm::vec3(1.0f)),
-                           0.0f, 1.0f);
+            out.diffuseTransmissionFactor =
+                clampedFactor(ctx, numberField(ctx, it->second, "diffuseTransmissionFactor", at).value_or(0.0), 0.0,
+                              1.0, at + ".diffuseTransmissionFactor");
+            out.diffuseTransmissionColor = glm::clamp(
+                vec3Field(ctx, it->second, "diffuseTransmissionColorFactor", at).value_or(glm::vec3(1.0f)), 0.0f, 1.0f);
             if (it->second.Has("diffuseTransmissionTexture") || it->second.Has("diffuseTransmissionColorTexture")) {
                 ctx.warn(at, "transmission textures are not used; only the factors are read");
             }

@@ -30,9 +30,9 @@ std::vector<uint32_t> toTriangleList(const LoadContext& ctx, const std::vector<u
     const size_t n = indices.size();
     if (mode == TINYGLTF_MODE_TRIANGLES) {
         if (n % 3 != 0) {  // the glTF validator's warning; the trailing indices make no triangle
-            ctx.warn(where, std::string(indexed ? "index" : "vertex") + " count " + std::to_string(n) +
-                                " is not a multiple of 3 for a triangle list; the last " + std::to_string(n % 3) +
-                                " ignored");
+            ctx.warn(where,
+                     std::string(indexed ? "index" : "vertex") + " count " + std::to_string(n) +
+                         " is not a multiple of 3 for a triangle list; the last " + std::to_string(n % 3) + " ignored");
             return std::vector<uint32_t>(indices.begin(), indices.end() - std::ptrdiff_t(n % 3));
         }
         return indices;
@@ -54,8 +54,10 @@ size_t repairNormals(Primitive& primitive) {
     for (size_t i = 0; i < primitive.vertices.size(); ++i) {
         glm::vec3& n = primitive.vertices[i].normalOs;
         const float len = glm::length(n);
-        if (len > 1e-12f) n /= len;
-        else broken.push_back(i);
+        if (len > 1e-12f)
+            n /= len;
+        else
+            broken.push_back(i);
     }
     if (broken.empty()) return 0;
     std::vector<glm::vec3> faceSum(primitive.vertices.size(), glm::vec3(0.0f));
@@ -87,7 +89,8 @@ void convertMeshes(const LoadContext& ctx) {
         // A primitive that repeats an earlier one of the mesh (same accessors, material and mode)
         // draws the same triangles again: drawn once (a file of 100,000 copies would otherwise
         // multiply the frame's work).
-        using PrimitiveKey = std::tuple<std::map<std::string, int>, int, int, int, std::vector<std::map<std::string, int>>>;
+        using PrimitiveKey =
+            std::tuple<std::map<std::string, int>, int, int, int, std::vector<std::map<std::string, int>>>;
         std::set<PrimitiveKey> seen;
         size_t repeated = 0;
         for (size_t p = 0; p < in.primitives.size(); ++p) {
@@ -110,8 +113,9 @@ void convertMeshes(const LoadContext& ctx) {
                 ctx.fail(where + ".mode", std::to_string(mode) + " is not a glTF primitive mode");
             }
             if (prim.material < -1 || prim.material >= static_cast<int>(model.materials.size())) {
-                ctx.fail(where + ".material", std::to_string(prim.material) + " is out of range: the file has " +
-                                                  std::to_string(model.materials.size()) + " materials");
+                ctx.fail(where + ".material",
+                         std::to_string(prim.material) + " is out of range: the file has " +
+                             std::to_string(model.materials.size()) + " materials");
             }
             auto attribute = [&](const char* name) {
                 auto it = prim.attributes.find(name);
@@ -133,12 +137,17 @@ void convertMeshes(const LoadContext& ctx) {
                 if (index < 0) continue;
                 const std::string at = where + ".attributes." + name;
                 if (const size_t count = accessorCount(ctx, index, at); count != vertexCount) {
-                    ctx.fail(at, "accessors[" + std::to_string(index) + "] has " + std::to_string(count) +
-                                     " elements, POSITION has " + std::to_string(vertexCount));
+                    ctx.fail(at,
+                             "accessors[" + std::to_string(index) + "] has " + std::to_string(count) +
+                                 " elements, POSITION has " + std::to_string(vertexCount));
                 }
             }
-            const size_t indexCount = prim.indices >= 0 ? accessorCount(ctx, prim.indices, where + ".indices", AccessorUse::Indices) : vertexCount;
-            const size_t listCount = mode == TINYGLTF_MODE_TRIANGLES ? indexCount : indexCount < 3 ? 0 : (indexCount - 2) * 3;
+            const size_t indexCount = prim.indices >= 0
+                ? accessorCount(ctx, prim.indices, where + ".indices", AccessorUse::Indices)
+                : vertexCount;
+            const size_t listCount = mode == TINYGLTF_MODE_TRIANGLES ? indexCount
+                : indexCount < 3                                     ? 0
+                                                                     : (indexCount - 2) * 3;
             if (totalIndices + listCount > limits::kMaxSceneIndices) {
                 ctx.fail(prim.indices >= 0 ? where + ".indices" : where,
                          std::to_string(listCount) + " triangle-list indices bring the scene over the limit of " +
@@ -158,8 +167,9 @@ void convertMeshes(const LoadContext& ctx) {
                 const std::string at = where + ".attributes." + name;
                 FloatAccessor a = readFloatAccessor(ctx, index, {components}, at);
                 if (a.count != vertexCount) {
-                    ctx.fail(at, "accessors[" + std::to_string(index) + "] has " + std::to_string(a.count) +
-                                     " elements, POSITION has " + std::to_string(vertexCount));
+                    ctx.fail(at,
+                             "accessors[" + std::to_string(index) + "] has " + std::to_string(a.count) +
+                                 " elements, POSITION has " + std::to_string(vertexCount));
                 }
                 return a;
             };
@@ -177,13 +187,13 @@ void convertMeshes(const LoadContext& ctx) {
 
             std::vector<uint32_t> indices;
             if (prim.indices >= 0) {
-
                 indices = readIndexAccessor(ctx, prim.indices, vertexCount, where + ".indices");
             } else {
                 indices.resize(vertexCount);
                 for (size_t i = 0; i < vertexCount; ++i) indices[i] = static_cast<uint32_t>(i);
             }
-            out.indices = toTriangleList(ctx, indices, mode, prim.indices >= 0, prim.indices >= 0 ? where + ".indices" : where);
+            out.indices =
+                toTriangleList(ctx, indices, mode, prim.indices >= 0, prim.indices >= 0 ? where + ".indices" : where);
             totalIndices += out.indices.size();
             if (out.indices.empty()) {
                 ctx.warn(where, "no triangles; primitive skipped");
@@ -193,8 +203,8 @@ void convertMeshes(const LoadContext& ctx) {
             if (!normals) {
                 makeFlatNormals(out);
             } else if (const size_t fixed = repairNormals(out); fixed > 0) {
-                ctx.warn(where + ".attributes.NORMAL", std::to_string(fixed) +
-                                                           " zero-length normals replaced by the mean face normal");
+                ctx.warn(where + ".attributes.NORMAL",
+                         std::to_string(fixed) + " zero-length normals replaced by the mean face normal");
             }
             if (tangents) {
                 if (const size_t fixed = orthonormalizeTangents(out); fixed > 0) {
@@ -204,16 +214,18 @@ void convertMeshes(const LoadContext& ctx) {
             } else {
                 const size_t fallbacks = generateTangents(out);
                 if (fallbacks > 0 && uvs) {
-                    ctx.warn(where + ".attributes.TEXCOORD_0", std::to_string(fallbacks) +
-                                                                  " vertices have no usable UV direction; their tangent is arbitrary");
+                    ctx.warn(where + ".attributes.TEXCOORD_0",
+                             std::to_string(fallbacks) +
+                                 " vertices have no usable UV direction; their tangent is arbitrary");
                 }
             }
             for (const Vertex& v : out.vertices) out.boundsOs.extend(v.positionOs);
             mesh.primitives.push_back(std::move(out));
         }
         if (repeated > 0)
-            ctx.warn(indexed("meshes", m) + ".primitives", std::to_string(repeated) +
-                                                               " primitives repeat an earlier one (same accessors, material and mode); drawn once");
+            ctx.warn(indexed("meshes", m) + ".primitives",
+                     std::to_string(repeated) +
+                         " primitives repeat an earlier one (same accessors, material and mode); drawn once");
         convertMorphWeights(ctx, m, mesh);
         updateMeshCurvature(mesh);
         ctx.scene->meshes.push_back(std::move(mesh));

@@ -13,18 +13,20 @@ void readMorphTargets(const LoadContext& ctx, const tinygltf::Primitive& in, con
         MorphTarget& target = out.targets[t];
         for (const auto& [name, accessor] : in.targets[t]) {
             std::vector<glm::vec3>* deltas = name == "POSITION" ? &target.positionDeltas
-                                           : name == "NORMAL"   ? &target.normalDeltas
-                                           : name == "TANGENT"  ? &target.tangentDeltas
+                : name == "NORMAL"                              ? &target.normalDeltas
+                : name == "TANGENT"                             ? &target.tangentDeltas
                                                                 : nullptr;
             if (!deltas) {
-                ctx.warn(where + indexed(".targets", t), "'" + name + "': morphing this attribute is not supported; ignored");
+                ctx.warn(where + indexed(".targets", t),
+                         "'" + name + "': morphing this attribute is not supported; ignored");
                 continue;
             }
             const std::string at = where + indexed(".targets", t) + "." + name;
             const FloatAccessor values = readFloatAccessor(ctx, accessor, {3}, at);
             if (values.count != vertexCount) {
-                ctx.fail(at, indexed("accessors", static_cast<size_t>(accessor)) + " has " + std::to_string(values.count) +
-                                 " elements, POSITION has " + std::to_string(vertexCount));
+                ctx.fail(at,
+                         indexed("accessors", static_cast<size_t>(accessor)) + " has " + std::to_string(values.count) +
+                             " elements, POSITION has " + std::to_string(vertexCount));
             }
             deltas->resize(vertexCount);
             for (size_t i = 0; i < vertexCount; ++i) {
@@ -48,8 +50,8 @@ void convertMorphWeights(const LoadContext& ctx, size_t meshIndex, Mesh& mesh) {
     mesh.weights.assign(targets, 0.0f);
     if (!in.weights.empty()) {
         if (in.weights.size() != targets) {
-            ctx.fail(where + ".weights", std::to_string(in.weights.size()) + " weights for " + std::to_string(targets) +
-                                             " morph targets");
+            ctx.fail(where + ".weights",
+                     std::to_string(in.weights.size()) + " weights for " + std::to_string(targets) + " morph targets");
         }
         for (size_t i = 0; i < targets; ++i) {
             if (!std::isfinite(in.weights[i])) ctx.fail(where + indexed(".weights", i), "not finite");

@@ -40,10 +40,10 @@ void convertNodeHierarchy(const LoadContext& ctx) {
             }
             Node& childNode = scene.nodes[static_cast<size_t>(child)];
             if (childNode.parent >= 0) {
-                ctx.fail(where + indexed(".children", k), indexed("nodes", static_cast<size_t>(child)) +
-                                                              " is already a child of " +
-                                                              indexed("nodes", static_cast<size_t>(childNode.parent)) +
-                                                              " (a node has at most one parent)");
+                ctx.fail(where + indexed(".children", k),
+                         indexed("nodes", static_cast<size_t>(child)) + " is already a child of " +
+                             indexed("nodes", static_cast<size_t>(childNode.parent)) +
+                             " (a node has at most one parent)");
             }
             childNode.parent = static_cast<int>(i);
             out.children.push_back(child);
@@ -70,13 +70,15 @@ void convertNodeHierarchy(const LoadContext& ctx) {
         }
 
         if (in.mesh < -1 || (in.mesh >= 0 && static_cast<size_t>(in.mesh) >= scene.meshes.size())) {
-            ctx.fail(where + ".mesh", std::to_string(in.mesh) + " is out of range: the file has " +
-                                          std::to_string(scene.meshes.size()) + " meshes");
+            ctx.fail(where + ".mesh",
+                     std::to_string(in.mesh) + " is out of range: the file has " + std::to_string(scene.meshes.size()) +
+                         " meshes");
         }
         out.mesh = in.mesh;
         if (in.skin < -1 || (in.skin >= 0 && static_cast<size_t>(in.skin) >= model.skins.size())) {
-            ctx.fail(where + ".skin", std::to_string(in.skin) + " is out of range: the file has " +
-                                          std::to_string(model.skins.size()) + " skins");
+            ctx.fail(where + ".skin",
+                     std::to_string(in.skin) + " is out of range: the file has " + std::to_string(model.skins.size()) +
+                         " skins");
         }
         if (in.skin >= 0 && in.mesh < 0) ctx.fail(where + ".skin", "given, but the node has no mesh to skin");
         out.skin = in.skin;
@@ -85,9 +87,10 @@ void convertNodeHierarchy(const LoadContext& ctx) {
             if (in.mesh < 0) ctx.fail(where + ".weights", "given, but the node has no mesh");
             const size_t targets = scene.meshes[static_cast<size_t>(in.mesh)].weights.size();
             if (in.weights.size() != targets) {
-                ctx.fail(where + ".weights", std::to_string(in.weights.size()) + " weights, but " +
-                                                 indexed("meshes", static_cast<size_t>(in.mesh)) + " has " +
-                                                 std::to_string(targets) + " morph targets");
+                ctx.fail(where + ".weights",
+                         std::to_string(in.weights.size()) + " weights, but " +
+                             indexed("meshes", static_cast<size_t>(in.mesh)) + " has " + std::to_string(targets) +
+                             " morph targets");
             }
             for (size_t k = 0; k < targets; ++k) {
                 if (!std::isfinite(in.weights[k])) ctx.fail(where + indexed(".weights", k), "not finite");

@@ -22,10 +22,14 @@ using nlohmann::json;
 
 const std::vector<std::string>& supportedRequiredExtensions() {
     static const std::vector<std::string> names = {
-        "KHR_lights_punctual",        "KHR_materials_diffuse_transmission",
-        "KHR_materials_emissive_strength", "KHR_materials_volume",
-        "KHR_mesh_quantization",      "KHR_texture_transform",
-        "PRESKIN_environment",        "PRESKIN_materials_skin",
+        "KHR_lights_punctual",
+        "KHR_materials_diffuse_transmission",
+        "KHR_materials_emissive_strength",
+        "KHR_materials_volume",
+        "KHR_mesh_quantization",
+        "KHR_texture_transform",
+        "PRESKIN_environment",
+        "PRESKIN_materials_skin",
     };
     return names;
 }
@@ -38,10 +42,9 @@ struct TopLevelArray {
     bool large;
 };
 constexpr TopLevelArray kTopLevelArrays[] = {
-    {"accessors", false}, {"animations", false}, {"buffers", false}, {"bufferViews", false},
-    {"cameras", true},    {"images", true},      {"materials", true}, {"meshes", false},
-    {"nodes", false},     {"samplers", true},    {"scenes", false},   {"skins", false},
-    {"textures", true},
+    {"accessors", false}, {"animations", false}, {"buffers", false}, {"bufferViews", false}, {"cameras", true},
+    {"images", true},     {"materials", true},   {"meshes", false},  {"nodes", false},       {"samplers", true},
+    {"scenes", false},    {"skins", false},      {"textures", true},
 };
 
 // The textureInfo objects of a core material, by path below the material.
@@ -81,7 +84,9 @@ struct Checker {
     }
 
     static std::string indexed(const std::string& name, size_t i) { return name + "[" + std::to_string(i) + "]"; }
-    static std::string field(const std::string& where, const char* key) { return where.empty() ? key : where + "." + key; }
+    static std::string field(const std::string& where, const char* key) {
+        return where.empty() ? key : where + "." + key;
+    }
 
     // A non-negative integer field; nullopt when absent.
     std::optional<uint64_t> unsignedField(const json& object, const char* key, const std::string& where) const {
@@ -110,7 +115,8 @@ struct Checker {
 
     void checkIndex(uint64_t index, size_t count, const std::string& where, const char* what) const {
         if (index >= count) {
-            error(where, std::to_string(index) + " is out of range: the file has " + std::to_string(count) + " " + what);
+            error(where,
+                  std::to_string(index) + " is out of range: the file has " + std::to_string(count) + " " + what);
         }
     }
 
@@ -158,13 +164,15 @@ struct Checker {
     void checkExtensions(const json& value, const std::function<std::string()>& where, bool generic, bool inExtras,
                          uint64_t& genericValues) const {
         if (generic && ++genericValues > limits::kMaxGltfExtraValues) {
-            error(where(), "the values inside extras and extensions exceed the limit of " +
-                               std::to_string(limits::kMaxGltfExtraValues));
+            error(where(),
+                  "the values inside extras and extensions exceed the limit of " +
+                      std::to_string(limits::kMaxGltfExtraValues));
         }
         if (value.is_array()) {
             for (size_t i = 0; i < value.size(); ++i) {
-                checkExtensions(value[i], [&] { return where() + "[" + std::to_string(i) + "]"; }, generic, inExtras,
-                                genericValues);
+                checkExtensions(
+                    value[i], [&] { return where() + "[" + std::to_string(i) + "]"; }, generic, inExtras,
+                    genericValues);
             }
             return;
         }
@@ -191,14 +199,16 @@ void checkCounts(const Checker& c, const json& doc) {
     for (const TopLevelArray& a : kTopLevelArrays) {
         const uint64_t n = c.array(doc, a.name, "").size();
         if (a.large && n > limits::kMaxGltfLargeObjects) {
-            c.error(a.name, std::to_string(n) + " elements exceeds the limit of " +
-                                std::to_string(limits::kMaxGltfLargeObjects));
+            c.error(
+                a.name,
+                std::to_string(n) + " elements exceeds the limit of " + std::to_string(limits::kMaxGltfLargeObjects));
         }
         total += n;
     }
     if (total > limits::kMaxGltfObjects) {
-        c.error("JSON", std::to_string(total) + " objects in the top-level arrays exceeds the limit of " +
-                            std::to_string(limits::kMaxGltfObjects));
+        c.error("JSON",
+                std::to_string(total) + " objects in the top-level arrays exceeds the limit of " +
+                    std::to_string(limits::kMaxGltfObjects));
     }
 }
 
@@ -219,8 +229,9 @@ void checkBuffers(const Checker& c, const json& doc, const GlbChunks* glb, std::
         const uint64_t byteLength = c.requiredUnsigned(buffer, "byteLength", where);
         if (byteLength == 0) c.error(where + ".byteLength", "0 (must be at least 1)");
         if (byteLength > limits::kMaxSceneFileBytes) {
-            c.error(where + ".byteLength", std::to_string(byteLength) + " bytes exceeds the limit of " +
-                                               std::to_string(limits::kMaxSceneFileBytes));
+            c.error(where + ".byteLength",
+                    std::to_string(byteLength) + " bytes exceeds the limit of " +
+                        std::to_string(limits::kMaxSceneFileBytes));
         }
         bufferLength[i] = byteLength;
         const json* uri = Checker::member(buffer, "uri");
@@ -228,8 +239,9 @@ void checkBuffers(const Checker& c, const json& doc, const GlbChunks* glb, std::
             if (!glb || i != 0) c.error(where + ".uri", "missing (only the first buffer of a .glb may omit it)");
             if (!glb->hasBin) c.error(where, "refers to the GLB BIN chunk, but the file has none");
             if (byteLength > glb->bin.size()) {
-                c.error(where + ".byteLength", std::to_string(byteLength) + " exceeds the GLB BIN chunk (" +
-                                                   std::to_string(glb->bin.size()) + " bytes)");
+                c.error(where + ".byteLength",
+                        std::to_string(byteLength) + " exceeds the GLB BIN chunk (" + std::to_string(glb->bin.size()) +
+                            " bytes)");
             }
             continue;
         }
@@ -241,15 +253,18 @@ void checkBuffers(const Checker& c, const json& doc, const GlbChunks* glb, std::
             }
             std::vector<unsigned char> decoded;
             std::string mime;
-            if (!tinygltf::DecodeDataURI(&decoded, mime, text, 0, false)) c.error(where + ".uri", "data URI does not decode");
+            if (!tinygltf::DecodeDataURI(&decoded, mime, text, 0, false))
+                c.error(where + ".uri", "data URI does not decode");
             if (decoded.size() != byteLength) {
-                c.error(where + ".uri", "data URI holds " + std::to_string(decoded.size()) + " bytes, byteLength says " +
-                                            std::to_string(byteLength));
+                c.error(where + ".uri",
+                        "data URI holds " + std::to_string(decoded.size()) + " bytes, byteLength says " +
+                            std::to_string(byteLength));
             }
             if (!isBufferMediaType(text)) {
-                warnings.push_back(c.file + ": " + where + ".uri: data URI media type '" +
-                                   io::messageText(text.substr(5, text.find_first_of(";,") - 5)) +
-                                   "' is not application/octet-stream or application/gltf-buffer; read as binary anyway");
+                warnings.push_back(
+                    c.file + ": " + where + ".uri: data URI media type '" +
+                    io::messageText(text.substr(5, text.find_first_of(";,") - 5)) +
+                    "' is not application/octet-stream or application/gltf-buffer; read as binary anyway");
             }
             continue;
         }
@@ -258,8 +273,9 @@ void checkBuffers(const Checker& c, const json& doc, const GlbChunks* glb, std::
         const uintmax_t size = fs::file_size(path, ec);
         if (ec) c.error(where + ".uri", "cannot read the size of '" + text + "'");
         if (size != byteLength) {
-            c.error(where + ".uri", "'" + text + "' has " + std::to_string(size) + " bytes, byteLength says " +
-                                        std::to_string(byteLength) + (size < byteLength ? " (truncated)" : ""));
+            c.error(where + ".uri",
+                    "'" + text + "' has " + std::to_string(size) + " bytes, byteLength says " +
+                        std::to_string(byteLength) + (size < byteLength ? " (truncated)" : ""));
         }
     }
 }
@@ -277,9 +293,10 @@ std::vector<uint64_t> checkBufferViews(const Checker& c, const json& doc, const 
         const uint64_t length = c.requiredUnsigned(view, "byteLength", where);
         if (length == 0) c.error(where + ".byteLength", "0 (must be at least 1)");
         if (offset > bufferLength[buffer] || length > bufferLength[buffer] - offset) {
-            c.error(where, "byteOffset " + std::to_string(offset) + " + byteLength " + std::to_string(length) +
-                               " exceeds buffers[" + std::to_string(buffer) + "] (" +
-                               std::to_string(bufferLength[buffer]) + " bytes)");
+            c.error(where,
+                    "byteOffset " + std::to_string(offset) + " + byteLength " + std::to_string(length) +
+                        " exceeds buffers[" + std::to_string(buffer) + "] (" + std::to_string(bufferLength[buffer]) +
+                        " bytes)");
         }
         if (auto stride = c.unsignedField(view, "byteStride", where)) {
             if (*stride < 4 || *stride > 252 || *stride % 4 != 0) {
@@ -298,8 +315,9 @@ void checkViewOffset(const Checker& c, const json& object, const std::string& wh
     c.checkIndex(view, viewLength.size(), where + ".bufferView", "bufferViews");
     const uint64_t offset = c.unsignedField(object, "byteOffset", where).value_or(0);
     if (offset >= viewLength[view]) {
-        c.error(where + ".byteOffset", std::to_string(offset) + " is not inside bufferViews[" + std::to_string(view) +
-                                           "] (" + std::to_string(viewLength[view]) + " bytes)");
+        c.error(where + ".byteOffset",
+                std::to_string(offset) + " is not inside bufferViews[" + std::to_string(view) + "] (" +
+                    std::to_string(viewLength[view]) + " bytes)");
     }
 }
 
@@ -327,8 +345,9 @@ void checkAccessors(const Checker& c, const json& doc, const std::vector<uint64_
         const uint64_t count = c.requiredUnsigned(accessor, "count", where);
         if (count == 0) c.error(where + ".count", "0 (must be at least 1)");
         if (count > limits::kMaxSceneIndices) {
-            c.error(where + ".count", std::to_string(count) + " exceeds the limit of " +
-                                          std::to_string(limits::kMaxSceneIndices) + " elements");
+            c.error(where + ".count",
+                    std::to_string(count) + " exceeds the limit of " + std::to_string(limits::kMaxSceneIndices) +
+                        " elements");
         }
         const json* sparse = Checker::member(accessor, "sparse");
         if (!sparse) continue;
@@ -420,8 +439,8 @@ void checkMeshes(const Checker& c, const json& doc) {
         if (primitives->empty()) c.error(meshWhere + ".primitives", "empty (a mesh has at least one primitive)");
         primitiveCount += primitives->size();
         if (primitiveCount > limits::kMaxScenePrimitives) {
-            c.error(meshWhere + ".primitives", "the file exceeds the limit of " +
-                                                   std::to_string(limits::kMaxScenePrimitives) + " primitives");
+            c.error(meshWhere + ".primitives",
+                    "the file exceeds the limit of " + std::to_string(limits::kMaxScenePrimitives) + " primitives");
         }
         for (size_t p = 0; p < primitives->size(); ++p) {
             const std::string where = meshWhere + Checker::indexed(".primitives", p);
@@ -514,8 +533,9 @@ void checkLights(const Checker& c, const json& doc) {
         const std::string base = "extensions.KHR_lights_punctual";
         const json& lights = c.array(*khr, "lights", base);
         if (lights.size() > limits::kMaxGltfLargeObjects) {
-            c.error(base + ".lights", std::to_string(lights.size()) + " elements exceeds the limit of " +
-                                          std::to_string(limits::kMaxGltfLargeObjects));
+            c.error(base + ".lights",
+                    std::to_string(lights.size()) + " elements exceeds the limit of " +
+                        std::to_string(limits::kMaxGltfLargeObjects));
         }
         lightCount = lights.size();
         for (size_t i = 0; i < lights.size(); ++i) {
@@ -544,12 +564,15 @@ void checkLights(const Checker& c, const json& doc) {
             }
             if (typeName == "spot") {
                 const json* spot = Checker::member(light, "spot");
-                if (!spot || !spot->is_object()) c.error(where + ".spot", "missing or not an object (a spot light needs it)");
+                if (!spot || !spot->is_object())
+                    c.error(where + ".spot", "missing or not an object (a spot light needs it)");
                 const double inner = c.numberField(*spot, "innerConeAngle", where + ".spot").value_or(0.0);
-                const double outer = c.numberField(*spot, "outerConeAngle", where + ".spot").value_or(std::numbers::pi / 4);
+                const double outer =
+                    c.numberField(*spot, "outerConeAngle", where + ".spot").value_or(std::numbers::pi / 4);
                 if (!(inner >= 0.0 && inner < outer && outer <= std::numbers::pi / 2 + 1e-6)) {
-                    c.error(where + ".spot", "cone angles inner " + io::numberText(inner) + ", outer " +
-                                                 io::numberText(outer) + " (need 0 <= inner < outer <= pi/2)");
+                    c.error(where + ".spot",
+                            "cone angles inner " + io::numberText(inner) + ", outer " + io::numberText(outer) +
+                                " (need 0 <= inner < outer <= pi/2)");
                 }
             }
         }
@@ -577,7 +600,8 @@ void checkEnvironment(const Checker& c, const json& doc, PrepassResult& result) 
         if (*intensity < 0.0) c.error(where + ".intensity", io::numberText(*intensity) + " is negative");
         result.environmentIntensity = static_cast<float>(*intensity);
     }
-    if (auto rotation = c.numberField(*env, "rotation", where)) result.environmentRotation = static_cast<float>(*rotation);
+    if (auto rotation = c.numberField(*env, "rotation", where))
+        result.environmentRotation = static_cast<float>(*rotation);
 }
 
 // The root PRESKIN_materials_skin extension: {"profiles": [profile, ...]}. A profile is
@@ -590,14 +614,16 @@ void checkSkinProfiles(const Checker& c, const json& doc, PrepassResult& result)
     const std::string where = "extensions.PRESKIN_materials_skin";
     for (auto it = skin->begin(); it != skin->end(); ++it) {
         if (it.key() != "profiles" && it.key() != "extras" && it.key() != "extensions")
-            result.warnings.push_back(c.file + ": " + where + "." + io::messageText(it.key()) + ": unknown field; ignored");
+            result.warnings.push_back(c.file + ": " + where + "." + io::messageText(it.key()) +
+                                      ": unknown field; ignored");
     }
     const json* profiles = Checker::member(*skin, "profiles");
     if (!profiles) return;
     if (!profiles->is_array()) c.error(where + ".profiles", "not an array");
     if (profiles->size() > limits::kMaxSkinProfiles) {
-        c.error(where + ".profiles", std::to_string(profiles->size()) + " profiles exceed the limit of " +
-                                         std::to_string(limits::kMaxSkinProfiles));
+        c.error(where + ".profiles",
+                std::to_string(profiles->size()) + " profiles exceed the limit of " +
+                    std::to_string(limits::kMaxSkinProfiles));
     }
     for (size_t i = 0; i < profiles->size(); ++i) {
         const std::string at = where + Checker::indexed(".profiles", i);
@@ -610,7 +636,8 @@ void checkSkinProfiles(const Checker& c, const json& doc, PrepassResult& result)
         const json* type = Checker::member(entry, "type");
         if (type && *type == "deonLuebke") {
             for (auto f = entry.begin(); f != entry.end(); ++f) {
-                if (f.key() != "type" && f.key() != "name") c.error(at + "." + io::messageText(f.key()), "unknown field");
+                if (f.key() != "type" && f.key() != "name")
+                    c.error(at + "." + io::messageText(f.key()), "unknown field");
             }
             profile.profile = DiffusionProfile::deonLuebke();
         } else if (type && *type == "lutFolder") {
@@ -623,7 +650,8 @@ void checkSkinProfiles(const Checker& c, const json& doc, PrepassResult& result)
             const std::string text = uri->get<std::string>();
             profile.lutFolder = resolveUri(text, c.folder, c.file, at + ".uri", c.allowOutsideLinks);
             std::error_code ec;
-            if (!fs::is_directory(profile.lutFolder, ec)) c.error(at + ".uri", "LUT folder '" + io::messageText(text) + "' not found next to the scene");
+            if (!fs::is_directory(profile.lutFolder, ec))
+                c.error(at + ".uri", "LUT folder '" + io::messageText(text) + "' not found next to the scene");
         } else {
             // Reports an unknown type as "must be sumOfGaussians or normalizedDiffusion"; the two
             // kinds above are named in docs/gltf-extensions.md.
@@ -633,9 +661,10 @@ void checkSkinProfiles(const Checker& c, const json& doc, PrepassResult& result)
                 if (type && type->is_string()) {
                     const std::string kind = type->get<std::string>();
                     if (kind != "sumOfGaussians" && kind != "normalizedDiffusion") {
-                        c.error(at + ".type", "'" + io::messageText(kind) +
-                                                   "' is not a profile type (deonLuebke, normalizedDiffusion, "
-                                                   "sumOfGaussians or lutFolder)");
+                        c.error(at + ".type",
+                                "'" + io::messageText(kind) +
+                                    "' is not a profile type (deonLuebke, normalizedDiffusion, "
+                                    "sumOfGaussians or lutFolder)");
                     }
                 }
                 throw;
@@ -673,7 +702,8 @@ PrepassResult checkDocument(const json& doc, const std::string& file, const fs::
     for (size_t i = 0; i < skins.size(); ++i) {
         const json* joints = skins[i].is_object() ? Checker::member(skins[i], "joints") : nullptr;
         if (!joints || !joints->is_array() || joints->empty())
-            c.error(Checker::indexed("skins", i) + ".joints", "missing, empty or not an array (a skin needs at least one joint)");
+            c.error(Checker::indexed("skins", i) + ".joints",
+                    "missing, empty or not an array (a skin needs at least one joint)");
     }
 
     // extensions
@@ -699,7 +729,8 @@ PrepassResult checkDocument(const json& doc, const std::string& file, const fs::
         }
     }
     uint64_t genericValues = 0;
-    c.checkExtensions(doc, [] { return std::string(); }, false, false, genericValues);
+    c.checkExtensions(
+        doc, [] { return std::string(); }, false, false, genericValues);
     checkCounts(c, doc);
 
     std::vector<uint64_t> bufferLength;
@@ -711,8 +742,8 @@ PrepassResult checkDocument(const json& doc, const std::string& file, const fs::
         const json* type = cameras[i].is_object() ? Checker::member(cameras[i], "type") : nullptr;
         if (type && type->is_string() && (*type == "perspective" || *type == "orthographic")) continue;
         result.skippedCameras.push_back(i);
-        result.warnings.push_back(file + ": " + Checker::indexed("cameras", i) + ".type: " +
-                                  (type ? io::jsonExcerpt(*type) : std::string("missing")) +
+        result.warnings.push_back(file + ": " + Checker::indexed("cameras", i) +
+                                  ".type: " + (type ? io::jsonExcerpt(*type) : std::string("missing")) +
                                   " is not perspective or orthographic; camera skipped");
     }
     const std::vector<uint64_t> viewLength = checkBufferViews(c, doc, bufferLength);

@@ -41,12 +41,12 @@ struct PrepassResult {
     float environmentRotation = 0.0f;
     std::vector<SkinProfile> profiles;  // the root PRESKIN_materials_skin extension's
     std::vector<std::string> warnings;
-    std::vector<size_t> skippedCameras;  // cameras of no glTF type: the loader leaves them out
+    std::vector<size_t> skippedCameras;                        // cameras of no glTF type: the loader leaves them out
     std::vector<std::pair<size_t, size_t>> skippedPrimitives;  // (mesh, primitive) that draw nothing
 };
 
 // `glb` is set for binary files; its BIN chunk size bounds buffer 0.
-PrepassResult checkDocument(const nlohmann::json& doc, const std::string& file,
-                            const std::filesystem::path& folder, const GlbChunks* glb, bool allowOutsideLinks);
+PrepassResult checkDocument(const nlohmann::json& doc, const std::string& file, const std::filesystem::path& folder,
+                            const GlbChunks* glb, bool allowOutsideLinks);
 
 }  // namespace preskin::gltf

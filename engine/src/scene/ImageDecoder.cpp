@@ -118,8 +118,8 @@ bool readPng(png_structp png, png_infop info, PngSource& source, uint64_t sceneP
         sizeProblem = e.what();
         return false;
     }
-    png_set_expand(png);       // palette to RGB, grey below 8 bits to 8, tRNS to alpha
-    png_set_scale_16(png);     // 16 bits to 8, rounded
+    png_set_expand(png);    // palette to RGB, grey below 8 bits to 8, tRNS to alpha
+    png_set_scale_16(png);  // 16 bits to 8, rounded
     png_set_gray_to_rgb(png);
     png_set_add_alpha(png, 0xFF, PNG_FILLER_AFTER);
     png_set_interlace_handling(png);
@@ -167,7 +167,8 @@ std::optional<std::pair<uint32_t, uint32_t>> jpegSize(std::span<const uint8_t> b
             continue;
         }
         const size_t length = (size_t(bytes[i + 2]) << 8) | bytes[i + 3];
-        const bool startOfFrame = marker >= 0xC0 && marker <= 0xCF && marker != 0xC4 && marker != 0xC8 && marker != 0xCC;
+        const bool startOfFrame =
+            marker >= 0xC0 && marker <= 0xCF && marker != 0xC4 && marker != 0xC8 && marker != 0xCC;
         if (startOfFrame) {
             if (i + 9 > bytes.size() || length < 7) return std::nullopt;
             const uint32_t height = (uint32_t(bytes[i + 5]) << 8) | bytes[i + 6];
@@ -242,8 +243,8 @@ DecodedImage decodeJpeg(std::span<const uint8_t> bytes, uint64_t scenePixelsLeft
     if (!input->open(openName, spec, config)) {
         std::string why = input->geterror();
         OIIO::geterror();  // clear any global message as well
-        throw std::runtime_error("cannot decode the " + describeImageFormat(bytes) + " data: " +
-                                 (why.empty() ? "unreadable header" : why));
+        throw std::runtime_error("cannot decode the " + describeImageFormat(bytes) +
+                                 " data: " + (why.empty() ? "unreadable header" : why));
     }
     const int channels = spec.nchannels;
     if (spec.width <= 0 || spec.height <= 0 || channels <= 0 || channels > 4 || spec.depth > 1) {
@@ -262,8 +263,8 @@ DecodedImage decodeJpeg(std::span<const uint8_t> bytes, uint64_t scenePixelsLeft
     OIIO::geterror();
     input->close();
     if (!ok || !why.empty()) {
-        throw std::runtime_error("cannot decode the " + describeImageFormat(bytes) + " data: " +
-                                 (why.empty() ? "read failed" : why));
+        throw std::runtime_error("cannot decode the " + describeImageFormat(bytes) +
+                                 " data: " + (why.empty() ? "read failed" : why));
     }
 
     DecodedImage out;

@@ -26,28 +26,28 @@ namespace {
 
 using dvec3 = glm::dvec3;
 
-constexpr double kReachSigmas = 3.0;    // a basis Gaussian holds 98.9 % of its energy within 3 sigma
+constexpr double kReachSigmas = 3.0;  // a basis Gaussian holds 98.9 % of its energy within 3 sigma
 // A piece of size (radius) s at distance d samples each Gaussian G_b it reaches once its size is
 // below theta s_b^2 / max(d, s_b): G_b changes by about exp(theta) across it. Triangles are then
 // integrated by the three-point edge-midpoint rule (exact to second order), tree nodes as one point.
 constexpr double kTriangleTheta = 2.0;
 constexpr double kNodeTheta = 0.5;
-constexpr double kCoherentNormals = 0.95;    // ... and its normal integral is at least this fraction of its area
+constexpr double kCoherentNormals = 0.95;  // ... and its normal integral is at least this fraction of its area
 constexpr int kLeafTriangles = 4;
 
 struct Node {
     dvec3 centroid{0.0};
     dvec3 normalIntegral{0.0};  // int n dA, n interpolated linearly (not renormalised)
     double area = 0.0;
-    double radius = 0.0;        // bounding sphere about the centroid
+    double radius = 0.0;            // bounding sphere about the centroid
     uint32_t first = 0, count = 0;  // leaf: triangles [first, first + count) of the order
     int32_t left = -1, right = -1;
 };
 
 struct Mesh {
-    std::vector<dvec3> p, n;                      // welded positions (mm) and unit normals
+    std::vector<dvec3> p, n;  // welded positions (mm) and unit normals
     std::vector<std::array<uint32_t, 3>> triangles;
-    std::vector<uint32_t> order;                  // triangles in tree order
+    std::vector<uint32_t> order;  // triangles in tree order
     std::vector<Node> nodes;
 };
 
@@ -70,7 +70,8 @@ int32_t build(Mesh& m, uint32_t first, uint32_t count) {
     }
     node.centroid = node.area > 0.0 ? node.centroid / node.area : 0.5 * (lo + hi);
     for (uint32_t i = first; i < first + count; ++i)
-        for (uint32_t v : m.triangles[m.order[i]]) node.radius = std::max(node.radius, glm::length(m.p[v] - node.centroid));
+        for (uint32_t v : m.triangles[m.order[i]])
+            node.radius = std::max(node.radius, glm::length(m.p[v] - node.centroid));
     const auto index = int32_t(m.nodes.size());
     m.nodes.push_back(node);
     if (count > uint32_t(kLeafTriangles)) {
@@ -95,19 +96,21 @@ int32_t build(Mesh& m, uint32_t first, uint32_t count) {
 // One basis Gaussian: its normalisation, reach and the largest piece that samples it.
 struct Kernel {
     double halfInvVariance = 0.0;
-    double norm = 0.0;   // 1 / (2 pi sigma^2)
+    double norm = 0.0;  // 1 / (2 pi sigma^2)
     double sigma = 0.0;
     double reach = 0.0;
     double operator()(double r2) const { return norm * std::exp(-r2 * halfInvVariance); }
     // The largest piece (radius) at `distance` that samples the Gaussian to about exp(theta) (theta
     // times its width squared over the distance: where it changes fastest, the piece is smallest).
-    double largestPiece(double distance, double theta) const { return theta * sigma * sigma / std::max(distance, sigma); }
+    double largestPiece(double distance, double theta) const {
+        return theta * sigma * sigma / std::max(distance, sigma);
+    }
 };
 
 // Adds int G (n - nx) dA over the triangle (p, with corner normals n) to sum, split into four while
 // it is too large for the Gaussian.
-void addTriangle(const Kernel& g, const dvec3& x, const dvec3& nx, const dvec3 (&p)[3], const dvec3 (&n)[3],
-                 dvec3& sum, int depth) {
+void addTriangle(const Kernel& g, const dvec3& x, const dvec3& nx, const dvec3 (&p)[3], const dvec3 (&n)[3], dvec3& sum,
+                 int depth) {
     const dvec3 centre = (p[0] + p[1] + p[2]) / 3.0;
     double size = 0.0;
     for (int k = 0; k < 3; ++k) size = std::max(size, glm::length(p[k] - centre));
@@ -183,7 +186,8 @@ std::vector<NormalBasis> computeNormalBasis(std::span<const glm::vec3> positions
         throw Error(fmt::format("computeNormalBasis: index count {} is not a multiple of 3", indices.size()));
     for (size_t i = 0; i < indices.size(); ++i)
         if (indices[i] >= vertexCount)
-            throw Error(fmt::format("computeNormalBasis: indices[{}] = {} >= vertex count {}", i, indices[i], vertexCount));
+            throw Error(
+                fmt::format("computeNormalBasis: indices[{}] = {} >= vertex count {}", i, indices[i], vertexCount));
     if (!std::isfinite(mmPerUnit) || !(mmPerUnit > 0.0))
         throw Error(fmt::format("computeNormalBasis: mmPerUnit must be a positive finite number, got {}", mmPerUnit));
     for (size_t i = 0; i < vertexCount; ++i)

@@ -71,8 +71,8 @@ void Scene::makeSkin(const std::string& materialName, const SkinMaterial& defaul
     if (!found && materialName != "all") {
         std::string names;
         for (const Material& material : materials) names += (names.empty() ? "" : ", ") + material.name;
-        throw Error(sourcePath.string() + ": no material named '" + materialName + "' (materials: " +
-                    (names.empty() ? "none" : names) + ")");
+        throw Error(sourcePath.string() + ": no material named '" + materialName +
+                    "' (materials: " + (names.empty() ? "none" : names) + ")");
     }
 }
 

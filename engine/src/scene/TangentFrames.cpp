@@ -10,7 +10,7 @@ glm::vec3 anyPerpendicular(const glm::vec3& n) {
     // Cross with the axis least aligned with n.
     const glm::vec3 a = glm::abs(n);
     const glm::vec3 axis = (a.x <= a.y && a.x <= a.z) ? glm::vec3(1, 0, 0)
-                           : (a.y <= a.z)             ? glm::vec3(0, 1, 0)
+        : (a.y <= a.z)                                ? glm::vec3(0, 1, 0)
                                                       : glm::vec3(0, 0, 1);
     return glm::normalize(glm::cross(n, axis));
 }
@@ -21,8 +21,7 @@ void makeFlatNormals(Primitive& primitive) {
     for (size_t t = 0; t + 2 < primitive.indices.size(); t += 3) {
         Vertex v[3] = {primitive.vertices[primitive.indices[t]], primitive.vertices[primitive.indices[t + 1]],
                        primitive.vertices[primitive.indices[t + 2]]};
-        const glm::vec3 areaNormal =
-            glm::cross(v[1].positionOs - v[0].positionOs, v[2].positionOs - v[0].positionOs);
+        const glm::vec3 areaNormal = glm::cross(v[1].positionOs - v[0].positionOs, v[2].positionOs - v[0].positionOs);
         const float len = glm::length(areaNormal);
         const glm::vec3 n = (len > 0.0f && std::isfinite(len)) ? areaNormal / len : glm::vec3(0, 0, 1);
         for (Vertex& vertex : v) {
@@ -76,7 +75,7 @@ size_t generateTangents(Primitive& primitive) {
         const float det = d1.x * d2.y - d2.x * d1.y;
         const float uvScale = std::max(glm::dot(d1, d1), glm::dot(d2, d2));
         if (!(std::abs(det) > 1e-7f * uvScale) || !std::isfinite(det)) continue;  // degenerate UVs
-        if (!(glm::length(glm::cross(e1, e2)) > 0.0f)) continue;                    // zero area
+        if (!(glm::length(glm::cross(e1, e2)) > 0.0f)) continue;                  // zero area
         const glm::vec3 dPdu = (e1 * d2.y - e2 * d1.y) / det;
         const glm::vec3 dPdv = (e2 * d1.x - e1 * d2.x) / det;
         const glm::vec3 up = -dPdv;

@@ -52,7 +52,8 @@ void checkGaussians(const std::vector<GaussianTerm>& terms, std::string_view sou
         const std::string at = fmt::format("{}[{}]", field, i);
         if (!std::isfinite(v)) fail(source, at + ".varianceMm2", fmt::format("must be finite, got {}", v));
         if (!(v >= skin::kMinVarianceMm2))
-            fail(source, at + ".varianceMm2", fmt::format("must be >= {} mm^2 (a Gaussian 1 um wide), got {}", skin::kMinVarianceMm2, v));
+            fail(source, at + ".varianceMm2",
+                 fmt::format("must be >= {} mm^2 (a Gaussian 1 um wide), got {}", skin::kMinVarianceMm2, v));
         if (v > skin::kMaxVarianceMm2)
             fail(source, at + ".varianceMm2", fmt::format("must be <= {} mm^2, got {}", skin::kMaxVarianceMm2, v));
         for (int c = 0; c < 3; ++c) {
@@ -69,7 +70,8 @@ void checkGaussians(const std::vector<GaussianTerm>& terms, std::string_view sou
                  fmt::format("channel {} has zero albedo (the weights sum to 0)", kChannelNames[c]));
         if (sum[c] > 1.0 + 1e-9)
             fail(source, fmt::format("{}[*].weights[{}]", field, c),
-                 fmt::format("channel {} has albedo {:.6g} > 1 (the weights must sum to at most 1)", kChannelNames[c], sum[c]));
+                 fmt::format("channel {} has albedo {:.6g} > 1 (the weights must sum to at most 1)", kChannelNames[c],
+                             sum[c]));
     }
 }
 
@@ -77,19 +79,22 @@ void checkBurley(glm::dvec3 albedo, glm::dvec3 meanFreePathMm, std::string_view 
     for (int c = 0; c < 3; ++c) {
         const std::string af = fmt::format("{}albedo[{}]", prefix, c);
         if (!std::isfinite(albedo[c])) fail(source, af, fmt::format("must be finite, got {}", albedo[c]));
-        if (!(albedo[c] > 0.0 && albedo[c] <= 1.0)) fail(source, af, fmt::format("must be in (0, 1], got {}", albedo[c]));
+        if (!(albedo[c] > 0.0 && albedo[c] <= 1.0))
+            fail(source, af, fmt::format("must be in (0, 1], got {}", albedo[c]));
         const std::string lf = fmt::format("{}meanFreePathMm[{}]", prefix, c);
         const double l = meanFreePathMm[c];
         if (!std::isfinite(l)) fail(source, lf, fmt::format("must be finite, got {}", l));
         if (!(l >= skin::kMinMeanFreePathMm))
             fail(source, lf, fmt::format("must be >= {} mm (1 um), got {}", skin::kMinMeanFreePathMm, l));
-        if (l > skin::kMaxMeanFreePathMm) fail(source, lf, fmt::format("must be <= {} mm, got {}", skin::kMaxMeanFreePathMm, l));
+        if (l > skin::kMaxMeanFreePathMm)
+            fail(source, lf, fmt::format("must be <= {} mm, got {}", skin::kMaxMeanFreePathMm, l));
     }
 }
 
 std::string jsonTypeName(const nlohmann::json& j) { return j.type_name(); }
 
-const nlohmann::json& requireField(const nlohmann::json& object, const char* key, std::string_view source, const std::string& field) {
+const nlohmann::json& requireField(const nlohmann::json& object, const char* key, std::string_view source,
+                                   const std::string& field) {
     const auto it = object.find(key);
     if (it == object.end()) fail(source, field, "missing");
     return *it;
@@ -106,12 +111,13 @@ glm::dvec3 requireRgb(const nlohmann::json& value, std::string_view source, cons
     if (!value.is_array() || value.size() != 3)
         fail(source, field, "must be an array of three numbers [r, g, b], got " + io::jsonExcerpt(value));
     glm::dvec3 result;
-    for (int c = 0; c < 3; ++c) result[c] = requireNumber(value[static_cast<size_t>(c)], source, fmt::format("{}[{}]", field, c));
+    for (int c = 0; c < 3; ++c)
+        result[c] = requireNumber(value[static_cast<size_t>(c)], source, fmt::format("{}[{}]", field, c));
     return result;
 }
 
-void rejectUnknownKeys(const nlohmann::json& object, std::initializer_list<std::string_view> known, std::string_view source,
-                       const std::string& prefix) {
+void rejectUnknownKeys(const nlohmann::json& object, std::initializer_list<std::string_view> known,
+                       std::string_view source, const std::string& prefix) {
     for (const auto& item : object.items()) {
         if (std::find(known.begin(), known.end(), item.key()) == known.end())
             fail(source, prefix + io::messageText(item.key()), "unknown field");
@@ -129,7 +135,8 @@ DiffusionProfile DiffusionProfile::deonLuebke() {
     return sumOfGaussians(std::move(terms), "d'Eon & Luebke 2007 skin (six Gaussians)", "deonLuebke");
 }
 
-DiffusionProfile DiffusionProfile::sumOfGaussians(std::vector<GaussianTerm> terms, std::string name, std::string_view source) {
+DiffusionProfile DiffusionProfile::sumOfGaussians(std::vector<GaussianTerm> terms, std::string name,
+                                                  std::string_view source) {
     checkGaussians(terms, source, "");
     DiffusionProfile profile;
     profile.kind_ = Kind::SumOfGaussians;
@@ -159,7 +166,8 @@ void DiffusionProfile::finish() {
             const double v = term.varianceMm2;
             albedo_ += term.weight;
             secondMoment += term.weight * (2.0 * v);  // E[r^2] of a 2D Gaussian is 2v
-            constants_.push_back({0.5 / v, 1.0 / (2.0 * kPi * v), 1.0 / std::sqrt(2.0 * kPi * v), 1.0 / std::sqrt(2.0 * v)});
+            constants_.push_back(
+                {0.5 / v, 1.0 / (2.0 * kPi * v), 1.0 / std::sqrt(2.0 * kPi * v), 1.0 / std::sqrt(2.0 * v)});
         }
         widthMm_ = glm::sqrt(secondMoment / albedo_);
     } else {
@@ -308,7 +316,8 @@ DiffusionProfile parseProfileJson(const nlohmann::json& json, std::string_view s
     if (!json.is_object()) fail(source, rootName, "must be a JSON object, got " + jsonTypeName(json));
     const nlohmann::json& type = requireField(json, "type", source, prefix + "type");
     if (!type.is_string())
-        fail(source, prefix + "type", "must be \"deonLuebke\", \"sumOfGaussians\" or \"normalizedDiffusion\", got " + io::jsonExcerpt(type));
+        fail(source, prefix + "type",
+             "must be \"deonLuebke\", \"sumOfGaussians\" or \"normalizedDiffusion\", got " + io::jsonExcerpt(type));
     std::string name;
     if (const auto it = json.find("name"); it != json.end()) {
         if (!it->is_string()) fail(source, prefix + "name", "must be a string, got " + jsonTypeName(*it));
@@ -317,11 +326,14 @@ DiffusionProfile parseProfileJson(const nlohmann::json& json, std::string_view s
 
     if (type == "deonLuebke") {
         rejectUnknownKeys(json, {"type", "name"}, source, prefix);
-        return name.empty() ? DiffusionProfile::deonLuebke()
-                            : DiffusionProfile::sumOfGaussians(DiffusionProfile::deonLuebke().gaussians(), name, source);
+        return name.empty()
+            ? DiffusionProfile::deonLuebke()
+            : DiffusionProfile::sumOfGaussians(DiffusionProfile::deonLuebke().gaussians(), name, source);
     }
     if (type == "lutFolder")
-        fail(source, prefix + "type", "\"lutFolder\" names LUTs already baked: load the folder (--luts, LutSet::load), there is no profile to bake");
+        fail(
+            source, prefix + "type",
+            "\"lutFolder\" names LUTs already baked: load the folder (--luts, LutSet::load), there is no profile to bake");
     if (type == "sumOfGaussians") {
         rejectUnknownKeys(json, {"type", "name", "gaussians"}, source, prefix);
         const nlohmann::json& list = requireField(json, "gaussians", source, prefix + "gaussians");
@@ -333,7 +345,8 @@ DiffusionProfile parseProfileJson(const nlohmann::json& json, std::string_view s
             if (!item.is_object()) fail(source, at, "must be an object, got " + jsonTypeName(item));
             rejectUnknownKeys(item, {"varianceMm2", "weights"}, source, at + ".");
             GaussianTerm term;
-            term.varianceMm2 = requireNumber(requireField(item, "varianceMm2", source, at + ".varianceMm2"), source, at + ".varianceMm2");
+            term.varianceMm2 = requireNumber(requireField(item, "varianceMm2", source, at + ".varianceMm2"), source,
+                                             at + ".varianceMm2");
             term.weight = requireRgb(requireField(item, "weights", source, at + ".weights"), source, at + ".weights");
             terms.push_back(term);
         }
@@ -342,13 +355,16 @@ DiffusionProfile parseProfileJson(const nlohmann::json& json, std::string_view s
     }
     if (type == "normalizedDiffusion") {
         rejectUnknownKeys(json, {"type", "name", "albedo", "meanFreePathMm"}, source, prefix);
-        const glm::dvec3 albedo = requireRgb(requireField(json, "albedo", source, prefix + "albedo"), source, prefix + "albedo");
-        const glm::dvec3 mfp =
-            requireRgb(requireField(json, "meanFreePathMm", source, prefix + "meanFreePathMm"), source, prefix + "meanFreePathMm");
+        const glm::dvec3 albedo =
+            requireRgb(requireField(json, "albedo", source, prefix + "albedo"), source, prefix + "albedo");
+        const glm::dvec3 mfp = requireRgb(requireField(json, "meanFreePathMm", source, prefix + "meanFreePathMm"),
+                                          source, prefix + "meanFreePathMm");
         checkBurley(albedo, mfp, source, prefix);
-        return name.empty() ? DiffusionProfile::burley(albedo, mfp) : DiffusionProfile::burley(albedo, mfp, std::move(name));
+        return name.empty() ? DiffusionProfile::burley(albedo, mfp)
+                            : DiffusionProfile::burley(albedo, mfp, std::move(name));
     }
-    fail(source, prefix + "type", "must be \"deonLuebke\", \"sumOfGaussians\" or \"normalizedDiffusion\", got " + io::jsonExcerpt(type));
+    fail(source, prefix + "type",
+         "must be \"deonLuebke\", \"sumOfGaussians\" or \"normalizedDiffusion\", got " + io::jsonExcerpt(type));
 }
 
 nlohmann::ordered_json profileToJson(const DiffusionProfile& profile) {

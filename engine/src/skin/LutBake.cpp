@@ -7,8 +7,8 @@
 
 #include "skin/Half.h"
 #include "skin/LutLayout.h"
-#include "skin/SphereScatter.h"
 #include "skin/SpecialFunctions.h"
+#include "skin/SphereScatter.h"
 
 #include <preskin/Error.h>
 
@@ -28,8 +28,8 @@ namespace {
 
 void checkSize(int value, std::string_view source, std::string_view field) {
     if (value < LutBakeSettings::kMinSize || value > LutBakeSettings::kMaxSize)
-        throw Error(fmt::format("{}: {}: must be an integer in [{}, {}], got {}", source, field, LutBakeSettings::kMinSize,
-                                LutBakeSettings::kMaxSize, value));
+        throw Error(fmt::format("{}: {}: must be an integer in [{}, {}], got {}", source, field,
+                                LutBakeSettings::kMinSize, LutBakeSettings::kMaxSize, value));
 }
 
 // The thickness where the largest channel's transmittance falls to kTransmittanceFloor, rounded
@@ -38,7 +38,8 @@ double transmittanceRangeMm(const DiffusionProfile& profile) {
     return std::ceil(profile.reachMm(kTransmittanceFloor) * 100.0) / 100.0;
 }
 
-LutAxis axis(std::string quantity, std::string unit, AxisMapping mapping, double min, double max, double scale, int size) {
+LutAxis axis(std::string quantity, std::string unit, AxisMapping mapping, double min, double max, double scale,
+             int size) {
     LutAxis a;
     a.quantity = std::move(quantity);
     a.unit = std::move(unit);
@@ -70,7 +71,8 @@ void validateBakeSettings(const LutBakeSettings& s, std::string_view source, std
     checkSize(s.shCurvatureSize, source, p + "shCurvatureSize");
     checkSize(s.transmittanceSize, source, p + "transmittanceSize");
     if (!std::isfinite(s.curvatureMaxPerMm) || !(s.curvatureMaxPerMm > 0.0) || s.curvatureMaxPerMm > 100.0)
-        throw Error(fmt::format("{}: {}curvatureMaxPerMm: must be in (0, 100] 1/mm, got {}", source, p, s.curvatureMaxPerMm));
+        throw Error(
+            fmt::format("{}: {}curvatureMaxPerMm: must be in (0, 100] 1/mm, got {}", source, p, s.curvatureMaxPerMm));
 }
 
 LutLayout makeLutLayout(const DiffusionProfile& profile, const LutBakeSettings& s) {
@@ -84,7 +86,8 @@ LutLayout makeLutLayout(const DiffusionProfile& profile, const LutBakeSettings& 
     layout.penumbra.x = axis("shadow", "1", AxisMapping::Linear, 0.0, 1.0, 1.0, s.penumbraShadowSize);
     layout.penumbra.y = axis("filterSigmaRelative", "1", AxisMapping::Rational, 0.0, inf, 1.0, s.penumbraWidthSize);
     layout.shTransfer.name = "shTransfer";
-    layout.shTransfer.x = axis("curvature", "1/mm", AxisMapping::Sqrt, 0.0, s.curvatureMaxPerMm, 1.0, s.shCurvatureSize);
+    layout.shTransfer.x =
+        axis("curvature", "1/mm", AxisMapping::Sqrt, 0.0, s.curvatureMaxPerMm, 1.0, s.shCurvatureSize);
     layout.shTransfer.y = axis("band", "1", AxisMapping::Index, 0.0, 2.0, 1.0, 3);
     layout.transmittance.name = "transmittance";
     layout.transmittance.x = axis("thickness", "mm", AxisMapping::Log1p, 0.0, transmittanceRangeMm(profile),
@@ -122,7 +125,8 @@ LutSet LutSet::bake(const DiffusionProfile& profile, const LutBakeSettings& sett
     std::vector<double> nol(static_cast<size_t>(set.diffuse_.width()));
     for (int i = 0; i < set.diffuse_.width(); ++i) nol[static_cast<size_t>(i)] = set.diffuse_.x.valueAt(i);
     std::vector<double> shadowQuantile(static_cast<size_t>(set.penumbra_.width()));
-    for (int i = 0; i < set.penumbra_.width(); ++i) shadowQuantile[static_cast<size_t>(i)] = skin::normalQuantile(set.penumbra_.x.valueAt(i));
+    for (int i = 0; i < set.penumbra_.width(); ++i)
+        shadowQuantile[static_cast<size_t>(i)] = skin::normalQuantile(set.penumbra_.x.valueAt(i));
 
     // Work units: diffuse columns (one curvature each), SH columns, penumbra rows (one filter
     // width each), the transmittance row.
@@ -152,12 +156,14 @@ LutSet LutSet::bake(const DiffusionProfile& profile, const LutBakeSettings& sett
             const double curvaturePerMm = set.diffuse_.y.valueAt(iy);
             std::vector<glm::dvec3> column(nol.size());
             skin::sphereScatter(profile, curvaturePerMm, patchMm, nol, column);
-            for (int ix = 0; ix < set.diffuse_.width(); ++ix) skin::storeHalf(set.diffuse_, ix, iy, column[static_cast<size_t>(ix)]);
+            for (int ix = 0; ix < set.diffuse_.width(); ++ix)
+                skin::storeHalf(set.diffuse_, ix, iy, column[static_cast<size_t>(ix)]);
         } else if (unit < diffuseUnits + shUnits) {
             const int ix = unit - diffuseUnits;
             const std::array<glm::dvec3, 3> a = skin::shTransfer(profile, set.shTransfer_.x.valueAt(ix));
             for (int l = 0; l < 3; ++l)
-                skin::storeHalf(set.shTransfer_, ix, l, a[static_cast<size_t>(l)] / skin::kLambertZonal[static_cast<size_t>(l)]);
+                skin::storeHalf(set.shTransfer_, ix, l,
+                                a[static_cast<size_t>(l)] / skin::kLambertZonal[static_cast<size_t>(l)]);
         } else if (unit < diffuseUnits + shUnits + penumbraUnits) {
             const int iy = unit - diffuseUnits - shUnits;
             const int lastRow = set.penumbra_.height() - 1;

@@ -21,8 +21,8 @@
 #include "io/NumberRule.h"
 
 #include <OpenImageIO/imageio.h>
-#include <zlib.h>
 #include <fmt/core.h>
+#include <zlib.h>
 #include <nlohmann/json.hpp>
 
 #include <sys/stat.h>
@@ -58,7 +58,8 @@ struct TableFile {
 constexpr TableFile kDiffuseFile{"diffuse", "diffuse.exr", "diffuse.f16", "preview_diffuse.png"};
 constexpr TableFile kPenumbraFile{"penumbra", "penumbra.exr", "penumbra.f16", "preview_penumbra.png"};
 constexpr TableFile kShFile{"shTransfer", "sh_transfer.exr", "sh_transfer.f16", "preview_sh_transfer.png"};
-constexpr TableFile kTransmittanceFile{"transmittance", "transmittance.exr", "transmittance.f16", "preview_transmittance.png"};
+constexpr TableFile kTransmittanceFile{"transmittance", "transmittance.exr", "transmittance.f16",
+                                       "preview_transmittance.png"};
 static_assert(std::endian::native == std::endian::little, "raw LUT tables are little-endian half floats");
 
 std::string shown(const fs::path& p) { return p.string(); }
@@ -83,7 +84,10 @@ ordered_json axisJson(const LutAxis& axis) {
     j["quantity"] = axis.quantity;
     j["unit"] = axis.unit;
     j["min"] = axis.min;
-    if (std::isinf(axis.max)) j["max"] = "infinity"; else j["max"] = axis.max;
+    if (std::isinf(axis.max))
+        j["max"] = "infinity";
+    else
+        j["max"] = axis.max;
     if (axis.mapping == AxisMapping::Log1p) j["scale"] = axis.scale;
     j["size"] = axis.size;
     j["mapping"] = axisMappingName(axis.mapping);
@@ -124,64 +128,76 @@ std::string manifestText(const LutSet& set, bool raw) {
         {"narrowestScaleMm", profile.narrowestScaleMm()},
     };
     j["settings"] = {
-        {"diffuseNoLSize", s.diffuseNoLSize},       {"diffuseCurvatureSize", s.diffuseCurvatureSize},
+        {"diffuseNoLSize", s.diffuseNoLSize},         {"diffuseCurvatureSize", s.diffuseCurvatureSize},
         {"penumbraShadowSize", s.penumbraShadowSize}, {"penumbraWidthSize", s.penumbraWidthSize},
-        {"shCurvatureSize", s.shCurvatureSize},     {"transmittanceSize", s.transmittanceSize},
+        {"shCurvatureSize", s.shCurvatureSize},       {"transmittanceSize", s.transmittanceSize},
         {"curvatureMaxPerMm", s.curvatureMaxPerMm},
     };
     j["conventions"] = {
-        {"layout", "row-major RGB; scanline y (v = (y + 0.5) / height) holds y-axis node y; column x holds x-axis node x"},
-        {"texelCentres", "axis node i sits at texel centre (i + 0.5) / size; node 0 = range start, node size-1 = range "
-                         "end; sample with LINEAR filtering and CLAMP_TO_EDGE"},
+        {"layout",
+         "row-major RGB; scanline y (v = (y + 0.5) / height) holds y-axis node y; column x holds x-axis node x"},
+        {"texelCentres",
+         "axis node i sits at texel centre (i + 0.5) / size; node 0 = range start, node size-1 = range "
+         "end; sample with LINEAR filtering and CLAMP_TO_EDGE"},
         {"values", "rounded to half precision at bake time; the EXR files hold exactly the baked numbers"},
-        {"normalisation", "every table carries the profile's shape only (per channel, albedo divided out); multiply "
-                          "by the material's albedo"},
+        {"normalisation",
+         "every table carries the profile's shape only (per channel, albedo divided out); multiply "
+         "by the material's albedo"},
         {"varianceScale", "none: Gaussian variances are used as published (no 1.414 factor)"},
-        {"curvature", "signed mean curvature 1/r in 1/mm of the profile's units, > 0 convex, < 0 concave; diffuse: "
-                      "range [-curvatureMaxPerMm, curvatureMaxPerMm] (default 1: radii from 1 mm to flat) with the "
-                      "flat row exactly in the middle, SH transfer: |curvature| in [0, curvatureMaxPerMm]; sqrt "
-                      "mappings, so half the rows of each side lie below a quarter of its range, where faces are "
-                      "(radii ~2..100 mm); values beyond the range clamp to the last row"},
-        {"penumbraWidth", "filterSigmaRelative = sigma_f / referenceWidthMm; sigma_f is the shadow filter's Gaussian "
-                          "standard deviation on the receiver across the edge (mm), referenceWidthMm the widest "
-                          "channel's RMS width"},
-        {"sphereKernel", "diffuse: the profile integrated over a sphere of radius 1/|curvature| (Penner & Borshukov 2011's "
-                         "pre-integration on a sphere instead of a ring): D = int R(|x-y|) max(n_y.L, 0) V dA / int R dA, "
-                         "convex: the whole sphere, V = 1; concave: the inside, limited to the cap of arc radius "
-                         "localPatchMm around x, V = 0 where the light towards y leaves through the cap"},
+        {"curvature",
+         "signed mean curvature 1/r in 1/mm of the profile's units, > 0 convex, < 0 concave; diffuse: "
+         "range [-curvatureMaxPerMm, curvatureMaxPerMm] (default 1: radii from 1 mm to flat) with the "
+         "flat row exactly in the middle, SH transfer: |curvature| in [0, curvatureMaxPerMm]; sqrt "
+         "mappings, so half the rows of each side lie below a quarter of its range, where faces are "
+         "(radii ~2..100 mm); values beyond the range clamp to the last row"},
+        {"penumbraWidth",
+         "filterSigmaRelative = sigma_f / referenceWidthMm; sigma_f is the shadow filter's Gaussian "
+         "standard deviation on the receiver across the edge (mm), referenceWidthMm the widest "
+         "channel's RMS width"},
+        {"sphereKernel",
+         "diffuse: the profile integrated over a sphere of radius 1/|curvature| (Penner & Borshukov 2011's "
+         "pre-integration on a sphere instead of a ring): D = int R(|x-y|) max(n_y.L, 0) V dA / int R dA, "
+         "convex: the whole sphere, V = 1; concave: the inside, limited to the cap of arc radius "
+         "localPatchMm around x, V = 0 where the light towards y leaves through the cap"},
         {"localPatchMm", set.localPatchMm()},
-        {"penumbraModel", "a point light's hard shadow edge, located by the shadow filter (Gaussian, standard "
-                          "deviation sigma_f): x = sigma_f Phi^-1(shadow); value = the profile's edge response at x "
-                          "renormalised to |x| <= 3 sigma_f"},
-        {"shTransfer", "stored as A_l / (pi, 2 pi / 3, pi / 4)_l, A_l = 2 pi int D(theta) P_l(cos theta) sin theta "
-                       "dtheta over the convex sphere of |curvature| (= Lambert_l g_l / g_0, g_l the profile's Legendre "
-                       "coefficients on the sphere, Funk-Hecke); flat skin stores 1"},
-        {"transmittance", "T(d) = int 2 pi r R(sqrt(r^2 + d^2)) dr / albedo; Gaussians: sum_i w_i exp(-d^2 / 2 v_i) / "
-                          "albedo (Jimenez et al. 2010's form with variances doubled, no 1.414 factor)"},
+        {"penumbraModel",
+         "a point light's hard shadow edge, located by the shadow filter (Gaussian, standard "
+         "deviation sigma_f): x = sigma_f Phi^-1(shadow); value = the profile's edge response at x "
+         "renormalised to |x| <= 3 sigma_f"},
+        {"shTransfer",
+         "stored as A_l / (pi, 2 pi / 3, pi / 4)_l, A_l = 2 pi int D(theta) P_l(cos theta) sin theta "
+         "dtheta over the convex sphere of |curvature| (= Lambert_l g_l / g_0, g_l the profile's Legendre "
+         "coefficients on the sphere, Funk-Hecke); flat skin stores 1"},
+        {"transmittance",
+         "T(d) = int 2 pi r R(sqrt(r^2 + d^2)) dr / albedo; Gaussians: sum_i w_i exp(-d^2 / 2 v_i) / "
+         "albedo (Jimenez et al. 2010's form with variances doubled, no 1.414 factor)"},
         {"previews", "preview_*.png: sRGB-encoded, first y node at the bottom; SH bands 0, 1, 2 bottom to top"},
     };
 
     ordered_json tables;
     ordered_json diffuse = tableJson(set.diffuse(), kDiffuseFile, raw);
-    diffuse["method"] = "integral over the angle psi between x and y of a^2 R(2 a sin(psi/2)) sin(psi) times the "
-                        "closed-form azimuthal integral of max(n_y.L, 0) (with the concave cap's visibility threshold), "
-                        "up to the profile's 1e-4 reach, by 8-point Gauss-Legendre on a geometric mesh (ratio 1.5) "
-                        "from 1e-3 of the narrowest scale and 64 uniform intervals; the middle row (curvature 0) is "
-                        "exactly saturate(NoL)";
+    diffuse["method"] =
+        "integral over the angle psi between x and y of a^2 R(2 a sin(psi/2)) sin(psi) times the "
+        "closed-form azimuthal integral of max(n_y.L, 0) (with the concave cap's visibility threshold), "
+        "up to the profile's 1e-4 reach, by 8-point Gauss-Legendre on a geometric mesh (ratio 1.5) "
+        "from 1e-3 of the narrowest scale and 64 uniform intervals; the middle row (curvature 0) is "
+        "exactly saturate(NoL)";
     diffuse["samples"] = {{"gaussLegendrePointsPerInterval", 8}, {"gradedMeshRatio", 1.5}, {"uniformIntervals", 64}};
     tables["diffuse"] = std::move(diffuse);
 
     ordered_json penumbra = tableJson(set.penumbra(), kPenumbraFile, raw);
     penumbra["referenceWidthMm"] = set.penumbraReferenceWidthMm();
     penumbra["windowSigmas"] = skin::kPenumbraWindowSigmas;
-    penumbra["method"] = "closed form (erfc) for Gaussians; Craig-form integral (1/pi) int_0^{pi/2} T(a / sin psi) dpsi "
-                         "by 8-point Gauss-Legendre on a halving mesh for normalized diffusion";
+    penumbra["method"] =
+        "closed form (erfc) for Gaussians; Craig-form integral (1/pi) int_0^{pi/2} T(a / sin psi) dpsi "
+        "by 8-point Gauss-Legendre on a halving mesh for normalized diffusion";
     tables["penumbra"] = std::move(penumbra);
 
     ordered_json sh = tableJson(set.shTransfer(), kShFile, raw);
     sh["lambert"] = ordered_json::array({std::numbers::pi, 2.0 * std::numbers::pi / 3.0, std::numbers::pi / 4.0});
-    sh["method"] = "16-point Gauss-Legendre in cos(theta) on [-1, 1] with breaks at 0, +-1/256, +-1/64, +-1/16, +-1/4 "
-                   "(160 ring integrals per curvature)";
+    sh["method"] =
+        "16-point Gauss-Legendre in cos(theta) on [-1, 1] with breaks at 0, +-1/256, +-1/64, +-1/16, +-1/4 "
+        "(160 ring integrals per curvature)";
     sh["samples"] = {{"cosThetaNodes", 160}};
     tables["shTransfer"] = std::move(sh);
 
@@ -232,8 +248,8 @@ void writePreview(const fs::path& path, const fs::path& shownPath, const LutTabl
         for (int ix = 0; ix < width; ++ix) {
             const glm::vec3 v = table.texel(ix, iy);
             for (int c = 0; c < 3; ++c)
-                pixels[(static_cast<size_t>(py) * static_cast<size_t>(width) + static_cast<size_t>(ix)) * 3 + static_cast<size_t>(c)] =
-                    static_cast<uint8_t>(std::lround(255.0f * srgbEncode(v[c])));
+                pixels[(static_cast<size_t>(py) * static_cast<size_t>(width) + static_cast<size_t>(ix)) * 3 +
+                       static_cast<size_t>(c)] = static_cast<uint8_t>(std::lround(255.0f * srgbEncode(v[c])));
         }
     }
     auto out = OIIO::ImageOutput::create("png");
@@ -256,7 +272,8 @@ struct ManifestReader {
     std::string source;  // the manifest's path, for messages
 
     [[noreturn]] void fail(const std::string& field, const std::string& problem) const {
-        throw Error(fmt::format("{}: {}: {}", source, io::messageText(field), io::messageText(problem, 4 * io::kMessageExcerptChars)));
+        throw Error(fmt::format("{}: {}: {}", source, io::messageText(field),
+                                io::messageText(problem, 4 * io::kMessageExcerptChars)));
     }
     const nlohmann::json& field(const nlohmann::json& object, const std::string& path, const char* key) const {
         const std::string full = path.empty() ? key : path + "." + key;
@@ -304,10 +321,12 @@ void checkAxis(const ManifestReader& reader, const nlohmann::json& tables, const
             reader.fail(at + "." + name, fmt::format("{} does not match the profile and settings ({})", got, want));
     };
     const std::string quantity = reader.string(a, at, "quantity");
-    if (quantity != expected.quantity) reader.fail(at + ".quantity", fmt::format("expected \"{}\", got \"{}\"", expected.quantity, quantity));
+    if (quantity != expected.quantity)
+        reader.fail(at + ".quantity", fmt::format("expected \"{}\", got \"{}\"", expected.quantity, quantity));
     const std::string mapping = reader.string(a, at, "mapping");
     if (mapping != axisMappingName(expected.mapping))
-        reader.fail(at + ".mapping", fmt::format("expected \"{}\", got \"{}\"", axisMappingName(expected.mapping), mapping));
+        reader.fail(at + ".mapping",
+                    fmt::format("expected \"{}\", got \"{}\"", axisMappingName(expected.mapping), mapping));
     expect("size", reader.integer(a, at, "size"), expected.size);
     expect("min", reader.number(a, at, "min"), expected.min);
     expect("max", reader.number(a, at, "max"), expected.max);
@@ -347,26 +366,27 @@ void readExr(const fs::path& exrPath, const ManifestReader& reader, const std::s
     }
     const OIIO::ImageSpec& spec = in->spec();
     if (spec.width != width || spec.height != height || spec.nchannels != 3)
-        throw Error(fmt::format("{}: image is {}x{} with {} channels, but {} {} says {}x{} RGB", shown(exrPath), spec.width,
-                                spec.height, spec.nchannels, reader.source, path, width, height));
+        throw Error(fmt::format("{}: image is {}x{} with {} channels, but {} {} says {}x{} RGB", shown(exrPath),
+                                spec.width, spec.height, spec.nchannels, reader.source, path, width, height));
     if (!in->read_image(0, 0, 0, 3, OIIO::TypeDesc::HALF, half.data()))
         throw Error(fmt::format("{}: cannot read: {}", shown(exrPath), io::messageText(in->geterror())));
     in->close();
 }
 
-
-LutTable readTable(const fs::path& dir, const ManifestReader& reader, const nlohmann::json& tables, const TableFile& file,
-                   LutTable expected) {
+LutTable readTable(const fs::path& dir, const ManifestReader& reader, const nlohmann::json& tables,
+                   const TableFile& file, LutTable expected) {
     const std::string path = std::string("tables.") + file.key;
     const nlohmann::json& t = reader.field(tables, "tables", file.key);
     const std::string name = reader.string(t, path, "file");
     if (name != file.fileName && name != file.rawName)
-        reader.fail(path + ".file", fmt::format("expected \"{}\" or \"{}\", got \"{}\"", file.fileName, file.rawName, name));
+        reader.fail(path + ".file",
+                    fmt::format("expected \"{}\" or \"{}\", got \"{}\"", file.fileName, file.rawName, name));
     const int width = reader.integer(t, path, "width");
     const int height = reader.integer(t, path, "height");
     if (width != expected.width() || height != expected.height())
-        reader.fail(path + ".width", fmt::format("{}x{} does not match the settings ({}x{})", width, height, expected.width(),
-                                                 expected.height()));
+        reader.fail(path + ".width",
+                    fmt::format("{}x{} does not match the settings ({}x{})", width, height, expected.width(),
+                                expected.height()));
     checkAxis(reader, t, path, "x", expected.x);
     checkAxis(reader, t, path, "y", expected.y);
     const std::string hash = reader.string(t, path, "hash");
@@ -380,8 +400,8 @@ LutTable readTable(const fs::path& dir, const ManifestReader& reader, const nloh
         bytes = readRaw(tablePath, values);
         const std::string actual = fmt::format("{:08x}", crc32_z(0, bytes.data(), bytes.size()));
         if (actual != crc)
-            throw Error(fmt::format("{}: CRC-32 {} does not match {} {}.crc32 ({}); the file is corrupt", shown(tablePath),
-                                    actual, reader.source, path, io::messageText(crc)));
+            throw Error(fmt::format("{}: CRC-32 {} does not match {} {}.crc32 ({}); the file is corrupt",
+                                    shown(tablePath), actual, reader.source, path, io::messageText(crc)));
     } else {
         half.resize(values);
         readExr(tablePath, reader, path, width, height, half);
@@ -407,8 +427,9 @@ LutTable readTable(const fs::path& dir, const ManifestReader& reader, const nloh
     }
     const std::string actual = raw ? hash : skin::halfContentHash(half);  // raw: the CRC above
     if (actual != hash)
-        throw Error(fmt::format("{}: content hash {} does not match {} {}.hash ({}); the file is corrupt or from another bake",
-                                shown(tablePath), actual, reader.source, path, io::messageText(hash)));
+        throw Error(
+            fmt::format("{}: content hash {} does not match {} {}.hash ({}); the file is corrupt or from another bake",
+                        shown(tablePath), actual, reader.source, path, io::messageText(hash)));
     return expected;
 }
 
@@ -423,7 +444,8 @@ void LutSet::save(const fs::path& dir, const LutSaveOptions& options) const {
     for (const LutTable* table : {&diffuse_, &penumbra_, &shTransfer_, &transmittance_}) {
         const size_t bad = skin::nonFiniteValues(*table);
         if (bad > 0)
-            throw Error(fmt::format("{}: table {}: {} values are not finite; nothing written", shown(dir), table->name, bad));
+            throw Error(
+                fmt::format("{}: table {}: {} values are not finite; nothing written", shown(dir), table->name, bad));
     }
     struct Pending {
         fs::path finalPath;
@@ -445,9 +467,10 @@ void LutSet::save(const fs::path& dir, const LutSaveOptions& options) const {
     addTable(transmittance_, kTransmittanceFile);
     if (options.previewPngs) {
         auto addPreview = [&](const LutTable& table, const TableFile& file, int rowRepeat) {
-            files.push_back({dir / file.preview, [&table, rowRepeat, shownPath = dir / file.preview](const fs::path& temp) {
-                                 writePreview(temp, shownPath, table, rowRepeat);
-                             }});
+            files.push_back(
+                {dir / file.preview, [&table, rowRepeat, shownPath = dir / file.preview](const fs::path& temp) {
+                     writePreview(temp, shownPath, table, rowRepeat);
+                 }});
         };
         addPreview(diffuse_, kDiffuseFile, 1);
         addPreview(penumbra_, kPenumbraFile, 1);
@@ -479,13 +502,14 @@ void LutSet::save(const fs::path& dir, const LutSaveOptions& options) const {
             struct stat st {};
             if (::stat(file.finalPath.c_str(), &st) != 0) continue;
             if (!S_ISREG(st.st_mode))
-                throw Error(fmt::format("{}: output: exists and is not a regular file; not replaced", shown(file.finalPath)));
+                throw Error(
+                    fmt::format("{}: output: exists and is not a regular file; not replaced", shown(file.finalPath)));
             if ((st.st_mode & (S_IWUSR | S_IWGRP | S_IWOTH)) == 0 || ::access(file.finalPath.c_str(), W_OK) != 0)
                 throw Error(fmt::format("{}: output: exists and is read-only; not replaced", shown(file.finalPath)));
         }
         for (const Pending& file : files) {
-            const fs::path temp = dir / fmt::format(".{}.tmp-{}{}", file.finalPath.stem().string(), tag,
-                                                    file.finalPath.extension().string());
+            const fs::path temp = dir /
+                fmt::format(".{}.tmp-{}{}", file.finalPath.stem().string(), tag, file.finalPath.extension().string());
             temps.push_back(temp);
             file.write(temp);
         }
@@ -508,7 +532,8 @@ LutSet LutSetAccess::load(const fs::path& dir) {
     if (!j.is_object()) reader.fail("(root)", "must be a JSON object");
     if (reader.string(j, "", "format") != kFormat) reader.fail("format", fmt::format("expected \"{}\"", kFormat));
     const int version = reader.integer(j, "", "version");
-    if (version != kVersion) reader.fail("version", fmt::format("unsupported version {} (this build reads {})", version, kVersion));
+    if (version != kVersion)
+        reader.fail("version", fmt::format("unsupported version {} (this build reads {})", version, kVersion));
 
     DiffusionProfile profile = skin::parseProfileJson(reader.field(j, "", "profile"), reader.source, "profile.");
     const nlohmann::json& s = reader.field(j, "", "settings");
@@ -524,7 +549,8 @@ LutSet LutSetAccess::load(const fs::path& dir) {
 
     skin::LutLayout layout = skin::makeLutLayout(profile, settings);
     const nlohmann::json& tables = reader.field(j, "", "tables");
-    const double referenceWidth = reader.number(reader.field(tables, "tables", "penumbra"), "tables.penumbra", "referenceWidthMm");
+    const double referenceWidth =
+        reader.number(reader.field(tables, "tables", "penumbra"), "tables.penumbra", "referenceWidthMm");
     if (!sameNumber(referenceWidth, layout.penumbraReferenceWidthMm))
         reader.fail("tables.penumbra.referenceWidthMm",
                     fmt::format("{} does not match the profile ({})", referenceWidth, layout.penumbraReferenceWidthMm));

@@ -12,15 +12,15 @@
 
 namespace preskin::skin {
 
-inline constexpr double kPenumbraWindowSigmas = 3.0;   // the filter resolves |x| <= 3 sigma
-inline constexpr double kTransmittanceFloor = 1e-4;    // the thickness range ends where max T <= this
+inline constexpr double kPenumbraWindowSigmas = 3.0;  // the filter resolves |x| <= 3 sigma
+inline constexpr double kTransmittanceFloor = 1e-4;   // the thickness range ends where max T <= this
 // The skin's local patch: the surface within this many widths of the profile's widest channel
 // (DiffusionProfile::maxWidthMm) of a shaded point. Its self-shadowing belongs to the diffuse
 // LUT; the shadow map is looked up above it (skin.glsl, preskinSkinShadowPosition).
 inline constexpr double kLocalPatchWidths = 1.0;
 
 struct LutLayout {
-    LutTable diffuse;        // name and axes only (rgb empty)
+    LutTable diffuse;  // name and axes only (rgb empty)
     LutTable penumbra;
     LutTable shTransfer;
     LutTable transmittance;

@@ -59,9 +59,10 @@ gpu::LutMapping lutMapping(const LutSet& luts, const LutExtents& extents) {
     m.shLambert = glm::vec4(gpu::kShLambert0, gpu::kShLambert1, gpu::kShLambert2, 0.0f);
 
     const LutAxis& thickness = luts.transmittance().x;  // Log1p on [0, max]
-    const glm::vec2 thicknessTexel = texelScaleOffset(thickness.size, extentOr(extents.transmittance.x, thickness.size));
-    m.transmittance =
-        glm::vec4(f(1.0 / thickness.scale), f(1.0 / std::log1p(thickness.max / thickness.scale)), thicknessTexel.x, thicknessTexel.y);
+    const glm::vec2 thicknessTexel =
+        texelScaleOffset(thickness.size, extentOr(extents.transmittance.x, thickness.size));
+    m.transmittance = glm::vec4(f(1.0 / thickness.scale), f(1.0 / std::log1p(thickness.max / thickness.scale)),
+                                thicknessTexel.x, thicknessTexel.y);
     return m;
 }
 
@@ -71,7 +72,9 @@ glm::vec2 LutSet::diffuseUv(float NoL, float curvaturePerMm) const {
     return gpu::preskinDiffuseLutUv(lutMapping(*this), NoL, curvaturePerMm);
 }
 
-glm::vec3 LutSet::lookupDiffuse(float NoL, float curvaturePerMm) const { return diffuse_.sample(diffuseUv(NoL, curvaturePerMm)); }
+glm::vec3 LutSet::lookupDiffuse(float NoL, float curvaturePerMm) const {
+    return diffuse_.sample(diffuseUv(NoL, curvaturePerMm));
+}
 
 glm::vec2 LutSet::penumbraUv(float shadow, float filterSigmaMm) const {
     return gpu::preskinPenumbraLutUv(lutMapping(*this), shadow, filterSigmaMm);
@@ -89,7 +92,8 @@ std::array<glm::vec3, 3> LutSet::lookupShTransfer(float curvaturePerMm) const {
     const gpu::LutMapping m = lutMapping(*this);
     std::array<glm::vec3, 3> a;
     for (int l = 0; l < 3; ++l)
-        a[static_cast<size_t>(l)] = m.shLambert[l] * shTransfer_.sample(gpu::preskinShTransferLutUv(m, curvaturePerMm, l));
+        a[static_cast<size_t>(l)] =
+            m.shLambert[l] * shTransfer_.sample(gpu::preskinShTransferLutUv(m, curvaturePerMm, l));
     return a;
 }
 
@@ -97,6 +101,8 @@ glm::vec2 LutSet::transmittanceUv(float thicknessMm) const {
     return gpu::preskinTransmittanceLutUv(lutMapping(*this), thicknessMm);
 }
 
-glm::vec3 LutSet::lookupTransmittance(float thicknessMm) const { return transmittance_.sample(transmittanceUv(thicknessMm)); }
+glm::vec3 LutSet::lookupTransmittance(float thicknessMm) const {
+    return transmittance_.sample(transmittanceUv(thicknessMm));
+}
 
 }  // namespace preskin

@@ -2,8 +2,8 @@
 // CLAMP_TO_EDGE rule, Vulkan spec "Texel Filtering"), half-float export and the FNV-1a content
 // hash (Fowler, Noll & Vo; 64-bit offset basis 14695981039346656037, prime 1099511628211).
 // Limits: see LutTable.h.
-#include <preskin/LutTable.h>
 #include <preskin/Error.h>
+#include <preskin/LutTable.h>
 
 #include "skin/Half.h"
 
@@ -142,8 +142,9 @@ std::vector<float> LutTable::planes() const { return lutPlanes(rgba16f(), width(
 std::vector<float> lutPlanes(const std::vector<uint16_t>& rgba16f, int width, int height) {
     const auto w = static_cast<size_t>(std::max(width, 0));
     const auto h = static_cast<size_t>(std::max(height, 0));
-    if (rgba16f.size() != w * h * 4) throw Error("lutPlanes: the image holds " + std::to_string(rgba16f.size()) +
-                                                 " values, not " + std::to_string(w * h * 4));
+    if (rgba16f.size() != w * h * 4)
+        throw Error("lutPlanes: the image holds " + std::to_string(rgba16f.size()) + " values, not " +
+                    std::to_string(w * h * 4));
     std::vector<float> out(3 * w * h);
     for (size_t y = 0; y < h; ++y)
         for (size_t x = 0; x < w; ++x)

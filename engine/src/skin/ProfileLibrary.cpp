@@ -50,12 +50,12 @@ fs::path ProfileCacheOptions::resolvedFolder() const {
     return {};
 }
 
-fs::path profileCacheEntry(const fs::path& cacheFolder, const DiffusionProfile& profile, const LutBakeSettings& settings) {
-    const std::string key =
-        fmt::format("{}\n{}\n{} {} {} {} {} {} {:.17g}", kCacheKeyVersion, skin::profileToJson(profile).dump(),
-                    settings.diffuseNoLSize, settings.diffuseCurvatureSize, settings.penumbraShadowSize,
-                    settings.penumbraWidthSize, settings.shCurvatureSize, settings.transmittanceSize,
-                    settings.curvatureMaxPerMm);
+fs::path profileCacheEntry(const fs::path& cacheFolder, const DiffusionProfile& profile,
+                           const LutBakeSettings& settings) {
+    const std::string key = fmt::format(
+        "{}\n{}\n{} {} {} {} {} {} {:.17g}", kCacheKeyVersion, skin::profileToJson(profile).dump(),
+        settings.diffuseNoLSize, settings.diffuseCurvatureSize, settings.penumbraShadowSize, settings.penumbraWidthSize,
+        settings.shCurvatureSize, settings.transmittanceSize, settings.curvatureMaxPerMm);
     return cacheFolder / fmt::format("{:016x}", fnv1a64(key));
 }
 
@@ -66,7 +66,8 @@ ProfileLibrary::ProfileLibrary(std::shared_ptr<const LutSet> defaultLuts) {
 
 void ProfileLibrary::setLayer(size_t index, std::shared_ptr<const LutSet> luts) {
     if (index >= layers_.size() || !luts)
-        throw Error(fmt::format("ProfileLibrary: layer {} is out of range (the library has {})", index, layers_.size()));
+        throw Error(
+            fmt::format("ProfileLibrary: layer {} is out of range (the library has {})", index, layers_.size()));
     layers_[index] = std::move(luts);
 }
 
@@ -78,7 +79,8 @@ ProfileLibrary ProfileLibrary::forScene(const Scene& scene, std::shared_ptr<cons
     const size_t count = scene.profiles.size();
     const std::string source = scene.sourcePath.empty() ? std::string("scene") : scene.sourcePath.string();
     if (count > limits::kMaxSkinProfiles) {
-        throw Error(fmt::format("{}: profiles: {} profiles exceed the limit of {}", source, count, limits::kMaxSkinProfiles));
+        throw Error(
+            fmt::format("{}: profiles: {} profiles exceed the limit of {}", source, count, limits::kMaxSkinProfiles));
     }
     for (size_t i = 0; i < count; ++i) {
         const SkinProfile& p = scene.profiles[i];
@@ -105,13 +107,15 @@ ProfileLibrary ProfileLibrary::forScene(const Scene& scene, std::shared_ptr<cons
                     try {
                         LutSet set = LutSet::load(entry);
                         if (!entryMatches(set, *p.profile, settings))
-                            throw Error(fmt::format("{}: holds another profile or other bake settings", entry.string()));
+                            throw Error(
+                                fmt::format("{}: holds another profile or other bake settings", entry.string()));
                         sets[i] = std::make_shared<const LutSet>(std::move(set));
                         hit[i] = 1;
                         return;
                     } catch (const Error& e) {
                         damaged[i] = 1;
-                        warnings[i] = fmt::format("profile '{}': damaged cache entry ({}); baked again", p.name, e.what());
+                        warnings[i] =
+                            fmt::format("profile '{}': damaged cache entry ({}); baked again", p.name, e.what());
                     }
                 }
                 toSave[i] = 1;
@@ -142,9 +146,12 @@ ProfileLibrary ProfileLibrary::forScene(const Scene& scene, std::shared_ptr<cons
     for (size_t i = 0; i < count; ++i) {
         library.layers_.push_back(std::move(sets[i]));
         const SkinProfile& p = scene.profiles[i];
-        if (!p.lutFolder.empty()) ++library.stats_.lutFolders;
-        else if (hit[i]) ++library.stats_.cacheHits;
-        else ++library.stats_.baked;
+        if (!p.lutFolder.empty())
+            ++library.stats_.lutFolders;
+        else if (hit[i])
+            ++library.stats_.cacheHits;
+        else
+            ++library.stats_.baked;
         library.stats_.damaged += damaged[i];
     }
     library.stats_.wallMs = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();

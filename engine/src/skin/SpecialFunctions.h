@@ -18,14 +18,20 @@ inline double besselK0(double x) {
     if (x <= 2.0) {
         const double t = x / 3.75;
         const double t2 = t * t;
-        const double i0 =
-            1.0 + t2 * (3.5156229 + t2 * (3.0899424 + t2 * (1.2067492 + t2 * (0.2659732 + t2 * (0.0360768 + t2 * 0.0045813)))));
+        const double i0 = 1.0 +
+            t2 *
+                (3.5156229 +
+                 t2 * (3.0899424 + t2 * (1.2067492 + t2 * (0.2659732 + t2 * (0.0360768 + t2 * 0.0045813)))));
         const double y = 0.25 * x * x;
         return -std::log(0.5 * x) * i0 - 0.57721566 +
-               y * (0.42278420 + y * (0.23069756 + y * (0.03488590 + y * (0.00262698 + y * (0.00010750 + y * 0.0000074)))));
+            y *
+            (0.42278420 + y * (0.23069756 + y * (0.03488590 + y * (0.00262698 + y * (0.00010750 + y * 0.0000074)))));
     }
     const double y = 2.0 / x;
-    const double poly = 1.25331414 + y * (-0.07832358 + y * (0.02189568 + y * (-0.01062446 + y * (0.00587872 + y * (-0.00251540 + y * 0.00053208)))));
+    const double poly = 1.25331414 +
+        y *
+            (-0.07832358 +
+             y * (0.02189568 + y * (-0.01062446 + y * (0.00587872 + y * (-0.00251540 + y * 0.00053208)))));
     return std::exp(-x) / std::sqrt(x) * poly;
 }
 
@@ -41,7 +47,10 @@ inline double normalQuantile(double p) {
     for (int iteration = 0; iteration < 200; ++iteration) {
         const double f = normalCdf(x) - p;
         if (f == 0.0) return x;
-        if (f < 0.0) lo = x; else hi = x;
+        if (f < 0.0)
+            lo = x;
+        else
+            hi = x;
         const double density = std::exp(-0.5 * x * x) / std::sqrt(2.0 * std::numbers::pi);
         double next = density > 0.0 ? x - f / density : 0.5 * (lo + hi);
         if (!(next > lo && next < hi)) next = 0.5 * (lo + hi);

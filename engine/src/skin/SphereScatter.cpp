@@ -39,7 +39,7 @@ KernelNodes kernelNodes(const DiffusionProfile& profile, double radiusMm, double
             nodes.cosPsi.push_back(std::cos(psi));
             nodes.sinPsi.push_back(std::sin(psi));
             const glm::dvec3 w = (half * rule.weights[i]) * radiusMm * radiusMm * std::sin(psi) *
-                                 profile.R(std::max(chord, 1e-12)) * invAlbedo;
+                profile.R(std::max(chord, 1e-12)) * invAlbedo;
             nodes.weight.push_back(w);
             nodes.total += 2.0 * kPi * w;
         }
@@ -51,7 +51,7 @@ KernelNodes kernelNodes(const DiffusionProfile& profile, double radiusMm, double
 double azimuthal(double A, double B, double tau) {
     if (A - B >= tau) return 2.0 * kPi * A;
     if (A + B <= tau) return 0.0;
-    const double x = std::clamp((tau - A) / B, -1.0, 1.0);  // cos(phi) at the limit
+    const double x = std::clamp((tau - A) / B, -1.0, 1.0);         // cos(phi) at the limit
     return 2.0 * (A * std::acos(x) + B * std::sqrt(1.0 - x * x));  // sin(acos(x)) = sqrt(1 - x^2)
 }
 
@@ -86,9 +86,12 @@ void sphereScatter(const DiffusionProfile& profile, double curvaturePerMm, doubl
             } else {
                 // Visible where 2 u cos(theta) > cos(psi) - cos(patch), u = n_y . L > 0.
                 const double gap = nodes.cosPsi[i] - cosPatch;
-                if (c > 0.0) phi = azimuthal(A, B, std::max(0.0, gap / (2.0 * c)));
-                else if (c < 0.0 && gap < 0.0) phi = azimuthal(A, B, 0.0) - azimuthal(A, B, gap / (2.0 * c));
-                else if (c == 0.0 && gap < 0.0) phi = azimuthal(A, B, 0.0);
+                if (c > 0.0)
+                    phi = azimuthal(A, B, std::max(0.0, gap / (2.0 * c)));
+                else if (c < 0.0 && gap < 0.0)
+                    phi = azimuthal(A, B, 0.0) - azimuthal(A, B, gap / (2.0 * c));
+                else if (c == 0.0 && gap < 0.0)
+                    phi = azimuthal(A, B, 0.0);
             }
             if (phi != 0.0) sum += nodes.weight[i] * phi;
         }
@@ -98,7 +101,8 @@ void sphereScatter(const DiffusionProfile& profile, double curvaturePerMm, doubl
 
 glm::dvec3 sphereScatter(const DiffusionProfile& profile, double curvaturePerMm, double patchMm, double NoL) {
     glm::dvec3 result;
-    sphereScatter(profile, curvaturePerMm, patchMm, std::span<const double>(&NoL, 1), std::span<glm::dvec3>(&result, 1));
+    sphereScatter(profile, curvaturePerMm, patchMm, std::span<const double>(&NoL, 1),
+                  std::span<glm::dvec3>(&result, 1));
     return result;
 }
 

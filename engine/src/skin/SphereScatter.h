@@ -40,7 +40,7 @@
 // energy is inside), on 8-point Gauss-Legendre panels graded geometrically
 // (ratio 1.5) from 1e-3 of the profile's narrowest scale, then uniform (64 panels); the kernel
 // weights are computed once per curvature and shared by every NoL. Against a direct surface
-// integration (tests/unit/test_lut_reference.h) the values agree within 1e-4.
+// integration (tests/reference/test_lut_reference.h) the values agree within 1e-4.
 // Limits: the mean curvature's sphere stands in for both principal curvatures (exact for a
 // sphere; a cylinder of radius r becomes a sphere of radius 2r); the concave patch's extent is a
 // model choice (rho), not measured from the mesh.

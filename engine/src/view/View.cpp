@@ -108,7 +108,8 @@ View orbitView(const Bounds& bounds, float yawDeg, float pitchDeg, float distanc
         distance = 1e-3f;
         for (int i = 0; i < 8; ++i) {
             const glm::vec3 corner((i & 1) ? hi.x : lo.x, (i & 2) ? hi.y : lo.y, (i & 4) ? hi.z : lo.z);
-            const glm::vec3 v = glm::vec3(viewFromWorldAtCenter * glm::vec4(corner, 1.0f)) + glm::vec3(0.0f, 0.0f, 1.0f);
+            const glm::vec3 v =
+                glm::vec3(viewFromWorldAtCenter * glm::vec4(corner, 1.0f)) + glm::vec3(0.0f, 0.0f, 1.0f);
             const float towards = v.z;  // > 0: nearer the camera than the centre
             distance = std::max(distance, std::abs(v.x) / tanX + towards);
             distance = std::max(distance, std::abs(v.y) / tanY + towards);
@@ -137,9 +138,10 @@ View cameraView(const Camera& camera, float aspect, const Bounds& sceneBounds) {
         // A field of view the file allows may still not fit this aspect (yfov near pi at 16:9):
         // say which camera and why.
         const FovAngles fov = symmetricFov(camera.yfov, a);
-        const std::string what = fmt::format("{}{}camera '{}': yfov {} rad at aspect {}",
-                                             camera.source.empty() ? "" : camera.source, camera.source.empty() ? "" : " (",
-                                             camera.name, camera.yfov, a) + (camera.source.empty() ? "" : ")");
+        const std::string what =
+            fmt::format("{}{}camera '{}': yfov {} rad at aspect {}", camera.source.empty() ? "" : camera.source,
+                        camera.source.empty() ? "" : " (", camera.name, camera.yfov, a) +
+            (camera.source.empty() ? "" : ")");
         checkFov(fov, what.c_str());
         return View(perspectiveEye(camera.worldFromView, fov, nearM, farM));
     }

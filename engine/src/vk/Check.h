@@ -15,9 +15,8 @@ const char* resultName(VkResult result);
 
 }  // namespace preskin::vk
 
-#define PRESKIN_VK(call)                                                          \
-    do {                                                                         \
-        const VkResult preskinVkResult_ = (call);                                \
-        if (preskinVkResult_ != VK_SUCCESS)                                      \
-            ::preskin::vk::throwVkError(preskinVkResult_, #call, __FILE__, __LINE__); \
+#define PRESKIN_VK(call)                                                                                              \
+    do {                                                                                                              \
+        const VkResult preskinVkResult_ = (call);                                                                     \
+        if (preskinVkResult_ != VK_SUCCESS) ::preskin::vk::throwVkError(preskinVkResult_, #call, __FILE__, __LINE__); \
     } while (false)

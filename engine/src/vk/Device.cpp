@@ -45,8 +45,7 @@ constexpr const char* kValidationLayer = "VK_LAYER_KHRONOS_validation";
 
 VKAPI_ATTR VkBool32 VKAPI_CALL debugCallback(VkDebugUtilsMessageSeverityFlagBitsEXT severity,
                                              VkDebugUtilsMessageTypeFlagsEXT /*types*/,
-                                             const VkDebugUtilsMessengerCallbackDataEXT* data,
-                                             void* user) {
+                                             const VkDebugUtilsMessengerCallbackDataEXT* data, void* user) {
     const char* level = (severity & VK_DEBUG_UTILS_MESSAGE_SEVERITY_ERROR_BIT_EXT) ? "error" : "warning";
     const std::string message = fmt::format("validation {}: {}", level, data->pMessage ? data->pMessage : "");
     std::fprintf(stderr, "preskin: %s\n", message.c_str());
@@ -96,14 +95,15 @@ bool isSuitable(VkPhysicalDevice physical) {
     VkPhysicalDeviceFeatures2 f2{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_FEATURES_2, &f11, {}};
     vkGetPhysicalDeviceFeatures2(physical, &f2);
     return f13.dynamicRendering && f13.synchronization2 && f11.multiview &&
-           findQueueFamily(physical) != std::numeric_limits<uint32_t>::max();
+        findQueueFamily(physical) != std::numeric_limits<uint32_t>::max();
 }
 
 void initializeLoader() {
     static const VkResult result = volkInitialize();
     if (result != VK_SUCCESS)
-        throw Error("Vulkan: the Vulkan loader (libvulkan.so.1) was not found; install libvulkan1 and a driver "
-                    "(mesa-vulkan-drivers for lavapipe)");
+        throw Error(
+            "Vulkan: the Vulkan loader (libvulkan.so.1) was not found; install libvulkan1 and a driver "
+            "(mesa-vulkan-drivers for lavapipe)");
 }
 
 std::vector<VkPhysicalDevice> physicalDevices(VkInstance instance) {
@@ -153,7 +153,8 @@ std::vector<DeviceInfo> Device::enumerate() {
         for (uint32_t i = 0; i < devices.size(); ++i) {
             VkPhysicalDeviceProperties props;
             vkGetPhysicalDeviceProperties(devices[i], &props);
-            result.push_back({i, props.deviceName, typeName(props.deviceType), props.apiVersion, isSuitable(devices[i])});
+            result.push_back(
+                {i, props.deviceName, typeName(props.deviceType), props.apiVersion, isSuitable(devices[i])});
         }
     } catch (...) {
         vkDestroyInstance(instance, nullptr);
@@ -175,8 +176,7 @@ std::unique_ptr<Device> Device::create(const ContextDesc& desc) {
     messengerInfo.messageSeverity =
         VK_DEBUG_UTILS_MESSAGE_SEVERITY_WARNING_BIT_EXT | VK_DEBUG_UTILS_MESSAGE_SEVERITY_ERROR_BIT_EXT;
     messengerInfo.messageType = VK_DEBUG_UTILS_MESSAGE_TYPE_GENERAL_BIT_EXT |
-                                VK_DEBUG_UTILS_MESSAGE_TYPE_VALIDATION_BIT_EXT |
-                                VK_DEBUG_UTILS_MESSAGE_TYPE_PERFORMANCE_BIT_EXT;
+        VK_DEBUG_UTILS_MESSAGE_TYPE_VALIDATION_BIT_EXT | VK_DEBUG_UTILS_MESSAGE_TYPE_PERFORMANCE_BIT_EXT;
     messengerInfo.pfnUserCallback = debugCallback;
     messengerInfo.pUserData = self.get();
     // Synchronization validation catches missing or wrong barriers, which lavapipe forgives.
@@ -188,8 +188,10 @@ std::unique_ptr<Device> Device::create(const ContextDesc& desc) {
     const void* next = nullptr;
     if (desc.validation) {
         if (!hasLayer(kValidationLayer))
-            throw Error(fmt::format("Vulkan: validation was requested but {} is not installed "
-                                    "(Debian package vulkan-validationlayers)", kValidationLayer));
+            throw Error(
+                fmt::format("Vulkan: validation was requested but {} is not installed "
+                            "(Debian package vulkan-validationlayers)",
+                            kValidationLayer));
         layers.push_back(kValidationLayer);
         extensions.push_back(VK_EXT_DEBUG_UTILS_EXTENSION_NAME);
         next = &features;
@@ -222,7 +224,8 @@ void Device::initializeDevice(const ContextDesc& desc) {
         }
         if (!chosen) throw Error("Vulkan: no device supports Vulkan 1.3 with dynamic rendering and synchronization2");
     } else {
-        const bool numeric = std::all_of(desc.device.begin(), desc.device.end(), [](char c) { return c >= '0' && c <= '9'; });
+        const bool numeric =
+            std::all_of(desc.device.begin(), desc.device.end(), [](char c) { return c >= '0' && c <= '9'; });
         for (size_t i = 0; i < devices.size() && !chosen; ++i) {
             VkPhysicalDeviceProperties props;
             vkGetPhysicalDeviceProperties(devices[i], &props);
@@ -298,8 +301,9 @@ std::unique_ptr<Device> Device::wrap(const HostVulkan& host) {
     volkInitializeCustom(host.getInstanceProcAddr);
     volkLoadInstance(host.instance);
     if (!isSuitable(host.physicalDevice))
-        throw Error("HostVulkan: the host's physical device lacks Vulkan 1.3 dynamic rendering / synchronization2 "
-                    "or multiview");
+        throw Error(
+            "HostVulkan: the host's physical device lacks Vulkan 1.3 dynamic rendering / synchronization2 "
+            "or multiview");
     std::unique_ptr<Device> self(new Device());
     self->ownsHandles_ = false;
     self->instance_ = host.instance;

@@ -75,8 +75,8 @@ VkPipeline createGraphicsPipeline(const Device& device, const GraphicsPipelineDe
     depth.depthCompareOp = desc.depthCompare;
     std::vector<VkPipelineColorBlendAttachmentState> blends(desc.colorFormats.size());
     for (auto& b : blends) {
-        b.colorWriteMask = VK_COLOR_COMPONENT_R_BIT | VK_COLOR_COMPONENT_G_BIT | VK_COLOR_COMPONENT_B_BIT |
-                           VK_COLOR_COMPONENT_A_BIT;
+        b.colorWriteMask =
+            VK_COLOR_COMPONENT_R_BIT | VK_COLOR_COMPONENT_G_BIT | VK_COLOR_COMPONENT_B_BIT | VK_COLOR_COMPONENT_A_BIT;
         if (desc.alphaBlend) {
             b.blendEnable = VK_TRUE;
             b.srcColorBlendFactor = VK_BLEND_FACTOR_SRC_ALPHA;
@@ -164,7 +164,8 @@ VkPipelineLayout createPipelineLayout(const Device& device, std::span<const VkDe
     return layout;
 }
 
-VkDescriptorPool createDescriptorPool(const Device& device, std::span<const VkDescriptorPoolSize> sizes, uint32_t maxSets) {
+VkDescriptorPool createDescriptorPool(const Device& device, std::span<const VkDescriptorPoolSize> sizes,
+                                      uint32_t maxSets) {
     VkDescriptorPoolCreateInfo info{VK_STRUCTURE_TYPE_DESCRIPTOR_POOL_CREATE_INFO};
     info.maxSets = maxSets;
     info.poolSizeCount = static_cast<uint32_t>(sizes.size());

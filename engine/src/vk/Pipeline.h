@@ -51,7 +51,8 @@ VkDescriptorSetLayout createSetLayout(const Device& device, std::span<const Bind
 VkPipelineLayout createPipelineLayout(const Device& device, std::span<const VkDescriptorSetLayout> sets,
                                       uint32_t pushConstantBytes, VkShaderStageFlags pushStages);
 // A pool for at most `maxSets` sets holding the given descriptors in all, and one set from it.
-VkDescriptorPool createDescriptorPool(const Device& device, std::span<const VkDescriptorPoolSize> sizes, uint32_t maxSets);
+VkDescriptorPool createDescriptorPool(const Device& device, std::span<const VkDescriptorPoolSize> sizes,
+                                      uint32_t maxSets);
 VkDescriptorSet allocateDescriptorSet(const Device& device, VkDescriptorPool pool, VkDescriptorSetLayout layout);
 
 }  // namespace preskin::vk

@@ -21,10 +21,10 @@ Buffer::Buffer(const Device& device, VkDeviceSize size, VkBufferUsageFlags usage
     vkGetBufferMemoryRequirements(device.device(), buffer_, &req);
     VkMemoryAllocateInfo alloc{VK_STRUCTURE_TYPE_MEMORY_ALLOCATE_INFO};
     alloc.allocationSize = req.size;
-    alloc.memoryTypeIndex =
-        hostVisible ? device.findMemoryType(req.memoryTypeBits,
-                                            VK_MEMORY_PROPERTY_HOST_VISIBLE_BIT | VK_MEMORY_PROPERTY_HOST_COHERENT_BIT)
-                    : device.findMemoryType(req.memoryTypeBits, VK_MEMORY_PROPERTY_DEVICE_LOCAL_BIT);
+    alloc.memoryTypeIndex = hostVisible
+        ? device.findMemoryType(req.memoryTypeBits,
+                                VK_MEMORY_PROPERTY_HOST_VISIBLE_BIT | VK_MEMORY_PROPERTY_HOST_COHERENT_BIT)
+        : device.findMemoryType(req.memoryTypeBits, VK_MEMORY_PROPERTY_DEVICE_LOCAL_BIT);
     try {
         PRESKIN_VK(vkAllocateMemory(device.device(), &alloc, nullptr, &memory_));
         PRESKIN_VK(vkBindBufferMemory(device.device(), buffer_, memory_, 0));
@@ -100,9 +100,9 @@ Image::Image(const Device& device, const ImageDesc& desc) : device_(&device), de
         PRESKIN_VK(vkBindImageMemory(device.device(), image_, memory_, 0));
         VkImageViewCreateInfo viewInfo{VK_STRUCTURE_TYPE_IMAGE_VIEW_CREATE_INFO};
         viewInfo.image = image_;
-        viewInfo.viewType = desc.cube ? VK_IMAGE_VIEW_TYPE_CUBE
-                            : desc.layers > 1 || desc.arrayView ? VK_IMAGE_VIEW_TYPE_2D_ARRAY
-                                                                : VK_IMAGE_VIEW_TYPE_2D;
+        viewInfo.viewType = desc.cube           ? VK_IMAGE_VIEW_TYPE_CUBE
+            : desc.layers > 1 || desc.arrayView ? VK_IMAGE_VIEW_TYPE_2D_ARRAY
+                                                : VK_IMAGE_VIEW_TYPE_2D;
         viewInfo.format = desc.format;
         viewInfo.subresourceRange = {desc.aspect, 0, desc.mipLevels, 0, std::max(desc.layers, 1u)};
         PRESKIN_VK(vkCreateImageView(device.device(), &viewInfo, nullptr, &view_));

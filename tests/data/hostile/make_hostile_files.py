@@ -1,7 +1,7 @@
 #!/usr/bin/env python3
 """Writes the small hostile inputs of tests/data/hostile: one file (or folder) per class of input
 that must be refused with one line naming the file, the field and the problem, within bounded
-memory and time (tests/unit/test_hostile_input.cpp lists the expected messages). Files that
+memory and time (tests/e2e/test_hostile_input.cpp lists the expected messages). Files that
 cannot live in a repository (FIFOs, links, devices) are made by the tests themselves.
 Python 3 standard library only.
 

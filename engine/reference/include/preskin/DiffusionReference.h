@@ -75,12 +75,12 @@ struct ReferenceSettings {
 // What the reference knows about one shaded point.
 struct ReferenceSample {
     glm::dvec3 positionWs{0.0};
-    glm::dvec3 normalWs{0.0};      // interpolated vertex normal, facing the viewer
-    glm::dvec3 radiance{0.0};      // linear, before exposure
-    bool skin = false;             // the visible material is skin
-    double curvaturePerMm = 0.0;   // signed mean curvature in profile 1/mm (> 0 convex), skin only
-    bool facesShadowLight = false; // N.L > 0 for the shadow-casting light
-    bool inCastShadow = false;     // ... and the point is occluded from it
+    glm::dvec3 normalWs{0.0};        // interpolated vertex normal, facing the viewer
+    glm::dvec3 radiance{0.0};        // linear, before exposure
+    bool skin = false;               // the visible material is skin
+    double curvaturePerMm = 0.0;     // signed mean curvature in profile 1/mm (> 0 convex), skin only
+    bool facesShadowLight = false;   // N.L > 0 for the shadow-casting light
+    bool inCastShadow = false;       // ... and the point is occluded from it
     uint32_t irradianceSamples = 0;  // E evaluations the integral used (a cost figure)
 };
 
@@ -90,10 +90,10 @@ struct ReferenceImage {
     // Linear radiance times exposure, RGBA, top row first; alpha 1 where a surface is visible,
     // 0 on the background (which holds the renderer's clear colour).
     std::vector<float> rgba32f;
-    std::vector<uint8_t> skin;             // 1 where the visible surface is skin
-    std::vector<float> curvaturePerMm;     // signed, profile 1/mm; 0 off skin
-    std::vector<uint8_t> nearShadowEdge;   // 1 near a cast-shadow edge (ReferenceSettings::shadowEdgeWidths)
-    uint64_t irradianceSamples = 0;        // sum over pixels
+    std::vector<uint8_t> skin;            // 1 where the visible surface is skin
+    std::vector<float> curvaturePerMm;    // signed, profile 1/mm; 0 off skin
+    std::vector<uint8_t> nearShadowEdge;  // 1 near a cast-shadow edge (ReferenceSettings::shadowEdgeWidths)
+    uint64_t irradianceSamples = 0;       // sum over pixels
 };
 
 // What a reference image was made of, as (name, value) pairs in a fixed order: the scene, view,

@@ -1,0 +1,101 @@
+// Tests of `preskin bake` as a user runs it: a good bake writes a loadable set; bad input (absurd
+// sizes, bad profile files, malformed colours, missing Burley parameters) exits non-zero with one
+// "preskin: error: ..." line and writes nothing.
+#include <preskin/LutSet.h>
+
+#include "support/Process.h"
+
+#include <gtest/gtest.h>
+
+#include <sys/wait.h>
+
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <random>
+#include <sstream>
+
+namespace preskin {
+namespace {
+
+namespace fs = std::filesystem;
+
+using CliRun = test::ProcessResult;
+
+class BakeCli : public ::testing::Test {
+protected:
+    void SetUp() override {
+        if (!fs::exists(PRESKIN_CLI_PATH)) GTEST_SKIP() << PRESKIN_CLI_PATH << " is not built";
+        std::random_device entropy;
+        dir_ = fs::temp_directory_path() / ("preskin_test_bake_cli_" + std::to_string(entropy()));
+        fs::create_directories(dir_);
+    }
+    void TearDown() override {
+        std::error_code ec;
+        if (!dir_.empty()) fs::remove_all(dir_, ec);
+    }
+
+    CliRun bake(const std::vector<std::string>& arguments) const {
+        std::vector<std::string> all{std::string("bake")};
+        all.insert(all.end(), arguments.begin(), arguments.end());
+        return test::runCli(all, dir_);
+    }
+
+    fs::path dir_;
+};
+
+TEST_F(BakeCli, WritesALoadableSet) {
+    const fs::path out = dir_ / "set";
+    const CliRun run = bake({"--profile", "deon", "--size", "16", "--preview", "--out", out.string()});
+    ASSERT_EQ(run.exitCode, 0) << run.err;
+    EXPECT_NE(run.out.find("baked in"), std::string::npos) << run.out;
+    const LutSet loaded = LutSet::load(out);
+    EXPECT_EQ(loaded.diffuse().width(), 16);
+    EXPECT_TRUE(fs::exists(out / "preview_diffuse.png"));
+
+    const fs::path burley = dir_ / "burley";
+    const CliRun run2 = bake({"--profile", "burley", "--albedo", "0.8,0.5,0.3", "--mfp", "2,0.9,0.4", "--size", "16",
+                              "--out", burley.string()});
+    ASSERT_EQ(run2.exitCode, 0) << run2.err;
+    EXPECT_EQ(LutSet::load(burley).profile().kind(), DiffusionProfile::Kind::NormalizedDiffusion);
+}
+
+TEST_F(BakeCli, BadInputIsRefusedAndNothingIsWritten) {
+    const std::string profiles = std::string(PRESKIN_SOURCE_DIR) + "/tests/data/profiles/";
+    const std::vector<std::pair<std::vector<std::string>, std::string>> cases{
+        {{"--size", "0"}, "--size: must be an integer in [16, 4096], got '0'"},
+        {{"--size", "1e9"}, "--size: must be an integer in [16, 4096], got '1e9'"},
+        {{"--size=-5"}, "--size: must be an integer in [16, 4096], got '-5'"},
+        {{"--size", "99999999999"}, "--size: must be an integer in [16, 4096]"},
+        {{"--profile", profiles + "bad_negative_weight.json"},
+         "bad_negative_weight.json: gaussians[1].weights[0]: must be >= 0"},
+        {{"--profile", profiles + "bad_nan_variance.json"}, "bad_nan_variance.json: JSON: parse error"},
+        {{"--profile", profiles + "bad_zero_albedo.json"}, "zero albedo"},
+        {{"--profile", profiles + "bad_missing_variance.json"}, "gaussians[0].varianceMm2: missing"},
+        {{"--profile", "burley"}, "--profile burley: needs --albedo"},
+        {{"--profile", "burley", "--albedo", "1,2", "--mfp", "1,1,1"},
+         "--albedo: expected three comma-separated numbers R,G,B, got '1,2'"},
+        {{"--profile", "burley", "--albedo", "0.8,0,0.3", "--mfp", "1,1,1"},
+         "burley: albedo[1]: must be in (0, 1], got 0"},
+        {{"--profile", "burley", "--albedo", "0.8,0.5,0.3", "--mfp", "1,nan,1"},
+         "--mfp: expected three comma-separated numbers"},
+        {{"--profile", "deon", "--albedo", "0.5,0.5,0.5"}, "--albedo and --mfp apply only to --profile burley"},
+    };
+    const fs::path out = dir_ / "never";
+    for (const auto& [caseArguments, expected] : cases) {
+        std::vector<std::string> withOut = caseArguments;
+        withOut.insert(withOut.end(), {"--out", out.string()});
+        const CliRun run = bake(withOut);
+        std::ostringstream joined;
+        for (const std::string& a : caseArguments) joined << a << ' ';
+        const std::string arguments = joined.str();
+        EXPECT_EQ(run.exitCode, 1) << arguments;
+        EXPECT_EQ(run.err.rfind("preskin: error: ", 0), 0u) << arguments << ": " << run.err;
+        EXPECT_NE(run.err.find(expected), std::string::npos) << arguments << ": " << run.err;
+        EXPECT_EQ(std::count(run.err.begin(), run.err.end(), '\n'), 1) << arguments << ": " << run.err;
+        EXPECT_FALSE(fs::exists(out)) << arguments;
+    }
+}
+
+}  // namespace
+}  // namespace preskin

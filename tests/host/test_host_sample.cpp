@@ -1,0 +1,121 @@
+// samples/host built against an installed preskin, as an engine builds against it: `cmake
+// --install` into a fresh prefix, samples/host configured with CMAKE_PREFIX_PATH (its own
+// find_package(preskin CONFIG), glslang run on its own shader with preskin_SHADER_DIR) and built,
+// its picture of the head compared with the installed `preskin render` of the same view (no
+// shadows: the host sample has no shadow pass; the environment's specular from its SH, as the host
+// sample binds no prefiltered environment) within the golden tolerance: every channel within
+// 5/255 on at least 99.9% of the pixels. The validation layers are on in both programs.
+#include "support/ImageCompare.h"
+#include "support/Process.h"
+
+#include <gtest/gtest.h>
+
+#include <cstdio>
+#include <cstdlib>
+#include <filesystem>
+#include <string>
+
+namespace preskin::test {
+namespace {
+
+namespace fs = std::filesystem;
+
+TEST(HostSample, BuiltAgainstTheInstallRendersLikePreskinRender) {
+    const fs::path work = fs::path(PRESKIN_BINARY_DIR) / "host-sample-test";
+    const fs::path prefix = work / "prefix";
+    const fs::path build = work / "build";  // kept between runs: only what changed is rebuilt
+    std::error_code ec;
+    fs::remove_all(prefix, ec);
+    fs::create_directories(build);
+    auto run = [&](const fs::path& program, const std::vector<std::string>& args, double limitS,
+                   const std::vector<std::string>& env = {}) {
+        const ProcessResult r = runProcess(program, args, env, work, limitS);
+        EXPECT_EQ(r.exitCode, 0) << program.string() << " " << (args.empty() ? "" : args[0]) << "\n" << r.out << r.err;
+        return r;
+    };
+    run(PRESKIN_CMAKE_COMMAND, {"--install", PRESKIN_BINARY_DIR, "--prefix", prefix.string()}, 120.0);
+    run(PRESKIN_CMAKE_COMMAND,
+        {"-S", PRESKIN_SOURCE_DIR "/samples/host", "-B", build.string(), "-G", PRESKIN_CMAKE_GENERATOR,
+         "-DCMAKE_BUILD_TYPE=Release", "-DCMAKE_PREFIX_PATH=" + prefix.string(),
+         "-DCMAKE_CXX_COMPILER_LAUNCHER=" PRESKIN_CXX_LAUNCHER},
+        120.0);
+    run(PRESKIN_CMAKE_COMMAND, {"--build", build.string()}, 300.0);
+    ASSERT_FALSE(HasFailure());
+
+    const ProcessResult help = run(build / "preskin-host", {"--help"}, 30.0);
+    EXPECT_EQ(help.out.rfind("usage: preskin-host", 0), 0u) << help.out;
+
+    const std::string size = "96";
+    const ProcessResult host =
+        run(build / "preskin-host", {"--device", testDevice(), "--width", size, "--height", size, "--out", "host.png"},
+            120.0, {"VK_INSTANCE_LAYERS=VK_LAYER_KHRONOS_validation"});
+    EXPECT_EQ((host.out + host.err).find("Validation"), std::string::npos) << host.out << host.err;
+    run(prefix / "bin" / "preskin",
+        {"render", "--device", testDevice(), "--validation", "--no-shadows", "--no-specular-ibl", "--width", size,
+         "--height", size, "--out", "preskin.png"},
+        120.0);
+    ASSERT_FALSE(HasFailure());
+
+    std::string error;
+    const RenderedImage hostImage = readPng(work / "host.png", error);
+    ASSERT_TRUE(error.empty()) << error;
+    const RenderedImage reference = readPng(work / "preskin.png", error);
+    ASSERT_TRUE(error.empty()) << error;
+    ASSERT_EQ(hostImage.width, reference.width);
+    ASSERT_EQ(hostImage.height, reference.height);
+    int maxDifference = 0;
+    const size_t differing = pixelsDifferingBy(hostImage, reference, 5, maxDifference);
+    const size_t pixels = size_t(reference.width) * reference.height;
+    std::printf(
+        "host sample vs preskin render: %zu of %zu pixels differ by more than 5/255, largest difference %d/255\n",
+        differing, pixels, maxDifference);
+    EXPECT_LE(double(differing), 0.001 * double(pixels));
+    // The head is in the picture: not just two empty backgrounds that agree.
+    size_t head = 0;
+    for (size_t p = 0; p < pixels; ++p)
+        head += std::abs(int(reference.rgba8[4 * p]) - int(reference.rgba8[0])) > 10 ? 1 : 0;
+    EXPECT_GT(head, pixels / 5);
+}
+
+// A program built with `pkg-config --cflags --libs preskin` against an install that was moved
+// after `cmake --install --prefix`: preskin.pc names its paths from its own folder, so the
+// headers, the library and the shader folder are found where the tree now lies.
+TEST(HostSample, PkgConfigFindsAMovedInstall) {
+    const fs::path work = fs::path(PRESKIN_BINARY_DIR) / "pkg-config-test";
+    std::error_code ec;
+    fs::remove_all(work, ec);
+    fs::create_directories(work);
+    const ProcessResult install =
+        runProcess(PRESKIN_CMAKE_COMMAND, {"--install", PRESKIN_BINARY_DIR, "--prefix", (work / "installed").string()},
+                   {}, work, 120.0);
+    ASSERT_EQ(install.exitCode, 0) << install.out << install.err;
+    const fs::path prefix = work / "moved";
+    fs::rename(work / "installed", prefix);
+    std::FILE* source = std::fopen((work / "main.cpp").c_str(), "w");
+    ASSERT_NE(source, nullptr);
+    std::fputs(
+        "#include <preskin/DiffusionProfile.h>\n#include <preskin/LutSet.h>\n#include <cstdio>\n"
+        "int main() { std::printf(\"%.3f\\n\", preskin::DiffusionProfile::deonLuebke().reachMm(1e-4)); }\n",
+        source);
+    std::fclose(source);
+    const fs::path pcDir = fs::exists(prefix / "lib" / "pkgconfig") ? prefix / "lib" / "pkgconfig" : fs::path();
+    ASSERT_FALSE(pcDir.empty()) << "no lib/pkgconfig under " << prefix;
+    const std::string env = "PKG_CONFIG_PATH=" + pcDir.string();
+    const ProcessResult build = runProcess(
+        "/bin/sh", {"-c", "c++ -std=c++20 main.cpp -o main $(pkg-config --cflags --libs preskin)"}, {env}, work, 300.0);
+    ASSERT_EQ(build.exitCode, 0) << build.out << build.err;
+    const ProcessResult shaders =
+        runProcess("/bin/sh", {"-c", "pkg-config --variable=shaderdir preskin"}, {env}, work, 30.0);
+    ASSERT_EQ(shaders.exitCode, 0) << shaders.err;
+    std::string shaderDir = shaders.out.substr(0, shaders.out.find('\n'));
+    EXPECT_TRUE(fs::exists(fs::path(shaderDir) / "preskin" / "skin.glsl")) << shaderDir;
+    EXPECT_EQ(fs::weakly_canonical(shaderDir).string().rfind(fs::weakly_canonical(prefix).string(), 0), 0u)
+        << shaderDir;
+    const ProcessResult ran =
+        runProcess(work / "main", {}, {"LD_LIBRARY_PATH=" + (prefix / "lib").string()}, work, 30.0);
+    ASSERT_EQ(ran.exitCode, 0) << ran.err;
+    EXPECT_EQ(ran.out, "9.934\n");
+}
+
+}  // namespace
+}  // namespace preskin::test

@@ -1,0 +1,296 @@
+// The CPU light grid (buildClusterGrid, <preskin/ClusterGrid.h>) against the independent reference
+// of test_cluster_reference.h: every light whose volume touches a froxel is in its list, for
+// random lights, lights straddling froxel edges and corners, lights at the near plane, behind the
+// camera and beyond the last slice, spots pointing across clusters, unlimited lights, and
+// perspective, off-centre and orthographic views. Also: the slice formula, the depth fit to the
+// scene, the documented overflow rule for both caps, and more than 255 (and 4096) lights.
+#include "reference/test_cluster_reference.h"
+#include "support/TestLights.h"
+
+#include <preskin/ClusterGrid.h>
+#include <preskin/View.h>
+
+#include <gtest/gtest.h>
+#include <glm/gtc/matrix_transform.hpp>
+
+#include <algorithm>
+#include <random>
+#include <string>
+
+namespace preskin::test {
+namespace {
+
+constexpr uint32_t kWidth = 160;
+constexpr uint32_t kHeight = 120;
+
+View testView() {
+    const glm::mat4 worldFromView =
+        glm::inverse(glm::lookAt(glm::vec3(0.3f, 1.0f, 4.0f), glm::vec3(0.0f), glm::vec3(0.0f, 1.0f, 0.0f)));
+    return perspectiveView(worldFromView, 0.8f, float(kWidth) / float(kHeight), 0.2f, 12.0f);
+}
+
+ClusterSettings testSettings() {
+    ClusterSettings s;
+    s.tileSizePx = 16;
+    s.depthSlices = 12;
+    s.nearSliceM = 0.5f;
+    s.fitDepthToScene = false;
+    return s;
+}
+
+// One directional light first (never clustered), then `count` points and spots around and in
+// the view, some behind the camera and beyond the far slices.
+std::vector<Light> randomLights(uint32_t count, uint32_t seed) {
+    return preskin::test::randomLights(count, seed, 4.6f);
+}
+
+// Every required light is listed; lists ascend, hold no directional light and no duplicates.
+ConservativeCheck expectConservative(const ClusterGrid& grid, const std::vector<Light>& lights,
+                                     const std::string& what) {
+    const ConservativeCheck c = checkConservative(grid, lights);
+    EXPECT_EQ(c.missing, 0u) << what << ": " << c.firstProblem;
+    EXPECT_EQ(c.badLists, 0u) << what << ": " << c.firstProblem;
+    return c;
+}
+
+TEST(ClusterGridShape, SliceFormulaMatchesSliceStarts) {
+    const View view = testView();
+    for (bool fit : {false, true}) {
+        ClusterSettings settings = testSettings();
+        settings.fitDepthToScene = fit;
+        Bounds bounds;
+        bounds.extend(glm::vec3(-1.0f, -1.0f, -1.5f));
+        bounds.extend(glm::vec3(1.0f, 1.2f, 1.0f));
+        const ClusterGridShape s = clusterGridShape(settings, clusterCamera(view, kWidth, kHeight), bounds);
+        EXPECT_EQ(s.dims, glm::uvec3(10, 8, 12));
+        EXPECT_EQ(s.sliceOf(s.nearM), 0u);
+        EXPECT_EQ(s.sliceOf(1e6f), s.dims.z - 1);
+        EXPECT_GE(s.logStartM, settings.nearSliceM);
+        EXPECT_NEAR(s.sliceStartM(1), s.logStartM, 1e-5f * s.logStartM);
+        EXPECT_TRUE(std::isinf(s.sliceStartM(s.dims.z)));
+        for (uint32_t z = 1; z < s.dims.z; ++z) {
+            const float d = s.sliceStartM(z);
+            EXPECT_EQ(s.sliceOf(d * (1.0f + 1e-5f)), z) << "fit " << fit << " slice " << z;
+            EXPECT_EQ(s.sliceOf(d * (1.0f - 1e-5f)), z - 1) << "fit " << fit << " slice " << z;
+            // Logarithmic: every slice after the first has the same depth ratio.
+            if (z + 1 < s.dims.z) {
+                EXPECT_NEAR(s.sliceStartM(z + 1) / d, std::pow(s.logEndM / s.logStartM, 1.0f / float(s.dims.z - 1)),
+                            1e-4f);
+            }
+        }
+    }
+    // A tile size that does not divide the image: the last tiles are partial.
+    ClusterSettings odd = testSettings();
+    odd.tileSizePx = 13;
+    EXPECT_EQ(clusterGridShape(odd, clusterCamera(view, kWidth, kHeight), {}).dims, glm::uvec3(13, 10, 12));
+}
+
+TEST(ClusterGridShape, FitsTheSceneDepthRange) {
+    const View view = testView();
+    Bounds bounds;
+    bounds.extend(glm::vec3(-0.5f, -0.5f, -0.5f));
+    bounds.extend(glm::vec3(0.5f, 0.5f, 0.5f));
+    float minDepth = 1e9f, maxDepth = 0.0f;
+    for (int i = 0; i < 8; ++i) {
+        const glm::vec3 c((i & 1) ? 0.5f : -0.5f, (i & 2) ? 0.5f : -0.5f, (i & 4) ? 0.5f : -0.5f);
+        const float d = -(view.eye().viewFromWorld * glm::vec4(c, 1.0f)).z;
+        minDepth = std::min(minDepth, d);
+        maxDepth = std::max(maxDepth, d);
+    }
+    ClusterSettings settings = testSettings();
+    settings.fitDepthToScene = true;
+    const ClusterGridShape fitted = clusterGridShape(settings, clusterCamera(view, kWidth, kHeight), bounds);
+    EXPECT_NEAR(fitted.logStartM, minDepth, 1e-5f);
+    EXPECT_NEAR(fitted.logEndM, maxDepth, 1e-5f);
+    settings.fitDepthToScene = false;
+    const ClusterGridShape unfitted = clusterGridShape(settings, clusterCamera(view, kWidth, kHeight), bounds);
+    EXPECT_NEAR(unfitted.logStartM, settings.nearSliceM, 1e-6f);
+    EXPECT_NEAR(unfitted.logEndM, view.eye().farM, 1e-5f);
+    // Empty bounds: nothing to fit.
+    settings.fitDepthToScene = true;
+    EXPECT_NEAR(clusterGridShape(settings, clusterCamera(view, kWidth, kHeight), Bounds{}).logEndM, view.eye().farM,
+                1e-5f);
+}
+
+TEST(ClusterGrid, EveryTouchingLightIsListed) {
+    const View view = testView();
+    for (uint32_t seed : {1u, 2u, 3u}) {
+        const std::vector<Light> lights = randomLights(260, seed);
+        const ClusterGrid grid = buildClusterGrid(testSettings(), view, kWidth, kHeight, {}, lights);
+        EXPECT_EQ(grid.overflowedClusters, 0u);
+        const ConservativeCheck c = expectConservative(grid, lights, "random seed " + std::to_string(seed));
+        EXPECT_GT(c.required, 2000u) << "the scenario should exercise many froxels";
+        // Not only conservative but tight: point lights are listed in few froxels they miss.
+        EXPECT_LE(double(c.listedPointEntries), 1.5 * double(c.requiredPointEntries));
+    }
+}
+
+TEST(ClusterGrid, LightsStraddlingFroxelEdgesAndCorners) {
+    const View view = testView();
+    const ClusterSettings settings = testSettings();
+    const ClusterGridShape s = clusterGridShape(settings, clusterCamera(view, kWidth, kHeight), {});
+    const glm::mat4 worldFromView = glm::inverse(view.eye().viewFromWorld);
+    const glm::mat4 viewFromClip = glm::inverse(view.eye().clipFromView);
+    // A point on tile edge (px, py) at depth d, in world space.
+    auto edgePoint = [&](float px, float py, float d) {
+        const glm::vec4 clip = view.eye().clipFromView * glm::vec4(0.0f, 0.0f, -d, 1.0f);
+        glm::vec4 p =
+            viewFromClip * glm::vec4(px / kWidth * 2.0f - 1.0f, py / kHeight * 2.0f - 1.0f, clip.z / clip.w, 1.0f);
+        p /= p.w;
+        return glm::vec3(worldFromView * p);
+    };
+    std::vector<Light> lights;
+    std::mt19937 rng(7);
+    for (uint32_t z = 1; z < s.dims.z; ++z)
+        for (uint32_t y = 1; y < s.dims.y; y += 2)
+            for (uint32_t x = 1; x < s.dims.x; x += 3) {
+                const float d = s.sliceStartM(z);
+                const glm::vec3 corner = edgePoint(float(x * s.tileSizePx), float(y * s.tileSizePx), d);
+                const float tile = d * 0.02f;  // about a tile at this depth
+                // On the corner, on an edge, and just off a face.
+                lights.push_back(pointLight(corner, tile * uniform(rng, 0.05f, 0.6f)));
+                lights.push_back(pointLight(edgePoint(float(x * s.tileSizePx) + 5.0f, float(y * s.tileSizePx), d),
+                                            tile * uniform(rng, 0.05f, 0.6f)));
+                lights.push_back(
+                    pointLight(edgePoint(float(x * s.tileSizePx) + 0.5f, float(y * s.tileSizePx) + 6.0f, d * 1.002f),
+                               tile * 0.1f));
+                // Spots aimed across the corner, along the tile diagonal and into the depth.
+                const glm::vec3 across =
+                    edgePoint(float((x + 1) * s.tileSizePx), float((y + 1) * s.tileSizePx), d * 1.05f);
+                lights.push_back(spotLight(corner - (across - corner), across - corner,
+                                           3.0f * glm::length(across - corner), uniform(rng, 0.05f, 0.4f)));
+                lights.push_back(spotLight(corner, glm::vec3(worldFromView * glm::vec4(0, 0, -1, 0)), 4.0f * tile,
+                                           uniform(rng, 0.05f, 0.3f)));
+            }
+    const ClusterGrid grid = buildClusterGrid(settings, view, kWidth, kHeight, {}, lights);
+    const ConservativeCheck c = expectConservative(grid, lights, "straddling");
+    EXPECT_GT(c.required, lights.size()) << "straddling lights touch several froxels each";
+}
+
+TEST(ClusterGrid, NearPlaneBehindTheCameraBeyondTheLastSliceAndUnlimited) {
+    const View view = testView();
+    const glm::mat4 worldFromView = glm::inverse(view.eye().viewFromWorld);
+    auto at = [&](float x, float y, float depth) { return glm::vec3(worldFromView * glm::vec4(x, y, -depth, 1.0f)); };
+    const glm::vec3 forward(worldFromView * glm::vec4(0, 0, -1, 0));
+    std::vector<Light> lights = {
+        pointLight(at(0.0f, 0.0f, 0.25f), 0.1f),                // just past the near plane (0.2)
+        pointLight(at(0.05f, 0.0f, 0.15f), 0.1f),               // centre before the near plane, reaching past it
+        pointLight(at(0.0f, 0.05f, -0.3f), 0.55f),              // behind the camera, reaching in
+        pointLight(at(0.0f, 0.0f, -0.3f), 0.45f),               // behind the camera, not reaching the near plane
+        pointLight(at(0.1f, -0.1f, 11.5f), 1.0f),               // straddling the far distance
+        pointLight(at(0.0f, 0.0f, 30.0f), 5.0f),                // beyond it: the last slice only
+        spotLight(at(0.0f, 0.0f, -0.5f), forward, 3.0f, 0.3f),  // behind, shining in
+        spotLight(at(0.0f, 0.0f, 0.4f), -forward, 3.0f, 0.3f),  // in front, shining back at the camera
+        spotLight(at(0.3f, 0.2f, 2.0f), forward, 0.0f, 0.25f),  // unlimited spot
+        pointLight(at(0.0f, 0.0f, 5.0f), 0.0f),                 // unlimited point: every froxel
+    };
+    const ClusterGrid grid = buildClusterGrid(testSettings(), view, kWidth, kHeight, {}, lights);
+    expectConservative(grid, lights, "near/far");
+    // The unlimited point light is in every froxel; the light that stays behind the camera in none.
+    const auto lists = froxelLists(grid);
+    size_t withUnlimited = 0, withHidden = 0;
+    for (const auto& list : lists) {
+        withUnlimited += std::count(list.begin(), list.end(), 9u);
+        withHidden += std::count(list.begin(), list.end(), 3u);
+    }
+    EXPECT_EQ(withUnlimited, lists.size());
+    EXPECT_EQ(withHidden, 0u);
+}
+
+TEST(ClusterGrid, OffCentreAndOrthographicViews) {
+    View offCentre = testView();
+    offCentre.eye().clipFromView[2][0] = 0.35f;  // a shifted (off-axis) frustum
+    offCentre.eye().clipFromView[2][1] = -0.2f;
+    Camera orthoCamera;
+    orthoCamera.orthographic = true;
+    orthoCamera.xmag = 2.5f;
+    orthoCamera.ymag = 2.0f;
+    orthoCamera.znear = 0.2f;
+    orthoCamera.zfar = 12.0f;
+    orthoCamera.worldFromView =
+        glm::inverse(glm::lookAt(glm::vec3(0.3f, 1.0f, 4.0f), glm::vec3(0.0f), glm::vec3(0.0f, 1.0f, 0.0f)));
+    const View ortho = cameraView(orthoCamera, float(kWidth) / float(kHeight), Bounds{});
+    for (const auto& [view, name] : {std::pair<View, const char*>{offCentre, "off-centre"}, {ortho, "orthographic"}}) {
+        const std::vector<Light> lights = randomLights(200, 11);
+        const ClusterGrid grid = buildClusterGrid(testSettings(), view, kWidth, kHeight, {}, lights);
+        const ConservativeCheck c = expectConservative(grid, lights, name);
+        EXPECT_GT(c.required, 1000u) << name;
+    }
+}
+
+TEST(ClusterGrid, PerClusterOverflowKeepsTheLowestIndices) {
+    const View view = testView();
+    const std::vector<Light> lights = randomLights(400, 5);
+    const ClusterGrid full = buildClusterGrid(testSettings(), view, kWidth, kHeight, {}, lights);
+    ClusterSettings capped = testSettings();
+    capped.maxLightsPerCluster = 3;
+    const ClusterGrid grid = buildClusterGrid(capped, view, kWidth, kHeight, {}, lights);
+    const auto fullLists = froxelLists(full);
+    const auto lists = froxelLists(grid);
+    uint32_t expectedOverflows = 0;
+    for (size_t i = 0; i < lists.size(); ++i) {
+        const size_t keep = std::min<size_t>(fullLists[i].size(), 3);
+        expectedOverflows += fullLists[i].size() > 3 ? 1 : 0;
+        ASSERT_EQ(lists[i].size(), keep) << "froxel " << i;
+        EXPECT_TRUE(std::equal(lists[i].begin(), lists[i].end(), fullLists[i].begin())) << "froxel " << i;
+    }
+    EXPECT_GT(expectedOverflows, 10u) << "the scenario should overflow";
+    EXPECT_EQ(grid.overflowedClusters, expectedOverflows);
+    EXPECT_EQ(grid.requestedIndices, full.indices.size());
+}
+
+TEST(ClusterGrid, IndexListOverflowTruncatesInFroxelOrder) {
+    const View view = testView();
+    const std::vector<Light> lights = randomLights(400, 6);
+    const ClusterGrid full = buildClusterGrid(testSettings(), view, kWidth, kHeight, {}, lights);
+    ASSERT_GT(full.indices.size(), 1000u);
+    for (uint32_t perCluster : {256u, 5u}) {
+        ClusterSettings capped = testSettings();
+        capped.maxLightsPerCluster = perCluster;
+        capped.maxLightIndices = static_cast<uint32_t>(full.indices.size() / 2);
+        const ClusterGrid grid = buildClusterGrid(capped, view, kWidth, kHeight, {}, lights);
+        const auto fullLists = froxelLists(full);
+        const auto lists = froxelLists(grid);
+        uint64_t running = 0;
+        uint32_t expectedOverflows = 0;
+        for (size_t i = 0; i < lists.size(); ++i) {
+            const uint64_t room = capped.maxLightIndices - running;
+            const size_t keep = static_cast<size_t>(std::min<uint64_t>({fullLists[i].size(), perCluster, room}));
+            expectedOverflows += keep < fullLists[i].size() ? 1 : 0;
+            running += keep;
+            ASSERT_EQ(lists[i].size(), keep) << "froxel " << i << ", cap " << perCluster;
+            EXPECT_TRUE(std::equal(lists[i].begin(), lists[i].end(), fullLists[i].begin()));
+        }
+        EXPECT_EQ(grid.indices.size(), capped.maxLightIndices);
+        EXPECT_EQ(grid.overflowedClusters, expectedOverflows);
+        EXPECT_EQ(grid.ranges.back().y, 0u) << "the last froxels lose out first";
+    }
+}
+
+TEST(ClusterGrid, MoreThan255LightsPerClusterAnd4096PerView) {
+    const View view = testView();
+    std::vector<Light> lights = randomLights(4700, 8);
+    // 300 lights around one point in view, all reaching it.
+    const glm::vec3 target = glm::vec3(glm::inverse(view.eye().viewFromWorld) * glm::vec4(0.05f, 0.02f, -3.0f, 1.0f));
+    std::mt19937 rng(9);
+    for (int i = 0; i < 300; ++i) lights.push_back(pointLight(target + randomDirection(rng) * 0.2f, 0.5f));
+    ClusterSettings settings = testSettings();
+    settings.maxLightsPerCluster = 1024;
+    const ClusterGrid grid = buildClusterGrid(settings, view, kWidth, kHeight, {}, lights);
+    EXPECT_EQ(grid.overflowedClusters, 0u);
+    const ClusterGridShape& s = grid.shape;
+    const glm::vec4 clip = view.eye().clipFromWorld() * glm::vec4(target, 1.0f);
+    const glm::vec2 pixel = (glm::vec2(clip) / clip.w * 0.5f + 0.5f) * glm::vec2(kWidth, kHeight);
+    const uint32_t froxel =
+        s.froxelIndex(uint32_t(pixel.x) / s.tileSizePx, uint32_t(pixel.y) / s.tileSizePx, s.sliceOf(3.0f));
+    const auto lists = froxelLists(grid);
+    const std::vector<uint32_t>& list = lists[froxel];
+    EXPECT_GE(list.size(), 300u);
+    size_t clustered = 0;
+    for (uint32_t i = 4701; i < lights.size(); ++i)
+        clustered += std::binary_search(list.begin(), list.end(), i) ? 1 : 0;
+    EXPECT_EQ(clustered, 300u) << "every light index above 4096 kept";
+}
+
+}  // namespace
+}  // namespace preskin::test

@@ -1,0 +1,330 @@
+// The skin render against the diffusion reference (DiffusionReference) where the pre-integrated
+// model must hold, on a skin sphere of 10 mm diameter under one shadowed directional light,
+// specular off, no ambient:
+//  - the unlit side: past the terminator the skin render must carry at least 90 % of the
+//    reference's red light (the shadow map must not remove the light the diffuse LUT puts there);
+//  - transmission must add no more than 0.5 % where the skin faces the light (the diffuse LUT
+//    already holds that light), and through a 3 mm slab lit from behind it must give what the
+//    reference gives (the profile's plane integral at the slab's depth).
+// Pixels are the sphere's interior pixels (analytic ray-sphere hits); the reference is traced
+// through the same pixel centres. And the inside of a bowl (a hemisphere seen from inside, its
+// normals inwards, so its mesh curvature is negative) must be shaded with the diffuse LUT's
+// concave response: D(NoL, -1/r), no light past the terminator, not the convex D(NoL, 1/r); and
+// the floor of a groove lit across it must be closer to the reference than Lambert.
+#include "support/GpuTest.h"
+#include "support/ImageCompare.h"
+#include "support/SkinTestSupport.h"
+#include "support/TestLights.h"
+#include "support/TestScenes.h"
+
+#include <preskin/DiffusionReference.h>
+#include <preskin/LutSet.h>
+#include <preskin/Renderer.h>
+
+#include <glm/gtc/matrix_transform.hpp>
+
+#include <cmath>
+#include <cstdio>
+
+namespace preskin::test {
+namespace {
+
+// Skin's RMSE over Lambert's against the reference, pooled over R, G, B, over the skin pixels
+// `counts` keeps (all by default); `pixels` is how many it kept.
+template <typename Keep>
+double skinOverLambert(const ReferenceImage& truth, const RenderedImage& skin, const RenderedImage& lambert,
+                       size_t& pixels, Keep counts) {
+    double skinSquared = 0.0, lambertSquared = 0.0;
+    pixels = 0;
+    for (size_t i = 0; i < truth.skin.size(); ++i) {
+        if (!truth.skin[i] || !counts(i)) continue;
+        for (int c = 0; c < 3; ++c) {
+            const double want = double(truth.rgba32f[4 * i + size_t(c)]);
+            skinSquared += std::pow(double(skin.rgba32f[4 * i + size_t(c)]) - want, 2.0);
+            lambertSquared += std::pow(double(lambert.rgba32f[4 * i + size_t(c)]) - want, 2.0);
+        }
+        ++pixels;
+    }
+    return std::sqrt(skinSquared / lambertSquared);
+}
+
+class SkinFidelity : public GpuTest {
+protected:
+    void SetUp() override {
+        GpuTest::SetUp();
+        Primitive sphere = makeSphere(float(kRadiusM), 64, 32);
+        recomputeCurvature(sphere);
+        sphere.material = 0;
+        scene_ = makeScene({{sphere, glm::mat4(1.0f)}}, {skinMaterial({0.8f, 0.6f, 0.5f})});
+        const Light light = shadowedDirectionalLight({0.8f, -0.35f, -0.5f}, 3.0f);
+        scene_.lights = {light};
+        L_ = -glm::dvec3(light.directionWs);
+        view_ = orbitView(scene_.worldBounds(), 0.0f, 8.0f, 0.0f, 1.0f);
+    }
+
+    RenderedImage render(bool transmission) {
+        RenderSettings settings;
+        settings.specular = false;
+        settings.skin.transmission = transmission;
+        Renderer renderer(context(), scene_, Environment::constant(glm::vec3(0.0f)), &LutSet::loadDefault(), settings);
+        return renderer.render(view_, kSize, kSize, OutputEncoding::LinearFloat);
+    }
+
+    // The ray through pixel (x, y)'s centre, as the rasterizer samples it.
+    void pixelRay(uint32_t x, uint32_t y, glm::dvec3& origin, glm::dvec3& direction) const {
+        const glm::dmat4 worldFromClip = glm::inverse(glm::dmat4(view_.eye().clipFromWorld()));
+        const glm::dvec2 ndc((x + 0.5) / kSize * 2.0 - 1.0, (y + 0.5) / kSize * 2.0 - 1.0);
+        const glm::dvec4 a = worldFromClip * glm::dvec4(ndc, 1.0, 1.0);
+        const glm::dvec4 b = worldFromClip * glm::dvec4(ndc, 0.5, 1.0);
+        origin = glm::dvec3(a) / a.w;
+        direction = glm::normalize(glm::dvec3(b) / b.w - origin);
+    }
+
+    static constexpr double kRadiusM = 0.005;
+    static constexpr uint32_t kSize = 64;
+    Scene scene_;
+    glm::dvec3 L_{0.0};
+    View view_;
+};
+
+TEST_F(SkinFidelity, UnlitSideCarriesNinetyPercentOfTheReferenceRed) {
+    const RenderedImage skin = render(true);
+    const DiffusionReference reference(scene_, scene_.lights, ShRgb{}, LutSet::loadDefault().profile());
+    const auto hits = traceSphere(view_, kSize, kSize, glm::dvec3(0.0), kRadiusM);
+    double skinRed = 0.0, referenceRed = 0.0;
+    int pixels = 0;
+    for (uint32_t y = 0; y < kSize; y += 2)
+        for (uint32_t x = 0; x < kSize; x += 2) {
+            const SphereHit& h = hits[size_t(y) * kSize + x];
+            if (!h.interior) continue;
+            const double NoL = glm::dot(glm::normalize(h.positionWs), L_);
+            if (NoL >= -0.02 || NoL < -0.6) continue;  // the unlit side where light still arrives
+            glm::dvec3 origin, direction;
+            pixelRay(x, y, origin, direction);
+            const auto sample = reference.trace(origin, direction);
+            ASSERT_TRUE(sample.has_value());
+            skinRed += pixelLinear(skin, x, y).r;
+            referenceRed += sample->radiance.r;
+            ++pixels;
+        }
+    const double ratio = skinRed / referenceRed;
+    std::printf("[ fidelity ] 10 mm sphere, unlit side (%d pixels): skin red / reference red = %.3f\n", pixels, ratio);
+    ASSERT_GT(pixels, 30);
+    EXPECT_GE(ratio, 0.9);
+    EXPECT_LE(ratio, 1.25) << "and not far brighter either";
+}
+
+// The whole picture of the small sphere, its shadow-casting light included: every technique on
+// (the wide shadow map's penumbra too, which must not darken the sphere's own terminator).
+TEST_F(SkinFidelity, WholeSphereIsFarCloserToTheReferenceThanLambert) {
+    const RenderedImage skin = render(true);
+    RenderSettings settings;
+    settings.specular = false;
+    settings.skin = SkinFeatures::none();
+    Renderer renderer(context(), scene_, Environment::constant(glm::vec3(0.0f)), &LutSet::loadDefault(), settings);
+    const RenderedImage lambert = renderer.render(view_, kSize, kSize, OutputEncoding::LinearFloat);
+    const DiffusionReference reference(scene_, scene_.lights, ShRgb{}, LutSet::loadDefault().profile());
+    const ReferenceImage truth = reference.render(view_.eye(), kSize, kSize);
+    size_t pixels = 0;
+    const double ratio = skinOverLambert(truth, skin, lambert, pixels, [](size_t) { return true; });
+    std::printf("[ fidelity ] 10 mm sphere (%zu pixels): skin / Lambert RMSE %.3f\n", pixels, ratio);
+    EXPECT_GT(pixels, size_t(kSize) * 20);
+    EXPECT_LT(ratio, 0.3);
+}
+
+TEST_F(SkinFidelity, TransmissionAddsAtMostHalfAPercentWhereTheSkinFacesTheLight) {
+    const RenderedImage with = render(true);
+    const RenderedImage without = render(false);
+    const auto hits = traceSphere(view_, kSize, kSize, glm::dvec3(0.0), kRadiusM);
+    glm::dvec3 added(0.0), base(0.0);
+    double unlitAdded = 0.0;
+    for (uint32_t y = 0; y < kSize; ++y)
+        for (uint32_t x = 0; x < kSize; ++x) {
+            const SphereHit& h = hits[size_t(y) * kSize + x];
+            if (!h.interior) continue;
+            const double NoL = glm::dot(glm::normalize(h.positionWs), L_);
+            const glm::dvec3 d = pixelLinear(with, x, y) - pixelLinear(without, x, y);
+            if (NoL > 0.0) {
+                added += d;
+                base += pixelLinear(without, x, y);
+            } else {
+                unlitAdded += d.r;
+            }
+        }
+    std::printf("[ fidelity ] 10 mm sphere, lit side: transmission adds (%.4f, %.4f, %.4f) %%; unlit side red %+.4f\n",
+                100.0 * added.r / base.r, 100.0 * added.g / base.g, 100.0 * added.b / base.b, unlitAdded);
+    for (int c = 0; c < 3; ++c) EXPECT_LE(added[c], 0.005 * base[c]) << "channel " << c;
+}
+
+TEST_F(SkinFidelity, ThinSlabTransmissionMatchesTheReference) {
+    const float thicknessM = 0.003f;
+    Primitive slab = makeBox(glm::vec3(0.08f, 0.08f, thicknessM));
+    slab.material = 0;
+    Scene scene = makeScene({{slab, glm::translate(glm::mat4(1.0f), glm::vec3(0.0f, 0.0f, -0.5f * thicknessM))}},
+                            scene_.materials);
+    Light light = scene_.lights[0];
+    light.directionWs = glm::vec3(0.0f, 0.0f, 1.0f);  // from behind, towards the camera
+    scene.lights = {light};
+    const View view = perspectiveView(
+        glm::inverse(glm::lookAt(glm::vec3(0.0f, 0.0f, 0.2f), glm::vec3(0.0f), glm::vec3(0.0f, 1.0f, 0.0f))), 0.5f,
+        1.0f, 0.05f, 1.0f);
+    RenderSettings settings;
+    settings.specular = false;
+    Renderer renderer(context(), scene, Environment::constant(glm::vec3(0.0f)), &LutSet::loadDefault(), settings);
+    const RenderedImage image = renderer.render(view, 32, 32, OutputEncoding::LinearFloat);
+    const DiffusionReference reference(scene, scene.lights, ShRgb{}, LutSet::loadDefault().profile());
+    const auto sample = reference.trace(glm::dvec3(0.0, 0.0, 0.2), glm::dvec3(0.0, 0.0, -1.0));
+    ASSERT_TRUE(sample.has_value());
+    glm::dvec3 skin(0.0);
+    for (uint32_t y = 15; y <= 16; ++y)
+        for (uint32_t x = 15; x <= 16; ++x) skin += 0.25 * pixelLinear(image, x, y);
+    std::printf("[ fidelity ] 3 mm slab from behind: skin (%.4f, %.5f) reference (%.4f, %.5f) red, green\n", skin.r,
+                skin.g, sample->radiance.r, sample->radiance.g);
+    EXPECT_NEAR(skin.r, sample->radiance.r, 0.05 * sample->radiance.r);
+    EXPECT_NEAR(skin.g, sample->radiance.g, 0.05 * sample->radiance.r);
+}
+
+TEST_F(SkinFidelity, InsideOfABowlIsShadedWithTheConcaveResponse) {
+    // A 1 m bowl scattering like one of 5 mm radius (profile curvature -0.2 / mm).
+    const double radiusM = 1.0;
+    SkinMaterial skin;
+    skin.scatterScale = 0.005f;
+    const double curvaturePerMm = -1.0 / radiusM * 0.001 / double(skin.scatterScale);
+    Material material;
+    material.baseColorFactor = glm::vec4(0.8f, 0.6f, 0.5f, 1.0f);
+    material.metallicFactor = 0.0f;
+    material.skin = skin;
+    // The lower hemisphere of a UV sphere turned inside out: normals inwards, winding reversed.
+    const Primitive sphere = makeSphere(float(radiusM), 192, 96);
+    Primitive bowl;
+    std::vector<uint32_t> remap(sphere.vertices.size(), UINT32_MAX);
+    for (size_t t = 0; t + 2 < sphere.indices.size(); t += 3) {
+        const uint32_t tri[3] = {sphere.indices[t], sphere.indices[t + 2], sphere.indices[t + 1]};
+        bool lower = true;
+        for (uint32_t i : tri) lower = lower && sphere.vertices[i].positionOs.y <= 1e-6f;
+        if (!lower) continue;
+        for (uint32_t i : tri) {
+            if (remap[i] == UINT32_MAX) {
+                Vertex v = sphere.vertices[i];
+                v.normalOs = -v.normalOs;
+                remap[i] = uint32_t(bowl.vertices.size());
+                bowl.vertices.push_back(v);
+                bowl.boundsOs.extend(v.positionOs);
+            }
+            bowl.indices.push_back(remap[i]);
+        }
+    }
+    recomputeCurvature(bowl);
+    bowl.material = 0;
+    Scene scene = makeScene({{bowl, glm::mat4(1.0f)}}, {material});
+    Light light;
+    light.type = LightType::Directional;
+    light.directionWs = glm::normalize(glm::vec3(0.75f, -0.66f, 0.0f));  // grazes the wall nearest the light
+    light.intensity = 3.0f;
+    scene.lights = {light};
+    const glm::dvec3 L = -glm::normalize(glm::dvec3(light.directionWs));
+
+    RenderSettings settings;
+    settings.specular = false;
+    settings.shadows = false;  // the LUT's response alone
+    const LutSet& luts = LutSet::loadDefault();
+    Renderer renderer(context(), scene, Environment::constant(glm::vec3(0.0f)), &luts, settings);
+    const uint32_t size = 96;
+    const View view =
+        perspectiveView(glm::inverse(glm::lookAt(glm::vec3(0.0f, 3.0f, 0.3f), glm::vec3(0.0f, -0.3f, 0.0f),
+                                                 glm::vec3(0.0f, 0.0f, -1.0f))),
+                        0.6f, 1.0f, 0.1f, 10.0f);
+    const RenderedImage image = renderer.render(view, size, size, OutputEncoding::LinearFloat);
+
+    // The far intersection of each pixel's ray with the sphere: the inside of the bowl.
+    const glm::dmat4 worldFromClip = glm::inverse(glm::dmat4(view.eye().clipFromWorld()));
+    size_t compared = 0, concaveMisses = 0, convexMisses = 0, pastTerminator = 0;
+    for (uint32_t y = 0; y < size; ++y)
+        for (uint32_t x = 0; x < size; ++x) {
+            const glm::dvec2 ndc((x + 0.5) / size * 2.0 - 1.0, (y + 0.5) / size * 2.0 - 1.0);
+            const glm::dvec4 a = worldFromClip * glm::dvec4(ndc, 1.0, 1.0),
+                             b = worldFromClip * glm::dvec4(ndc, 0.5, 1.0);
+            const glm::dvec3 o = glm::dvec3(a) / a.w, d = glm::normalize(glm::dvec3(b) / b.w - o);
+            const double half = glm::dot(o, d), disc = half * half - (glm::dot(o, o) - radiusM * radiusM);
+            if (disc <= 0.0) continue;
+            const glm::dvec3 p = o + d * (-half + std::sqrt(disc));
+            if (p.y > -0.3 * radiusM) continue;  // away from the open rim (curvature estimate, silhouette)
+            const glm::dvec3 N = -glm::normalize(p);
+            const double NoL = glm::dot(N, L);
+            const glm::dvec3 scale =
+                glm::dvec3(material.baseColorFactor) / 3.14159265358979323846 * double(light.intensity);
+            const glm::dvec3 concave = scale * glm::dvec3(luts.lookupDiffuse(float(NoL), float(curvaturePerMm)));
+            const glm::dvec3 convex = scale * glm::dvec3(luts.lookupDiffuse(float(NoL), float(-curvaturePerMm)));
+            const glm::dvec3 got = pixelLinear(image, x, y);
+            ++compared;
+            pastTerminator += NoL < 0.0;
+            concaveMisses += srgbDifference(got, concave) > 2.0;
+            convexMisses += srgbDifference(got, convex) > 2.0;
+        }
+    std::printf(
+        "[ fidelity ] bowl: %zu pixels (%zu past the terminator); off the concave response by > 2/255: %zu, "
+        "off the convex one: %zu\n",
+        compared, pastTerminator, concaveMisses, convexMisses);
+    ASSERT_GT(compared, 1000u);
+    ASSERT_GT(pastTerminator, 50u);
+    EXPECT_LE(concaveMisses, compared / 200);
+    EXPECT_GT(convexMisses, compared / 20) << "the test must tell the two responses apart";
+}
+
+// A groove (z = -3 mm exp(-x^2 / 2 (2.5 mm)^2) in a skin plane), lit across it at 37 degrees from
+// the normal: in its concave floor (mean curvature to -0.2 / mm) skin must come closer to the
+// diffusion reference than Lambert, by a clear margin (a crease the concave model and the wide
+// shadow map both see).
+TEST_F(SkinFidelity, ConcaveGrooveIsCloserToTheReferenceThanLambert) {
+    const double depthM = 0.003, widthM = 0.0025, halfM = 0.02;
+    const uint32_t n = 80;
+    Primitive groove;
+    for (uint32_t j = 0; j <= n; ++j)
+        for (uint32_t i = 0; i <= n; ++i) {
+            const double x = -halfM + 2.0 * halfM * i / n, y = -halfM + 2.0 * halfM * j / n;
+            const double e = std::exp(-x * x / (2.0 * widthM * widthM));
+            Vertex v;
+            v.positionOs = glm::vec3(float(x), float(y), float(-depthM * e));
+            v.normalOs = glm::vec3(glm::normalize(glm::dvec3(-depthM * x / (widthM * widthM) * e, 0.0, 1.0)));
+            v.uv0 = glm::vec2(float(i) / float(n), float(j) / float(n));
+            groove.vertices.push_back(v);
+            groove.boundsOs.extend(v.positionOs);
+        }
+    for (uint32_t j = 0; j < n; ++j)
+        for (uint32_t i = 0; i < n; ++i) {
+            const uint32_t a = j * (n + 1) + i, b = a + 1, c = a + n + 1, d = c + 1;
+            groove.indices.insert(groove.indices.end(), {a, b, d, a, d, c});
+        }
+    recomputeCurvature(groove);
+    groove.material = 0;
+    Scene scene = makeScene({{groove, glm::mat4(1.0f)}}, {skinMaterial({0.8f, 0.6f, 0.5f})});
+    const Light light = shadowedDirectionalLight({0.6f, 0.0f, -0.8f}, 3.0f);
+    scene.lights = {light};
+    const uint32_t size = 64;
+    const View view = perspectiveView(
+        glm::inverse(glm::lookAt(glm::vec3(0.0f, 0.0f, 0.06f), glm::vec3(0.0f), glm::vec3(0.0f, 1.0f, 0.0f))),
+        2.0f * std::atan(0.01f / 0.06f), 1.0f, 0.01f, 1.0f);
+    const Environment dark = Environment::constant(glm::vec3(0.0f));
+    RenderSettings settings;
+    settings.specular = false;
+    Renderer renderer(context(), scene, dark, &LutSet::loadDefault(), settings);
+    const RenderedImage skin = renderer.render(view, size, size, OutputEncoding::LinearFloat);
+    settings.skin = SkinFeatures::none();
+    renderer.setSettings(settings);
+    const RenderedImage lambert = renderer.render(view, size, size, OutputEncoding::LinearFloat);
+    ReferenceSettings coarse;
+    coarse.leafRatio = 1.0;
+    coarse.finestLeafRatio = 4.0;
+    coarse.momentTolerance = 1e-5;
+    const DiffusionReference reference(scene, scene.lights, dark.radianceSh(), LutSet::loadDefault().profile(), coarse);
+    const ReferenceImage truth = reference.render(view.eye(), size, size);
+    size_t pixels = 0;
+    const double ratio =
+        skinOverLambert(truth, skin, lambert, pixels, [&](size_t i) { return truth.curvaturePerMm[i] <= -0.01f; });
+    std::printf("[ fidelity ] groove floor: %zu concave pixels, skin / Lambert RMSE %.3f\n", pixels, ratio);
+    EXPECT_GT(pixels, size_t(size) * 10);
+    EXPECT_LT(ratio, 0.6);
+}
+
+}  // namespace
+}  // namespace preskin::test
