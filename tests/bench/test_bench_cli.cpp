@@ -15,7 +15,7 @@
 #include <sstream>
 #include <string>
 
-namespace preskin {
+namespace preskin::test {
 namespace {
 
 namespace fs = std::filesystem;
@@ -165,4 +165,4 @@ TEST_F(BenchCli, RefusesBadArgumentsBeforeWork) {
 }
 
 }  // namespace
-}  // namespace preskin
+}  // namespace preskin::test

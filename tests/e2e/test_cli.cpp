@@ -20,11 +20,12 @@
 #include <tuple>
 #include <vector>
 
+namespace preskin::test {
+
 namespace {
 
 namespace fs = std::filesystem;
 
-using preskin::test::ProcessResult;
 using CliResult = ProcessResult;
 
 class Cli : public preskin::test::CliTest {
@@ -362,3 +363,5 @@ TEST_F(Cli, HelpEverywhere) {
 }
 
 }  // namespace
+
+}  // namespace preskin::test

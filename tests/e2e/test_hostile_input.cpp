@@ -25,10 +25,11 @@
 #include <string>
 #include <vector>
 
+namespace preskin::test {
+
 namespace {
 
 namespace fs = std::filesystem;
-using preskin::test::ProcessResult;
 
 const fs::path kHostile = fs::path(PRESKIN_SOURCE_DIR) / "tests" / "data" / "hostile";
 const fs::path kTriangle = fs::path(PRESKIN_SOURCE_DIR) / "tests" / "data" / "gltf" / "triangle.gltf";
@@ -718,3 +719,5 @@ TEST_F(HostileInput, UnambiguousFilesTheValidatorRefusesAreReadWithAWarning) {
               std::string::npos)
         << r.err;
 }
+
+}  // namespace preskin::test

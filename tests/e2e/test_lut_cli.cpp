@@ -15,7 +15,7 @@
 #include <random>
 #include <sstream>
 
-namespace preskin {
+namespace preskin::test {
 namespace {
 
 namespace fs = std::filesystem;
@@ -98,4 +98,4 @@ TEST_F(BakeCli, BadInputIsRefusedAndNothingIsWritten) {
 }
 
 }  // namespace
-}  // namespace preskin
+}  // namespace preskin::test

@@ -44,13 +44,11 @@
 
 extern char** environ;
 
+namespace preskin::test {
+
 namespace {
 
 namespace fs = std::filesystem;
-using preskin::test::Process;
-using preskin::test::ProcessResult;
-using preskin::test::runProcess;
-using preskin::test::testDevice;
 
 #ifdef PRESKIN_VIEWER_PATH
 constexpr const char* kViewerPath = PRESKIN_VIEWER_PATH;
@@ -640,3 +638,5 @@ TEST_F(Viewer, SurvivesResizeVsyncToggleScreenshotKeyAndClose) {
 }
 
 }  // namespace
+
+}  // namespace preskin::test

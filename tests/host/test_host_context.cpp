@@ -36,6 +36,15 @@ protected:
     }
 };
 
+// The shadow-casting light of these scenes, from the upper right front.
+Light keyLight() {
+    Light light;
+    light.directionWs = glm::normalize(glm::vec3(-0.3f, -0.6f, -0.7f));
+    light.intensity = 2.0f;
+    light.castsShadow = true;
+    return light;
+}
+
 // A lit sphere in front of the camera, filling the middle of the picture.
 Scene sphereScene(uint32_t segments = 48) {
     Material material;
@@ -44,11 +53,7 @@ Scene sphereScene(uint32_t segments = 48) {
     material.roughnessFactor = 0.5f;
     Scene scene = makeScene({{makeSphere(1.0f, segments, segments / 2), glm::mat4(1.0f)}}, {material});
     scene.meshes[0].primitives[0].material = 0;
-    Light light;
-    light.directionWs = glm::normalize(glm::vec3(-0.3f, -0.6f, -0.7f));
-    light.intensity = 2.0f;
-    light.castsShadow = true;
-    scene.lights = {light};
+    scene.lights = {keyLight()};
     return scene;
 }
 
@@ -64,13 +69,7 @@ TEST_F(HostContext, WrappedDeviceRendersLikeOwnedOne) {
 
     // The "host" is the test's own context; a second Context wraps its handles.
     Context& host = context();
-    HostVulkan handles;
-    handles.getInstanceProcAddr = vkGetInstanceProcAddr;
-    handles.instance = host.instance();
-    handles.physicalDevice = host.physicalDevice();
-    handles.device = host.device();
-    handles.queue = host.queue();
-    handles.queueFamilyIndex = host.queueFamilyIndex();
+    const HostVulkan hostHandles = handles();
 
     RenderedImage owned;
     {
@@ -79,7 +78,7 @@ TEST_F(HostContext, WrappedDeviceRendersLikeOwnedOne) {
     }
     RenderedImage wrapped;
     {
-        auto guest = Context::wrap(handles);
+        auto guest = Context::wrap(hostHandles);
         EXPECT_EQ(guest->device(), host.device());
         Renderer renderer(*guest, scene, env, nullptr);
         wrapped = renderer.render(view, 64, 64, OutputEncoding::DisplaySrgb8);
@@ -94,7 +93,7 @@ TEST_F(HostContext, WrappedDeviceRendersLikeOwnedOne) {
     Renderer again(host, scene, env, nullptr);
     EXPECT_EQ(again.render(view, 64, 64, OutputEncoding::DisplaySrgb8).rgba8, owned.rgba8);
 
-    HostVulkan incomplete = handles;
+    HostVulkan incomplete = hostHandles;
     incomplete.queue = VK_NULL_HANDLE;
     EXPECT_THROW(Context::wrap(incomplete), Error);
 }
@@ -111,25 +110,13 @@ TEST_F(HostContext, RecordsEveryEyeIntoTheHostsArrayLayers) {
                              {makeQuad(8.0f, 1), glm::translate(glm::mat4(1.0f), glm::vec3(0.0f, 0.0f, -0.8f))}},
                             {material});
     for (Mesh& m : scene.meshes) m.primitives[0].material = 0;
-    Light light;
-    light.directionWs = glm::normalize(glm::vec3(-0.3f, -0.6f, -0.7f));
-    light.intensity = 2.0f;
-    light.castsShadow = true;
-    scene.lights = {light};
+    scene.lights = {keyLight()};
     const Environment env = Environment::constant(glm::vec3(0.1f));
     const View view = stereoFromMono(orbitView(scene.worldBounds(), 10.0f, 5.0f, 2.2f, 1.0f), 0.064f);
     constexpr uint32_t kSize = 48;
 
     Context& host = context();
-    HostVulkan handles;
-    handles.getInstanceProcAddr = vkGetInstanceProcAddr;
-    handles.instance = host.instance();
-    handles.physicalDevice = host.physicalDevice();
-    handles.device = host.device();
-    handles.queue = host.queue();
-    handles.queueFamilyIndex = host.queueFamilyIndex();
-    handles.shaderOutputLayerEnabled = ContextAccess::core(host).shaderOutputLayer();
-    auto guest = Context::wrap(handles);
+    auto guest = Context::wrap(handles());
     const vk::Device& device = ContextAccess::core(host);
 
     for (uint32_t samples : {1u, 4u}) {

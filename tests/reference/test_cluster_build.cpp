@@ -184,14 +184,8 @@ std::vector<Light> frameLights(const Scene& scene, const View& view, const Clust
             lights.push_back(pointLight(p, uniform(rng, 0.2f, 0.9f), color, 2.0f));
     }
     const ClusterGridShape s = clusterGridShape(settings, clusterCamera(view, kWidth, kHeight), scene.worldBounds());
-    const glm::mat4 worldFromView = glm::inverse(view.eye().viewFromWorld);
-    const glm::mat4 viewFromClip = glm::inverse(view.eye().clipFromView);
     auto edgePoint = [&](float px, float py, float d) {
-        const glm::vec4 clip = view.eye().clipFromView * glm::vec4(0.0f, 0.0f, -d, 1.0f);
-        glm::vec4 p =
-            viewFromClip * glm::vec4(px / kWidth * 2.0f - 1.0f, py / kHeight * 2.0f - 1.0f, clip.z / clip.w, 1.0f);
-        p /= p.w;
-        return glm::vec3(worldFromView * p);
+        return pointAtPixel(view.eye(), px, py, float(kWidth), float(kHeight), d);
     };
     for (uint32_t z = 1; z < s.dims.z; z += 2)
         for (uint32_t y = 1; y < s.dims.y; y += 3)
@@ -220,6 +214,7 @@ std::vector<Light> frameLights(const Scene& scene, const View& view, const Clust
             const glm::vec3 color(uniform(rng, 0.3f, 1.0f), uniform(rng, 0.3f, 1.0f), uniform(rng, 0.3f, 1.0f));
             lights.push_back(pointLight(eye + dir * t + normal * 0.03f, uniform(rng, 0.25f, 0.5f), color, 0.3f));
         }
+    const glm::mat4 worldFromView = glm::inverse(view.eye().viewFromWorld);
     const glm::vec3 forward(worldFromView * glm::vec4(0, 0, -1, 0));
     lights.push_back(
         pointLight(glm::vec3(worldFromView * glm::vec4(0.1f, -0.1f, -0.35f, 1.0f)), 2.5f, glm::vec3(1.0f), 0.5f));

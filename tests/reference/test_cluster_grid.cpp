@@ -130,14 +130,8 @@ TEST(ClusterGrid, LightsStraddlingFroxelEdgesAndCorners) {
     const ClusterSettings settings = testSettings();
     const ClusterGridShape s = clusterGridShape(settings, clusterCamera(view, kWidth, kHeight), {});
     const glm::mat4 worldFromView = glm::inverse(view.eye().viewFromWorld);
-    const glm::mat4 viewFromClip = glm::inverse(view.eye().clipFromView);
-    // A point on tile edge (px, py) at depth d, in world space.
     auto edgePoint = [&](float px, float py, float d) {
-        const glm::vec4 clip = view.eye().clipFromView * glm::vec4(0.0f, 0.0f, -d, 1.0f);
-        glm::vec4 p =
-            viewFromClip * glm::vec4(px / kWidth * 2.0f - 1.0f, py / kHeight * 2.0f - 1.0f, clip.z / clip.w, 1.0f);
-        p /= p.w;
-        return glm::vec3(worldFromView * p);
+        return pointAtPixel(view.eye(), px, py, float(kWidth), float(kHeight), d);
     };
     std::vector<Light> lights;
     std::mt19937 rng(7);

@@ -108,6 +108,16 @@ inline double distanceToFroxel(const ReferenceFroxel& f, const glm::dvec3& p) {
     return best;
 }
 
+// The world point at pixel (px, py) of a widthPx x heightPx image of `eye`, at view depth d
+// (tile edges at px, py = multiples of the tile size).
+inline glm::vec3 pointAtPixel(const Eye& eye, float px, float py, float widthPx, float heightPx, float d) {
+    const glm::vec4 clip = eye.clipFromView * glm::vec4(0.0f, 0.0f, -d, 1.0f);
+    glm::vec4 p = glm::inverse(eye.clipFromView) *
+                  glm::vec4(px / widthPx * 2.0f - 1.0f, py / heightPx * 2.0f - 1.0f, clip.z / clip.w, 1.0f);
+    p /= p.w;
+    return glm::vec3(glm::inverse(eye.viewFromWorld) * p);
+}
+
 // Does p lie inside the light's volume, `margin` (a fraction of the range, and of the cone
 // cosine) inside its boundary?
 inline bool insideLight(const Light& l, const glm::dvec3& p, double margin) {

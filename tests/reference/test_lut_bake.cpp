@@ -8,7 +8,7 @@
 #include <chrono>
 #include <thread>
 
-namespace preskin {
+namespace preskin::test {
 namespace {
 
 TEST(LutBake, DefaultSetBakeTime) {
@@ -39,4 +39,4 @@ TEST(LutBake, ParallelBakesAreDeterministic) {
 }
 
 }  // namespace
-}  // namespace preskin
+}  // namespace preskin::test

@@ -17,7 +17,7 @@
 #include <numbers>
 #include <random>
 
-namespace preskin {
+namespace preskin::test {
 namespace {
 
 struct Point {
@@ -238,4 +238,4 @@ TEST(LutDiffuse, BurleyProfileBakes) {
 }
 
 }  // namespace
-}  // namespace preskin
+}  // namespace preskin::test

@@ -15,7 +15,7 @@
 
 #include <random>
 
-namespace preskin {
+namespace preskin::test {
 namespace {
 
 // Vulkan spec, texel filtering: u' = u * size - 0.5, i0 = floor(u'), alpha = frac(u'),
@@ -193,4 +193,4 @@ TEST(LutBakeSettingsTest, ProgressIsMonotoneAndEndsAtOne) {
 }
 
 }  // namespace
-}  // namespace preskin
+}  // namespace preskin::test

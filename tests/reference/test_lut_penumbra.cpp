@@ -12,7 +12,7 @@
 
 #include <random>
 
-namespace preskin {
+namespace preskin::test {
 namespace {
 
 // Phi^-1 by bisection (test-side).
@@ -155,4 +155,4 @@ TEST(LutPenumbra, BurleyEdgeResponseBakes) {
 }
 
 }  // namespace
-}  // namespace preskin
+}  // namespace preskin::test

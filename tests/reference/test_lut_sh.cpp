@@ -10,7 +10,7 @@
 
 #include <gtest/gtest.h>
 
-namespace preskin {
+namespace preskin::test {
 namespace {
 
 constexpr double kLambert[3] = {test::kPi, 2.0 * test::kPi / 3.0, test::kPi / 4.0};
@@ -72,4 +72,4 @@ TEST(LutSh, HigherBandsAreAttenuatedRedMost) {
 }
 
 }  // namespace
-}  // namespace preskin
+}  // namespace preskin::test

@@ -7,7 +7,7 @@
 
 #include <random>
 
-namespace preskin {
+namespace preskin::test {
 namespace {
 
 // sum_i w_i exp(-d^2 / 2 v_i) / albedo: the plane integral of d'Eon & Luebke's profile.
@@ -54,4 +54,4 @@ TEST(LutTransmittance, DecreasesWithThicknessRedMost) {
 }
 
 }  // namespace
-}  // namespace preskin
+}  // namespace preskin::test

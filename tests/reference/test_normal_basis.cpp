@@ -16,6 +16,8 @@
 #include <numbers>
 #include <vector>
 
+namespace preskin::test {
+
 namespace {
 
 constexpr double kPi = std::numbers::pi;
@@ -198,3 +200,5 @@ TEST(NormalBasis, BadInputIsRefused) {
     for (double scale : {0.0, -1.0, std::nan(""), std::numeric_limits<double>::infinity()})
         EXPECT_THROW(preskin::computeNormalBasis(m.positions, m.normals, m.indices, scale), preskin::Error);
 }
+
+}  // namespace preskin::test

@@ -17,10 +17,11 @@
 #include <string>
 #include <vector>
 
+namespace preskin::test {
+
 namespace {
 
 namespace fs = std::filesystem;
-using preskin::test::ProcessResult;
 
 class ReferenceCli : public preskin::test::CliTest {
 protected:
@@ -149,3 +150,5 @@ TEST_F(ReferenceCli, CompareReusesAReferenceMadeForTheSameRun) {
 }
 
 }  // namespace
+
+}  // namespace preskin::test

@@ -13,6 +13,8 @@
 using preskin::AnimationSampler;
 using preskin::Interpolation;
 
+namespace preskin::test {
+
 namespace {
 
 AnimationSampler sampler(Interpolation interpolation, std::vector<float> times, std::vector<float> values,
@@ -164,3 +166,5 @@ TEST(AnimationSampling, FindAnimationByNameOrIndexAndListsTheNames) {
         EXPECT_NE(std::string(e.what()).find("the scene has no animations"), std::string::npos) << e.what();
     }
 }
+
+}  // namespace preskin::test

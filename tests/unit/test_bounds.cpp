@@ -2,6 +2,8 @@
 
 #include <gtest/gtest.h>
 
+namespace preskin::test {
+
 TEST(Bounds, ExtendAndCenter) {
     preskin::Bounds b;
     EXPECT_TRUE(b.empty());
@@ -14,3 +16,5 @@ TEST(Bounds, ExtendAndCenter) {
     b.extend(empty);
     EXPECT_EQ(b.extent(), glm::vec3(4.0f, 4.0f, 1.0f));
 }
+
+}  // namespace preskin::test

@@ -12,6 +12,8 @@
 #include <numbers>
 #include <vector>
 
+namespace preskin::test {
+
 namespace {
 
 constexpr float kPi = std::numbers::pi_v<float>;
@@ -266,3 +268,5 @@ TEST(Curvature, UpdateMeshCurvatureSpansPrimitives) {
         }
     }
 }
+
+}  // namespace preskin::test

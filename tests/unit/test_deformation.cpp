@@ -14,6 +14,8 @@ using preskin::InstancePose;
 using preskin::Primitive;
 using preskin::Vertex;
 
+namespace preskin::test {
+
 namespace {
 
 void expectNear(glm::vec3 a, glm::vec3 b, float tolerance = 1e-6f) {
@@ -161,3 +163,5 @@ TEST(Deformation, RefusesMismatchedInput) {
     primitive.targets[0].normalDeltas = {{0, 0, 1}};
     EXPECT_THROW(preskin::deformPrimitive(primitive, InstancePose{}, out), preskin::Error);
 }
+
+}  // namespace preskin::test

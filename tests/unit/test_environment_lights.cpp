@@ -8,7 +8,7 @@
 #include <cmath>
 #include <limits>
 
-namespace preskin {
+namespace preskin::test {
 namespace {
 
 constexpr double kDiscRadius = 1.0 * M_PI / 180.0;  // twice the sun's
@@ -178,4 +178,4 @@ TEST(EnvironmentLights, FromImageRefusesWhatLoadRefuses) {
 }
 
 }  // namespace
-}  // namespace preskin
+}  // namespace preskin::test

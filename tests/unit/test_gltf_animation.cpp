@@ -18,9 +18,9 @@
 #include <numbers>
 
 using nlohmann::json;
-using preskin::test::GltfBuilder;
-using preskin::test::TempDir;
 namespace fs = std::filesystem;
+
+namespace preskin::test {
 
 namespace {
 
@@ -450,3 +450,5 @@ TEST(GltfAnimation, MoreBadCasesGeneratedHere) {
     b.doc["animations"][0]["samplers"][0]["interpolation"] = "SMOOTH";
     expectError(b, "interpolation", {"animations[0].samplers[0].interpolation: ", "'SMOOTH'"});
 }
+
+}  // namespace preskin::test

@@ -13,25 +13,13 @@
 #include <limits>
 
 using nlohmann::json;
-using preskin::test::GltfBuilder;
-using preskin::test::TempDir;
 namespace fs = std::filesystem;
+
+namespace preskin::test {
 
 namespace {
 
 const fs::path kData = fs::path(PRESKIN_SOURCE_DIR) / "tests/data/gltf";
-
-// Loads `path`, expects a preskin::Error, returns its message.
-std::string loadError(const fs::path& path) {
-    try {
-        preskin::Scene::load(path);
-    } catch (const preskin::Error& e) {
-        return e.what();
-    } catch (const std::exception& e) {
-        return std::string("unexpected exception type: ") + e.what();
-    }
-    return "no error";
-}
 
 // CRC-32 as PNG chunks use it (ISO 3309, polynomial 0xEDB88320).
 uint32_t crc32(const std::vector<uint8_t>& bytes) {
@@ -493,3 +481,5 @@ TEST(GltfErrors, RandomCorruptionOnlyEverThrowsPreskinErrors) {
     EXPECT_GT(rejected, 100);
     EXPECT_EQ(loaded + rejected, 400);
 }
+
+}  // namespace preskin::test

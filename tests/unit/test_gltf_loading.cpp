@@ -15,8 +15,8 @@
 #include <numbers>
 
 using nlohmann::json;
-using preskin::test::GltfBuilder;
-using preskin::test::TempDir;
+
+namespace preskin::test {
 
 namespace {
 
@@ -582,3 +582,5 @@ TEST(GltfLoading, UnknownUsedExtensionsAndUnusedUnsupportedImagesOnlyWarn) {
     EXPECT_TRUE(hasWarning(s, "images[0]: GIF"));
     EXPECT_EQ(s.images.at(0).width, 0u);
 }
+
+}  // namespace preskin::test

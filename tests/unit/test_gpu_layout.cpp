@@ -18,6 +18,8 @@ namespace preskin::shaders {
 std::span<const uint32_t> spirv(std::string_view fileName);
 }
 
+namespace preskin::test {
+
 namespace {
 
 // struct name -> member name -> byte offset, from OpName / OpMemberName / OpMemberDecorate Offset.
@@ -159,3 +161,5 @@ TEST(GpuLayout, DeformationStructsMatchCpp) {
 }
 
 }  // namespace
+
+}  // namespace preskin::test

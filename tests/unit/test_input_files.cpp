@@ -20,7 +20,7 @@
 
 #include <limits>
 
-namespace preskin {
+namespace preskin::test {
 namespace {
 
 namespace fs = std::filesystem;
@@ -196,4 +196,4 @@ TEST(EnvironmentFiles, HdrAndExrDecodeToTheirSky) {
 }
 
 }  // namespace
-}  // namespace preskin
+}  // namespace preskin::test

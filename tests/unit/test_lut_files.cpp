@@ -18,7 +18,7 @@
 #include <random>
 #include <sstream>
 
-namespace preskin {
+namespace preskin::test {
 namespace {
 
 namespace fs = std::filesystem;
@@ -283,4 +283,4 @@ TEST(LutFiles, FailedSaveLeavesNothing) {
 }
 
 }  // namespace
-}  // namespace preskin
+}  // namespace preskin::test

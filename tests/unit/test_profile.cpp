@@ -11,7 +11,7 @@
 
 #include <gtest/gtest.h>
 
-namespace preskin {
+namespace preskin::test {
 namespace {
 
 using test::kPi;
@@ -157,4 +157,4 @@ TEST(SpecialFunctions, NormalQuantileInvertsTheCdf) {
 }
 
 }  // namespace
-}  // namespace preskin
+}  // namespace preskin::test

@@ -8,7 +8,7 @@
 
 #include <string>
 
-namespace preskin {
+namespace preskin::test {
 namespace {
 
 std::string dataFile(const std::string& name) { return std::string(PRESKIN_SOURCE_DIR "/tests/data/profiles/") + name; }
@@ -109,4 +109,4 @@ TEST(ProfileJson, NonObjectAndWrongTypesAreRefused) {
 }
 
 }  // namespace
-}  // namespace preskin
+}  // namespace preskin::test

@@ -11,6 +11,8 @@
 #include <cmath>
 #include <filesystem>
 
+namespace preskin::test {
+
 namespace {
 
 const std::filesystem::path kHead = std::filesystem::path(PRESKIN_SOURCE_DIR) / "samples/assets/head/head.gltf";
@@ -223,3 +225,5 @@ TEST(SceneHead, KeyLightCameraAndEnvironment) {
     EXPECT_FLOAT_EQ(s.environmentIntensity, 0.5f);
     EXPECT_NEAR(s.environmentRotation, 1.5f * 3.14159265f, 1e-5f);  // the softbox to the side as fill
 }
+
+}  // namespace preskin::test

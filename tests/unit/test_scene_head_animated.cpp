@@ -11,6 +11,8 @@
 #include <algorithm>
 #include <filesystem>
 
+namespace preskin::test {
+
 namespace {
 
 const std::filesystem::path kFolder = std::filesystem::path(PRESKIN_SOURCE_DIR) / "samples/assets/head";
@@ -123,3 +125,5 @@ TEST(SceneHeadAnimated, TalkDrivesEveryTargetAndTurnsTheHead) {
     EXPECT_GT(largestHeadMove, 0.03f);      // the crown swings by centimetres
     EXPECT_LT(largestShoulderMove, 1e-6f);  // the shoulders follow the chest joint, which does not move
 }
+
+}  // namespace preskin::test

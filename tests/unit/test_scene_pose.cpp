@@ -14,6 +14,8 @@
 using preskin::Node;
 using preskin::Scene;
 
+namespace preskin::test {
+
 namespace {
 
 glm::vec3 apply(const glm::mat4& m, glm::vec3 p) { return glm::vec3(m * glm::vec4(p, 1.0f)); }
@@ -175,3 +177,5 @@ TEST(ScenePose, InstancesWithoutNodesKeepTheirTransform) {
     EXPECT_EQ(pose.instances.at(0).worldFromObject, instance.worldFromObject);
     EXPECT_TRUE(pose.instances[0].morphWeights.empty());
 }
+
+}  // namespace preskin::test

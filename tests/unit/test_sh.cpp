@@ -5,7 +5,7 @@
 
 #include <cmath>
 
-namespace preskin {
+namespace preskin::test {
 namespace {
 
 EquirectImage filled(uint32_t w, uint32_t h, glm::vec3 value) {
@@ -80,7 +80,7 @@ TEST(ShProjection, EquirectDirectionConvention) {
 }
 
 }  // namespace
-}  // namespace preskin
+}  // namespace preskin::test
 
 namespace preskin {
 namespace {
@@ -106,4 +106,4 @@ TEST(ShProjection, RotationTurnsTheLightAboutY) {
 }
 
 }  // namespace
-}  // namespace preskin
+}  // namespace preskin::test

@@ -11,7 +11,7 @@
 
 #include <random>
 
-namespace preskin {
+namespace preskin::test {
 namespace {
 
 View lookAt(const glm::vec3& eye, const glm::vec3& target, float yfov) {
@@ -118,4 +118,4 @@ TEST(ShadowFit, ReceiversAreTheSkinPrimitives) {
 }
 
 }  // namespace
-}  // namespace preskin
+}  // namespace preskin::test

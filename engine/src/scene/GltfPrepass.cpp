@@ -213,6 +213,16 @@ void checkCounts(const Checker& c, const json& doc) {
 }
 
 // The media types a buffer's data URI may have (glTF 2.0, "Buffers and Buffer Views").
+// The text of `where`.uri, a string; a data URI's base64 checked.
+std::string uriText(const Checker& c, const json& uri, const std::string& where) {
+    if (!uri.is_string()) c.error(where + ".uri", "not a string");
+    std::string text = uri.get<std::string>();
+    if (isDecodableDataUri(text)) {
+        if (const std::string problem = base64Problem(text); !problem.empty()) c.error(where + ".uri", "data URI: " + problem);
+    }
+    return text;
+}
+
 bool isBufferMediaType(const std::string& uri) {
     for (const char* type : {"data:application/octet-stream;", "data:application/gltf-buffer;"})
         if (uri.rfind(type, 0) == 0) return true;
@@ -245,12 +255,8 @@ void checkBuffers(const Checker& c, const json& doc, const GlbChunks* glb, std::
             }
             continue;
         }
-        if (!uri->is_string()) c.error(where + ".uri", "not a string");
-        const std::string text = uri->get<std::string>();
+        const std::string text = uriText(c, *uri, where);
         if (isDecodableDataUri(text)) {
-            if (const std::string problem = base64Problem(text); !problem.empty()) {
-                c.error(where + ".uri", "data URI: " + problem);
-            }
             std::vector<unsigned char> decoded;
             std::string mime;
             if (!tinygltf::DecodeDataURI(&decoded, mime, text, 0, false))
@@ -381,15 +387,8 @@ void checkImagesAndTextures(const Checker& c, const json& doc, size_t viewCount)
             c.idField(image, "bufferView", viewCount, where, "bufferViews");
             continue;
         }
-        if (!uri->is_string()) c.error(where + ".uri", "not a string");
-        const std::string text = uri->get<std::string>();
-        if (isDecodableDataUri(text)) {
-            if (const std::string problem = base64Problem(text); !problem.empty()) {
-                c.error(where + ".uri", "data URI: " + problem);
-            }
-            continue;
-        }
-        c.existingFile(text, where + ".uri");
+        const std::string text = uriText(c, *uri, where);
+        if (!isDecodableDataUri(text)) c.existingFile(text, where + ".uri");
     }
     const json& textures = c.array(doc, "textures", "");
     const size_t samplers = c.array(doc, "samplers", "").size();

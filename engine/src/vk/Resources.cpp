@@ -10,6 +10,20 @@
 
 namespace preskin::vk {
 
+namespace {
+
+// Memory for a buffer or image with these requirements, of a type with `properties`.
+VkDeviceMemory allocate(const Device& device, const VkMemoryRequirements& req, VkMemoryPropertyFlags properties) {
+    VkMemoryAllocateInfo alloc{VK_STRUCTURE_TYPE_MEMORY_ALLOCATE_INFO};
+    alloc.allocationSize = req.size;
+    alloc.memoryTypeIndex = device.findMemoryType(req.memoryTypeBits, properties);
+    VkDeviceMemory memory = VK_NULL_HANDLE;
+    PRESKIN_VK(vkAllocateMemory(device.device(), &alloc, nullptr, &memory));
+    return memory;
+}
+
+}  // namespace
+
 Buffer::Buffer(const Device& device, VkDeviceSize size, VkBufferUsageFlags usage, bool hostVisible)
     : device_(&device), size_(size) {
     VkBufferCreateInfo info{VK_STRUCTURE_TYPE_BUFFER_CREATE_INFO};
@@ -19,14 +33,10 @@ Buffer::Buffer(const Device& device, VkDeviceSize size, VkBufferUsageFlags usage
     PRESKIN_VK(vkCreateBuffer(device.device(), &info, nullptr, &buffer_));
     VkMemoryRequirements req;
     vkGetBufferMemoryRequirements(device.device(), buffer_, &req);
-    VkMemoryAllocateInfo alloc{VK_STRUCTURE_TYPE_MEMORY_ALLOCATE_INFO};
-    alloc.allocationSize = req.size;
-    alloc.memoryTypeIndex = hostVisible
-        ? device.findMemoryType(req.memoryTypeBits,
-                                VK_MEMORY_PROPERTY_HOST_VISIBLE_BIT | VK_MEMORY_PROPERTY_HOST_COHERENT_BIT)
-        : device.findMemoryType(req.memoryTypeBits, VK_MEMORY_PROPERTY_DEVICE_LOCAL_BIT);
     try {
-        PRESKIN_VK(vkAllocateMemory(device.device(), &alloc, nullptr, &memory_));
+        memory_ = allocate(device, req,
+                           hostVisible ? VK_MEMORY_PROPERTY_HOST_VISIBLE_BIT | VK_MEMORY_PROPERTY_HOST_COHERENT_BIT
+                                       : VK_MEMORY_PROPERTY_DEVICE_LOCAL_BIT);
         PRESKIN_VK(vkBindBufferMemory(device.device(), buffer_, memory_, 0));
         if (hostVisible) PRESKIN_VK(vkMapMemory(device.device(), memory_, 0, VK_WHOLE_SIZE, 0, &mapped_));
     } catch (...) {
@@ -93,10 +103,7 @@ Image::Image(const Device& device, const ImageDesc& desc) : device_(&device), de
     try {
         VkMemoryRequirements req;
         vkGetImageMemoryRequirements(device.device(), image_, &req);
-        VkMemoryAllocateInfo alloc{VK_STRUCTURE_TYPE_MEMORY_ALLOCATE_INFO};
-        alloc.allocationSize = req.size;
-        alloc.memoryTypeIndex = device.findMemoryType(req.memoryTypeBits, VK_MEMORY_PROPERTY_DEVICE_LOCAL_BIT);
-        PRESKIN_VK(vkAllocateMemory(device.device(), &alloc, nullptr, &memory_));
+        memory_ = allocate(device, req, VK_MEMORY_PROPERTY_DEVICE_LOCAL_BIT);
         PRESKIN_VK(vkBindImageMemory(device.device(), image_, memory_, 0));
         VkImageViewCreateInfo viewInfo{VK_STRUCTURE_TYPE_IMAGE_VIEW_CREATE_INFO};
         viewInfo.image = image_;
