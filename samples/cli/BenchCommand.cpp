@@ -2,7 +2,8 @@
 // --out); scripts/plot-bench.py draws frame time against light count from it.
 //
 // What it measures, on the bundled head scene (or the scene given) framed as `preskin render`
-// frames it, with the scene's lights plus N scattered ones (scatterLights, --seed):
+// frames it, with the scene's lights plus N scattered ones (scatterLights, --seed; with
+// --light-density their ranges shrink as N grows, so a pixel's lights stay as many):
 //   - clustered light loop vs brute force (LightLoop::All) at each --counts N;
 //   - the cluster build: its CPU time and its compute pass, its share of the frame, and the
 //     other build (CPU vs compute) at each N for comparison;
@@ -74,6 +75,7 @@ void run(const BenchOptions& o) {
     common.device = o.device;
     common.validation = o.validation;
     common.profileLutSize = uint32_t(o.profileLutSize);
+    common.lightDensity = o.lightDensity;
     const std::filesystem::path scenePath = o.scene.empty() ? defaultScenePath() : std::filesystem::path(o.scene);
     const Scene scene = loadScene(scenePath, common);
     for (const std::string& warning : scene.warnings) fmt::print(stderr, "preskin: warning: {}\n", warning);
@@ -104,6 +106,7 @@ void run(const BenchOptions& o) {
     j.field("width", o.width);
     j.field("height", o.height);
     j.field("seed", o.seed);
+    j.field("light_density", o.lightDensity);
     j.field("scene_lights", scene.lights.size());
     j.key("cluster_settings");
     j.beginObject();
@@ -185,6 +188,11 @@ void addBenchCommand(CLI::App& app) {
         ->check(wholeNumberIn(1, 16384));
     cmd->add_option("--counts", o->counts, "Scattered light counts, comma-separated")->capture_default_str();
     cmd->add_option("--skin-counts", o->skinCounts, "Light counts for skin vs standard material")
+        ->capture_default_str();
+    cmd->add_option("--light-density", o->lightDensity,
+                    "Scattered lights' ranges scaled so that a point of the scene lies in about this many lights' "
+                    "volumes at every count (0: ranges of the scene's size)")
+        ->check(numberIn(0.0, 1000.0))
         ->capture_default_str();
     cmd->add_option("--seed", o->seed, "Seed of the scattered lights")
         ->capture_default_str()

@@ -47,6 +47,7 @@ void writeMeasurement(JsonWriter& j, const Measurement& m) {
                 m.frames.back().eyeDrawing == EyeDrawing::InstancedLayers ? "instanced layers" : "multiview");
     }
     j.field("overflowed_clusters", m.overflows());
+    if (!m.frames.empty()) j.field("cluster_grid_bytes", m.frames.back().clusterGridBytes);
     j.key("wall_ms_each");
     j.beginArray();
     for (const FrameStats& s : m.frames) j.number(s.wallMs);

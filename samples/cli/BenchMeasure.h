@@ -44,6 +44,7 @@ struct BenchOptions {
     std::string counts = "16,64,256,1024,4096";
     std::string skinCounts = "256,1024";
     uint32_t seed = 1;
+    float lightDensity = 0.0f;  // lights per point of the scattered lights (scatterLights); 0: scene-sized ranges
     uint32_t warmup = 1;
     uint32_t reps = 5;
     double budgetS = 15.0;

@@ -41,6 +41,11 @@ void addSceneOptions(CLI::App& cmd, CommonOptions& o) {
                    "(the standard glTF material everywhere)");
     cmd.add_option("--lights", o.lights, "Scatter this many coloured point and spot lights (clustered)")
         ->check(wholeNumberIn(0, 1 << 20));
+    cmd.add_option("--light-density", o.lightDensity,
+                   "Ranges of --lights' lights scaled so that a point of the scene lies in about this many lights' "
+                   "volumes, whatever --lights is (0: ranges of the scene's size)")
+        ->check(numberIn(0.0, 1000.0))
+        ->capture_default_str();
     cmd.add_option("--seed", o.seed, "Seed for --lights")->check(wholeNumberIn(0, UINT32_MAX))->capture_default_str();
     cmd.add_option("--exposure", o.exposure, "Exposure multiplier")->check(numberIn(0.0, 1e6))->capture_default_str();
     cmd.add_flag("--no-shadows", o.noShadows, "Disable the shadow map");
@@ -360,7 +365,7 @@ std::vector<Light> sceneLights(const Scene& scene, const CommonOptions& o) {
     std::vector<Light> lights = o.noSceneLights ? std::vector<Light>{} : scene.lights;
     if (lights.empty() && environmentLightCount(scene, o) == 0) lights.push_back(defaultKeyLight());
     if (o.lights > 0) {
-        const auto scattered = scatterLights(scene.worldBounds(), o.lights, o.seed);
+        const auto scattered = scatterLights(scene.worldBounds(), o.lights, o.seed, o.lightDensity);
         lights.insert(lights.end(), scattered.begin(), scattered.end());
     }
     return lights;

@@ -150,6 +150,7 @@ struct FrameStats {
     uint32_t eyes = 0;               // eyes drawn
     EyeDrawing eyeDrawing = EyeDrawing::Multiview;  // how (never Auto)
     bool clusterBuildGpu = false;  // the light lists came from the compute pass (ClusterSettings::build)
+    uint64_t clusterGridBytes = 0; // the light grid's buffers as allocated (ranges, indices, headroom included)
 };
 
 // The host's depth attachment, when `record` should test against and write the host's depth

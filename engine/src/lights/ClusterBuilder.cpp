@@ -218,6 +218,13 @@ const vk::Buffer& ClusterBuilder::indices(uint32_t slot) {
     return b;
 }
 
+uint64_t ClusterBuilder::gridBytes(uint32_t slot) const {
+    const Slot& s = slots_[slot];
+    auto bytes = [](const vk::Buffer& b) -> uint64_t { return b ? b.size() : 0; };
+    if (s.gpu) return bytes(s.gpuRanges) + bytes(s.gpuIndices) + bytes(s.volumes);
+    return bytes(s.cpuRanges) + bytes(s.cpuIndices);
+}
+
 uint32_t ClusterBuilder::overflows(uint32_t slot) const {
     const Slot& s = slots_[slot];
     if (!s.gpu) return s.overflows;

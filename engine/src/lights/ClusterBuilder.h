@@ -52,6 +52,9 @@ public:
     // Froxels that lost lights in the slot's last frame (the compute build's counter is read
     // back, so call it once that frame has finished).
     uint32_t overflows(uint32_t slot) const;
+    // Bytes of the slot's light-grid buffers as allocated (froxel ranges and light indices; for
+    // the compute build also its per-light volumes), headroom included.
+    uint64_t gridBytes(uint32_t slot) const;
     // CPU time of the last prepare() of the slot (the whole build, or the compute build's setup).
     double buildMs(uint32_t slot) const { return slots_[slot].buildMs; }
     // The slot's last lists, read back from whichever build made them (waits for the device).

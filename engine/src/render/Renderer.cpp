@@ -497,6 +497,7 @@ FrameStats Renderer::Impl::stats(uint32_t slotIndex) const {
     s.clusterOverflows = clusters->overflows(slotIndex);
     s.clusterBuildCpuMs = settings.lightLoop == LightLoop::Clustered ? clusters->buildMs(slotIndex) : 0.0;
     s.clusterBuildGpu = settings.lightLoop == LightLoop::Clustered && clusters->usesGpu(slotIndex);
+    s.clusterGridBytes = settings.lightLoop == LightLoop::Clustered ? clusters->gridBytes(slotIndex) : 0;
     s.recordCpuMs = std::max(slot.recordMs - s.clusterBuildCpuMs, 0.0);
     s.eyes = slot.eyes;
     s.eyeDrawing = eyeDrawing();
