@@ -113,7 +113,7 @@ inline double distanceToFroxel(const ReferenceFroxel& f, const glm::dvec3& p) {
 inline glm::vec3 pointAtPixel(const Eye& eye, float px, float py, float widthPx, float heightPx, float d) {
     const glm::vec4 clip = eye.clipFromView * glm::vec4(0.0f, 0.0f, -d, 1.0f);
     glm::vec4 p = glm::inverse(eye.clipFromView) *
-                  glm::vec4(px / widthPx * 2.0f - 1.0f, py / heightPx * 2.0f - 1.0f, clip.z / clip.w, 1.0f);
+        glm::vec4(px / widthPx * 2.0f - 1.0f, py / heightPx * 2.0f - 1.0f, clip.z / clip.w, 1.0f);
     p /= p.w;
     return glm::vec3(glm::inverse(eye.viewFromWorld) * p);
 }

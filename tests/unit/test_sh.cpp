@@ -106,4 +106,4 @@ TEST(ShProjection, RotationTurnsTheLightAboutY) {
 }
 
 }  // namespace
-}  // namespace preskin::test
+}  // namespace preskin

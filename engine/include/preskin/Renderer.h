@@ -149,8 +149,8 @@ struct FrameStats {
     double recordCpuMs = 0.0;        // CPU time of Renderer::record without the light-list build
     uint32_t eyes = 0;               // eyes drawn
     EyeDrawing eyeDrawing = EyeDrawing::Multiview;  // how (never Auto)
-    bool clusterBuildGpu = false;  // the light lists came from the compute pass (ClusterSettings::build)
-    uint64_t clusterGridBytes = 0; // the light grid's buffers as allocated (ranges, indices, headroom included)
+    bool clusterBuildGpu = false;   // the light lists came from the compute pass (ClusterSettings::build)
+    uint64_t clusterGridBytes = 0;  // the light grid's buffers as allocated (ranges, indices, headroom included)
 };
 
 // The host's depth attachment, when `record` should test against and write the host's depth

@@ -42,11 +42,9 @@ float scatterRangeScale(const Bounds& bounds, uint32_t count, float lightsPerPoi
     // E[a^3] for a = low + span u, u uniform: ((low + span)^4 - low^4) / (4 span).
     const double meanCube = (std::pow(kRangeLow + kRangeSpan, 4.0) - std::pow(kRangeLow, 4.0)) / (4.0 * kRangeSpan);
     // A cone of half-angle t holds (1 - cos t) / 2 of its sphere; E over t = low + span u.
-    const double meanConeFraction =
-        0.5 - 0.5 * (std::sin(kConeLow + kConeSpan) - std::sin(kConeLow)) / kConeSpan;
+    const double meanConeFraction = 0.5 - 0.5 * (std::sin(kConeLow + kConeSpan) - std::sin(kConeLow)) / kConeSpan;
     // Every third light is a spot (range 1.5 times longer, inside its cone).
-    const double meanVolumePerScale3 =
-        4.0 / 3.0 * std::numbers::pi * meanCube *
+    const double meanVolumePerScale3 = 4.0 / 3.0 * std::numbers::pi * meanCube *
         (2.0 / 3.0 + 1.0 / 3.0 * kSpotRange * kSpotRange * kSpotRange * meanConeFraction);
     return float(std::cbrt(double(lightsPerPoint) * volume / (double(count) * meanVolumePerScale3)));
 }

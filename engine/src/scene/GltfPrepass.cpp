@@ -218,7 +218,8 @@ std::string uriText(const Checker& c, const json& uri, const std::string& where)
     if (!uri.is_string()) c.error(where + ".uri", "not a string");
     std::string text = uri.get<std::string>();
     if (isDecodableDataUri(text)) {
-        if (const std::string problem = base64Problem(text); !problem.empty()) c.error(where + ".uri", "data URI: " + problem);
+        if (const std::string problem = base64Problem(text); !problem.empty())
+            c.error(where + ".uri", "data URI: " + problem);
     }
     return text;
 }
