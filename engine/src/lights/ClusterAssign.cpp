@@ -159,7 +159,15 @@ void ClusterAssigner::build(const ClusterSettings& settings, const ClusterGeomet
         for (size_t i = r.begin(); i < r.end(); ++i) bounds_[i] = clusterLightBounds(lights[i], viewFromWorld, g);
     });
 
+    // Each slice's candidates: small lights reach few slices, so a slice reads only its own
+    // instead of every light's bounds.
     slices_.resize(s.dims.z);
+    for (SliceScratch& sc : slices_) sc.candidates.clear();
+    for (uint32_t i = 0; i < bounds_.size(); ++i) {
+        const ClusterLightBounds& b = bounds_[i];
+        if (b.lo.x > b.hi.x || b.lo.y > b.hi.y) continue;
+        for (uint32_t z = b.lo.z; z <= b.hi.z && z < s.dims.z; ++z) slices_[z].candidates.push_back(i);
+    }
     tbb::parallel_for(tbb::blocked_range<uint32_t>(0, s.dims.z, 1), [&](const tbb::blocked_range<uint32_t>& r) {
         for (uint32_t z = r.begin(); z < r.end(); ++z) {
             SliceScratch& sc = slices_[z];
@@ -169,8 +177,8 @@ void ClusterAssigner::build(const ClusterSettings& settings, const ClusterGeomet
             sc.sphere.assign(perSlice, glm::vec4(-1.0f));  // radius < 0: not computed yet
             const float d0 = g.sliceStartM[z] * (1.0f - kClusterDepthSlack);
             const float d1 = z + 1 >= s.dims.z ? kInfinity : g.sliceStartM[z + 1] * (1.0f + kClusterDepthSlack);
-            for (const ClusterLightBounds& b : bounds_) {
-                if (z < b.lo.z || z > b.hi.z || b.lo.x > b.hi.x || b.lo.y > b.hi.y) continue;
+            for (const uint32_t candidate : sc.candidates) {
+                const ClusterLightBounds& b = bounds_[candidate];
                 glm::vec3 c1 = b.centerVs;
                 float r1 = b.radiusM;
                 if (!cutByDepth(d0, d1, c1, r1)) continue;

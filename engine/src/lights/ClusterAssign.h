@@ -69,6 +69,7 @@ public:
 
 private:
     struct SliceScratch {
+        std::vector<uint32_t> candidates;  // the lights whose froxel box reaches the slice, in light order
         std::vector<uint32_t> froxel;   // froxel within the slice (y * dims.x + x), per entry
         std::vector<uint32_t> light;    // light index, per entry
         std::vector<uint32_t> count;    // entries per froxel of the slice
