@@ -41,6 +41,7 @@ Viewer::Viewer(ViewerOptions options) : options_(std::move(options)) {
     lastGoodSettings_ = settings_;
     scatteredLights_ = options_.common.lights;
     scatterSeed_ = options_.common.seed;
+    scatterDensity_ = options_.common.lightDensity;
     const auto albedo = cli::parseFloats(options_.albedo, 3, "--albedo");
     const auto mfp = cli::parseFloats(options_.mfp, 3, "--mfp");
     std::copy(albedo.begin(), albedo.end(), startEdit_.albedo.begin());

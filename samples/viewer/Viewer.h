@@ -221,6 +221,7 @@ private:
     int keyLight_ = -1;               // index in sceneLights_ of the shadow-casting directional light
     uint32_t scatteredLights_ = 0;
     uint32_t scatterSeed_ = 1;
+    float scatterDensity_ = 0.0f;  // lights per point (--light-density); 0: ranges of the scene's size
     int selectedMaterial_ = -1;
     CameraController camera_;
 

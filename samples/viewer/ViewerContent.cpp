@@ -156,8 +156,7 @@ void Viewer::applyLights() {
     if (!renderer_) return;
     std::vector<Light> lights = sceneLights_;
     if (scatteredLights_ > 0) {
-        const auto scattered =
-            scatterLights(scene_.worldBounds(), scatteredLights_, scatterSeed_, options_.common.lightDensity);
+        const auto scattered = scatterLights(scene_.worldBounds(), scatteredLights_, scatterSeed_, scatterDensity_);
         lights.insert(lights.end(), scattered.begin(), scattered.end());
     }
     renderer_->setLights(lights);

@@ -437,11 +437,19 @@ void Viewer::panelLights() {
 
     ImGui::Separator();
     int scattered = static_cast<int>(scatteredLights_);
-    if (ImGui::SliderInt("Clustered lights", &scattered, 0, 1024, "%d", ImGuiSliderFlags_Logarithmic)) {
+    if (ImGui::SliderInt("Clustered lights", &scattered, 0, 65536, "%d", ImGuiSliderFlags_Logarithmic)) {
         scatteredLights_ = static_cast<uint32_t>(std::max(scattered, 0));
         changed = true;
     }
     tooltip("Coloured point and spot lights scattered around the scene (preskin::scatterLights)");
+    if (ImGui::SliderFloat("Lights per point", &scatterDensity_, 0.0f, 32.0f,
+                           scatterDensity_ > 0.0f ? "%.1f" : "off")) {
+        scatterDensity_ = std::clamp(scatterDensity_, 0.0f, 1000.0f);
+        changed = true;
+    }
+    tooltip(
+        "--light-density: the scattered lights' ranges shrink as their number grows, so that a point of the "
+        "scene lies in about this many lights' volumes; off: ranges of the scene's size");
     int seed = static_cast<int>(scatterSeed_);
     if (ImGui::InputInt("Seed", &seed)) {
         scatterSeed_ = static_cast<uint32_t>(std::max(seed, 0));
