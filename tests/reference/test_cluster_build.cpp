@@ -52,8 +52,7 @@ ClusterGrid buildLists(Context& context, ClusterSettings settings, ClusterBuild 
     ClusterBuilder builder(device);
     settings.build = build;
     const ClusterBuilder::FrameGrid frame =
-        builder.prepare(0, settings, clusterCamera(view, kWidth, kHeight), Bounds{},
-                        std::span(lights).subspan(firstLocal), firstLocal, lightBuffer);
+        builder.prepare(0, settings, clusterCamera(view, kWidth, kHeight), Bounds{}, lights, firstLocal, lightBuffer);
     device.submitAndWait([&](VkCommandBuffer cmd) { builder.record(cmd, 0); });
     EXPECT_EQ(builder.usesGpu(0), build == ClusterBuild::Gpu);
     ClusterGrid grid = builder.readBack(0);

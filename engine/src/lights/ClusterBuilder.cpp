@@ -80,13 +80,14 @@ void ClusterBuilder::createPipelines() {
 
 ClusterBuilder::FrameGrid ClusterBuilder::prepare(uint32_t slot, const ClusterSettings& settings,
                                                   const ClusterCamera& camera, const Bounds& sceneBounds,
-                                                  std::span<const Light> localLights, uint32_t firstLocal,
+                                                  std::span<const Light> lights, uint32_t firstLocal,
                                                   const vk::Buffer& lightBuffer) {
     const auto start = std::chrono::steady_clock::now();
     Slot& s = slots_[slot];
     const Eye& view = camera.eye;
     const ClusterGeometry geometry = clusterGeometry(clusterGridShape(settings, camera, sceneBounds), view);
-    const uint32_t localCount = static_cast<uint32_t>(localLights.size());
+    const auto localCount = static_cast<uint32_t>(
+        std::count_if(lights.begin(), lights.end(), [](const Light& l) { return l.type != LightType::Directional; }));
     s.camera = camera;
     s.shape = geometry.shape;
     s.localLights = localCount;
@@ -96,7 +97,9 @@ ClusterBuilder::FrameGrid ClusterBuilder::prepare(uint32_t slot, const ClusterSe
         prepareGpu(s, settings, geometry, view, firstLocal, localCount, lightBuffer);
     } else {
         local_.clear();
-        for (uint32_t i = 0; i < localCount; ++i) local_.push_back(clusterLight(localLights[i], firstLocal + i));
+        for (const Light& l : lights)
+            if (l.type != LightType::Directional)
+                local_.push_back(clusterLight(l, firstLocal + static_cast<uint32_t>(local_.size())));
         assigner_.build(settings, geometry, view.viewFromWorld, local_, cpuGrid_);
         ensureBuffer(device_, s.cpuRanges, cpuGrid_.ranges.size() * sizeof(glm::uvec2), kStorage, true);
         ensureBuffer(device_, s.cpuIndices, cpuGrid_.indices.size() * sizeof(uint32_t), kStorage, true);

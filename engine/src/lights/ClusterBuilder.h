@@ -37,10 +37,11 @@ public:
 
     // This frame's lists for `slot`, for the cluster camera of the frame's view: the CPU build
     // runs (and uploads) here; the compute build's inputs are written here and its passes
-    // recorded by record(). `localLights` are the frame's point and spot lights, which the light
-    // array the shaders read (`lightBuffer`) holds from index `firstLocal` on.
+    // recorded by record(). `lights` are the frame's lights in any order: their point and spot
+    // lights, in that order, are the entries of the light array the shaders read (`lightBuffer`)
+    // from index `firstLocal` on.
     FrameGrid prepare(uint32_t slot, const ClusterSettings& settings, const ClusterCamera& camera,
-                      const Bounds& sceneBounds, std::span<const Light> localLights, uint32_t firstLocal,
+                      const Bounds& sceneBounds, std::span<const Light> lights, uint32_t firstLocal,
                       const vk::Buffer& lightBuffer);
     // Records the compute build of the last prepare() of this slot (nothing for a CPU build),
     // ending with a barrier that makes the lists visible to fragment shaders.

@@ -294,19 +294,17 @@ bool Renderer::Impl::prepareFrame(Slot& slot, uint32_t slotIndex, const View& vi
     }
     deformer->prepare(slotIndex, pose);
     const int shadowLight = settings.shadows ? shadowLightIndex(frameLights) : -1;
-    // Directional lights first, the shadow light (if any) at index 0: forward.frag shades it on
-    // its own and loops over the rest; then the point and spot lights the grid lists.
-    std::vector<Light>& ordered = orderedLights;
-    ordered.clear();
-    if (shadowLight >= 0) ordered.push_back(frameLights[size_t(shadowLight)]);
-    for (size_t i = 0; i < frameLights.size(); ++i)
-        if (frameLights[i].type == LightType::Directional && int(i) != shadowLight) ordered.push_back(frameLights[i]);
-    const uint32_t directional = static_cast<uint32_t>(ordered.size());
-    for (const Light& l : frameLights)
-        if (l.type != LightType::Directional) ordered.push_back(l);
     std::vector<gpu::GpuLight> gpuLights;
-    gpuLights.reserve(ordered.size());
-    for (size_t i = 0; i < ordered.size(); ++i) gpuLights.push_back(toGpuLight(ordered[i], i == 0 && shadowLight >= 0));
+    gpuLights.reserve(frameLights.size());
+    // Directional lights first, the shadow light (if any) at index 0: forward.frag shades it on
+    // its own and loops over the rest; then the point and spot lights the grid lists, in order.
+    if (shadowLight >= 0) gpuLights.push_back(toGpuLight(frameLights[size_t(shadowLight)], true));
+    for (size_t i = 0; i < frameLights.size(); ++i)
+        if (frameLights[i].type == LightType::Directional && int(i) != shadowLight)
+            gpuLights.push_back(toGpuLight(frameLights[i], false));
+    const uint32_t directional = static_cast<uint32_t>(gpuLights.size());
+    for (const Light& l : frameLights)
+        if (l.type != LightType::Directional) gpuLights.push_back(toGpuLight(l, false));
     const VkDeviceSize bytes = std::max<size_t>(gpuLights.size(), 1) * sizeof(gpu::GpuLight);
     if (bytes > slot.lights.size()) slot.lights = vk::Buffer(dev, bytes * 2, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, true);
     slot.lights.upload(gpuLights.data(), gpuLights.size() * sizeof(gpu::GpuLight));
@@ -353,7 +351,7 @@ bool Renderer::Impl::prepareFrame(Slot& slot, uint32_t slotIndex, const View& vi
     if (settings.lightLoop == LightLoop::Clustered) {
         const ClusterBuilder::FrameGrid grid =
             clusters->prepare(slotIndex, settings.clusters, clusterCamera(view, extent.width, extent.height), bounds,
-                              std::span(ordered).subspan(directional), directional, slot.lights);
+                              frameLights, directional, slot.lights);
         u.clusterFromWorld = grid.clusterFromWorld;
         u.clusterScale = grid.lookupScale;
         u.clusterDims = grid.dims;

@@ -73,7 +73,6 @@ struct Renderer::Impl {
     EnvironmentLights extracted;
     std::vector<Light> extractedLights;
     std::vector<Light> frameLights;
-    std::vector<Light> orderedLights;                 // frameLights in the shaders' order (prepareFrame)
     std::unique_ptr<GpuEnvironment> environmentMaps;  // the backdrop, the prefiltered cube, the DFG table
     Bounds bounds;                                    // of the scene in the current pose
     Bounds receivers;       // of the skin in the current pose: what the shadow map is fitted to (render/ShadowFit.h)
