@@ -10,8 +10,6 @@
 // derivatives differ between the eyes, per-vertex and texture curvature do not.
 #extension GL_GOOGLE_include_directive : require
 #include "forward_material.glsl"
-// A material without a profile blend compiles without the blend's lookups (preskin/lut.glsl).
-#define PRESKIN_PROFILE_MIX_MAX kProfileMix
 
 layout(set = 0, binding = kBindingFrame) uniform Frame { FrameUniforms frame; };
 layout(std430, set = 0, binding = kBindingLights) readonly buffer Lights { GpuLight lights[]; };
@@ -99,25 +97,6 @@ GpuLight unshadowedLight(uint i, uint shadowLights, uint first, bool indirect) {
     return lights[index];
 }
 
-// The material's diffusion profile, or its profiles blended by the weight texture (r, g, b
-// weigh the blended layers, the material's own profile gets the rest; sums above 1 are scaled).
-PreskinProfileMix skinProfileMix() {
-    PreskinProfileMix p;
-    p.layer = material.skinProfileLayers;
-    p.weight = vec4(1.0, 0.0, 0.0, 0.0);
-    int blended = kProfileMix > 1u ? int(material.skinProfileBlend.x) : 0;
-    if (blended > 0) {
-        vec3 w = texture(profileWeightTexture, inUv0).rgb * vec3(greaterThan(vec3(blended), vec3(0.0, 1.0, 2.0)));
-        float sum = w.r + w.g + w.b;
-        if (sum > 1.0) w /= sum;
-        p.weight = vec4(max(1.0 - (w.r + w.g + w.b), 0.0), w);
-    }
-    p.count = 1 + clamp(blended, 0, 3);
-    p.mapping[0] = materialLutMapping(0);
-    for (int i = 1; i < 4; ++i) p.mapping[i] = materialLutMapping(i);  // read only by blending pipelines
-    return p;
-}
-
 vec3 curvatureHeat(float curvaturePerMm) {
     float t = clamp(sqrt(curvaturePerMm / 0.5), 0.0, 1.0);  // 0 .. 0.5 / mm (radius 2 mm)
     return vec3(smoothstep(0.25, 0.75, t), sin(t * PRESKIN_PI), smoothstep(0.5, 0.0, t));
@@ -166,6 +145,10 @@ void main() {
     PreskinShadowSample wideShadow = shadow;  // skin with penumbra scattering: the wide map's
     // Skin's signed curvature in profile 1/mm (the shadow lookup and the skin surface use it).
     float skinCurvaturePerMm = 0.0;
+    // Skin's diffusion profile, or its profiles blended by the weight texture.
+    PreskinProfileMix profiles;
+    if (kMaterialModel == kModelSkin)
+        profiles = materialProfileMix(materialBlendedProfiles() > 0 ? texture(profileWeightTexture, inUv0).rgb : vec3(0.0));
     if (kMaterialModel == kModelSkin)
         skinCurvaturePerMm = preskinCurvatureProfilePerMm(
             preskinSkinCurvaturePerM(kSkinCurvatureSource, inCurvaturePerM, curvatureTexture, uvBase,
@@ -174,7 +157,7 @@ void main() {
     vec3 shadowPositionWs = inPositionWs;
     if (kMaterialModel == kModelSkin && (kSkinFeatures & kSkinLutDiffuse) != 0u) {
         vec2 lift = inShadowLift;
-        if (!kSkinLiftPerVertex) lift = preskinSkinShadowLift(skinCurvaturePerMm, material.skinScatter.x, materialLutMapping(0));
+        if (!kSkinLiftPerVertex) lift = preskinSkinShadowLift(skinCurvaturePerMm, material.skinScatter.x, profiles);
         shadowPositionWs = preskinSkinShadowPosition(inPositionWs, geometricN, -frame.shadowDirectionWs.xyz, lift);
     }
     // The shadow map's transform, read once here, outside the branches that use it: a CPU driver
@@ -232,8 +215,8 @@ void main() {
             maps.scale = material.pbr.z;
             maps.hasDetail = kSkinDetailNormals;
             maps.detailUvScale = material.textureFlags.y;
-            maps.detailScale = material.skinNormalLodBias.w;
-            maps.lodBias = material.skinNormalLodBias.rgb;
+            maps.detailScale = material.textureFlags.x;
+            maps.lodBias = materialNormalLodBias(profiles);
             maps.levelCount = int(kSkinNormalLevels);
             maps.specularFromLevels = kSkinSpecularFromLevels;
             preskinSkinNormals(normalTexture, detailNormalTexture, maps, uvNormal, geometricN, geometricR, geometricG,
@@ -256,7 +239,6 @@ void main() {
         skin.lobes = material.skinSpecular.yzww;
         skin.transmissionTint = material.skinScatter.w * material.skinTransmission.rgb;
         skin.thicknessScale = material.skinTransmission.w;
-        PreskinProfileMix profiles = skinProfileMix();
 
         PreskinSkinLighting lighting = preskinSkinLighting(skin, profiles, diffuseLut, V, features);
         vec3 transmitted = vec3(0.0);

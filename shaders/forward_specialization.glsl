@@ -31,21 +31,21 @@ const bool kSkinSpecularFromLevels = (kSkinInputs & kSkinInputSpecularFromLevels
 // What depends on curvature, the geometric normal and the shadow light alone
 // (preskin/skin_vertex.glsl) is found by the vertex stage and interpolated where curvature is per
 // vertex (unless RenderSettings::skinTermsPerVertex is off: kSkinInputTermsPerFragment): the shadow
-// lookup's lift; with one profile (no per-texel blend) the SH transfer; and with one profile on
-// single-sided skin (the vertex stage cannot tell which side faces the viewer) the transmittance
-// the diffuse LUT already holds.
+// lookup's lift, the SH transfer and, on single-sided skin (the vertex stage cannot tell which side
+// faces the viewer), the transmittance the diffuse LUT already holds; a material blending profiles
+// finds them for the blend at the vertex (materialProfileMix of forward_material.glsl).
 // (Written as comparisons of uints: glslang turns && of specialization constants into control flow.)
 const uint kSkinVertexCurvature = uint(kMaterialModel == kModelSkin) &
                                   uint(kSkinCurvatureSource == kCurvatureSourceVertex) &
                                   uint((kSkinInputs & kSkinInputTermsPerFragment) == 0u);
 const bool kSkinShPerVertex =
-    (kSkinVertexCurvature & uint((kSkinFeatures & kSkinShAmbient) != 0u) & uint(kProfileMix == 1u)) != 0u;
+    (kSkinVertexCurvature & uint((kSkinFeatures & kSkinShAmbient) != 0u)) != 0u;
 const bool kSkinLiftPerVertex = (kSkinVertexCurvature & uint((kSkinFeatures & kSkinLutDiffuse) != 0u)) != 0u;
 // Skin with penumbra scattering samples the wide shadow map (shaders/shadow_reduce.comp) too.
 const bool kSkinWideShadow = (uint(kMaterialModel == kModelSkin) & uint((kSkinFeatures & kSkinPenumbra) != 0u)) != 0u;
 const bool kSkinSphereTransmittancePerVertex =
     (kSkinVertexCurvature & uint((kSkinFeatures & kSkinLutDiffuse) != 0u) &
-     uint((kSkinFeatures & kSkinTransmission) != 0u) & uint(kProfileMix == 1u) & uint(!kSkinDoubleSided)) != 0u;
+     uint((kSkinFeatures & kSkinTransmission) != 0u) & uint(!kSkinDoubleSided)) != 0u;
 
 // A skin material's own profile's LutMapping (kSpecLutMapping: the pipeline is specialised to its
 // LUT layout): uniform-buffer reads would cost a CPU driver (lavapipe) a gather per component, lane

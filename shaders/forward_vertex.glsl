@@ -55,19 +55,18 @@ void main() {
     outNormalRedWs = outNormalWs;
     outNormalGreenWs = outNormalWs;
     outNormalBlueWs = outNormalWs;
+    // The material's profile mix at this vertex, as the fragment stage finds it at its texel.
+    PreskinProfileMix profile = materialProfileMix(
+        materialBlendedProfiles() > 0 ? textureLod(profileWeightTexture, inUv0, 0.0).rgb : vec3(0.0));
     if (kMaterialModel == kModelSkin && (kSkinFeatures & kSkinNormalPrefilter) != 0u) {
-        // The basis weights of the material's profile, or of its profiles blended by the weight
-        // texture at this vertex (as the fragment stage blends them: skinProfileMix of forward.frag).
-        vec4 weights[3] = vec4[3](material.skinNormalBasis[0], material.skinNormalBasis[1], material.skinNormalBasis[2]);
-        int blended = kProfileMix > 1u ? int(material.skinProfileBlend.x) : 0;
-        if (blended > 0) {
-            vec3 w = textureLod(profileWeightTexture, inUv0, 0.0).rgb * vec3(greaterThan(vec3(blended), vec3(0.0, 1.0, 2.0)));
-            float sum = w.r + w.g + w.b;
-            if (sum > 1.0) w /= sum;
-            vec4 mixWeights = vec4(max(1.0 - (w.r + w.g + w.b), 0.0), w);
-            for (int c = 0; c < 3; ++c)
-                weights[c] = mixWeights.x * material.skinNormalBasis[c] + mixWeights.y * material.skinNormalBasis[3 + c] +
-                             mixWeights.z * material.skinNormalBasis[6 + c] + mixWeights.w * material.skinNormalBasis[9 + c];
+        // The basis weights of the mix's profiles, weighted.
+        vec4 weights[3];
+        for (int c = 0; c < 3; ++c) {
+            weights[c] = profile.weight.x * material.skinNormalBasis[c];
+            if (kProfileMix > 1u)
+                weights[c] += profile.weight.y * material.skinNormalBasis[3 + c] +
+                              profile.weight.z * material.skinNormalBasis[6 + c] +
+                              profile.weight.w * material.skinNormalBasis[9 + c];
         }
         mat3 normalWorldFromObject = mat3(instance.normalWorldFromObject);
         outNormalRedWs = normalWorldFromObject * preskinPrefilteredNormal(inNormalOs, inNormalBasis, weights[0]);
@@ -76,8 +75,7 @@ void main() {
     }
     outCurvaturePerM = inCurvature * instance.params.x;
     outEye = eye;
-    // Skin's per-vertex terms (preskin/skin_vertex.glsl), for the material's own profile.
-    PreskinProfileMix profile = preskinSingleProfile(materialLutMapping(0), material.skinProfileLayers.x);
+    // Skin's per-vertex terms (preskin/skin_vertex.glsl), for the vertex's profile mix.
     float curvaturePerMm = preskinCurvatureProfilePerMm(outCurvaturePerM, material.skinScatter.x);
     PreskinShTransfer t = PreskinShTransfer(vec3(0.0), vec3(0.0), vec3(0.0));
     if (kSkinShPerVertex) t = preskinShTransfer(profile, shTransferLut, curvaturePerMm);
@@ -86,7 +84,7 @@ void main() {
     outShTransferBlue = t.blue;
     outShadowLift = vec2(0.0);
     if (kSkinLiftPerVertex)
-        outShadowLift = preskinSkinShadowLift(curvaturePerMm, material.skinScatter.x, materialLutMapping(0));
+        outShadowLift = preskinSkinShadowLift(curvaturePerMm, material.skinScatter.x, profile);
     outSphereTransmittance = vec3(0.0);
     if (kSkinSphereTransmittancePerVertex && frame.shadowDirectionWs.w > 0.5)
         outSphereTransmittance = preskinSkinSphereTransmittance(profile, transmittanceLut, curvaturePerMm,

@@ -40,6 +40,16 @@ vec2 preskinSkinShadowLift(float curvaturePerMm, float scatterScale, LutMapping 
     return vec2(liftMm * 0.001 / max(scatterScale, 1e-6), reach);
 }
 
+// The lift of a profile mix: its profiles' lifts, weighted.
+vec2 preskinSkinShadowLift(float curvaturePerMm, float scatterScale, PreskinProfileMix p) {
+    vec2 lift = p.weight.x * preskinSkinShadowLift(curvaturePerMm, scatterScale, p.mapping[0]);
+    if (int(PRESKIN_PROFILE_MIX_MAX) > 1) for (int i = 1; i < p.count; ++i) {
+        if (p.weight[i] <= 0.0) continue;
+        lift += p.weight[i] * preskinSkinShadowLift(curvaturePerMm, scatterScale, preskinMixMapping(p, i));
+    }
+    return lift;
+}
+
 // What the diffuse LUT already holds of the light a directional light sends through convex skin:
 // the transmittance through its osculating sphere (radius a = 1/curvature) along L, measured from
 // the point kSkinThicknessShrinkMm = d inside, (a - d) c + sqrt((a - d)^2 c^2 + 2 a d - d^2) + d c,

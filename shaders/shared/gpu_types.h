@@ -128,21 +128,21 @@ struct MaterialUniforms {
     vec4 pbr;                  // x metallic, y roughness, z normal scale, w occlusion strength
     vec4 skinScatter;          // x scatter scale, y unused (the curvature source is kSpecSkinInputs),
                                // z curvature texture scale (1/m), w transmission strength
-    vec4 skinNormalLodBias;    // rgb LOD bias per channel, w detail normal scale
     vec4 skinTransmission;     // rgb transmission colour, w thickness scale
     vec4 skinSpecular;         // x F0 scale, y lobe-0 roughness multiplier, z lobe-1 multiplier, w lobe-1 weight
-    vec4 textureFlags;         // x, z unused (a detail map and a specular map are kSpecSkinInputs), y detail uv
-                               // scale, w has normal map
+    vec4 textureFlags;         // x detail normal scale, y detail uv scale, z unused (a detail map and a specular
+                               // map are kSpecSkinInputs), w has normal map
     vec4 hasTextures;          // 1 where the texture exists: x base colour, y metallic-roughness, z occlusion, w emissive
     vec4 skinProfileLayers;    // LUT array layers: x the profile, y z w the blended ones (SkinMaterial::blendProfiles)
     vec4 skinProfileBlend;     // x: blended profiles (0..3), weighted by the profile-weight texture's r, g, b
     GpuUvTransform uv[5];      // base colour, metallic-roughness, normal, occlusion, emissive
     LutMapping skinLuts[4];    // the LutMapping of each skinProfileLayers entry; the forward pass takes entry 0
                                // from its pipeline's specialization (kSpecLutMapping) instead
+    vec4 skinNormalLodBias[4];  // rgb: the normal maps' LOD bias per channel for each skinProfileLayers entry
     vec4 skinNormalBasis[12];  // the weights of the normal basis (normalBasisWeights of <preskin/NormalBasis.h>) at
                                // the material's scatter scale: red, green, blue of each skinProfileLayers entry
 };
-PRESKIN_CHECK_SIZE(MaterialUniforms, 11 * 16 + 5 * 32 + 4 * 128 + 12 * 16)
+PRESKIN_CHECK_SIZE(MaterialUniforms, 10 * 16 + 5 * 32 + 4 * 128 + 4 * 16 + 12 * 16)
 
 // Per draw.
 struct DrawPush {

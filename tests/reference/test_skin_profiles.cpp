@@ -6,6 +6,10 @@
 //  - the same with 64 profiles in the scene, spheres on the first, middle and last layers;
 //  - a profile-weight texture of 0 and of 1 renders as the pure profiles, and an intermediate
 //    weight as the CPU skin model with the weighted sum of the two profiles' diffuse lookups;
+//  - on the bundled head (normal map, cast shadows, the HDR environment, transmission), a blend
+//    of four profiles whose weights are all on one profile renders as that profile named alone,
+//    for each of the four: lookups, normal prefiltering, shadow lift and per-vertex terms all
+//    follow the blend;
 //  - Renderer::setProfileLayer re-uploads one layer: the image follows the new profile.
 #include "support/GpuTest.h"
 #include "support/ImageCompare.h"
@@ -20,6 +24,7 @@
 #include <glm/gtc/matrix_transform.hpp>
 
 #include <cstdio>
+#include <filesystem>
 
 namespace preskin::test {
 namespace {
@@ -230,6 +235,60 @@ TEST_F(SkinProfiles, WeightTextureBlendsTheLookups) {
     EXPECT_GE(double(checkA.within), 0.999 * double(checkA.interior));
     EXPECT_LT(double(pa.within), 0.9 * double(pa.interior)) << "A alone should not pass for the blend";
     EXPECT_LT(double(pb.within), 0.9 * double(pb.interior)) << "B alone should not pass for the blend";
+}
+
+TEST_F(SkinProfiles, BlendOfOneProfileIsThatProfileOnTheHead) {
+    const std::filesystem::path file = std::filesystem::path(PRESKIN_SOURCE_DIR) / "samples/assets/head/head.gltf";
+    const Scene head = Scene::load(file);
+    ASSERT_TRUE(head.environmentPath.has_value());
+    ASSERT_TRUE(head.materials.at(0).skin.has_value());
+    ASSERT_TRUE(head.materials[0].normal.valid()) << "the head should have a normal map";
+    const Environment environment =
+        Environment::load(*head.environmentPath, head.environmentIntensity, head.environmentRotation);
+    Scene blended = head;
+    blended.profiles = {
+        {"d'Eon & Luebke", DiffusionProfile::deonLuebke(), {}},
+        {"wide", burleyProfile(0.9, 4.0), {}},
+        {"dense", burleyProfile(0.6, 0.6), {}},
+        {"broad", DiffusionProfile::sumOfGaussians({{0.5, {0.3, 0.5, 0.7}}, {6.0, {0.7, 0.5, 0.3}}}), {}}};
+    blended.materials[0].skin->profile = 0;
+    blended.materials[0].skin->blendProfiles = {1, 2, 3};
+    blended.materials[0].skin->profileWeightTexture.image = int(blended.images.size());
+    blended.images.emplace_back();
+    const LutBakeSettings settings = LutBakeSettings::withSize(64);
+    const ProfileLibrary library = ProfileLibrary::forScene(
+        blended, std::make_shared<const LutSet>(LutSet::bake(DiffusionProfile::deonLuebke(), settings)), settings,
+        {false, {}});
+    RenderSettings rs;
+    // The wide shadow map's blocks follow the widest profile any material uses: the same for both.
+    rs.skinShadowReachMm = 12.0f;
+    const View view = frameBoundsView(head.worldBounds(), 1.0f);
+    constexpr uint32_t kHeadSize = 256;
+    auto render = [&](const Scene& scene) {
+        return Renderer(context(), scene, environment, library, rs)
+            .render(view, kHeadSize, kHeadSize, OutputEncoding::DisplaySrgb8);
+    };
+    for (int profile = 0; profile < 4; ++profile) {
+        Scene weighted = blended;
+        Image& weights = weighted.images.back();
+        weights.name = fmt::format("weights of profile {}", profile);
+        weights.width = weights.height = 4;
+        const uint8_t r = profile == 1 ? 255 : 0, g = profile == 2 ? 255 : 0, b = profile == 3 ? 255 : 0;
+        for (int i = 0; i < 16; ++i) weights.rgba8.insert(weights.rgba8.end(), {r, g, b, 255});
+        Scene pure = blended;
+        pure.materials[0].skin->profile = profile;
+        pure.materials[0].skin->blendProfiles.clear();
+        pure.materials[0].skin->profileWeightTexture = {};
+        pure.images.pop_back();
+        const RenderedImage blendImage = render(weighted);
+        const RenderedImage pureImage = render(pure);
+        int worst = 0;
+        const size_t beyond = pixelsDifferingBy(blendImage, pureImage, 1, worst);
+        std::printf("[ profiles ] head, blend of weight 1 on profile %d against the profile alone: worst %d/255\n",
+                    profile, worst);
+        EXPECT_EQ(beyond, 0u) << "profile " << profile << ": worst " << worst << "/255";
+        if (profile == 1) dumpImage("profiles_blend_head_wide", blendImage);
+    }
 }
 
 TEST_F(SkinProfiles, SetProfileLayerReuploadsOneLayer) {

@@ -348,12 +348,9 @@ gpu::MaterialUniforms GpuScene::uniformsFor(const Material& mat, const GpuMateri
         auto layerOf = [&](int index) {
             return index >= 0 && size_t(index) < layers.size() ? layers[size_t(index)] : ProfileLayer{};
         };
-        const glm::vec3 bias = s.normalLodBias
-            ? *s.normalLodBias
-            : normalLodBias(layerOf(s.profile + 1).widthMm, s.scatterScale, gm.texelsPerMm);
-        u.skinNormalLodBias = glm::vec4(bias, s.detailNormalScale);
         u.skinTransmission = glm::vec4(s.transmissionColor, s.thicknessScale);
         u.skinSpecular = glm::vec4(s.specularIntensity, s.lobeRoughness0, s.lobeRoughness1, s.lobeMix);
+        u.textureFlags.x = s.detailNormalScale;
         u.textureFlags.y = s.detailUvScale;
         // Layer p + 1 holds profile p (layer 0: the default set); unused entries repeat the first.
         const auto blended = std::min(s.blendProfiles.size(), size_t(kMaxBlendedProfiles - 1));
@@ -361,7 +358,14 @@ gpu::MaterialUniforms GpuScene::uniformsFor(const Material& mat, const GpuMateri
         u.skinProfileLayers = glm::vec4(base);
         for (size_t i = 0; i < blended; ++i) u.skinProfileLayers[int(i) + 1] = float(s.blendProfiles[i] + 1);
         u.skinProfileBlend = glm::vec4(s.profileWeightTexture.valid() ? float(blended) : 0.0f, 0.0f, 0.0f, 0.0f);
-        for (int i = 0; i < 4; ++i) u.skinLuts[i] = layerOf(int(u.skinProfileLayers[i])).mapping;
+        for (int i = 0; i < 4; ++i) {
+            const ProfileLayer& layer = layerOf(int(u.skinProfileLayers[i]));
+            u.skinLuts[i] = layer.mapping;
+            // Each profile's own normal prefiltering; the fragment blends them as it blends the lookups.
+            u.skinNormalLodBias[i] = glm::vec4(
+                s.normalLodBias ? *s.normalLodBias : normalLodBias(layer.widthMm, s.scatterScale, gm.texelsPerMm),
+                0.0f);
+        }
         for (int i = 0; i < 4; ++i)
             if (const auto& profile = layerOf(int(u.skinProfileLayers[i])).profile) {
                 const std::array<glm::vec4, 3> w = normalBasisWeights(*profile, s.scatterScale);
@@ -376,8 +380,16 @@ void GpuScene::updateMaterials(const std::vector<ProfileLayer>& layers) {
     for (size_t i = 0; i < materials.size(); ++i) {
         const Material& mat = i < sceneMaterials_.size() ? sceneMaterials_[i] : fallback;
         const gpu::MaterialUniforms u = uniformsFor(mat, materials[i], layers);
+        // The levels the biased samples span, over every profile of the material's mix.
+        glm::vec3 low = u.skinNormalLodBias[0], high = low;
+        for (const glm::vec4& bias : u.skinNormalLodBias) {
+            low = glm::min(low, glm::vec3(bias));
+            high = glm::max(high, glm::vec3(bias));
+        }
+        const float lowest = std::min(low.x, std::min(low.y, low.z));
+        const float highest = std::max(high.x, std::max(high.y, high.z));
         materials[i].normalLevels =
-            uint32_t(normalLevelCount(glm::vec3(u.skinNormalLodBias), materials[i].normalMipLevels,
+            uint32_t(normalLevelCount(glm::vec3(lowest, highest, highest), materials[i].normalMipLevels,
                                       (materials[i].skinInputs & gpu::kSkinInputSpecularFromLevels) != 0u));
         materials[i].lutMapping = u.skinLuts[0];
         materialUniforms_.upload(&u, sizeof(u), uniformStride_ * i);
