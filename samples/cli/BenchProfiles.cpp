@@ -25,8 +25,11 @@ namespace preskin::cli::bench {
 
 namespace {
 
+constexpr int kBakeReps = 5;
+
 struct ProfileFigures {
-    double bakeOneMs = 0.0;
+    double bakeOneMs = 0.0;    // median of kBakeReps bakes
+    double bakeFirstMs = 0.0;  // the first of them (cold caches, threads starting)
     int cachedCount = 64;
     double bakeAllMs = 0.0;
     double loadCachedMs = 0.0;
@@ -72,13 +75,18 @@ Scene sideBySideCopies(const Scene& scene, int copies, bool oneProfile) {
 ProfileFigures measureProfiles(const BenchOptions& o, Bench& bench, Context& context, const Scene& scene,
                                const Environment& environment, const LutSet& luts, const RenderSettings& base) {
     ProfileFigures f;
-    fmt::print(stderr, "preskin bench: baking one profile...");
+    fmt::print(stderr, "preskin bench: baking one profile {} times...", kBakeReps);
     std::fflush(stderr);
-    auto start = Clock::now();
     const LutBakeSettings settings = LutBakeSettings::withSize(o.profileLutSize);
-    (void)LutSet::bake(DiffusionProfile::burley({0.85, 0.55, 0.45}, {1.5, 0.6, 0.35}), settings);
-    f.bakeOneMs = secondsSince(start) * 1000.0;
-    fmt::print(stderr, " {:.0f} ms\n", f.bakeOneMs);
+    std::vector<double> bakes;
+    for (int rep = 0; rep < kBakeReps; ++rep) {
+        const auto bakeStart = Clock::now();
+        (void)LutSet::bake(DiffusionProfile::burley({0.85, 0.55, 0.45}, {1.5, 0.6, 0.35}), settings);
+        bakes.push_back(secondsSince(bakeStart) * 1000.0);
+    }
+    f.bakeFirstMs = bakes.front();
+    f.bakeOneMs = median(bakes);
+    fmt::print(stderr, " median {:.0f} ms (first {:.0f} ms)\n", f.bakeOneMs, f.bakeFirstMs);
 
     Scene many;
     for (int i = 0; i < f.cachedCount; ++i)
@@ -93,7 +101,7 @@ ProfileFigures measureProfiles(const BenchOptions& o, Bench& bench, Context& con
     try {
         fmt::print(stderr, "preskin bench: baking {} profiles into a fresh cache...", f.cachedCount);
         std::fflush(stderr);
-        start = Clock::now();
+        const auto start = Clock::now();
         (void)ProfileLibrary::forScene(many, shared, settings, {true, cacheFolder});
         f.bakeAllMs = secondsSince(start) * 1000.0;
         fmt::print(stderr, " {:.0f} ms; loading them from the cache...", f.bakeAllMs);
@@ -154,6 +162,7 @@ void BenchRun::profilesSection() {
     j.key("profiles");
     j.beginObject();
     j.field("bake_one_ms", f.bakeOneMs);
+    j.field("bake_one_first_ms", f.bakeFirstMs);
     j.field("bake_size", o.profileLutSize);
     j.field("cached_profiles", f.cachedCount);
     j.field("load_cached_ms", f.loadCachedMs);
@@ -167,6 +176,7 @@ void BenchRun::profilesSection() {
     goal("frame with 8 profiles in view / one profile <= 1.03", f.eight.wallMs() / f.single.wallMs(), 1.03, true);
     goal("loading 64 cached profiles <= 100 ms", f.loadCachedMs, 100.0, true);
     goal("baking one profile <= 100 ms", f.bakeOneMs, 100.0, true);
+    goal("baking 64 new profiles <= 8 s", f.bakeAllMs / 1000.0, 8.0, true);
 }
 
 }  // namespace preskin::cli::bench

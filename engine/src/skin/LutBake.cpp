@@ -56,6 +56,48 @@ void storeHalf(LutTable& table, int ix, int iy, glm::dvec3 value) {
     for (int c = 0; c < 3; ++c) table.rgb[i + static_cast<size_t>(c)] = roundToHalf(static_cast<float>(value[c]));
 }
 
+// The profile's edge response E(x) (DiffusionProfile::edgeResponse) for the penumbra table, which
+// reads it at every (shadow, width) node: found once per bake on a grid geometric in |x| (a
+// step of 1 % from 1e-6 of the narrowest width out to where less than 1e-9 of the light is
+// beyond the edge) and interpolated by four-point Lagrange polynomials in log |x|; the grid
+// resolves the x log x shape of Burley's response at the edge. E(-x) = 1 - E(x).
+class EdgeTable {
+public:
+    explicit EdgeTable(const DiffusionProfile& profile)
+        : profile_(profile), logMin_(std::log(1e-6 * profile.narrowestScaleMm())),
+          aMax_(std::max(profile.reachMm(1e-9), 2.0 * std::exp(logMin_))) {
+        const int count = int(std::ceil((std::log(aMax_) - logMin_) / kStep)) + 4;
+        beyond_.resize(size_t(count));
+        tbb::parallel_for(0, count, [&](int k) {
+            beyond_[size_t(k)] = glm::dvec3(1.0) - profile.edgeResponse(std::exp(logMin_ + kStep * (k - 1)));
+        });
+    }
+
+    glm::dvec3 operator()(double x) const {
+        const double a = std::abs(x);
+        glm::dvec3 beyond(0.0);
+        if (a >= aMax_) {
+            beyond = glm::dvec3(0.0);
+        } else {
+            const double t = (std::log(a) - logMin_) / kStep + 1.0;  // node k sits at t = k
+            if (!(t >= 1.0)) return profile_.edgeResponse(x);        // closer to the edge than the grid
+            const auto k = std::min(size_t(t), beyond_.size() - 3);
+            const double u = t - double(k);  // in [0, 1) between nodes k and k + 1
+            const double w0 = -u * (u - 1.0) * (u - 2.0) / 6.0, w1 = (u + 1.0) * (u - 1.0) * (u - 2.0) / 2.0;
+            const double w2 = -(u + 1.0) * u * (u - 2.0) / 2.0, w3 = (u + 1.0) * u * (u - 1.0) / 6.0;
+            beyond = w0 * beyond_[k - 1] + w1 * beyond_[k] + w2 * beyond_[k + 1] + w3 * beyond_[k + 2];
+        }
+        return x >= 0.0 ? glm::dvec3(1.0) - beyond : beyond;
+    }
+
+private:
+    static constexpr double kStep = 0.01;
+    const DiffusionProfile& profile_;
+    double logMin_;
+    double aMax_;
+    std::vector<glm::dvec3> beyond_;  // node k at |x| = exp(logMin + kStep (k - 1))
+};
+
 }  // namespace
 
 size_t nonFiniteValues(const LutTable& table) {
@@ -149,6 +191,7 @@ LutSet LutSet::bake(const DiffusionProfile& profile, const LutBakeSettings& sett
     };
 
     const double windowSigmas = skin::kPenumbraWindowSigmas;
+    const skin::EdgeTable edgeResponse(profile);
     const double patchMm = set.localPatchMm();
     tbb::parallel_for(0, total, [&](int unit) {
         if (unit < diffuseUnits) {
@@ -172,8 +215,8 @@ LutSet LutSet::bake(const DiffusionProfile& profile, const LutBakeSettings& sett
             // The filter only finds where the edge is, x = sigma Phi^-1(shadow); the light is a
             // point, so the skin sees the hard edge there through its profile, E(x), renormalised
             // to the filter's window |x| <= 3 sigma (beyond it the filter reads 0 or 1).
-            const glm::dvec3 low = limitRow ? glm::dvec3(0.0) : profile.edgeResponse(-windowSigmas * sigmaMm);
-            const glm::dvec3 high = limitRow ? glm::dvec3(1.0) : profile.edgeResponse(windowSigmas * sigmaMm);
+            const glm::dvec3 low = limitRow ? glm::dvec3(0.0) : edgeResponse(-windowSigmas * sigmaMm);
+            const glm::dvec3 high = limitRow ? glm::dvec3(1.0) : edgeResponse(windowSigmas * sigmaMm);
             for (int ix = 0; ix < set.penumbra_.width(); ++ix) {
                 const double q = shadowQuantile[static_cast<size_t>(ix)];
                 glm::dvec3 value;
@@ -186,7 +229,7 @@ LutSet LutSet::bake(const DiffusionProfile& profile, const LutBakeSettings& sett
                 } else if (iy == 0) {
                     value = glm::dvec3(0.5 * (q / windowSigmas + 1.0));  // vanishing filter: the linear limit
                 } else {
-                    value = (profile.edgeResponse(sigmaMm * q) - low) / (high - low);
+                    value = (edgeResponse(sigmaMm * q) - low) / (high - low);
                 }
                 skin::storeHalf(set.penumbra_, ix, iy, glm::clamp(value, 0.0, 1.0));
             }

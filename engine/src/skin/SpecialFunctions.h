@@ -3,11 +3,15 @@
 //    approximations of Abramowitz & Stegun, Handbook of Mathematical Functions, 9.8.1 (I0 for
 //    x <= 3.75), 9.8.5 (K0 for x <= 2) and 9.8.6 (K0 for x >= 2); relative error below 2e-7.
 //    Burley's line profile is a sum of two K0 terms.
+//  - acosPolynomial: arccos by Abramowitz & Stegun 4.4.46, sqrt(1 - x) times a degree-7
+//    polynomial on [0, 1] (absolute error below 2e-8) and pi - acos(-x) below 0; no branches,
+//    so loops of it vectorise (the diffuse LUT bake evaluates it millions of times).
 //  - normalCdf / normalQuantile: the standard normal CDF via std::erfc, and its inverse by
 //    bracketed Newton iteration (accurate to ~1e-14 in x).
 // Limits: besselK0 requires x > 0 (it diverges logarithmically at 0).
 #pragma once
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 #include <numbers>
@@ -33,6 +37,17 @@ inline double besselK0(double x) {
             (-0.07832358 +
              y * (0.02189568 + y * (-0.01062446 + y * (0.00587872 + y * (-0.00251540 + y * 0.00053208)))));
     return std::exp(-x) / std::sqrt(x) * poly;
+}
+
+inline double acosPolynomial(double x) {
+    const double a = std::abs(x);
+    const double p = 1.5707963050 +
+        a *
+            (-0.2145988016 +
+             a * (0.0889789874 +
+                  a * (-0.0501743046 + a * (0.0308918810 + a * (-0.0170881256 + a * (0.0066700901 - a * 0.0012624911))))));
+    const double r = std::sqrt(std::max(1.0 - a, 0.0)) * p;
+    return x < 0.0 ? std::numbers::pi - r : r;
 }
 
 inline double normalCdf(double x) { return 0.5 * std::erfc(-x / std::numbers::sqrt2); }
