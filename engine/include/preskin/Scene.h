@@ -17,6 +17,7 @@
 #include <preskin/SkinProfile.h>
 
 #include <preskin/Glm.h>
+#include <preskin/KhronosScatter.h>
 
 #include <cmath>
 #include <cstdint>
@@ -160,6 +161,11 @@ struct Material {
     std::optional<float> diffuseTransmissionFactor;
     std::optional<glm::vec3> diffuseTransmissionColor;
     std::optional<float> volumeThicknessFactor;  // mesh units; only values > 0 are kept
+    // Scattering from KHR_materials_volume_scatter or KHR_materials_scatter (with
+    // KHR_materials_volume's attenuation), when the material has it: a skin material that names
+    // no profile gets profileFromKhronosScatter's profile (<preskin/KhronosScatter.h>), at load
+    // and in makeSkin; a profile it names wins.
+    std::optional<KhronosScatter> khronosScatter;
 };
 
 enum class LightType { Directional, Point, Spot };

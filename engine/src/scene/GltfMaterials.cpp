@@ -1,6 +1,8 @@
 // glTF samplers, textures and materials, core and extensions (see GltfMaterials.h).
 #include "scene/GltfMaterials.h"
 
+#include <preskin/Error.h>
+
 #include <algorithm>
 #include <cmath>
 #include <set>
@@ -221,6 +223,51 @@ SkinMaterial parseSkinExtension(const LoadContext& ctx, const tinygltf::Value& s
     return s;
 }
 
+// KHR_materials_volume's attenuation with the multiple-scattering albedo and anisotropy of
+// KHR_materials_scatter (the successor draft, read first) or KHR_materials_volume_scatter.
+void parseKhronosScatter(const LoadContext& ctx, const tinygltf::ExtensionMap& ext, const std::string& where,
+                         Material& out) {
+    const auto successor = ext.find("KHR_materials_scatter");
+    const auto draft = ext.find("KHR_materials_volume_scatter");
+    if (successor == ext.end() && draft == ext.end()) return;
+    const bool isSuccessor = successor != ext.end();
+    const tinygltf::Value& scatter = isSuccessor ? successor->second : draft->second;
+    const std::string at =
+        where + ".extensions." + (isSuccessor ? "KHR_materials_scatter" : "KHR_materials_volume_scatter");
+    if (isSuccessor && draft != ext.end())
+        ctx.warn(where + ".extensions.KHR_materials_volume_scatter", "not used: KHR_materials_scatter is read instead");
+    KhronosScatter k;
+    const char* colorKey = scatter.Has("multiscatterColorFactor") ? "multiscatterColorFactor" : "multiscatterColor";
+    const glm::vec3 color = vec3Field(ctx, scatter, colorKey, at).value_or(glm::vec3(0.0f));
+    for (int c = 0; c < 3; ++c) k.multiscatterColor[c] = clampedFactor(ctx, color[c], 0.0, 1.0, at + "." + colorKey);
+    const double g = numberField(ctx, scatter, "scatterAnisotropy", at).value_or(0.0);
+    k.scatterAnisotropy = clampedFactor(ctx, g, -0.99, 0.99, at + ".scatterAnisotropy");
+    if (isSuccessor) {
+        const double factor = clampedFactor(ctx, numberField(ctx, scatter, "scatterFactor", at).value_or(0.0), 0.0, 1.0,
+                                            at + ".scatterFactor");
+        if (factor == 0.0) {
+            ctx.warn(at + ".scatterFactor", "0 (the default): scattering is off, no profile is made from it");
+            return;
+        }
+        k.multiscatterColor *= factor;
+    }
+    for (const char* texture : {"multiscatterColorTexture", "scatterTexture"})
+        if (scatter.Has(texture)) ctx.warn(at + "." + texture, "not used; only the factors are read");
+    if (auto volume = ext.find("KHR_materials_volume"); volume != ext.end()) {
+        const std::string vat = where + ".extensions.KHR_materials_volume";
+        if (auto distance = numberField(ctx, volume->second, "attenuationDistance", vat)) {
+            if (!(*distance > 0.0)) ctx.fail(vat + ".attenuationDistance", "must be > 0");
+            k.attenuationDistanceM = *distance;
+        }
+        const glm::vec3 attenuation = vec3Field(ctx, volume->second, "attenuationColor", vat).value_or(glm::vec3(1.0f));
+        for (int c = 0; c < 3; ++c)
+            k.attenuationColor[c] = clampedFactor(ctx, attenuation[c], 0.0, 1.0, vat + ".attenuationColor");
+        if (volume->second.Has("thicknessTexture"))
+            ctx.warn(vat + ".thicknessTexture", "not used; thicknessFactor seeds the skin's thickness scale");
+    }
+    out.khronosScatter = k;
+}
+
 }  // namespace
 
 SkinMaterial seededSkin(const Material& material, const SkinMaterial& defaults) {
@@ -341,11 +388,42 @@ void convertMaterials(const LoadContext& ctx) {
             if (thickness < 0.0) ctx.fail(at + ".thicknessFactor", "negative");
             if (thickness > 0.0) out.volumeThicknessFactor = static_cast<float>(thickness);
         }
+        parseKhronosScatter(ctx, ext, where, out);
         if (auto it = ext.find("PRESKIN_materials_skin"); it != ext.end()) {
             out.skin = parseSkinExtension(ctx, it->second, where + ".extensions.PRESKIN_materials_skin",
                                           seededSkin(out, SkinMaterial{}));
         }
         ctx.scene->materials.push_back(std::move(out));
+    }
+    for (size_t i = 0; i < ctx.scene->materials.size(); ++i) applyKhronosScatter(*ctx.scene, i);
+}
+
+void applyKhronosScatter(Scene& scene, size_t index) {
+    Material& material = scene.materials[index];
+    if (!material.skin || !material.khronosScatter) return;
+    const std::string where =
+        scene.sourcePath.string() + ": " + indexed("materials", index) + " ('" + material.name + "')";
+    if (material.skin->profile >= 0) {
+        scene.warnings.push_back(where +
+                                 ": the Khronos scatter parameters are not used: PRESKIN_materials_skin names " +
+                                 "profile " + std::to_string(material.skin->profile));
+        return;
+    }
+    try {
+        const DiffusionProfile profile = profileFromKhronosScatter(*material.khronosScatter, "Khronos scatter");
+        // Materials with the same parameters share one profile (one LUT layer, one bake).
+        const std::string json = profile.toJson();
+        auto same = std::find_if(scene.profiles.begin(), scene.profiles.end(), [&](const SkinProfile& p) {
+            return p.profile && p.lutFolder.empty() && p.profile->toJson() == json;
+        });
+        if (same == scene.profiles.end()) {
+            scene.profiles.push_back({material.name + " (Khronos scatter)", profile, {}});
+            same = scene.profiles.end() - 1;
+        }
+        material.skin->profile = int(same - scene.profiles.begin());
+    } catch (const Error& e) {
+        scene.warnings.push_back(where + ": the Khronos scatter parameters define no profile (" + e.what() +
+                                 "); the default profile is used");
     }
 }
 

@@ -1,6 +1,7 @@
 // glTF samplers, textures and materials to preskin types: the metallic-roughness core material,
 // KHR_texture_transform, KHR_materials_emissive_strength, KHR_materials_diffuse_transmission,
-// KHR_materials_volume (thicknessFactor) and the project's PRESKIN_materials_skin
+// KHR_materials_volume (thicknessFactor, attenuation), the scatter drafts KHR_materials_scatter and
+// KHR_materials_volume_scatter (<preskin/KhronosScatter.h>) and the project's PRESKIN_materials_skin
 // (docs/gltf-extensions.md).
 // Only TEXCOORD_0 is loaded: a texture that asks for another set (texCoord, or the transform's
 // texCoord override) is sampled with set 0 and a warning. Textures whose source is not PNG or
@@ -17,5 +18,10 @@ void convertMaterials(const LoadContext& ctx);
 
 // The skin parameters of a material: `defaults`, then its KHR transmission / volume values.
 SkinMaterial seededSkin(const Material& material, const SkinMaterial& defaults);
+
+// A skin material's profile from its Khronos scatter parameters (Material::khronosScatter), added
+// to Scene::profiles (shared by materials with the same parameters), when it names no profile;
+// a warning when it names one or the parameters define none.
+void applyKhronosScatter(Scene& scene, size_t materialIndex);
 
 }  // namespace preskin::gltf

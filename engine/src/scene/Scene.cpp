@@ -63,10 +63,13 @@ int Scene::addDefaultMaterial() {
 void Scene::makeSkin(const std::string& materialName, const SkinMaterial& defaults) {
     if (materialName == "all") addDefaultMaterial();
     bool found = false;
-    for (Material& material : materials) {
+    for (size_t i = 0; i < materials.size(); ++i) {
+        Material& material = materials[i];
         if (materialName != "all" && material.name != materialName) continue;
         found = true;
-        if (!material.skin) material.skin = gltf::seededSkin(material, defaults);
+        if (material.skin) continue;
+        material.skin = gltf::seededSkin(material, defaults);
+        gltf::applyKhronosScatter(*this, i);
     }
     if (!found && materialName != "all") {
         std::string names;

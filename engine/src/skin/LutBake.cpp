@@ -64,7 +64,8 @@ void storeHalf(LutTable& table, int ix, int iy, glm::dvec3 value) {
 class EdgeTable {
 public:
     explicit EdgeTable(const DiffusionProfile& profile)
-        : profile_(profile), logMin_(std::log(1e-6 * profile.narrowestScaleMm())),
+        : profile_(profile),
+          logMin_(std::log(1e-6 * profile.narrowestScaleMm())),
           aMax_(std::max(profile.reachMm(1e-9), 2.0 * std::exp(logMin_))) {
         const int count = int(std::ceil((std::log(aMax_) - logMin_) / kStep)) + 4;
         beyond_.resize(size_t(count));

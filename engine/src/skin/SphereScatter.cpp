@@ -94,9 +94,9 @@ void sphereScatter(const DiffusionProfile& profile, double curvaturePerMm, doubl
         return size_t(std::lower_bound(nodes.psi.begin(), nodes.psi.end(), psi) - nodes.psi.begin());
     };
     // The patch's edge: cos(psi) - cos(patch) is > 0 before it and <= 0 from it on.
-    const size_t patchEnd = size_t(std::partition_point(nodes.cosPsi.begin(), nodes.cosPsi.end(),
-                                                        [&](double cp) { return cp - cosPatch > 0.0; }) -
-                                   nodes.cosPsi.begin());
+    const size_t patchEnd = size_t(
+        std::partition_point(nodes.cosPsi.begin(), nodes.cosPsi.end(), [&](double cp) { return cp - cosPatch > 0.0; }) -
+        nodes.cosPsi.begin());
     for (size_t n = 0; n < NoL.size(); ++n) {
         const double c = std::clamp(NoL[n], -1.0, 1.0);
         const double s = std::sqrt(std::max(0.0, 1.0 - c * c));
@@ -141,8 +141,8 @@ void sphereScatter(const DiffusionProfile& profile, double curvaturePerMm, doubl
                 bandHi = fullLo = std::min(firstFrom(1.5 * kPi - theta) + 1, count);
                 fullHi = count;
             }
-            glm::dvec3 sum = explicitSum(std::clamp(bandLo, lo, hi), std::clamp(bandHi, lo, hi),
-                                         [](double) { return 0.0; });
+            glm::dvec3 sum =
+                explicitSum(std::clamp(bandLo, lo, hi), std::clamp(bandHi, lo, hi), [](double) { return 0.0; });
             fullLo = std::clamp(fullLo, lo, hi);
             fullHi = std::clamp(fullHi, lo, hi);
             for (size_t ch = 0; ch < 3; ++ch)
@@ -161,7 +161,8 @@ void sphereScatter(const DiffusionProfile& profile, double curvaturePerMm, doubl
         } else if (c < 0.0) {
             // Only neighbours beyond the patch, below the threshold (cos(patch) - cos(psi)) / 2 |c|.
             const double inv2c = 0.5 / c;
-            sum = unshadowed(patchEnd, count) - explicitSum(patchEnd, count, [inv2c](double gap) { return gap * inv2c; });
+            sum =
+                unshadowed(patchEnd, count) - explicitSum(patchEnd, count, [inv2c](double gap) { return gap * inv2c; });
         } else {
             sum = unshadowed(patchEnd, count);
         }
