@@ -72,6 +72,13 @@ TEST(KhronosScatter, MeanFreePathOfThreeParameterSets) {
     three.attenuationColor = {0.9, 0.7, 0.6};
     three.multiscatterColor = {0.35, 0.25, 0.2};
     three.scatterAnisotropy = -0.3;
+    // 4. The material of Khronos's ScatteringSkull sample (glTF-Sample-Assets, CC0): d = 16.8918 mm,
+    //    c = (0.367879, 0.485731, 0.396410), A = (0.168271, 0.527120, 0.590625), g = 0:
+    //    sigma_t = (1.000000, 0.722070, 0.925281) / 0.0168918 m = (59.2004, 42.7470, 54.7771) 1/m; l = 1000 / sigma_t mm.
+    KhronosScatter skull;
+    skull.attenuationDistanceM = 0.016891848295927049;
+    skull.attenuationColor = {0.3678794503211975, 0.4857314527034759, 0.3964099884033203};
+    skull.multiscatterColor = {0.16827136278152467, 0.5271198749542236, 0.5906253457069397};
     const struct {
         const KhronosScatter& scatter;
         glm::dvec3 mfpMm;
@@ -80,6 +87,7 @@ TEST(KhronosScatter, MeanFreePathOfThreeParameterSets) {
         {one, {7.213475, 3.606738, 2.404492}, {0.990589, 0.951179, 0.850796}},
         {two, {223.6958, 67.03966, 15.76303}, {0.999581, 0.981000, 0.757285}},
         {three, {15.43802, 4.710052, 3.361053}, {0.765303, 0.635021, 0.549607}},
+        {skull, {16.89185, 23.39269, 18.25541}, singleScatteringAlbedo(skull.multiscatterColor, 0.0)},
     };
     for (const auto& c : cases) {
         const glm::dvec3 mfp = khronosMeanFreePathMm(c.scatter);
@@ -163,6 +171,7 @@ TEST(KhronosScatter, GltfSkinMaterialsTakeTheProfile) {
     b.doc["textures"] = json::array({{{"source", 0}}});
     encodeImage(dir.path(), "s.png", 2, 2, 1, {0, 64, 128, 255});
     Scene s = Scene::load(b.writeGltf(dir.path()));
+    EXPECT_FALSE(hasWarning(s, "extensionsUsed"));  // both drafts are read
     // cheek and lips share one Khronos profile after the scene's own.
     ASSERT_EQ(s.profiles.size(), 2u);
     EXPECT_EQ(s.materials[0].skin->profile, 1);
