@@ -152,7 +152,7 @@ void main() {
     if (kMaterialModel == kModelSkin)
         skinCurvaturePerMm = preskinCurvatureProfilePerMm(
             preskinSkinCurvaturePerM(kSkinCurvatureSource, inCurvaturePerM, curvatureTexture, uvBase,
-                                     material.skinScatter.z, geometricN, inPositionWs),
+                                     material.skinScatter.y, material.skinScatter.z, geometricN, inPositionWs),
             material.skinScatter.x);
     vec3 shadowPositionWs = inPositionWs;
     if (kMaterialModel == kModelSkin && (kSkinFeatures & kSkinLutDiffuse) != 0u) {

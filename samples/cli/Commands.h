@@ -8,6 +8,7 @@ namespace preskin::cli {
 
 void addRenderCommand(CLI::App& app);
 void addBakeCommand(CLI::App& app);
+void addBakeCurvatureCommand(CLI::App& app);
 void addBenchCommand(CLI::App& app);
 void addReferenceCommand(CLI::App& app);
 void addCompareCommand(CLI::App& app);

@@ -1,4 +1,4 @@
-// preskin: command-line front end of libpreskin (render, bake, bench, reference, compare).
+// preskin: command-line front end of libpreskin (render, bake, bake-curvature, bench, reference, compare).
 #include "CommandLine.h"  // samples/common
 #include "Commands.h"
 
@@ -8,6 +8,7 @@ int main(int argc, char** argv) {
     app.set_help_all_flag("--help-all", "Show help for every subcommand");
     preskin::cli::addRenderCommand(app);
     preskin::cli::addBakeCommand(app);
+    preskin::cli::addBakeCurvatureCommand(app);
     preskin::cli::addBenchCommand(app);
     preskin::cli::addReferenceCommand(app);
     preskin::cli::addCompareCommand(app);

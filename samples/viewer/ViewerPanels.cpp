@@ -300,7 +300,10 @@ void Viewer::panelMaterial() {
         if (skin.curvatureSource == CurvatureSource::Texture) {
             ImGui::SliderFloat("Curvature texture scale", &skin.curvatureTextureScalePerM, 1.0f, 2000.0f, "%.0f 1/m",
                                ImGuiSliderFlags_Logarithmic);
-            tooltip("Curvature (1/m) that a texture value of 1 stands for");
+            tooltip("Curvature (1/m) that a texture value of 1 above the bias stands for");
+            rebuild |= ImGui::IsItemDeactivatedAfterEdit();
+            ImGui::SliderFloat("Curvature texture bias", &skin.curvatureTextureBias, 0.0f, 1.0f, "%.2f");
+            tooltip("The texture value of zero curvature (0.5 for signed maps, such as bake-curvature's)");
             rebuild |= ImGui::IsItemDeactivatedAfterEdit();
         }
         bool overrideBias = skin.normalLodBias.has_value();

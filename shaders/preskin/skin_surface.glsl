@@ -119,11 +119,11 @@ float preskinCurvatureFromDerivatives(vec3 normalWs, vec3 positionWs) {
 }
 
 // World curvature (1/m) from the material's source (kCurvatureSource* of shared/constants.h):
-// the interpolated per-vertex value, the curvature texture's red channel times its scale (1/m),
-// or the screen derivatives of the geometric normal and position.
+// the interpolated per-vertex value, the curvature texture's red channel less its bias (the value
+// of zero curvature: 0.5 for signed maps) times its scale (1/m), or the screen derivatives of the geometric normal and position.
 float preskinSkinCurvaturePerM(uint source, float vertexCurvaturePerM, sampler2D curvatureTexture, vec2 uv,
-                               float textureScalePerM, vec3 geometricNormal, vec3 positionWs) {
-    if (source == kCurvatureSourceTexture) return texture(curvatureTexture, uv).r * textureScalePerM;
+                               float textureBias, float textureScalePerM, vec3 geometricNormal, vec3 positionWs) {
+    if (source == kCurvatureSourceTexture) return (texture(curvatureTexture, uv).r - textureBias) * textureScalePerM;
     if (source == kCurvatureSourceDerivatives) return preskinCurvatureFromDerivatives(geometricNormal, positionWs);
     return vertexCurvaturePerM;
 }

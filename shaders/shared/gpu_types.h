@@ -126,8 +126,8 @@ struct MaterialUniforms {
     vec4 baseColorFactor;
     vec4 emissiveAlphaCutoff;  // rgb emissive factor (strength applied), w alpha cutoff
     vec4 pbr;                  // x metallic, y roughness, z normal scale, w occlusion strength
-    vec4 skinScatter;          // x scatter scale, y unused (the curvature source is kSpecSkinInputs),
-                               // z curvature texture scale (1/m), w transmission strength
+    vec4 skinScatter;          // x scatter scale, y curvature texture bias (the curvature source is
+                               // kSpecSkinInputs), z curvature texture scale (1/m), w transmission strength
     vec4 skinTransmission;     // rgb transmission colour, w thickness scale
     vec4 skinSpecular;         // x F0 scale, y lobe-0 roughness multiplier, z lobe-1 multiplier, w lobe-1 weight
     vec4 textureFlags;         // x detail normal scale, y detail uv scale, z unused (a detail map and a specular

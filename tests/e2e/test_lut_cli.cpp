@@ -1,11 +1,13 @@
 // Tests of `preskin bake` as a user runs it: a good bake writes a loadable set; bad input (absurd
 // sizes, bad profile files, malformed colours, missing Burley parameters) exits non-zero with one
-// "preskin: error: ..." line and writes nothing.
+// "preskin: error: ..." line and writes nothing. `preskin bake-curvature` the same way: the head's
+// map and its JSON, and bad input refused with nothing written.
 #include <preskin/LutSet.h>
 
 #include "support/Process.h"
 
 #include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
 
 #include <sys/wait.h>
 
@@ -94,6 +96,44 @@ TEST_F(BakeCli, BadInputIsRefusedAndNothingIsWritten) {
         EXPECT_NE(run.err.find(expected), std::string::npos) << arguments << ": " << run.err;
         EXPECT_EQ(std::count(run.err.begin(), run.err.end(), '\n'), 1) << arguments << ": " << run.err;
         EXPECT_FALSE(fs::exists(out)) << arguments;
+    }
+}
+
+TEST_F(BakeCli, CurvatureMapOfTheHead) {
+    const fs::path out = dir_ / "maps";
+    const CliRun run = test::runCli({"bake-curvature", "--size", "128", "--out", out.string()}, dir_);
+    ASSERT_EQ(run.exitCode, 0) << run.err;
+    EXPECT_TRUE(fs::exists(out / "skin_curvature.png")) << run.err;
+    std::ifstream file(out / "skin_curvature.json");
+    const nlohmann::json j = nlohmann::json::parse(file);
+    EXPECT_EQ(j["image"], "skin_curvature.png");
+    EXPECT_EQ(j["width"], 128);
+    EXPECT_GT(j["coveredFraction"].get<double>(), 0.8);
+    EXPECT_EQ(j["PRESKIN_materials_skin"]["curvatureSource"], "texture");
+    EXPECT_EQ(j["PRESKIN_materials_skin"]["curvatureTextureBias"], 0.5);
+    // A head's creases and ears: tens to hundreds of 1/m.
+    EXPECT_GT(j["PRESKIN_materials_skin"]["curvatureTextureScalePerM"].get<double>(), 50.0);
+}
+
+TEST_F(BakeCli, BadCurvatureInputIsRefusedAndNothingIsWritten) {
+    const std::string plain = std::string(PRESKIN_SOURCE_DIR) + "/samples/assets/tube/tube.gltf";
+    const std::vector<std::pair<std::vector<std::string>, std::string>> cases{
+        {{"--size", "8"}, "size: must be in [16, 8192], got 8"},
+        {{"--dilation", "5000"}, "dilation: must be in [0, 1024], got 5000"},
+        {{"/nonexistent/scene.gltf"}, "/nonexistent/scene.gltf"},
+        {{"--skin", "nose"}, "no material named 'nose'"},
+        {{plain}, "no skin material is drawn"},
+    };
+    const fs::path out = dir_ / "never";
+    for (const auto& [caseArguments, expected] : cases) {
+        std::vector<std::string> all = {"bake-curvature"};
+        all.insert(all.end(), caseArguments.begin(), caseArguments.end());
+        all.insert(all.end(), {"--out", out.string()});
+        const CliRun run = test::runCli(all, dir_);
+        EXPECT_EQ(run.exitCode, 1) << caseArguments[0];
+        EXPECT_EQ(run.err.rfind("preskin: error: ", 0), 0u) << caseArguments[0] << ": " << run.err;
+        EXPECT_NE(run.err.find(expected), std::string::npos) << caseArguments[0] << ": " << run.err;
+        EXPECT_FALSE(fs::exists(out)) << caseArguments[0];
     }
 }
 

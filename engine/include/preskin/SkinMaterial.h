@@ -49,6 +49,9 @@ struct SkinMaterial {
     CurvatureSource curvatureSource = CurvatureSource::Vertex;
     SkinTextureRef curvatureTexture;
     float curvatureTextureScalePerM = 100.0f;                             // texture value 1.0 means this many 1/m
+    // The texture value of zero curvature: curvature = (value - bias) * scale. 0 for maps of
+    // convex curvature only, 0.5 for signed maps (bakeCurvatureMaps, `preskin bake-curvature`).
+    float curvatureTextureBias = 0.0f;
     DeformedCurvature deformedCurvature = DeformedCurvature::Recomputed;  // with CurvatureSource::Vertex
     // Per-channel mip LOD bias of the normal map (R, G, B). Unset: derived from the profile's
     // per-channel scattering width and the mesh's texel density.

@@ -344,7 +344,7 @@ gpu::MaterialUniforms GpuScene::uniformsFor(const Material& mat, const GpuMateri
     for (size_t i = 0; i < 5; ++i) u.uv[i] = toGpu(*refs[i]);
     if (mat.skin) {
         const SkinMaterial& s = *mat.skin;
-        u.skinScatter = glm::vec4(s.scatterScale, 0.0f, s.curvatureTextureScalePerM, s.transmission);
+        u.skinScatter = glm::vec4(s.scatterScale, s.curvatureTextureBias, s.curvatureTextureScalePerM, s.transmission);
         auto layerOf = [&](int index) {
             return index >= 0 && size_t(index) < layers.size() ? layers[size_t(index)] : ProfileLayer{};
         };

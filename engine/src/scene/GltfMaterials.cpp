@@ -170,7 +170,7 @@ SkinMaterial parseSkinExtension(const LoadContext& ctx, const tinygltf::Value& s
                                 SkinMaterial s) {
     if (!skin.IsObject()) ctx.fail(where, "not an object");
     static const std::set<std::string> known = {
-        "scatterScale",      "curvatureSource",   "curvatureTexture",    "curvatureTextureScalePerM",
+        "scatterScale",      "curvatureSource",   "curvatureTexture",    "curvatureTextureScalePerM", "curvatureTextureBias",
         "deformedCurvature", "normalLodBias",     "detailNormalTexture", "detailUvScale",
         "transmission",      "transmissionColor", "thicknessScale",      "specularIntensity",
         "specularTexture",   "lobeRoughness0",    "lobeRoughness1",      "lobeMix",
@@ -196,6 +196,7 @@ SkinMaterial parseSkinExtension(const LoadContext& ctx, const tinygltf::Value& s
         ctx.fail(where + ".curvatureSource", "'texture' but there is no usable curvatureTexture");
     }
     skinNumber(ctx, skin, "curvatureTextureScalePerM", where, s.curvatureTextureScalePerM, 0.0, inf);
+    skinNumber(ctx, skin, "curvatureTextureBias", where, s.curvatureTextureBias, 0.0, 1.0);
     if (auto deformed = stringField(ctx, skin, "deformedCurvature", where)) {
         if (*deformed == "recomputed")
             s.deformedCurvature = DeformedCurvature::Recomputed;

@@ -1,0 +1,66 @@
+// Curvature maps: the signed mean curvature of each skin material's surface baked into its UV
+// space, for CurvatureSource::Texture (`preskin bake-curvature`). Pre-integrated skin read from a
+// texture sees curvature at the texture's resolution, independent of the mesh it is drawn with
+// (levels of detail, decimated meshes) and smooth across triangles.
+//
+// Method: every triangle of the material's primitives is rasterised in TEXCOORD_0 space (texel
+// centres inside the triangle, texels where UV charts overlap averaged), the mesh's per-vertex
+// signed mean curvature (<preskin/Curvature.h>, from the smooth vertex normals) interpolated
+// barycentrically and converted to world units with the first instance's scale. Texels no
+// triangle covers are then filled outwards from the charts for `dilationTexels` rings (each empty
+// texel takes the mean of its filled 8-neighbours), so bilinear filtering and mip levels near UV
+// seams read the chart's own values, not the background.
+// Encoding: value = bias + curvature / scale with bias 0.5 (signed) and scale twice the largest
+// |curvature| of the covered texels (the 99.9th percentile, so a few extreme texels do not flatten
+// the rest; beyond it values clamp), stored in 16 bits; the renderer decodes (value - bias) * scale
+// (SkinMaterial::curvatureTextureBias, curvatureTextureScalePerM).
+// Limits: the normal map's detail is not included (the map is the smooth surface's curvature);
+// UVs outside [0, 1) are wrapped; a mesh drawn at several scales gets the first instance's.
+#pragma once
+
+#include <preskin/Export.h>
+
+#include <cstdint>
+#include <filesystem>
+#include <string>
+#include <vector>
+
+namespace preskin {
+
+struct Scene;
+
+struct CurvatureMap {
+    int material = -1;  // Scene::materials index
+    std::string materialName;
+    uint32_t width = 0;
+    uint32_t height = 0;
+    std::vector<float> curvaturePerM;  // width * height, rows top (v = 0) down; NaN where nothing was covered
+    std::vector<uint8_t> covered;      // 1 where a triangle covered the texel, 2 where dilation filled it
+    float scalePerM = 0.0f;            // the encoding's scale (curvatureTextureScalePerM)
+    float bias = 0.5f;                 // the encoding's zero (curvatureTextureBias)
+    int warnedInstances = 0;           // instances of another scale than the first (their curvature differs)
+
+    // The 16-bit texel values of the encoding (0 where nothing was covered or filled: read as -bias * scale).
+    std::vector<uint16_t> encoded() const;
+};
+
+struct CurvatureBakeSettings {
+    uint32_t size = 0;  // width and height; 0: the largest texture the material has (1024 without any), at most 4096
+    int dilationTexels = 16;  // rings filled around the charts
+};
+
+// One map per skin material that some mesh instance draws. Throws preskin::Error for a size out
+// of [16, 8192].
+PRESKIN_API std::vector<CurvatureMap> bakeCurvatureMaps(const Scene& scene, const CurvatureBakeSettings& settings = {});
+
+// Writes the map as a one-channel 16-bit PNG at `png` and, beside it with the extension .json,
+// its encoding and the PRESKIN_materials_skin fields that read it:
+//   {"material": ..., "image": "<file name>", "width": w, "height": h, "coveredFraction": f,
+//    "PRESKIN_materials_skin": {"curvatureSource": "texture", "curvatureTextureScalePerM": s,
+//                               "curvatureTextureBias": 0.5}}
+// (the curvatureTexture's index is the glTF texture the image becomes). Each file is written under
+// the rule of <preskin/OutputFile.h>. (Scenes load textures at 8 bits per channel: a step of
+// scale / 255.)
+PRESKIN_API void writeCurvatureMap(const CurvatureMap& map, const std::filesystem::path& png);
+
+}  // namespace preskin

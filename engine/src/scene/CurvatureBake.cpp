@@ -1,0 +1,199 @@
+// Curvature maps (see <preskin/CurvatureBake.h>).
+#include <preskin/CurvatureBake.h>
+
+#include <preskin/Error.h>
+#include <preskin/OutputFile.h>
+#include <preskin/Scene.h>
+
+#include <OpenImageIO/imageio.h>
+#include <fmt/core.h>
+#include <nlohmann/json.hpp>
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+namespace preskin {
+namespace {
+
+uint32_t mapSize(const Scene& scene, const Material& material, uint32_t requested) {
+    if (requested != 0) return requested;
+    uint32_t size = 0;
+    auto consider = [&](int image) {
+        if (image >= 0 && size_t(image) < scene.images.size())
+            size = std::max({size, scene.images[size_t(image)].width, scene.images[size_t(image)].height});
+    };
+    for (const TextureRef* t :
+         {&material.baseColor, &material.metallicRoughness, &material.normal, &material.occlusion, &material.emissive})
+        consider(t->image);
+    if (material.skin) {
+        consider(material.skin->specularTexture.image);
+        consider(material.skin->detailNormalTexture.image);
+    }
+    return size == 0 ? 1024u : std::min(size, 4096u);
+}
+
+// Accumulates one triangle's interpolated curvature into the texels whose centres it covers.
+void rasterise(const glm::vec2 uv[3], const float value[3], uint32_t width, uint32_t height, std::vector<double>& sum,
+               std::vector<uint32_t>& count) {
+    // Wrap the triangle into [0, 1) by its first corner's tile.
+    const glm::vec2 tile = glm::floor(uv[0]);
+    glm::vec2 p[3];
+    for (int i = 0; i < 3; ++i) p[i] = (uv[i] - tile) * glm::vec2(float(width), float(height));
+    const float area = (p[1].x - p[0].x) * (p[2].y - p[0].y) - (p[2].x - p[0].x) * (p[1].y - p[0].y);
+    if (!(std::abs(area) > 1e-12f)) return;
+    const glm::vec2 lo = glm::min(p[0], glm::min(p[1], p[2])), hi = glm::max(p[0], glm::max(p[1], p[2]));
+    const int x0 = std::max(int(std::floor(lo.x)), 0), x1 = std::min(int(std::ceil(hi.x)), int(width) - 1);
+    const int y0 = std::max(int(std::floor(lo.y)), 0), y1 = std::min(int(std::ceil(hi.y)), int(height) - 1);
+    for (int y = y0; y <= y1; ++y) {
+        for (int x = x0; x <= x1; ++x) {
+            const glm::vec2 c(float(x) + 0.5f, float(y) + 0.5f);
+            float w[3];
+            for (int i = 0; i < 3; ++i) {
+                const glm::vec2 a = p[(i + 1) % 3], b = p[(i + 2) % 3];
+                w[i] = ((b.x - a.x) * (c.y - a.y) - (c.x - a.x) * (b.y - a.y)) / area;
+            }
+            if (w[0] < 0.0f || w[1] < 0.0f || w[2] < 0.0f) continue;
+            const size_t i = size_t(y) * width + size_t(x);
+            sum[i] += double(w[0] * value[0] + w[1] * value[1] + w[2] * value[2]);
+            ++count[i];
+        }
+    }
+}
+
+}  // namespace
+
+std::vector<uint16_t> CurvatureMap::encoded() const {
+    std::vector<uint16_t> out(curvaturePerM.size(), 0);
+    for (size_t i = 0; i < out.size(); ++i) {
+        const float k = curvaturePerM[i];
+        if (std::isnan(k) || !(scalePerM > 0.0f)) continue;
+        const float v = std::clamp(bias + k / scalePerM, 0.0f, 1.0f);
+        out[i] = uint16_t(std::lround(v * 65535.0f));
+    }
+    return out;
+}
+
+std::vector<CurvatureMap> bakeCurvatureMaps(const Scene& scene, const CurvatureBakeSettings& settings) {
+    if (settings.size != 0 && (settings.size < 16 || settings.size > 8192))
+        throw Error(fmt::format("bake-curvature: size: must be in [16, 8192], got {}", settings.size));
+    if (settings.dilationTexels < 0 || settings.dilationTexels > 1024)
+        throw Error(fmt::format("bake-curvature: dilation: must be in [0, 1024], got {}", settings.dilationTexels));
+    std::vector<CurvatureMap> maps;
+    for (size_t m = 0; m < scene.materials.size(); ++m) {
+        const Material& material = scene.materials[m];
+        if (!material.skin) continue;
+        CurvatureMap map;
+        map.material = int(m);
+        map.materialName = material.name;
+        map.width = map.height = mapSize(scene, material, settings.size);
+        const size_t texels = size_t(map.width) * map.height;
+        std::vector<double> sum(texels, 0.0);
+        std::vector<uint32_t> count(texels, 0);
+        float firstScale = 0.0f;
+        std::vector<bool> meshDone(scene.meshes.size(), false);
+        for (const MeshInstance& instance : scene.instances) {
+            if (instance.mesh < 0 || size_t(instance.mesh) >= scene.meshes.size()) continue;
+            const Mesh& mesh = scene.meshes[size_t(instance.mesh)];
+            bool uses = false;
+            for (const Primitive& p : mesh.primitives) uses = uses || p.material == int(m);
+            if (!uses) continue;
+            const float scale = instance.curvatureScale();
+            if (firstScale == 0.0f) firstScale = scale;
+            if (std::abs(scale - firstScale) > 1e-4f * firstScale) ++map.warnedInstances;
+            if (meshDone[size_t(instance.mesh)]) continue;
+            meshDone[size_t(instance.mesh)] = true;
+            for (const Primitive& p : mesh.primitives) {
+                if (p.material != int(m)) continue;
+                for (size_t t = 0; t + 2 < p.indices.size(); t += 3) {
+                    glm::vec2 uv[3];
+                    float value[3];
+                    for (int c = 0; c < 3; ++c) {
+                        const Vertex& v = p.vertices[p.indices[t + size_t(c)]];
+                        uv[c] = v.uv0;
+                        value[c] = v.curvaturePerM / std::max(firstScale, 1e-12f);
+                    }
+                    rasterise(uv, value, map.width, map.height, sum, count);
+                }
+            }
+        }
+        if (firstScale == 0.0f) continue;  // no instance draws the material
+        map.curvaturePerM.assign(texels, std::numeric_limits<float>::quiet_NaN());
+        map.covered.assign(texels, 0);
+        std::vector<float> magnitudes;
+        for (size_t i = 0; i < texels; ++i) {
+            if (count[i] == 0) continue;
+            map.curvaturePerM[i] = float(sum[i] / count[i]);
+            map.covered[i] = 1;
+            magnitudes.push_back(std::abs(map.curvaturePerM[i]));
+        }
+        // Dilation: ring by ring, each empty texel next to filled ones takes their mean.
+        const int w = int(map.width), h = int(map.height);
+        for (int pass = 0; pass < settings.dilationTexels; ++pass) {
+            std::vector<std::pair<size_t, float>> fills;
+            for (int y = 0; y < h; ++y) {
+                for (int x = 0; x < w; ++x) {
+                    const size_t i = size_t(y) * size_t(w) + size_t(x);
+                    if (map.covered[i] != 0) continue;
+                    double s = 0.0;
+                    int n = 0;
+                    for (int dy = -1; dy <= 1; ++dy)
+                        for (int dx = -1; dx <= 1; ++dx) {
+                            const int nx = x + dx, ny = y + dy;
+                            if ((dx == 0 && dy == 0) || nx < 0 || ny < 0 || nx >= w || ny >= h) continue;
+                            const size_t j = size_t(ny) * size_t(w) + size_t(nx);
+                            if (map.covered[j] == 0) continue;
+                            s += double(map.curvaturePerM[j]);
+                            ++n;
+                        }
+                    if (n > 0) fills.emplace_back(i, float(s / n));
+                }
+            }
+            if (fills.empty()) break;
+            for (const auto& [i, value] : fills) {
+                map.curvaturePerM[i] = value;
+                map.covered[i] = 2;
+            }
+        }
+        float largest = 0.0f;
+        if (!magnitudes.empty()) {
+            const size_t k = std::min(magnitudes.size() - 1, size_t(double(magnitudes.size()) * 0.999));
+            std::nth_element(magnitudes.begin(), magnitudes.begin() + std::ptrdiff_t(k), magnitudes.end());
+            largest = magnitudes[k];
+        }
+        map.scalePerM = largest > 0.0f ? 2.0f * largest : 1.0f;
+        maps.push_back(std::move(map));
+    }
+    return maps;
+}
+
+void writeCurvatureMap(const CurvatureMap& map, const std::filesystem::path& png) {
+    std::filesystem::path jsonPath = png;
+    jsonPath.replace_extension(".json");
+    checkOutputFile(png);
+    checkOutputFile(jsonPath);
+    const std::vector<uint16_t> texels = map.encoded();
+    writeOutputFile(png, [&](const std::filesystem::path& temporary) {
+        auto out = OIIO::ImageOutput::create("png");
+        if (!out) throw Error(fmt::format("{}: cannot create a PNG writer: {}", png.string(), OIIO::geterror()));
+        const OIIO::ImageSpec spec(int(map.width), int(map.height), 1, OIIO::TypeDesc::UINT16);
+        if (!out->open(temporary.string(), spec) || !out->write_image(OIIO::TypeDesc::UINT16, texels.data()) ||
+            !out->close())
+            throw Error(fmt::format("{}: cannot write: {}", png.string(), out->geterror()));
+    });
+    size_t covered = 0;
+    for (uint8_t c : map.covered) covered += c == 1;
+    nlohmann::ordered_json j;
+    j["material"] = map.materialName;
+    j["materialIndex"] = map.material;
+    j["image"] = png.filename().string();
+    j["width"] = map.width;
+    j["height"] = map.height;
+    j["coveredFraction"] = map.covered.empty() ? 0.0 : double(covered) / double(map.covered.size());
+    j["PRESKIN_materials_skin"] = {{"curvatureSource", "texture"},
+                                   {"curvatureTextureScalePerM", map.scalePerM},
+                                   {"curvatureTextureBias", map.bias}};
+    writeTextFile(jsonPath, j.dump(2) + "\n");
+}
+
+}  // namespace preskin
