@@ -29,6 +29,7 @@ struct BakeCurvatureOptions {
     std::string out;
     uint32_t size = 0;
     int dilation = 16;
+    double rangeQuantile = 0.999;
     std::string skin;
 };
 
@@ -49,6 +50,7 @@ void run(const BakeCurvatureOptions& o) {
     CurvatureBakeSettings settings;
     settings.size = o.size;
     settings.dilationTexels = o.dilation;
+    settings.rangeQuantile = o.rangeQuantile;
     std::vector<CurvatureMap> maps = bakeCurvatureMaps(scene, settings);
     if (maps.empty())
         throw Error(fmt::format("{}: no skin material is drawn (make materials skin with --skin NAME or all)",
@@ -84,6 +86,9 @@ void addBakeCurvatureCommand(CLI::App& app) {
     cmd->add_option("--size", o->size,
                     "map width and height, 16..8192 (default: the material's largest texture, 1024 without one)");
     cmd->add_option("--dilation", o->dilation, "texel rings filled around the UV charts, 0..1024 (default 16)");
+    cmd->add_option(
+        "--range-quantile", o->rangeQuantile,
+        "quantile of |curvature| the 16-bit range reaches, 0.5..1 (default 0.999; 1: the largest; beyond it values clamp)");
     cmd->add_option("--skin", o->skin, "also make this material (or all) skin before baking");
     cmd->callback([o] { run(*o); });
 }

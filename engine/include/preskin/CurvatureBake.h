@@ -11,8 +11,8 @@
 // texel takes the mean of its filled 8-neighbours), so bilinear filtering and mip levels near UV
 // seams read the chart's own values, not the background.
 // Encoding: value = bias + curvature / scale with bias 0.5 (signed) and scale twice the largest
-// |curvature| of the covered texels (the 99.9th percentile, so a few extreme texels do not flatten
-// the rest; beyond it values clamp), stored in 16 bits; the renderer decodes (value - bias) * scale
+// |curvature| of the covered texels (or a quantile of it: rangeQuantile; beyond it values clamp),
+// stored in 16 bits; the renderer decodes (value - bias) * scale
 // (SkinMaterial::curvatureTextureBias, curvatureTextureScalePerM).
 // Limits: the normal map's detail is not included (the map is the smooth surface's curvature);
 // UVs outside [0, 1) are wrapped; a mesh drawn at several scales gets the first instance's.
@@ -47,6 +47,10 @@ struct CurvatureMap {
 struct CurvatureBakeSettings {
     uint32_t size = 0;  // width and height; 0: the largest texture the material has (1024 without any), at most 4096
     int dilationTexels = 16;  // rings filled around the charts
+    // The quantile of |curvature| over the covered texels that the encoding's range reaches
+    // (scale = twice it); texels beyond clamp. 1: the largest; the default keeps a few extreme
+    // texels from coarsening the steps of the rest (scenes load textures at 8 bits).
+    double rangeQuantile = 0.999;
 };
 
 // One map per skin material that some mesh instance draws. Throws preskin::Error for a size out

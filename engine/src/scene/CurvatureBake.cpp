@@ -77,6 +77,8 @@ std::vector<uint16_t> CurvatureMap::encoded() const {
 std::vector<CurvatureMap> bakeCurvatureMaps(const Scene& scene, const CurvatureBakeSettings& settings) {
     if (settings.size != 0 && (settings.size < 16 || settings.size > 8192))
         throw Error(fmt::format("bake-curvature: size: must be in [16, 8192], got {}", settings.size));
+    if (!(settings.rangeQuantile >= 0.5 && settings.rangeQuantile <= 1.0))
+        throw Error(fmt::format("bake-curvature: range quantile: must be in [0.5, 1], got {}", settings.rangeQuantile));
     if (settings.dilationTexels < 0 || settings.dilationTexels > 1024)
         throw Error(fmt::format("bake-curvature: dilation: must be in [0, 1024], got {}", settings.dilationTexels));
     std::vector<CurvatureMap> maps;
@@ -157,7 +159,8 @@ std::vector<CurvatureMap> bakeCurvatureMaps(const Scene& scene, const CurvatureB
         }
         float largest = 0.0f;
         if (!magnitudes.empty()) {
-            const size_t k = std::min(magnitudes.size() - 1, size_t(double(magnitudes.size()) * 0.999));
+            const size_t k =
+                std::min(magnitudes.size() - 1, size_t(double(magnitudes.size()) * settings.rangeQuantile));
             std::nth_element(magnitudes.begin(), magnitudes.begin() + std::ptrdiff_t(k), magnitudes.end());
             largest = magnitudes[k];
         }
