@@ -30,13 +30,14 @@ const bool kSkinDoubleSided = (kSkinInputs & kSkinInputDoubleSided) != 0u;
 const bool kSkinSpecularFromLevels = (kSkinInputs & kSkinInputSpecularFromLevels) != 0u;  // PreskinNormalMaps::specularFromLevels
 // What depends on curvature, the geometric normal and the shadow light alone
 // (preskin/skin_vertex.glsl) is found by the vertex stage and interpolated where curvature is per
-// vertex (unless RenderSettings::skinTermsPerVertex is off: kSkinInputTermsPerFragment): the shadow
+// vertex or from a curvature map, read at the vertex (unless RenderSettings::skinTermsPerVertex is
+// off: kSkinInputTermsPerFragment; never for screen-derivative curvature): the shadow
 // lookup's lift, the SH transfer and, on single-sided skin (the vertex stage cannot tell which side
 // faces the viewer), the transmittance the diffuse LUT already holds; a material blending profiles
 // finds them for the blend at the vertex (materialProfileMix of forward_material.glsl).
 // (Written as comparisons of uints: glslang turns && of specialization constants into control flow.)
 const uint kSkinVertexCurvature = uint(kMaterialModel == kModelSkin) &
-                                  uint(kSkinCurvatureSource == kCurvatureSourceVertex) &
+                                  uint(kSkinCurvatureSource != kCurvatureSourceDerivatives) &
                                   uint((kSkinInputs & kSkinInputTermsPerFragment) == 0u);
 const bool kSkinShPerVertex =
     (kSkinVertexCurvature & uint((kSkinFeatures & kSkinShAmbient) != 0u)) != 0u;

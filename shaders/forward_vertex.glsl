@@ -19,6 +19,7 @@ layout(set = 0, binding = kBindingShTransferLut) uniform sampler2DArray shTransf
 layout(set = 0, binding = kBindingTransmittanceLut) uniform sampler2DArray transmittanceLut;
 layout(push_constant) uniform Push { DrawPush draw; };
 layout(set = 1, binding = kBindingProfileWeightTexture) uniform sampler2D profileWeightTexture;
+layout(set = 1, binding = kBindingCurvatureTexture) uniform sampler2D curvatureTexture;
 
 #include "preskin/skin_vertex.glsl"
 
@@ -76,7 +77,12 @@ void main() {
     outCurvaturePerM = inCurvature * instance.params.x;
     outEye = eye;
     // Skin's per-vertex terms (preskin/skin_vertex.glsl), for the vertex's profile mix.
-    float curvaturePerMm = preskinCurvatureProfilePerMm(outCurvaturePerM, material.skinScatter.x);
+    // The curvature the per-vertex terms are found at: a curvature map's at the vertex.
+    float termsCurvaturePerM = outCurvaturePerM;
+    if (kSkinCurvatureSource == kCurvatureSourceTexture)
+        termsCurvaturePerM = (textureLod(curvatureTexture, transformUv(material.uv[0], inUv0), 0.0).r - material.skinScatter.y) *
+                             material.skinScatter.z;
+    float curvaturePerMm = preskinCurvatureProfilePerMm(termsCurvaturePerM, material.skinScatter.x);
     PreskinShTransfer t = PreskinShTransfer(vec3(0.0), vec3(0.0), vec3(0.0));
     if (kSkinShPerVertex) t = preskinShTransfer(profile, shTransferLut, curvaturePerMm);
     outShTransferRed = t.red;

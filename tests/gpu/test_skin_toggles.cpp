@@ -208,6 +208,10 @@ TEST_F(SkinToggles, MaterialInputsReachTheImage) {
         textureVsVertex, flatVsVertex);
     EXPECT_LE(textureVsVertex, size_t(kSize * kSize / 200));
     EXPECT_GE(flatVsVertex, size_t(kSize * kSize / 100));
+    // A signed map: the bias is the value of zero curvature, so texel 200 with bias 200 / 255 is flat.
+    skin.curvatureTexture.image = addUniformImage(textured, 200);
+    skin.curvatureTextureBias = 200.0f / 255.0f;
+    EXPECT_LE(maxSrgbDifference(render(textured), flat), 1.0);
     // A detail normal map: flat (128, 128, 255) leaves the image as it is, a tilted one changes it.
     Scene detailed = s.scene;
     SkinMaterial& d = *detailed.materials[0].skin;

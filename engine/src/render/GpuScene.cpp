@@ -202,7 +202,7 @@ GpuScene::GpuScene(const vk::Device& device, const Scene& scene) : device_(devic
     // The profile-weight texture too (the vertex stage blends the normal basis weights by it).
     for (uint32_t b = 1; b <= gpu::kMaterialTextureCount; ++b)
         bindings.push_back({b, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER,
-                            b == gpu::kBindingProfileWeightTexture
+                            b == gpu::kBindingProfileWeightTexture || b == gpu::kBindingCurvatureTexture
                                 ? VkShaderStageFlags(VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_FRAGMENT_BIT)
                                 : VkShaderStageFlags(VK_SHADER_STAGE_FRAGMENT_BIT)});
     materialLayout_ = vk::createSetLayout(device, bindings);
