@@ -329,6 +329,20 @@ TEST(GltfErrors, ReferenceProblems) {
             }),
         {"materials[0].pbrMetallicRoughness.baseColorTexture.index", "4 is out of range"});
     expectError(withChange("c", [](GltfBuilder& b) { b.doc["scene"] = 5; }), {"scene", "5 is out of range"});
+    // Values of the extensions preskin reads that a JSON reader would drop or wrap: null, an empty
+    // array, an integer beyond 32 bits (4294967297 would read as 1).
+    const std::pair<json, const char*> dropped[] = {{json(), "null is not a value"},
+                                                    {json::array(), "an empty array is not a value"},
+                                                    {json(4294967297LL), "4294967297 is out of range for an integer"}};
+    for (const auto& [value, message] : dropped) {
+        expectError(withChange("x",
+                               [&](GltfBuilder& b) {
+                                   b.doc["extensionsUsed"] = {"PRESKIN_materials_skin"};
+                                   b.doc["materials"] = json::array(
+                                       {{{"extensions", {{"PRESKIN_materials_skin", {{"profile", value}}}}}}});
+                               }),
+                    {"materials[0].extensions.PRESKIN_materials_skin.profile", message});
+    }
     expectError(withChange("d", [](GltfBuilder& b) { b.doc["nodes"][0]["children"] = {7}; }),
                 {"nodes[0].children[0]", "7 is out of range"});
     expectError(withChange("e", [](GltfBuilder& b) { b.doc["nodes"][0]["mesh"] = 2; }),

@@ -203,6 +203,29 @@ TEST(KhronosScatter, GltfAttenuationErrorsNameTheField) {
                                                       {{"multiscatterColor", {0.8, 0.6, 0.4}}})});
     const char* fragments[] = {"materials[0].extensions.KHR_materials_volume.attenuationDistance", "must be > 0"};
     expectLoadError(b.writeGltf(dir.path()), fragments);
+    // Wrong types and shapes name the field.
+    const struct {
+        const char* extension;
+        const char* key;
+        json value;
+        const char* field;
+    } bad[] = {
+        {"KHR_materials_volume", "attenuationDistance", "far", "KHR_materials_volume.attenuationDistance"},
+        {"KHR_materials_volume", "attenuationColor", {0.5, 0.5}, "KHR_materials_volume.attenuationColor"},
+        {"KHR_materials_volume_scatter",
+         "multiscatterColor",
+         {0.5, "red", 0.5},
+         "KHR_materials_volume_scatter.multiscatterColor"},
+        {"KHR_materials_volume_scatter", "scatterAnisotropy", "strong",
+         "KHR_materials_volume_scatter.scatterAnisotropy"},
+    };
+    for (const auto& c : bad) {
+        GltfBuilder broken = b;
+        broken.doc["materials"][0]["extensions"]["KHR_materials_volume"]["attenuationDistance"] = 0.01;
+        broken.doc["materials"][0]["extensions"][c.extension][c.key] = c.value;
+        const char* expected[] = {c.field};
+        expectLoadError(broken.writeGltf(dir.path()), expected);
+    }
     // No extinction: a warning, the default profile.
     b.doc["materials"][0]["extensions"]["KHR_materials_volume"].erase("attenuationDistance");
     const Scene s = Scene::load(b.writeGltf(dir.path()));

@@ -11,7 +11,9 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <functional>
+#include <limits>
 #include <numbers>
 #include <system_error>
 
@@ -162,23 +164,37 @@ struct Checker {
     // Every "extensions" member of every object must be an object of objects (glTF 2.0 schema:
     // extension.schema.json); tinygltf would drop other values without a word. Values inside
     // "extras" and "extensions" are counted: tinygltf keeps each as a large generic value.
-    // (Recursion is bounded by the JSON depth limit.) `where` is built only for messages.
+    // In extensions preskin reads (`read`) tinygltf would also drop nulls and empty arrays (read as
+    // absent) and wrap integers beyond 32 bits: errors. (Recursion is bounded by the JSON depth
+    // limit.) `where` is built only for messages; `extensionMap`: `value` is an "extensions" object.
     void checkExtensions(const json& value, const std::function<std::string()>& where, bool generic, bool inExtras,
-                         uint64_t& genericValues) const {
+                         uint64_t& genericValues, bool read = false, bool extensionMap = false) const {
         if (generic && ++genericValues > limits::kMaxGltfExtraValues) {
             error(where(),
                   "the values inside extras and extensions exceed the limit of " +
                       std::to_string(limits::kMaxGltfExtraValues));
         }
+        if (read && !inExtras) {
+            if (value.is_null()) error(where(), "null is not a value (leave the field out for its default)");
+            if (value.is_array() && value.empty())
+                error(where(), "an empty array is not a value (leave the field out for its default)");
+            const bool tooLarge = value.is_number_unsigned()
+                ? value.get<uint64_t>() > uint64_t(std::numeric_limits<int32_t>::max())
+                : value.is_number_integer() &&
+                    (value.get<int64_t>() > std::numeric_limits<int32_t>::max() ||
+                     value.get<int64_t>() < std::numeric_limits<int32_t>::min());
+            if (tooLarge) error(where(), io::jsonExcerpt(value) + " is out of range for an integer");
+        }
         if (value.is_array()) {
             for (size_t i = 0; i < value.size(); ++i) {
                 checkExtensions(
-                    value[i], [&] { return where() + "[" + std::to_string(i) + "]"; }, generic, inExtras,
-                    genericValues);
+                    value[i], [&] { return where() + "[" + std::to_string(i) + "]"; }, generic, inExtras, genericValues,
+                    read);
             }
             return;
         }
         if (!value.is_object()) return;
+        const std::vector<std::string>& supported = supportedRequiredExtensions();
         for (auto it = value.begin(); it != value.end(); ++it) {
             const auto at = [&] { return field(where(), io::messageText(it.key()).c_str()); };
             const bool isExtensions = it.key() == "extensions";
@@ -191,7 +207,10 @@ struct Checker {
                     }
                 }
             }
-            checkExtensions(*it, at, generic || isExtensions || isExtras, inExtras || isExtras, genericValues);
+            const bool readByPreskin =
+                extensionMap && std::find(supported.begin(), supported.end(), it.key()) != supported.end();
+            checkExtensions(*it, at, generic || isExtensions || isExtras, inExtras || isExtras, genericValues,
+                            read || readByPreskin, isExtensions && !inExtras);
         }
     }
 };
