@@ -67,6 +67,11 @@ void run(const BakeCurvatureOptions& o) {
     }
     for (size_t i = 0; i < maps.size(); ++i) {
         writeCurvatureMap(maps[i], paths[i]);
+        if (maps[i].skippedTriangles > 0)
+            std::fprintf(
+                stderr,
+                "preskin: warning: %s: material '%s': %d triangles span more than the texture in UV; not baked\n",
+                scenePath.string().c_str(), maps[i].materialName.c_str(), maps[i].skippedTriangles);
         if (maps[i].warnedInstances > 0)
             std::fprintf(stderr,
                          "preskin: warning: %s: material '%s' is drawn at %d other scales; the map has the first\n",

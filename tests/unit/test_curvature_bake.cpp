@@ -146,5 +146,28 @@ TEST(CurvatureBake, ChartsAreDilatedAndTheRestStaysEmpty) {
     EXPECT_THROW((void)bakeCurvatureMaps(Scene{}, CurvatureBakeSettings{8, 4}), Error);
 }
 
+// Hostile UV layouts: a triangle wider than the texture is skipped and counted; triangles that
+// cover the map far more often than any layout does stop the bake with an error, not a hang.
+TEST(CurvatureBake, HostileUvLayoutsAreBounded) {
+    Primitive p;
+    for (const glm::vec2 uv : {glm::vec2(0.0f), glm::vec2(1.0f, 0.0f), glm::vec2(0.0f, 1.0f), glm::vec2(3e30f, 0.0f)}) {
+        Vertex v;
+        v.positionOs = glm::vec3(uv.x > 2.0f ? 2.0f : uv.x, uv.y, 0.0f);
+        v.uv0 = uv;
+        v.curvaturePerM = 1.0f;
+        p.vertices.push_back(v);
+    }
+    p.indices = {0, 3, 2};  // spans 3e30 textures in u
+    CurvatureBakeSettings settings;
+    settings.size = 16;
+    std::vector<CurvatureMap> maps = bakeCurvatureMaps(oneSkinPrimitive(p, glm::mat4(1.0f)), settings);
+    ASSERT_EQ(maps.size(), 1u);
+    EXPECT_EQ(maps[0].skippedTriangles, 1);
+    // 400,000 triangles each covering the whole 16 x 16 map: 1e8 texel visits.
+    p.indices.clear();
+    for (int i = 0; i < 400000; ++i) p.indices.insert(p.indices.end(), {0u, 1u, 2u});
+    EXPECT_THROW((void)bakeCurvatureMaps(oneSkinPrimitive(p, glm::mat4(1.0f)), settings), Error);
+}
+
 }  // namespace
 }  // namespace preskin::test

@@ -334,14 +334,15 @@ TEST(GltfErrors, ReferenceProblems) {
     const std::pair<json, const char*> dropped[] = {{json(), "null is not a value"},
                                                     {json::array(), "an empty array is not a value"},
                                                     {json(4294967297LL), "4294967297 is out of range for an integer"}};
-    for (const auto& [value, message] : dropped) {
+    for (const auto& entry : dropped) {
+        const json& value = entry.first;
         expectError(withChange("x",
                                [&](GltfBuilder& b) {
                                    b.doc["extensionsUsed"] = {"PRESKIN_materials_skin"};
                                    b.doc["materials"] = json::array(
                                        {{{"extensions", {{"PRESKIN_materials_skin", {{"profile", value}}}}}}});
                                }),
-                    {"materials[0].extensions.PRESKIN_materials_skin.profile", message});
+                    {"materials[0].extensions.PRESKIN_materials_skin.profile", entry.second});
     }
     expectError(withChange("d", [](GltfBuilder& b) { b.doc["nodes"][0]["children"] = {7}; }),
                 {"nodes[0].children[0]", "7 is out of range"});

@@ -39,6 +39,7 @@ struct CurvatureMap {
     float scalePerM = 0.0f;            // the encoding's scale (curvatureTextureScalePerM)
     float bias = 0.5f;                 // the encoding's zero (curvatureTextureBias)
     int warnedInstances = 0;           // instances of another scale than the first (their curvature differs)
+    int skippedTriangles = 0;          // triangles wider than the texture in UV (not baked)
 
     // The 16-bit texel values of the encoding (0 where nothing was covered or filled: read as -bias * scale).
     std::vector<uint16_t> encoded() const;
@@ -54,7 +55,8 @@ struct CurvatureBakeSettings {
 };
 
 // One map per skin material that some mesh instance draws. Throws preskin::Error for a size out
-// of [16, 8192].
+// of [16, 8192], or when a material's triangles cover its map more than 64 times over in UV (no
+// real layout does; the work would not end).
 PRESKIN_API std::vector<CurvatureMap> bakeCurvatureMaps(const Scene& scene, const CurvatureBakeSettings& settings = {});
 
 // Writes the map as a one-channel 16-bit PNG at `png` and, beside it with the extension .json,

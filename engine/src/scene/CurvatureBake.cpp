@@ -33,18 +33,25 @@ uint32_t mapSize(const Scene& scene, const Material& material, uint32_t requeste
     return size == 0 ? 1024u : std::min(size, 4096u);
 }
 
-// Accumulates one triangle's interpolated curvature into the texels whose centres it covers.
-void rasterise(const glm::vec2 uv[3], const float value[3], uint32_t width, uint32_t height, std::vector<double>& sum,
-               std::vector<uint32_t>& count) {
+// Accumulates one triangle's interpolated curvature into the texels whose centres it covers and
+// adds the texels of its bounding box to `visited`. False (nothing done) for a triangle wider than
+// the texture in UV: a layout that wraps within a triangle, or broken UVs.
+bool rasterise(const glm::vec2 uv[3], const float value[3], uint32_t width, uint32_t height, std::vector<double>& sum,
+               std::vector<uint32_t>& count, uint64_t& visited) {
     // Wrap the triangle into [0, 1) by its first corner's tile.
     const glm::vec2 tile = glm::floor(uv[0]);
     glm::vec2 p[3];
     for (int i = 0; i < 3; ++i) p[i] = (uv[i] - tile) * glm::vec2(float(width), float(height));
     const float area = (p[1].x - p[0].x) * (p[2].y - p[0].y) - (p[2].x - p[0].x) * (p[1].y - p[0].y);
-    if (!(std::abs(area) > 1e-12f)) return;
     const glm::vec2 lo = glm::min(p[0], glm::min(p[1], p[2])), hi = glm::max(p[0], glm::max(p[1], p[2]));
-    const int x0 = std::max(int(std::floor(lo.x)), 0), x1 = std::min(int(std::ceil(hi.x)), int(width) - 1);
-    const int y0 = std::max(int(std::floor(lo.y)), 0), y1 = std::min(int(std::ceil(hi.y)), int(height) - 1);
+    if (!(hi.x - lo.x <= float(width)) || !(hi.y - lo.y <= float(height))) return false;
+    if (!(std::abs(area) > 1e-12f)) return true;
+    // Clamped in float first: the box may lie partly off the texture.
+    const int x0 = int(std::clamp(std::floor(lo.x), 0.0f, float(width))),
+              x1 = int(std::clamp(std::ceil(hi.x), -1.0f, float(width) - 1.0f));
+    const int y0 = int(std::clamp(std::floor(lo.y), 0.0f, float(height))),
+              y1 = int(std::clamp(std::ceil(hi.y), -1.0f, float(height) - 1.0f));
+    if (x1 >= x0 && y1 >= y0) visited += uint64_t(x1 - x0 + 1) * uint64_t(y1 - y0 + 1);
     for (int y = y0; y <= y1; ++y) {
         for (int x = x0; x <= x1; ++x) {
             const glm::vec2 c(float(x) + 0.5f, float(y) + 0.5f);
@@ -59,6 +66,7 @@ void rasterise(const glm::vec2 uv[3], const float value[3], uint32_t width, uint
             ++count[i];
         }
     }
+    return true;
 }
 
 }  // namespace
@@ -93,6 +101,8 @@ std::vector<CurvatureMap> bakeCurvatureMaps(const Scene& scene, const CurvatureB
         std::vector<double> sum(texels, 0.0);
         std::vector<uint32_t> count(texels, 0);
         float firstScale = 0.0f;
+        uint64_t visited = 0;
+        const uint64_t budget = 64 * uint64_t(texels) + 100'000'000;
         std::vector<bool> meshDone(scene.meshes.size(), false);
         for (const MeshInstance& instance : scene.instances) {
             if (instance.mesh < 0 || size_t(instance.mesh) >= scene.meshes.size()) continue;
@@ -115,7 +125,13 @@ std::vector<CurvatureMap> bakeCurvatureMaps(const Scene& scene, const CurvatureB
                         uv[c] = v.uv0;
                         value[c] = v.curvaturePerM / std::max(firstScale, 1e-12f);
                     }
-                    rasterise(uv, value, map.width, map.height, sum, count);
+                    if (!rasterise(uv, value, map.width, map.height, sum, count, visited)) ++map.skippedTriangles;
+                    // Overlapping charts beyond any real layout (the work would not end in time).
+                    if (visited > budget)
+                        throw Error(
+                            fmt::format("bake-curvature: materials[{}] ('{}'): its triangles cover the {}x{} "
+                                        "map more than 64 times over in UV; nothing baked",
+                                        m, material.name, map.width, map.height));
                 }
             }
         }
