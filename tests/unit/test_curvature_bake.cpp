@@ -143,6 +143,7 @@ TEST(CurvatureBake, ChartsAreDilatedAndTheRestStaysEmpty) {
     EXPECT_EQ(covered, 32u * 32u);
     EXPECT_EQ(dilated, 40u * 40u - 32u * 32u);
     EXPECT_EQ(empty, 64u * 64u - 40u * 40u);
+    EXPECT_EQ(map.encoded()[0], uint16_t(32768));  // an empty texel encodes flat skin
     EXPECT_THROW((void)bakeCurvatureMaps(Scene{}, CurvatureBakeSettings{8, 4}), Error);
 }
 

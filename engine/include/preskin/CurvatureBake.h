@@ -41,7 +41,8 @@ struct CurvatureMap {
     int warnedInstances = 0;           // instances of another scale than the first (their curvature differs)
     int skippedTriangles = 0;          // triangles wider than the texture in UV (not baked)
 
-    // The 16-bit texel values of the encoding (0 where nothing was covered or filled: read as -bias * scale).
+    // The 16-bit texel values of the encoding; texels nothing covered or filled read as flat (the bias),
+    // so coarse mip levels that reach them see no false curvature.
     std::vector<uint16_t> encoded() const;
 };
 

@@ -75,8 +75,7 @@ std::vector<uint16_t> CurvatureMap::encoded() const {
     std::vector<uint16_t> out(curvaturePerM.size(), 0);
     for (size_t i = 0; i < out.size(); ++i) {
         const float k = curvaturePerM[i];
-        if (std::isnan(k) || !(scalePerM > 0.0f)) continue;
-        const float v = std::clamp(bias + k / scalePerM, 0.0f, 1.0f);
+        const float v = std::isnan(k) || !(scalePerM > 0.0f) ? bias : std::clamp(bias + k / scalePerM, 0.0f, 1.0f);
         out[i] = uint16_t(std::lround(v * 65535.0f));
     }
     return out;
