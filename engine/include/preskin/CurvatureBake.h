@@ -15,7 +15,9 @@
 // stored in 16 bits; the renderer decodes (value - bias) * scale
 // (SkinMaterial::curvatureTextureBias, curvatureTextureScalePerM).
 // Limits: the normal map's detail is not included (the map is the smooth surface's curvature);
-// UVs outside [0, 1) are wrapped; a mesh drawn at several scales gets the first instance's.
+// UVs outside [0, 1) are wrapped; a mesh drawn at several scales gets the first instance's; the
+// map holds the rest pose, so on skinned or morphed meshes it does not follow the deformation
+// (per-vertex curvature, recomputed every frame, does).
 #pragma once
 
 #include <preskin/Export.h>
