@@ -147,13 +147,13 @@ void main() {
     float skinCurvaturePerMm = 0.0;
     // Skin's diffusion profile, or its profiles blended by the weight texture.
     PreskinProfileMix profiles;
-    if (kMaterialModel == kModelSkin)
+    if (kMaterialModel == kModelSkin) {
         profiles = materialProfileMix(materialBlendedProfiles() > 0 ? texture(profileWeightTexture, inUv0).rgb : vec3(0.0));
-    if (kMaterialModel == kModelSkin)
         skinCurvaturePerMm = preskinCurvatureProfilePerMm(
             preskinSkinCurvaturePerM(kSkinCurvatureSource, inCurvaturePerM, curvatureTexture, uvBase,
                                      material.skinScatter.y, material.skinScatter.z, geometricN, inPositionWs),
             material.skinScatter.x);
+    }
     vec3 shadowPositionWs = inPositionWs;
     if (kMaterialModel == kModelSkin && (kSkinFeatures & kSkinLutDiffuse) != 0u) {
         vec2 lift = inShadowLift;

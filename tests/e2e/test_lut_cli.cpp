@@ -11,6 +11,7 @@
 
 #include <sys/wait.h>
 
+#include <algorithm>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
@@ -41,6 +42,27 @@ protected:
         std::vector<std::string> all{std::string("bake")};
         all.insert(all.end(), arguments.begin(), arguments.end());
         return test::runCli(all, dir_);
+    }
+
+    // `preskin COMMAND ARGUMENTS --out DIR` for each case: exit 1, one "preskin: error: " line
+    // holding the expected text, and no DIR.
+    void expectRefused(const std::string& command,
+                       const std::vector<std::pair<std::vector<std::string>, std::string>>& cases) const {
+        const fs::path out = dir_ / "never";
+        for (const auto& [caseArguments, expected] : cases) {
+            std::vector<std::string> all = {command};
+            all.insert(all.end(), caseArguments.begin(), caseArguments.end());
+            all.insert(all.end(), {"--out", out.string()});
+            const CliRun run = test::runCli(all, dir_);
+            std::ostringstream joined;
+            for (const std::string& a : caseArguments) joined << a << ' ';
+            const std::string arguments = joined.str();
+            EXPECT_EQ(run.exitCode, 1) << arguments;
+            EXPECT_EQ(run.err.rfind("preskin: error: ", 0), 0u) << arguments << ": " << run.err;
+            EXPECT_NE(run.err.find(expected), std::string::npos) << arguments << ": " << run.err;
+            EXPECT_EQ(std::count(run.err.begin(), run.err.end(), '\n'), 1) << arguments << ": " << run.err;
+            EXPECT_FALSE(fs::exists(out)) << arguments;
+        }
     }
 
     fs::path dir_;
@@ -83,20 +105,7 @@ TEST_F(BakeCli, BadInputIsRefusedAndNothingIsWritten) {
          "--mfp: expected three comma-separated numbers"},
         {{"--profile", "deon", "--albedo", "0.5,0.5,0.5"}, "--albedo and --mfp apply only to --profile burley"},
     };
-    const fs::path out = dir_ / "never";
-    for (const auto& [caseArguments, expected] : cases) {
-        std::vector<std::string> withOut = caseArguments;
-        withOut.insert(withOut.end(), {"--out", out.string()});
-        const CliRun run = bake(withOut);
-        std::ostringstream joined;
-        for (const std::string& a : caseArguments) joined << a << ' ';
-        const std::string arguments = joined.str();
-        EXPECT_EQ(run.exitCode, 1) << arguments;
-        EXPECT_EQ(run.err.rfind("preskin: error: ", 0), 0u) << arguments << ": " << run.err;
-        EXPECT_NE(run.err.find(expected), std::string::npos) << arguments << ": " << run.err;
-        EXPECT_EQ(std::count(run.err.begin(), run.err.end(), '\n'), 1) << arguments << ": " << run.err;
-        EXPECT_FALSE(fs::exists(out)) << arguments;
-    }
+    expectRefused("bake", cases);
 }
 
 TEST_F(BakeCli, CurvatureMapOfTheHead) {
@@ -124,17 +133,7 @@ TEST_F(BakeCli, BadCurvatureInputIsRefusedAndNothingIsWritten) {
         {{"--skin", "nose"}, "no material named 'nose'"},
         {{plain}, "no skin material is drawn"},
     };
-    const fs::path out = dir_ / "never";
-    for (const auto& [caseArguments, expected] : cases) {
-        std::vector<std::string> all = {"bake-curvature"};
-        all.insert(all.end(), caseArguments.begin(), caseArguments.end());
-        all.insert(all.end(), {"--out", out.string()});
-        const CliRun run = test::runCli(all, dir_);
-        EXPECT_EQ(run.exitCode, 1) << caseArguments[0];
-        EXPECT_EQ(run.err.rfind("preskin: error: ", 0), 0u) << caseArguments[0] << ": " << run.err;
-        EXPECT_NE(run.err.find(expected), std::string::npos) << caseArguments[0] << ": " << run.err;
-        EXPECT_FALSE(fs::exists(out)) << caseArguments[0];
-    }
+    expectRefused("bake-curvature", cases);
 }
 
 }  // namespace
