@@ -263,11 +263,10 @@ void main() {
         }
         if (loopCount > 0u) {
             uint i = 0u;
+            vec3 R = reflect(-V, skin.normalSpecular), NL = skin.normalSpecular;
             do {
-                vec3 L;
-                vec3 irradiance;
-                preskinLightIncidence(unshadowedLight(i, shadowLights, first, indirect), inPositionWs, L, irradiance);
-                color += preskinSkinLight(skin, lighting, profiles, diffuseLut, V, L, irradiance, vec3(1.0), 1.0, features);
+                PreskinLightSample l = preskinLightSample(unshadowedLight(i, shadowLights, first, indirect), inPositionWs, NL, R);
+                color += preskinSkinLight(skin, lighting, profiles, diffuseLut, V, l, vec3(1.0), 1.0, features);
             } while (++i < loopCount);
         }
         color += transmitted;
@@ -300,11 +299,10 @@ void main() {
         }
         if (loopCount > 0u) {
             uint i = 0u;
+            vec3 R = reflect(-V, N), NL = N;
             do {
-                vec3 L;
-                vec3 irradiance;
-                preskinLightIncidence(unshadowedLight(i, shadowLights, first, indirect), inPositionWs, L, irradiance);
-                color += preskinStandardLight(surface, N, V, L, irradiance);
+                PreskinLightSample l = preskinLightSample(unshadowedLight(i, shadowLights, first, indirect), inPositionWs, NL, R);
+                color += preskinStandardLight(surface, N, V, l);
             } while (++i < loopCount);
         }
         // Ambient: SH irradiance for diffuse; specular from the prefiltered environment by the

@@ -61,10 +61,10 @@ void main() {
     PreskinProfileMix profile = preskinSingleProfile(frame.lut, 0.0);
     vec3 color = preskinSkinAmbient(s, profile, shTransferLut, frame.sh, V, kFeatures, ambientDiffuse);
     PreskinSkinLighting lighting = preskinSkinLighting(s, profile, diffuseLut, V, kFeatures);  // shared by the lights
-    for (uint i = 0; i < frame.lightCount.x; ++i) {
-        vec3 L, irradiance;
-        preskinLightIncidence(frame.lights[i], inPositionWs, L, irradiance);
-        color += preskinSkinLight(s, lighting, profile, diffuseLut, V, L, irradiance, vec3(1.0), 1.0, kFeatures);
+    vec3 R = reflect(-V, s.normalSpecular);
+    for (uint i = 0; i < frame.lightCount.x; ++i) {  // punctual or area lights (preskin/lights.glsl)
+        PreskinLightSample l = preskinLightSample(frame.lights[i], inPositionWs, s.normalSpecular, R);
+        color += preskinSkinLight(s, lighting, profile, diffuseLut, V, l, vec3(1.0), 1.0, kFeatures);
     }
     outColor = vec4(preskinTonemapNeutral(max(color, vec3(0.0))), 1.0);
 }

@@ -6,6 +6,7 @@
 #define PRESKIN_BRDF_GLSL
 
 #include "preskin/common.glsl"
+#include "preskin/light_sample.glsl"
 
 float preskinGgxD(float NoH, float alpha) {
     float a2 = alpha * alpha;
@@ -75,6 +76,31 @@ vec3 preskinStandardLight(PreskinStandardSurface s, vec3 N, vec3 V, vec3 L, vec3
     vec3 specular = F * preskinGgxD(NoH, alpha) * preskinSmithV(NoL, NoV, alpha);
     vec3 diffuse = (vec3(1.0) - F) * s.diffuseColor / PRESKIN_PI;
     return (diffuse + specular) * NoL * irradiance;
+}
+
+// Karis's normalisation of a GGX lobe for a light of a size (the representative point's peak
+// spread over the widened lobe): (alpha / (alpha + alphaAdd))^2, alpha' at most 1.
+float preskinSpecularNormalization(float alpha, float alphaAdd) {
+    float widened = min(alpha + alphaAdd, 1.0);
+    return (alpha * alpha) / (widened * widened);
+}
+
+// The same for any light (preskin/light_sample.glsl): a punctual light as above; a light with
+// a size gives Lambert the cap's horizon-clipped irradiance and GGX its representative point.
+vec3 preskinStandardLight(PreskinStandardSurface s, vec3 N, vec3 V, PreskinLightSample l) {
+    if (l.cosSigma >= 1.0) return preskinStandardLight(s, N, V, l.L, l.irradiance);
+    float NoV = max(dot(N, V), 1e-4);
+    vec3 Fd = s.specularWeight * preskinSchlickF(s.F0, preskinSaturate(dot(V, normalize(l.L + V))));
+    vec3 color = (vec3(1.0) - Fd) * s.diffuseColor / PRESKIN_PI * (preskinCapLambert(dot(N, l.L), l.cosSigma) + l.lambertCorrection);
+    float NoL = dot(N, l.specularL);
+    if (NoL > 0.0 && s.specularWeight > 0.0) {
+        vec3 H = normalize(l.specularL + V);
+        float alpha = max(s.roughness * s.roughness, 1e-3);
+        vec3 F = preskinSchlickF(s.F0, preskinSaturate(dot(V, H)));
+        color += s.specularWeight * F * preskinGgxD(preskinSaturate(dot(N, H)), alpha) * preskinSmithV(NoL, NoV, alpha) *
+                 preskinSpecularNormalization(alpha, l.specularAlphaAdd) * NoL;
+    }
+    return color * l.irradiance;
 }
 
 #endif

@@ -1,10 +1,16 @@
 // preskin/lights.glsl: punctual lights as in KHR_lights_punctual: inverse-square falloff with
-// the extension's recommended smooth range window, and its spot cone attenuation. Stands alone:
-// it needs only the GpuLight struct of shared/light.h, not the renderer's bindings.
-// Limits: no area lights; the range window follows the extension's recommendation, not physics.
+// the extension's recommended smooth range window, and its spot cone attenuation; and lights with
+// a size (PRESKIN_lights_area: sphere, tube, rectangle, disc) as the cap of directions of
+// preskin/light_sample.glsl (docs/area-lights.md). Stands alone: it needs only the GpuLight
+// struct of shared/light.h, not the renderer's bindings.
+// Limits: the range window follows the extension's recommendation, not physics (area lights take
+// it at the distance to their centre); a tube, rectangle or disc is the sphere cap of its vector
+// form factor, not its exact shape; a tube's form factor is a rectangle facing the point with a
+// half sphere at each end.
 #ifndef PRESKIN_LIGHTS_GLSL
 #define PRESKIN_LIGHTS_GLSL
 
+#include "preskin/light_sample.glsl"
 #include "shared/light.h"
 
 // Direction to the light (L) and irradiance normal to it at positionWs.
@@ -31,6 +37,179 @@ void preskinLightIncidence(GpuLight light, vec3 positionWs, out vec3 L, out vec3
         attenuation *= a * a;
     }
     irradiance = light.colorIntensity.rgb * attenuation;
+}
+
+// KHR_lights_punctual's range window at squared distance d2 (1 for an unlimited light).
+float preskinRangeWindow(float d2, float range) {
+    if (range <= 0.0) return 1.0;
+    float r = d2 / (range * range);
+    float window = clamp(1.0 - r * r, 0.0, 1.0);
+    return window * window;
+}
+
+// Vector form factor of a polygon edge seen from the origin (unit corners a, b): the edge's
+// part of (1/pi) int omega dOmega, acos(a . b) / (2 pi) times the unit normal of its plane.
+vec3 preskinEdgeFormFactor(vec3 a, vec3 b) {
+    float x = clamp(dot(a, b), -1.0, 1.0);
+    float thetaOverSin = acos(x) / sqrt(max(1.0 - x * x, 1e-12));
+    return cross(a, b) * (thetaOverSin / (2.0 * PRESKIN_PI));
+}
+
+// Vector form factor of the parallelogram centre +- u +- v (relative to the shaded point).
+vec3 preskinQuadFormFactor(vec3 center, vec3 u, vec3 v) {
+    vec3 p0 = normalize(center - u - v), p1 = normalize(center + u - v);
+    vec3 p2 = normalize(center + u + v), p3 = normalize(center - u + v);
+    vec3 F = preskinEdgeFormFactor(p0, p1) + preskinEdgeFormFactor(p1, p2) + preskinEdgeFormFactor(p2, p3) +
+             preskinEdgeFormFactor(p3, p0);
+    return dot(F, center) < 0.0 ? -F : F;  // towards the light whichever way the corners wind
+}
+
+// The form factor of the parallelogram centre +- u +- v seen from the shaded point with normal
+// N: the polygon clipped by the tangent plane (at most five corners), then the edges' vector
+// form factors along N. Exact: (1/pi) int max(N . omega, 0) dOmega over the light.
+float preskinQuadClippedFormFactor(vec3 center, vec3 u, vec3 v, vec3 N) {
+    vec3 corners[4] = vec3[4](center - u - v, center + u - v, center + u + v, center - u + v);
+    vec3 clipped[5];
+    int count = 0;
+    for (int i = 0; i < 4; ++i) {
+        vec3 a = corners[i], b = corners[(i + 1) & 3];
+        float da = dot(a, N), db = dot(b, N);
+        if (da >= 0.0) clipped[count++] = a;
+        if ((da >= 0.0) != (db >= 0.0)) clipped[count++] = a + (b - a) * (da / (da - db));
+    }
+    if (count < 3) return 0.0;
+    vec3 F = vec3(0.0);
+    for (int i = 0; i < count; ++i)
+        F += preskinEdgeFormFactor(normalize(clipped[i]), normalize(clipped[i + 1 < count ? i + 1 : 0]));
+    return abs(dot(F, N));
+}
+
+// Vector form factor of a disc of radius a, its centre at `center` from the shaded point, facing
+// it along the unit normal m (dot(center, m) < 0): with h the point's height over the disc's
+// plane, r its distance from the axis and S = h^2 + r^2 + a^2, Q = sqrt(S^2 - 4 r^2 a^2), the
+// component along the axis is a^2 (1 - 2 r^2 / (Q + S)) / Q and towards the axis 2 h r a^2 /
+// (Q (Q + S)) (the form factors of a differential area parallel and perpendicular to a disc,
+// Howell's catalogue of radiation configuration factors, written without the division by r).
+vec3 preskinDiscFormFactor(vec3 center, vec3 m, float a) {
+    float h = -dot(center, m);
+    vec3 w = -center - h * m;  // from the axis to the point, in the disc's plane
+    float r2 = dot(w, w), a2 = a * a;
+    float S = h * h + r2 + a2;
+    float Q = sqrt(max(S * S - 4.0 * r2 * a2, 1e-30));
+    return -m * (a2 * (1.0 - 2.0 * r2 / (Q + S)) / Q) - w * (2.0 * h * a2 / (Q * (Q + S)));
+}
+
+// A sphere (centre at `center` from the shaded point) as a cap: its axis, cos(sigma), and the
+// solid angle over the sphere's projected area pi radius^2 (which turns candela into radiance
+// times solid angle: 2 / ((1 + cos sigma) d^2), 1 / d^2 for a vanishing sphere).
+void preskinSphereCap(vec3 center, float radius, out vec3 axis, out float cosSigma, out float perArea) {
+    float d2 = dot(center, center);
+    if (d2 <= radius * radius) {  // inside: every direction
+        axis = d2 > 0.0 ? center * inversesqrt(d2) : vec3(0.0, 1.0, 0.0);
+        cosSigma = -1.0;
+        perArea = 4.0 / max(radius * radius, 1e-30);
+        return;
+    }
+    axis = center * inversesqrt(d2);
+    cosSigma = sqrt(max(1.0 - radius * radius / d2, 0.0));
+    perArea = 2.0 / ((1.0 + cosSigma) * d2);
+}
+
+// The representative point of a sphere for specular: the point of the sphere nearest the
+// reflected ray R (Karis 2013), relative to the shaded point.
+vec3 preskinSphereRepresentative(vec3 center, float radius, vec3 R) {
+    vec3 toRay = dot(center, R) * R - center;
+    return center + toRay * preskinSaturate(radius * inversesqrt(max(dot(toRay, toRay), 1e-30)));
+}
+
+// Light `light` at positionWs as a cap (preskin/light_sample.glsl); N: the shading normal (a
+// rectangle's exact horizon-clipped form factor there corrects the cap's Lambert term); R: the
+// reflected view direction, for the representative point of specular. Punctual lights give
+// preskinLightIncidence.
+PreskinLightSample preskinLightSample(GpuLight light, vec3 positionWs, vec3 N, vec3 R) {
+    uint type = uint(light.directionType.w);
+    if (type < kLightSphere) {
+        vec3 L, irradiance;
+        preskinLightIncidence(light, positionWs, L, irradiance);
+        return preskinPunctualSample(L, irradiance);
+    }
+    vec3 center = light.positionRange.xyz - positionWs;
+    float window = preskinRangeWindow(dot(center, center), light.positionRange.w);
+    vec3 intensity = light.colorIntensity.rgb * window;
+    float radius = light.spotScaleOffset.x;
+    PreskinLightSample s;
+    s.lambertCorrection = 0.0;
+    vec3 representative;
+    float perArea;  // radiance times solid angle per candela
+    if (type == kLightSphere) {
+        preskinSphereCap(center, radius, s.L, s.cosSigma, perArea);
+        representative = preskinSphereRepresentative(center, radius, R);
+    } else {
+        vec3 F;
+        float area;
+        if (type == kLightTube) {
+            // A rectangle facing the point along the axis, a half sphere at each end.
+            vec3 halfAxis = light.directionType.xyz;
+            vec3 across = cross(halfAxis, center);
+            float acrossLength = length(across);
+            across = acrossLength > 1e-12 ? across * (radius / acrossLength) : vec3(0.0);
+            F = preskinQuadFormFactor(center, halfAxis, across);
+            vec3 a0, a1;
+            float c0, c1, unused;
+            preskinSphereCap(center - halfAxis, radius, a0, c0, unused);
+            preskinSphereCap(center + halfAxis, radius, a1, c1, unused);
+            F += 0.5 * ((1.0 - c0 * c0) * a0 + (1.0 - c1 * c1) * a1);
+            area = 4.0 * length(halfAxis) * radius + PRESKIN_PI * radius * radius;
+            // Representative point: the axis point nearest the reflected ray (Karis 2013), then the sphere there.
+            vec3 p0 = center - halfAxis, d = 2.0 * halfAxis;
+            float rd = dot(R, d);
+            float t = preskinSaturate((dot(R, p0) * rd - dot(p0, d)) / max(dot(d, d) - rd * rd, 1e-30));
+            representative = preskinSphereRepresentative(p0 + t * d, radius, R);
+        } else {
+            vec3 m, u, v;  // normal it emits along; half axes (rectangle)
+            if (type == kLightRectangle) {
+                u = light.directionType.xyz;
+                v = light.spotScaleOffset.xyz;
+                m = normalize(cross(v, u));
+                area = 4.0 * length(u) * length(v);
+            } else {
+                m = light.directionType.xyz;
+                area = PRESKIN_PI * radius * radius;
+            }
+            if (dot(center, m) >= 0.0) return preskinPunctualSample(normalize(center), vec3(0.0));  // behind it
+            F = type == kLightRectangle ? preskinQuadFormFactor(center, u, v) : preskinDiscFormFactor(center, m, radius);
+            // Representative point: where the reflected ray meets the plane (or the plane's point
+            // nearest the ray's point at the centre's distance), clamped to the light.
+            float toward = -dot(R, m);
+            vec3 hit = toward > 1e-4 ? R * (-dot(center, m) / toward) : R * length(center);
+            vec3 q = hit - center;
+            q -= dot(q, m) * m;
+            if (type == kLightRectangle) {
+                vec2 extent = vec2(length(u), length(v));
+                vec2 xy = clamp(vec2(dot(q, u), dot(q, v)) / extent, -extent, extent);
+                representative = center + xy.x * (u / extent.x) + xy.y * (v / extent.y);
+            } else {
+                float ql = length(q);
+                representative = center + (ql > radius ? q * (radius / ql) : q);
+            }
+        }
+        float s2 = min(length(F), 1.0);
+        s.L = s2 > 0.0 ? F / length(F) : normalize(center);
+        s.cosSigma = sqrt(1.0 - s2);
+        perArea = 2.0 * PRESKIN_PI * s2 / ((1.0 + s.cosSigma) * max(area, 1e-30));
+        if (type == kLightRectangle && s2 > 0.0) {
+            // pi F_clipped / solid angle, in the sample's units, less the cap's own Lambert term.
+            float solidAngle = 2.0 * PRESKIN_PI * s2 / (1.0 + s.cosSigma);
+            float exact = PRESKIN_PI * preskinQuadClippedFormFactor(center, light.directionType.xyz,
+                                                                    light.spotScaleOffset.xyz, N) / solidAngle;
+            s.lambertCorrection = exact - preskinCapLambert(dot(N, s.L), s.cosSigma);
+        }
+    }
+    s.irradiance = intensity * perArea;
+    s.specularL = normalize(representative);
+    s.specularAlphaAdd = 0.5 * sqrt(max(1.0 - s.cosSigma * s.cosSigma, 0.0));
+    if (s.cosSigma <= -1.0) s.specularAlphaAdd = 1.0;
+    return s;
 }
 
 #endif

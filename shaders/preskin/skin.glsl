@@ -96,17 +96,46 @@ vec3 preskinSkinDiffuseResponse(PreskinSkinSurface s, PreskinSkinLighting k, Pre
     return preskinDiffuseLut(m, k.diffuseRows, diffuseLut, NoL);  // without prefiltering the three are equal
 }
 
+// The same for a light with a size, the cap of directions of `l` (preskin/light_sample.glsl):
+// Lambert's horizon-clipped term of the cap (plus the sample's correction to the light's exact
+// shape: a rectangle's clipped form factor at the shading normal) and what scattering adds to
+// it, D_c(c) - max(c, 0) of each channel's LUT averaged over the cap at four nodes of
+// c = N_c . omega (preskinCapNodes), so a sphere of the skin's curvature under the cap gets the
+// diffusion profile's response to it. The result multiplies l.irradiance.
+vec3 preskinSkinDiffuseResponse(PreskinSkinSurface s, PreskinSkinLighting k, PreskinProfileMix m,
+                                sampler2DArray diffuseLut, PreskinLightSample l, uint features) {
+    vec3 NoL = vec3(dot(s.normalR, l.L), dot(s.normalG, l.L), dot(s.normalB, l.L));
+    if (l.cosSigma >= 1.0) return preskinSkinDiffuseResponse(s, k, m, diffuseLut, l.L, features);
+    if ((features & kSkinLutDiffuse) == 0u)
+        return vec3(preskinCapLambert(NoL.r, l.cosSigma), preskinCapLambert(NoL.g, l.cosSigma),
+                    preskinCapLambert(NoL.b, l.cosSigma)) + l.lambertCorrection;
+    vec4 cR, wR, cG, wG, cB, wB;
+    preskinCapNodes(NoL.r, l.cosSigma, cR, wR);
+    preskinCapNodes(NoL.g, l.cosSigma, cG, wG);
+    preskinCapNodes(NoL.b, l.cosSigma, cB, wB);
+    // What scattering adds to Lambert, averaged over the cap at the nodes, on top of Lambert's
+    // exact term: the nodes' error in Lambert's part cancels.
+    vec3 sum = vec3(preskinCapLambert(NoL.r, l.cosSigma), preskinCapLambert(NoL.g, l.cosSigma),
+                    preskinCapLambert(NoL.b, l.cosSigma)) + l.lambertCorrection;
+    for (int i = 0; i < 4; ++i) {
+        vec3 c = vec3(cR[i], cG[i], cB[i]);
+        sum += vec3(wR[i], wG[i], wB[i]) * (preskinDiffuseLut(m, k.diffuseRows, diffuseLut, c) - max(c, vec3(0.0)));
+    }
+    return max(sum, vec3(0.0));
+}
+
 // Specular of one light: one or two GGX lobes with the unbiased normal (Fresnel shared).
-vec3 preskinSkinSpecular(PreskinSkinSurface s, PreskinSkinLighting k, vec3 V, vec3 L, uint features) {
+// lobeScale: each lobe's factor (preskinSpecularNormalization for a light with a size; 1 otherwise).
+vec3 preskinSkinSpecular(PreskinSkinSurface s, PreskinSkinLighting k, vec3 V, vec3 L, uint features, vec2 lobeScale) {
     vec3 N = s.normalSpecular;
     float NoL = dot(N, L);
     if (NoL <= 0.0) return vec3(0.0);
     vec3 H = normalize(L + V);
     float NoH = preskinSaturate(dot(N, H));
     vec3 F = preskinSchlickF(s.F0, preskinSaturate(dot(V, H)));
-    float lobe0 = preskinGgxD(NoH, k.alpha.x) * preskinSmithV(NoL, k.NoV, k.alpha.x, k.viewTerm.x);
+    float lobe0 = lobeScale.x * preskinGgxD(NoH, k.alpha.x) * preskinSmithV(NoL, k.NoV, k.alpha.x, k.viewTerm.x);
     if ((features & kSkinDualSpecular) == 0u) return F * (lobe0 * NoL);
-    float lobe1 = preskinGgxD(NoH, k.alpha.y) * preskinSmithV(NoL, k.NoV, k.alpha.y, k.viewTerm.y);
+    float lobe1 = lobeScale.y * preskinGgxD(NoH, k.alpha.y) * preskinSmithV(NoL, k.NoV, k.alpha.y, k.viewTerm.y);
     return F * (mix(lobe0, lobe1, s.lobes.z) * NoL);
 }
 
@@ -116,8 +145,22 @@ vec3 preskinSkinLight(PreskinSkinSurface s, PreskinSkinLighting k, PreskinProfil
                       vec3 V, vec3 L, vec3 irradiance, vec3 shadowRgb, float specularVisibility, uint features) {
     vec3 F = s.specularWeight * preskinSchlickF(s.F0, preskinSaturate(dot(V, normalize(L + V))));
     vec3 diffuse = (vec3(1.0) - F) * s.albedo / PRESKIN_PI * preskinSkinDiffuseResponse(s, k, m, diffuseLut, L, features);
-    vec3 specular = s.specularWeight * preskinSkinSpecular(s, k, V, L, features);
+    vec3 specular = s.specularWeight * preskinSkinSpecular(s, k, V, L, features, vec2(1.0));
     return (diffuse * shadowRgb + specular * specularVisibility) * irradiance;
+}
+
+// The same for any light (preskin/light_sample.glsl): diffuse over the light's cap, specular at
+// its representative point with Karis's normalisation per lobe.
+vec3 preskinSkinLight(PreskinSkinSurface s, PreskinSkinLighting k, PreskinProfileMix m, sampler2DArray diffuseLut,
+                      vec3 V, PreskinLightSample l, vec3 shadowRgb, float specularVisibility, uint features) {
+    if (l.cosSigma >= 1.0)
+        return preskinSkinLight(s, k, m, diffuseLut, V, l.L, l.irradiance, shadowRgb, specularVisibility, features);
+    vec3 F = s.specularWeight * preskinSchlickF(s.F0, preskinSaturate(dot(V, normalize(l.L + V))));
+    vec3 diffuse = (vec3(1.0) - F) * s.albedo / PRESKIN_PI * preskinSkinDiffuseResponse(s, k, m, diffuseLut, l, features);
+    vec2 lobeScale = vec2(preskinSpecularNormalization(k.alpha.x, l.specularAlphaAdd),
+                          preskinSpecularNormalization(k.alpha.y, l.specularAlphaAdd));
+    vec3 specular = s.specularWeight * preskinSkinSpecular(s, k, V, l.specularL, features, lobeScale);
+    return (diffuse * shadowRgb + specular * specularVisibility) * l.irradiance;
 }
 
 // The same for a single light (finds the shared values on every call).

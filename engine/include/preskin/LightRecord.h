@@ -12,8 +12,22 @@
 
 namespace preskin {
 
+// Sphere, tube, rectangle or disc (lights with a size).
+PRESKIN_API bool isAreaLight(LightType type);
+
+// An area light's frame (world, unit vectors): the normal it emits along (rectangle, disc), its
+// width or tube axis (Light::axisWs, made perpendicular to the normal for a rectangle) and its
+// height axis, cross(width, normal), so that cross(height, width) = normal.
+struct AreaLightAxes {
+    glm::vec3 normal{0.0f, 0.0f, -1.0f};
+    glm::vec3 width{1.0f, 0.0f, 0.0f};
+    glm::vec3 height{0.0f, 1.0f, 0.0f};
+};
+PRESKIN_API AreaLightAxes areaLightAxes(const Light& light);
+
 // KHR_lights_punctual semantics: colour times intensity, range (0 = unlimited), and the spot's
-// cone attenuation as saturate(cd * scale + offset)^2. `shadowed`: this light owns the shadow map.
+// cone attenuation as saturate(cd * scale + offset)^2; area lights as shared/light.h lays them out.
+// `shadowed`: this light owns the shadow map.
 PRESKIN_API gpu::GpuLight toGpuLight(const Light& light, bool shadowed);
 
 // Index of the light that gets the shadow map: the first directional light flagged castsShadow

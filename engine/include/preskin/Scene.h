@@ -168,7 +168,12 @@ struct Material {
     std::optional<KhronosScatter> khronosScatter;
 };
 
-enum class LightType { Directional, Point, Spot };
+// Directional, point and spot lights are KHR_lights_punctual's. Sphere, tube, rectangle and disc
+// lights have a size (PRESKIN_lights_area, docs/gltf-extensions.md); their intensity is in candela
+// like a point light's: a sphere's in every direction, a tube's broadside, a rectangle's and a
+// disc's along their normal (one-sided, with a cosine falloff), so a renderer that knows only
+// points sees the same light from afar. docs/area-lights.md has the shading model.
+enum class LightType { Directional, Point, Spot, Sphere, Tube, Rectangle, Disc };
 
 struct Light {
     std::string name;
@@ -179,7 +184,14 @@ struct Light {
     float innerConeAngle = 0.0f;
     float outerConeAngle = 0.7853982f;
     glm::vec3 positionWs{0.0f};
-    glm::vec3 directionWs{0.0f, 0.0f, -1.0f};  // direction the light travels
+    glm::vec3 directionWs{0.0f, 0.0f, -1.0f};  // direction the light travels (rectangle, disc: their normal)
+    // Area lights: sphere, tube and disc radius; tube length along axisWs; rectangle width along
+    // axisWs and height along cross(axisWs, directionWs). Metres, > 0 for the types that use them.
+    float radius = 0.0f;
+    float length = 0.0f;
+    float width = 0.0f;
+    float height = 0.0f;
+    glm::vec3 axisWs{1.0f, 0.0f, 0.0f};  // the node's +X
     // From the light's extras.castsShadow (docs/gltf-extensions.md); when no light in the file
     // says either way, the first directional light casts shadows.
     bool castsShadow = false;

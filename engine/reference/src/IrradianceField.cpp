@@ -1,5 +1,6 @@
 // Irradiance at surface points for the diffusion reference (see IrradianceField.h).
 #include "IrradianceField.h"
+#include "AreaLightIrradiance.h"
 
 #include <preskin/LightRecord.h>
 
@@ -47,6 +48,7 @@ IrradianceField::IrradianceField(const ReferenceMesh& mesh, const RayScene& rays
     for (size_t i = 0; i < lights.size(); ++i) {
         if (int(i) == shadowLight) shadowLight_ = int(lights_.size());
         lights_.push_back(toGpuLight(lights[i], int(i) == shadowLight));
+        sceneLights_.push_back(lights[i]);
     }
     if (!traced_) return;
     // Rays leave each vertex a thousandth of its longest edge off the surface.
@@ -92,6 +94,10 @@ IrradianceSample IrradianceField::at(const SurfacePoint& p, bool flipNormal) con
     glm::dvec3 n = mesh_.normal(p);
     if (flipNormal) n = -n;
     for (size_t i = 0; i < lights_.size(); ++i) {
+        if (isAreaLight(sceneLights_[i].type)) {
+            out.irradiance += areaLightIrradiance(sceneLights_[i], position, n);
+            continue;
+        }
         glm::dvec3 L, irradiance;
         lightIncidence(lights_[i], position, L, irradiance);
         const double NoL = glm::dot(n, L);

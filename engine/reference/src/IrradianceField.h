@@ -1,6 +1,7 @@
 // IrradianceField: the irradiance E(y) at a surface point for the diffusion reference, from the
 // renderer's own light definitions (toGpuLight and the falloff of shaders/preskin/lights.glsl):
-// every punctual light times max(N.L, 0) with N the interpolated vertex normal; the shadow
+// every punctual light times max(N.L, 0) with N the interpolated vertex normal, every area light
+// its integral of max(N.omega, 0) over the light (AreaLightIrradiance.h); the shadow
 // light (shadowLightIndex) only where a ray towards it is unoccluded; the environment's L2 SH
 // irradiance (Lambert's zonal coefficients, clamped at zero as forward.frag does) times the
 // material's occlusion texture.
@@ -60,6 +61,7 @@ private:
     const RayScene& rays_;
     const ReferenceMaterials& materials_;
     std::vector<gpu::GpuLight> lights_;
+    std::vector<Light> sceneLights_;  // the same lights as the scene has them (area lights)
     int shadowLight_ = -1;  // index into lights_
     ShRgb radianceSh_;
     const TracedEnvironment* traced_ = nullptr;

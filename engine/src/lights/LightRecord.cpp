@@ -17,6 +17,24 @@ glm::vec3 unitDirection(const Light& light) {
 
 }  // namespace
 
+bool isAreaLight(LightType type) {
+    return type == LightType::Sphere || type == LightType::Tube || type == LightType::Rectangle ||
+           type == LightType::Disc;
+}
+
+AreaLightAxes areaLightAxes(const Light& light) {
+    AreaLightAxes a;
+    a.normal = unitDirection(light);
+    glm::vec3 w = light.axisWs;
+    if (light.type == LightType::Rectangle) w -= glm::dot(w, a.normal) * a.normal;
+    if (!(glm::length(w) > 1e-6f)) {  // no usable axis: any direction perpendicular to the normal
+        w = glm::cross(a.normal, std::abs(a.normal.x) < 0.9f ? glm::vec3(1.0f, 0.0f, 0.0f) : glm::vec3(0.0f, 1.0f, 0.0f));
+    }
+    a.width = glm::normalize(w);
+    a.height = glm::cross(a.width, a.normal);  // cross(height, width) = normal
+    return a;
+}
+
 gpu::GpuLight toGpuLight(const Light& light, bool shadowed) {
     gpu::GpuLight g{};
     const glm::vec3 dir = unitDirection(light);
@@ -30,6 +48,18 @@ gpu::GpuLight toGpuLight(const Light& light, bool shadowed) {
     const float cosInner = std::cos(std::min(light.innerConeAngle, light.outerConeAngle));
     const float scale = 1.0f / std::max(1e-3f, cosInner - cosOuter);
     g.spotScaleOffset = glm::vec4(scale, -cosOuter * scale, 0.0f, 0.0f);
+    if (!isAreaLight(light.type)) return g;
+    // Area lights: shared/light.h's layout; the width axis made perpendicular to the normal.
+    const AreaLightAxes axes = areaLightAxes(light);
+    g.spotScaleOffset = glm::vec4(light.radius, 0.0f, 0.0f, 0.0f);
+    if (light.type == LightType::Sphere) g.directionType = glm::vec4(0.0f, 0.0f, 0.0f, float(gpu::kLightSphere));
+    if (light.type == LightType::Tube)
+        g.directionType = glm::vec4(axes.width * (0.5f * light.length), float(gpu::kLightTube));
+    if (light.type == LightType::Disc) g.directionType = glm::vec4(axes.normal, float(gpu::kLightDisc));
+    if (light.type == LightType::Rectangle) {
+        g.directionType = glm::vec4(axes.width * (0.5f * light.width), float(gpu::kLightRectangle));
+        g.spotScaleOffset = glm::vec4(axes.height * (0.5f * light.height), 0.0f);
+    }
     return g;
 }
 

@@ -52,6 +52,17 @@ void checkLights(const std::vector<Light>& lights) {
         check(l.directionWs, at + "directionWs");
         if (l.intensity < 0.0f || l.range < 0.0f || l.color.r < 0.0f || l.color.g < 0.0f || l.color.b < 0.0f)
             throw Error(at + "intensity, range, color: must be >= 0");
+        check(l.axisWs, at + "axisWs");
+        const auto size = [&](float v, const char* field) {
+            check(v, at + field);
+            if (!(v > 0.0f) || v > 1e6f) throw Error(fmt::format("{}{}: {} is outside (0, 1e6] metres", at, field, v));
+        };
+        if (l.type == LightType::Sphere || l.type == LightType::Tube || l.type == LightType::Disc) size(l.radius, "radius");
+        if (l.type == LightType::Tube) size(l.length, "length");
+        if (l.type == LightType::Rectangle) {
+            size(l.width, "width");
+            size(l.height, "height");
+        }
     }
 }
 

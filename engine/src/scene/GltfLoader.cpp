@@ -5,6 +5,7 @@
 #include "io/FolderConfinement.h"
 #include "io/InputFile.h"
 #include "io/JsonDocument.h"
+#include "io/MessageText.h"
 #include "scene/GltfAnimations.h"
 #include "scene/GltfContext.h"
 #include "scene/GltfFiles.h"
@@ -163,6 +164,40 @@ glm::mat4 localMatrix(const LoadContext& ctx, const tinygltf::Node& node, const 
     return t * r * s;
 }
 
+// PRESKIN_lights_area on a point light (docs/gltf-extensions.md): the light's shape and size in
+// metres (the node's scale does not apply, as to KHR_lights_punctual's range); a tube lies along
+// the node's +X, a rectangle's width along +X and height along +Y, and a rectangle or disc emits
+// along the node's -Z.
+void applyAreaShape(const LoadContext& ctx, const tinygltf::Value& area, const std::string& where, Light& out) {
+    if (!area.IsObject()) ctx.fail(where, "not an object");
+    if (out.type != LightType::Point) ctx.fail(where, "applies to lights of type point only");
+    const auto shape = stringField(ctx, area, "shape", where);
+    if (!shape) ctx.fail(where + ".shape", "missing (sphere, tube, rectangle or disc)");
+    const auto size = [&](const char* key) {
+        const auto v = numberField(ctx, area, key, where);
+        if (!v) ctx.fail(where + "." + key, std::string("missing (a ") + *shape + " light needs it)");
+        if (!(*v > 0.0) || *v > 1e6) ctx.fail(where + "." + key, number(*v) + " is outside (0, 1e6] metres");
+        return static_cast<float>(*v);
+    };
+    if (*shape == "sphere") {
+        out.type = LightType::Sphere;
+        out.radius = size("radius");
+    } else if (*shape == "tube") {
+        out.type = LightType::Tube;
+        out.radius = size("radius");
+        out.length = size("length");
+    } else if (*shape == "rectangle") {
+        out.type = LightType::Rectangle;
+        out.width = size("width");
+        out.height = size("height");
+    } else if (*shape == "disc") {
+        out.type = LightType::Disc;
+        out.radius = size("radius");
+    } else {
+        ctx.fail(where + ".shape", "'" + io::messageText(*shape) + "' is not sphere, tube, rectangle or disc");
+    }
+}
+
 // A light the file defines but that cannot light anything (an unknown type, a node scaled to
 // nothing): the validator allows it, so it is skipped with a warning.
 std::optional<Light> convertLight(const LoadContext& ctx, int lightIndex, const glm::mat4& world,
@@ -213,6 +248,15 @@ std::optional<Light> convertLight(const LoadContext& ctx, int lightIndex, const 
         return std::nullopt;
     }
     out.directionWs = glm::length(direction) > 1e-12f ? glm::normalize(direction) : glm::vec3(0.0f, 0.0f, -1.0f);
+    if (auto it = in.extensions.find("PRESKIN_lights_area"); it != in.extensions.end()) {
+        applyAreaShape(ctx, it->second, where + ".extensions.PRESKIN_lights_area", out);
+        const glm::vec3 axis = glm::mat3(world) * glm::vec3(1.0f, 0.0f, 0.0f);
+        if (!(glm::length(axis) > 1e-12f)) {
+            ctx.warn(nodeWhere, "the node's transform collapses the area light's axis (scale 0); light skipped");
+            return std::nullopt;
+        }
+        out.axisWs = glm::normalize(axis);
+    }
     explicitShadowFlag = false;
     if (auto casts = boolField(ctx, in.extras, "castsShadow", where + ".extras")) {
         out.castsShadow = *casts;

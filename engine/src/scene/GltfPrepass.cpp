@@ -6,7 +6,6 @@
 #include "skin/ProfileJson.h"
 
 #include <preskin/Error.h>
-
 #include <preskin/Limits.h>
 
 #include <algorithm>
@@ -33,6 +32,7 @@ const std::vector<std::string>& supportedRequiredExtensions() {
         "KHR_mesh_quantization",
         "KHR_texture_transform",
         "PRESKIN_environment",
+        "PRESKIN_lights_area",
         "PRESKIN_materials_skin",
     };
     return names;

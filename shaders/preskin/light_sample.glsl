@@ -1,0 +1,84 @@
+// preskin/light_sample.glsl: what one light gives a surface point, for lights with a size as well
+// as punctual ones (docs/area-lights.md). A light is the cap of directions it covers, or for a
+// rectangle, disc or tube the cap with the same vector form factor F = (1/pi) int omega dOmega
+// (Heitz & Hill, "Real-Time Line- and Disk-Light Shading with Linearly Transformed Cosines",
+// 2017, approximate the horizon-clipped form factor of any light by the sphere cap of equal F):
+// its axis F / |F| and angular radius sigma, sin^2(sigma) = |F|, carrying the light's radiance.
+// A punctual light is the cap of radius 0. Materials turn a cap into reflected light here:
+// Lambert by the exact horizon-clipped irradiance of a uniform cap (Snyder, "Area Light Sources
+// for Real-Time Graphics", Microsoft Research TR-96-11, 1996), skin by averaging its diffuse LUT
+// over the cap (preskinCapNodes), specular at a representative point (Karis, "Real Shading in
+// Unreal Engine 4", SIGGRAPH 2013 course) with GGX widened by the cap's half angle.
+// Stands alone: no bindings.
+#ifndef PRESKIN_LIGHT_SAMPLE_GLSL
+#define PRESKIN_LIGHT_SAMPLE_GLSL
+
+#include "preskin/common.glsl"
+
+struct PreskinLightSample {
+    vec3 L;                  // the cap's axis, unit (punctual lights: the direction to the light)
+    vec3 irradiance;         // the light's radiance times the cap's solid angle (punctual: irradiance normal to L)
+    float cosSigma;          // cos of the cap's angular radius: 1 punctual, -1 all directions (inside a sphere light)
+    vec3 specularL;          // the representative point's direction for specular (L for punctual lights)
+    float specularAlphaAdd;  // added to GGX's alpha for the light's size (0 punctual)
+    // Where the cap stands for another shape: the shape's exact horizon-clipped Lambert term at the
+    // shading normal less the cap's (preskinCapLambert), in the units of preskinCapLambert. Lambert
+    // adds it to the cap's term, skin to each channel's response (0 for spheres and punctual lights).
+    float lambertCorrection;
+};
+
+PreskinLightSample preskinPunctualSample(vec3 L, vec3 irradiance) {
+    return PreskinLightSample(L, irradiance, 1.0, L, 0.0, 0.0);
+}
+
+// Lambert: the horizon-clipped irradiance of a uniform cap at angle acos(NoL) from the normal,
+// per unit of irradiance as PreskinLightSample carries it (radiance times solid angle). Exact for
+// a sphere light (Snyder 1996); saturate(NoL) for a punctual light; 1/4 for all directions.
+float preskinCapLambert(float NoL, float cosSigma) {
+    if (cosSigma >= 1.0) return preskinSaturate(NoL);
+    if (cosSigma <= -1.0) return 0.25;
+    float s2 = max(1.0 - cosSigma * cosSigma, 1e-12);  // sin^2(sigma)
+    float solidAngle = 2.0 * PRESKIN_PI * s2 / (1.0 + cosSigma);
+    float c = clamp(NoL, -1.0, 1.0);
+    float sinTheta = sqrt(max(1.0 - c * c, 0.0));
+    float sinSigma = sqrt(s2);
+    float e;
+    if (c >= sinSigma) {  // the cap lies above the horizon
+        e = PRESKIN_PI * s2 * c;
+    } else if (c <= -sinSigma) {  // below it
+        e = 0.0;
+    } else {
+        float x = cosSigma / sinSigma;  // cot(sigma)
+        float y = clamp(-x * c / max(sinTheta, 1e-7), -1.0, 1.0);
+        float t = sinTheta * sqrt(max(1.0 - y * y, 0.0));
+        e = (c * acos(y) - x * t) * s2 + atan(t, x);
+    }
+    return e / solidAngle;
+}
+
+// Four nodes c_k of n . omega over a cap (axis at cos(theta) = NoL from n, angular radius sigma)
+// and their weights: the cap's directions at n . omega = c lie on an arc of the circle of that
+// angle about n, of half angle psi(c) = acos((cos(sigma) - c cos(theta)) / (sin(acos c) sin(theta))),
+// so the cap average of any function of n . omega is int f(c) psi(c) dc / int psi(c) dc; here
+// by the midpoint rule over the range of c the cap spans, the nodes then moved to the cap's exact
+// mean of c. Exact for functions linear in c, for a punctual light (all nodes at NoL) and for all
+// directions (uniform c, nodes at -3/4 .. 3/4).
+void preskinCapNodes(float NoL, float cosSigma, out vec4 nodes, out vec4 weights) {
+    float cosTheta = clamp(NoL, -1.0, 1.0);
+    float theta = acos(cosTheta);
+    float sigma = acos(clamp(cosSigma, -1.0, 1.0));
+    float hi = cos(max(theta - sigma, 0.0));
+    float lo = cos(min(theta + sigma, PRESKIN_PI));
+    nodes = lo + (hi - lo) * vec4(0.125, 0.375, 0.625, 0.875);
+    float sinTheta = sqrt(max(1.0 - cosTheta * cosTheta, 0.0));
+    vec4 sinBeta = sqrt(max(vec4(1.0) - nodes * nodes, vec4(0.0)));
+    vec4 cosPsi = (vec4(cosSigma) - nodes * cosTheta) / max(sinBeta * sinTheta, vec4(1e-7));
+    vec4 psi = acos(clamp(cosPsi, vec4(-1.0), vec4(1.0)));
+    float sum = psi.x + psi.y + psi.z + psi.w;
+    weights = sum > 1e-6 ? psi / sum : vec4(0.25);
+    // The nodes moved together so that their mean is the cap's exact mean of n . omega,
+    // cos(theta) (1 + cos(sigma)) / 2: exact for any response linear in n . omega.
+    nodes = clamp(nodes + (cosTheta * 0.5 * (1.0 + cosSigma) - dot(weights, nodes)), vec4(-1.0), vec4(1.0));
+}
+
+#endif
