@@ -91,7 +91,7 @@ vec3 preskinStandardLight(PreskinStandardSurface s, vec3 N, vec3 V, PreskinLight
     if (l.cosSigma >= 1.0) return preskinStandardLight(s, N, V, l.L, l.irradiance);
     float NoV = max(dot(N, V), 1e-4);
     vec3 Fd = s.specularWeight * preskinSchlickF(s.F0, preskinSaturate(dot(V, normalize(l.L + V))));
-    vec3 color = (vec3(1.0) - Fd) * s.diffuseColor / PRESKIN_PI * (preskinCapLambert(dot(N, l.L), l.cosSigma) + l.lambertCorrection);
+    vec3 color = (vec3(1.0) - Fd) * s.diffuseColor / PRESKIN_PI * (preskinCapLambert(dot(N, l.L), l.cosSigma, l.sinSigma) + l.lambertCorrection);
     float NoL = dot(N, l.specularL);
     if (NoL > 0.0 && s.specularWeight > 0.0) {
         vec3 H = normalize(l.specularL + V);

@@ -19,6 +19,7 @@ struct PreskinLightSample {
     vec3 L;                  // the cap's axis, unit (punctual lights: the direction to the light)
     vec3 irradiance;         // the light's radiance times the cap's solid angle (punctual: irradiance normal to L)
     float cosSigma;          // cos of the cap's angular radius: 1 punctual, -1 all directions (inside a sphere light)
+    float sinSigma;          // its sine, carried apart so that small caps keep their precision (0 for all directions)
     vec3 specularL;          // the representative point's direction for specular (L for punctual lights)
     float specularAlphaAdd;  // added to GGX's alpha for the light's size (0 punctual)
     // Where the cap stands for another shape: the shape's exact horizon-clipped Lambert term at the
@@ -28,32 +29,34 @@ struct PreskinLightSample {
 };
 
 PreskinLightSample preskinPunctualSample(vec3 L, vec3 irradiance) {
-    return PreskinLightSample(L, irradiance, 1.0, L, 0.0, 0.0);
+    return PreskinLightSample(L, irradiance, 1.0, 0.0, L, 0.0, 0.0);
 }
 
 // Lambert: the horizon-clipped irradiance of a uniform cap at angle acos(NoL) from the normal,
 // per unit of irradiance as PreskinLightSample carries it (radiance times solid angle). Exact for
 // a sphere light (Snyder 1996); saturate(NoL) for a punctual light; 1/4 for all directions.
-float preskinCapLambert(float NoL, float cosSigma) {
+float preskinCapLambert(float NoL, float cosSigma, float sinSigma) {
     if (cosSigma >= 1.0) return preskinSaturate(NoL);
     if (cosSigma <= -1.0) return 0.25;
-    float s2 = max(1.0 - cosSigma * cosSigma, 1e-12);  // sin^2(sigma)
+    float s2 = max(sinSigma * sinSigma, 1e-30);
     float solidAngle = 2.0 * PRESKIN_PI * s2 / (1.0 + cosSigma);
     float c = clamp(NoL, -1.0, 1.0);
     float sinTheta = sqrt(max(1.0 - c * c, 0.0));
-    float sinSigma = sqrt(s2);
-    float e;
-    if (c >= sinSigma) {  // the cap lies above the horizon
-        e = PRESKIN_PI * s2 * c;
-    } else if (c <= -sinSigma) {  // below it
-        e = 0.0;
-    } else {
-        float x = cosSigma / sinSigma;  // cot(sigma)
-        float y = clamp(-x * c / max(sinTheta, 1e-7), -1.0, 1.0);
-        float t = sinTheta * sqrt(max(1.0 - y * y, 0.0));
-        e = (c * acos(y) - x * t) * s2 + atan(t, x);
+    if (c >= sinSigma) return c * 0.5 * (1.0 + cosSigma);  // the cap lies above the horizon
+    if (c <= -sinSigma) return 0.0;                          // below it
+    if (sinSigma < 0.02) {
+        // A small cap across the horizon: a flat disc of radius sin(sigma) whose part above the
+        // horizon line, at u = c / (sin(sigma) sin(theta)) of its radius, is averaged:
+        // sin(sigma) sin(theta) (u (acos(-u) + u sqrt(1 - u^2)) + 2/3 (1 - u^2)^(3/2)) / pi.
+        // (Snyder's closed form below cancels to nothing in single precision here.)
+        float u = clamp(c / max(sinSigma * sinTheta, 1e-30), -1.0, 1.0);
+        float r = sqrt(max(1.0 - u * u, 0.0));
+        return sinSigma * sinTheta * (u * (acos(-u) + u * r) + (2.0 / 3.0) * r * r * r) / PRESKIN_PI;
     }
-    return e / solidAngle;
+    float x = cosSigma / sinSigma;  // cot(sigma)
+    float y = clamp(-x * c / max(sinTheta, 1e-7), -1.0, 1.0);
+    float t = sinTheta * sqrt(max(1.0 - y * y, 0.0));
+    return ((c * acos(y) - x * t) * s2 + atan(t, x)) / solidAngle;
 }
 
 // Four nodes c_k of n . omega over a cap (axis at cos(theta) = NoL from n, angular radius sigma)
@@ -63,14 +66,13 @@ float preskinCapLambert(float NoL, float cosSigma) {
 // by the midpoint rule over the range of c the cap spans, the nodes then moved to the cap's exact
 // mean of c. Exact for functions linear in c, for a punctual light (all nodes at NoL) and for all
 // directions (uniform c, nodes at -3/4 .. 3/4).
-void preskinCapNodes(float NoL, float cosSigma, out vec4 nodes, out vec4 weights) {
+void preskinCapNodes(float NoL, float cosSigma, float sinSigma, out vec4 nodes, out vec4 weights) {
     float cosTheta = clamp(NoL, -1.0, 1.0);
-    float theta = acos(cosTheta);
-    float sigma = acos(clamp(cosSigma, -1.0, 1.0));
-    float hi = cos(max(theta - sigma, 0.0));
-    float lo = cos(min(theta + sigma, PRESKIN_PI));
-    nodes = lo + (hi - lo) * vec4(0.125, 0.375, 0.625, 0.875);
     float sinTheta = sqrt(max(1.0 - cosTheta * cosTheta, 0.0));
+    // cos(max(theta - sigma, 0)) and cos(min(theta + sigma, pi)) without the angles.
+    float hi = cosTheta <= cosSigma ? cosTheta * cosSigma + sinTheta * sinSigma : 1.0;
+    float lo = cosTheta + cosSigma >= 0.0 ? cosTheta * cosSigma - sinTheta * sinSigma : -1.0;
+    nodes = lo + (hi - lo) * vec4(0.125, 0.375, 0.625, 0.875);
     vec4 sinBeta = sqrt(max(vec4(1.0) - nodes * nodes, vec4(0.0)));
     vec4 cosPsi = (vec4(cosSigma) - nodes * cosTheta) / max(sinBeta * sinTheta, vec4(1e-7));
     vec4 psi = acos(clamp(cosPsi, vec4(-1.0), vec4(1.0)));

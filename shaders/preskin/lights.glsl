@@ -50,9 +50,10 @@ float preskinRangeWindow(float d2, float range) {
 // Vector form factor of a polygon edge seen from the origin (unit corners a, b): the edge's
 // part of (1/pi) int omega dOmega, acos(a . b) / (2 pi) times the unit normal of its plane.
 vec3 preskinEdgeFormFactor(vec3 a, vec3 b) {
-    float x = clamp(dot(a, b), -1.0, 1.0);
-    float thetaOverSin = acos(x) / sqrt(max(1.0 - x * x, 1e-12));
-    return cross(a, b) * (thetaOverSin / (2.0 * PRESKIN_PI));
+    vec3 n = cross(a, b);
+    float s = length(n);  // sin of the edge's angle; the angle from atan, precise at both ends
+    float thetaOverSin = s > 1e-7 ? atan(s, dot(a, b)) / s : 1.0;
+    return n * (thetaOverSin / (2.0 * PRESKIN_PI));
 }
 
 // Vector form factor of the parallelogram centre +- u +- v (relative to the shaded point).
@@ -102,16 +103,20 @@ vec3 preskinDiscFormFactor(vec3 center, vec3 m, float a) {
 // A sphere (centre at `center` from the shaded point) as a cap: its axis, cos(sigma), and the
 // solid angle over the sphere's projected area pi radius^2 (which turns candela into radiance
 // times solid angle: 2 / ((1 + cos sigma) d^2), 1 / d^2 for a vanishing sphere).
-void preskinSphereCap(vec3 center, float radius, out vec3 axis, out float cosSigma, out float perArea) {
+void preskinSphereCap(vec3 center, float radius, out vec3 axis, out float cosSigma, out float sinSigma,
+                      out float perArea) {
     float d2 = dot(center, center);
     if (d2 <= radius * radius) {  // inside: every direction
         axis = d2 > 0.0 ? center * inversesqrt(d2) : vec3(0.0, 1.0, 0.0);
         cosSigma = -1.0;
+        sinSigma = 0.0;
         perArea = 4.0 / max(radius * radius, 1e-30);
         return;
     }
-    axis = center * inversesqrt(d2);
-    cosSigma = sqrt(max(1.0 - radius * radius / d2, 0.0));
+    float invD = inversesqrt(d2);
+    axis = center * invD;
+    sinSigma = radius * invD;
+    cosSigma = sqrt(max(1.0 - sinSigma * sinSigma, 0.0));
     perArea = 2.0 / ((1.0 + cosSigma) * d2);
 }
 
@@ -142,7 +147,7 @@ PreskinLightSample preskinLightSample(GpuLight light, vec3 positionWs, vec3 N, v
     vec3 representative;
     float perArea;  // radiance times solid angle per candela
     if (type == kLightSphere) {
-        preskinSphereCap(center, radius, s.L, s.cosSigma, perArea);
+        preskinSphereCap(center, radius, s.L, s.cosSigma, s.sinSigma, perArea);
         representative = preskinSphereRepresentative(center, radius, R);
     } else {
         vec3 F;
@@ -155,10 +160,10 @@ PreskinLightSample preskinLightSample(GpuLight light, vec3 positionWs, vec3 N, v
             across = acrossLength > 1e-12 ? across * (radius / acrossLength) : vec3(0.0);
             F = preskinQuadFormFactor(center, halfAxis, across);
             vec3 a0, a1;
-            float c0, c1, unused;
-            preskinSphereCap(center - halfAxis, radius, a0, c0, unused);
-            preskinSphereCap(center + halfAxis, radius, a1, c1, unused);
-            F += 0.5 * ((1.0 - c0 * c0) * a0 + (1.0 - c1 * c1) * a1);
+            float c0, c1, s0, s1, unused;
+            preskinSphereCap(center - halfAxis, radius, a0, c0, s0, unused);
+            preskinSphereCap(center + halfAxis, radius, a1, c1, s1, unused);
+            F += 0.5 * (s0 * s0 * a0 + s1 * s1 * a1);
             area = 4.0 * length(halfAxis) * radius + PRESKIN_PI * radius * radius;
             // Representative point: the axis point nearest the reflected ray (Karis 2013), then the sphere there.
             vec3 p0 = center - halfAxis, d = 2.0 * halfAxis;
@@ -196,19 +201,19 @@ PreskinLightSample preskinLightSample(GpuLight light, vec3 positionWs, vec3 N, v
         float s2 = min(length(F), 1.0);
         s.L = s2 > 0.0 ? F / length(F) : normalize(center);
         s.cosSigma = sqrt(1.0 - s2);
+        s.sinSigma = sqrt(s2);
         perArea = 2.0 * PRESKIN_PI * s2 / ((1.0 + s.cosSigma) * max(area, 1e-30));
         if (type == kLightRectangle && s2 > 0.0) {
             // pi F_clipped / solid angle, in the sample's units, less the cap's own Lambert term.
             float solidAngle = 2.0 * PRESKIN_PI * s2 / (1.0 + s.cosSigma);
             float exact = PRESKIN_PI * preskinQuadClippedFormFactor(center, light.directionType.xyz,
                                                                     light.spotScaleOffset.xyz, N) / solidAngle;
-            s.lambertCorrection = exact - preskinCapLambert(dot(N, s.L), s.cosSigma);
+            s.lambertCorrection = exact - preskinCapLambert(dot(N, s.L), s.cosSigma, s.sinSigma);
         }
     }
     s.irradiance = intensity * perArea;
     s.specularL = normalize(representative);
-    s.specularAlphaAdd = 0.5 * sqrt(max(1.0 - s.cosSigma * s.cosSigma, 0.0));
-    if (s.cosSigma <= -1.0) s.specularAlphaAdd = 1.0;
+    s.specularAlphaAdd = s.cosSigma <= -1.0 ? 1.0 : 0.5 * s.sinSigma;
     return s;
 }
 

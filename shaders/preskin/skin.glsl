@@ -107,16 +107,16 @@ vec3 preskinSkinDiffuseResponse(PreskinSkinSurface s, PreskinSkinLighting k, Pre
     vec3 NoL = vec3(dot(s.normalR, l.L), dot(s.normalG, l.L), dot(s.normalB, l.L));
     if (l.cosSigma >= 1.0) return preskinSkinDiffuseResponse(s, k, m, diffuseLut, l.L, features);
     if ((features & kSkinLutDiffuse) == 0u)
-        return vec3(preskinCapLambert(NoL.r, l.cosSigma), preskinCapLambert(NoL.g, l.cosSigma),
-                    preskinCapLambert(NoL.b, l.cosSigma)) + l.lambertCorrection;
+        return vec3(preskinCapLambert(NoL.r, l.cosSigma, l.sinSigma), preskinCapLambert(NoL.g, l.cosSigma, l.sinSigma),
+                    preskinCapLambert(NoL.b, l.cosSigma, l.sinSigma)) + l.lambertCorrection;
     vec4 cR, wR, cG, wG, cB, wB;
-    preskinCapNodes(NoL.r, l.cosSigma, cR, wR);
-    preskinCapNodes(NoL.g, l.cosSigma, cG, wG);
-    preskinCapNodes(NoL.b, l.cosSigma, cB, wB);
+    preskinCapNodes(NoL.r, l.cosSigma, l.sinSigma, cR, wR);
+    preskinCapNodes(NoL.g, l.cosSigma, l.sinSigma, cG, wG);
+    preskinCapNodes(NoL.b, l.cosSigma, l.sinSigma, cB, wB);
     // What scattering adds to Lambert, averaged over the cap at the nodes, on top of Lambert's
     // exact term: the nodes' error in Lambert's part cancels.
-    vec3 sum = vec3(preskinCapLambert(NoL.r, l.cosSigma), preskinCapLambert(NoL.g, l.cosSigma),
-                    preskinCapLambert(NoL.b, l.cosSigma)) + l.lambertCorrection;
+    vec3 sum = vec3(preskinCapLambert(NoL.r, l.cosSigma, l.sinSigma), preskinCapLambert(NoL.g, l.cosSigma, l.sinSigma),
+                    preskinCapLambert(NoL.b, l.cosSigma, l.sinSigma)) + l.lambertCorrection;
     for (int i = 0; i < 4; ++i) {
         vec3 c = vec3(cR[i], cG[i], cB[i]);
         sum += vec3(wR[i], wG[i], wB[i]) * (preskinDiffuseLut(m, k.diffuseRows, diffuseLut, c) - max(c, vec3(0.0)));
