@@ -1,0 +1,122 @@
+// PRESKIN_lights_area (docs/gltf-extensions.md): shapes and sizes read onto point lights, the
+// light's frame from its node (a tube along +X; a rectangle's width along +X, height along +Y,
+// facing -Z; a disc facing -Z), the GPU record's layout (shared/light.h), and every refusal
+// naming the file and the field.
+#include "unit/GltfTestFiles.h"
+
+#include <preskin/Error.h>
+#include <preskin/LightRecord.h>
+#include <preskin/Scene.h>
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+using nlohmann::json;
+
+namespace preskin::test {
+namespace {
+
+GltfBuilder sceneWithLight(const json& light, const json& node = json::object()) {
+    GltfBuilder b = triangleScene();
+    b.doc["extensionsUsed"] = {"KHR_lights_punctual", "PRESKIN_lights_area"};
+    b.doc["extensions"]["KHR_lights_punctual"]["lights"] = json::array({light});
+    json n = node;
+    n["extensions"] = {{"KHR_lights_punctual", {{"light", 0}}}};
+    b.doc["nodes"].push_back(n);
+    b.doc["scenes"][0]["nodes"] = {0, 1};
+    return b;
+}
+
+json areaLight(const json& shape) {
+    return {{"type", "point"}, {"intensity", 5}, {"extensions", {{"PRESKIN_lights_area", shape}}}};
+}
+
+TEST(GltfAreaLights, ShapesSizesAndFrames) {
+    TempDir dir;
+    const float h = std::sqrt(0.5f);
+    // 90 degrees about +Y: +X -> -Z, -Z -> -X, +Y stays.
+    const json turned = {{"translation", {1, 2, 3}}, {"rotation", {0, h, 0, h}}, {"scale", {4, 4, 4}}};
+    struct Case {
+        json shape;
+        LightType type;
+    };
+    const Case cases[] = {
+        {{{"shape", "sphere"}, {"radius", 0.1}}, LightType::Sphere},
+        {{{"shape", "tube"}, {"radius", 0.02}, {"length", 0.6}}, LightType::Tube},
+        {{{"shape", "rectangle"}, {"width", 1.0}, {"height", 0.5}}, LightType::Rectangle},
+        {{{"shape", "disc"}, {"radius", 0.25}}, LightType::Disc},
+    };
+    for (const Case& c : cases) {
+        const Scene s = Scene::load(sceneWithLight(areaLight(c.shape), turned).writeGltf(dir.path(), "a"));
+        ASSERT_EQ(s.lights.size(), 1u);
+        const Light& l = s.lights[0];
+        EXPECT_EQ(l.type, c.type);
+        EXPECT_EQ(l.positionWs, glm::vec3(1, 2, 3));
+        EXPECT_FLOAT_EQ(l.intensity, 5.0f);
+        EXPECT_TRUE(isAreaLight(l.type));
+        // Sizes in metres, the node's scale not applied.
+        EXPECT_FLOAT_EQ(l.radius, float(c.shape.value("radius", 0.0)));
+        EXPECT_FLOAT_EQ(l.length, float(c.shape.value("length", 0.0)));
+        EXPECT_FLOAT_EQ(l.width, float(c.shape.value("width", 0.0)));
+        EXPECT_FLOAT_EQ(l.height, float(c.shape.value("height", 0.0)));
+        EXPECT_LT(glm::distance(l.directionWs, glm::vec3(-1, 0, 0)), 1e-6f);
+        EXPECT_LT(glm::distance(l.axisWs, glm::vec3(0, 0, -1)), 1e-6f);
+        const AreaLightAxes axes = areaLightAxes(l);
+        EXPECT_LT(glm::distance(axes.height, glm::vec3(0, 1, 0)), 1e-6f) << "the node's +Y";
+        EXPECT_LT(glm::distance(glm::cross(axes.height, axes.width), axes.normal), 1e-6f);
+        // The GPU record (shared/light.h).
+        const gpu::GpuLight g = toGpuLight(l, false);
+        if (c.type == LightType::Rectangle) {
+            EXPECT_LT(glm::distance(glm::vec3(g.directionType), glm::vec3(0, 0, -0.5f)), 1e-6f);
+            EXPECT_LT(glm::distance(glm::vec3(g.spotScaleOffset), glm::vec3(0, 0.25f, 0)), 1e-6f);
+        } else {
+            EXPECT_FLOAT_EQ(g.spotScaleOffset.x, l.radius);
+        }
+        if (c.type == LightType::Tube) {
+            EXPECT_LT(glm::distance(glm::vec3(g.directionType), glm::vec3(0, 0, -0.3f)), 1e-6f);
+        }
+        if (c.type == LightType::Disc) {
+            EXPECT_LT(glm::distance(glm::vec3(g.directionType), glm::vec3(-1, 0, 0)), 1e-6f);
+        }
+    }
+    // Without the extension the same light is a point light.
+    const Scene plain = Scene::load(
+        sceneWithLight({{"type", "point"}, {"intensity", 5}}, turned).writeGltf(dir.path(), "b"));
+    EXPECT_EQ(plain.lights.at(0).type, LightType::Point);
+}
+
+TEST(GltfAreaLights, RefusalsNameTheFileAndTheField) {
+    TempDir dir;
+    const std::string at = "extensions.KHR_lights_punctual.lights[0].extensions.PRESKIN_lights_area";
+    struct Case {
+        json light;
+        std::string field;
+        const char* problem;
+    };
+    const Case cases[] = {
+        {areaLight({{"radius", 0.1}}), at + ".shape", "missing"},
+        {areaLight({{"shape", "cone"}, {"radius", 0.1}}), at + ".shape", "'cone' is not sphere, tube, rectangle or disc"},
+        {areaLight({{"shape", 3}}), at + ".shape", "not a string"},
+        {areaLight({{"shape", "sphere"}}), at + ".radius", "missing"},
+        {areaLight({{"shape", "sphere"}, {"radius", -0.1}}), at + ".radius", "outside (0, 1e6]"},
+        {areaLight({{"shape", "sphere"}, {"radius", 0}}), at + ".radius", "outside (0, 1e6]"},
+        {areaLight({{"shape", "tube"}, {"radius", 0.1}}), at + ".length", "missing"},
+        {areaLight({{"shape", "rectangle"}, {"width", 1.0}, {"height", 1e9}}), at + ".height", "exceeds the limit"},
+        {areaLight({{"shape", "disc"}, {"radius", "big"}}), at + ".radius", "not a number"},
+        {areaLight(json::array({1})), at, "not an object"},
+        {{{"type", "spot"},
+          {"spot", {{"outerConeAngle", 0.5}}},
+          {"extensions", {{"PRESKIN_lights_area", {{"shape", "sphere"}, {"radius", 0.1}}}}}},
+         at,
+         "applies to lights of type point only"},
+    };
+    int i = 0;
+    for (const Case& c : cases) {
+        const auto path = sceneWithLight(c.light).writeGltf(dir.path(), "bad" + std::to_string(i++));
+        expectLoadError(path, std::vector<const char*>{c.field.c_str(), c.problem});
+    }
+}
+
+}  // namespace
+}  // namespace preskin::test
