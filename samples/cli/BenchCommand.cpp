@@ -142,6 +142,7 @@ void run(const BenchOptions& o) {
     // The LUT bake first (lut_bake), the profiles' figures at the end (profiles).
     if (!o.noLutBake) r.lutBakeSection();
     r.lightLoopSection(counts);
+    if (!o.noAreaLights) r.areaLightsSection();
     r.skinSection(skinCounts);
     if (!o.noEnvironment) r.environmentSection();
     if (!o.noVr) r.vrSection();
@@ -232,6 +233,8 @@ void addBenchCommand(CLI::App& app) {
     cmd->add_flag("--no-animation", o->noAnimation, "Skip the deformation and curvature passes of an animated scene");
     cmd->add_flag("--no-environment", o->noEnvironment,
                   "Skip the prefiltered specular and background against neither, and the environment's update");
+    cmd->add_flag("--no-area-lights", o->noAreaLights,
+                  "Skip the frame with 64 sphere, tube, rectangle or disc lights against 64 point lights");
     cmd->add_flag("--no-profiles", o->noProfiles,
                   "Skip the diffusion-profile figures (one bake, 64 cached profiles, 8 profiles in view)");
     cmd->add_option("--profile-lut-size", o->profileLutSize, "Table size of the profiles baked for the profile figures")

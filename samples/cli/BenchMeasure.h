@@ -59,6 +59,7 @@ struct BenchOptions {
     bool noAnimation = false;
     bool noTechniques = false;
     bool noProfiles = false;
+    bool noAreaLights = false;
     bool noEnvironment = false;
     int profileLutSize = 256;
     std::string animatedScene;
@@ -134,6 +135,7 @@ struct Config {
     const View* view = nullptr;
     uint32_t width = 0;
     uint32_t height = 0;
+    const std::vector<Light>* lights = nullptr;  // this configuration's own lights (set before each of its frames)
 };
 
 class Bench {
@@ -153,7 +155,8 @@ public:
         return {warmup, reps};
     }
 
-    // Measures configurations side by side with the same lights: the warm-ups first, then
+    // Measures configurations side by side with the same lights (or each its own, Config::lights,
+    // set before each of its frames; the frame's wall time does not include it): the warm-ups first, then
     // rounds in which each configuration renders one frame (one with fewer planned frames takes
     // part in evenly spread rounds), so drifts in machine load hit all of them alike.
     std::vector<Measurement> measure(const std::vector<Config>& configs, const std::vector<Light>& lights) {
@@ -170,6 +173,7 @@ public:
         }
         for (const Config& c : configs) c.renderer->setLights(lights);
         auto frame = [&](const Config& c) {
+            if (c.lights) c.renderer->setLights(*c.lights);
             c.renderer->setSettings(c.settings);
             c.renderer->render(c.view ? *c.view : view_, c.width ? c.width : o_.width, c.height ? c.height : o_.height,
                                OutputEncoding::DisplaySrgb8);

@@ -42,6 +42,7 @@ struct BenchRun {
 
     void lutBakeSection();                                       // lut_bake (BenchProfiles.cpp)
     void lightLoopSection(const std::vector<uint32_t>& counts);  // light_loop, cluster_build (BenchLights.cpp)
+    void areaLightsSection();                                    // area_lights (BenchAreaLights.cpp)
     void skinSection(const std::vector<uint32_t>& skinCounts);   // skin_vs_standard, skin_techniques (BenchSkin.cpp)
     void environmentSection();                                   // environment (BenchEnvironment.cpp)
     void vrSection();                                            // vr (BenchVr.cpp)

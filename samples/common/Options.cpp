@@ -46,6 +46,11 @@ void addSceneOptions(CLI::App& cmd, CommonOptions& o) {
                    "volumes, whatever --lights is (0: ranges of the scene's size)")
         ->check(numberIn(0.0, 1000.0))
         ->capture_default_str();
+    cmd.add_option("--light-shape", o.lightShape,
+                   "Shape of --lights' lights: point (points and spots), or sphere, tube, rectangle or disc area "
+                   "lights sized from their ranges (rectangles and discs facing the scene's centre)")
+        ->check(CLI::IsMember({"point", "sphere", "tube", "rectangle", "disc"}))
+        ->capture_default_str();
     cmd.add_option("--seed", o.seed, "Seed for --lights")->check(wholeNumberIn(0, UINT32_MAX))->capture_default_str();
     cmd.add_option("--exposure", o.exposure, "Exposure multiplier")->check(numberIn(0.0, 1e6))->capture_default_str();
     cmd.add_flag("--no-shadows", o.noShadows, "Disable the shadow map");
@@ -361,11 +366,38 @@ int environmentLightCount(const Scene& scene, const CommonOptions& o) {
     return (scene.lights.empty() || o.noSceneLights) && environmentImage ? 1 : 0;
 }
 
+void shapeLights(std::vector<Light>& lights, const std::string& shape, const Bounds& bounds) {
+    if (shape == "point") return;
+    for (Light& l : lights) {
+        if (l.type == LightType::Directional) continue;
+        const glm::vec3 toCenter = bounds.center() - l.positionWs;
+        l.directionWs = glm::length(toCenter) > 1e-6f ? glm::normalize(toCenter) : glm::vec3(0.0f, -1.0f, 0.0f);
+        l.axisWs = glm::abs(l.directionWs.y) < 0.9f ? glm::vec3(0.0f, 1.0f, 0.0f) : glm::vec3(1.0f, 0.0f, 0.0f);
+        const float r = l.range > 0.0f ? l.range : glm::length(bounds.max - bounds.min);
+        if (shape == "sphere") {
+            l.type = LightType::Sphere;
+            l.radius = 0.05f * r;
+        } else if (shape == "tube") {
+            l.type = LightType::Tube;
+            l.radius = 0.02f * r;
+            l.length = 0.3f * r;
+        } else if (shape == "rectangle") {
+            l.type = LightType::Rectangle;
+            l.width = 0.2f * r;
+            l.height = 0.1f * r;
+        } else {
+            l.type = LightType::Disc;
+            l.radius = 0.08f * r;
+        }
+    }
+}
+
 std::vector<Light> sceneLights(const Scene& scene, const CommonOptions& o) {
     std::vector<Light> lights = o.noSceneLights ? std::vector<Light>{} : scene.lights;
     if (lights.empty() && environmentLightCount(scene, o) == 0) lights.push_back(defaultKeyLight());
     if (o.lights > 0) {
-        const auto scattered = scatterLights(scene.worldBounds(), o.lights, o.seed, o.lightDensity);
+        auto scattered = scatterLights(scene.worldBounds(), o.lights, o.seed, o.lightDensity);
+        shapeLights(scattered, o.lightShape, scene.worldBounds());
         lights.insert(lights.end(), scattered.begin(), scattered.end());
     }
     return lights;

@@ -38,13 +38,14 @@ double cornerRectangleCosineIntegral(double a, double b, double c) {
     const double x = a / c, y = b / c;
     const double f = (x / std::sqrt(1.0 + x * x) * std::atan(y / std::sqrt(1.0 + x * x)) +
                       y / std::sqrt(1.0 + y * y) * std::atan(x / std::sqrt(1.0 + y * y))) /
-                     (2.0 * kPi);
+        (2.0 * kPi);
     return kPi * f;
 }
 
 TEST(AreaLightIrradiance, PolygonFormulaMatchesTheClosedFormRectangle) {
     for (const glm::dvec3 abc : {glm::dvec3(1.0, 1.0, 1.0), glm::dvec3(0.3, 2.0, 0.5), glm::dvec3(4.0, 0.1, 0.7)}) {
-        const glm::dvec3 corners[4] = {{0.0, 0.0, abc.z}, {abc.x, 0.0, abc.z}, {abc.x, abc.y, abc.z}, {0.0, abc.y, abc.z}};
+        const glm::dvec3 corners[4] = {
+            {0.0, 0.0, abc.z}, {abc.x, 0.0, abc.z}, {abc.x, abc.y, abc.z}, {0.0, abc.y, abc.z}};
         const double polygon = reference::polygonCosineIntegral(corners, 4, glm::dvec3(0.0), glm::dvec3(0, 0, 1));
         EXPECT_NEAR(polygon, cornerRectangleCosineIntegral(abc.x, abc.y, abc.z), 1e-12);
     }
@@ -77,8 +78,8 @@ protected:
         settings.specular = false;
         settings.shadows = false;
         Renderer renderer(context(), scene, Environment::constant(glm::vec3(0.0f)), nullptr, settings);
-        const glm::mat4 worldFromView = glm::inverse(
-            glm::lookAt(glm::vec3(0.0f, 0.0f, 1.6f), glm::vec3(0.0f), glm::vec3(0.0f, 1.0f, 0.0f)));
+        const glm::mat4 worldFromView =
+            glm::inverse(glm::lookAt(glm::vec3(0.0f, 0.0f, 1.6f), glm::vec3(0.0f), glm::vec3(0.0f, 1.0f, 0.0f)));
         const View view = perspectiveView(worldFromView, 0.7f, 1.0f, 0.1f, 10.0f);
         const RenderedImage image = renderer.render(view, kSize, kSize, OutputEncoding::LinearFloat);
         dumpImage(std::string("area_light_plane_") + name, image);
@@ -93,8 +94,7 @@ protected:
                 const glm::dvec4 b = worldFromClip * glm::dvec4(ndc, 0.5, 1.0);
                 const glm::dvec3 o = glm::dvec3(a) / a.w, d = glm::dvec3(b) / b.w - o;
                 const glm::dvec3 p = o - d * (o.z / d.z);
-                const glm::dvec3 want =
-                    0.8 / kPi * reference::areaLightIrradiance(light, p, glm::dvec3(0.0, 0.0, 1.0));
+                const glm::dvec3 want = 0.8 / kPi * reference::areaLightIrradiance(light, p, glm::dvec3(0.0, 0.0, 1.0));
                 const glm::dvec3 got = pixelLinear(image, x, y);
                 largest = std::max(largest, want.g);
                 if (std::abs(got.g - want.g) > worst) {
@@ -104,9 +104,10 @@ protected:
                     worstGot = got;
                 }
             }
-        std::printf("[ area lights ] Lambert plane under a %s: largest difference %.2e of the largest radiance %.3f "
-                    "(at %.3f, %.3f: %.5f, reference %.5f)\n",
-                    name, worst / largest, largest, worstAt.x, worstAt.y, worstGot.g, worstWant.g);
+        std::printf(
+            "[ area lights ] Lambert plane under a %s: largest difference %.2e of the largest radiance %.3f "
+            "(at %.3f, %.3f: %.5f, reference %.5f)\n",
+            name, worst / largest, largest, worstAt.x, worstAt.y, worstGot.g, worstWant.g);
         EXPECT_GT(largest, 0.01);
         return worst / largest;
     }

@@ -81,8 +81,8 @@ TEST(GltfAreaLights, ShapesSizesAndFrames) {
         }
     }
     // Without the extension the same light is a point light.
-    const Scene plain = Scene::load(
-        sceneWithLight({{"type", "point"}, {"intensity", 5}}, turned).writeGltf(dir.path(), "b"));
+    const Scene plain =
+        Scene::load(sceneWithLight({{"type", "point"}, {"intensity", 5}}, turned).writeGltf(dir.path(), "b"));
     EXPECT_EQ(plain.lights.at(0).type, LightType::Point);
 }
 
@@ -96,7 +96,8 @@ TEST(GltfAreaLights, RefusalsNameTheFileAndTheField) {
     };
     const Case cases[] = {
         {areaLight({{"radius", 0.1}}), at + ".shape", "missing"},
-        {areaLight({{"shape", "cone"}, {"radius", 0.1}}), at + ".shape", "'cone' is not sphere, tube, rectangle or disc"},
+        {areaLight({{"shape", "cone"}, {"radius", 0.1}}), at + ".shape",
+         "'cone' is not sphere, tube, rectangle or disc"},
         {areaLight({{"shape", 3}}), at + ".shape", "not a string"},
         {areaLight({{"shape", "sphere"}}), at + ".radius", "missing"},
         {areaLight({{"shape", "sphere"}, {"radius", -0.1}}), at + ".radius", "outside (0, 1e6]"},

@@ -27,8 +27,10 @@ double capCosineIntegral(double cosTheta, double sigma) {
         const double r = i * h;
         const double a = std::cos(r) * cosTheta, b = std::sin(r) * sinTheta;
         double ring;  // int_0^2pi max(a + b cos(phi), 0) dphi
-        if (a >= b) ring = 2.0 * kPi * a;
-        else if (a <= -b) ring = 0.0;
+        if (a >= b)
+            ring = 2.0 * kPi * a;
+        else if (a <= -b)
+            ring = 0.0;
         else {
             const double phi0 = std::acos(std::clamp(-a / b, -1.0, 1.0));
             ring = 2.0 * (a * phi0 + b * std::sin(phi0));
@@ -49,7 +51,8 @@ double rangeWindow(double d2, double range) {
 // The capsule's facing surface: sum of cos cos' / r^2 dA (midpoint rule).
 double capsuleCosineIntegral(const glm::dvec3& c, const glm::dvec3& u, double halfLength, double radius,
                              const glm::dvec3& y, const glm::dvec3& n) {
-    const glm::dvec3 e1 = glm::normalize(glm::cross(u, std::abs(u.x) < 0.9 ? glm::dvec3(1, 0, 0) : glm::dvec3(0, 1, 0)));
+    const glm::dvec3 e1 =
+        glm::normalize(glm::cross(u, std::abs(u.x) < 0.9 ? glm::dvec3(1, 0, 0) : glm::dvec3(0, 1, 0)));
     const glm::dvec3 e2 = glm::cross(u, e1);
     double sum = 0.0;
     const auto add = [&](const glm::dvec3& q, const glm::dvec3& m, double area) {
@@ -118,43 +121,42 @@ glm::dvec3 areaLightIrradiance(const Light& light, const glm::dvec3& y, const gl
     const double r = light.radius;
     double integral = 0.0, area = 1.0;  // int max(n . omega, 0) dOmega (or cos cos' / r^2 dA); projected area
     switch (light.type) {
-        case LightType::Sphere: {
-            area = kPi * r * r;
-            const double d = glm::length(toCenter);
-            if (d <= r) {
-                integral = kPi;
-                break;
-            }
-            integral = capCosineIntegral(glm::dot(n, toCenter) / d, std::asin(std::min(r / d, 1.0)));
+    case LightType::Sphere: {
+        area = kPi * r * r;
+        const double d = glm::length(toCenter);
+        if (d <= r) {
+            integral = kPi;
             break;
         }
-        case LightType::Rectangle: {
-            area = double(light.width) * double(light.height);
-            if (glm::dot(y - c, m) <= 0.0) break;
-            const glm::dvec3 hu = u * (0.5 * double(light.width)), hv = v * (0.5 * double(light.height));
-            const std::array<glm::dvec3, 4> corners = {c - hu - hv, c + hu - hv, c + hu + hv, c - hu + hv};
-            integral = polygonCosineIntegral(corners.data(), 4, y, n);
-            break;
+        integral = capCosineIntegral(glm::dot(n, toCenter) / d, std::asin(std::min(r / d, 1.0)));
+        break;
+    }
+    case LightType::Rectangle: {
+        area = double(light.width) * double(light.height);
+        if (glm::dot(y - c, m) <= 0.0) break;
+        const glm::dvec3 hu = u * (0.5 * double(light.width)), hv = v * (0.5 * double(light.height));
+        const std::array<glm::dvec3, 4> corners = {c - hu - hv, c + hu - hv, c + hu + hv, c - hu + hv};
+        integral = polygonCosineIntegral(corners.data(), 4, y, n);
+        break;
+    }
+    case LightType::Disc: {
+        area = kPi * r * r;
+        if (glm::dot(y - c, m) <= 0.0) break;
+        constexpr int kSides = 256;
+        const double rho = r * std::sqrt(2.0 * kPi / (kSides * std::sin(2.0 * kPi / kSides)));
+        std::array<glm::dvec3, kSides> corners;
+        for (int k = 0; k < kSides; ++k) {
+            const double phi = 2.0 * kPi * k / kSides;
+            corners[size_t(k)] = c + rho * (std::cos(phi) * u + std::sin(phi) * v);
         }
-        case LightType::Disc: {
-            area = kPi * r * r;
-            if (glm::dot(y - c, m) <= 0.0) break;
-            constexpr int kSides = 256;
-            const double rho = r * std::sqrt(2.0 * kPi / (kSides * std::sin(2.0 * kPi / kSides)));
-            std::array<glm::dvec3, kSides> corners;
-            for (int k = 0; k < kSides; ++k) {
-                const double phi = 2.0 * kPi * k / kSides;
-                corners[size_t(k)] = c + rho * (std::cos(phi) * u + std::sin(phi) * v);
-            }
-            integral = polygonCosineIntegral(corners.data(), kSides, y, n);
-            break;
-        }
-        case LightType::Tube:
-            area = 2.0 * r * double(light.length) + kPi * r * r;
-            integral = capsuleCosineIntegral(c, u, 0.5 * double(light.length), r, y, n);
-            break;
-        default:
-            break;
+        integral = polygonCosineIntegral(corners.data(), kSides, y, n);
+        break;
+    }
+    case LightType::Tube:
+        area = 2.0 * r * double(light.length) + kPi * r * r;
+        integral = capsuleCosineIntegral(c, u, 0.5 * double(light.length), r, y, n);
+        break;
+    default: break;
     }
     return intensity * (integral / area);
 }

@@ -62,7 +62,7 @@ private:
     const ReferenceMaterials& materials_;
     std::vector<gpu::GpuLight> lights_;
     std::vector<Light> sceneLights_;  // the same lights as the scene has them (area lights)
-    int shadowLight_ = -1;  // index into lights_
+    int shadowLight_ = -1;            // index into lights_
     ShRgb radianceSh_;
     const TracedEnvironment* traced_ = nullptr;
     std::vector<glm::dvec3> vertexAmbient_;  // traced: the environment's irradiance per vertex

@@ -19,7 +19,7 @@ glm::vec3 unitDirection(const Light& light) {
 
 bool isAreaLight(LightType type) {
     return type == LightType::Sphere || type == LightType::Tube || type == LightType::Rectangle ||
-           type == LightType::Disc;
+        type == LightType::Disc;
 }
 
 AreaLightAxes areaLightAxes(const Light& light) {
@@ -28,7 +28,8 @@ AreaLightAxes areaLightAxes(const Light& light) {
     glm::vec3 w = light.axisWs;
     if (light.type == LightType::Rectangle) w -= glm::dot(w, a.normal) * a.normal;
     if (!(glm::length(w) > 1e-6f)) {  // no usable axis: any direction perpendicular to the normal
-        w = glm::cross(a.normal, std::abs(a.normal.x) < 0.9f ? glm::vec3(1.0f, 0.0f, 0.0f) : glm::vec3(0.0f, 1.0f, 0.0f));
+        w = glm::cross(a.normal,
+                       std::abs(a.normal.x) < 0.9f ? glm::vec3(1.0f, 0.0f, 0.0f) : glm::vec3(0.0f, 1.0f, 0.0f));
     }
     a.width = glm::normalize(w);
     a.height = glm::cross(a.width, a.normal);  // cross(height, width) = normal

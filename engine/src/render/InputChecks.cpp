@@ -57,7 +57,8 @@ void checkLights(const std::vector<Light>& lights) {
             check(v, at + field);
             if (!(v > 0.0f) || v > 1e6f) throw Error(fmt::format("{}{}: {} is outside (0, 1e6] metres", at, field, v));
         };
-        if (l.type == LightType::Sphere || l.type == LightType::Tube || l.type == LightType::Disc) size(l.radius, "radius");
+        if (l.type == LightType::Sphere || l.type == LightType::Tube || l.type == LightType::Disc)
+            size(l.radius, "radius");
         if (l.type == LightType::Tube) size(l.length, "length");
         if (l.type == LightType::Rectangle) {
             size(l.width, "width");
