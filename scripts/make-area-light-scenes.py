@@ -11,7 +11,9 @@
       the 10 mm sphere under a tube (radius 2 cm, length 60 cm) and a disc (radius 25 cm) at 1 m;
   head_softbox.gltf
       the bundled head (its files copied) under a 1 m x 0.5 m soft box 0.8 m to its upper right
-      front, the environment at a tenth of its bundled intensity, no directional light.
+      front, the environment at a tenth of its bundled intensity, no directional light;
+  head_softbox_point.gltf
+      the same with the point light the soft box stands for (the extension removed).
 
 None of these casts shadows: only a directional light casts them in preskin.
 
@@ -91,6 +93,10 @@ def main():
     with_area_light(head, {"shape": "rectangle", "width": 1.0, "height": 0.5}, 1.9, (0.6, 0.35, 0.7), 0.8,
                     centre=(0.0, 0.075, 0.0))
     make_spheres.write_document(os.path.join(out, "head_softbox.gltf"), head)
+    # The point light the soft box stands for in a viewer without the extension.
+    del head["extensions"]["KHR_lights_punctual"]["lights"][0]["extensions"]
+    head["extensionsUsed"].remove("PRESKIN_lights_area")
+    make_spheres.write_document(os.path.join(out, "head_softbox_point.gltf"), head)
 
 
 if __name__ == "__main__":

@@ -5,7 +5,8 @@
 # pair (README, VR); docs/profiles-side-by-side.png: four diffusion profiles in one scene
 # (README, Profiles); docs/fidelity-closeup.png: `preskin compare` of the cheek and nose close up
 # at 768x768, shown at a third of its size (README, Fidelity; its reference takes minutes);
-# docs/environment-lighting.png: the head under two environments, background on (README).
+# docs/environment-lighting.png: the head under two environments, background on (README);
+# docs/area-light-softbox.png: the head under a soft box and under a point light (README).
 # Needs ImageMagick (convert, montage): scripts/install-deps.sh --docs installs it.
 set -euo pipefail
 cd "$(dirname "$0")/.."
@@ -48,3 +49,14 @@ render --width 480 --height 480 --env samples/assets/head/studio_small_05_1k.hdr
 montage "$tmp/env_sky.png" "$tmp/env_studio.png" -tile 2x1 -geometry +4+4 -background '#202022' -depth 8 \
   docs/environment-lighting.png
 echo "wrote docs/environment-lighting.png"
+# Area lights (README, docs/area-lights.md): the head under a 1 m x 0.5 m soft box and under the
+# point light it stands for in a viewer without PRESKIN_lights_area, from the front and close up.
+python3 scripts/make-area-light-scenes.py "$tmp/area" >/dev/null
+for s in softbox softbox_point; do
+  "$bin" render "$tmp/area/head_$s.gltf" --camera front --width 480 --height 480 --out "$tmp/$s.png" >/dev/null
+  "$bin" render "$tmp/area/head_$s.gltf" --camera cheek_nose --width 480 --height 480 --out "$tmp/${s}_close.png" >/dev/null
+done
+montage -label "point light" "$tmp/softbox_point.png" -label "1 m x 0.5 m soft box" "$tmp/softbox.png" \
+  -label "point light, close-up" "$tmp/softbox_point_close.png" -label "soft box, close-up" "$tmp/softbox_close.png" \
+  -tile 4x1 -geometry +4+4 -background '#202022' -fill '#dddddd' -pointsize 16 -depth 8 docs/area-light-softbox.png
+echo "wrote docs/area-light-softbox.png"
