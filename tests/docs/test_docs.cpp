@@ -18,6 +18,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cstdio>
+#include <cstring>
 #include <filesystem>
 #include <fstream>
 #include <regex>
@@ -170,8 +171,10 @@ TEST_F(Docs, EveryShownCommandRunsAsWritten) {
             ++skipped;
             continue;
         }
-        for (std::string& a : args)  // the scenes make-fidelity-scenes.py writes: into the scratch folder
-            if (a.rfind("/tmp/checks", 0) == 0) a = "checks" + a.substr(11);
+        // The scenes make-fidelity-scenes.py and make-area-light-scenes.py write: into the scratch folder.
+        for (std::string& a : args)
+            for (const char* folder : {"/tmp/checks", "/tmp/area"})
+                if (a.rfind(folder, 0) == 0) a = std::string(folder + 5) + a.substr(std::strlen(folder));
         const bool xvfb = args[0] == "xvfb-run";
         if (xvfb) args.erase(args.begin(), std::find(args.begin(), args.end(), "build/bin/preskin-viewer"));
         const std::string tool = args[0];
@@ -208,7 +211,8 @@ TEST_F(Docs, EveryShownCommandRunsAsWritten) {
                 args.insert(args.begin(), {"xvfb-run", "-a", "-s", "\"-screen 0 640x480x24\""});
             }
         } else if (tool == "python3") {
-            if (args.size() < 2 || args[1] != "scripts/make-fidelity-scenes.py") {
+            if (args.size() < 2 ||
+                (args[1] != "scripts/make-fidelity-scenes.py" && args[1] != "scripts/make-area-light-scenes.py")) {
                 failures.push_back(fmt::format("{}:{}: not a command this test knows: {}", c.file, c.line, c.text));
                 continue;
             }
