@@ -165,6 +165,7 @@ private:
     void panelMaterial();
     void panelProfile();
     void panelLights();
+    bool panelAreaLights();
     void panelDebug();
     void panelTiming();
     void panelShaders();
@@ -219,6 +220,7 @@ private:
     RenderSettings lastGoodSettings_;
     std::vector<Light> sceneLights_;  // the scene's lights (or the default key light), with edits
     int keyLight_ = -1;               // index in sceneLights_ of the shadow-casting directional light
+    bool showLightGizmos_ = true;     // area light outlines over the view (LightGizmos.h)
     uint32_t scatteredLights_ = 0;
     uint32_t scatterSeed_ = 1;
     float scatterDensity_ = 0.0f;  // lights per point (--light-density); 0: ranges of the scene's size

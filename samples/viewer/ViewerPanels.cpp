@@ -4,9 +4,11 @@
 // settings and lights at the next frame; profile changes after the background bake; material
 // edits rebuild the Renderer when a control is released (the Renderer reads materials once).
 // Limits: the panel layout is not saved between runs; one material is edited at a time.
+#include "LightGizmos.h"
 #include "Viewer.h"
 
 #include <preskin/Error.h>
+#include <preskin/LightRecord.h>
 
 #include <imgui.h>
 #include <imgui_stdlib.h>
@@ -41,6 +43,9 @@ size_t triangleCount(const Scene& scene) {
 
 void Viewer::drawUi() {
     if (!showUi_) return;
+    if (showLightGizmos_ && !stereo_ && swapchain_ && swapchain_->valid())
+        drawAreaLightGizmos(sceneLights_, frameView().eye(), ImGui::GetIO().DisplaySize.x,
+                            ImGui::GetIO().DisplaySize.y);
     const ImVec2 display = ImGui::GetIO().DisplaySize;
     ImGui::SetNextWindowPos(ImVec2(10.0f, 10.0f), ImGuiCond_FirstUseEver);
     ImGui::SetNextWindowSize(ImVec2(400.0f, std::max(display.y - 20.0f, 200.0f)), ImGuiCond_FirstUseEver);
@@ -438,6 +443,8 @@ void Viewer::panelLights() {
         if (mapSizes[i] == settings_.shadowMapSize) mapIndex = i;
     if (ImGui::Combo("Shadow map", &mapIndex, mapLabels, 4)) settings_.shadowMapSize = mapSizes[mapIndex];
 
+    changed |= panelAreaLights();
+
     ImGui::Separator();
     int scattered = static_cast<int>(scatteredLights_);
     if (ImGui::SliderInt("Clustered lights", &scattered, 0, 65536, "%d", ImGuiSliderFlags_Logarithmic)) {
@@ -474,6 +481,56 @@ void Viewer::panelLights() {
     if (lastStats_.clusterBuildCpuMs > 0.0)
         ImGui::TextDisabled("light grid build %.2f ms (cpu)", lastStats_.clusterBuildCpuMs);
     if (changed) applyLights();
+}
+
+// The scene's area lights (PRESKIN_lights_area): each one's size and intensity, a soft box to add,
+// and whether their outlines show over the viewport. True when a light changed.
+bool Viewer::panelAreaLights() {
+    bool changed = false;
+    ImGui::Separator();
+    ImGui::Checkbox("Show area lights", &showLightGizmos_);
+    tooltip("Outlines of the sphere, tube, rectangle and disc lights over the view (mono view)");
+    ImGui::SameLine();
+    if (ImGui::SmallButton("Add soft box")) {
+        // A 1 m x 0.5 m rectangle at the upper right front, facing the scene's centre, about 3 lux there.
+        const Bounds b = scene_.worldBounds();
+        const float size = std::max(glm::length(b.max - b.min), 0.1f);
+        const glm::vec3 towards = glm::normalize(glm::vec3(0.6f, 0.35f, 0.7f));
+        Light box;
+        box.name = "soft box";
+        box.type = LightType::Rectangle;
+        box.width = 1.0f;
+        box.height = 0.5f;
+        box.positionWs = b.center() + towards * (size + 0.5f);
+        box.directionWs = -towards;
+        box.axisWs = glm::normalize(glm::cross(glm::vec3(0.0f, 1.0f, 0.0f), towards));
+        box.intensity = 3.0f * (size + 0.5f) * (size + 0.5f);
+        sceneLights_.push_back(box);
+        changed = true;
+    }
+    static const char* const kShapes[] = {"sphere", "tube", "rectangle", "disc"};
+    for (size_t i = 0; i < sceneLights_.size(); ++i) {
+        Light& l = sceneLights_[i];
+        if (!isAreaLight(l.type)) continue;
+        const int shape = int(l.type) - int(LightType::Sphere);
+        ImGui::PushID(int(i));
+        if (ImGui::TreeNode("area", "%s (%s)", l.name.empty() ? "(unnamed)" : l.name.c_str(), kShapes[shape])) {
+            const float lo = 0.001f, hi = 10.0f;
+            const ImGuiSliderFlags log = ImGuiSliderFlags_Logarithmic;
+            if (l.type == LightType::Rectangle) {
+                changed |= ImGui::SliderFloat("Width", &l.width, lo, hi, "%.3f m", log);
+                changed |= ImGui::SliderFloat("Height", &l.height, lo, hi, "%.3f m", log);
+            } else {
+                changed |= ImGui::SliderFloat("Radius", &l.radius, lo, hi, "%.3f m", log);
+            }
+            if (l.type == LightType::Tube) changed |= ImGui::SliderFloat("Length", &l.length, lo, hi, "%.3f m", log);
+            changed |= ImGui::SliderFloat("Intensity##area", &l.intensity, 0.01f, 1000.0f, "%.2f cd", log);
+            changed |= ImGui::ColorEdit3("Colour##area", &l.color.x, ImGuiColorEditFlags_Float);
+            ImGui::TreePop();
+        }
+        ImGui::PopID();
+    }
+    return changed;
 }
 
 void Viewer::panelDebug() {
