@@ -264,9 +264,15 @@ void main() {
         if (loopCount > 0u) {
             uint i = 0u;
             vec3 R = reflect(-V, skin.normalSpecular), NL = skin.normalSpecular;
+            // Lights with a size take specular from the lobes' linearly transformed cosines.
+            bool areaLights = frame.lightCounts.w > 0u;
+            PreskinLtc ltc = PreskinLtc(mat3(1.0), mat3(1.0), vec4(0.0));
+            if (areaLights)
+                ltc = preskinLtc(dfgTable, NL, V, (features & kSkinDualSpecular) != 0u ? clamp(roughness * skin.lobes.xy, 0.03, 1.0) : vec2(roughness));
             do {
-                PreskinLightSample l = preskinLightSample(unshadowedLight(i, shadowLights, first, indirect), inPositionWs, NL, R);
-                color += preskinSkinLight(skin, lighting, profiles, diffuseLut, V, l, vec3(1.0), 1.0, features);
+                PreskinLightSample l =
+                    preskinLightSample(unshadowedLight(i, shadowLights, first, indirect), inPositionWs, NL, R, ltc, areaLights);
+                color += preskinSkinLight(skin, lighting, profiles, diffuseLut, V, l, vec3(1.0), 1.0, features, ltc.dfg);
             } while (++i < loopCount);
         }
         color += transmitted;
@@ -300,9 +306,13 @@ void main() {
         if (loopCount > 0u) {
             uint i = 0u;
             vec3 R = reflect(-V, N), NL = N;
+            bool areaLights = frame.lightCounts.w > 0u;
+            PreskinLtc ltc = PreskinLtc(mat3(1.0), mat3(1.0), vec4(0.0));
+            if (areaLights) ltc = preskinLtc(dfgTable, N, V, vec2(roughness));
             do {
-                PreskinLightSample l = preskinLightSample(unshadowedLight(i, shadowLights, first, indirect), inPositionWs, NL, R);
-                color += preskinStandardLight(surface, N, V, l);
+                PreskinLightSample l =
+                    preskinLightSample(unshadowedLight(i, shadowLights, first, indirect), inPositionWs, NL, R, ltc, areaLights);
+                color += preskinStandardLight(surface, N, V, l, ltc.dfg.xy);
             } while (++i < loopCount);
         }
         // Ambient: SH irradiance for diffuse; specular from the prefiltered environment by the

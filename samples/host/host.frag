@@ -62,9 +62,9 @@ void main() {
     vec3 color = preskinSkinAmbient(s, profile, shTransferLut, frame.sh, V, kFeatures, ambientDiffuse);
     PreskinSkinLighting lighting = preskinSkinLighting(s, profile, diffuseLut, V, kFeatures);  // shared by the lights
     vec3 R = reflect(-V, s.normalSpecular);
-    for (uint i = 0; i < frame.lightCount.x; ++i) {  // punctual or area lights (preskin/lights.glsl)
+    for (uint i = 0; i < frame.lightCount.x; ++i) {  // punctual or area lights (preskin/lights.glsl; specular of area lights at their representative point: no LTC table bound)
         PreskinLightSample l = preskinLightSample(frame.lights[i], inPositionWs, s.normalSpecular, R);
-        color += preskinSkinLight(s, lighting, profile, diffuseLut, V, l, vec3(1.0), 1.0, kFeatures);
+        color += preskinSkinLight(s, lighting, profile, diffuseLut, V, l, vec3(1.0), 1.0, kFeatures, vec4(0.0));
     }
     outColor = vec4(preskinTonemapNeutral(max(color, vec3(0.0))), 1.0);
 }

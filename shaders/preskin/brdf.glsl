@@ -86,21 +86,26 @@ float preskinSpecularNormalization(float alpha, float alphaAdd) {
 }
 
 // The same for any light (preskin/light_sample.glsl): a punctual light as above; a light with
-// a size gives Lambert the cap's horizon-clipped irradiance and GGX its representative point.
-vec3 preskinStandardLight(PreskinStandardSurface s, vec3 N, vec3 V, PreskinLightSample l) {
+// a size gives Lambert the cap's horizon-clipped irradiance and GGX its linearly transformed
+// cosine (l.ltc; ltcDfg: the lobe's (A, B), PreskinLtc.dfg.xy) or its representative point.
+vec3 preskinStandardLight(PreskinStandardSurface s, vec3 N, vec3 V, PreskinLightSample l, vec2 ltcDfg) {
     if (l.cosSigma >= 1.0) return preskinStandardLight(s, N, V, l.L, l.irradiance);
     float NoV = max(dot(N, V), 1e-4);
     vec3 Fd = s.specularWeight * preskinSchlickF(s.F0, preskinSaturate(dot(V, normalize(l.L + V))));
     vec3 color = (vec3(1.0) - Fd) * s.diffuseColor / PRESKIN_PI * (preskinCapLambert(dot(N, l.L), l.cosSigma, l.sinSigma) + l.lambertCorrection);
+    float alpha = max(s.roughness * s.roughness, 1e-3);
+    // The linearly transformed cosine, blended with the representative point for lights small
+    // against the lobe (preskinLtcWeight).
+    float t = preskinLtcWeight(l, alpha);
+    vec3 ltc = t * s.specularWeight * preskinLtcSpecular(l, s.F0, ltcDfg, l.specularFormFactor.x, V);
     float NoL = dot(N, l.specularL);
-    if (NoL > 0.0 && s.specularWeight > 0.0) {
+    if (NoL > 0.0 && s.specularWeight > 0.0 && t < 1.0) {
         vec3 H = normalize(l.specularL + V);
-        float alpha = max(s.roughness * s.roughness, 1e-3);
         vec3 F = preskinSchlickF(s.F0, preskinSaturate(dot(V, H)));
-        color += s.specularWeight * F * preskinGgxD(preskinSaturate(dot(N, H)), alpha) * preskinSmithV(NoL, NoV, alpha) *
-                 preskinSpecularNormalization(alpha, l.specularAlphaAdd) * NoL;
+        color += (1.0 - t) * s.specularWeight * F * preskinGgxD(preskinSaturate(dot(N, H)), alpha) *
+                 preskinSmithV(NoL, NoV, alpha) * preskinSpecularNormalization(alpha, l.specularAlphaAdd) * NoL;
     }
-    return color * l.irradiance;
+    return color * l.irradiance + ltc;
 }
 
 #endif

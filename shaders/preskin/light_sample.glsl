@@ -15,6 +15,17 @@
 
 #include "preskin/common.glsl"
 
+// Linearly transformed cosines for specular (Heitz, Dupuy, Hill & Neubelt, SIGGRAPH 2016), one
+// fragment's: for each GGX lobe the map from world directions to the space where the lobe is a
+// clamped cosine (M^-1 times the lobe's frame: the normal and the view's tangent direction), and
+// each lobe's directional albedo split (A, B) (preskinLtc in preskin/ibl.glsl fills it from the
+// table the renderer binds; env/Ltc.h fits it).
+struct PreskinLtc {
+    mat3 lobe0;
+    mat3 lobe1;
+    vec4 dfg;  // xy: lobe 0's (A, B); zw: lobe 1's
+};
+
 struct PreskinLightSample {
     vec3 L;                  // the cap's axis, unit (punctual lights: the direction to the light)
     vec3 irradiance;         // the light's radiance times the cap's solid angle (punctual: irradiance normal to L)
@@ -26,10 +37,36 @@ struct PreskinLightSample {
     // shading normal less the cap's (preskinCapLambert), in the units of preskinCapLambert. Lambert
     // adds it to the cap's term, skin to each channel's response (0 for spheres and punctual lights).
     float lambertCorrection;
+    // With linearly transformed cosines (preskinLightSample given a PreskinLtc): the light's radiance
+    // and, per lobe, its shape's integral of the lobe's normalised cosine; specular is then radiance
+    // times (F0 A + B) times that, instead of the representative point.
+    bool ltc;
+    vec3 radiance;
+    vec2 specularFormFactor;
 };
 
 PreskinLightSample preskinPunctualSample(vec3 L, vec3 irradiance) {
-    return PreskinLightSample(L, irradiance, 1.0, 0.0, L, 0.0, 0.0);
+    return PreskinLightSample(L, irradiance, 1.0, 0.0, L, 0.0, 0.0, false, vec3(0.0), vec2(0.0));
+}
+
+// How much of a lobe of GGX alpha `alpha` takes the light's linearly transformed cosine rather than
+// its representative point: the fitted cosine matches the lobe's integral over a large light but
+// not its value in one direction, which a light far smaller than the lobe samples; so 0 for a
+// punctual light, 1 once the light's angular radius reaches the lobe's width, smooth between.
+float preskinLtcWeight(PreskinLightSample l, float alpha) {
+    return l.ltc ? smoothstep(0.0, 1.0, l.sinSigma / max(alpha, 1e-3)) : 0.0;
+}
+
+// Specular of a lobe with the sample's linearly transformed cosine: the lobe's integral over the
+// light (its albedo A + B with Fresnel 1, dfg = (A, B), times formFactor) times its radiance, and
+// Fresnel (Schlick) at the half vector of V and the light's representative direction: the part of
+// the lobe the light covers, where the lobe's mean Fresnel (F0 A + B) / (A + B) would take the
+// whole lobe's (multiply by the specular weight).
+vec3 preskinLtcSpecular(PreskinLightSample l, vec3 F0, vec2 dfg, float formFactor, vec3 V) {
+    float m = 1.0 - preskinSaturate(dot(V, normalize(l.specularL + V)));
+    float m2 = m * m;
+    vec3 F = F0 + (vec3(1.0) - F0) * (m2 * m2 * m);
+    return F * ((dfg.x + dfg.y) * formFactor) * l.radiance;
 }
 
 // Lambert: the horizon-clipped irradiance of a uniform cap at angle acos(NoL) from the normal,

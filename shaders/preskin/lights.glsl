@@ -127,11 +127,74 @@ vec3 preskinSphereRepresentative(vec3 center, float radius, vec3 R) {
     return center + toRay * preskinSaturate(radius * inversesqrt(max(dot(toRay, toRay), 1e-30)));
 }
 
+// The normalised clamped cosine's integral over a shape of vector form factor F in the cosine's
+// space (z up), its horizon taken as the sphere cap's of equal F (Heitz & Hill 2017).
+float preskinCappedFormFactor(vec3 F) {
+    float f = length(F);
+    float s2 = min(f, 1.0);
+    if (s2 <= 0.0) return 0.0;
+    float cosSigma = sqrt(1.0 - s2), sinSigma = sqrt(s2);
+    return 2.0 * s2 / (1.0 + cosSigma) * preskinCapLambert(F.z / f, cosSigma, sinSigma);
+}
+
+// Vector form factor of the octagon centre + cos(k pi / 4) u + sin(k pi / 4) v, k = 0..7 (a disc
+// of radius 1.0539 |u| has its area), in the space `m` maps to.
+vec3 preskinOctagonFormFactor(mat3 m, vec3 center, vec3 u, vec3 v) {
+    const float h = 0.70710678;
+    vec3 c = m * center, a = m * u, b = m * v;
+    vec3 p0 = normalize(c + a), p1 = normalize(c + h * (a + b)), p2 = normalize(c + b), p3 = normalize(c + h * (b - a));
+    vec3 p4 = normalize(c - a), p5 = normalize(c - h * (a + b)), p6 = normalize(c - b), p7 = normalize(c + h * (a - b));
+    vec3 F = preskinEdgeFormFactor(p0, p1) + preskinEdgeFormFactor(p1, p2) + preskinEdgeFormFactor(p2, p3) +
+             preskinEdgeFormFactor(p3, p4) + preskinEdgeFormFactor(p4, p5) + preskinEdgeFormFactor(p5, p6) +
+             preskinEdgeFormFactor(p6, p7) + preskinEdgeFormFactor(p7, p0);
+    return dot(F, c) < 0.0 ? -F : F;
+}
+
+// Two unit vectors perpendicular to unit w and to each other.
+void preskinPerpendicular(vec3 w, out vec3 u, out vec3 v) {
+    u = normalize(cross(w, abs(w.y) < 0.9 ? vec3(0.0, 1.0, 0.0) : vec3(1.0, 0.0, 0.0)));
+    v = cross(w, u);
+}
+
+// One lobe's integral of its normalised cosine over light `light` (centre at `center` from the
+// shaded point), `m` the lobe's map (PreskinLtc): a rectangle exactly (clipped in the cosine's
+// space); a tube as the rectangle facing the point of its projected area (2 r by l + pi r / 2);
+// a disc as the octagon of its area, a sphere as its silhouette disc, their horizon by the cap.
+float preskinLtcFormFactor(mat3 m, GpuLight light, uint type, vec3 center) {
+    float radius = light.spotScaleOffset.x;
+    if (type == kLightRectangle)
+        return preskinQuadClippedFormFactor(m * center, m * light.directionType.xyz, m * light.spotScaleOffset.xyz,
+                                            vec3(0.0, 0.0, 1.0));
+    if (type == kLightTube) {
+        vec3 halfAxis = light.directionType.xyz;
+        float halfLength = length(halfAxis);
+        vec3 across = cross(halfAxis, center);
+        float acrossLength = length(across);
+        if (acrossLength <= 1e-12 || halfLength <= 0.0) return 0.0;
+        vec3 u = halfAxis * ((halfLength + 0.25 * PRESKIN_PI * radius) / halfLength);
+        return preskinQuadClippedFormFactor(m * center, m * u, m * (across * (radius / acrossLength)), vec3(0.0, 0.0, 1.0));
+    }
+    vec3 u, v, c = center;
+    float rho = 1.0539 * radius;
+    if (type == kLightDisc) {
+        preskinPerpendicular(light.directionType.xyz, u, v);
+    } else {  // sphere: its silhouette, a disc facing the point
+        float d2 = dot(center, center);
+        if (d2 <= radius * radius) return 1.0;
+        preskinPerpendicular(center * inversesqrt(d2), u, v);
+        float shrink = 1.0 - radius * radius / d2;
+        c = center * shrink;
+        rho *= sqrt(shrink);
+    }
+    return preskinCappedFormFactor(preskinOctagonFormFactor(m, c, u * rho, v * rho));
+}
+
 // Light `light` at positionWs as a cap (preskin/light_sample.glsl); N: the shading normal (a
 // rectangle's exact horizon-clipped form factor there corrects the cap's Lambert term); R: the
-// reflected view direction, for the representative point of specular. Punctual lights give
-// preskinLightIncidence.
-PreskinLightSample preskinLightSample(GpuLight light, vec3 positionWs, vec3 N, vec3 R) {
+// reflected view direction, for the representative point of specular; with useLtc, each lobe of
+// `ltc` also gets the light's integral of its linearly transformed cosine (preskinLtcFormFactor),
+// which materials then use for specular instead. Punctual lights give preskinLightIncidence.
+PreskinLightSample preskinLightSample(GpuLight light, vec3 positionWs, vec3 N, vec3 R, PreskinLtc ltc, bool useLtc) {
     uint type = uint(light.directionType.w);
     if (type < kLightSphere) {
         vec3 L, irradiance;
@@ -212,9 +275,27 @@ PreskinLightSample preskinLightSample(GpuLight light, vec3 positionWs, vec3 N, v
         }
     }
     s.irradiance = intensity * perArea;
+    s.ltc = useLtc;
+    s.radiance = vec3(0.0);
+    s.specularFormFactor = vec2(0.0);
+    if (useLtc) {
+        float area = PRESKIN_PI * radius * radius;  // sphere, disc
+        if (type == kLightRectangle) area = 4.0 * length(light.directionType.xyz) * length(light.spotScaleOffset.xyz);
+        if (type == kLightTube) area = 4.0 * length(light.directionType.xyz) * radius + PRESKIN_PI * radius * radius;
+        s.radiance = intensity / max(area, 1e-30);
+        s.specularFormFactor.x = preskinLtcFormFactor(ltc.lobe0, light, type, center);
+        s.specularFormFactor.y = ltc.lobe1 == ltc.lobe0 ? s.specularFormFactor.x
+                                                        : preskinLtcFormFactor(ltc.lobe1, light, type, center);
+    }
     s.specularL = normalize(representative);
     s.specularAlphaAdd = s.cosSigma <= -1.0 ? 1.0 : 0.5 * s.sinSigma;
     return s;
+}
+
+// The same with specular at the representative point (a host that binds no LTC table).
+PreskinLightSample preskinLightSample(GpuLight light, vec3 positionWs, vec3 N, vec3 R) {
+    PreskinLtc none = PreskinLtc(mat3(1.0), mat3(1.0), vec4(0.0));
+    return preskinLightSample(light, positionWs, N, R, none, false);
 }
 
 #endif

@@ -149,18 +149,31 @@ vec3 preskinSkinLight(PreskinSkinSurface s, PreskinSkinLighting k, PreskinProfil
     return (diffuse * shadowRgb + specular * specularVisibility) * irradiance;
 }
 
-// The same for any light (preskin/light_sample.glsl): diffuse over the light's cap, specular at
-// its representative point with Karis's normalisation per lobe.
+// The same for any light (preskin/light_sample.glsl): diffuse over the light's cap; specular by
+// each lobe's linearly transformed cosine (l.ltc; ltcDfg: PreskinLtc.dfg, both lobes' (A, B)) or
+// at the representative point with Karis's normalisation per lobe.
 vec3 preskinSkinLight(PreskinSkinSurface s, PreskinSkinLighting k, PreskinProfileMix m, sampler2DArray diffuseLut,
-                      vec3 V, PreskinLightSample l, vec3 shadowRgb, float specularVisibility, uint features) {
+                      vec3 V, PreskinLightSample l, vec3 shadowRgb, float specularVisibility, uint features,
+                      vec4 ltcDfg) {
     if (l.cosSigma >= 1.0)
         return preskinSkinLight(s, k, m, diffuseLut, V, l.L, l.irradiance, shadowRgb, specularVisibility, features);
     vec3 F = s.specularWeight * preskinSchlickF(s.F0, preskinSaturate(dot(V, normalize(l.L + V))));
     vec3 diffuse = (vec3(1.0) - F) * s.albedo / PRESKIN_PI * preskinSkinDiffuseResponse(s, k, m, diffuseLut, l, features);
     vec2 lobeScale = vec2(preskinSpecularNormalization(k.alpha.x, l.specularAlphaAdd),
                           preskinSpecularNormalization(k.alpha.y, l.specularAlphaAdd));
-    vec3 specular = s.specularWeight * preskinSkinSpecular(s, k, V, l.specularL, features, lobeScale);
-    return (diffuse * shadowRgb + specular * specularVisibility) * l.irradiance;
+    if (!l.ltc) {
+        vec3 specular = s.specularWeight * preskinSkinSpecular(s, k, V, l.specularL, features, lobeScale);
+        return (diffuse * shadowRgb + specular * specularVisibility) * l.irradiance;
+    }
+    // Each lobe's linearly transformed cosine, blended with its representative point for lights
+    // small against the lobe (preskinLtcWeight), where that is exact.
+    vec2 t = vec2(preskinLtcWeight(l, k.alpha.x), preskinLtcWeight(l, k.alpha.y));
+    vec3 ltc0 = t.x * preskinLtcSpecular(l, s.F0, ltcDfg.xy, l.specularFormFactor.x, V);
+    vec3 ltc1 = t.y * preskinLtcSpecular(l, s.F0, ltcDfg.zw, l.specularFormFactor.y, V);
+    vec3 ltcSpecular = (features & kSkinDualSpecular) != 0u ? mix(ltc0, ltc1, s.lobes.z) : ltc0;
+    vec3 pointSpecular = preskinSkinSpecular(s, k, V, l.specularL, features, lobeScale * (vec2(1.0) - t));
+    return diffuse * shadowRgb * l.irradiance +
+           s.specularWeight * (ltcSpecular + pointSpecular * l.irradiance) * specularVisibility;
 }
 
 // The same for a single light (finds the shared values on every call).

@@ -4,8 +4,8 @@
 // committed table's transformed-cosine integral, over roughness 0.1 to 1 and view angles to 75
 // degrees. And the committed table is the fitter's: a refit of sampled entries, from their
 // neighbours, gives the same distribution.
-#include "env/Ltc.h"
 #include "env/Dfg.h"
+#include "env/Ltc.h"
 
 #include <gtest/gtest.h>
 
@@ -64,7 +64,8 @@ TEST(Ltc, TableIntegratesTheGgxLobeOverRectangles) {
             const double albedo = double(dfg[size_t(j) * kDfgTableSize + i].x + dfg[size_t(j) * kDfgTableSize + i].y);
             for (int k = 0; k < 6; ++k) {
                 const glm::dvec3 c(u(rng) * 2.0 - 1.0, u(rng) * 2.0 - 1.0, 0.3 + u(rng));
-                const glm::dvec3 a = glm::normalize(glm::dvec3(u(rng) - 0.5, u(rng) - 0.5, u(rng) - 0.5)) * (0.2 + 0.5 * u(rng));
+                const glm::dvec3 a =
+                    glm::normalize(glm::dvec3(u(rng) - 0.5, u(rng) - 0.5, u(rng) - 0.5)) * (0.2 + 0.5 * u(rng));
                 const glm::dvec3 n = glm::normalize(glm::dvec3(u(rng) - 0.5, u(rng) - 0.5, u(rng) - 0.5));
                 const glm::dvec3 b = glm::normalize(glm::cross(a, n)) * (0.2 + 0.5 * u(rng));
                 const glm::dvec3 normal = glm::normalize(glm::cross(a, b));
@@ -72,7 +73,8 @@ TEST(Ltc, TableIntegratesTheGgxLobeOverRectangles) {
                 const int steps = 200;
                 for (int x = 0; x < steps; ++x)
                     for (int y = 0; y < steps; ++y) {
-                        const glm::dvec3 q = c + a * ((x + 0.5) / steps * 2.0 - 1.0) + b * ((y + 0.5) / steps * 2.0 - 1.0);
+                        const glm::dvec3 q =
+                            c + a * ((x + 0.5) / steps * 2.0 - 1.0) + b * ((y + 0.5) / steps * 2.0 - 1.0);
                         const double d2 = glm::dot(q, q);
                         const glm::dvec3 L = q / std::sqrt(d2);
                         truth += ggxCosine(V, L, alpha) * std::abs(glm::dot(normal, L)) / d2;

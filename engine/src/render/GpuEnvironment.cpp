@@ -2,6 +2,7 @@
 #include "render/GpuEnvironment.h"
 
 #include "env/Dfg.h"
+#include "env/Ltc.h"
 #include "vk/Check.h"
 #include "vk/Pipeline.h"
 
@@ -84,11 +85,21 @@ GpuEnvironment::GpuEnvironment(const vk::Device& device) : device_(device) {
         vk::createPipelineLayout(device, std::span(&setLayout_, 1), sizeof(glm::vec4), VK_SHADER_STAGE_COMPUTE_BIT);
     pipeline_ = vk::createComputePipeline(device, shaders::spirv("env_prefilter.comp"), layout_);
 
-    const std::vector<glm::vec2>& table = env::defaultDfgTable();
-    dfg_ = vk::Image(device,
-                     {VK_FORMAT_R32G32_SFLOAT, env::kDfgTableSize, env::kDfgTableSize, 1,
-                      VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_DST_BIT});
-    dfg_.uploadAndGenerateMips(table.data(), table.size() * sizeof(glm::vec2));
+    // The GGX tables side by side (preskin/ibl.glsl): the split-sum DFG (A, B) on the left, the
+    // linearly transformed cosine's M^-1 (env/Ltc.h) on the right, same grid.
+    const std::vector<glm::vec2>& dfg = env::defaultDfgTable();
+    const std::vector<env::LtcEntry>& ltc = env::defaultLtcTable();
+    const uint32_t n = env::kDfgTableSize;
+    std::vector<glm::vec4> table(size_t(2 * n) * n);
+    for (uint32_t j = 0; j < n; ++j)
+        for (uint32_t i = 0; i < n; ++i) {
+            table[size_t(j) * 2 * n + i] = glm::vec4(dfg[size_t(j) * n + i], 0.0f, 0.0f);
+            table[size_t(j) * 2 * n + n + i] = ltc[size_t(j) * n + i];
+        }
+    dfg_ = vk::Image(
+        device,
+        {VK_FORMAT_R32G32B32A32_SFLOAT, 2 * n, n, 1, VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_DST_BIT});
+    dfg_.uploadAndGenerateMips(table.data(), table.size() * sizeof(glm::vec4));
     set(Environment::constant(glm::vec3(0.0f)), EquirectImage{});
 }
 
