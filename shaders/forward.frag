@@ -263,17 +263,26 @@ void main() {
         }
         if (loopCount > 0u) {
             uint i = 0u;
-            vec3 R = reflect(-V, skin.normalSpecular), NL = skin.normalSpecular;
-            // Lights with a size take specular from the lobes' linearly transformed cosines.
-            bool areaLights = frame.lightCounts.w > 0u;
-            PreskinLtc ltc = PreskinLtc(mat3(1.0), mat3(1.0), vec4(0.0));
-            if (areaLights)
-                ltc = preskinLtc(dfgTable, NL, V, (features & kSkinDualSpecular) != 0u ? clamp(roughness * skin.lobes.xy, 0.03, 1.0) : vec2(roughness));
-            do {
-                PreskinLightSample l =
-                    preskinLightSample(unshadowedLight(i, shadowLights, first, indirect), inPositionWs, NL, R, ltc, areaLights);
-                color += preskinSkinLight(skin, lighting, profiles, diffuseLut, V, l, vec3(1.0), 1.0, features, ltc.dfg);
-            } while (++i < loopCount);
+            if (kAreaLights == 0u) {
+                do {
+                    vec3 L;
+                    vec3 irradiance;
+                    preskinLightIncidence(unshadowedLight(i, shadowLights, first, indirect), inPositionWs, L, irradiance);
+                    color += preskinSkinLight(skin, lighting, profiles, diffuseLut, V, L, irradiance, vec3(1.0), 1.0, features);
+                } while (++i < loopCount);
+            } else {
+                // Lights with a size (preskin/lights.glsl); their specular from the lobes' linearly
+                // transformed cosines.
+                vec3 R = reflect(-V, skin.normalSpecular);
+                vec2 lobeRoughness = (features & kSkinDualSpecular) != 0u ? clamp(roughness * skin.lobes.xy, 0.03, 1.0)
+                                                                          : vec2(roughness);
+                PreskinLtc ltc = preskinLtc(dfgTable, skin.normalSpecular, V, lobeRoughness);
+                do {
+                    PreskinLightSample l = preskinLightSample(unshadowedLight(i, shadowLights, first, indirect),
+                                                              inPositionWs, skin.normalSpecular, R, ltc, true);
+                    color += preskinSkinLight(skin, lighting, profiles, diffuseLut, V, l, vec3(1.0), 1.0, features, ltc.dfg);
+                } while (++i < loopCount);
+            }
         }
         color += transmitted;
         diffuseColor = skin.albedo;
@@ -305,15 +314,22 @@ void main() {
         }
         if (loopCount > 0u) {
             uint i = 0u;
-            vec3 R = reflect(-V, N), NL = N;
-            bool areaLights = frame.lightCounts.w > 0u;
-            PreskinLtc ltc = PreskinLtc(mat3(1.0), mat3(1.0), vec4(0.0));
-            if (areaLights) ltc = preskinLtc(dfgTable, N, V, vec2(roughness));
-            do {
-                PreskinLightSample l =
-                    preskinLightSample(unshadowedLight(i, shadowLights, first, indirect), inPositionWs, NL, R, ltc, areaLights);
-                color += preskinStandardLight(surface, N, V, l, ltc.dfg.xy);
-            } while (++i < loopCount);
+            if (kAreaLights == 0u) {
+                do {
+                    vec3 L;
+                    vec3 irradiance;
+                    preskinLightIncidence(unshadowedLight(i, shadowLights, first, indirect), inPositionWs, L, irradiance);
+                    color += preskinStandardLight(surface, N, V, L, irradiance);
+                } while (++i < loopCount);
+            } else {
+                vec3 R = reflect(-V, N);
+                PreskinLtc ltc = preskinLtc(dfgTable, N, V, vec2(roughness));
+                do {
+                    PreskinLightSample l =
+                        preskinLightSample(unshadowedLight(i, shadowLights, first, indirect), inPositionWs, N, R, ltc, true);
+                    color += preskinStandardLight(surface, N, V, l, ltc.dfg.xy);
+                } while (++i < loopCount);
+            }
         }
         // Ambient: SH irradiance for diffuse; specular from the prefiltered environment by the
         // split sum (preskin/ibl.glsl), or (kSpecularSh) the cosine-convolved SH in the reflection

@@ -13,6 +13,19 @@
 #include "preskin/light_sample.glsl"
 #include "shared/light.h"
 
+// The area light types a shader has code for: bit (type - kLightSphere) for each of sphere, tube,
+// rectangle and disc (default all). A renderer that knows which its frame holds defines it (a
+// specialization constant) before including: a CPU driver (lavapipe) runs the code of every
+// branch under a lane mask, so code for absent types still costs it.
+#ifndef PRESKIN_AREA_LIGHT_TYPES
+#define PRESKIN_AREA_LIGHT_TYPES 15u
+#endif
+
+// type == which, and false at compile time where PRESKIN_AREA_LIGHT_TYPES leaves `which` out.
+bool preskinIsLight(uint type, uint which) {
+    return (uint(PRESKIN_AREA_LIGHT_TYPES) & (1u << (which - kLightSphere))) != 0u && type == which;
+}
+
 // Direction to the light (L) and irradiance normal to it at positionWs.
 void preskinLightIncidence(GpuLight light, vec3 positionWs, out vec3 L, out vec3 irradiance) {
     uint type = uint(light.directionType.w);
@@ -69,19 +82,27 @@ vec3 preskinQuadFormFactor(vec3 center, vec3 u, vec3 v) {
 // N: the polygon clipped by the tangent plane (at most five corners), then the edges' vector
 // form factors along N. Exact: (1/pi) int max(N . omega, 0) dOmega over the light.
 float preskinQuadClippedFormFactor(vec3 center, vec3 u, vec3 v, vec3 N) {
-    vec3 corners[4] = vec3[4](center - u - v, center + u - v, center + u + v, center - u + v);
-    vec3 clipped[5];
-    int count = 0;
+    // The clipped polygon streamed corner by corner, each edge's form factor summed as it closes
+    // (no arrays: a CPU driver keeps indexed local arrays in memory for the whole shader).
+    vec3 F = vec3(0.0), first = vec3(0.0), previous = vec3(0.0);
+    int emitted = 0;
     for (int i = 0; i < 4; ++i) {
-        vec3 a = corners[i], b = corners[(i + 1) & 3];
+        vec3 a = center + (i == 1 || i == 2 ? u : -u) + (i >= 2 ? v : -v);
+        int j = (i + 1) & 3;
+        vec3 b = center + (j == 1 || j == 2 ? u : -u) + (j >= 2 ? v : -v);
         float da = dot(a, N), db = dot(b, N);
-        if (da >= 0.0) clipped[count++] = a;
-        if ((da >= 0.0) != (db >= 0.0)) clipped[count++] = a + (b - a) * (da / (da - db));
+        for (int k = 0; k < 2; ++k) {
+            bool emit = k == 0 ? da >= 0.0 : (da >= 0.0) != (db >= 0.0);
+            if (!emit) continue;
+            vec3 p = normalize(k == 0 ? a : a + (b - a) * (da / (da - db)));
+            if (emitted == 0) first = p;
+            else F += preskinEdgeFormFactor(previous, p);
+            previous = p;
+            ++emitted;
+        }
     }
-    if (count < 3) return 0.0;
-    vec3 F = vec3(0.0);
-    for (int i = 0; i < count; ++i)
-        F += preskinEdgeFormFactor(normalize(clipped[i]), normalize(clipped[i + 1 < count ? i + 1 : 0]));
+    if (emitted < 3) return 0.0;
+    F += preskinEdgeFormFactor(previous, first);
     return abs(dot(F, N));
 }
 
@@ -162,10 +183,10 @@ void preskinPerpendicular(vec3 w, out vec3 u, out vec3 v) {
 // a disc as the octagon of its area, a sphere as its silhouette disc, their horizon by the cap.
 float preskinLtcFormFactor(mat3 m, GpuLight light, uint type, vec3 center) {
     float radius = light.spotScaleOffset.x;
-    if (type == kLightRectangle)
+    if (preskinIsLight(type, kLightRectangle))
         return preskinQuadClippedFormFactor(m * center, m * light.directionType.xyz, m * light.spotScaleOffset.xyz,
                                             vec3(0.0, 0.0, 1.0));
-    if (type == kLightTube) {
+    if (preskinIsLight(type, kLightTube)) {
         vec3 halfAxis = light.directionType.xyz;
         float halfLength = length(halfAxis);
         vec3 across = cross(halfAxis, center);
@@ -176,15 +197,17 @@ float preskinLtcFormFactor(mat3 m, GpuLight light, uint type, vec3 center) {
     }
     vec3 u, v, c = center;
     float rho = 1.0539 * radius;
-    if (type == kLightDisc) {
+    if (preskinIsLight(type, kLightDisc)) {
         preskinPerpendicular(light.directionType.xyz, u, v);
-    } else {  // sphere: its silhouette, a disc facing the point
+    } else if (preskinIsLight(type, kLightSphere)) {  // its silhouette, a disc facing the point
         float d2 = dot(center, center);
         if (d2 <= radius * radius) return 1.0;
         preskinPerpendicular(center * inversesqrt(d2), u, v);
         float shrink = 1.0 - radius * radius / d2;
         c = center * shrink;
         rho *= sqrt(shrink);
+    } else {
+        return 0.0;
     }
     return preskinCappedFormFactor(preskinOctagonFormFactor(m, c, u * rho, v * rho));
 }
@@ -209,13 +232,14 @@ PreskinLightSample preskinLightSample(GpuLight light, vec3 positionWs, vec3 N, v
     s.lambertCorrection = 0.0;
     vec3 representative;
     float perArea;  // radiance times solid angle per candela
-    if (type == kLightSphere) {
+    if (preskinIsLight(type, kLightSphere)) {
         preskinSphereCap(center, radius, s.L, s.cosSigma, s.sinSigma, perArea);
         representative = preskinSphereRepresentative(center, radius, R);
     } else {
-        vec3 F;
-        float area;
-        if (type == kLightTube) {
+        vec3 F = vec3(0.0);
+        float area = 1.0;
+        representative = center;
+        if (preskinIsLight(type, kLightTube)) {
             // A rectangle facing the point along the axis, a half sphere at each end.
             vec3 halfAxis = light.directionType.xyz;
             vec3 across = cross(halfAxis, center);
@@ -233,9 +257,10 @@ PreskinLightSample preskinLightSample(GpuLight light, vec3 positionWs, vec3 N, v
             float rd = dot(R, d);
             float t = preskinSaturate((dot(R, p0) * rd - dot(p0, d)) / max(dot(d, d) - rd * rd, 1e-30));
             representative = preskinSphereRepresentative(p0 + t * d, radius, R);
-        } else {
-            vec3 m, u, v;  // normal it emits along; half axes (rectangle)
-            if (type == kLightRectangle) {
+        } else if (preskinIsLight(type, kLightRectangle) || preskinIsLight(type, kLightDisc)) {
+            vec3 m, u = vec3(0.0), v = vec3(0.0);  // normal it emits along; half axes (rectangle)
+            bool rectangle = preskinIsLight(type, kLightRectangle);
+            if (rectangle) {
                 u = light.directionType.xyz;
                 v = light.spotScaleOffset.xyz;
                 m = normalize(cross(v, u));
@@ -245,14 +270,15 @@ PreskinLightSample preskinLightSample(GpuLight light, vec3 positionWs, vec3 N, v
                 area = PRESKIN_PI * radius * radius;
             }
             if (dot(center, m) >= 0.0) return preskinPunctualSample(normalize(center), vec3(0.0));  // behind it
-            F = type == kLightRectangle ? preskinQuadFormFactor(center, u, v) : preskinDiscFormFactor(center, m, radius);
+            if (rectangle) F = preskinQuadFormFactor(center, u, v);
+            else F = preskinDiscFormFactor(center, m, radius);
             // Representative point: where the reflected ray meets the plane (or the plane's point
             // nearest the ray's point at the centre's distance), clamped to the light.
             float toward = -dot(R, m);
             vec3 hit = toward > 1e-4 ? R * (-dot(center, m) / toward) : R * length(center);
             vec3 q = hit - center;
             q -= dot(q, m) * m;
-            if (type == kLightRectangle) {
+            if (rectangle) {
                 vec2 extent = vec2(length(u), length(v));
                 vec2 xy = clamp(vec2(dot(q, u), dot(q, v)) / extent, -extent, extent);
                 representative = center + xy.x * (u / extent.x) + xy.y * (v / extent.y);
@@ -266,7 +292,7 @@ PreskinLightSample preskinLightSample(GpuLight light, vec3 positionWs, vec3 N, v
         s.cosSigma = sqrt(1.0 - s2);
         s.sinSigma = sqrt(s2);
         perArea = 2.0 * PRESKIN_PI * s2 / ((1.0 + s.cosSigma) * max(area, 1e-30));
-        if (type == kLightRectangle && s2 > 0.0) {
+        if (preskinIsLight(type, kLightRectangle) && s2 > 0.0) {
             // pi F_clipped / solid angle, in the sample's units, less the cap's own Lambert term.
             float solidAngle = 2.0 * PRESKIN_PI * s2 / (1.0 + s.cosSigma);
             float exact = PRESKIN_PI * preskinQuadClippedFormFactor(center, light.directionType.xyz,
@@ -280,8 +306,9 @@ PreskinLightSample preskinLightSample(GpuLight light, vec3 positionWs, vec3 N, v
     s.specularFormFactor = vec2(0.0);
     if (useLtc) {
         float area = PRESKIN_PI * radius * radius;  // sphere, disc
-        if (type == kLightRectangle) area = 4.0 * length(light.directionType.xyz) * length(light.spotScaleOffset.xyz);
-        if (type == kLightTube) area = 4.0 * length(light.directionType.xyz) * radius + PRESKIN_PI * radius * radius;
+        if (preskinIsLight(type, kLightRectangle))
+            area = 4.0 * length(light.directionType.xyz) * length(light.spotScaleOffset.xyz);
+        if (preskinIsLight(type, kLightTube)) area = 4.0 * length(light.directionType.xyz) * radius + PRESKIN_PI * radius * radius;
         s.radiance = intensity / max(area, 1e-30);
         s.specularFormFactor.x = preskinLtcFormFactor(ltc.lobe0, light, type, center);
         s.specularFormFactor.y = ltc.lobe1 == ltc.lobe0 ? s.specularFormFactor.x

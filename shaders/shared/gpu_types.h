@@ -55,7 +55,8 @@ PRESKIN_CONST(uint, kSpecSpecular, 7)       // kSpecular* below (RenderSettings:
 PRESKIN_CONST(uint, kSpecProfileMix, 8)     // entries of a skin material's profile mix: 1 (its own), 2..4 (blended)
 PRESKIN_CONST(uint, kSpecSkinInputs, 9)     // a skin material's inputs and how to read them: kSkinInput* below
 PRESKIN_CONST(uint, kSpecLutMapping, 10)    // 32 ids: a skin material's own profile's LutMapping, member by member (xyzw)
-PRESKIN_CONST(uint, kSpecCount, 42)
+PRESKIN_CONST(uint, kSpecAreaLights, 42)   // the frame's area light types: bit (kLight* - kLightSphere) each, 0: none
+PRESKIN_CONST(uint, kSpecCount, 43)
 
 // Bits of kSpecSkinInputs.
 PRESKIN_CONST(uint, kSkinInputDetailNormals, 1u)       // a detail normal map

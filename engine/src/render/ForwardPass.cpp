@@ -4,6 +4,7 @@
 // and the recording of every draw of every eye into the host's or the headless target.
 #include "render/RendererImpl.h"
 
+#include <preskin/LightRecord.h>
 #include <preskin/NormalBasis.h>
 
 #include "shared/gpu_types.h"
@@ -44,6 +45,14 @@ VkImageAspectFlags depthAspect(VkFormat format) {
 
 }  // namespace
 
+// The area light types among `lights`: bit (type - kLightSphere) each (kSpecAreaLights).
+uint32_t areaLightTypes(const std::vector<Light>& lights) {
+    uint32_t bits = 0;
+    for (const Light& l : lights)
+        if (isAreaLight(l.type)) bits |= 1u << (uint32_t(l.type) - uint32_t(LightType::Sphere));
+    return bits;
+}
+
 PipelineKey Renderer::Impl::pipelineKey(const GpuMaterial& m, VkFormat format, VkFormat depthFormat,
                                         uint32_t eyes) const {
     const bool skin = m.skin && luts->valid();
@@ -64,6 +73,7 @@ PipelineKey Renderer::Impl::pipelineKey(const GpuMaterial& m, VkFormat format, V
         eyeDrawing() == EyeDrawing::InstancedLayers ? 1u : 0u,
         skin ? m.profileMix : 1u,
         skin ? m.skinInputBits() | (settings.skinTermsPerVertex ? 0u : gpu::kSkinInputTermsPerFragment) : 0u,
+        areaLightTypes(frameLights),
         skin ? std::bit_cast<std::array<uint32_t, 32>>(m.lutMapping) : std::array<uint32_t, 32>{}};
 }
 
@@ -107,6 +117,7 @@ VkPipeline Renderer::Impl::createForwardPipeline(const PipelineKey& key) const {
     desc.specialization.values[gpu::kSpecSpecular] = key.specular;
     desc.specialization.values[gpu::kSpecProfileMix] = key.profileMix;
     desc.specialization.values[gpu::kSpecSkinInputs] = key.skinInputs;
+    desc.specialization.values[gpu::kSpecAreaLights] = key.areaLights;
     std::copy(key.lutMapping.begin(), key.lutMapping.end(), desc.specialization.values.begin() + gpu::kSpecLutMapping);
     const AlphaMode alphaMode = static_cast<AlphaMode>(key.alphaMode);
     const bool alphaToCoverage = key.samples > 1 && alphaMode == AlphaMode::Mask;

@@ -35,11 +35,11 @@ inline constexpr uint32_t kEnvironmentKeptWidth = 2048;
 // What makes one forward pipeline differ from another.
 struct PipelineKey {
     uint32_t model, alphaMode, doubleSided, format, depthFormat, debugView, skinMask, lightLoop, specular, eyes,
-        samples, layered, profileMix, skinInputs;
+        samples, layered, profileMix, skinInputs, areaLights;
     std::array<uint32_t, 32> lutMapping;  // skin: the material's own LutMapping, as bits (kSpecLutMapping)
     auto tie() const {
         return std::tie(model, alphaMode, doubleSided, format, depthFormat, debugView, skinMask, lightLoop, specular,
-                        eyes, samples, layered, profileMix, skinInputs, lutMapping);
+                        eyes, samples, layered, profileMix, skinInputs, areaLights, lutMapping);
     }
     bool operator<(const PipelineKey& o) const { return tie() < o.tie(); }
 };
