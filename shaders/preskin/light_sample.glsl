@@ -7,8 +7,10 @@
 // A punctual light is the cap of radius 0. Materials turn a cap into reflected light here:
 // Lambert by the exact horizon-clipped irradiance of a uniform cap (Snyder, "Area Light Sources
 // for Real-Time Graphics", Microsoft Research TR-96-11, 1996), skin by averaging its diffuse LUT
-// over the cap (preskinCapNodes), specular at a representative point (Karis, "Real Shading in
-// Unreal Engine 4", SIGGRAPH 2013 course) with GGX widened by the cap's half angle.
+// over the cap (preskinCapNodes), specular by the lobes' linearly transformed cosines
+// (PreskinLtc, Heitz et al. 2016; table fitted in engine/src/env/Ltc.h) blended for small lights
+// with the representative point (Karis, "Real Shading in Unreal Engine 4", SIGGRAPH 2013 course,
+// GGX widened by the cap's half angle), which is all a host without the table gets.
 // Stands alone: no bindings.
 #ifndef PRESKIN_LIGHT_SAMPLE_GLSL
 #define PRESKIN_LIGHT_SAMPLE_GLSL
