@@ -80,6 +80,13 @@ TEST(GltfAreaLights, ShapesSizesAndFrames) {
             EXPECT_LT(glm::distance(glm::vec3(g.directionType), glm::vec3(-1, 0, 0)), 1e-6f);
         }
     }
+    // A size the shape does not use is ignored with a warning naming it.
+    const Scene extra = Scene::load(
+        sceneWithLight(areaLight({{"shape", "sphere"}, {"radius", 0.1}, {"width", 2.0}})).writeGltf(dir.path(), "c"));
+    ASSERT_EQ(extra.warnings.size(), 1u);
+    EXPECT_NE(extra.warnings[0].find("PRESKIN_lights_area.width: not a size of a sphere light; ignored"),
+              std::string::npos)
+        << extra.warnings[0];
     // Without the extension the same light is a point light.
     const Scene plain =
         Scene::load(sceneWithLight({{"type", "point"}, {"intensity", 5}}, turned).writeGltf(dir.path(), "b"));

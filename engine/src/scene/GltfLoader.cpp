@@ -196,6 +196,11 @@ void applyAreaShape(const LoadContext& ctx, const tinygltf::Value& area, const s
     } else {
         ctx.fail(where + ".shape", "'" + io::messageText(*shape) + "' is not sphere, tube, rectangle or disc");
     }
+    const bool round = out.type != LightType::Rectangle;
+    const std::pair<const char*, bool> fields[] = {
+        {"radius", round}, {"length", out.type == LightType::Tube}, {"width", !round}, {"height", !round}};
+    for (const auto& [key, used] : fields)
+        if (!used && area.Has(key)) ctx.warn(where + "." + key, "not a size of a " + *shape + " light; ignored");
 }
 
 // A light the file defines but that cannot light anything (an unknown type, a node scaled to
