@@ -106,7 +106,7 @@ struct FrameUniforms {
     vec4 shadowParams;          // x texel size (m), y Gaussian sigma (texels), z depth range (m), w map size
     vec4 shadowDirectionWs;     // xyz direction the shadow light travels, w: 1 when a shadow map exists (its light is lights[0])
     vec4 shRadiance[9];         // L2 SH of environment radiance, RGB (environment intensity applied)
-    uvec4 lightCounts;          // x: lights, y: directional lights (first y entries), z: cluster index capacity, w: area lights
+    uvec4 lightCounts;          // x: lights, y: directional lights (first y entries), z: cluster index capacity
     vec4 clusterScale;          // x,y: tiles per unit of cluster-camera NDC (tile = (ndc + 1) * xy),
                                 // z,w: depth slice = log2(viewDepth) * z + w
     uvec4 clusterDims;          // x, y, z clusters; w: max lights per cluster

@@ -345,9 +345,7 @@ bool Renderer::Impl::prepareFrame(Slot& slot, uint32_t slotIndex, const View& vi
     u.wideShadow = glm::vec4(float(mapSize) / float(wideSize * wideFactor), float(wideSize),
                              fit.texelSizeM * float(wideFactor), float(wideFactor));
     for (int i = 0; i < 9; ++i) u.shRadiance[i] = glm::vec4(extracted.residualSh.c[size_t(i)], 0.0f);
-    const auto areaLights =
-        std::count_if(frameLights.begin(), frameLights.end(), [](const Light& l) { return isAreaLight(l.type); });
-    u.lightCounts = glm::uvec4(slot.lightCount, directional, 0u, uint32_t(areaLights));
+    u.lightCounts = glm::uvec4(slot.lightCount, directional, 0u, 0u);
     u.environment = glm::vec4(std::cos(environment.rotationY()), std::sin(environment.rotationY()),
                               environmentMaps->maxLevel(), 0.0f);
     if (settings.lightLoop == LightLoop::Clustered) {
