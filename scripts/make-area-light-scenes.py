@@ -11,7 +11,8 @@
       the 10 mm sphere under a tube (radius 2 cm, length 60 cm) and a disc (radius 25 cm) at 1 m;
   head_softbox.gltf
       the bundled head (its files copied) under a 1 m x 0.5 m soft box 0.8 m to its upper right
-      front, the environment at a tenth of its bundled intensity, no directional light;
+      front, the environment at a tenth of its bundled intensity, no directional light (shipped
+      as samples/assets/head/head_softbox.gltf);
   head_softbox_point.gltf
       the same with the point light the soft box stands for (the extension removed).
 
