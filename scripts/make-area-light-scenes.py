@@ -20,15 +20,19 @@ None of these casts shadows: only a directional light casts them in preskin.
 
 Usage: make-area-light-scenes.py OUTDIR   (Python 3 standard library only)
 """
-import json
+import importlib.util
 import math
 import os
-import shutil
 import sys
 
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 sys.path.insert(0, os.path.join(ROOT, "samples", "assets", "spheres"))
 import make_spheres  # noqa: E402
+
+# The bundled head's files, copied as make-fidelity-scenes.py copies them.
+_spec = importlib.util.spec_from_file_location("fidelity_scenes", os.path.join(ROOT, "scripts", "make-fidelity-scenes.py"))
+FIDELITY_SCENES = importlib.util.module_from_spec(_spec)
+_spec.loader.exec_module(FIDELITY_SCENES)
 
 KEY_TOWARDS_LIGHT = (-0.5, 0.6, 0.65)  # the bundled spheres' key light, reversed
 
@@ -83,12 +87,7 @@ def main():
             with_area_light(doc, shape, 3.0, KEY_TOWARDS_LIGHT, 1.0)
             make_spheres.write_document(os.path.join(out, f"sphere_{size}_{kind}.gltf"), doc)
 
-    head_dir = os.path.join(ROOT, "samples", "assets", "head")
-    with open(os.path.join(head_dir, "head.gltf")) as f:
-        head = json.load(f)
-    for name in ["head.bin", "Map-COL.jpg", "Map-SPEC.jpg", "Infinite-Level_02_Tangent_SmoothUV.jpg",
-                 "studio_small_05_1k.hdr"]:
-        shutil.copyfile(os.path.join(head_dir, name), os.path.join(out, name))
+    head = FIDELITY_SCENES.copy_head(out)
     head["extensions"]["PRESKIN_environment"]["intensity"] *= 0.1
     # 1.9 cd over 0.8 m: about 3 lux facing it, like the bundled key light.
     with_area_light(head, {"shape": "rectangle", "width": 1.0, "height": 0.5}, 1.9, (0.6, 0.35, 0.7), 0.8,

@@ -44,6 +44,17 @@ def torus(ring_radius, tube_radius, segments=128, sides=64):
     return positions, normals, uvs, indices
 
 
+def copy_head(out):
+    """Copies the bundled head's files into `out` and returns its glTF document (a dict)."""
+    head_dir = os.path.join(ROOT, "samples", "assets", "head")
+    with open(os.path.join(head_dir, "head.gltf")) as f:
+        head = json.load(f)
+    for name in ["head.bin", "Map-COL.jpg", "Map-SPEC.jpg", "Infinite-Level_02_Tangent_SmoothUV.jpg",
+                 "studio_small_05_1k.hdr"]:
+        shutil.copyfile(os.path.join(head_dir, name), os.path.join(out, name))
+    return head
+
+
 def main():
     if len(sys.argv) != 2:
         sys.exit(__doc__)
@@ -62,12 +73,7 @@ def main():
     doc["nodes"][0]["rotation"] = [math.sin(0.5 * 0.9), 0.0, 0.0, math.cos(0.5 * 0.9)]
     make_spheres.write_document(os.path.join(out, "torus.gltf"), doc)
 
-    head_dir = os.path.join(ROOT, "samples", "assets", "head")
-    with open(os.path.join(head_dir, "head.gltf")) as f:
-        head = json.load(f)
-    for name in ["head.bin", "Map-COL.jpg", "Map-SPEC.jpg", "Infinite-Level_02_Tangent_SmoothUV.jpg",
-                 "studio_small_05_1k.hdr"]:
-        shutil.copyfile(os.path.join(head_dir, name), os.path.join(out, name))
+    head = copy_head(out)
     for node in head["nodes"]:
         if node.get("name") == "key":
             node["rotation"] = make_spheres.quaternion_from_minus_z_to(
