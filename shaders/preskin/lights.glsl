@@ -228,6 +228,12 @@ PreskinLightSample preskinLightSample(GpuLight light, vec3 positionWs, vec3 N, v
     float window = preskinRangeWindow(dot(center, center), light.positionRange.w);
     vec3 intensity = light.colorIntensity.rgb * window;
     float radius = light.spotScaleOffset.x;
+    // The projected area the candela spread over: a sphere's or disc's pi r^2, a rectangle's w h, a
+    // tube's broadside 2 r l + pi r^2.
+    float area = PRESKIN_PI * radius * radius;
+    if (preskinIsLight(type, kLightRectangle))
+        area = 4.0 * length(light.directionType.xyz) * length(light.spotScaleOffset.xyz);
+    if (preskinIsLight(type, kLightTube)) area += 4.0 * length(light.directionType.xyz) * radius;
     PreskinLightSample s;
     s.lambertCorrection = 0.0;
     vec3 representative;
@@ -237,7 +243,6 @@ PreskinLightSample preskinLightSample(GpuLight light, vec3 positionWs, vec3 N, v
         representative = preskinSphereRepresentative(center, radius, R);
     } else {
         vec3 F = vec3(0.0);
-        float area = 1.0;
         representative = center;
         if (preskinIsLight(type, kLightTube)) {
             // A rectangle facing the point along the axis, a half sphere at each end.
@@ -251,7 +256,6 @@ PreskinLightSample preskinLightSample(GpuLight light, vec3 positionWs, vec3 N, v
             preskinSphereCap(center - halfAxis, radius, a0, c0, s0, unused);
             preskinSphereCap(center + halfAxis, radius, a1, c1, s1, unused);
             F += 0.5 * (s0 * s0 * a0 + s1 * s1 * a1);
-            area = 4.0 * length(halfAxis) * radius + PRESKIN_PI * radius * radius;
             // Representative point: the axis point nearest the reflected ray (Karis 2013), then the sphere there.
             vec3 p0 = center - halfAxis, d = 2.0 * halfAxis;
             float rd = dot(R, d);
@@ -264,10 +268,8 @@ PreskinLightSample preskinLightSample(GpuLight light, vec3 positionWs, vec3 N, v
                 u = light.directionType.xyz;
                 v = light.spotScaleOffset.xyz;
                 m = normalize(cross(v, u));
-                area = 4.0 * length(u) * length(v);
             } else {
                 m = light.directionType.xyz;
-                area = PRESKIN_PI * radius * radius;
             }
             if (dot(center, m) >= 0.0) return preskinPunctualSample(normalize(center), vec3(0.0));  // behind it
             if (rectangle) F = preskinQuadFormFactor(center, u, v);
@@ -305,10 +307,6 @@ PreskinLightSample preskinLightSample(GpuLight light, vec3 positionWs, vec3 N, v
     s.radiance = vec3(0.0);
     s.specularFormFactor = vec2(0.0);
     if (useLtc) {
-        float area = PRESKIN_PI * radius * radius;  // sphere, disc
-        if (preskinIsLight(type, kLightRectangle))
-            area = 4.0 * length(light.directionType.xyz) * length(light.spotScaleOffset.xyz);
-        if (preskinIsLight(type, kLightTube)) area = 4.0 * length(light.directionType.xyz) * radius + PRESKIN_PI * radius * radius;
         s.radiance = intensity / max(area, 1e-30);
         s.specularFormFactor.x = preskinLtcFormFactor(ltc.lobe0, light, type, center);
         s.specularFormFactor.y = ltc.lobe1 == ltc.lobe0 ? s.specularFormFactor.x
