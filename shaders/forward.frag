@@ -177,9 +177,16 @@ void main() {
                           max(abs(dot(geometricN, frame.shadowDirectionWs.xyz)), 0.3);
             wideShadow = preskinSampleShadow(wideShadowMap, preskinScaledShadowClip(shadowClipFromWorld, frame.wideShadow.x),
                                              wideParams, shadowPositionWs, geometricN,
-                                             PreskinShadowFilter(3, 0.75, riseM, frame.wideShadow.w));
+                                             PreskinShadowFilter(3, 0.75, riseM, frame.wideShadow.w, 0.0));
         }
-        shadow = preskinSampleShadow(shadowMap, shadowClipFromWorld, shadowParams, shadowPositionWs, geometricN);
+        PreskinShadowFilter shadowFilter = kPreskinShadowMapFilter;
+        if (kSizedShadowLight) {
+            // A sun's disc seen past an edge d away is tan(sigma) d in radius; the Gaussian closest
+            // to its edge's profile (least squares) has 0.545 that as its standard deviation.
+            float sinSigma = lights[0].spotScaleOffset.z;
+            shadowFilter.penumbraPerM = 0.545 * sinSigma * inversesqrt(max(1.0 - sinSigma * sinSigma, 1e-6));
+        }
+        shadow = preskinSampleShadow(shadowMap, shadowClipFromWorld, shadowParams, shadowPositionWs, geometricN, shadowFilter);
     }
 
     uint first;
@@ -241,6 +248,15 @@ void main() {
         skin.thicknessScale = material.skinTransmission.w;
 
         PreskinSkinLighting lighting = preskinSkinLighting(skin, profiles, diffuseLut, V, features);
+        // Lights with a size (preskin/lights.glsl); their specular from the lobes' linearly
+        // transformed cosines.
+        vec3 R = reflect(-V, skin.normalSpecular);
+        PreskinLtc ltc = PreskinLtc(mat3(1.0), mat3(1.0), vec4(0.0));
+        if (kAreaLights != 0u) {
+            vec2 lobeRoughness = (features & kSkinDualSpecular) != 0u ? clamp(roughness * skin.lobes.xy, 0.03, 1.0)
+                                                                      : vec2(roughness);
+            ltc = preskinLtc(dfgTable, skin.normalSpecular, V, lobeRoughness);
+        }
         vec3 transmitted = vec3(0.0);
         vec3 penumbra = vec3(1.0);
         if (hasShadowLight) {
@@ -259,7 +275,12 @@ void main() {
                                                          features);
             transmitted =
                 preskinSkinTransmission(skin, profiles, transmittanceLut, L, irradiance, thicknessM, sphereT, features);
-            color += preskinSkinLight(skin, lighting, profiles, diffuseLut, V, L, irradiance, penumbra, shadow.visibility, features);
+            if (kSizedShadowLight)
+                color += preskinSkinLight(skin, lighting, profiles, diffuseLut, V,
+                                          preskinLightSample(lights[0], inPositionWs, skin.normalSpecular, R, ltc, true),
+                                          penumbra, shadow.visibility, features, ltc.dfg);
+            else
+                color += preskinSkinLight(skin, lighting, profiles, diffuseLut, V, L, irradiance, penumbra, shadow.visibility, features);
         }
         if (loopCount > 0u) {
             uint i = 0u;
@@ -271,12 +292,6 @@ void main() {
                     color += preskinSkinLight(skin, lighting, profiles, diffuseLut, V, L, irradiance, vec3(1.0), 1.0, features);
                 } while (++i < loopCount);
             } else {
-                // Lights with a size (preskin/lights.glsl); their specular from the lobes' linearly
-                // transformed cosines.
-                vec3 R = reflect(-V, skin.normalSpecular);
-                vec2 lobeRoughness = (features & kSkinDualSpecular) != 0u ? clamp(roughness * skin.lobes.xy, 0.03, 1.0)
-                                                                          : vec2(roughness);
-                PreskinLtc ltc = preskinLtc(dfgTable, skin.normalSpecular, V, lobeRoughness);
                 do {
                     PreskinLightSample l = preskinLightSample(unshadowedLight(i, shadowLights, first, indirect),
                                                               inPositionWs, skin.normalSpecular, R, ltc, true);
@@ -306,11 +321,21 @@ void main() {
         surface.F0 = mix(vec3(0.04), baseColor.rgb, metallic);
         surface.roughness = roughness;
         surface.specularWeight = kSpecularWeight;
+        vec3 R = reflect(-V, N);
+        PreskinLtc ltc = PreskinLtc(mat3(1.0), mat3(1.0), vec4(0.0));
+        if (kAreaLights != 0u) ltc = preskinLtc(dfgTable, N, V, vec2(roughness));
         if (hasShadowLight) {
-            vec3 L;
-            vec3 irradiance;
-            preskinLightIncidence(lights[0], inPositionWs, L, irradiance);
-            color += preskinStandardLight(surface, N, V, L, irradiance * shadow.visibility);
+            if (kSizedShadowLight) {
+                PreskinLightSample l = preskinLightSample(lights[0], inPositionWs, N, R, ltc, true);
+                l.irradiance *= shadow.visibility;
+                l.radiance *= shadow.visibility;
+                color += preskinStandardLight(surface, N, V, l, ltc.dfg.xy);
+            } else {
+                vec3 L;
+                vec3 irradiance;
+                preskinLightIncidence(lights[0], inPositionWs, L, irradiance);
+                color += preskinStandardLight(surface, N, V, L, irradiance * shadow.visibility);
+            }
         }
         if (loopCount > 0u) {
             uint i = 0u;
@@ -322,8 +347,6 @@ void main() {
                     color += preskinStandardLight(surface, N, V, L, irradiance);
                 } while (++i < loopCount);
             } else {
-                vec3 R = reflect(-V, N);
-                PreskinLtc ltc = preskinLtc(dfgTable, N, V, vec2(roughness));
                 do {
                     PreskinLightSample l =
                         preskinLightSample(unshadowedLight(i, shadowLights, first, indirect), inPositionWs, N, R, ltc, true);
@@ -335,7 +358,6 @@ void main() {
         // split sum (preskin/ibl.glsl), or (kSpecularSh) the cosine-convolved SH in the reflection
         // direction with the analytic environment BRDF.
         vec3 irradianceSh = max(preskinShEvaluate(frame.shRadiance, N, PRESKIN_SH_LAMBERT), vec3(0.0));
-        vec3 R = reflect(-V, N);
         vec3 envBrdf;
         vec3 specularIbl;
         if (kSpecular == kSpecularIbl) {

@@ -20,8 +20,10 @@ layout(constant_id = kSpecSpecular) const uint kSpecular = kSpecularIbl;
 const float kSpecularWeight = kSpecular != kSpecularOff ? 1.0 : 0.0;
 layout(constant_id = kSpecProfileMix) const uint kProfileMix = 4;
 // The area light types the light loop has code for (bit kLight* - kLightSphere each; 0: none, the
-// punctual loop): a CPU driver would pay for code of absent types in every loop.
+// punctual loop; a directional light with an angular radius counts as a sphere), and whether the
+// shadow light has a size: a CPU driver would pay for code of absent types in every loop.
 layout(constant_id = kSpecAreaLights) const uint kAreaLights = 0;
+const bool kSizedShadowLight = (kAreaLights & kAreaLightSizedShadow) != 0u;
 // What a skin material reads (kSpecSkinInputs): a pipeline for a material without a detail map or
 // with per-vertex curvature has no code for the others.
 layout(constant_id = kSpecSkinInputs) const uint kSkinInputs = 0;

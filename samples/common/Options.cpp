@@ -11,6 +11,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdlib>
+#include <numbers>
 #include <sstream>
 
 namespace preskin::cli {
@@ -51,6 +52,11 @@ void addSceneOptions(CLI::App& cmd, CommonOptions& o) {
                    "lights sized from their ranges (rectangles and discs facing the scene's centre)")
         ->check(CLI::IsMember({"point", "sphere", "tube", "rectangle", "disc"}))
         ->capture_default_str();
+    cmd.add_option("--sun-radius", o.sunRadiusDeg,
+                   "Angular radius in degrees given to the scene's directional lights (the sun's is 0.27): a softer "
+                   "terminator, and shadow penumbrae that widen with the occluder's distance (0: parallel light; "
+                   "default: as the scene says)")
+        ->check(numberIn(0.0, 45.0));
     cmd.add_option("--seed", o.seed, "Seed for --lights")->check(wholeNumberIn(0, UINT32_MAX))->capture_default_str();
     cmd.add_option("--exposure", o.exposure, "Exposure multiplier")->check(numberIn(0.0, 1e6))->capture_default_str();
     cmd.add_flag("--no-shadows", o.noShadows, "Disable the shadow map");
@@ -395,6 +401,10 @@ void shapeLights(std::vector<Light>& lights, const std::string& shape, const Bou
 std::vector<Light> sceneLights(const Scene& scene, const CommonOptions& o) {
     std::vector<Light> lights = o.noSceneLights ? std::vector<Light>{} : scene.lights;
     if (lights.empty() && environmentLightCount(scene, o) == 0) lights.push_back(defaultKeyLight());
+    if (o.sunRadiusDeg)
+        for (Light& l : lights)
+            if (l.type == LightType::Directional)
+                l.angularRadius = *o.sunRadiusDeg * std::numbers::pi_v<float> / 180.0f;
     if (o.lights > 0) {
         auto scattered = scatterLights(scene.worldBounds(), o.lights, o.seed, o.lightDensity);
         shapeLights(scattered, o.lightShape, scene.worldBounds());

@@ -43,8 +43,9 @@ struct CommonOptions {
     std::vector<std::string> background;  // --background: empty (the default colour), env, transparent, color R,G,B
     uint32_t lights = 0;
     uint32_t seed = 1;
-    float lightDensity = 0.0f;         // --light-density: lights per point for --lights (0: ranges of the scene's size)
-    std::string lightShape = "point";  // --light-shape: point (points and spots), sphere, tube, rectangle, disc
+    float lightDensity = 0.0f;  // --light-density: lights per point for --lights (0: ranges of the scene's size)
+    std::optional<float> sunRadiusDeg;  // --sun-radius: directional lights' angular radius, degrees
+    std::string lightShape = "point";   // --light-shape: point (points and spots), sphere, tube, rectangle, disc
     std::string lightLoop = "clustered";
     float exposure = 1.0f;
     float shadowSoftness = 1.5f;

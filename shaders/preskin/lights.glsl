@@ -1,7 +1,7 @@
 // preskin/lights.glsl: punctual lights as in KHR_lights_punctual: inverse-square falloff with
 // the extension's recommended smooth range window, and its spot cone attenuation; and lights with
-// a size (PRESKIN_lights_area: sphere, tube, rectangle, disc) as the cap of directions of
-// preskin/light_sample.glsl (docs/area-lights.md). Stands alone: it needs only the GpuLight
+// a size (PRESKIN_lights_area: sphere, tube, rectangle, disc, and directional lights with an
+// angular radius) as the cap of directions of preskin/light_sample.glsl (docs/area-lights.md). Stands alone: it needs only the GpuLight
 // struct of shared/light.h, not the renderer's bindings.
 // Limits: the range window follows the extension's recommendation, not physics (area lights take
 // it at the distance to their centre); a tube, rectangle or disc is the sphere cap of its vector
@@ -181,8 +181,7 @@ void preskinPerpendicular(vec3 w, out vec3 u, out vec3 v) {
 // shaded point), `m` the lobe's map (PreskinLtc): a rectangle exactly (clipped in the cosine's
 // space); a tube as the rectangle facing the point of its projected area (2 r by l + pi r / 2);
 // a disc as the octagon of its area, a sphere as its silhouette disc, their horizon by the cap.
-float preskinLtcFormFactor(mat3 m, GpuLight light, uint type, vec3 center) {
-    float radius = light.spotScaleOffset.x;
+float preskinLtcFormFactor(mat3 m, GpuLight light, uint type, vec3 center, float radius) {
     if (preskinIsLight(type, kLightRectangle))
         return preskinQuadClippedFormFactor(m * center, m * light.directionType.xyz, m * light.spotScaleOffset.xyz,
                                             vec3(0.0, 0.0, 1.0));
@@ -219,15 +218,19 @@ float preskinLtcFormFactor(mat3 m, GpuLight light, uint type, vec3 center) {
 // which materials then use for specular instead. Punctual lights give preskinLightIncidence.
 PreskinLightSample preskinLightSample(GpuLight light, vec3 positionWs, vec3 N, vec3 R, PreskinLtc ltc, bool useLtc) {
     uint type = uint(light.directionType.w);
-    if (type < kLightSphere) {
+    // A directional light with an angular radius sigma (where the shader has sphere code): a sphere
+    // of radius sin(sigma) at unit distance, whose candela are then the light's lux.
+    bool sun = (uint(PRESKIN_AREA_LIGHT_TYPES) & 1u) != 0u && type == kLightDirectional && light.spotScaleOffset.z > 0.0;
+    if (type < kLightSphere && !sun) {
         vec3 L, irradiance;
         preskinLightIncidence(light, positionWs, L, irradiance);
         return preskinPunctualSample(L, irradiance);
     }
-    vec3 center = light.positionRange.xyz - positionWs;
-    float window = preskinRangeWindow(dot(center, center), light.positionRange.w);
+    vec3 center = sun ? -light.directionType.xyz : light.positionRange.xyz - positionWs;
+    float window = sun ? 1.0 : preskinRangeWindow(dot(center, center), light.positionRange.w);
     vec3 intensity = light.colorIntensity.rgb * window;
-    float radius = light.spotScaleOffset.x;
+    float radius = sun ? light.spotScaleOffset.z : light.spotScaleOffset.x;
+    if (sun) type = kLightSphere;
     // The projected area the candela spread over: a sphere's or disc's pi r^2, a rectangle's w h, a
     // tube's broadside 2 r l + pi r^2.
     float area = PRESKIN_PI * radius * radius;
@@ -308,9 +311,9 @@ PreskinLightSample preskinLightSample(GpuLight light, vec3 positionWs, vec3 N, v
     s.specularFormFactor = vec2(0.0);
     if (useLtc) {
         s.radiance = intensity / max(area, 1e-30);
-        s.specularFormFactor.x = preskinLtcFormFactor(ltc.lobe0, light, type, center);
+        s.specularFormFactor.x = preskinLtcFormFactor(ltc.lobe0, light, type, center, radius);
         s.specularFormFactor.y = ltc.lobe1 == ltc.lobe0 ? s.specularFormFactor.x
-                                                        : preskinLtcFormFactor(ltc.lobe1, light, type, center);
+                                                        : preskinLtcFormFactor(ltc.lobe1, light, type, center, radius);
     }
     s.specularL = normalize(representative);
     s.specularAlphaAdd = s.cosSigma <= -1.0 ? 1.0 : 0.5 * s.sinSigma;

@@ -11,7 +11,9 @@
 // along the surface so wide kernels do not self-shadow sloped receivers. Also gives what skin
 // needs: the occluder depth (thickness) and the filter's width in world units (penumbra LUT),
 // the standard deviation of the weights actually used.
-// Limits: one orthographic map (no cascades, no contact hardening); the window narrows wide
+// Lights with a size get penumbrae that widen with the occluder's distance (below).
+// Limits: one orthographic map (no cascades); a wide penumbra's kernel samples one texel in s x s
+// (occluders thinner than s texels can flicker through it); the window narrows wide
 // kernels (the reported width is that of the weights used: sigma 1 gives 1.07 texels, 1.5 gives
 // 1.41, 2 gives 1.58), and the shadow map quantises an edge's position to its texels.
 #ifndef PRESKIN_SHADOW_GLSL
@@ -46,13 +48,114 @@ struct PreskinShadowFilter {
                             // kernel (a concave receiver's own walls)
     float texelScale;       // the map's texels per shadow-map texel side: the receiver plane's depth step
                             // per texel is clamped to 0.02 times it (the same steepest slope on any map)
+    float penumbraPerM;     // a light with a size: the penumbra's standard deviation per metre between
+                            // occluder and receiver (a disc of angular radius sigma: 0.545 tan(sigma)); 0: none
 };
 
-// The filter of a shadow map: 8 x 8 texels, no extra bias.
-const PreskinShadowFilter kPreskinShadowMapFilter = PreskinShadowFilter(4, 0.0, 0.0, 1.0);
+// The filter of a shadow map: 8 x 8 texels, no extra bias, a parallel light.
+const PreskinShadowFilter kPreskinShadowMapFilter = PreskinShadowFilter(4, 0.0, 0.0, 1.0, 0.0);
+
+// The windowed Gaussian percentage-closer sum of the header over 2G x 2G texels around texel
+// coordinate t (texel i's centre at t = i), comparing z - bias tilted by dzPerTexel, and the
+// occluding texels' weighted mean depth. At stride 1 the texels are floor(t) - G + 1 ..
+// floor(t) + G, G x G gathers, windowed at G texels (separable weights). At stride s > 1 they are
+// the texels nearest the points of a square lattice of spacing s turned by atan(2/5), anchored to
+// the map, within a disc of radius s (G - 1/2) - 1 where the weight reaches 0 (so a texel enters
+// and leaves the footprint at weight 0): a wide kernel costs no more lookups, and since the
+// lattice's rows lie along no axis or diagonal, an edge's position is resolved to a fifth of s or
+// better, not s.
+struct PreskinShadowPcf {
+    float visibility;
+    float varianceTexels;  // the weights' variance (mean of the two axes), texels^2
+    float blockerDepth;    // the occluding texels' weighted mean depth (map units); z where none
+    float blockerWeight;   // their share of the weights
+};
+
+PreskinShadowPcf preskinShadowPcf(sampler2D shadowMap, vec2 t, float mapSize, float z, float bias, vec2 dzPerTexel,
+                                  int G, float stride, float sigma) {
+    float twoVariance = 2.0 * (sigma * sigma + 1.0 / 6.0);
+    float sum = 0.0;
+    float weightSum = 0.0;  // summed like `sum`, so fully lit gives exactly 1 and fully shadowed 0
+    float blockerSum = 0.0;
+    float blockerWeight = 0.0;
+    float variance = 0.0;
+    if (stride > 1.0) {
+        float W = stride * (float(G) - 0.5) - 1.0;
+        float window = exp(-W * W / twoVariance);
+        const vec2 ax = vec2(5.0, 2.0) / sqrt(29.0);
+        const vec2 ay = vec2(-2.0, 5.0) / sqrt(29.0);
+        vec2 firstU = ceil(vec2(dot(t, ax), dot(t, ay)) / stride - (float(G) - 0.5));  // lattice units
+        ivec2 last = ivec2(mapSize) - 1;
+        for (int j = 0; j < 2 * G; ++j) {
+            for (int i = 0; i < 2 * G; ++i) {
+                vec2 u = firstU + vec2(i, j);
+                vec2 texel = floor(stride * (u.x * ax + u.y * ay) + 0.5);
+                vec2 d = texel - t;
+                float d2 = dot(d, d);
+                float w = max(exp(-d2 / twoVariance) - window, 0.0);
+                float occluder = texelFetch(shadowMap, clamp(ivec2(texel), ivec2(0), last), 0).r;
+                float lit = occluder >= z - bias + dot(dzPerTexel, d) ? 1.0 : 0.0;
+                sum += w * lit;
+                weightSum += w;
+                variance += w * d2;
+                blockerSum += w * (1.0 - lit) * occluder;
+                blockerWeight += w * (1.0 - lit);
+            }
+        }
+        variance = 0.5 * variance / weightSum;
+    } else {
+        float W = float(G);
+        vec2 first = floor(t) - float(G - 1);  // the first column's and row's texel
+        float window = exp(-W * W / twoVariance);
+        float wx[8];
+        float wy[8];
+        float sumX = 0.0;
+        float sumY = 0.0;
+        float varianceX = 0.0;
+        float varianceY = 0.0;
+        for (int k = 0; k < 2 * G; ++k) {
+            vec2 d = first + float(k) - t;
+            wx[k] = max(exp(-d.x * d.x / twoVariance) - window, 0.0);
+            wy[k] = max(exp(-d.y * d.y / twoVariance) - window, 0.0);
+            sumX += wx[k];
+            sumY += wy[k];
+            varianceX += wx[k] * d.x * d.x;
+            varianceY += wy[k] * d.y * d.y;
+        }
+        for (int j = 0; j < G; ++j) {
+            float y0 = first.y + float(2 * j) - t.y;  // offsets of the gathered rows: y0 and y0 + 1
+            for (int i = 0; i < G; ++i) {
+                float x0 = first.x + float(2 * i) - t.x;
+                // The 2x2 texels from (x0, y0); gather order: (0,1), (1,1), (1,0), (0,0).
+                vec4 occluder = textureGather(shadowMap, (first + vec2(2 * i, 2 * j) + 1.0) / mapSize, 0);
+                vec4 receiver = z - bias + dzPerTexel.x * vec4(x0, x0 + 1.0, x0 + 1.0, x0) +
+                                dzPerTexel.y * vec4(y0 + 1.0, y0 + 1.0, y0, y0);
+                vec4 lit = vec4(greaterThanEqual(occluder, receiver));
+                vec4 w = vec4(wx[2 * i] * wy[2 * j + 1], wx[2 * i + 1] * wy[2 * j + 1], wx[2 * i + 1] * wy[2 * j],
+                              wx[2 * i] * wy[2 * j]);
+                sum += dot(w, lit);
+                weightSum += dot(w, vec4(1.0));
+                vec4 blocked = w * (1.0 - lit);
+                blockerSum += dot(blocked, occluder);
+                blockerWeight += dot(blocked, vec4(1.0));
+            }
+        }
+        variance = 0.5 * (varianceX / sumX + varianceY / sumY);
+    }
+    PreskinShadowPcf r;
+    r.visibility = sum / weightSum;
+    r.varianceTexels = variance;
+    r.blockerDepth = blockerWeight > 0.0 ? blockerSum / blockerWeight : z;
+    r.blockerWeight = blockerWeight / weightSum;
+    return r;
+}
 
 // shadowClipFromWorld: orthographic light matrix (depth 0 near .. 1 far).
 // params: x texel size (m), y Gaussian sigma (texels), z depth range (m), w map size (texels).
+// A light with a size (shadowFilter.penumbraPerM > 0) widens the kernel by its penumbra at the
+// occluders' distance, found by a blocker search first (percentage-closer soft shadows: Fernando,
+// "Percentage-Closer Soft Shadows", SIGGRAPH 2005 sketch): the occluding texels' weighted mean
+// depth over the widest penumbra the receiver can have (occluders at the map's near plane).
 PreskinShadowSample preskinSampleShadow(sampler2D shadowMap, mat4 shadowClipFromWorld, vec4 params,
                                         vec3 positionWs, vec3 geometricNormalWs, PreskinShadowFilter shadowFilter) {
     PreskinShadowSample result;
@@ -84,54 +187,29 @@ PreskinShadowSample preskinSampleShadow(sampler2D shadowMap, mat4 shadowClipFrom
                             vec2(0.02 * shadowFilter.texelScale));
     float bias = 2e-4 + shadowFilter.slopeBiasTexels * (abs(dzPerTexel.x) + abs(dzPerTexel.y)) + shadowFilter.riseM / params.z;
 
-    // Texel coordinates with texel i's centre at t = i. The footprint is the 2G x 2G texels
-    // cell - G + 1 .. cell + G on each axis (G = gathersPerAxis); their offsets from the sample
-    // point lie in (-G, G].
-    const int G = shadowFilter.gathersPerAxis;
     vec2 t = uv * mapSize - 0.5;
-    vec2 cell = floor(t);
-    vec2 f = t - cell;
-    float twoVariance = 2.0 * (sigma * sigma + 1.0 / 6.0);
-    float window = exp(-float(G * G) / twoVariance);
-    float wx[8];
-    float wy[8];
-    float sumX = 0.0;
-    float sumY = 0.0;
-    float varianceX = 0.0;
-    float varianceY = 0.0;
-    for (int k = 0; k < 2 * G; ++k) {
-        float dx = float(k - G + 1) - f.x;
-        float dy = float(k - G + 1) - f.y;
-        wx[k] = max(exp(-dx * dx / twoVariance) - window, 0.0);
-        wy[k] = max(exp(-dy * dy / twoVariance) - window, 0.0);
-        sumX += wx[k];
-        sumY += wy[k];
-        varianceX += wx[k] * dx * dx;
-        varianceY += wy[k] * dy * dy;
+    const int G = shadowFilter.gathersPerAxis;
+    float stride = 1.0;
+    if (shadowFilter.penumbraPerM > 0.0) {
+        // The widest penumbra's radius (about 2 penumbraPerM per metre), covered by 6 x 6 texels at
+        // a stride: their window is 2.5 strides less a texel.
+        float reachTexels = 2.0 * shadowFilter.penumbraPerM * max(z, 0.0) * params.z / params.x;
+        float searchStride = clamp(ceil((reachTexels + 1.0) / 2.5), 1.0, 16.0);
+        float searchWindow = searchStride <= 1.0 ? 3.0 : 2.5 * searchStride - 1.0;
+        PreskinShadowPcf search =
+            preskinShadowPcf(shadowMap, t, mapSize, z, bias, dzPerTexel, 3, searchStride, 0.4 * searchWindow);
+        float penumbraTexels = max(z - search.blockerDepth, 0.0) * params.z * shadowFilter.penumbraPerM / params.x;
+        // The map's own filter only hides its texels, which a wider penumbra's filter does too.
+        sigma = max(sigma, penumbraTexels);
+        // Stride 1 holds sigma up to 1.6 texels; wider, the window stays 2.5 sigma or more.
+        if (sigma > 1.6) stride = min(ceil((2.5 * sigma + 1.0) / (float(G) - 0.5)), 16.0);
     }
-    float sum = 0.0;
-    float weightSum = 0.0;  // summed like `sum`, so fully lit gives exactly 1 and fully shadowed 0
-    for (int j = 0; j < G; ++j) {
-        float y0 = float(2 * j - G + 1) - f.y;  // offsets of the gathered rows: y0 and y0 + 1
-        for (int i = 0; i < G; ++i) {
-            float x0 = float(2 * i - G + 1) - f.x;
-            // The 2x2 texels cell + (2i - G + 1, 2j - G + 1) + (0..1, 0..1); gather order: (0,1),
-            // (1,1), (1,0), (0,0).
-            vec4 occluder = textureGather(shadowMap, (cell + vec2(2 * i - G + 2, 2 * j - G + 2)) / mapSize, 0);
-            vec4 receiver = z - bias + dzPerTexel.x * vec4(x0, x0 + 1.0, x0 + 1.0, x0) +
-                            dzPerTexel.y * vec4(y0 + 1.0, y0 + 1.0, y0, y0);
-            vec4 lit = vec4(greaterThanEqual(occluder, receiver));
-            vec4 w = vec4(wx[2 * i] * wy[2 * j + 1], wx[2 * i + 1] * wy[2 * j + 1], wx[2 * i + 1] * wy[2 * j],
-                          wx[2 * i] * wy[2 * j]);
-            sum += dot(w, lit);
-            weightSum += dot(w, vec4(1.0));
-        }
-    }
+    PreskinShadowPcf pcf = preskinShadowPcf(shadowMap, t, mapSize, z, bias, dzPerTexel, G, stride, sigma);
     bool inside = all(greaterThanEqual(uv, vec2(0.0))) && all(lessThanEqual(uv, vec2(1.0))) && z <= 1.0;
-    result.visibility = inside ? sum / weightSum : 1.0;
+    result.visibility = inside ? pcf.visibility : 1.0;
     result.thicknessM = preskinShadowThickness(shadowMap, shadowClipFromWorld, params, positionWs);
     // The weights' standard deviation (mean of the two axes), the filter's width across an edge.
-    result.kernelWidthM = sqrt(0.5 * (varianceX / sumX + varianceY / sumY)) * params.x;
+    result.kernelWidthM = sqrt(pcf.varianceTexels) * params.x;
     return result;
 }
 

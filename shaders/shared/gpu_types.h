@@ -57,6 +57,9 @@ PRESKIN_CONST(uint, kSpecSkinInputs, 9)     // a skin material's inputs and how 
 PRESKIN_CONST(uint, kSpecLutMapping, 10)    // 32 ids: a skin material's own profile's LutMapping, member by member (xyzw)
 PRESKIN_CONST(uint, kSpecAreaLights, 42)   // the frame's area light types: bit (kLight* - kLightSphere) each, 0: none
 PRESKIN_CONST(uint, kSpecCount, 43)
+// kSpecAreaLights' bit for a shadow light with an angular radius (its penumbrae widen with the
+// occluder's distance); a directional light with one also sets kLightSphere's bit (1).
+PRESKIN_CONST(uint, kAreaLightSizedShadow, 16)
 
 // Bits of kSpecSkinInputs.
 PRESKIN_CONST(uint, kSkinInputDetailNormals, 1u)       // a detail normal map

@@ -24,6 +24,7 @@ PRESKIN_CONST(uint, kLightDisc, 6)
 //   rectangle: directionType.xyz the width axis times half the width, spotScaleOffset.xyz the
 //              height axis times half the height; it emits along cross(height, width);
 //   disc:      directionType.xyz the unit normal it emits along, spotScaleOffset.x radius.
+// Directional lights: spotScaleOffset.z the sine of their angular radius (0: parallel light).
 struct GpuLight {
     vec4 positionRange;      // xyz position (world, m), w range (m); 0 = unlimited
     vec4 directionType;      // xyz direction the light travels (world; area lights above), w type (kLight*)

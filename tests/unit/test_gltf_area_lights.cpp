@@ -93,6 +93,37 @@ TEST(GltfAreaLights, ShapesSizesAndFrames) {
     EXPECT_EQ(plain.lights.at(0).type, LightType::Point);
 }
 
+json sunLight(const json& shape) {
+    return {{"type", "directional"}, {"intensity", 3}, {"extensions", {{"PRESKIN_lights_area", shape}}}};
+}
+
+TEST(GltfAreaLights, DirectionalSphereIsASunWithAnAngularRadius) {
+    TempDir dir;
+    json light = sunLight({{"shape", "sphere"}, {"angularRadius", 0.00465}, {"radius", 2.0}});
+    light["extras"] = {{"castsShadow", true}};
+    const Scene s = Scene::load(sceneWithLight(light).writeGltf(dir.path(), "sun"));
+    ASSERT_EQ(s.lights.size(), 1u);
+    const Light& l = s.lights[0];
+    EXPECT_EQ(l.type, LightType::Directional);
+    EXPECT_FLOAT_EQ(l.angularRadius, 0.00465f);
+    EXPECT_TRUE(l.castsShadow);
+    ASSERT_EQ(s.warnings.size(), 1u);
+    EXPECT_NE(s.warnings[0].find("PRESKIN_lights_area.radius: not a size of a directional light; ignored"),
+              std::string::npos)
+        << s.warnings[0];
+    // The GPU record carries sin(angular radius) (shared/light.h); a parallel light 0.
+    EXPECT_NEAR(toGpuLight(l, true).spotScaleOffset.z, std::sin(0.00465f), 1e-9f);
+    Light parallel = l;
+    parallel.angularRadius = 0.0f;
+    EXPECT_EQ(toGpuLight(parallel, true).spotScaleOffset.z, 0.0f);
+    // A point light's extension with an angular radius: warned about, not used.
+    const Scene point =
+        Scene::load(sceneWithLight(areaLight({{"shape", "sphere"}, {"radius", 0.1}, {"angularRadius", 0.1}}))
+                        .writeGltf(dir.path(), "p"));
+    ASSERT_EQ(point.warnings.size(), 1u);
+    EXPECT_NE(point.warnings[0].find("angularRadius: a size of directional lights only; ignored"), std::string::npos);
+}
+
 TEST(GltfAreaLights, RefusalsNameTheFileAndTheField) {
     TempDir dir;
     const std::string at = "extensions.KHR_lights_punctual.lights[0].extensions.PRESKIN_lights_area";
@@ -117,7 +148,11 @@ TEST(GltfAreaLights, RefusalsNameTheFileAndTheField) {
           {"spot", {{"outerConeAngle", 0.5}}},
           {"extensions", {{"PRESKIN_lights_area", {{"shape", "sphere"}, {"radius", 0.1}}}}}},
          at,
-         "applies to lights of type point only"},
+         "applies to lights of type point or directional only"},
+        {sunLight({{"shape", "sphere"}}), at + ".angularRadius", "missing"},
+        {sunLight({{"shape", "sphere"}, {"angularRadius", 0.0}}), at + ".angularRadius", "outside (0, pi/4]"},
+        {sunLight({{"shape", "sphere"}, {"angularRadius", 1.0}}), at + ".angularRadius", "outside (0, pi/4]"},
+        {sunLight({{"shape", "disc"}, {"radius", 1.0}}), at + ".shape", "a directional light's shape is sphere"},
     };
     int i = 0;
     for (const Case& c : cases) {

@@ -192,6 +192,10 @@ struct Light {
     float width = 0.0f;
     float height = 0.0f;
     glm::vec3 axisWs{1.0f, 0.0f, 0.0f};  // the node's +X
+    // Directional lights: the angular radius of the disc they come from (radians, 0 = a parallel
+    // light; the sun's is about 0.0047, at most pi / 4): a sphere light at infinity, which softens the
+    // terminator and, for the shadow light, widens shadow penumbrae with the occluder's distance.
+    float angularRadius = 0.0f;
     // From the light's extras.castsShadow (docs/gltf-extensions.md); when no light in the file
     // says either way, the first directional light casts shadows.
     bool castsShadow = false;

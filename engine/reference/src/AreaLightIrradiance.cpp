@@ -15,32 +15,6 @@ namespace {
 
 constexpr double kPi = std::numbers::pi;
 
-// The cap of angular radius sigma around an axis at angle theta from n (cos theta = cosTheta):
-// the integral of max(n . omega, 0) over it, ring by ring (each ring's azimuthal integral in
-// closed form), composite Simpson over the rings' polar angle.
-double capCosineIntegral(double cosTheta, double sigma) {
-    const double sinTheta = std::sqrt(std::max(0.0, 1.0 - cosTheta * cosTheta));
-    const int intervals = 1024;
-    const double h = sigma / intervals;
-    double sum = 0.0;
-    for (int i = 0; i <= intervals; ++i) {
-        const double r = i * h;
-        const double a = std::cos(r) * cosTheta, b = std::sin(r) * sinTheta;
-        double ring;  // int_0^2pi max(a + b cos(phi), 0) dphi
-        if (a >= b)
-            ring = 2.0 * kPi * a;
-        else if (a <= -b)
-            ring = 0.0;
-        else {
-            const double phi0 = std::acos(std::clamp(-a / b, -1.0, 1.0));
-            ring = 2.0 * (a * phi0 + b * std::sin(phi0));
-        }
-        const double weight = (i == 0 || i == intervals) ? 1.0 : (i % 2 ? 4.0 : 2.0);
-        sum += weight * ring * std::sin(r);
-    }
-    return sum * h / 3.0;
-}
-
 double rangeWindow(double d2, double range) {
     if (!(range > 0.0)) return 1.0;
     const double r = d2 / (range * range);
@@ -87,6 +61,29 @@ double capsuleCosineIntegral(const glm::dvec3& c, const glm::dvec3& u, double ha
 
 }  // namespace
 
+double capCosineIntegral(double cosTheta, double sigma) {
+    const double sinTheta = std::sqrt(std::max(0.0, 1.0 - cosTheta * cosTheta));
+    const int intervals = 1024;
+    const double h = sigma / intervals;
+    double sum = 0.0;
+    for (int i = 0; i <= intervals; ++i) {
+        const double r = i * h;
+        const double a = std::cos(r) * cosTheta, b = std::sin(r) * sinTheta;
+        double ring;  // int_0^2pi max(a + b cos(phi), 0) dphi
+        if (a >= b)
+            ring = 2.0 * kPi * a;
+        else if (a <= -b)
+            ring = 0.0;
+        else {
+            const double phi0 = std::acos(std::clamp(-a / b, -1.0, 1.0));
+            ring = 2.0 * (a * phi0 + b * std::sin(phi0));
+        }
+        const double weight = (i == 0 || i == intervals) ? 1.0 : (i % 2 ? 4.0 : 2.0);
+        sum += weight * ring * std::sin(r);
+    }
+    return sum * h / 3.0;
+}
+
 double polygonCosineIntegral(const glm::dvec3* corners, int count, const glm::dvec3& y, const glm::dvec3& n) {
     // Clip by the tangent plane (Sutherland-Hodgman), corners relative to y.
     std::vector<glm::dvec3> in(corners, corners + count), out;
@@ -112,6 +109,12 @@ double polygonCosineIntegral(const glm::dvec3* corners, int count, const glm::dv
 }
 
 glm::dvec3 areaLightIrradiance(const Light& light, const glm::dvec3& y, const glm::dvec3& n) {
+    if (light.type == LightType::Directional) {
+        const double sigma = light.angularRadius, s = std::sin(sigma);
+        const glm::dvec3 L = -glm::normalize(glm::dvec3(light.directionWs));
+        return glm::dvec3(light.color) * double(light.intensity) *
+            (capCosineIntegral(glm::dot(n, L), sigma) / (kPi * s * s));
+    }
     const glm::dvec3 c(light.positionWs);
     const glm::dvec3 toCenter = c - y;
     const double window = rangeWindow(glm::dot(toCenter, toCenter), double(light.range));

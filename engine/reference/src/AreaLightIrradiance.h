@@ -19,8 +19,15 @@
 
 namespace preskin::reference {
 
-// Irradiance (colour times intensity units) at point y with unit normal n; light must be an area light.
+// Irradiance (colour times intensity units) at point y with unit normal n; light must be an area
+// light or a directional light with an angular radius (a sphere at infinity: its lux spread over
+// the cap, radiance E / (pi sin^2 sigma), integrated exactly like a sphere's cap).
 glm::dvec3 areaLightIrradiance(const Light& light, const glm::dvec3& y, const glm::dvec3& n);
+
+// The integral of max(n . omega, 0) over a cap of angular radius sigma whose axis makes cos theta =
+// cosTheta with n (ring by ring, each ring's azimuthal integral in closed form, composite Simpson
+// over the rings).
+double capCosineIntegral(double cosTheta, double sigma);
 
 // The integral of max(n . omega, 0) over the solid angle of the polygon `corners` (world, in
 // order) seen from y: the polygon clipped by y's tangent plane, then Lambert's formula. Exact.

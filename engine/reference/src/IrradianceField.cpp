@@ -11,6 +11,7 @@
 #include <cmath>
 #include <functional>
 #include <limits>
+#include <numbers>
 
 namespace preskin::reference {
 
@@ -88,14 +89,57 @@ glm::dvec3 IrradianceField::shadowRayOrigin(const SurfacePoint& p, const glm::dv
     return lifted + face * (1e-4 * longestEdge + 1e-6 * magnitude);
 }
 
+glm::dvec3 IrradianceField::sunIrradiance(const Light& light, const SurfacePoint& p, const glm::dvec3& n,
+                                          bool flipNormal, ShadowState& shadow) const {
+    // The cap's directions uniform in solid angle, k x k strata of (cos theta, phi), jittered per
+    // point (a hash of the point, so the error is noise the profile's integral averages).
+    constexpr int k = 8;
+    const double sigma = light.angularRadius, cosSigma = std::cos(sigma), s = std::sin(sigma);
+    const glm::dvec3 axis = -glm::normalize(glm::dvec3(light.directionWs));
+    const glm::dvec3 e1 = glm::normalize(
+        glm::cross(axis, std::abs(axis.x) < 0.9 ? glm::dvec3(1.0, 0.0, 0.0) : glm::dvec3(0.0, 1.0, 0.0)));
+    const glm::dvec3 e2 = glm::cross(axis, e1);
+    const glm::dvec3 origin = shadowRayOrigin(p, n, flipNormal);
+    uint64_t state = (uint64_t(p.triangle) << 32) ^ std::hash<double>{}(p.bary.x * 3.0 + p.bary.y);
+    const auto uniform = [&state] {  // splitmix64
+        uint64_t z = (state += 0x9E3779B97F4A7C15ull);
+        z = (z ^ (z >> 30)) * 0xBF58476D1CE4E5B9ull;
+        z = (z ^ (z >> 27)) * 0x94D049BB133111EBull;
+        return double((z ^ (z >> 31)) >> 11) * 0x1.0p-53;
+    };
+    const double solidAngle = 2.0 * std::numbers::pi * (1.0 - cosSigma);
+    double visible = 0.0, facing = 0.0;
+    for (int a = 0; a < k; ++a)
+        for (int b = 0; b < k; ++b) {
+            const double cosTheta = 1.0 - (1.0 - cosSigma) * (a + uniform()) / k;
+            const double phi = 2.0 * std::numbers::pi * (b + uniform()) / k;
+            const double sinTheta = std::sqrt(std::max(0.0, 1.0 - cosTheta * cosTheta));
+            const glm::dvec3 w = cosTheta * axis + sinTheta * (std::cos(phi) * e1 + std::sin(phi) * e2);
+            const double cosine = glm::dot(n, w);
+            if (!(cosine > 0.0)) continue;
+            facing += cosine;
+            if (!rays_.occluded(origin, w, 0.0, std::numeric_limits<double>::infinity())) visible += cosine;
+        }
+    if (!(facing > 0.0)) return glm::dvec3(0.0);
+    shadow = visible >= 0.5 * facing ? ShadowState::Lit : ShadowState::CastShadow;
+    const double radiance = 1.0 / (std::numbers::pi * s * s);
+    return glm::dvec3(light.color) * double(light.intensity) * (radiance * visible * solidAngle / (k * k));
+}
+
 IrradianceSample IrradianceField::at(const SurfacePoint& p, bool flipNormal) const {
     IrradianceSample out;
     const glm::dvec3 position = mesh_.position(p);
     glm::dvec3 n = mesh_.normal(p);
     if (flipNormal) n = -n;
     for (size_t i = 0; i < lights_.size(); ++i) {
-        if (isAreaLight(sceneLights_[i].type)) {
-            out.irradiance += areaLightIrradiance(sceneLights_[i], position, n);
+        const Light& light = sceneLights_[i];
+        const bool sun = light.type == LightType::Directional && light.angularRadius > 0.0f;
+        if (sun && int(i) == shadowLight_) {
+            out.irradiance += sunIrradiance(light, p, n, flipNormal, out.shadow);
+            continue;
+        }
+        if (isAreaLight(light.type) || sun) {
+            out.irradiance += areaLightIrradiance(light, position, n);
             continue;
         }
         glm::dvec3 L, irradiance;

@@ -14,8 +14,11 @@
 // irradiance, visibility included, found once per vertex (rays from the vertex, nudged off the
 // surface along its normal) and interpolated across each triangle; the occlusion texture is not
 // applied (the rays see what it stands for).
-// Limits: the other lights are unshadowed (as in the renderer); the shadow light is a sharp
-// point-like source; SH ambient is unshadowed (as in the renderer); traced ambient is linear
+// A shadow light with an angular radius (a sun) is sampled over its cap, 64 shadow rays per point,
+// jittered per point; the point counts as in its cast shadow when less than half the cap's
+// cosine-weighted directions reach it.
+// Limits: the other lights are unshadowed (as in the renderer); a shadow light without an angular
+// radius is a sharp point-like source; SH ambient is unshadowed (as in the renderer); traced ambient is linear
 // across triangles (refine the mesh to resolve occlusion finer than it).
 #pragma once
 
@@ -56,6 +59,9 @@ public:
 
 private:
     glm::dvec3 shadowRayOrigin(const SurfacePoint& p, const glm::dvec3& normal, bool flipNormal) const;
+    // The shadow light with an angular radius: its cap sampled with shadow rays (64 per point).
+    glm::dvec3 sunIrradiance(const Light& light, const SurfacePoint& p, const glm::dvec3& n, bool flipNormal,
+                             ShadowState& shadow) const;
 
     const ReferenceMesh& mesh_;
     const RayScene& rays_;

@@ -6,6 +6,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <numbers>
 
 namespace preskin {
 
@@ -49,6 +50,8 @@ gpu::GpuLight toGpuLight(const Light& light, bool shadowed) {
     const float cosInner = std::cos(std::min(light.innerConeAngle, light.outerConeAngle));
     const float scale = 1.0f / std::max(1e-3f, cosInner - cosOuter);
     g.spotScaleOffset = glm::vec4(scale, -cosOuter * scale, 0.0f, 0.0f);
+    if (light.type == LightType::Directional)
+        g.spotScaleOffset.z = std::sin(std::clamp(light.angularRadius, 0.0f, 0.25f * std::numbers::pi_v<float>));
     if (!isAreaLight(light.type)) return g;
     // Area lights: shared/light.h's layout; the width axis made perpendicular to the normal.
     const AreaLightAxes axes = areaLightAxes(light);

@@ -7,6 +7,8 @@
 
 #include <fmt/core.h>
 
+#include <numbers>
+
 #include <string>
 
 namespace preskin {
@@ -60,6 +62,9 @@ void checkLights(const std::vector<Light>& lights) {
         if (l.type == LightType::Sphere || l.type == LightType::Tube || l.type == LightType::Disc)
             size(l.radius, "radius");
         if (l.type == LightType::Tube) size(l.length, "length");
+        check(l.angularRadius, at + "angularRadius");
+        if (l.angularRadius < 0.0f || l.angularRadius > 0.25f * std::numbers::pi_v<float>)
+            throw Error(fmt::format("{}angularRadius: {} is outside [0, pi/4] radians", at, l.angularRadius));
         if (l.type == LightType::Rectangle) {
             size(l.width, "width");
             size(l.height, "height");

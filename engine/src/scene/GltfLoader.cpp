@@ -17,6 +17,7 @@
 #include "scene/ImageDecoder.h"
 
 #include <preskin/Error.h>
+#include <preskin/LightRecord.h>
 #include <preskin/Limits.h>
 
 #include <glm/gtc/quaternion.hpp>
@@ -170,9 +171,21 @@ glm::mat4 localMatrix(const LoadContext& ctx, const tinygltf::Node& node, const 
 // along the node's -Z.
 void applyAreaShape(const LoadContext& ctx, const tinygltf::Value& area, const std::string& where, Light& out) {
     if (!area.IsObject()) ctx.fail(where, "not an object");
-    if (out.type != LightType::Point) ctx.fail(where, "applies to lights of type point only");
+    if (out.type == LightType::Spot) ctx.fail(where, "applies to lights of type point or directional only");
     const auto shape = stringField(ctx, area, "shape", where);
     if (!shape) ctx.fail(where + ".shape", "missing (sphere, tube, rectangle or disc)");
+    if (out.type == LightType::Directional) {  // a sphere at infinity: the sun's disc
+        if (*shape != "sphere") ctx.fail(where + ".shape", "a directional light's shape is sphere (its angularRadius)");
+        const auto v = numberField(ctx, area, "angularRadius", where);
+        if (!v) ctx.fail(where + ".angularRadius", "missing (a directional sphere light needs it)");
+        if (!(*v > 0.0) || *v > std::numbers::pi / 4)
+            ctx.fail(where + ".angularRadius", number(*v) + " is outside (0, pi/4] radians");
+        out.angularRadius = static_cast<float>(*v);
+        for (const char* key : {"radius", "length", "width", "height"})
+            if (area.Has(key)) ctx.warn(where + "." + key, "not a size of a directional light; ignored");
+        return;
+    }
+    if (area.Has("angularRadius")) ctx.warn(where + ".angularRadius", "a size of directional lights only; ignored");
     const auto size = [&](const char* key) {
         const auto v = numberField(ctx, area, key, where);
         if (!v) ctx.fail(where + "." + key, std::string("missing (a ") + *shape + " light needs it)");
@@ -256,11 +269,11 @@ std::optional<Light> convertLight(const LoadContext& ctx, int lightIndex, const 
     if (auto it = in.extensions.find("PRESKIN_lights_area"); it != in.extensions.end()) {
         applyAreaShape(ctx, it->second, where + ".extensions.PRESKIN_lights_area", out);
         const glm::vec3 axis = glm::mat3(world) * glm::vec3(1.0f, 0.0f, 0.0f);
-        if (!(glm::length(axis) > 1e-12f)) {
+        if (isAreaLight(out.type) && !(glm::length(axis) > 1e-12f)) {
             ctx.warn(nodeWhere, "the node's transform collapses the area light's axis (scale 0); light skipped");
             return std::nullopt;
         }
-        out.axisWs = glm::normalize(axis);
+        if (isAreaLight(out.type)) out.axisWs = glm::normalize(axis);
     }
     explicitShadowFlag = false;
     if (auto casts = boolField(ctx, in.extras, "castsShadow", where + ".extras")) {
