@@ -142,6 +142,7 @@ void main() {
     shadow.visibility = 1.0;
     shadow.thicknessM = 0.0;
     shadow.kernelWidthM = 0.0;
+    shadow.penumbraWidthM = 0.0;
     PreskinShadowSample wideShadow = shadow;  // skin with penumbra scattering: the wide map's
     // Skin's signed curvature in profile 1/mm (the shadow lookup and the skin surface use it).
     float skinCurvaturePerMm = 0.0;
@@ -252,7 +253,7 @@ void main() {
         // transformed cosines.
         vec3 R = reflect(-V, skin.normalSpecular);
         PreskinLtc ltc = PreskinLtc(mat3(1.0), mat3(1.0), vec4(0.0));
-        if (kAreaLights != 0u) {
+        if (kAreaLightShapes != 0u) {
             vec2 lobeRoughness = (features & kSkinDualSpecular) != 0u ? clamp(roughness * skin.lobes.xy, 0.03, 1.0)
                                                                       : vec2(roughness);
             ltc = preskinLtc(dfgTable, skin.normalSpecular, V, lobeRoughness);
@@ -264,7 +265,7 @@ void main() {
             vec3 irradiance;
             preskinLightIncidence(lights[0], inPositionWs, L, irradiance);
             penumbra = preskinSkinShadow(skin, profiles, penumbraLut, shadow.visibility, shadow.kernelWidthM,
-                                         wideShadow.visibility, wideShadow.kernelWidthM, frame.wideShadow.z, L, features);
+                                         shadow.penumbraWidthM, wideShadow.visibility, wideShadow.kernelWidthM, frame.wideShadow.z, L, features);
             float thicknessM = 0.0;
             if (preskinTransmissionGate(geometricN, L, features))
                 thicknessM = preskinShadowThickness(shadowMap, shadowClipFromWorld, shadowParams,
@@ -275,7 +276,7 @@ void main() {
                                                          features);
             transmitted =
                 preskinSkinTransmission(skin, profiles, transmittanceLut, L, irradiance, thicknessM, sphereT, features);
-            if (kSizedShadowLight)
+            if (kCapShadowLight)
                 color += preskinSkinLight(skin, lighting, profiles, diffuseLut, V,
                                           preskinLightSample(lights[0], inPositionWs, skin.normalSpecular, R, ltc, true),
                                           penumbra, shadow.visibility, features, ltc.dfg);
@@ -284,7 +285,7 @@ void main() {
         }
         if (loopCount > 0u) {
             uint i = 0u;
-            if (kAreaLights == 0u) {
+            if (kAreaLightShapes == 0u) {
                 do {
                     vec3 L;
                     vec3 irradiance;
@@ -323,9 +324,9 @@ void main() {
         surface.specularWeight = kSpecularWeight;
         vec3 R = reflect(-V, N);
         PreskinLtc ltc = PreskinLtc(mat3(1.0), mat3(1.0), vec4(0.0));
-        if (kAreaLights != 0u) ltc = preskinLtc(dfgTable, N, V, vec2(roughness));
+        if (kAreaLightShapes != 0u) ltc = preskinLtc(dfgTable, N, V, vec2(roughness));
         if (hasShadowLight) {
-            if (kSizedShadowLight) {
+            if (kCapShadowLight) {
                 PreskinLightSample l = preskinLightSample(lights[0], inPositionWs, N, R, ltc, true);
                 l.irradiance *= shadow.visibility;
                 l.radiance *= shadow.visibility;
@@ -339,7 +340,7 @@ void main() {
         }
         if (loopCount > 0u) {
             uint i = 0u;
-            if (kAreaLights == 0u) {
+            if (kAreaLightShapes == 0u) {
                 do {
                     vec3 L;
                     vec3 irradiance;

@@ -9,7 +9,7 @@
 #include "forward_specialization.glsl"
 // A material without a profile blend compiles without the blend's lookups (preskin/lut.glsl).
 #define PRESKIN_PROFILE_MIX_MAX kProfileMix
-#define PRESKIN_AREA_LIGHT_TYPES kAreaLights
+#define PRESKIN_AREA_LIGHT_TYPES kAreaLightShapes
 #include "preskin/lut.glsl"
 
 layout(set = 1, binding = kBindingMaterial) uniform Material { MaterialUniforms material; };

@@ -23,7 +23,10 @@ layout(constant_id = kSpecProfileMix) const uint kProfileMix = 4;
 // punctual loop; a directional light with an angular radius counts as a sphere), and whether the
 // shadow light has a size: a CPU driver would pay for code of absent types in every loop.
 layout(constant_id = kSpecAreaLights) const uint kAreaLights = 0;
+const uint kAreaLightShapes = kAreaLights & 15u;  // the bits of the four area light types
 const bool kSizedShadowLight = (kAreaLights & kAreaLightSizedShadow) != 0u;
+// The shadow light shaded as a cap (a sun wide enough, or sphere lights in the frame anyway).
+const bool kCapShadowLight = (kAreaLights & (kAreaLightSizedShadow | 1u)) == (kAreaLightSizedShadow | 1u);
 // What a skin material reads (kSpecSkinInputs): a pipeline for a material without a detail map or
 // with per-vertex curvature has no code for the others.
 layout(constant_id = kSpecSkinInputs) const uint kSkinInputs = 0;

@@ -25,6 +25,7 @@ struct PreskinShadowSample {
     float visibility;     // filtered, 0 (shadowed) .. 1 (lit)
     float thicknessM;     // receiver depth minus nearest occluder depth along the light, metres
     float kernelWidthM;   // standard deviation of the filter on the light's image plane, metres
+    float penumbraWidthM; // of that, the light's own penumbra (a light with a size; 0 for a parallel light)
 };
 
 // Distance along the light from the nearest occluder to positionWs (metres), 0 outside the map.
@@ -58,9 +59,9 @@ const PreskinShadowFilter kPreskinShadowMapFilter = PreskinShadowFilter(4, 0.0, 
 // The windowed Gaussian percentage-closer sum of the header over 2G x 2G texels around texel
 // coordinate t (texel i's centre at t = i), comparing z - bias tilted by dzPerTexel, and the
 // occluding texels' weighted mean depth. At stride 1 the texels are floor(t) - G + 1 ..
-// floor(t) + G, G x G gathers, windowed at G texels (separable weights). At stride s > 1 they are
-// the texels nearest the points of a square lattice of spacing s turned by atan(2/5), anchored to
-// the map, within a disc of radius s (G - 1/2) - 1 where the weight reaches 0 (so a texel enters
+// floor(t) + G, G x G gathers, windowed at G texels. At stride s > 1 they are the texels nearest
+// the points of a square lattice of spacing s turned by atan(2/5), anchored to the map, weighted
+// by the points' own offsets along the lattice's axes, windowed at s (G - 1/2) (a point enters
 // and leaves the footprint at weight 0): a wide kernel costs no more lookups, and since the
 // lattice's rows lie along no axis or diagonal, an edge's position is resolved to a fifth of s or
 // better, not s.
@@ -80,29 +81,45 @@ PreskinShadowPcf preskinShadowPcf(sampler2D shadowMap, vec2 t, float mapSize, fl
     float blockerWeight = 0.0;
     float variance = 0.0;
     if (stride > 1.0) {
-        float W = stride * (float(G) - 0.5) - 1.0;
+        // Weights of the lattice points' own positions (separable along the lattice's axes); each
+        // is compared at its nearest texel.
+        float W = stride * (float(G) - 0.5);
         float window = exp(-W * W / twoVariance);
         const vec2 ax = vec2(5.0, 2.0) / sqrt(29.0);
         const vec2 ay = vec2(-2.0, 5.0) / sqrt(29.0);
-        vec2 firstU = ceil(vec2(dot(t, ax), dot(t, ay)) / stride - (float(G) - 0.5));  // lattice units
+        vec2 u = vec2(dot(t, ax), dot(t, ay)) / stride;  // lattice units
+        vec2 firstU = ceil(u - (float(G) - 0.5));
+        float wx[8];
+        float wy[8];
+        float sumX = 0.0;
+        float sumY = 0.0;
+        float varianceX = 0.0;
+        float varianceY = 0.0;
+        for (int k = 0; k < 2 * G; ++k) {
+            vec2 d = stride * (firstU + float(k) - u);
+            wx[k] = max(exp(-d.x * d.x / twoVariance) - window, 0.0);
+            wy[k] = max(exp(-d.y * d.y / twoVariance) - window, 0.0);
+            sumX += wx[k];
+            sumY += wy[k];
+            varianceX += wx[k] * d.x * d.x;
+            varianceY += wy[k] * d.y * d.y;
+        }
         ivec2 last = ivec2(mapSize) - 1;
         for (int j = 0; j < 2 * G; ++j) {
             for (int i = 0; i < 2 * G; ++i) {
-                vec2 u = firstU + vec2(i, j);
-                vec2 texel = floor(stride * (u.x * ax + u.y * ay) + 0.5);
+                vec2 lu = firstU + vec2(i, j);
+                vec2 texel = floor(stride * (lu.x * ax + lu.y * ay) + 0.5);
                 vec2 d = texel - t;
-                float d2 = dot(d, d);
-                float w = max(exp(-d2 / twoVariance) - window, 0.0);
+                float w = wx[i] * wy[j];
                 float occluder = texelFetch(shadowMap, clamp(ivec2(texel), ivec2(0), last), 0).r;
                 float lit = occluder >= z - bias + dot(dzPerTexel, d) ? 1.0 : 0.0;
                 sum += w * lit;
                 weightSum += w;
-                variance += w * d2;
                 blockerSum += w * (1.0 - lit) * occluder;
                 blockerWeight += w * (1.0 - lit);
             }
         }
-        variance = 0.5 * variance / weightSum;
+        variance = 0.5 * (varianceX / sumX + varianceY / sumY);
     } else {
         float W = float(G);
         vec2 first = floor(t) - float(G - 1);  // the first column's and row's texel
@@ -190,19 +207,21 @@ PreskinShadowSample preskinSampleShadow(sampler2D shadowMap, mat4 shadowClipFrom
     vec2 t = uv * mapSize - 0.5;
     const int G = shadowFilter.gathersPerAxis;
     float stride = 1.0;
+    result.penumbraWidthM = 0.0;
     if (shadowFilter.penumbraPerM > 0.0) {
-        // The widest penumbra's radius (about 2 penumbraPerM per metre), covered by 6 x 6 texels at
-        // a stride: their window is 2.5 strides less a texel.
+        // The widest penumbra's radius (about 2 penumbraPerM per metre), covered by 4 x 4 texels at
+        // a stride: their window is 1.5 strides.
         float reachTexels = 2.0 * shadowFilter.penumbraPerM * max(z, 0.0) * params.z / params.x;
-        float searchStride = clamp(ceil((reachTexels + 1.0) / 2.5), 1.0, 16.0);
-        float searchWindow = searchStride <= 1.0 ? 3.0 : 2.5 * searchStride - 1.0;
+        float searchStride = clamp(ceil(reachTexels / 1.5), 1.0, 32.0);
+        float searchWindow = searchStride <= 1.0 ? 2.0 : 1.5 * searchStride;
         PreskinShadowPcf search =
-            preskinShadowPcf(shadowMap, t, mapSize, z, bias, dzPerTexel, 3, searchStride, 0.4 * searchWindow);
+            preskinShadowPcf(shadowMap, t, mapSize, z, bias, dzPerTexel, 2, searchStride, 0.4 * searchWindow);
         float penumbraTexels = max(z - search.blockerDepth, 0.0) * params.z * shadowFilter.penumbraPerM / params.x;
         // The map's own filter only hides its texels, which a wider penumbra's filter does too.
         sigma = max(sigma, penumbraTexels);
+        result.penumbraWidthM = penumbraTexels * params.x;
         // Stride 1 holds sigma up to 1.6 texels; wider, the window stays 2.5 sigma or more.
-        if (sigma > 1.6) stride = min(ceil((2.5 * sigma + 1.0) / (float(G) - 0.5)), 16.0);
+        if (sigma > 1.6) stride = min(ceil(2.5 * sigma / (float(G) - 0.5)), 16.0);
     }
     PreskinShadowPcf pcf = preskinShadowPcf(shadowMap, t, mapSize, z, bias, dzPerTexel, G, stride, sigma);
     bool inside = all(greaterThanEqual(uv, vec2(0.0))) && all(lessThanEqual(uv, vec2(1.0))) && z <= 1.0;

@@ -183,15 +183,48 @@ vec3 preskinSkinLight(PreskinSkinSurface s, PreskinProfileMix m, sampler2DArray 
                             shadowRgb, specularVisibility, features);
 }
 
+// A hard edge's response `hard` (the penumbra LUT's, at x profile mm from the edge, > 0 lit) made
+// that of a soft edge: the light's own penumbra, a Gaussian of standard deviation penumbraMm (a
+// light with a size), blurs the edge before the skin scatters it. For a channel whose response
+// to a hard edge is a Gaussian edge's, Phi(x / p), the soft edge's is Phi(x / sqrt(p^2 +
+// penumbraMm^2)) (blurring adds variances); p is fitted per channel to the LUT (one reference
+// width into the shadow, then, for channels that barely reach there, one narrowest width in),
+// and the result moves from the LUT's exact hard-edge response to that as the penumbra outgrows
+// the channel's scattering (by penumbraMm^2 / (p^2 + penumbraMm^2)).
+vec3 preskinSoftEdge(PreskinProfileMix m, sampler2DArray penumbraLut, vec3 hard, float x, float penumbraMm) {
+    float reference = 1.0 / m.mapping[0].penumbraWidth.x;
+    vec3 r = clamp(preskinPenumbraLut(m, penumbraLut, preskinNormalCdf(-1.0), reference), 1e-4, 0.4999);
+    vec3 p = -reference / vec3(preskinNormalQuantile(r.r), preskinNormalQuantile(r.g), preskinNormalQuantile(r.b));
+    float narrow = min(p.r, min(p.g, p.b));
+    vec3 near = clamp(preskinPenumbraLut(m, penumbraLut, preskinNormalCdf(-1.0), narrow), 1e-4, 0.4999);
+    vec3 pNear = -narrow / vec3(preskinNormalQuantile(near.r), preskinNormalQuantile(near.g), preskinNormalQuantile(near.b));
+    p = mix(p, pNear, lessThan(r, vec3(0.02)));
+    vec3 v2 = penumbraMm * penumbraMm + p * p;
+    vec3 soft = x * inversesqrt(v2);
+    vec3 softEdge = vec3(preskinNormalCdf(soft.r), preskinNormalCdf(soft.g), preskinNormalCdf(soft.b));
+    return mix(hard, softEdge, penumbraMm * penumbraMm / v2);
+}
+
 // Per-channel shadow for skin: the penumbra LUT indexed by the filtered visibility and the
-// filter's width on the receiver (the light-plane width stretched by the receiver's slope).
+// filter's width on the receiver (the light-plane width stretched by the receiver's slope). The
+// LUT takes the shadow as a hard edge that the filter blurred; a light with a size
+// (penumbraWidthLightM > 0, preskinSampleShadow's) has a soft one (preskinSoftEdge).
 vec3 preskinSkinShadow(PreskinSkinSurface s, PreskinProfileMix m, sampler2DArray penumbraLut, float visibility,
-                       float filterWidthLightM, vec3 L, uint features) {
+                       float filterWidthLightM, float penumbraWidthLightM, vec3 L, uint features) {
     // Fully lit or fully shadowed: the LUT's end columns are exactly 1 and 0, skip the fetch.
     if ((features & kSkinPenumbra) == 0u || visibility <= 0.0 || visibility >= 1.0) return vec3(visibility);
     float slope = max(abs(dot(s.geometricNormal, L)), 0.2);
-    float sigmaProfileMm = filterWidthLightM * 1000.0 / slope * s.scatterScale;
-    return preskinPenumbraLut(m, penumbraLut, visibility, sigmaProfileMm);
+    float toProfileMm = 1000.0 / slope * s.scatterScale;
+    float sigmaProfileMm = filterWidthLightM * toProfileMm;
+    vec3 hard = preskinPenumbraLut(m, penumbraLut, visibility, sigmaProfileMm);
+    if (penumbraWidthLightM <= 0.0) return hard;
+    return preskinSoftEdge(m, penumbraLut, hard, sigmaProfileMm * preskinNormalQuantile(visibility),
+                           penumbraWidthLightM * toProfileMm);
+}
+
+vec3 preskinSkinShadow(PreskinSkinSurface s, PreskinProfileMix m, sampler2DArray penumbraLut, float visibility,
+                       float filterWidthLightM, vec3 L, uint features) {
+    return preskinSkinShadow(s, m, penumbraLut, visibility, filterWidthLightM, 0.0, L, features);
 }
 
 // The same with skin's wide shadow map (shaders/shadow_reduce.comp: each texel the nearest depth of
@@ -203,10 +236,11 @@ vec3 preskinSkinShadow(PreskinSkinSurface s, PreskinProfileMix m, sampler2DArray
 // side on average); the penumbra LUT at the wide filter's width returns the profile's hard-edge
 // response there; towards the terminator (N.L from 0.35 down to 0.15) this fades to the shadow
 // map's alone. wideVisibility, wideFilterWidthLightM: the wide map's sample; wideTexelM: its
-// texel size (m).
+// texel size (m). Where the shadow map's filter is as wide as the wide map's (a light with a
+// size), the shadow map's alone.
 vec3 preskinSkinShadow(PreskinSkinSurface s, PreskinProfileMix m, sampler2DArray penumbraLut, float visibility,
-                       float filterWidthLightM, float wideVisibility, float wideFilterWidthLightM, float wideTexelM,
-                       vec3 L, uint features) {
+                       float filterWidthLightM, float penumbraWidthLightM, float wideVisibility,
+                       float wideFilterWidthLightM, float wideTexelM, vec3 L, uint features) {
     if ((features & kSkinPenumbra) == 0u) return vec3(visibility);
     bool fineEdge = visibility > 0.0 && visibility < 1.0;
     bool wideEdge = wideVisibility > 0.0 && wideVisibility < 1.0;
@@ -214,7 +248,8 @@ vec3 preskinSkinShadow(PreskinSkinSurface s, PreskinProfileMix m, sampler2DArray
     // Towards the terminator the wide kernel stretches over the skin by 1 / N.L and takes in the
     // receiver's own curve, which the diffuse LUT already holds: there the shadow map alone.
     float wideTrust = smoothstep(0.15, 0.35, dot(s.geometricNormal, L));
-    vec3 fineOnly = preskinSkinShadow(s, m, penumbraLut, visibility, filterWidthLightM, L, features);
+    wideTrust *= 1.0 - smoothstep(0.7, 1.0, filterWidthLightM / max(wideFilterWidthLightM, 1e-12));
+    vec3 fineOnly = preskinSkinShadow(s, m, penumbraLut, visibility, filterWidthLightM, penumbraWidthLightM, L, features);
     if (wideTrust <= 0.0) return fineOnly;
     float slope = max(abs(dot(s.geometricNormal, L)), 0.2);
     float toProfileMm = 1000.0 / slope * s.scatterScale;
@@ -234,7 +269,16 @@ vec3 preskinSkinShadow(PreskinSkinSurface s, PreskinProfileMix m, sampler2DArray
         x = sigmaWide * preskinNormalQuantile(wideVisibility) + 0.5 * wideTexelM * toProfileMm;
         x = visibility >= 1.0 ? max(x, 3.0 * sigmaFine) : min(x, -3.0 * sigmaFine);
     }
-    return mix(fineOnly, preskinPenumbraLut(m, penumbraLut, preskinNormalCdf(x / sigmaWide), sigmaWide), wideTrust);
+    vec3 wide = preskinPenumbraLut(m, penumbraLut, preskinNormalCdf(x / sigmaWide), sigmaWide);
+    if (penumbraWidthLightM > 0.0) wide = preskinSoftEdge(m, penumbraLut, wide, x, penumbraWidthLightM * toProfileMm);
+    return mix(fineOnly, wide, wideTrust);
+}
+
+vec3 preskinSkinShadow(PreskinSkinSurface s, PreskinProfileMix m, sampler2DArray penumbraLut, float visibility,
+                       float filterWidthLightM, float wideVisibility, float wideFilterWidthLightM, float wideTexelM,
+                       vec3 L, uint features) {
+    return preskinSkinShadow(s, m, penumbraLut, visibility, filterWidthLightM, 0.0, wideVisibility,
+                             wideFilterWidthLightM, wideTexelM, L, features);
 }
 
 // Light transmitted through the surface from a light behind it (after Jimenez et al. 2010):

@@ -46,12 +46,13 @@ VkImageAspectFlags depthAspect(VkFormat format) {
 }  // namespace
 
 // The area light types among `lights`: bit (type - kLightSphere) each, a directional light with an
-// angular radius as a sphere, and kAreaLightSizedShadow for a shadow light with one (kSpecAreaLights).
+// angular radius of kCapShadingMinAngularRadius or more as a sphere, and kAreaLightSizedShadow for
+// a shadow light with any (kSpecAreaLights).
 uint32_t areaLightTypes(const std::vector<Light>& lights) {
     uint32_t bits = 0;
     for (const Light& l : lights) {
         if (isAreaLight(l.type)) bits |= 1u << (uint32_t(l.type) - uint32_t(LightType::Sphere));
-        if (l.type == LightType::Directional && l.angularRadius > 0.0f) bits |= 1u;
+        if (l.type == LightType::Directional && l.angularRadius >= kCapShadingMinAngularRadius) bits |= 1u;
     }
     const int shadow = shadowLightIndex(lights);
     if (shadow >= 0 && lights[size_t(shadow)].angularRadius > 0.0f) bits |= gpu::kAreaLightSizedShadow;
