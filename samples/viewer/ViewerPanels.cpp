@@ -511,6 +511,19 @@ bool Viewer::panelAreaLights() {
     static const char* const kShapes[] = {"sphere", "tube", "rectangle", "disc"};
     for (size_t i = 0; i < sceneLights_.size(); ++i) {
         Light& l = sceneLights_[i];
+        if (l.type == LightType::Directional) {  // a sun: its angular radius
+            float degrees = glm::degrees(l.angularRadius);
+            ImGui::PushID(int(i));
+            if (ImGui::SliderFloat("Sun radius", &degrees, 0.0f, 10.0f, "%.2f deg")) {
+                l.angularRadius = glm::radians(std::clamp(degrees, 0.0f, 45.0f));
+                changed = true;
+            }
+            tooltip(
+                "--sun-radius: the directional light's angular radius (the sun's is 0.27 degrees): its shadow's "
+                "penumbra widens with the occluder's distance");
+            ImGui::PopID();
+            continue;
+        }
         if (!isAreaLight(l.type)) continue;
         const int shape = int(l.type) - int(LightType::Sphere);
         ImGui::PushID(int(i));
