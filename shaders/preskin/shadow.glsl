@@ -79,66 +79,49 @@ PreskinShadowPcf preskinShadowPcf(sampler2D shadowMap, vec2 t, float mapSize, fl
     float weightSum = 0.0;  // summed like `sum`, so fully lit gives exactly 1 and fully shadowed 0
     float blockerSum = 0.0;
     float blockerWeight = 0.0;
-    float variance = 0.0;
-    if (stride > 1.0) {
-        // Weights of the lattice points' own positions (separable along the lattice's axes); each
-        // is compared at its nearest texel.
-        float W = stride * (float(G) - 0.5);
-        float window = exp(-W * W / twoVariance);
-        const vec2 ax = vec2(5.0, 2.0) / sqrt(29.0);
-        const vec2 ay = vec2(-2.0, 5.0) / sqrt(29.0);
-        vec2 u = vec2(dot(t, ax), dot(t, ay)) / stride;  // lattice units
-        vec2 firstU = ceil(u - (float(G) - 0.5));
-        float wx[8];
-        float wy[8];
-        float sumX = 0.0;
-        float sumY = 0.0;
-        float varianceX = 0.0;
-        float varianceY = 0.0;
-        for (int k = 0; k < 2 * G; ++k) {
-            vec2 d = stride * (firstU + float(k) - u);
-            wx[k] = max(exp(-d.x * d.x / twoVariance) - window, 0.0);
-            wy[k] = max(exp(-d.y * d.y / twoVariance) - window, 0.0);
-            sumX += wx[k];
-            sumY += wy[k];
-            varianceX += wx[k] * d.x * d.x;
-            varianceY += wy[k] * d.y * d.y;
-        }
+    // Column and row k lie at offset origin + step k from t: the lattice's points along its axes
+    // (stride > 1), or the texels (stride 1).
+    bool sparse = stride > 1.0;
+    const vec2 ax = vec2(5.0, 2.0) / sqrt(29.0);
+    const vec2 ay = vec2(-2.0, 5.0) / sqrt(29.0);
+    vec2 u = vec2(dot(t, ax), dot(t, ay)) / stride;  // lattice units
+    vec2 firstU = ceil(u - (float(G) - 0.5));
+    vec2 first = floor(t) - float(G - 1);  // stride 1: the first column's and row's texel
+    float W = sparse ? stride * (float(G) - 0.5) : float(G);
+    vec2 origin = sparse ? stride * (firstU - u) : first - t;
+    float step = sparse ? stride : 1.0;
+    float window = exp(-W * W / twoVariance);
+    float wx[8];
+    float wy[8];
+    float sumX = 0.0;
+    float sumY = 0.0;
+    float varianceX = 0.0;
+    float varianceY = 0.0;
+    for (int k = 0; k < 2 * G; ++k) {
+        vec2 d = origin + step * float(k);
+        wx[k] = max(exp(-d.x * d.x / twoVariance) - window, 0.0);
+        wy[k] = max(exp(-d.y * d.y / twoVariance) - window, 0.0);
+        sumX += wx[k];
+        sumY += wy[k];
+        varianceX += wx[k] * d.x * d.x;
+        varianceY += wy[k] * d.y * d.y;
+    }
+    if (sparse) {  // each lattice point compared at its nearest texel
         ivec2 last = ivec2(mapSize) - 1;
         for (int j = 0; j < 2 * G; ++j) {
             for (int i = 0; i < 2 * G; ++i) {
                 vec2 lu = firstU + vec2(i, j);
                 vec2 texel = floor(stride * (lu.x * ax + lu.y * ay) + 0.5);
-                vec2 d = texel - t;
                 float w = wx[i] * wy[j];
                 float occluder = texelFetch(shadowMap, clamp(ivec2(texel), ivec2(0), last), 0).r;
-                float lit = occluder >= z - bias + dot(dzPerTexel, d) ? 1.0 : 0.0;
+                float lit = occluder >= z - bias + dot(dzPerTexel, texel - t) ? 1.0 : 0.0;
                 sum += w * lit;
                 weightSum += w;
                 blockerSum += w * (1.0 - lit) * occluder;
                 blockerWeight += w * (1.0 - lit);
             }
         }
-        variance = 0.5 * (varianceX / sumX + varianceY / sumY);
     } else {
-        float W = float(G);
-        vec2 first = floor(t) - float(G - 1);  // the first column's and row's texel
-        float window = exp(-W * W / twoVariance);
-        float wx[8];
-        float wy[8];
-        float sumX = 0.0;
-        float sumY = 0.0;
-        float varianceX = 0.0;
-        float varianceY = 0.0;
-        for (int k = 0; k < 2 * G; ++k) {
-            vec2 d = first + float(k) - t;
-            wx[k] = max(exp(-d.x * d.x / twoVariance) - window, 0.0);
-            wy[k] = max(exp(-d.y * d.y / twoVariance) - window, 0.0);
-            sumX += wx[k];
-            sumY += wy[k];
-            varianceX += wx[k] * d.x * d.x;
-            varianceY += wy[k] * d.y * d.y;
-        }
         for (int j = 0; j < G; ++j) {
             float y0 = first.y + float(2 * j) - t.y;  // offsets of the gathered rows: y0 and y0 + 1
             for (int i = 0; i < G; ++i) {
@@ -157,8 +140,8 @@ PreskinShadowPcf preskinShadowPcf(sampler2D shadowMap, vec2 t, float mapSize, fl
                 blockerWeight += dot(blocked, vec4(1.0));
             }
         }
-        variance = 0.5 * (varianceX / sumX + varianceY / sumY);
     }
+    float variance = 0.5 * (varianceX / sumX + varianceY / sumY);
     PreskinShadowPcf r;
     r.visibility = sum / weightSum;
     r.varianceTexels = variance;
