@@ -110,7 +110,7 @@ double polygonCosineIntegral(const glm::dvec3* corners, int count, const glm::dv
 
 glm::dvec3 areaLightIrradiance(const Light& light, const glm::dvec3& y, const glm::dvec3& n) {
     if (light.type == LightType::Directional) {
-        const double sigma = light.angularRadius, s = std::sin(sigma);
+        const double sigma = double(light.angularRadius), s = std::sin(sigma);
         const glm::dvec3 L = -glm::normalize(glm::dvec3(light.directionWs));
         return glm::dvec3(light.color) * double(light.intensity) *
             (capCosineIntegral(glm::dot(n, L), sigma) / (kPi * s * s));
@@ -121,7 +121,7 @@ glm::dvec3 areaLightIrradiance(const Light& light, const glm::dvec3& y, const gl
     const glm::dvec3 intensity = glm::dvec3(light.color) * double(light.intensity) * window;
     const AreaLightAxes axes = areaLightAxes(light);
     const glm::dvec3 m(axes.normal), u(axes.width), v(axes.height);
-    const double r = light.radius;
+    const double r = double(light.radius);
     double integral = 0.0, area = 1.0;  // int max(n . omega, 0) dOmega (or cos cos' / r^2 dA); projected area
     switch (light.type) {
     case LightType::Sphere: {

@@ -94,7 +94,7 @@ glm::dvec3 IrradianceField::sunIrradiance(const Light& light, const SurfacePoint
     // The cap's directions uniform in solid angle, k x k strata of (cos theta, phi), jittered per
     // point (a hash of the point, so the error is noise the profile's integral averages).
     constexpr int k = 8;
-    const double sigma = light.angularRadius, cosSigma = std::cos(sigma), s = std::sin(sigma);
+    const double sigma = double(light.angularRadius), cosSigma = std::cos(sigma), s = std::sin(sigma);
     const glm::dvec3 axis = -glm::normalize(glm::dvec3(light.directionWs));
     const glm::dvec3 e1 = glm::normalize(
         glm::cross(axis, std::abs(axis.x) < 0.9 ? glm::dvec3(1.0, 0.0, 0.0) : glm::dvec3(0.0, 1.0, 0.0)));
