@@ -44,7 +44,10 @@ layout(set = 1, binding = kBindingProfileWeightTexture) uniform sampler2D profil
 #include "shared/cluster_lookup.h"
 
 layout(location = 0) in vec3 inPositionWs;
-layout(location = 1) in vec3 inNormalWs;
+// The normals at the centroid of the pixel's covered samples: with MSAA the pixel's centre can lie
+// outside a small triangle, where the interpolated normal runs past its corners' (single-pixel
+// highlights on the head at MSAA 4x). Without MSAA the centroid is the centre.
+layout(location = 1) centroid in vec3 inNormalWs;
 layout(location = 2) in vec4 inTangentWs;
 layout(location = 3) in vec2 inUv0;
 layout(location = 4) in float inCurvaturePerM;
@@ -54,9 +57,9 @@ layout(location = 7) in vec3 inShTransferGreen;
 layout(location = 8) in vec3 inShTransferBlue;
 layout(location = 9) in vec2 inShadowLift;               // kSkinLiftPerVertex: preskinSkinShadowLift
 layout(location = 10) in vec3 inSphereTransmittance;     // kSkinSphereTransmittancePerVertex
-layout(location = 11) in vec3 inNormalRedWs;             // skin: per-channel prefiltered geometric normals
-layout(location = 12) in vec3 inNormalGreenWs;
-layout(location = 13) in vec3 inNormalBlueWs;
+layout(location = 11) centroid in vec3 inNormalRedWs;             // skin: per-channel prefiltered geometric normals
+layout(location = 12) centroid in vec3 inNormalGreenWs;
+layout(location = 13) centroid in vec3 inNormalBlueWs;
 
 layout(location = 0) out vec4 outColor;
 
@@ -127,8 +130,8 @@ void main() {
     vec3 emissive = material.emissiveAlphaCutoff.rgb;
     if (material.hasTextures.w > 0.5) emissive *= texture(emissiveTexture, transformUv(material.uv[4], inUv0)).rgb;
 
-    vec3 geometricN = normalize(inNormalWs);
-    if (!gl_FrontFacing) geometricN = -geometricN;
+    float facingSign = gl_FrontFacing ? 1.0 : -1.0;
+    vec3 geometricN = facingSign * normalize(inNormalWs);
     vec2 uvNormal = transformUv(material.uv[2], inUv0);
     bool hasNormalMap = material.textureFlags.w > 0.5;
     // Skin reads its normal maps itself (preskinSkinNormals), the standard model here.
@@ -214,10 +217,9 @@ void main() {
         skin.albedo = baseColor.rgb;
         skin.geometricNormal = geometricN;
         // The geometric normal seen through each channel's profile (the vertex stage's normal basis).
-        float facing = gl_FrontFacing ? 1.0 : -1.0;
-        vec3 geometricR = facing * normalize(inNormalRedWs);
-        vec3 geometricG = facing * normalize(inNormalGreenWs);
-        vec3 geometricB = facing * normalize(inNormalBlueWs);
+        vec3 geometricR = facingSign * normalize(inNormalRedWs);
+        vec3 geometricG = facingSign * normalize(inNormalGreenWs);
+        vec3 geometricB = facingSign * normalize(inNormalBlueWs);
         if (hasNormalMap) {
             PreskinNormalMaps maps;
             maps.scale = material.pbr.z;
