@@ -181,16 +181,17 @@ void main() {
                           max(abs(dot(geometricN, frame.shadowDirectionWs.xyz)), 0.3);
             wideShadow = preskinSampleShadow(wideShadowMap, preskinScaledShadowClip(shadowClipFromWorld, frame.wideShadow.x),
                                              wideParams, shadowPositionWs, geometricN,
-                                             PreskinShadowFilter(3, 0.75, riseM, frame.wideShadow.w, 0.0));
+                                             PreskinShadowFilter(3, 0.75, riseM, frame.wideShadow.w));
         }
-        PreskinShadowFilter shadowFilter = kPreskinShadowMapFilter;
+        float penumbraPerM = 0.0;
         if (kSizedShadowLight) {
             // A sun's disc seen past an edge d away is tan(sigma) d in radius; the Gaussian closest
             // to its edge's profile (least squares) has 0.545 that as its standard deviation.
             float sinSigma = lights[0].spotScaleOffset.z;
-            shadowFilter.penumbraPerM = 0.545 * sinSigma * inversesqrt(max(1.0 - sinSigma * sinSigma, 1e-6));
+            penumbraPerM = 0.545 * sinSigma * inversesqrt(max(1.0 - sinSigma * sinSigma, 1e-6));
         }
-        shadow = preskinSampleShadow(shadowMap, shadowClipFromWorld, shadowParams, shadowPositionWs, geometricN, shadowFilter);
+        shadow = preskinSampleShadow(shadowMap, shadowClipFromWorld, shadowParams, shadowPositionWs, geometricN,
+                                     kPreskinShadowMapFilter, penumbraPerM);
     }
 
     uint first;

@@ -49,12 +49,10 @@ struct PreskinShadowFilter {
                             // kernel (a concave receiver's own walls)
     float texelScale;       // the map's texels per shadow-map texel side: the receiver plane's depth step
                             // per texel is clamped to 0.02 times it (the same steepest slope on any map)
-    float penumbraPerM;     // a light with a size: the penumbra's standard deviation per metre between
-                            // occluder and receiver (a disc of angular radius sigma: 0.545 tan(sigma)); 0: none
 };
 
-// The filter of a shadow map: 8 x 8 texels, no extra bias, a parallel light.
-const PreskinShadowFilter kPreskinShadowMapFilter = PreskinShadowFilter(4, 0.0, 0.0, 1.0, 0.0);
+// The filter of a shadow map: 8 x 8 texels, no extra bias.
+const PreskinShadowFilter kPreskinShadowMapFilter = PreskinShadowFilter(4, 0.0, 0.0, 1.0);
 
 // The windowed Gaussian percentage-closer sum of the header over 2G x 2G texels around texel
 // coordinate t (texel i's centre at t = i), comparing z - bias tilted by dzPerTexel, and the
@@ -152,12 +150,14 @@ PreskinShadowPcf preskinShadowPcf(sampler2D shadowMap, vec2 t, float mapSize, fl
 
 // shadowClipFromWorld: orthographic light matrix (depth 0 near .. 1 far).
 // params: x texel size (m), y Gaussian sigma (texels), z depth range (m), w map size (texels).
-// A light with a size (shadowFilter.penumbraPerM > 0) widens the kernel by its penumbra at the
-// occluders' distance, found by a blocker search first (percentage-closer soft shadows: Fernando,
+// A light with a size (penumbraPerM > 0: the penumbra's standard deviation per metre between
+// occluder and receiver; for a disc of angular radius sigma, 0.545 tan(sigma)) widens the kernel
+// by its penumbra at the occluders' distance, found by a blocker search first (percentage-closer soft shadows: Fernando,
 // "Percentage-Closer Soft Shadows", SIGGRAPH 2005 sketch): the occluding texels' weighted mean
 // depth over the widest penumbra the receiver can have (occluders at the map's near plane).
 PreskinShadowSample preskinSampleShadow(sampler2D shadowMap, mat4 shadowClipFromWorld, vec4 params,
-                                        vec3 positionWs, vec3 geometricNormalWs, PreskinShadowFilter shadowFilter) {
+                                        vec3 positionWs, vec3 geometricNormalWs, PreskinShadowFilter shadowFilter,
+                                        float penumbraPerM) {
     PreskinShadowSample result;
     float mapSize = params.w;
     float sigma = max(params.y, 0.25);
@@ -191,15 +191,15 @@ PreskinShadowSample preskinSampleShadow(sampler2D shadowMap, mat4 shadowClipFrom
     const int G = shadowFilter.gathersPerAxis;
     float stride = 1.0;
     result.penumbraWidthM = 0.0;
-    if (shadowFilter.penumbraPerM > 0.0) {
+    if (penumbraPerM > 0.0) {
         // The widest penumbra's radius (about 2 penumbraPerM per metre), covered by 4 x 4 texels at
         // a stride: their window is 1.5 strides.
-        float reachTexels = 2.0 * shadowFilter.penumbraPerM * max(z, 0.0) * params.z / params.x;
+        float reachTexels = 2.0 * penumbraPerM * max(z, 0.0) * params.z / params.x;
         float searchStride = clamp(ceil(reachTexels / 1.5), 1.0, 32.0);
         float searchWindow = searchStride <= 1.0 ? 2.0 : 1.5 * searchStride;
         PreskinShadowPcf search =
             preskinShadowPcf(shadowMap, t, mapSize, z, bias, dzPerTexel, 2, searchStride, 0.4 * searchWindow);
-        float penumbraTexels = max(z - search.blockerDepth, 0.0) * params.z * shadowFilter.penumbraPerM / params.x;
+        float penumbraTexels = max(z - search.blockerDepth, 0.0) * params.z * penumbraPerM / params.x;
         // The map's own filter only hides its texels, which a wider penumbra's filter does too.
         sigma = max(sigma, penumbraTexels);
         result.penumbraWidthM = penumbraTexels * params.x;
@@ -213,6 +213,12 @@ PreskinShadowSample preskinSampleShadow(sampler2D shadowMap, mat4 shadowClipFrom
     // The weights' standard deviation (mean of the two axes), the filter's width across an edge.
     result.kernelWidthM = sqrt(pcf.varianceTexels) * params.x;
     return result;
+}
+
+// A parallel light's.
+PreskinShadowSample preskinSampleShadow(sampler2D shadowMap, mat4 shadowClipFromWorld, vec4 params,
+                                        vec3 positionWs, vec3 geometricNormalWs, PreskinShadowFilter shadowFilter) {
+    return preskinSampleShadow(shadowMap, shadowClipFromWorld, params, positionWs, geometricNormalWs, shadowFilter, 0.0);
 }
 
 PreskinShadowSample preskinSampleShadow(sampler2D shadowMap, mat4 shadowClipFromWorld, vec4 params,
