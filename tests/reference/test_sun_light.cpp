@@ -5,7 +5,8 @@
 //  - the shadow of a straight edge on a plane: the rendered penumbra against the fraction of the
 //    sun's cap (cosine-weighted, 64 x 64 directions) whose rays miss the occluder, for two sizes
 //    (moved by the shadow map's own placement of the edge, measured with a parallel light);
-//  - a sun of vanishing size renders as the parallel light, skin, shadows and all.
+//  - a sun of vanishing size renders as the parallel light, skin, shadows and all;
+//  - bad sizes refused naming the field.
 #include "support/GpuTest.h"
 #include "support/ImageCompare.h"
 #include "support/SkinTestSupport.h"
@@ -13,6 +14,7 @@
 
 #include "AreaLightIrradiance.h"
 
+#include <preskin/Error.h>
 #include <preskin/LutSet.h>
 #include <preskin/Renderer.h>
 
@@ -20,6 +22,7 @@
 
 #include <cmath>
 #include <cstdio>
+#include <limits>
 #include <numbers>
 
 namespace preskin::test {
@@ -219,6 +222,38 @@ TEST_F(SunShadow, VanishingSunEqualsTheParallelLight) {
     }
     dumpImage("sun_vanishing", images[1]);
     EXPECT_LE(maxSrgbDifference(images[0], images[1]), 1.0);
+}
+
+TEST_F(SunLight, RendererRefusesBadSizesNamingTheField) {
+    Primitive ground = makeQuad(0.3f, 2);
+    ground.material = 0;
+    Scene scene = makeScene({{ground, glm::mat4(1.0f)}}, {lambert()});
+    Renderer renderer(context(), scene, Environment::constant(glm::vec3(0.0f)), nullptr, RenderSettings{});
+    const auto refused = [&](const Light& light, const std::string& field) {
+        try {
+            renderer.setLights({sun({0.0f, 0.0f, -1.0f}, 0.0f), light});
+        } catch (const Error& e) {
+            EXPECT_NE(std::string(e.what()).find(field), std::string::npos) << e.what();
+            return;
+        }
+        ADD_FAILURE() << "accepted a bad " << field;
+    };
+    for (const float bad : {-0.1f, 1.0f, std::numeric_limits<float>::quiet_NaN()})
+        refused(sun({0.0f, 0.0f, -1.0f}, bad), "lights[1].angularRadius");
+    Light sphere = sun({0.0f, 0.0f, -1.0f}, 0.0f);
+    sphere.type = LightType::Sphere;
+    sphere.radius = std::numeric_limits<float>::infinity();
+    refused(sphere, "lights[1].radius");
+    // A good sun is taken and renders.
+    renderer.setLights({sun({0.0f, 0.0f, -1.0f}, 0.01f)});
+    EXPECT_GT(pixelLinear(
+                  renderer.render(perspectiveView(glm::inverse(glm::lookAt(glm::vec3(0.0f, 0.0f, 0.5f), glm::vec3(0.0f),
+                                                                           glm::vec3(0.0f, 1.0f, 0.0f))),
+                                                  0.5f, 1.0f, 0.05f, 10.0f),
+                                  16, 16, OutputEncoding::LinearFloat),
+                  8, 8)
+                  .g,
+              0.1);
 }
 
 }  // namespace
