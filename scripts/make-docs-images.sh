@@ -6,7 +6,9 @@
 # (README, Profiles); docs/fidelity-closeup.png: `preskin compare` of the cheek and nose close up
 # at 768x768, shown at a third of its size (README, Fidelity; its reference takes minutes);
 # docs/environment-lighting.png: the head under two environments, background on (README);
-# docs/area-light-softbox.png: the head under a soft box and under a point light (README).
+# docs/area-light-softbox.png: the head under a soft box and under a point light (README);
+# docs/sun-penumbra.png: the head's close-up under its key light as a parallel light and as suns
+# of 0.27 and 3 degrees (README, Area lights).
 # Needs ImageMagick (convert, montage): scripts/install-deps.sh --docs installs it.
 set -euo pipefail
 cd "$(dirname "$0")/.."
@@ -60,3 +62,12 @@ montage -label "point light" "$tmp/softbox_point.png" -label "1 m x 0.5 m soft b
   -label "point light, close-up" "$tmp/softbox_point_close.png" -label "soft box, close-up" "$tmp/softbox_close.png" \
   -tile 4x1 -geometry +4+4 -background '#202022' -fill '#dddddd' -pointsize 16 -depth 8 docs/area-light-softbox.png
 echo "wrote docs/area-light-softbox.png"
+# Suns (README, docs/area-lights.md): the key light's shadow as its angular radius grows.
+for r in 0 0.27 3; do
+  "$bin" render samples/assets/head/head.gltf --camera cheek_nose --width 480 --height 480 --sun-radius "$r" \
+    --out "$tmp/sun_$r.png" >/dev/null
+done
+montage -label "parallel light" "$tmp/sun_0.png" -label "sun, 0.27 degrees" "$tmp/sun_0.27.png" \
+  -label "3 degrees" "$tmp/sun_3.png" \
+  -tile 3x1 -geometry +4+4 -background '#202022' -fill '#dddddd' -pointsize 16 -depth 8 docs/sun-penumbra.png
+echo "wrote docs/sun-penumbra.png"
