@@ -156,8 +156,10 @@ void run(const RenderOptions& o) {
         return l.type == LightType::Directional && l.castsShadow;
     });
     for (const Light& l : renderer.environmentLights())
-        fmt::print("preskin: {}: towards ({:.3f}, {:.3f}, {:.3f}), {:.3g} lux{}\n", l.name, -l.directionWs.x,
+        fmt::print("preskin: {}: towards ({:.3f}, {:.3f}, {:.3f}), {:.3g} lux{}{}\n", l.name, -l.directionWs.x,
                    -l.directionWs.y, -l.directionWs.z, l.intensity,
+                   l.angularRadius > 0.0f ? fmt::format(", {:.2f} degrees in radius", glm::degrees(l.angularRadius))
+                                          : std::string(),
                    !sceneShadow && &l == &renderer.environmentLights().front() ? ", casts the shadow" : "");
     const uint32_t width = o.view.width, height = o.view.height;
 

@@ -34,6 +34,10 @@ void addSceneOptions(CLI::App& cmd, CommonOptions& o) {
                    "Directional lights extracted from the environment (median cut), with shadows; default: 1 when "
                    "the scene has an environment image and no lights, else 0")
         ->check(wholeNumberIn(0, kMaxEnvironmentLights));
+    cmd.add_flag("--env-light-size", o.envLightSize,
+                 "Give the environment's extracted lights the angular radius of their texels' spread: softer "
+                 "terminators and shadows whose penumbra widens with the occluder's distance (slower on a CPU "
+                 "driver)");
     cmd.add_flag("--no-scene-lights", o.noSceneLights,
                  "Leave out the scene's own lights (KHR_lights_punctual): the environment's extracted light (or the "
                  "default key light) takes their place");
@@ -306,6 +310,7 @@ RenderSettings renderSettings(const CommonOptions& o) {
     s.shadowMapSize = o.shadowMapSize;
     s.shadows = !o.noShadows;
     s.msaaSamples = o.msaa;
+    s.environmentLightSizes = o.envLightSize;
     s.background = parseBackground(o.background);
     return s;
 }

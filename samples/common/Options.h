@@ -26,6 +26,7 @@ struct CommonOptions {
     std::optional<float> envRotationDeg;  // unset: the scene's (or 0)
     int envLights = -1;                   // < 0: environmentLightCount's default
     bool noSceneLights = false;
+    bool envLightSize = false;  // --env-light-size: RenderSettings::environmentLightSizes
     std::string device;
     bool validation = false;
     std::string skin;  // material name, "all" or "none"

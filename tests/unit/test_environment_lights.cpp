@@ -25,19 +25,19 @@ glm::vec3 texelDirection(const EquirectImage& image, uint32_t x, uint32_t y, flo
     return EquirectImage::directionAt((float(x) + fx) / float(image.width), (float(y) + fy) / float(image.height));
 }
 
-// 1024 x 512 sky with the disc around `discDir` (image space), the disc's coverage of each texel
+// 1024 x 512 sky with the disc of angular radius discRadius around `discDir` (image space), the disc's coverage of each texel
 // from 4 x 4 samples.
-EquirectImage discSky(const glm::vec3& discDir) {
+EquirectImage discSky(const glm::vec3& discDir, double discRadius = kDiscRadius) {
     EquirectImage image;
     image.width = 1024;
     image.height = 512;
     image.rgb.resize(size_t(image.width) * image.height * 3);
-    const float cosRadius = float(std::cos(kDiscRadius));
+    const float cosRadius = float(std::cos(discRadius));
     for (uint32_t y = 0; y < image.height; ++y)
         for (uint32_t x = 0; x < image.width; ++x) {
             const glm::vec3 center = texelDirection(image, x, y);
             float coverage = 0.0f;
-            if (double(glm::dot(center, discDir)) > std::cos(kDiscRadius + 0.02))
+            if (double(glm::dot(center, discDir)) > std::cos(discRadius + 0.02))
                 for (int sy = 0; sy < 4; ++sy)
                     for (int sx = 0; sx < 4; ++sx) {
                         const glm::vec3 d =
@@ -96,6 +96,19 @@ TEST(EnvironmentLights, MedianCutFindsASmallBrightDiscWithItsEnergy) {
             evaluateSh(found.residualSh, n, kLambertBands);
         for (int c = 0; c < 3; ++c)
             EXPECT_NEAR(approx[c], truth[c], 0.02 * truth[c]) << "direction " << i << " channel " << c;
+    }
+}
+
+TEST(EnvironmentLights, AngularRadiusIsTheDiscs) {
+    // The disc's own radius from its texels' spread (EnvironmentLight::angularRadius), at the
+    // sun's twice and at 4 degrees, off the equator where texels are not square.
+    const glm::vec3 discDir = glm::normalize(glm::vec3(0.4f, 0.7f, -0.5f));
+    for (const double radius : {kDiscRadius, 4.0 * M_PI / 180.0}) {
+        const EnvironmentLights found =
+            extractEnvironmentLights(Environment::fromImage(discSky(discDir, radius), 0.3f), 1);
+        ASSERT_EQ(found.lights.size(), 1u);
+        EXPECT_NEAR(double(found.lights[0].angularRadius), radius, 0.08 * radius)
+            << "disc of " << radius * 180.0 / M_PI << " degrees";
     }
 }
 

@@ -61,6 +61,10 @@ struct EnvironmentLight {
     glm::vec3 directionWs{0.0f, -1.0f, 0.0f};  // the direction the light travels (world, rotation applied)
     glm::vec3 irradiance{0.0f};  // at normal incidence: the integral of its texels' radiance over their solid angle
     float solidAngleSr = 0.0f;   // of its texels
+    // The angular radius of the disc with its texels' spread about its direction: sqrt(2 <theta^2>),
+    // theta the angle from the direction, weighted by luminance and solid angle (a uniform disc of
+    // radius sigma has <theta^2> = sigma^2 / 2 when small); at most pi/4. Light::angularRadius.
+    float angularRadius = 0.0f;
 };
 
 // The environment's dominant lights and what is left for the L2 SH ambient.

@@ -111,6 +111,11 @@ struct RenderSettings {
     // casts the shadow when no light of the scene does. -1: one when the renderer has no lights
     // of its own, none otherwise; 0 .. kMaxEnvironmentLights: that many at most.
     int environmentLights = -1;
+    // Those lights keep their spread as an angular radius (EnvironmentLight::angularRadius): a
+    // terminator softened by it, and the shadow's penumbra widening with the occluder's distance
+    // (docs/area-lights.md, suns); off, they are parallel lights with sharp shadows, cheaper on a
+    // CPU driver.
+    bool environmentLightSizes = false;
     Background background;
 };
 

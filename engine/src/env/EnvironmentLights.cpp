@@ -7,6 +7,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <numbers>
 #include <queue>
 
 namespace preskin {
@@ -194,6 +195,19 @@ EnvironmentLights extractEnvironmentLights(const Environment& environment, uint3
         out.directionWs = -towards;
         out.irradiance = glm::vec3(irradiance);
         out.solidAngleSr = float(omega);
+        // The spread about the direction (before the rotation, which keeps angles).
+        const glm::dvec3 centre = glm::normalize(weightedDirection);
+        double spread = 0.0, weight = 0.0;
+        for (uint32_t i : texels) {
+            const uint32_t x = i % image.width, y = i / image.width;
+            const glm::dvec3 d(image.direction(x, y));
+            const double theta = std::atan2(glm::length(glm::cross(d, centre)), glm::dot(d, centre));
+            const double w = double(luminance(image.radiance[i])) * image.rowSolidAngle[y];
+            spread += w * theta * theta;
+            weight += w;
+        }
+        out.angularRadius =
+            weight > 0.0 ? float(std::min(std::sqrt(2.0 * spread / weight), 0.25 * std::numbers::pi)) : 0.0f;
         // Its texels leave the image and the SH.
         for (uint32_t i : texels) {
             const uint32_t x = i % image.width, y = i / image.width;

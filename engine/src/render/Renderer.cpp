@@ -197,17 +197,18 @@ void Renderer::Impl::updateEnvironmentLights(bool environmentChanged) {
         extractedCount = count;
         if (!environmentMaps) environmentMaps = std::make_unique<GpuEnvironment>(dev);
         environmentMaps->set(environment, extracted.residualImage);
-        extractedLights.clear();
-        for (size_t i = 0; i < extracted.lights.size(); ++i) {
-            const EnvironmentLight& e = extracted.lights[i];
-            Light l;
-            l.name = fmt::format("environment light {}", i + 1);
-            l.type = LightType::Directional;
-            l.intensity = std::max({e.irradiance.r, e.irradiance.g, e.irradiance.b});
-            l.color = l.intensity > 0.0f ? e.irradiance / l.intensity : glm::vec3(1.0f);
-            l.directionWs = e.directionWs;
-            extractedLights.push_back(l);
-        }
+    }
+    extractedLights.clear();
+    for (size_t i = 0; i < extracted.lights.size(); ++i) {
+        const EnvironmentLight& e = extracted.lights[i];
+        Light l;
+        l.name = fmt::format("environment light {}", i + 1);
+        l.type = LightType::Directional;
+        l.intensity = std::max({e.irradiance.r, e.irradiance.g, e.irradiance.b});
+        l.color = l.intensity > 0.0f ? e.irradiance / l.intensity : glm::vec3(1.0f);
+        l.directionWs = e.directionWs;
+        l.angularRadius = settings.environmentLightSizes ? e.angularRadius : 0.0f;
+        extractedLights.push_back(l);
     }
     frameLights = lights;
     const bool sceneShadow = shadowLightIndex(lights) >= 0;
@@ -596,9 +597,10 @@ const RenderSettings& Renderer::settings() const { return impl_->settings; }
 
 void Renderer::setSettings(const RenderSettings& settings) {
     checkRenderSettings(settings);
-    const bool newLightCount = settings.environmentLights != impl_->settings.environmentLights;
+    const bool newLights = settings.environmentLights != impl_->settings.environmentLights ||
+        settings.environmentLightSizes != impl_->settings.environmentLightSizes;
     impl_->settings = settings;
-    if (newLightCount) impl_->updateEnvironmentLights(false);  // hosts set settings every frame
+    if (newLights) impl_->updateEnvironmentLights(false);  // hosts set settings every frame
     impl_->resolveEyeDrawing();
 }
 
