@@ -128,6 +128,10 @@ void Viewer::panelScene() {
     tooltip(
         "Directional lights extracted from the environment by median cut, with the shadow when no scene light "
         "casts it; auto: one when the scene has no lights");
+    ImGui::Checkbox("Environment light sizes", &settings_.environmentLightSizes);
+    tooltip(
+        "--env-light-size: each extracted light a sun of its texels' angular spread (soft terminator and "
+        "shadow); off: parallel lights");
     if (renderer_)
         for (const Light& l : renderer_->environmentLights())
             ImGui::TextDisabled("%s: towards (%.2f, %.2f, %.2f), %.3g lux", l.name.c_str(), double(-l.directionWs.x),
