@@ -183,26 +183,47 @@ vec3 preskinSkinLight(PreskinSkinSurface s, PreskinProfileMix m, sampler2DArray 
                             shadowRgb, specularVisibility, features);
 }
 
-// A hard edge's response `hard` (the penumbra LUT's, at x profile mm from the edge, > 0 lit) made
-// that of a soft edge: the light's own penumbra, a Gaussian of standard deviation penumbraMm (a
-// light with a size), blurs the edge before the skin scatters it. For a channel whose response
-// to a hard edge is a Gaussian edge's, Phi(x / p), the soft edge's is Phi(x / sqrt(p^2 +
-// penumbraMm^2)) (blurring adds variances); p is fitted per channel to the LUT (one reference
-// width into the shadow, then, for channels that barely reach there, one narrowest width in),
-// and the result moves from the LUT's exact hard-edge response to that as the penumbra outgrows
-// the channel's scattering (by penumbraMm^2 / (p^2 + penumbraMm^2)).
-vec3 preskinSoftEdge(PreskinProfileMix m, sampler2DArray penumbraLut, vec3 hard, float x, float penumbraMm) {
+// Each channel's width p (profile mm) when its response to a hard edge is taken as a Gaussian
+// edge's, Phi(x / p): fitted to the penumbra LUT one reference width into the shadow, then, for
+// channels that barely reach there, one narrowest width in. Depends on the profiles alone.
+vec3 preskinPenumbraChannelWidths(PreskinProfileMix m, sampler2DArray penumbraLut) {
     float reference = 1.0 / m.mapping[0].penumbraWidth.x;
     vec3 r = clamp(preskinPenumbraLut(m, penumbraLut, preskinNormalCdf(-1.0), reference), 1e-4, 0.4999);
     vec3 p = -reference / vec3(preskinNormalQuantile(r.r), preskinNormalQuantile(r.g), preskinNormalQuantile(r.b));
     float narrow = min(p.r, min(p.g, p.b));
     vec3 near = clamp(preskinPenumbraLut(m, penumbraLut, preskinNormalCdf(-1.0), narrow), 1e-4, 0.4999);
     vec3 pNear = -narrow / vec3(preskinNormalQuantile(near.r), preskinNormalQuantile(near.g), preskinNormalQuantile(near.b));
-    p = mix(p, pNear, lessThan(r, vec3(0.02)));
+    return mix(p, pNear, lessThan(r, vec3(0.02)));
+}
+
+// A hard edge's response `hard` (the penumbra LUT's, at x profile mm from the edge, > 0 lit) made
+// that of a soft edge: the light's own penumbra, a Gaussian of standard deviation penumbraMm (a
+// light with a size), blurs the edge before the skin scatters it. For a channel whose response
+// to a hard edge is a Gaussian edge's, Phi(x / p) (p: preskinPenumbraChannelWidths), the soft
+// edge's is Phi(x / sqrt(p^2 + penumbraMm^2)) (blurring adds variances); the result moves from
+// the LUT's exact hard-edge response to that as the penumbra outgrows the channel's scattering
+// (by penumbraMm^2 / (p^2 + penumbraMm^2)).
+vec3 preskinSoftEdge(vec3 hard, float x, float penumbraMm, vec3 p) {
     vec3 v2 = penumbraMm * penumbraMm + p * p;
     vec3 soft = x * inversesqrt(v2);
     vec3 softEdge = vec3(preskinNormalCdf(soft.r), preskinNormalCdf(soft.g), preskinNormalCdf(soft.b));
     return mix(hard, softEdge, penumbraMm * penumbraMm / v2);
+}
+
+// Per-channel shadow for skin given the channels' widths (preskinPenumbraChannelWidths; read only
+// with a penumbra), the two public forms' common part.
+vec3 preskinSkinShadow(PreskinSkinSurface s, PreskinProfileMix m, sampler2DArray penumbraLut, float visibility,
+                       float filterWidthLightM, float penumbraWidthLightM, vec3 channelWidthsMm, vec3 L,
+                       uint features) {
+    // Fully lit or fully shadowed: the LUT's end columns are exactly 1 and 0, skip the fetch.
+    if ((features & kSkinPenumbra) == 0u || visibility <= 0.0 || visibility >= 1.0) return vec3(visibility);
+    float slope = max(abs(dot(s.geometricNormal, L)), 0.2);
+    float toProfileMm = 1000.0 / slope * s.scatterScale;
+    float sigmaProfileMm = filterWidthLightM * toProfileMm;
+    vec3 hard = preskinPenumbraLut(m, penumbraLut, visibility, sigmaProfileMm);
+    if (penumbraWidthLightM <= 0.0) return hard;
+    return preskinSoftEdge(hard, sigmaProfileMm * preskinNormalQuantile(visibility), penumbraWidthLightM * toProfileMm,
+                           channelWidthsMm);
 }
 
 // Per-channel shadow for skin: the penumbra LUT indexed by the filtered visibility and the
@@ -211,15 +232,8 @@ vec3 preskinSoftEdge(PreskinProfileMix m, sampler2DArray penumbraLut, vec3 hard,
 // (penumbraWidthLightM > 0, preskinSampleShadow's) has a soft one (preskinSoftEdge).
 vec3 preskinSkinShadow(PreskinSkinSurface s, PreskinProfileMix m, sampler2DArray penumbraLut, float visibility,
                        float filterWidthLightM, float penumbraWidthLightM, vec3 L, uint features) {
-    // Fully lit or fully shadowed: the LUT's end columns are exactly 1 and 0, skip the fetch.
-    if ((features & kSkinPenumbra) == 0u || visibility <= 0.0 || visibility >= 1.0) return vec3(visibility);
-    float slope = max(abs(dot(s.geometricNormal, L)), 0.2);
-    float toProfileMm = 1000.0 / slope * s.scatterScale;
-    float sigmaProfileMm = filterWidthLightM * toProfileMm;
-    vec3 hard = preskinPenumbraLut(m, penumbraLut, visibility, sigmaProfileMm);
-    if (penumbraWidthLightM <= 0.0) return hard;
-    return preskinSoftEdge(m, penumbraLut, hard, sigmaProfileMm * preskinNormalQuantile(visibility),
-                           penumbraWidthLightM * toProfileMm);
+    vec3 widths = penumbraWidthLightM > 0.0 ? preskinPenumbraChannelWidths(m, penumbraLut) : vec3(0.0);
+    return preskinSkinShadow(s, m, penumbraLut, visibility, filterWidthLightM, penumbraWidthLightM, widths, L, features);
 }
 
 vec3 preskinSkinShadow(PreskinSkinSurface s, PreskinProfileMix m, sampler2DArray penumbraLut, float visibility,
@@ -249,7 +263,9 @@ vec3 preskinSkinShadow(PreskinSkinSurface s, PreskinProfileMix m, sampler2DArray
     // receiver's own curve, which the diffuse LUT already holds: there the shadow map alone.
     float wideTrust = smoothstep(0.15, 0.35, dot(s.geometricNormal, L));
     wideTrust *= 1.0 - smoothstep(0.7, 1.0, filterWidthLightM / max(wideFilterWidthLightM, 1e-12));
-    vec3 fineOnly = preskinSkinShadow(s, m, penumbraLut, visibility, filterWidthLightM, penumbraWidthLightM, L, features);
+    vec3 widths = penumbraWidthLightM > 0.0 ? preskinPenumbraChannelWidths(m, penumbraLut) : vec3(0.0);
+    vec3 fineOnly =
+        preskinSkinShadow(s, m, penumbraLut, visibility, filterWidthLightM, penumbraWidthLightM, widths, L, features);
     if (wideTrust <= 0.0) return fineOnly;
     float slope = max(abs(dot(s.geometricNormal, L)), 0.2);
     float toProfileMm = 1000.0 / slope * s.scatterScale;
@@ -270,7 +286,7 @@ vec3 preskinSkinShadow(PreskinSkinSurface s, PreskinProfileMix m, sampler2DArray
         x = visibility >= 1.0 ? max(x, 3.0 * sigmaFine) : min(x, -3.0 * sigmaFine);
     }
     vec3 wide = preskinPenumbraLut(m, penumbraLut, preskinNormalCdf(x / sigmaWide), sigmaWide);
-    if (penumbraWidthLightM > 0.0) wide = preskinSoftEdge(m, penumbraLut, wide, x, penumbraWidthLightM * toProfileMm);
+    if (penumbraWidthLightM > 0.0) wide = preskinSoftEdge(wide, x, penumbraWidthLightM * toProfileMm, widths);
     return mix(fineOnly, wide, wideTrust);
 }
 

@@ -1,6 +1,7 @@
 // Irradiance at surface points for the diffusion reference (see IrradianceField.h).
 #include "IrradianceField.h"
 #include "AreaLightIrradiance.h"
+#include "PointHash.h"
 
 #include <preskin/LightRecord.h>
 
@@ -9,7 +10,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <functional>
 #include <limits>
 #include <numbers>
 
@@ -100,12 +100,11 @@ glm::dvec3 IrradianceField::sunIrradiance(const Light& light, const SurfacePoint
         glm::cross(axis, std::abs(axis.x) < 0.9 ? glm::dvec3(1.0, 0.0, 0.0) : glm::dvec3(0.0, 1.0, 0.0)));
     const glm::dvec3 e2 = glm::cross(axis, e1);
     const glm::dvec3 origin = shadowRayOrigin(p, n, flipNormal);
-    uint64_t state = (uint64_t(p.triangle) << 32) ^ std::hash<double>{}(p.bary.x * 3.0 + p.bary.y);
-    const auto uniform = [&state] {  // splitmix64
-        uint64_t z = (state += 0x9E3779B97F4A7C15ull);
-        z = (z ^ (z >> 30)) * 0xBF58476D1CE4E5B9ull;
-        z = (z ^ (z >> 27)) * 0x94D049BB133111EBull;
-        return double((z ^ (z >> 31)) >> 11) * 0x1.0p-53;
+    uint64_t state = pointKey(p);
+    const auto uniform = [&state] {  // the SplitMix64 sequence from the point's key
+        const double u = unitInterval(splitMix64(state));
+        state += 0x9E3779B97F4A7C15ull;
+        return u;
     };
     const double solidAngle = 2.0 * std::numbers::pi * (1.0 - cosSigma);
     double visible = 0.0, facing = 0.0;
@@ -160,8 +159,7 @@ IrradianceSample IrradianceField::at(const SurfacePoint& p, bool flipNormal) con
         if (!flipNormal) {
             for (int k = 0; k < 3; ++k) out.irradiance += p.bary[k] * vertexAmbient_[t.v[size_t(k)]];
         } else {  // the back of a double-sided surface: traced at the point itself
-            const uint64_t key = (uint64_t(p.triangle) << 32) ^ std::hash<double>{}(p.bary.x * 3.0 + p.bary.y);
-            out.irradiance += traced_->irradiance(rays_, shadowRayOrigin(p, n, flipNormal), n, key);
+            out.irradiance += traced_->irradiance(rays_, shadowRayOrigin(p, n, flipNormal), n, pointKey(p));
         }
         return out;
     }

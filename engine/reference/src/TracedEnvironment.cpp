@@ -1,5 +1,6 @@
 // The environment's traced irradiance for the diffusion reference (see TracedEnvironment.h).
 #include "TracedEnvironment.h"
+#include "PointHash.h"
 
 #include <algorithm>
 #include <cmath>
@@ -22,14 +23,6 @@ double radicalInverse(uint32_t i) {
     i = ((i & 0x0F0F0F0Fu) << 4u) | ((i & 0xF0F0F0F0u) >> 4u);
     i = ((i & 0x00FF00FFu) << 8u) | ((i & 0xFF00FF00u) >> 8u);
     return double(i) * (1.0 / 4294967296.0);
-}
-
-// SplitMix64: a well-mixed 64-bit hash of the key.
-uint64_t mix(uint64_t x) {
-    x += 0x9E3779B97F4A7C15ull;
-    x = (x ^ (x >> 30)) * 0xBF58476D1CE4E5B9ull;
-    x = (x ^ (x >> 27)) * 0x94D049BB133111EBull;
-    return x ^ (x >> 31);
 }
 
 // Index i of the interval of a cumulative table (cdf[0] = 0, cdf.back() = 1) holding u, and u's
@@ -123,9 +116,9 @@ double TracedEnvironment::imagePdf(const glm::dvec3& direction) const {
 
 glm::dvec3 TracedEnvironment::irradiance(const RayScene& rays, const glm::dvec3& origin, const glm::dvec3& normal,
                                          uint64_t key) const {
-    const uint64_t h = mix(key);
-    const double shiftX = double(h >> 11) * (1.0 / 9007199254740992.0);
-    const double shiftY = double(mix(h) >> 11) * (1.0 / 9007199254740992.0);
+    const uint64_t h = splitMix64(key);
+    const double shiftX = unitInterval(h);
+    const double shiftY = unitInterval(splitMix64(h));
     const glm::dvec3 a = std::abs(normal.x) < 0.9 ? glm::dvec3(1.0, 0.0, 0.0) : glm::dvec3(0.0, 1.0, 0.0);
     const glm::dvec3 tangent = glm::normalize(glm::cross(a, normal)), bitangent = glm::cross(normal, tangent);
     const uint32_t cosineCount = image_ ? samples_ / 2 : samples_;

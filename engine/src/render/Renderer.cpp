@@ -216,6 +216,7 @@ void Renderer::Impl::updateEnvironmentLights(bool environmentChanged) {
         frameLights.push_back(extractedLights[i]);
         frameLights.back().castsShadow = i == 0 && !sceneShadow;
     }
+    frameAreaLightTypes = areaLightTypes(frameLights);
 }
 
 // Replaces an attachment without waiting: the old image lives on until every other slot

@@ -33,6 +33,9 @@ inline constexpr uint32_t kQueryCount = 6;
 inline constexpr uint32_t kEnvironmentKeptWidth = 2048;
 
 // What makes one forward pipeline differ from another.
+// The area light types among `lights` as kSpecAreaLights holds them (render/ForwardPass.cpp).
+uint32_t areaLightTypes(const std::vector<Light>& lights);
+
 struct PipelineKey {
     uint32_t model, alphaMode, doubleSided, format, depthFormat, debugView, skinMask, lightLoop, specular, eyes,
         samples, layered, profileMix, skinInputs, areaLights;
@@ -73,6 +76,7 @@ struct Renderer::Impl {
     EnvironmentLights extracted;
     std::vector<Light> extractedLights;
     std::vector<Light> frameLights;
+    uint32_t frameAreaLightTypes = 0;  // areaLightTypes(frameLights), kept with them (pipeline keys read it per draw)
     std::unique_ptr<GpuEnvironment> environmentMaps;  // the backdrop, the prefiltered cube, the DFG table
     Bounds bounds;                                    // of the scene in the current pose
     Bounds receivers;       // of the skin in the current pose: what the shadow map is fitted to (render/ShadowFit.h)
