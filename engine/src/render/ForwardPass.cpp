@@ -79,7 +79,7 @@ PipelineKey Renderer::Impl::pipelineKey(const GpuMaterial& m, VkFormat format, V
         eyeDrawing() == EyeDrawing::InstancedLayers ? 1u : 0u,
         skin ? m.profileMix : 1u,
         skin ? m.skinInputBits() | (settings.skinTermsPerVertex ? 0u : gpu::kSkinInputTermsPerFragment) : 0u,
-        frameAreaLightTypes,
+        settings.shadows ? frameAreaLightTypes : frameAreaLightTypes & ~gpu::kAreaLightSizedShadow,
         skin ? std::bit_cast<std::array<uint32_t, 32>>(m.lutMapping) : std::array<uint32_t, 32>{}};
 }
 
