@@ -2,6 +2,7 @@
 #include "Canvas.h"
 
 #include <preskin/Renderer.h>
+#include <preskin/Tonemap.h>
 
 #include <fmt/core.h>
 
@@ -11,21 +12,6 @@
 
 namespace preskin::cli {
 namespace {
-
-// Khronos PBR Neutral, as shaders/preskin/tonemap.glsl.
-glm::dvec3 tonemapNeutral(glm::dvec3 color) {
-    const double startCompression = 0.8 - 0.04, desaturation = 0.15;
-    const double x = std::min({color.r, color.g, color.b});
-    const double offset = x < 0.08 ? x - 6.25 * x * x : 0.04;
-    color -= offset;
-    const double peak = std::max({color.r, color.g, color.b});
-    if (peak < startCompression) return color;
-    const double d = 1.0 - startCompression;
-    const double newPeak = 1.0 - d * d / (peak + d - startCompression);
-    color *= newPeak / peak;
-    const double g = 1.0 - 1.0 / (desaturation * (peak - newPeak) + 1.0);
-    return glm::mix(color, glm::dvec3(newPeak), g);
-}
 
 uint8_t encodeSrgb(double linear) {
     const double c = std::clamp(linear, 0.0, 1.0);

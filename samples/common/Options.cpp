@@ -96,6 +96,14 @@ void addCommonOptions(CLI::App& cmd, CommonOptions& o) {
     cmd.add_option("--debug", o.debug,
                    "Debug view: none, curvature, normals, shadow, penumbra, lightcount, shambient, transmission")
         ->capture_default_str();
+    cmd.add_option("--diffusion", o.diffusion,
+                   "How skin's diffuse light scatters: preintegrated (preskin, in the one forward pass) or screen "
+                   "(the screen-space separable baseline: Lambert skin blurred by the profile in two more passes)")
+        ->check(oneOf({"preintegrated", "screen"}))
+        ->capture_default_str();
+    cmd.add_option("--diffusion-taps", o.diffusionTaps, "--diffusion screen: taps per blur direction (odd)")
+        ->check(wholeNumberIn(3, 63))
+        ->capture_default_str();
     cmd.add_option("--light-loop", o.lightLoop, "clustered (light grid) or all (every light, brute force)")
         ->check(oneOf({"clustered", "all"}))
         ->capture_default_str();
@@ -305,6 +313,11 @@ RenderSettings renderSettings(const CommonOptions& o) {
     else
         throw Error(fmt::format("--debug {}: unknown debug view", o.debug));
     s.lightLoop = o.lightLoop == "all" ? LightLoop::All : LightLoop::Clustered;
+    s.diffusion = o.diffusion == "screen" ? Diffusion::ScreenSpace : Diffusion::PreIntegrated;
+    if (o.diffusionTaps % 2 == 0)
+        throw Error(fmt::format("--diffusion-taps: {} is even (the kernel has a middle tap: use an odd count)",
+                                o.diffusionTaps));
+    s.screenDiffusionTaps = o.diffusionTaps;
     s.exposure = o.exposure;
     s.shadowSoftnessTexels = o.shadowSoftness;
     s.shadowMapSize = o.shadowMapSize;

@@ -48,6 +48,8 @@ struct CommonOptions {
     std::optional<float> sunRadiusDeg;  // --sun-radius: directional lights' angular radius, degrees
     std::string lightShape = "point";   // --light-shape: point (points and spots), sphere, tube, rectangle, disc
     std::string lightLoop = "clustered";
+    std::string diffusion = "preintegrated";  // --diffusion: RenderSettings::diffusion
+    uint32_t diffusionTaps = 17;              // --diffusion-taps: RenderSettings::screenDiffusionTaps
     float exposure = 1.0f;
     float shadowSoftness = 1.5f;
     uint32_t shadowMapSize = 2048;

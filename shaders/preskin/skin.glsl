@@ -139,31 +139,47 @@ vec3 preskinSkinSpecular(PreskinSkinSurface s, PreskinSkinLighting k, vec3 V, ve
     return F * (mix(lobe0, lobe1, s.lobes.z) * NoL);
 }
 
-// Reflected radiance of one light. shadowRgb: per-channel visibility (penumbra LUT, or the plain
-// filtered shadow in all channels); specularVisibility: the plain filtered shadow.
-vec3 preskinSkinLight(PreskinSkinSurface s, PreskinSkinLighting k, PreskinProfileMix m, sampler2DArray diffuseLut,
-                      vec3 V, vec3 L, vec3 irradiance, vec3 shadowRgb, float specularVisibility, uint features) {
+// Reflected radiance of one light, its diffuse and specular parts apart (a host that scatters
+// the diffuse light itself, as the screen-space baseline does, keeps them apart).
+struct PreskinSkinLightParts {
+    vec3 diffuse;
+    vec3 specular;
+};
+
+// One light's parts. shadowRgb: per-channel visibility (penumbra LUT, or the plain filtered
+// shadow in all channels); specularVisibility: the plain filtered shadow.
+PreskinSkinLightParts preskinSkinLightParts(PreskinSkinSurface s, PreskinSkinLighting k, PreskinProfileMix m,
+                                            sampler2DArray diffuseLut, vec3 V, vec3 L, vec3 irradiance,
+                                            vec3 shadowRgb, float specularVisibility, uint features) {
     vec3 F = s.specularWeight * preskinSchlickF(s.F0, preskinSaturate(dot(V, normalize(L + V))));
     vec3 diffuse = (vec3(1.0) - F) * s.albedo / PRESKIN_PI * preskinSkinDiffuseResponse(s, k, m, diffuseLut, L, features);
     vec3 specular = s.specularWeight * preskinSkinSpecular(s, k, V, L, features, vec2(1.0));
-    return (diffuse * shadowRgb + specular * specularVisibility) * irradiance;
+    return PreskinSkinLightParts(diffuse * shadowRgb * irradiance, specular * specularVisibility * irradiance);
+}
+
+// Reflected radiance of one light (the parts' sum).
+vec3 preskinSkinLight(PreskinSkinSurface s, PreskinSkinLighting k, PreskinProfileMix m, sampler2DArray diffuseLut,
+                      vec3 V, vec3 L, vec3 irradiance, vec3 shadowRgb, float specularVisibility, uint features) {
+    PreskinSkinLightParts p =
+        preskinSkinLightParts(s, k, m, diffuseLut, V, L, irradiance, shadowRgb, specularVisibility, features);
+    return p.diffuse + p.specular;
 }
 
 // The same for any light (preskin/light_sample.glsl): diffuse over the light's cap; specular by
 // each lobe's linearly transformed cosine (l.ltc; ltcDfg: PreskinLtc.dfg, both lobes' (A, B)) or
 // at the representative point with Karis's normalisation per lobe.
-vec3 preskinSkinLight(PreskinSkinSurface s, PreskinSkinLighting k, PreskinProfileMix m, sampler2DArray diffuseLut,
-                      vec3 V, PreskinLightSample l, vec3 shadowRgb, float specularVisibility, uint features,
-                      vec4 ltcDfg) {
+PreskinSkinLightParts preskinSkinLightParts(PreskinSkinSurface s, PreskinSkinLighting k, PreskinProfileMix m,
+                                            sampler2DArray diffuseLut, vec3 V, PreskinLightSample l, vec3 shadowRgb,
+                                            float specularVisibility, uint features, vec4 ltcDfg) {
     if (l.cosSigma >= 1.0)
-        return preskinSkinLight(s, k, m, diffuseLut, V, l.L, l.irradiance, shadowRgb, specularVisibility, features);
+        return preskinSkinLightParts(s, k, m, diffuseLut, V, l.L, l.irradiance, shadowRgb, specularVisibility, features);
     vec3 F = s.specularWeight * preskinSchlickF(s.F0, preskinSaturate(dot(V, normalize(l.L + V))));
     vec3 diffuse = (vec3(1.0) - F) * s.albedo / PRESKIN_PI * preskinSkinDiffuseResponse(s, k, m, diffuseLut, l, features);
     vec2 lobeScale = vec2(preskinSpecularNormalization(k.alpha.x, l.specularAlphaAdd),
                           preskinSpecularNormalization(k.alpha.y, l.specularAlphaAdd));
     if (!l.ltc) {
         vec3 specular = s.specularWeight * preskinSkinSpecular(s, k, V, l.specularL, features, lobeScale);
-        return (diffuse * shadowRgb + specular * specularVisibility) * l.irradiance;
+        return PreskinSkinLightParts(diffuse * shadowRgb * l.irradiance, specular * specularVisibility * l.irradiance);
     }
     // Each lobe's linearly transformed cosine, blended with its representative point for lights
     // small against the lobe (preskinLtcWeight), where that is exact.
@@ -172,8 +188,16 @@ vec3 preskinSkinLight(PreskinSkinSurface s, PreskinSkinLighting k, PreskinProfil
     vec3 ltc1 = t.y * preskinLtcSpecular(l, s.F0, ltcDfg.zw, l.specularFormFactor.y, V);
     vec3 ltcSpecular = (features & kSkinDualSpecular) != 0u ? mix(ltc0, ltc1, s.lobes.z) : ltc0;
     vec3 pointSpecular = preskinSkinSpecular(s, k, V, l.specularL, features, lobeScale * (vec2(1.0) - t));
-    return diffuse * shadowRgb * l.irradiance +
-           s.specularWeight * (ltcSpecular + pointSpecular * l.irradiance) * specularVisibility;
+    return PreskinSkinLightParts(diffuse * shadowRgb * l.irradiance,
+                                 s.specularWeight * (ltcSpecular + pointSpecular * l.irradiance) * specularVisibility);
+}
+
+vec3 preskinSkinLight(PreskinSkinSurface s, PreskinSkinLighting k, PreskinProfileMix m, sampler2DArray diffuseLut,
+                      vec3 V, PreskinLightSample l, vec3 shadowRgb, float specularVisibility, uint features,
+                      vec4 ltcDfg) {
+    PreskinSkinLightParts p =
+        preskinSkinLightParts(s, k, m, diffuseLut, V, l, shadowRgb, specularVisibility, features, ltcDfg);
+    return p.diffuse + p.specular;
 }
 
 // The same for a single light (finds the shared values on every call).

@@ -148,6 +148,24 @@ struct MaterialUniforms {
 };
 PRESKIN_CHECK_SIZE(MaterialUniforms, 10 * 16 + 5 * 32 + 4 * 128 + 4 * 16 + 12 * 16)
 
+// ---- the screen-space baseline's passes (shaders/screen_diffusion.frag, render/ScreenDiffusion.h) ----
+PRESKIN_CONST(uint, kBindingDiffusionInput, 0)    // skin's diffuse light (premultiplied by coverage), linear filter
+PRESKIN_CONST(uint, kBindingDiffusionSurface, 1)  // RG32F: view depth (m), skin material index + 1 (times coverage)
+PRESKIN_CONST(uint, kBindingDiffusionScene, 2)    // the rest of the frame, linear radiance (the vertical pass)
+PRESKIN_CONST(uint, kBindingDiffusionKernels, 3)  // vec4 per material and tap: rgb weight, w offset (world m)
+PRESKIN_CONST(uint, kSpecDiffusionPass, 0)        // kDiffusionHorizontal or kDiffusionVertical
+PRESKIN_CONST(uint, kSpecDiffusionTaps, 1)        // taps per kernel (odd)
+PRESKIN_CONST(uint, kSpecDiffusionOutput, 2)      // the vertical pass's output: kOutputLinear or kOutputTonemapped
+PRESKIN_CONST(uint, kDiffusionHorizontal, 0)      // the diffuse light along rows, to an intermediate target
+PRESKIN_CONST(uint, kDiffusionVertical, 1)        // along columns, added to the rest of the frame, into the target
+
+struct DiffusionPush {
+    vec4 eyeScale[kMaxEyes];  // per eye: x, y pixels per metre at view depth 1 (perspective) or at any depth
+                              // (orthographic); z: 1 perspective, 0 orthographic
+    uvec4 params;             // x: materials with kernels
+};
+PRESKIN_CHECK_SIZE(DiffusionPush, 6 * 16 + 16)
+
 // Per draw.
 struct DrawPush {
     uvec4 indices;  // x: instance index

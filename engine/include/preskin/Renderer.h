@@ -71,6 +71,19 @@ struct Background {
 // How the forward pass finds the local (point and spot) lights of a fragment.
 enum class LightLoop { Clustered, All };
 
+// How skin's diffuse light is scattered (docs/baselines.md).
+//  - PreIntegrated: preskin's own, inside the one forward pass (curvature LUTs, per-channel
+//    normals, penumbra LUT, SH transfer; RenderSettings::skin).
+//  - ScreenSpace: the screen-space separable baseline it replaces (Jimenez et al., "Separable
+//    Subsurface Scattering", CGF 2015): skin shades as Lambert (with the skin's specular and
+//    transmission) and its diffuse light, written to a target of its own, is blurred along rows and
+//    columns by each skin material's profile, depth-aware, then added to the frame: 2 more passes
+//    and 4 more targets (3 more with MSAA), resolved before the blur, one blur per eye. The kernel
+//    is the profile's line profile (exact for straight edges of light; skin/SeparableKernel.h);
+//    the albedo is blurred with the light (pre-scatter texturing, as published). Limits: blended
+//    materials over skin do not hide its blurred light; a host's loadColor is refused.
+enum class Diffusion { PreIntegrated, ScreenSpace };
+
 struct RenderSettings {
     SkinFeatures skin;
     DebugView debugView = DebugView::None;
@@ -117,6 +130,10 @@ struct RenderSettings {
     // CPU driver.
     bool environmentLightSizes = false;
     Background background;
+    Diffusion diffusion = Diffusion::PreIntegrated;
+    // Diffusion::ScreenSpace: taps of each direction's kernel (odd, 3 to 63; Jimenez et al. ship
+    // 7 to 25).
+    uint32_t screenDiffusionTaps = 17;
 };
 
 enum class OutputEncoding {
@@ -156,6 +173,11 @@ struct FrameStats {
     EyeDrawing eyeDrawing = EyeDrawing::Multiview;  // how (never Auto)
     bool clusterBuildGpu = false;   // the light lists came from the compute pass (ClusterSettings::build)
     uint64_t clusterGridBytes = 0;  // the light grid's buffers as allocated (ranges, indices, headroom included)
+    // What the diffusion method adds to the one forward pass (RenderSettings::diffusion): passes,
+    // render targets and their bytes (0 for PreIntegrated).
+    uint32_t diffusionPasses = 0;
+    uint32_t diffusionTargets = 0;
+    uint64_t diffusionTargetBytes = 0;
 };
 
 // The host's depth attachment, when `record` should test against and write the host's depth

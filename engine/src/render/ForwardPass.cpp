@@ -4,8 +4,11 @@
 // and the recording of every draw of every eye into the host's or the headless target.
 #include "render/RendererImpl.h"
 
+#include "render/DisplayFormat.h"
+
 #include <preskin/LightRecord.h>
 #include <preskin/NormalBasis.h>
+#include <preskin/Tonemap.h>
 
 #include "shared/gpu_types.h"
 #include "vk/Check.h"
@@ -22,17 +25,8 @@ namespace preskin {
 
 namespace {
 
-bool isDisplayFormat(VkFormat format) {
-    switch (format) {
-    case VK_FORMAT_R8G8B8A8_UNORM:
-    case VK_FORMAT_R8G8B8A8_SRGB:
-    case VK_FORMAT_B8G8R8A8_UNORM:
-    case VK_FORMAT_B8G8R8A8_SRGB:
-    case VK_FORMAT_A2B10G10R10_UNORM_PACK32:
-    case VK_FORMAT_A2R10G10B10_UNORM_PACK32: return true;
-    default: return false;
-    }
-}
+constexpr VkColorComponentFlags kAllComponents =
+    VK_COLOR_COMPONENT_R_BIT | VK_COLOR_COMPONENT_G_BIT | VK_COLOR_COMPONENT_B_BIT | VK_COLOR_COMPONENT_A_BIT;
 
 VkImageAspectFlags depthAspect(VkFormat format) {
     switch (format) {
@@ -62,6 +56,11 @@ uint32_t areaLightTypes(const std::vector<Light>& lights) {
 PipelineKey Renderer::Impl::pipelineKey(const GpuMaterial& m, VkFormat format, VkFormat depthFormat,
                                         uint32_t eyes) const {
     const bool skin = m.skin && luts->valid();
+    const bool split = splitDiffusion();
+    // The screen-space baseline replaces skin's diffusion: Lambert diffuse, one normal, plain
+    // shadows and Lambert's SH; the skin's specular and transmission stay.
+    const uint32_t skinMask =
+        split ? settings.skin.mask() & (gpu::kSkinTransmission | gpu::kSkinDualSpecular) : settings.skin.mask();
     return PipelineKey{
         skin ? gpu::kModelSkin : gpu::kModelStandard,
         static_cast<uint32_t>(m.alphaMode),
@@ -69,7 +68,7 @@ PipelineKey Renderer::Impl::pipelineKey(const GpuMaterial& m, VkFormat format, V
         static_cast<uint32_t>(format),
         static_cast<uint32_t>(depthFormat),
         static_cast<uint32_t>(settings.debugView),
-        skin ? settings.skin.mask() : 0u,
+        skin ? skinMask : 0u,
         settings.lightLoop == LightLoop::Clustered ? gpu::kLightLoopClustered : gpu::kLightLoopAll,
         !settings.specular         ? gpu::kSpecularOff
             : settings.specularIbl ? gpu::kSpecularIbl
@@ -80,6 +79,7 @@ PipelineKey Renderer::Impl::pipelineKey(const GpuMaterial& m, VkFormat format, V
         skin ? m.profileMix : 1u,
         skin ? m.skinInputBits() | (settings.skinTermsPerVertex ? 0u : gpu::kSkinInputTermsPerFragment) : 0u,
         settings.shadows ? frameAreaLightTypes : frameAreaLightTypes & ~gpu::kAreaLightSizedShadow,
+        split ? 1u : 0u,
         skin ? std::bit_cast<std::array<uint32_t, 32>>(m.lutMapping) : std::array<uint32_t, 32>{}};
 }
 
@@ -104,6 +104,9 @@ vk::GraphicsPipelineDesc Renderer::Impl::forwardPassDesc(const PipelineKey& key)
     desc.specialization.values[gpu::kSpecOutputMode] =
         isDisplayFormat(format) ? gpu::kOutputTonemapped : gpu::kOutputLinear;
     desc.colorFormats = {format};
+    if (key.split)
+        desc.colorFormats.insert(desc.colorFormats.end(),
+                                 {ScreenDiffusion::kDiffuseFormat, ScreenDiffusion::kSurfaceFormat});
     desc.depthFormat = static_cast<VkFormat>(key.depthFormat);
     desc.viewMask = key.layered ? 0u : (1u << key.eyes) - 1u;
     desc.samples = static_cast<VkSampleCountFlagBits>(key.samples);
@@ -114,7 +117,7 @@ vk::GraphicsPipelineDesc Renderer::Impl::forwardPassDesc(const PipelineKey& key)
 VkPipeline Renderer::Impl::createForwardPipeline(const PipelineKey& key) const {
     vk::GraphicsPipelineDesc desc = forwardPassDesc(key);
     desc.vertexSpirv = shader(key.layered ? "forward_layers.vert" : "forward.vert");
-    desc.fragmentSpirv = shader("forward.frag");
+    desc.fragmentSpirv = shader(key.split ? "forward_split.frag" : "forward.frag");
     desc.specialization.values[gpu::kSpecMaterialModel] = key.model;
     desc.specialization.values[gpu::kSpecDebugView] = key.debugView;
     desc.specialization.values[gpu::kSpecAlphaMode] = key.alphaMode;
@@ -145,6 +148,7 @@ VkPipeline Renderer::Impl::createForwardPipeline(const PipelineKey& key) const {
     desc.cullMode = key.doubleSided ? VK_CULL_MODE_NONE : VK_CULL_MODE_BACK_BIT;
     desc.depthWrite = alphaMode != AlphaMode::Blend;
     desc.alphaBlend = alphaMode == AlphaMode::Blend;
+    if (key.split && desc.alphaBlend) desc.colorWriteMasks = {kAllComponents, 0, 0};  // skin's targets stay
     return vk::createGraphicsPipeline(dev, desc);
 }
 
@@ -156,6 +160,7 @@ PipelineKey Renderer::Impl::backgroundKey(VkFormat format, VkFormat depthFormat,
     key.eyes = eyes;
     key.samples = settings.msaaSamples;
     key.layered = eyeDrawing() == EyeDrawing::InstancedLayers ? 1u : 0u;
+    key.split = splitDiffusion() ? 1u : 0u;
     return key;
 }
 
@@ -165,19 +170,19 @@ VkPipeline Renderer::Impl::createBackgroundPipeline(const PipelineKey& key) cons
     desc.fragmentSpirv = shader("background.frag");
     desc.cullMode = VK_CULL_MODE_NONE;
     desc.depthWrite = false;  // at the far plane: drawn only where the depth is still cleared
+    if (key.split) desc.colorWriteMasks = {kAllComponents, 0, 0};  // no skin, no depth there (cleared)
     return vk::createGraphicsPipeline(dev, desc);
 }
 
-// The forward pass's own attachments: depth (unless the host's is used), and with MSAA the
-// multisampled colour. Replaced ones are retired, never waited for.
 void Renderer::Impl::ensureAttachments(VkExtent2D extent, uint32_t eyes, VkFormat colorFormat, bool ownDepth,
-                                       uint32_t slotIndex) {
+                                       bool ownMsaaColor, uint32_t slotIndex) {
+    if (!ownMsaaColor) retire(msaaColor, slotIndex);
     const auto matches = [&](const vk::Image& image, VkFormat format) {
         const vk::ImageDesc& d = image.desc();
         return image && d.width == extent.width && d.height == extent.height && d.layers == eyes &&
             d.samples == samples() && d.format == format;
     };
-    const bool msaa = settings.msaaSamples > 1;
+    const bool msaa = settings.msaaSamples > 1 && ownMsaaColor;
     if ((!ownDepth || matches(depth, kDepthFormat)) && (!msaa || matches(msaaColor, colorFormat))) return;
     retire(depth, slotIndex);
     retire(msaaColor, slotIndex);
@@ -199,7 +204,8 @@ void Renderer::Impl::ensureAttachments(VkExtent2D extent, uint32_t eyes, VkForma
 }
 
 void Renderer::Impl::recordForwardPass(VkCommandBuffer cmd, Slot& slot, uint32_t slotIndex, const RenderTarget& target,
-                                       const View& view) {
+                                       const View& view, std::span<const ScreenDiffusion::Attachment> split,
+                                       bool splitTonemapped) {
     const uint32_t eyes = view.eyeCount();
     const bool msaa = settings.msaaSamples > 1;
     constexpr VkPipelineStageFlags2 kDepthStages =
@@ -210,11 +216,20 @@ void Renderer::Impl::recordForwardPass(VkCommandBuffer cmd, Slot& slot, uint32_t
                      VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL, VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT,
                      VK_ACCESS_2_MEMORY_READ_BIT | VK_ACCESS_2_MEMORY_WRITE_BIT,
                      VK_PIPELINE_STAGE_2_COLOR_ATTACHMENT_OUTPUT_BIT, kColorAccess, eyes);
-    if (msaa)
-        vk::imageBarrier(cmd, msaaColor.handle(), VK_IMAGE_ASPECT_COLOR_BIT, VK_IMAGE_LAYOUT_UNDEFINED,
-                         VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL, VK_PIPELINE_STAGE_2_COLOR_ATTACHMENT_OUTPUT_BIT,
+    // The multisampled colour: the renderer's, or the baseline's (its scene target's format).
+    const vk::Image& msaaScene = split.empty() ? msaaColor : screenDiffusion->sceneMultisampled();
+    auto toAttachment = [&](VkImage image) {
+        vk::imageBarrier(cmd, image, VK_IMAGE_ASPECT_COLOR_BIT, VK_IMAGE_LAYOUT_UNDEFINED,
+                         VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL,
+                         VK_PIPELINE_STAGE_2_COLOR_ATTACHMENT_OUTPUT_BIT | VK_PIPELINE_STAGE_2_FRAGMENT_SHADER_BIT,
                          VK_ACCESS_2_COLOR_ATTACHMENT_WRITE_BIT, VK_PIPELINE_STAGE_2_COLOR_ATTACHMENT_OUTPUT_BIT,
                          kColorAccess, eyes);
+    };
+    if (msaa) toAttachment(msaaScene.handle());
+    for (const ScreenDiffusion::Attachment& a : split) {
+        toAttachment(a.resolved->handle());
+        if (a.multisampled) toAttachment(a.multisampled->handle());
+    }
     constexpr VkAccessFlags2 kDepthAccess =
         VK_ACCESS_2_DEPTH_STENCIL_ATTACHMENT_READ_BIT | VK_ACCESS_2_DEPTH_STENCIL_ATTACHMENT_WRITE_BIT;
     const bool hostDepth = target.depth.image != VK_NULL_HANDLE;
@@ -229,7 +244,7 @@ void Renderer::Impl::recordForwardPass(VkCommandBuffer cmd, Slot& slot, uint32_t
                          kDepthStages, VK_ACCESS_2_DEPTH_STENCIL_ATTACHMENT_WRITE_BIT, kDepthStages, kDepthAccess,
                          eyes);
     VkRenderingAttachmentInfo color{VK_STRUCTURE_TYPE_RENDERING_ATTACHMENT_INFO};
-    color.imageView = msaa ? msaaColor.view() : target.view;
+    color.imageView = msaa ? msaaScene.view() : target.view;
     color.imageLayout = VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL;
     color.loadOp = target.loadColor ? VK_ATTACHMENT_LOAD_OP_LOAD : VK_ATTACHMENT_LOAD_OP_CLEAR;
     color.storeOp = msaa ? VK_ATTACHMENT_STORE_OP_DONT_CARE : VK_ATTACHMENT_STORE_OP_STORE;
@@ -237,7 +252,12 @@ void Renderer::Impl::recordForwardPass(VkCommandBuffer cmd, Slot& slot, uint32_t
     const glm::vec4 clear = background.mode == BackgroundMode::Color ? glm::vec4(background.color, 1.0f)
         : background.mode == BackgroundMode::Transparent             ? glm::vec4(0.0f)
                                                                      : glm::vec4(0.0f, 0.0f, 0.0f, 1.0f);
-    color.clearValue.color = {{clear.r, clear.g, clear.b, clear.a}};
+    // The baseline's last pass tone-maps the whole frame for a display target: the clear colour,
+    // meant for the display as it is, goes in as what maps to it.
+    const glm::vec3 clearRgb = splitTonemapped && background.mode == BackgroundMode::Color
+        ? glm::vec3(tonemapNeutralInverse(glm::dvec3(clear)))
+        : glm::vec3(clear);
+    color.clearValue.color = {{clearRgb.r, clearRgb.g, clearRgb.b, clear.a}};
     if (msaa) {
         color.resolveMode = VK_RESOLVE_MODE_AVERAGE_BIT;
         color.resolveImageView = target.view;
@@ -255,8 +275,18 @@ void Renderer::Impl::recordForwardPass(VkCommandBuffer cmd, Slot& slot, uint32_t
     const bool layered = eyeDrawing() == EyeDrawing::InstancedLayers;
     info.viewMask = layered ? 0u : (1u << eyes) - 1u;
     info.layerCount = layered ? eyes : 1u;
-    info.colorAttachmentCount = 1;
-    info.pColorAttachments = &color;
+    // The baseline's attachments: cleared to 0 (no skin, no depth), resolved like the colour.
+    std::vector<VkRenderingAttachmentInfo> colors{color};
+    for (const ScreenDiffusion::Attachment& a : split) {
+        VkRenderingAttachmentInfo extra = color;
+        extra.imageView = a.multisampled ? a.multisampled->view() : a.resolved->view();
+        extra.loadOp = VK_ATTACHMENT_LOAD_OP_CLEAR;
+        extra.clearValue.color = {{0.0f, 0.0f, 0.0f, 0.0f}};
+        if (a.multisampled) extra.resolveImageView = a.resolved->view();
+        colors.push_back(extra);
+    }
+    info.colorAttachmentCount = uint32_t(colors.size());
+    info.pColorAttachments = colors.data();
     info.pDepthAttachment = &depthAttachment;
     vkCmdBeginRendering(cmd, &info);
     const VkViewport viewport{0.0f, 0.0f, float(target.extent.width), float(target.extent.height), 0.0f, 1.0f};
@@ -311,6 +341,11 @@ void Renderer::Impl::recordForwardPass(VkCommandBuffer cmd, Slot& slot, uint32_t
     }
     if (!backgroundDrawn) drawBackground();
     vkCmdEndRendering(cmd);
+    for (const ScreenDiffusion::Attachment& a : split)
+        vk::imageBarrier(cmd, a.resolved->handle(), VK_IMAGE_ASPECT_COLOR_BIT, VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL,
+                         VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL, VK_PIPELINE_STAGE_2_COLOR_ATTACHMENT_OUTPUT_BIT,
+                         VK_ACCESS_2_COLOR_ATTACHMENT_WRITE_BIT, VK_PIPELINE_STAGE_2_FRAGMENT_SHADER_BIT,
+                         VK_ACCESS_2_SHADER_SAMPLED_READ_BIT, eyes);
     vk::imageBarrier(cmd, target.image, VK_IMAGE_ASPECT_COLOR_BIT, VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL,
                      target.layoutAfter, VK_PIPELINE_STAGE_2_COLOR_ATTACHMENT_OUTPUT_BIT,
                      VK_ACCESS_2_COLOR_ATTACHMENT_WRITE_BIT, VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT,
@@ -324,6 +359,10 @@ void Renderer::Impl::recordForwardPass(VkCommandBuffer cmd, Slot& slot, uint32_t
 
 // Throws preskin::Error unless `record` can draw into the host's target as described.
 void Renderer::Impl::checkTarget(const RenderTarget& target) const {
+    if (target.loadColor && splitDiffusion())
+        throw Error(
+            "RenderTarget: loadColor needs RenderSettings::diffusion PreIntegrated (the screen-space baseline "
+            "composites the whole frame)");
     if (target.loadColor && settings.msaaSamples > 1)
         throw Error(
             "RenderTarget: loadColor needs msaaSamples 1 (with MSAA preskin draws into its own "

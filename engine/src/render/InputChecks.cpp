@@ -36,6 +36,9 @@ void checkRenderSettings(const RenderSettings& settings) {
     if (settings.environmentLights < -1 || settings.environmentLights > int(kMaxEnvironmentLights))
         throw Error(fmt::format("RenderSettings: environmentLights: {} is outside -1..{}", settings.environmentLights,
                                 kMaxEnvironmentLights));
+    if (settings.screenDiffusionTaps < 3 || settings.screenDiffusionTaps > 63 || settings.screenDiffusionTaps % 2 == 0)
+        throw Error(fmt::format("RenderSettings: screenDiffusionTaps: {} is not an odd count from 3 to 63",
+                                settings.screenDiffusionTaps));
     check(settings.background.color, "RenderSettings: background.color");
     if (glm::any(glm::lessThan(settings.background.color, glm::vec3(0.0f))))
         throw Error("RenderSettings: background.color: must be >= 0");

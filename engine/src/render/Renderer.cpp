@@ -11,6 +11,7 @@
 
 #include <preskin/LightRecord.h>
 #include "lights/ClusterBuilder.h"
+#include "render/DisplayFormat.h"
 #include "render/GpuDeformer.h"
 #include "render/GpuLuts.h"
 #include "render/GpuScene.h"
@@ -262,6 +263,18 @@ void Renderer::Impl::setShaderOverrides(const std::map<std::string, std::vector<
         shaderOverrides = std::move(previous);
         throw;
     }
+    if (screenDiffusion) {
+        try {
+            screenDiffusion->rebuildPipelines();
+        } catch (...) {
+            for (auto& [key, p] : rebuilt) vkDestroyPipeline(dev.device(), p, nullptr);
+            if (rebuiltShadow) vkDestroyPipeline(dev.device(), rebuiltShadow, nullptr);
+            if (rebuiltShadowMask) vkDestroyPipeline(dev.device(), rebuiltShadowMask, nullptr);
+            shaderOverrides = std::move(previous);
+            screenDiffusion->rebuildPipelines();  // the previous code, which built before
+            throw;
+        }
+    }
     for (auto& [key, p] : pipelines) vkDestroyPipeline(dev.device(), p, nullptr);
     if (shadowPipeline) vkDestroyPipeline(dev.device(), shadowPipeline, nullptr);
     if (shadowMaskPipeline) vkDestroyPipeline(dev.device(), shadowMaskPipeline, nullptr);
@@ -465,7 +478,18 @@ void Renderer::Impl::record(VkCommandBuffer cmd, const RenderTarget& target, con
     Slot& slot = slots[slotIndex];
     releaseRetired(slotIndex);
     createShadowMap(cmd, slotIndex);
-    ensureAttachments(target.extent, view.eyeCount(), target.format, target.depth.image == VK_NULL_HANDLE, slotIndex);
+    // The screen-space baseline: the forward pass draws into its targets, its passes into the target.
+    ScreenDiffusion* split = splitDiffusion() ? &prepareScreenDiffusion(target, view.eyeCount(), slotIndex) : nullptr;
+    RenderTarget forwardTarget = target;
+    if (split) {
+        forwardTarget.image = split->scene().handle();
+        forwardTarget.view = split->scene().view();
+        forwardTarget.format = ScreenDiffusion::kSceneFormat;
+        forwardTarget.layoutBefore = VK_IMAGE_LAYOUT_UNDEFINED;
+        forwardTarget.layoutAfter = VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL;
+    }
+    ensureAttachments(target.extent, view.eyeCount(), forwardTarget.format, target.depth.image == VK_NULL_HANDLE,
+                      split == nullptr, slotIndex);
     glm::mat4 shadowClipFromWorld(1.0f);
     const bool shadow = prepareFrame(slot, slotIndex, view, target.extent, shadowClipFromWorld);
     createWideShadowMap(cmd, slotIndex);  // at the factor prepareFrame picked
@@ -480,8 +504,18 @@ void Renderer::Impl::record(VkCommandBuffer cmd, const RenderTarget& target, con
     timestamp(cmd, slot, 3);
     clusters->record(cmd, slotIndex);  // the compute build, when this frame uses it
     timestamp(cmd, slot, 4);
-    recordForwardPass(cmd, slot, slotIndex, target, view);
-    timestamp(cmd, slot, 5);
+    if (split) {
+        recordForwardPass(cmd, slot, slotIndex, forwardTarget, view, split->splitAttachments(),
+                          isDisplayFormat(target.format));
+        timestamp(cmd, slot, 5);
+        split->record(cmd, slotIndex, target, view, eyeDrawing() == EyeDrawing::InstancedLayers,
+                      [&] { timestamp(cmd, slot, 6); });
+        timestamp(cmd, slot, 7);
+    } else {
+        recordForwardPass(cmd, slot, slotIndex, target, view);
+        timestamp(cmd, slot, 5);
+    }
+    slot.split = split != nullptr;
     slot.recorded = true;
     slot.shadowRecorded = shadow;
     slot.eyes = view.eyeCount();
@@ -501,6 +535,11 @@ FrameStats Renderer::Impl::stats(uint32_t slotIndex) const {
     s.recordCpuMs = std::max(slot.recordMs - s.clusterBuildCpuMs, 0.0);
     s.eyes = slot.eyes;
     s.eyeDrawing = eyeDrawing();
+    if (slot.split && screenDiffusion) {
+        s.diffusionPasses = ScreenDiffusion::kPasses;
+        s.diffusionTargets = screenDiffusion->targetCount();
+        s.diffusionTargetBytes = screenDiffusion->targetBytes();
+    }
     if (!slot.recorded || !slot.queries) return s;
     std::array<uint64_t, kQueryCount> ticks{};
     const VkResult r = vkGetQueryPoolResults(dev.device(), slot.queries, 0, kQueryCount, sizeof(ticks), ticks.data(),
@@ -514,6 +553,11 @@ FrameStats Renderer::Impl::stats(uint32_t slotIndex) const {
                 {"clusters", ms(3, 4)},
                 {"forward", ms(4, 5)}};
     s.gpuMs = ms(0, 5);
+    if (slot.split) {
+        s.passes.push_back({"diffusion rows", ms(5, 6)});
+        s.passes.push_back({"diffusion columns", ms(6, 7)});
+        s.gpuMs = ms(0, 7);
+    }
     return s;
 }
 
@@ -552,7 +596,21 @@ void Renderer::Impl::setLutLayers(const std::vector<const LutSet*>& layers) {
     dropSkinPipelines();
 }
 
+ScreenDiffusion& Renderer::Impl::prepareScreenDiffusion(const RenderTarget& target, uint32_t eyes, uint32_t slotIndex) {
+    if (!screenDiffusion)
+        screenDiffusion = std::make_unique<ScreenDiffusion>(
+            dev, [this](const char* name) { return shader(name); }, kSlotCount);
+    if (diffusionKernelsStale || screenDiffusion->taps() != settings.screenDiffusionTaps) {
+        screenDiffusion->setKernels(scene->sceneMaterials(), luts->layers(), settings.screenDiffusionTaps);
+        diffusionKernelsStale = false;
+    }
+    screenDiffusion->ensureTargets(target.extent, eyes, settings.msaaSamples,
+                                   [&](vk::Image& image) { retire(image, slotIndex); });
+    return *screenDiffusion;
+}
+
 void Renderer::Impl::updateSkinReach() {
+    diffusionKernelsStale = true;  // the profiles changed
     // Two RMS widths of the widest profile of any skin material, in world mm: where red's
     // scattering into a cast shadow falls to a few percent (d'Eon's red: 3.3 mm, 5 % of lit).
     skinReachMm = 0.0;

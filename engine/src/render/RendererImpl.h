@@ -11,6 +11,7 @@
 #include "render/GpuLuts.h"
 #include "render/GpuScene.h"
 #include "render/PoseBounds.h"
+#include "render/ScreenDiffusion.h"
 #include "vk/Pipeline.h"
 #include "vk/Resources.h"
 
@@ -26,8 +27,9 @@ namespace preskin {
 
 inline constexpr VkFormat kDepthFormat = VK_FORMAT_D32_SFLOAT;
 inline constexpr uint32_t kSlotCount = 2;
-// start, after deformation, after curvature, after shadow, after clustering, after forward
-inline constexpr uint32_t kQueryCount = 6;
+// start, after deformation, after curvature, after shadow, after clustering, after forward, and
+// with screen-space diffusion after its horizontal and vertical passes
+inline constexpr uint32_t kQueryCount = 8;
 // The widest environment image the renderer keeps (the backdrop's; the lights' search and the
 // specular map read narrower copies): an 8192-wide image would hold 400 MB.
 inline constexpr uint32_t kEnvironmentKeptWidth = 2048;
@@ -38,11 +40,12 @@ uint32_t areaLightTypes(const std::vector<Light>& lights);
 
 struct PipelineKey {
     uint32_t model, alphaMode, doubleSided, format, depthFormat, debugView, skinMask, lightLoop, specular, eyes,
-        samples, layered, profileMix, skinInputs, areaLights;
+        samples, layered, profileMix, skinInputs, areaLights,
+        split;  // 1: the screen-space baseline's forward pass (forward_split.frag, its three attachments)
     std::array<uint32_t, 32> lutMapping;  // skin: the material's own LutMapping, as bits (kSpecLutMapping)
     auto tie() const {
         return std::tie(model, alphaMode, doubleSided, format, depthFormat, debugView, skinMask, lightLoop, specular,
-                        eyes, samples, layered, profileMix, skinInputs, areaLights, lutMapping);
+                        eyes, samples, layered, profileMix, skinInputs, areaLights, split, lutMapping);
     }
     bool operator<(const PipelineKey& o) const { return tie() < o.tie(); }
 };
@@ -62,6 +65,7 @@ struct Renderer::Impl {
         double recordMs = 0.0;  // CPU time of record(), light-grid build included
         uint32_t eyes = 0;
         uint32_t lightCount = 0;
+        bool split = false;  // the frame drew the screen-space baseline
     };
 
     Context& context;
@@ -89,6 +93,9 @@ struct Renderer::Impl {
     std::unique_ptr<GpuDeformer> deformer;
     std::unique_ptr<GpuLuts> luts;
     std::unique_ptr<ClusterBuilder> clusters;
+    // RenderSettings::diffusion ScreenSpace: its passes and targets, made when a frame first uses them.
+    std::unique_ptr<ScreenDiffusion> screenDiffusion;
+    bool diffusionKernelsStale = true;  // the profiles or materials changed since its kernels were made
 
     VkDescriptorSetLayout frameLayout = VK_NULL_HANDLE;
     VkPipelineLayout forwardLayout = VK_NULL_HANDLE;
@@ -188,8 +195,10 @@ struct Renderer::Impl {
     VkPipeline depthOnlyPipeline(bool masked);
 
     // The forward pass's own attachments: depth (unless the host's is used), and with MSAA the
-    // multisampled colour. Replaced ones are retired, never waited for.
-    void ensureAttachments(VkExtent2D extent, uint32_t eyes, VkFormat colorFormat, bool ownDepth, uint32_t slotIndex);
+    // multisampled colour (unless the screen-space baseline's is used). Replaced ones are
+    // retired, never waited for.
+    void ensureAttachments(VkExtent2D extent, uint32_t eyes, VkFormat colorFormat, bool ownDepth, bool ownMsaaColor,
+                           uint32_t slotIndex);
 
     // Fills the slot's uniforms and light list; returns whether a shadow map is rendered.
     bool prepareFrame(Slot& slot, uint32_t slotIndex, const View& view, VkExtent2D extent,
@@ -206,8 +215,23 @@ struct Renderer::Impl {
 
     void recordShadowPass(VkCommandBuffer cmd, Slot& slot, uint32_t slotIndex);
 
+    // `split`: the screen-space baseline's attachments after the target's (its diffuse and surface
+    // targets), transitioned from undefined and left for sampling; empty otherwise.
+    // `splitTonemapped`: its last pass tone-maps into a display target (the clear colour is
+    // cleared to what maps to it).
     void recordForwardPass(VkCommandBuffer cmd, Slot& slot, uint32_t slotIndex, const RenderTarget& target,
-                           const View& view);
+                           const View& view, std::span<const ScreenDiffusion::Attachment> split = {},
+                           bool splitTonemapped = false);
+
+    // Whether this frame draws the screen-space baseline: Diffusion::ScreenSpace, skin with LUTs
+    // in the scene (the baseline replaces skin's diffusion; without skin the frame is the same),
+    // no debug view (which shows the forward pass's own values).
+    bool splitDiffusion() const {
+        return settings.diffusion == Diffusion::ScreenSpace && settings.debugView == DebugView::None && sceneHasSkin &&
+            luts->valid();
+    }
+    // The baseline's passes, targets and kernels, ready for a frame of this target and view.
+    ScreenDiffusion& prepareScreenDiffusion(const RenderTarget& target, uint32_t eyes, uint32_t slotIndex);
 
     // Throws preskin::Error unless the view and settings can be drawn on this device.
     void checkFrame(const View& view) const;

@@ -74,9 +74,11 @@ VkPipeline createGraphicsPipeline(const Device& device, const GraphicsPipelineDe
     depth.depthWriteEnable = desc.depthWrite;
     depth.depthCompareOp = desc.depthCompare;
     std::vector<VkPipelineColorBlendAttachmentState> blends(desc.colorFormats.size());
-    for (auto& b : blends) {
-        b.colorWriteMask =
-            VK_COLOR_COMPONENT_R_BIT | VK_COLOR_COMPONENT_G_BIT | VK_COLOR_COMPONENT_B_BIT | VK_COLOR_COMPONENT_A_BIT;
+    for (size_t i = 0; i < blends.size(); ++i) {
+        VkPipelineColorBlendAttachmentState& b = blends[i];
+        b.colorWriteMask = i < desc.colorWriteMasks.size()
+            ? desc.colorWriteMasks[i]
+            : VK_COLOR_COMPONENT_R_BIT | VK_COLOR_COMPONENT_G_BIT | VK_COLOR_COMPONENT_B_BIT | VK_COLOR_COMPONENT_A_BIT;
         if (desc.alphaBlend) {
             b.blendEnable = VK_TRUE;
             b.srcColorBlendFactor = VK_BLEND_FACTOR_SRC_ALPHA;

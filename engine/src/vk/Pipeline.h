@@ -30,6 +30,8 @@ struct GraphicsPipelineDesc {
     VkCompareOp depthCompare = VK_COMPARE_OP_GREATER_OR_EQUAL;  // reversed Z
     bool depthBias = false;                                     // dynamic state when set
     bool alphaBlend = false;
+    // Per colour attachment: which components it writes (missing entries: all).
+    std::vector<VkColorComponentFlags> colorWriteMasks;
     uint32_t viewMask = 0;  // multiview: must equal the rendering's viewMask
     VkSampleCountFlagBits samples = VK_SAMPLE_COUNT_1_BIT;
     bool alphaToCoverage = false;

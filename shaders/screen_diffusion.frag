@@ -1,0 +1,69 @@
+#version 460
+// screen_diffusion.frag: the screen-space separable baseline (RenderSettings::diffusion
+// ScreenSpace; Jimenez et al., "Separable Subsurface Scattering", CGF 2015), one pass per
+// direction: skin's diffuse light (forward_split.frag) blurred along rows into an intermediate
+// target, then along columns and added to the rest of the frame, tone-mapped for 8-bit targets.
+// Each skin material has its own kernel (skin/SeparableKernel.h: its profile's line profile at
+// its scatter scale, offsets in world metres), placed in pixels by the pixel's view depth.
+// Taps are premultiplied by skin coverage: taps off the skin weigh nothing and each channel's
+// sum is renormalised over the taps that are skin. Taps whose depth departs from the centre's
+// more than a surface sloping 63 degrees to the image plane would (a nose over a cheek) are
+// replaced by the centre ("follow surface", fading out up to 76 degrees).
+#extension GL_GOOGLE_include_directive : require
+#include "shared/gpu_types.h"
+#include "preskin/tonemap.glsl"
+
+layout(constant_id = kSpecDiffusionPass) const uint kPass = kDiffusionHorizontal;
+layout(constant_id = kSpecDiffusionTaps) const uint kTaps = 17;
+layout(constant_id = kSpecDiffusionOutput) const uint kOutput = kOutputLinear;
+
+layout(set = 0, binding = kBindingDiffusionInput) uniform sampler2DArray diffuseIn;
+layout(set = 0, binding = kBindingDiffusionSurface) uniform sampler2DArray surfaceIn;
+layout(set = 0, binding = kBindingDiffusionScene) uniform sampler2DArray sceneIn;
+layout(std430, set = 0, binding = kBindingDiffusionKernels) readonly buffer Kernels { vec4 kernelTaps[]; };
+layout(push_constant) uniform Push { DiffusionPush push; };
+
+layout(location = 0) flat in uint inEye;
+layout(location = 0) out vec4 outColor;
+
+vec4 scattered(ivec2 pixel) {
+    ivec3 at = ivec3(pixel, int(inEye));
+    vec4 centre = texelFetch(diffuseIn, at, 0);
+    vec2 surface = texelFetch(surfaceIn, at, 0).rg;
+    if (centre.a <= 1e-4 || surface.y <= 0.0) return vec4(0.0);
+    uint material = uint(round(surface.y / centre.a)) - 1u;
+    if (material >= push.params.x) return vec4(0.0);
+    float depth = surface.x;
+    vec4 scale = push.eyeScale[inEye];
+    vec2 direction = kPass == kDiffusionHorizontal ? vec2(1.0, 0.0) : vec2(0.0, 1.0);
+    float pixelsPerM = (kPass == kDiffusionHorizontal ? scale.x : scale.y) / (scale.z > 0.5 ? max(depth, 1e-6) : 1.0);
+    vec3 size = vec3(textureSize(diffuseIn, 0));
+    ivec2 last = ivec2(size.xy) - 1;
+    vec2 centreUv = gl_FragCoord.xy;
+    vec3 sum = vec3(0.0);
+    vec3 weightSum = vec3(0.0);
+    uint first = material * kTaps;
+    for (uint i = 0u; i < kTaps; ++i) {
+        vec4 tap = kernelTaps[first + i];
+        vec2 p = centreUv + direction * (tap.w * pixelsPerM);
+        vec4 s = texture(diffuseIn, vec3(p / size.xy, float(inEye)));
+        float tapDepth = texelFetch(surfaceIn, ivec3(clamp(ivec2(floor(p)), ivec2(0), last), int(inEye)), 0).r;
+        float reach = max(2.0 * abs(tap.w), 1e-5);
+        s = mix(s, centre, clamp((abs(tapDepth - depth) - reach) / reach, 0.0, 1.0));
+        sum += tap.rgb * s.rgb;
+        weightSum += tap.rgb * s.a;
+    }
+    return vec4(centre.a * sum / max(weightSum, vec3(1e-8)), centre.a);
+}
+
+void main() {
+    ivec2 pixel = ivec2(gl_FragCoord.xy);
+    vec4 diffuse = scattered(pixel);
+    if (kPass == kDiffusionHorizontal) {
+        outColor = diffuse;
+        return;
+    }
+    vec4 scene = texelFetch(sceneIn, ivec3(pixel, int(inEye)), 0);
+    vec3 color = scene.rgb + diffuse.rgb;
+    outColor = vec4(kOutput == kOutputTonemapped ? preskinTonemapNeutral(max(color, vec3(0.0))) : color, scene.a);
+}
