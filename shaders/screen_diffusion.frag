@@ -17,7 +17,7 @@ layout(constant_id = kSpecDiffusionPass) const uint kPass = kDiffusionHorizontal
 layout(constant_id = kSpecDiffusionTaps) const uint kTaps = 17;
 layout(constant_id = kSpecDiffusionOutput) const uint kOutput = kOutputLinear;
 
-layout(set = 0, binding = kBindingDiffusionInput) uniform sampler2DArray diffuseIn;
+layout(set = 0, binding = kBindingDiffusionInput) uniform sampler2DArray diffuseIn;  // read at texels
 layout(set = 0, binding = kBindingDiffusionSurface) uniform sampler2DArray surfaceIn;
 layout(set = 0, binding = kBindingDiffusionScene) uniform sampler2DArray sceneIn;
 layout(std430, set = 0, binding = kBindingDiffusionKernels) readonly buffer Kernels { vec4 kernelTaps[]; };
@@ -37,17 +37,18 @@ vec4 scattered(ivec2 pixel) {
     vec4 scale = push.eyeScale[inEye];
     vec2 direction = kPass == kDiffusionHorizontal ? vec2(1.0, 0.0) : vec2(0.0, 1.0);
     float pixelsPerM = (kPass == kDiffusionHorizontal ? scale.x : scale.y) / (scale.z > 0.5 ? max(depth, 1e-6) : 1.0);
-    vec3 size = vec3(textureSize(diffuseIn, 0));
-    ivec2 last = ivec2(size.xy) - 1;
+    ivec2 last = textureSize(diffuseIn, 0).xy - 1;
     vec2 centreUv = gl_FragCoord.xy;
     vec3 sum = vec3(0.0);
     vec3 weightSum = vec3(0.0);
     uint first = material * kTaps;
     for (uint i = 0u; i < kTaps; ++i) {
         vec4 tap = kernelTaps[first + i];
-        vec2 p = centreUv + direction * (tap.w * pixelsPerM);
-        vec4 s = texture(diffuseIn, vec3(p / size.xy, float(inEye)));
-        float tapDepth = texelFetch(surfaceIn, ivec3(clamp(ivec2(floor(p)), ivec2(0), last), int(inEye)), 0).r;
+        // The nearest pixel, light and depth alike: a filtered tap would mix in a neighbour across a
+        // depth edge that the depth test, made at one pixel, cannot see.
+        ivec3 p = ivec3(clamp(ivec2(floor(centreUv + direction * (tap.w * pixelsPerM))), ivec2(0), last), int(inEye));
+        vec4 s = texelFetch(diffuseIn, p, 0);
+        float tapDepth = texelFetch(surfaceIn, p, 0).r;
         float reach = max(2.0 * abs(tap.w), 1e-5);
         s = mix(s, centre, clamp((abs(tapDepth - depth) - reach) / reach, 0.0, 1.0));
         sum += tap.rgb * s.rgb;
