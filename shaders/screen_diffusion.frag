@@ -5,10 +5,13 @@
 // target, then along columns and added to the rest of the frame, tone-mapped for 8-bit targets.
 // Each skin material has its own kernel (skin/SeparableKernel.h: its profile's line profile at
 // its scatter scale, offsets in world metres), placed in pixels by the pixel's view depth.
-// Taps are premultiplied by skin coverage: taps off the skin weigh nothing and each channel's
-// sum is renormalised over the taps that are skin. Taps whose depth departs from the centre's
-// more than a surface sloping 63 degrees to the image plane would (a nose over a cheek) are
-// replaced by the centre ("follow surface", fading out up to 76 degrees).
+// Depth-aware ("follow surface"): a tap whose depth differs from the centre's by dz lies
+// sqrt(r^2 + dz^2) away, not r; for a Gaussian profile of per-axis variance v that scales its
+// weight by exp(-dz^2 / 2v), and each channel's tap is taken that much from the tap and the rest
+// from the centre, with v the channel's own (its RMS radius^2 / 2): a nose over a cheek (dz of
+// centimetres) keeps its light, a tilted plane keeps its values. Taps off the skin (coverage 0:
+// background, other materials) are the centre too, so silhouettes are not pulled towards the
+// interior. Light and coverage are premultiplied (MSAA edges), renormalised per channel.
 #extension GL_GOOGLE_include_directive : require
 #include "shared/gpu_types.h"
 #include "preskin/tonemap.glsl"
@@ -41,18 +44,21 @@ vec4 scattered(ivec2 pixel) {
     vec2 centreUv = gl_FragCoord.xy;
     vec3 sum = vec3(0.0);
     vec3 weightSum = vec3(0.0);
-    uint first = material * kTaps;
+    uint first = material * (kTaps + 1u);
+    vec3 halfInvVariance = kernelTaps[first].rgb;  // 1 / 2v per channel, 1/m^2
     for (uint i = 0u; i < kTaps; ++i) {
-        vec4 tap = kernelTaps[first + i];
+        vec4 tap = kernelTaps[first + 1u + i];
         // The nearest pixel, light and depth alike: a filtered tap would mix in a neighbour across a
         // depth edge that the depth test, made at one pixel, cannot see.
         ivec3 p = ivec3(clamp(ivec2(floor(centreUv + direction * (tap.w * pixelsPerM))), ivec2(0), last), int(inEye));
         vec4 s = texelFetch(diffuseIn, p, 0);
         float tapDepth = texelFetch(surfaceIn, p, 0).r;
-        float reach = max(2.0 * abs(tap.w), 1e-5);
-        s = mix(s, centre, clamp((abs(tapDepth - depth) - reach) / reach, 0.0, 1.0));
-        sum += tap.rgb * s.rgb;
-        weightSum += tap.rgb * s.a;
+        float dz = tapDepth - depth;
+        vec3 follow = exp(-dz * dz * halfInvVariance) * min(s.a / centre.a, 1.0);
+        vec3 light = mix(centre.rgb, s.rgb, follow);
+        vec3 coverage = mix(vec3(centre.a), vec3(s.a), follow);
+        sum += tap.rgb * light;
+        weightSum += tap.rgb * coverage;
     }
     return vec4(centre.a * sum / max(weightSum, vec3(1e-8)), centre.a);
 }

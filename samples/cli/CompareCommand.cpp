@@ -5,7 +5,8 @@
 // without normal maps (the reference shades the smooth surface), then reports per region the
 // RMSE of skin and of Lambert against the reference and their ratio, as JSON (every field:
 // docs/reference.md), plus a side-by-side PNG with error heat maps. The JSON holds no timings,
-// so a run on the same machine and driver reproduces it exactly.
+// so a run on the same machine and driver reproduces it exactly. `--diffusion screen` adds the
+// screen-space baseline (RenderSettings::diffusion) to every region, beside skin and Lambert.
 #include "CommandLine.h"  // samples/common
 #include "Commands.h"
 #include "CompareMetrics.h"
@@ -37,6 +38,7 @@ struct Options {
     std::string referenceFile;  // reused when it holds this run's reference, else written
     std::string renders;        // prefix of the skin and Lambert renders' EXRs
     double curvatureClassPerMm = 0.01;
+    std::vector<std::string> baselines;  // --diffusion: methods besides preskin's own
     ViewOptions view;
     CommonOptions common;
     ReferenceOptions reference;
@@ -98,9 +100,13 @@ void run(const Options& o) {
     if (!o.referenceFile.empty() && !reuseReference) checkOutputPath(referencePath, OutputEncoding::LinearFloat);
     const std::filesystem::path skinRenderPath = o.renders + ".skin.exr",
                                 lambertRenderPath = o.renders + ".lambert.exr";
+    std::vector<std::string> baselines;  // each once, in the order given
+    for (const std::string& b : o.baselines)
+        if (std::find(baselines.begin(), baselines.end(), b) == baselines.end()) baselines.push_back(b);
     if (!o.renders.empty()) {
         checkOutputPath(skinRenderPath, OutputEncoding::LinearFloat);
         checkOutputPath(lambertRenderPath, OutputEncoding::LinearFloat);
+        for (const std::string& b : baselines) checkOutputPath(o.renders + "." + b + ".exr", OutputEncoding::LinearFloat);
     }
     const ReferenceKey key = referenceKey(scenePath, o.view, o.common, o.reference, luts);
     // A reference file is read and checked before anything is rendered: a stale one stops the run at once.
@@ -132,6 +138,15 @@ void run(const Options& o) {
     settings.skin = SkinFeatures::none();
     renderer.setSettings(settings);
     const RenderedImage lambert = renderer.render(view, width, height, OutputEncoding::LinearFloat);
+    std::vector<RenderedImage> baselineImages;
+    for (const std::string& b : baselines) {
+        RenderSettings baseline = renderSettings(o.common);
+        baseline.specular = false;
+        baseline.debugView = DebugView::None;
+        baseline.diffusion = diffusionMethod(b);
+        renderer.setSettings(baseline);
+        baselineImages.push_back(renderer.render(view, width, height, OutputEncoding::LinearFloat));
+    }
     reportValidation(*context);
 
     if (!reuseReference) {
@@ -186,10 +201,25 @@ void run(const Options& o) {
         rgb(j, "ratioToLambert",
             glm::dvec3(ratio(s.rmse.r, l.rmse.r), ratio(s.rmse.g, l.rmse.g), ratio(s.rmse.b, l.rmse.b)));
         j.field("ratioToLambertPooled", ratio(s.rmsePooled, l.rmsePooled));
-        j.endObject();
         fmt::print("  {:<11} {:>7}  {:.4f} {:.4f} {:.4f} ({:.4f})  {:.4f} {:.4f} {:.4f} ({:.4f})  {:>14.3f}\n",
                    region.name, region.pixels, s.rmse.r, s.rmse.g, s.rmse.b, s.rmsePooled, l.rmse.r, l.rmse.g, l.rmse.b,
                    l.rmsePooled, ratio(s.rmsePooled, l.rmsePooled));
+        // Each baseline: its error, its ratio to Lambert's, and skin's ratio to its own.
+        for (size_t b = 0; b < baselines.size(); ++b) {
+            const ErrorStats e = measureError(baselineImages[b].rgba32f, ref, region);
+            j.key(baselines[b]);
+            j.beginObject();
+            rgb(j, "rmse", e.rmse);
+            j.field("rmsePooled", e.rmsePooled);
+            rgb(j, "meanError", e.meanError);
+            j.field("ratioToLambertPooled", ratio(e.rmsePooled, l.rmsePooled));
+            j.field("skinRatioPooled", ratio(s.rmsePooled, e.rmsePooled));
+            j.endObject();
+            fmt::print("  {:<11} {:>7}  {:<8} {:.4f} {:.4f} {:.4f} ({:.4f}), / lambert {:.3f}, skin / {} {:.3f}\n", "",
+                       "", baselines[b], e.rmse.r, e.rmse.g, e.rmse.b, e.rmsePooled, ratio(e.rmsePooled, l.rmsePooled),
+                       baselines[b], ratio(s.rmsePooled, e.rmsePooled));
+        }
+        j.endObject();
     }
     j.endObject();
     j.endObject();
@@ -205,6 +235,11 @@ void run(const Options& o) {
             written.push_back(skinRenderPath);
             writeImage(lambertRenderPath, lambert);
             written.push_back(lambertRenderPath);
+            for (size_t b = 0; b < baselines.size(); ++b) {
+                const std::filesystem::path path = o.renders + "." + baselines[b] + ".exr";
+                writeImage(path, baselineImages[b]);
+                written.push_back(path);
+            }
         }
         writeTextFile(jsonPath, j.text() + "\n");
     } catch (...) {
@@ -232,8 +267,14 @@ void addCompareCommand(CLI::App& app) {
     cmd->add_option("--reference", options->referenceFile,
                     "Reference image (.exr): read when it holds this run's reference (same scene, view, size, "
                     "lighting and quadrature), else computed and written there");
+    cmd->add_option("--diffusion", options->baselines,
+                    "Also measure these methods that preskin replaces, beside skin and Lambert: screen (the "
+                    "screen-space separable baseline); several may be given")
+        ->check(oneOf({"screen"}))
+        ->delimiter(',');
     cmd->add_option("--renders", options->renders,
-                    "Also write the skin and Lambert renders as PREFIX.skin.exr and PREFIX.lambert.exr (linear)");
+                    "Also write the skin and Lambert renders (and each --diffusion method's) as PREFIX.skin.exr, "
+                    "PREFIX.lambert.exr (and PREFIX.screen.exr), linear");
     addViewOptions(*cmd, options->view);
     addSceneOptions(*cmd, options->common);
     addDeviceOptions(*cmd, options->common);

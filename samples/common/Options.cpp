@@ -143,6 +143,12 @@ void addProfileBakeOptions(CLI::App& cmd, CommonOptions& o) {
         ->capture_default_str();
 }
 
+Diffusion diffusionMethod(const std::string& name) {
+    if (name == "preintegrated") return Diffusion::PreIntegrated;
+    if (name == "screen") return Diffusion::ScreenSpace;
+    throw Error(fmt::format("--diffusion {}: unknown method (preintegrated or screen)", name));
+}
+
 Scene loadScene(const std::filesystem::path& path, const CommonOptions& o) {
     SceneLoadOptions options;
     options.allowLinksOutsideFolder = o.allowOutsideLinks;
@@ -313,7 +319,7 @@ RenderSettings renderSettings(const CommonOptions& o) {
     else
         throw Error(fmt::format("--debug {}: unknown debug view", o.debug));
     s.lightLoop = o.lightLoop == "all" ? LightLoop::All : LightLoop::Clustered;
-    s.diffusion = o.diffusion == "screen" ? Diffusion::ScreenSpace : Diffusion::PreIntegrated;
+    s.diffusion = diffusionMethod(o.diffusion);
     if (o.diffusionTaps % 2 == 0)
         throw Error(fmt::format("--diffusion-taps: {} is even (the kernel has a middle tap: use an odd count)",
                                 o.diffusionTaps));

@@ -65,6 +65,8 @@ struct CommonOptions {
 // Every option below: the scene options plus the renderer's (device, validation, skin
 // techniques, specular, debug view, light loop, shadow map).
 void addCommonOptions(CLI::App& cmd, CommonOptions& o);
+// RenderSettings::diffusion of a --diffusion name (preintegrated, screen); throws on another.
+Diffusion diffusionMethod(const std::string& name);
 // Scene::load with the options' SceneLoadOptions.
 Scene loadScene(const std::filesystem::path& path, const CommonOptions& o);
 // What defines the lit scene without a renderer (the reference uses only these): environment,

@@ -152,7 +152,7 @@ PRESKIN_CHECK_SIZE(MaterialUniforms, 10 * 16 + 5 * 32 + 4 * 128 + 4 * 16 + 12 * 
 PRESKIN_CONST(uint, kBindingDiffusionInput, 0)    // skin's diffuse light (premultiplied by coverage), linear filter
 PRESKIN_CONST(uint, kBindingDiffusionSurface, 1)  // RG32F: view depth (m), skin material index + 1 (times coverage)
 PRESKIN_CONST(uint, kBindingDiffusionScene, 2)    // the rest of the frame, linear radiance (the vertical pass)
-PRESKIN_CONST(uint, kBindingDiffusionKernels, 3)  // vec4 per material and tap: rgb weight, w offset (world m)
+PRESKIN_CONST(uint, kBindingDiffusionKernels, 3)  // per material: 1 / 2v per channel (1/m^2), then per tap rgb weight, w offset (m)
 PRESKIN_CONST(uint, kSpecDiffusionPass, 0)        // kDiffusionHorizontal or kDiffusionVertical
 PRESKIN_CONST(uint, kSpecDiffusionTaps, 1)        // taps per kernel (odd)
 PRESKIN_CONST(uint, kSpecDiffusionOutput, 2)      // the vertical pass's output: kOutputLinear or kOutputTonemapped

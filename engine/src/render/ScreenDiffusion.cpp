@@ -74,7 +74,10 @@ ScreenDiffusion::~ScreenDiffusion() {
 
 void ScreenDiffusion::setKernels(const std::vector<Material>& materials, const std::vector<ProfileLayer>& layers,
                                  uint32_t taps) {
-    std::vector<glm::vec4> data(std::max<size_t>(materials.size(), 1) * taps, glm::vec4(0.0f));
+    // Per material: a header (rgb: 1 / 2v per channel, v the profile's per-axis variance in world
+    // m^2, for the depth-aware weights), then its taps (rgb weight, w offset in world m).
+    const size_t stride = taps + 1;
+    std::vector<glm::vec4> data(std::max<size_t>(materials.size(), 1) * stride, glm::vec4(0.0f));
     std::map<const DiffusionProfile*, std::vector<SeparableTap>> kernels;  // materials share profiles
     for (size_t m = 0; m < materials.size(); ++m) {
         if (!materials[m].skin) continue;
@@ -86,9 +89,11 @@ void ScreenDiffusion::setKernels(const std::vector<Material>& materials, const s
         if (it == kernels.end()) it = kernels.emplace(profile, separableKernel(*profile, taps)).first;
         // Profile mm -> world m: a scatter scale s makes the profile s times narrower in the world.
         const double metresPerProfileMm = 1e-3 / std::max(double(skin.scatterScale), 1e-6);
+        const glm::dvec3 varianceM2 = 0.5 * glm::pow(profile->widthMm() * metresPerProfileMm, glm::dvec3(2.0));
+        data[m * stride] = glm::vec4(glm::vec3(0.5 / varianceM2), 0.0f);
         for (uint32_t i = 0; i < taps; ++i) {
             const SeparableTap& t = it->second[i];
-            data[m * taps + i] = glm::vec4(glm::vec3(t.weight), float(t.offsetMm * metresPerProfileMm));
+            data[m * stride + 1 + i] = glm::vec4(glm::vec3(t.weight), float(t.offsetMm * metresPerProfileMm));
         }
     }
     kernelData_ = std::move(data);
