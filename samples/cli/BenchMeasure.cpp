@@ -48,6 +48,11 @@ void writeMeasurement(JsonWriter& j, const Measurement& m) {
     }
     j.field("overflowed_clusters", m.overflows());
     if (!m.frames.empty()) j.field("cluster_grid_bytes", m.frames.back().clusterGridBytes);
+    if (!m.frames.empty() && m.frames.back().diffusionPasses > 0) {
+        j.field("diffusion_passes", m.frames.back().diffusionPasses);
+        j.field("diffusion_targets", m.frames.back().diffusionTargets);
+        j.field("diffusion_target_bytes", m.frames.back().diffusionTargetBytes);
+    }
     j.key("wall_ms_each");
     j.beginArray();
     for (const FrameStats& s : m.frames) j.number(s.wallMs);

@@ -61,6 +61,7 @@ struct BenchOptions {
     bool noProfiles = false;
     bool noAreaLights = false;
     bool noEnvironment = false;
+    bool noDiffusion = false;
     int profileLutSize = 256;
     std::string animatedScene;
     uint32_t vrWidth = 640;

@@ -45,6 +45,7 @@ struct BenchRun {
     void areaLightsSection();                                    // area_lights (BenchAreaLights.cpp)
     void skinSection(const std::vector<uint32_t>& skinCounts);   // skin_vs_standard, skin_techniques (BenchSkin.cpp)
     void environmentSection();                                   // environment (BenchEnvironment.cpp)
+    void diffusionSection();                                     // diffusion_methods (BenchDiffusion.cpp)
     void vrSection();                                            // vr (BenchVr.cpp)
     void animationSection();                                     // animation (BenchAnimation.cpp)
     void profilesSection();                                      // profiles (BenchProfiles.cpp)

@@ -106,7 +106,8 @@ void run(const Options& o) {
     if (!o.renders.empty()) {
         checkOutputPath(skinRenderPath, OutputEncoding::LinearFloat);
         checkOutputPath(lambertRenderPath, OutputEncoding::LinearFloat);
-        for (const std::string& b : baselines) checkOutputPath(o.renders + "." + b + ".exr", OutputEncoding::LinearFloat);
+        for (const std::string& b : baselines)
+            checkOutputPath(o.renders + "." + b + ".exr", OutputEncoding::LinearFloat);
     }
     const ReferenceKey key = referenceKey(scenePath, o.view, o.common, o.reference, luts);
     // A reference file is read and checked before anything is rendered: a stale one stops the run at once.

@@ -542,8 +542,9 @@ FrameStats Renderer::Impl::stats(uint32_t slotIndex) const {
     }
     if (!slot.recorded || !slot.queries) return s;
     std::array<uint64_t, kQueryCount> ticks{};
-    const VkResult r = vkGetQueryPoolResults(dev.device(), slot.queries, 0, kQueryCount, sizeof(ticks), ticks.data(),
-                                             sizeof(uint64_t), VK_QUERY_RESULT_64_BIT);
+    const uint32_t written = slot.split ? kQueryCount : kQueryCount - 2;  // the baseline's passes write two more
+    const VkResult r = vkGetQueryPoolResults(dev.device(), slot.queries, 0, written, written * sizeof(uint64_t),
+                                             ticks.data(), sizeof(uint64_t), VK_QUERY_RESULT_64_BIT);
     if (r != VK_SUCCESS) return s;
     const double toMs = double(dev.timestampPeriodNs()) * 1e-6;
     auto ms = [&](int a, int b) { return double(ticks[size_t(b)] - ticks[size_t(a)]) * toMs; };
