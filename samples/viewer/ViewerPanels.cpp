@@ -257,6 +257,13 @@ void Viewer::panelTechniques() {
     if (ImGui::Button("All on")) f = SkinFeatures{};
     ImGui::SameLine();
     if (ImGui::Button("Standard (all off)")) f = SkinFeatures::none();
+    int method = settings_.diffusion == Diffusion::ScreenSpace ? 1 : 0;
+    ImGui::RadioButton("Pre-integrated", &method, 0);
+    ImGui::SameLine();
+    ImGui::RadioButton("Screen-space blur", &method, 1);
+    tooltip("--diffusion: the screen-space separable baseline preskin replaces (Lambert skin blurred by the profile in "
+            "two more passes; the techniques above but transmission and dual specular do not apply)");
+    settings_.diffusion = method == 1 ? Diffusion::ScreenSpace : Diffusion::PreIntegrated;
     ImGui::SliderFloat("Exposure", &settings_.exposure, 0.05f, 16.0f, "%.2f", ImGuiSliderFlags_Logarithmic);
 }
 
