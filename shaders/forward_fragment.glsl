@@ -1,5 +1,7 @@
-// forward_fragment.glsl: the fragment stage of the one forward pass (forward.frag; forward_split.frag
-// for the screen-space baseline, PRESKIN_SPLIT_DIFFUSE). Standard glTF metal-rough materials and (kModelSkin)
+// forward_fragment.glsl: the fragment stage of the one forward pass (forward.frag), and of the
+// baselines' variants: forward_split.frag (screen-space, PRESKIN_SPLIT_DIFFUSE),
+// texture_irradiance.frag and forward_texture.frag (texture-space, PRESKIN_TEXTURE_IRRADIANCE and
+// PRESKIN_TEXTURE_DIFFUSION). Standard glTF metal-rough materials and (kModelSkin)
 // pre-integrated skin, for every light of the fragment's light list, plus the environment (L2 SH
 // diffuse, prefiltered specular: preskin/ibl.glsl) and emissive; tone-mapped here when the target
 // is an 8-bit display format. Everything skin needs happens in this shader: no extra passes, no
@@ -12,6 +14,11 @@
 // diffuse light is not added to the colour but written to outDiffuse for the screen-space
 // passes to scatter (shaders/screen_diffusion.frag), with every opaque surface's view depth and
 // skin's material in outSurface; skin then shades as Lambert (the pipeline's skin features).
+// With PRESKIN_TEXTURE_IRRADIANCE (texture_irradiance.frag, drawn in the mesh's UV layout by
+// texture_irradiance.vert) skin writes its diffuse light for a white albedo (irradiance times
+// (1 - F) / pi, ambient and transmission included) and the surface's metres per texel along u
+// and v; with PRESKIN_TEXTURE_DIFFUSION (forward_texture.frag) skin's diffuse light is its albedo
+// times that irradiance blurred by its profile (render/TextureDiffusion.h), read at TEXCOORD_0.
 #include "forward_material.glsl"
 
 layout(set = 0, binding = kBindingFrame) uniform Frame { FrameUniforms frame; };
@@ -65,6 +72,13 @@ layout(location = 12) centroid in vec3 inNormalGreenWs;
 layout(location = 13) centroid in vec3 inNormalBlueWs;
 
 layout(location = 0) out vec4 outColor;
+#ifdef PRESKIN_TEXTURE_IRRADIANCE
+layout(location = 1) out vec2 outStretch;  // metres per texel along u, v
+#endif
+#ifdef PRESKIN_TEXTURE_DIFFUSION
+layout(set = 0, binding = kBindingDiffusionTexture) uniform sampler2DArray diffusionTexture;
+layout(push_constant) uniform Push { DrawPush draw; };  // indices.z: the draw's layer of diffusionTexture
+#endif
 #ifdef PRESKIN_SPLIT_DIFFUSE
 layout(location = 1) out vec4 outDiffuse;  // skin: diffuse radiance (exposed), alpha 1; others 0
 layout(location = 2) out vec2 outSurface;  // view depth (m); skin: its material index + 1, others 0
@@ -224,7 +238,11 @@ void main() {
         // Pre-integrated skin (preskin/skin.glsl). Skin is a dielectric: metallic is ignored.
         const uint features = kSkinFeatures;
         PreskinSkinSurface skin;
+#ifdef PRESKIN_TEXTURE_IRRADIANCE
+        skin.albedo = vec3(1.0);  // the albedo is applied after the blur (post-scatter)
+#else
         skin.albedo = baseColor.rgb;
+#endif
         skin.geometricNormal = geometricN;
         // The geometric normal seen through each channel's profile (the vertex stage's normal basis).
         vec3 geometricR = facingSign * normalize(inNormalRedWs);
@@ -426,6 +444,14 @@ void main() {
     outSurface = vec2(dot(frame.eyes[inEye].viewDepthFromWorld, vec4(inPositionWs, 1.0)),
                       splitSkin ? float(draw.indices.y + 1u) : 0.0);
     if (!splitSkin) color += skinDiffuse;
+#elif defined(PRESKIN_TEXTURE_IRRADIANCE)
+    outColor = vec4(skinDiffuse, 1.0);
+    outStretch = vec2(length(dFdx(inPositionWs)), length(dFdy(inPositionWs)));
+    return;
+#elif defined(PRESKIN_TEXTURE_DIFFUSION)
+    if (kMaterialModel == kModelSkin && kDebugView == kDebugNone)
+        skinDiffuse = baseColor.rgb * textureLod(diffusionTexture, vec3(inUv0, float(draw.indices.z)), 0.0).rgb;
+    color += skinDiffuse;
 #else
     color += skinDiffuse;
 #endif

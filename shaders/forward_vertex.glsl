@@ -96,7 +96,13 @@ void main() {
         outSphereTransmittance = preskinSkinSphereTransmittance(profile, transmittanceLut, curvaturePerMm,
                                                                 normalize(outNormalWs), -frame.shadowDirectionWs.xyz,
                                                                 kSkinFeatures);
+#ifdef PRESKIN_UV_SPACE
+    // The texture-space baseline's irradiance pass (texture_irradiance.vert): the mesh laid out by
+    // its TEXCOORD_0 over the irradiance texture.
+    gl_Position = vec4(inUv0 * 2.0 - 1.0, 0.5, 1.0);
+#else
     gl_Position = frame.eyes[eye].clipFromWorld * positionWs;
+#endif
 #ifdef PRESKIN_WRITE_LAYER
     gl_Layer = int(eye);
 #endif

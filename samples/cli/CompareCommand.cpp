@@ -270,12 +270,12 @@ void addCompareCommand(CLI::App& app) {
                     "lighting and quadrature), else computed and written there");
     cmd->add_option("--diffusion", options->baselines,
                     "Also measure these methods that preskin replaces, beside skin and Lambert: screen (the "
-                    "screen-space separable baseline); several may be given")
-        ->check(oneOf({"screen"}))
+                    "screen-space separable baseline), texture (the texture-space baseline); several may be given")
+        ->check(oneOf({"screen", "texture"}))
         ->delimiter(',');
     cmd->add_option("--renders", options->renders,
                     "Also write the skin and Lambert renders (and each --diffusion method's) as PREFIX.skin.exr, "
-                    "PREFIX.lambert.exr (and PREFIX.screen.exr), linear");
+                    "PREFIX.lambert.exr (and PREFIX.screen.exr, PREFIX.texture.exr), linear");
     addViewOptions(*cmd, options->view);
     addSceneOptions(*cmd, options->common);
     addDeviceOptions(*cmd, options->common);

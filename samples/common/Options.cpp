@@ -98,11 +98,17 @@ void addCommonOptions(CLI::App& cmd, CommonOptions& o) {
         ->capture_default_str();
     cmd.add_option("--diffusion", o.diffusion,
                    "How skin's diffuse light scatters: preintegrated (preskin, in the one forward pass) or screen "
-                   "(the screen-space separable baseline: Lambert skin blurred by the profile in two more passes)")
-        ->check(oneOf({"preintegrated", "screen"}))
+                   "(the screen-space separable baseline: Lambert skin blurred by the profile in two more passes) "
+                   "or texture (the texture-space baseline: irradiance in the mesh's UV layout blurred by the "
+                   "profile's Gaussians)")
+        ->check(oneOf({"preintegrated", "screen", "texture"}))
         ->capture_default_str();
     cmd.add_option("--diffusion-taps", o.diffusionTaps, "--diffusion screen: taps per blur direction (odd)")
         ->check(wholeNumberIn(3, 63))
+        ->capture_default_str();
+    cmd.add_option("--diffusion-texture-size", o.diffusionTextureSize,
+                   "--diffusion texture: texels per side of each skin draw's irradiance texture")
+        ->check(wholeNumberIn(16, 8192))
         ->capture_default_str();
     cmd.add_option("--light-loop", o.lightLoop, "clustered (light grid) or all (every light, brute force)")
         ->check(oneOf({"clustered", "all"}))
@@ -146,7 +152,8 @@ void addProfileBakeOptions(CLI::App& cmd, CommonOptions& o) {
 Diffusion diffusionMethod(const std::string& name) {
     if (name == "preintegrated") return Diffusion::PreIntegrated;
     if (name == "screen") return Diffusion::ScreenSpace;
-    throw Error(fmt::format("--diffusion {}: unknown method (preintegrated or screen)", name));
+    if (name == "texture") return Diffusion::TextureSpace;
+    throw Error(fmt::format("--diffusion {}: unknown method (preintegrated, screen or texture)", name));
 }
 
 Scene loadScene(const std::filesystem::path& path, const CommonOptions& o) {
@@ -324,6 +331,7 @@ RenderSettings renderSettings(const CommonOptions& o) {
         throw Error(fmt::format("--diffusion-taps: {} is even (the kernel has a middle tap: use an odd count)",
                                 o.diffusionTaps));
     s.screenDiffusionTaps = o.diffusionTaps;
+    s.textureDiffusionSize = o.diffusionTextureSize;
     s.exposure = o.exposure;
     s.shadowSoftnessTexels = o.shadowSoftness;
     s.shadowMapSize = o.shadowMapSize;

@@ -50,6 +50,7 @@ struct CommonOptions {
     std::string lightLoop = "clustered";
     std::string diffusion = "preintegrated";  // --diffusion: RenderSettings::diffusion
     uint32_t diffusionTaps = 17;              // --diffusion-taps: RenderSettings::screenDiffusionTaps
+    uint32_t diffusionTextureSize = 1024;     // --diffusion-texture-size: RenderSettings::textureDiffusionSize
     float exposure = 1.0f;
     float shadowSoftness = 1.5f;
     uint32_t shadowMapSize = 2048;
@@ -65,7 +66,7 @@ struct CommonOptions {
 // Every option below: the scene options plus the renderer's (device, validation, skin
 // techniques, specular, debug view, light loop, shadow map).
 void addCommonOptions(CLI::App& cmd, CommonOptions& o);
-// RenderSettings::diffusion of a --diffusion name (preintegrated, screen); throws on another.
+// RenderSettings::diffusion of a --diffusion name (preintegrated, screen, texture); throws on another.
 Diffusion diffusionMethod(const std::string& name);
 // Scene::load with the options' SceneLoadOptions.
 Scene loadScene(const std::filesystem::path& path, const CommonOptions& o);

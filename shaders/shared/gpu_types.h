@@ -159,6 +159,19 @@ PRESKIN_CONST(uint, kSpecDiffusionOutput, 2)      // the vertical pass's output:
 PRESKIN_CONST(uint, kDiffusionHorizontal, 0)      // the diffuse light along rows, to an intermediate target
 PRESKIN_CONST(uint, kDiffusionVertical, 1)        // along columns, added to the rest of the frame, into the target
 
+// The texture-space baseline (render/TextureDiffusion.h): its blurred irradiance in the forward
+// pass (set 0), and its blur passes (shaders/texture_blur.frag, their own set).
+PRESKIN_CONST(uint, kBindingDiffusionTexture, 14)  // sampler2DArray: one layer per skin draw (DrawPush.indices.z)
+PRESKIN_CONST(uint, kBindingBlurInput, 0)          // the level blurred (irradiance premultiplied by coverage)
+PRESKIN_CONST(uint, kBindingBlurStretch, 1)        // metres per texel along u, v
+PRESKIN_CONST(uint, kSpecBlurAccumulate, 0)        // 1: the vertical pass, which also adds weight * level to the sum
+
+struct BlurPush {
+    vec4 direction;  // xy: the texel axis (1, 0) or (0, 1); z: the Gaussian's standard deviation (world m); w: layer
+    vec4 weight;     // rgb: the Gaussian's weight per channel in the profile (the vertical pass adds weight * level)
+};
+PRESKIN_CHECK_SIZE(BlurPush, 32)
+
 struct DiffusionPush {
     vec4 eyeScale[kMaxEyes];  // per eye: x, y pixels per metre at view depth 1 (perspective) or at any depth
                               // (orthographic); z: 1 perspective, 0 orthographic

@@ -82,7 +82,13 @@ enum class LightLoop { Clustered, All };
 //    is the profile's line profile (exact for straight edges of light; skin/SeparableKernel.h);
 //    the albedo is blurred with the light (pre-scatter texturing, as published). Limits: blended
 //    materials over skin do not hide its blurred light; a host's loadColor is refused.
-enum class Diffusion { PreIntegrated, ScreenSpace };
+//  - TextureSpace: the texture-space baseline (d'Eon, Luebke, Enderton, "Efficient Rendering of
+//    Human Skin", EGSR 2007): each skin draw's diffuse light (Lambert, white albedo) rendered
+//    into a texture in its mesh's UV layout, blurred there by each Gaussian of the profile (a
+//    sum of Gaussians, or a fit of one) with stretch correction, read back by the forward pass
+//    times the albedo: per skin draw 1 + 2 x Gaussians more passes and 5 textures. Limits: skin
+//    meshes need TEXCOORD_0 laid out without overlaps in [0, 1]; light does not cross UV seams.
+enum class Diffusion { PreIntegrated, ScreenSpace, TextureSpace };
 
 struct RenderSettings {
     SkinFeatures skin;
@@ -134,6 +140,9 @@ struct RenderSettings {
     // Diffusion::ScreenSpace: taps of each direction's kernel (odd, 3 to 63; Jimenez et al. ship
     // 7 to 25).
     uint32_t screenDiffusionTaps = 17;
+    // Diffusion::TextureSpace: texels per side of each skin draw's irradiance texture (16 to 8192;
+    // changing it waits for the device).
+    uint32_t textureDiffusionSize = 1024;
 };
 
 enum class OutputEncoding {

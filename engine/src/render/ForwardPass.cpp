@@ -56,11 +56,12 @@ uint32_t areaLightTypes(const std::vector<Light>& lights) {
 PipelineKey Renderer::Impl::pipelineKey(const GpuMaterial& m, VkFormat format, VkFormat depthFormat,
                                         uint32_t eyes) const {
     const bool skin = m.skin && luts->valid();
-    const bool split = splitDiffusion();
-    // The screen-space baseline replaces skin's diffusion: Lambert diffuse, one normal, plain
-    // shadows and Lambert's SH; the skin's specular and transmission stay.
-    const uint32_t skinMask =
-        split ? settings.skin.mask() & (gpu::kSkinTransmission | gpu::kSkinDualSpecular) : settings.skin.mask();
+    const uint32_t mode = splitDiffusion() ? kForwardSplit : textureDiffusionFrame() ? kForwardTexture : kForwardPlain;
+    // The baselines replace skin's diffusion: Lambert diffuse, one normal, plain shadows and
+    // Lambert's SH; the skin's specular and transmission stay.
+    const uint32_t skinMask = mode != kForwardPlain
+        ? settings.skin.mask() & (gpu::kSkinTransmission | gpu::kSkinDualSpecular)
+        : settings.skin.mask();
     return PipelineKey{
         skin ? gpu::kModelSkin : gpu::kModelStandard,
         static_cast<uint32_t>(m.alphaMode),
@@ -79,7 +80,7 @@ PipelineKey Renderer::Impl::pipelineKey(const GpuMaterial& m, VkFormat format, V
         skin ? m.profileMix : 1u,
         skin ? m.skinInputBits() | (settings.skinTermsPerVertex ? 0u : gpu::kSkinInputTermsPerFragment) : 0u,
         settings.shadows ? frameAreaLightTypes : frameAreaLightTypes & ~gpu::kAreaLightSizedShadow,
-        split ? 1u : 0u,
+        mode,
         skin ? std::bit_cast<std::array<uint32_t, 32>>(m.lutMapping) : std::array<uint32_t, 32>{}};
 }
 
@@ -104,9 +105,10 @@ vk::GraphicsPipelineDesc Renderer::Impl::forwardPassDesc(const PipelineKey& key)
     desc.specialization.values[gpu::kSpecOutputMode] =
         isDisplayFormat(format) ? gpu::kOutputTonemapped : gpu::kOutputLinear;
     desc.colorFormats = {format};
-    if (key.split)
+    if (key.split == kForwardSplit)
         desc.colorFormats.insert(desc.colorFormats.end(),
                                  {ScreenDiffusion::kDiffuseFormat, ScreenDiffusion::kSurfaceFormat});
+    if (key.split == kTextureIrradiance) desc.colorFormats = {format, TextureDiffusion::kStretchFormat};
     desc.depthFormat = static_cast<VkFormat>(key.depthFormat);
     desc.viewMask = key.layered ? 0u : (1u << key.eyes) - 1u;
     desc.samples = static_cast<VkSampleCountFlagBits>(key.samples);
@@ -116,8 +118,14 @@ vk::GraphicsPipelineDesc Renderer::Impl::forwardPassDesc(const PipelineKey& key)
 
 VkPipeline Renderer::Impl::createForwardPipeline(const PipelineKey& key) const {
     vk::GraphicsPipelineDesc desc = forwardPassDesc(key);
-    desc.vertexSpirv = shader(key.layered ? "forward_layers.vert" : "forward.vert");
-    desc.fragmentSpirv = shader(key.split ? "forward_split.frag" : "forward.frag");
+    const bool irradiance = key.split == kTextureIrradiance;
+    desc.vertexSpirv = shader(irradiance        ? "texture_irradiance.vert"
+                                  : key.layered ? "forward_layers.vert"
+                                                : "forward.vert");
+    desc.fragmentSpirv = shader(key.split == kForwardSplit         ? "forward_split.frag"
+                                    : key.split == kForwardTexture ? "forward_texture.frag"
+                                    : irradiance                   ? "texture_irradiance.frag"
+                                                                   : "forward.frag");
     desc.specialization.values[gpu::kSpecMaterialModel] = key.model;
     desc.specialization.values[gpu::kSpecDebugView] = key.debugView;
     desc.specialization.values[gpu::kSpecAlphaMode] = key.alphaMode;
@@ -148,7 +156,13 @@ VkPipeline Renderer::Impl::createForwardPipeline(const PipelineKey& key) const {
     desc.cullMode = key.doubleSided ? VK_CULL_MODE_NONE : VK_CULL_MODE_BACK_BIT;
     desc.depthWrite = alphaMode != AlphaMode::Blend;
     desc.alphaBlend = alphaMode == AlphaMode::Blend;
-    if (key.split && desc.alphaBlend) desc.colorWriteMasks = {kAllComponents, 0, 0};  // skin's targets stay
+    if (key.split == kForwardSplit && desc.alphaBlend)
+        desc.colorWriteMasks = {kAllComponents, 0, 0};  // skin's targets stay
+    if (irradiance) {                                   // every texel of the UV layout, whichever way it faces
+        desc.cullMode = VK_CULL_MODE_NONE;
+        desc.depthTest = desc.depthWrite = desc.alphaBlend = false;
+        desc.viewMask = 0;  // one layer, no multiview
+    }
     return vk::createGraphicsPipeline(dev, desc);
 }
 
@@ -160,7 +174,7 @@ PipelineKey Renderer::Impl::backgroundKey(VkFormat format, VkFormat depthFormat,
     key.eyes = eyes;
     key.samples = settings.msaaSamples;
     key.layered = eyeDrawing() == EyeDrawing::InstancedLayers ? 1u : 0u;
-    key.split = splitDiffusion() ? 1u : 0u;
+    key.split = splitDiffusion() ? kForwardSplit : kForwardPlain;
     return key;
 }
 
@@ -170,7 +184,7 @@ VkPipeline Renderer::Impl::createBackgroundPipeline(const PipelineKey& key) cons
     desc.fragmentSpirv = shader("background.frag");
     desc.cullMode = VK_CULL_MODE_NONE;
     desc.depthWrite = false;  // at the far plane: drawn only where the depth is still cleared
-    if (key.split) desc.colorWriteMasks = {kAllComponents, 0, 0};  // no skin, no depth there (cleared)
+    if (key.split == kForwardSplit) desc.colorWriteMasks = {kAllComponents, 0, 0};  // no skin, no depth there (cleared)
     return vk::createGraphicsPipeline(dev, desc);
 }
 
@@ -333,7 +347,8 @@ void Renderer::Impl::recordForwardPass(VkCommandBuffer cmd, Slot& slot, uint32_t
             vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, forwardLayout, 1, 1, &m.set, 0, nullptr);
             boundMaterial = d->material;
         }
-        const gpu::DrawPush push{glm::uvec4(d->instance, d->material, 0, 0)};
+        const uint32_t layer = drawLayers.empty() ? 0u : drawLayers[size_t(d - scene->draws.data())];
+        const gpu::DrawPush push{glm::uvec4(d->instance, d->material, layer, 0)};
         vkCmdPushConstants(cmd, forwardLayout, VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_FRAGMENT_BIT, 0,
                            sizeof(push), &push);
         const int32_t vertexOffset = bindDrawVertices(cmd, slotIndex, *d, boundVertices);

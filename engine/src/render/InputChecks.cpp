@@ -39,6 +39,9 @@ void checkRenderSettings(const RenderSettings& settings) {
     if (settings.screenDiffusionTaps < 3 || settings.screenDiffusionTaps > 63 || settings.screenDiffusionTaps % 2 == 0)
         throw Error(fmt::format("RenderSettings: screenDiffusionTaps: {} is not an odd count from 3 to 63",
                                 settings.screenDiffusionTaps));
+    if (settings.textureDiffusionSize < 16 || settings.textureDiffusionSize > 8192)
+        throw Error(
+            fmt::format("RenderSettings: textureDiffusionSize: {} is outside 16..8192", settings.textureDiffusionSize));
     check(settings.background.color, "RenderSettings: background.color");
     if (glm::any(glm::lessThan(settings.background.color, glm::vec3(0.0f))))
         throw Error("RenderSettings: background.color: must be >= 0");

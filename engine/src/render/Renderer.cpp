@@ -149,6 +149,7 @@ void Renderer::Impl::createLayouts() {
         {gpu::kBindingEnvironmentImage, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, fs},
         {gpu::kBindingPrefilteredEnvironment, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, fs},
         {gpu::kBindingDfgTable, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, fs},
+        {gpu::kBindingDiffusionTexture, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, fs},
     };
     frameLayout = vk::createSetLayout(dev, bindings);
     const VkDescriptorSetLayout forwardSets[] = {frameLayout, scene->materialLayout()};
@@ -166,7 +167,7 @@ void Renderer::Impl::createLayouts() {
     // Per slot: the frame's set (9 images) and the reduction's (1 image in, 1 out).
     const VkDescriptorPoolSize sizes[] = {{VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, kSlotCount},
                                           {VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 4 * kSlotCount},
-                                          {VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 10 * kSlotCount},
+                                          {VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 11 * kSlotCount},
                                           {VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, kSlotCount}};
     framePool = vk::createDescriptorPool(dev, sizes, 2 * kSlotCount);
     for (Slot& s : slots) {
@@ -263,15 +264,17 @@ void Renderer::Impl::setShaderOverrides(const std::map<std::string, std::vector<
         shaderOverrides = std::move(previous);
         throw;
     }
-    if (screenDiffusion) {
+    if (screenDiffusion || textureDiffusion) {
         try {
-            screenDiffusion->rebuildPipelines();
+            if (screenDiffusion) screenDiffusion->rebuildPipelines();
+            if (textureDiffusion) textureDiffusion->rebuildPipelines();
         } catch (...) {
             for (auto& [key, p] : rebuilt) vkDestroyPipeline(dev.device(), p, nullptr);
             if (rebuiltShadow) vkDestroyPipeline(dev.device(), rebuiltShadow, nullptr);
             if (rebuiltShadowMask) vkDestroyPipeline(dev.device(), rebuiltShadowMask, nullptr);
             shaderOverrides = std::move(previous);
-            screenDiffusion->rebuildPipelines();  // the previous code, which built before
+            if (screenDiffusion) screenDiffusion->rebuildPipelines();  // the previous code, which built before
+            if (textureDiffusion) textureDiffusion->rebuildPipelines();
             throw;
         }
     }
@@ -420,6 +423,12 @@ void Renderer::Impl::updateFrameSet(Slot& slot, uint32_t slotIndex) {
     image(gpu::kBindingEnvironmentImage, &environmentInfos[0]);
     image(gpu::kBindingPrefilteredEnvironment, &environmentInfos[1]);
     image(gpu::kBindingDfgTable, &environmentInfos[2]);
+    // The texture-space baseline's blurred irradiance; any array texture stands in when unused.
+    const VkDescriptorImageInfo diffusionInfo = textureDiffusion && textureDiffusionFrame()
+        ? VkDescriptorImageInfo{textureDiffusion->sampler(), textureDiffusion->sumView(),
+                                VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL}
+        : lutInfos[0];
+    image(gpu::kBindingDiffusionTexture, &diffusionInfo);
     vkUpdateDescriptorSets(dev.device(), static_cast<uint32_t>(writes.size()), writes.data(), 0, nullptr);
 }
 
@@ -457,6 +466,12 @@ void Renderer::Impl::checkFrame(const View& view) const {
     }
     if (settings.eyeDrawing == EyeDrawing::InstancedLayers && !dev.shaderOutputLayer())
         throw Error("RenderSettings: instanced layered eyes need the device's shaderOutputLayer feature");
+    if (settings.diffusion != Diffusion::PreIntegrated && !dev.independentBlend())
+        throw Error(
+            fmt::format("RenderSettings: diffusion {}: needs the independentBlend feature, which {} does not "
+                        "offer (or a host's device did not say it enabled)",
+                        settings.diffusion == Diffusion::ScreenSpace ? "ScreenSpace" : "TextureSpace",
+                        dev.properties().deviceName));
     const uint32_t n = settings.msaaSamples;
     if (n == 0 || (n & (n - 1)) != 0 || (dev.msaaSampleCounts() & n) == 0)
         throw Error(fmt::format("RenderSettings: msaaSamples {} is not offered by {} (offered: {})", n,
@@ -492,6 +507,8 @@ void Renderer::Impl::record(VkCommandBuffer cmd, const RenderTarget& target, con
                       split == nullptr, slotIndex);
     glm::mat4 shadowClipFromWorld(1.0f);
     const bool shadow = prepareFrame(slot, slotIndex, view, target.extent, shadowClipFromWorld);
+    const bool texture = textureDiffusionFrame();
+    if (texture) prepareTextureDiffusion();
     createWideShadowMap(cmd, slotIndex);  // at the factor prepareFrame picked
     updateFrameSet(slot, slotIndex);
     if (slot.queries) vkCmdResetQueryPool(cmd, slot.queries, 0, kQueryCount);
@@ -504,6 +521,10 @@ void Renderer::Impl::record(VkCommandBuffer cmd, const RenderTarget& target, con
     timestamp(cmd, slot, 3);
     clusters->record(cmd, slotIndex);  // the compute build, when this frame uses it
     timestamp(cmd, slot, 4);
+    if (texture) {
+        recordTextureDiffusion(cmd, slot, slotIndex);
+        timestamp(cmd, slot, 7);
+    }
     if (split) {
         recordForwardPass(cmd, slot, slotIndex, forwardTarget, view, split->splitAttachments(),
                           isDisplayFormat(target.format));
@@ -516,6 +537,7 @@ void Renderer::Impl::record(VkCommandBuffer cmd, const RenderTarget& target, con
         timestamp(cmd, slot, 5);
     }
     slot.split = split != nullptr;
+    slot.texture = texture;
     slot.recorded = true;
     slot.shadowRecorded = shadow;
     slot.eyes = view.eyeCount();
@@ -540,9 +562,15 @@ FrameStats Renderer::Impl::stats(uint32_t slotIndex) const {
         s.diffusionTargets = screenDiffusion->targetCount();
         s.diffusionTargetBytes = screenDiffusion->targetBytes();
     }
+    if (slot.texture && textureDiffusion) {
+        s.diffusionPasses = textureDiffusion->passesPerFrame(layerMaterials);
+        s.diffusionTargets = TextureDiffusion::kTargets;
+        s.diffusionTargetBytes = textureDiffusion->targetBytes();
+    }
     if (!slot.recorded || !slot.queries) return s;
     std::array<uint64_t, kQueryCount> ticks{};
-    const uint32_t written = slot.split ? kQueryCount : kQueryCount - 2;  // the baseline's passes write two more
+    // The baselines' passes write two more.
+    const uint32_t written = slot.split || slot.texture ? kQueryCount : kQueryCount - 2;
     const VkResult r = vkGetQueryPoolResults(dev.device(), slot.queries, 0, written, written * sizeof(uint64_t),
                                              ticks.data(), sizeof(uint64_t), VK_QUERY_RESULT_64_BIT);
     if (r != VK_SUCCESS) return s;
@@ -554,6 +582,11 @@ FrameStats Renderer::Impl::stats(uint32_t slotIndex) const {
                 {"clusters", ms(3, 4)},
                 {"forward", ms(4, 5)}};
     s.gpuMs = ms(0, 5);
+    if (slot.texture) {
+        s.passes[4] = {"texture irradiance", ms(4, 6)};
+        s.passes.push_back({"texture blur", ms(6, 7)});
+        s.passes.push_back({"forward", ms(7, 5)});
+    }
     if (slot.split) {
         s.passes.push_back({"diffusion rows", ms(5, 6)});
         s.passes.push_back({"diffusion columns", ms(6, 7)});
@@ -612,6 +645,7 @@ ScreenDiffusion& Renderer::Impl::prepareScreenDiffusion(const RenderTarget& targ
 
 void Renderer::Impl::updateSkinReach() {
     diffusionKernelsStale = true;  // the profiles changed
+    textureKernelsStale = true;
     // Two RMS widths of the widest profile of any skin material, in world mm: where red's
     // scattering into a cast shadow falls to a few percent (d'Eon's red: 3.3 mm, 5 % of lit).
     skinReachMm = 0.0;

@@ -12,6 +12,7 @@
 #include "render/GpuScene.h"
 #include "render/PoseBounds.h"
 #include "render/ScreenDiffusion.h"
+#include "render/TextureDiffusion.h"
 #include "vk/Pipeline.h"
 #include "vk/Resources.h"
 
@@ -38,10 +39,16 @@ inline constexpr uint32_t kEnvironmentKeptWidth = 2048;
 // The area light types among `lights` as kSpecAreaLights holds them (render/ForwardPass.cpp).
 uint32_t areaLightTypes(const std::vector<Light>& lights);
 
+// PipelineKey::split: which pass of which diffusion method a pipeline draws.
+inline constexpr uint32_t kForwardPlain = 0;       // preskin's forward pass (forward.frag)
+inline constexpr uint32_t kForwardSplit = 1;       // screen-space: skin's diffuse light apart (forward_split.frag)
+inline constexpr uint32_t kForwardTexture = 2;     // texture-space: skin's diffuse light read (forward_texture.frag)
+inline constexpr uint32_t kTextureIrradiance = 3;  // texture-space: the irradiance pass (texture_irradiance.*)
+
 struct PipelineKey {
     uint32_t model, alphaMode, doubleSided, format, depthFormat, debugView, skinMask, lightLoop, specular, eyes,
         samples, layered, profileMix, skinInputs, areaLights,
-        split;  // 1: the screen-space baseline's forward pass (forward_split.frag, its three attachments)
+        split;  // a baseline's pass: kForwardPlain, kForwardSplit, kForwardTexture, kTextureIrradiance
     std::array<uint32_t, 32> lutMapping;  // skin: the material's own LutMapping, as bits (kSpecLutMapping)
     auto tie() const {
         return std::tie(model, alphaMode, doubleSided, format, depthFormat, debugView, skinMask, lightLoop, specular,
@@ -65,7 +72,8 @@ struct Renderer::Impl {
         double recordMs = 0.0;  // CPU time of record(), light-grid build included
         uint32_t eyes = 0;
         uint32_t lightCount = 0;
-        bool split = false;  // the frame drew the screen-space baseline
+        bool split = false;    // the frame drew the screen-space baseline
+        bool texture = false;  // the frame drew the texture-space baseline
     };
 
     Context& context;
@@ -96,6 +104,12 @@ struct Renderer::Impl {
     // RenderSettings::diffusion ScreenSpace: its passes and targets, made when a frame first uses them.
     std::unique_ptr<ScreenDiffusion> screenDiffusion;
     bool diffusionKernelsStale = true;  // the profiles or materials changed since its kernels were made
+    // RenderSettings::diffusion TextureSpace: its textures and blur, made when a frame first uses
+    // them; per scene draw its layer (UINT32_MAX: not skin), and the skin draws' (layer, material).
+    std::unique_ptr<TextureDiffusion> textureDiffusion;
+    bool textureKernelsStale = true;
+    std::vector<uint32_t> drawLayers;
+    std::vector<std::pair<uint32_t, uint32_t>> layerMaterials;
 
     VkDescriptorSetLayout frameLayout = VK_NULL_HANDLE;
     VkPipelineLayout forwardLayout = VK_NULL_HANDLE;
@@ -232,6 +246,15 @@ struct Renderer::Impl {
     }
     // The baseline's passes, targets and kernels, ready for a frame of this target and view.
     ScreenDiffusion& prepareScreenDiffusion(const RenderTarget& target, uint32_t eyes, uint32_t slotIndex);
+    // The same for the texture-space baseline (TextureIrradiance.cpp).
+    bool textureDiffusionFrame() const {
+        return settings.diffusion == Diffusion::TextureSpace && settings.debugView == DebugView::None && sceneHasSkin &&
+            luts->valid();
+    }
+    // Its textures, kernels and the skin draws' layers, ready for this frame.
+    void prepareTextureDiffusion();
+    // The irradiance pass of every skin draw and their blur (before the forward pass).
+    void recordTextureDiffusion(VkCommandBuffer cmd, Slot& slot, uint32_t slotIndex);
 
     // Throws preskin::Error unless the view and settings can be drawn on this device.
     void checkFrame(const View& view) const;

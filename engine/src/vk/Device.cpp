@@ -278,6 +278,9 @@ void Device::initializeDevice(const ContextDesc& desc) {
     // Alpha-to-coverage writes alpha 1 to the target where the device can.
     features.features.alphaToOne = supported.alphaToOne;
     alphaToOne_ = supported.alphaToOne == VK_TRUE;
+    // The diffusion baselines' attachments blend and write differently (RenderSettings::diffusion).
+    features.features.independentBlend = supported.independentBlend;
+    independentBlend_ = supported.independentBlend == VK_TRUE;
 
     const float priority = 1.0f;
     VkDeviceQueueCreateInfo queueInfo{VK_STRUCTURE_TYPE_DEVICE_QUEUE_CREATE_INFO};

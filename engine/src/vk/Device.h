@@ -41,6 +41,8 @@ public:
     }
     // The alphaToOne feature is enabled (never on a host's device: its features are unknown).
     bool alphaToOne() const { return alphaToOne_; }
+    // The independentBlend feature is enabled (likewise never on a host's device).
+    bool independentBlend() const { return independentBlend_; }
     // Vertex shaders may write gl_Layer (the Vulkan 1.2 shaderOutputLayer feature is enabled;
     // on a host's device when the host says so in HostVulkan).
     bool shaderOutputLayer() const { return shaderOutputLayer_; }
@@ -81,6 +83,7 @@ private:
     uint32_t queueFamily_ = 0;
     uint32_t maxMultiviewViews_ = 1;
     bool alphaToOne_ = false;
+    bool independentBlend_ = false;
     bool shaderOutputLayer_ = false;
     mutable std::mutex probeMutex_;
     mutable std::optional<bool> multiviewClipping_;

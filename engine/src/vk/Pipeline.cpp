@@ -79,7 +79,12 @@ VkPipeline createGraphicsPipeline(const Device& device, const GraphicsPipelineDe
         b.colorWriteMask = i < desc.colorWriteMasks.size()
             ? desc.colorWriteMasks[i]
             : VK_COLOR_COMPONENT_R_BIT | VK_COLOR_COMPONENT_G_BIT | VK_COLOR_COMPONENT_B_BIT | VK_COLOR_COMPONENT_A_BIT;
-        if (desc.alphaBlend) {
+        if (int(i) == desc.additiveBlendAttachment) {
+            b.blendEnable = VK_TRUE;
+            b.srcColorBlendFactor = b.dstColorBlendFactor = VK_BLEND_FACTOR_ONE;
+            b.srcAlphaBlendFactor = b.dstAlphaBlendFactor = VK_BLEND_FACTOR_ONE;
+            b.colorBlendOp = b.alphaBlendOp = VK_BLEND_OP_ADD;
+        } else if (desc.alphaBlend) {
             b.blendEnable = VK_TRUE;
             b.srcColorBlendFactor = VK_BLEND_FACTOR_SRC_ALPHA;
             b.dstColorBlendFactor = VK_BLEND_FACTOR_ONE_MINUS_SRC_ALPHA;

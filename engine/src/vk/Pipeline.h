@@ -32,7 +32,8 @@ struct GraphicsPipelineDesc {
     bool alphaBlend = false;
     // Per colour attachment: which components it writes (missing entries: all).
     std::vector<VkColorComponentFlags> colorWriteMasks;
-    uint32_t viewMask = 0;  // multiview: must equal the rendering's viewMask
+    int additiveBlendAttachment = -1;  // this colour attachment adds what it is given (blend ONE, ONE)
+    uint32_t viewMask = 0;             // multiview: must equal the rendering's viewMask
     VkSampleCountFlagBits samples = VK_SAMPLE_COUNT_1_BIT;
     bool alphaToCoverage = false;
     bool alphaToOne = false;  // needs the alphaToOne feature

@@ -1,0 +1,79 @@
+// The texture-space baseline's part of a frame (RenderSettings::diffusion TextureSpace,
+// render/TextureDiffusion.h): its textures and kernels made ready, the irradiance pass (every
+// skin draw into its layer, laid out by TEXCOORD_0, with the forward pass's lights, shadows and
+// ambient) and the blur, before the forward pass reads the result.
+#include "render/RendererImpl.h"
+
+#include "shared/gpu_types.h"
+#include "vk/Pipeline.h"
+
+namespace preskin {
+
+void Renderer::Impl::prepareTextureDiffusion() {
+    if (!textureDiffusion)
+        textureDiffusion = std::make_unique<TextureDiffusion>(
+            dev, [this](const char* name) { return shader(name); }, kSlotCount);
+    if (textureKernelsStale) {
+        textureDiffusion->setKernels(scene->sceneMaterials(), luts->layers());
+        textureKernelsStale = false;
+    }
+    drawLayers.assign(scene->draws.size(), 0u);
+    layerMaterials.clear();
+    for (size_t i = 0; i < scene->draws.size(); ++i) {
+        const uint32_t material = scene->draws[i].material;
+        if (!scene->materials[material].skin) continue;
+        drawLayers[i] = uint32_t(layerMaterials.size());
+        layerMaterials.emplace_back(drawLayers[i], material);
+    }
+    textureDiffusion->ensureTargets(settings.textureDiffusionSize, uint32_t(layerMaterials.size()));
+}
+
+void Renderer::Impl::recordTextureDiffusion(VkCommandBuffer cmd, Slot& slot, uint32_t slotIndex) {
+    TextureDiffusion& texture = *textureDiffusion;
+    texture.beginIrradiance(cmd);
+    VkBuffer boundVertices = VK_NULL_HANDLE;
+    bindGeometry(cmd, boundVertices);
+    vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, forwardLayout, 0, 1, &slot.set, 0, nullptr);
+    const uint32_t size = texture.size();
+    const VkViewport viewport{0.0f, 0.0f, float(size), float(size), 0.0f, 1.0f};
+    const VkRect2D area{{0, 0}, {size, size}};
+    for (size_t i = 0; i < scene->draws.size(); ++i) {
+        const DrawItem& d = scene->draws[i];
+        const GpuMaterial& m = scene->materials[d.material];
+        if (!m.skin) continue;
+        const std::array<VkImageView, 2> views = texture.irradianceViews(drawLayers[i]);
+        std::array<VkRenderingAttachmentInfo, 2> colors{};
+        for (size_t a = 0; a < 2; ++a) {
+            colors[a] = {VK_STRUCTURE_TYPE_RENDERING_ATTACHMENT_INFO};
+            colors[a].imageView = views[a];
+            colors[a].imageLayout = VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL;
+            colors[a].loadOp = VK_ATTACHMENT_LOAD_OP_CLEAR;  // texels off the mesh: coverage 0
+            colors[a].storeOp = VK_ATTACHMENT_STORE_OP_STORE;
+        }
+        VkRenderingInfo info{VK_STRUCTURE_TYPE_RENDERING_INFO};
+        info.renderArea = area;
+        info.layerCount = 1;
+        info.colorAttachmentCount = 2;
+        info.pColorAttachments = colors.data();
+        vkCmdBeginRendering(cmd, &info);
+        vkCmdSetViewport(cmd, 0, 1, &viewport);
+        vkCmdSetScissor(cmd, 0, 1, &area);
+        PipelineKey key = pipelineKey(m, TextureDiffusion::kIrradianceFormat, VK_FORMAT_UNDEFINED, 1);
+        key.split = kTextureIrradiance;
+        key.samples = 1;
+        key.layered = 0;
+        key.lightLoop = gpu::kLightLoopAll;  // texels anywhere on the mesh, not only in the light grid's view
+        vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, pipeline(key));
+        vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, forwardLayout, 1, 1, &m.set, 0, nullptr);
+        const gpu::DrawPush push{glm::uvec4(d.instance, d.material, drawLayers[i], 0)};
+        vkCmdPushConstants(cmd, forwardLayout, VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_FRAGMENT_BIT, 0,
+                           sizeof(push), &push);
+        const int32_t vertexOffset = bindDrawVertices(cmd, slotIndex, d, boundVertices);
+        vkCmdDrawIndexed(cmd, d.indexCount, 1, d.firstIndex, vertexOffset, 0);
+        vkCmdEndRendering(cmd);
+    }
+    timestamp(cmd, slot, 6);
+    texture.recordBlur(cmd, slotIndex, layerMaterials);
+}
+
+}  // namespace preskin
