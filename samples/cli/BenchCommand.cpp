@@ -16,9 +16,9 @@
 //     lights (the scene copied with its skin extension removed), plus the skin shader with every
 //     technique off (SkinFeatures::none()) as a third column;
 //   - the bake time of the default LUT set (LutSet::bake of d'Eon & Luebke's profile);
-//   - preskin's diffusion against the screen-space baseline it replaces (RenderSettings::diffusion)
-//     and against Lambert skin, mono at the bench size and stereo with MSAA 4x at the VR size, with
-//     the passes, targets and bytes the baseline adds;
+//   - preskin's diffusion against the baselines it replaces, screen-space and texture-space
+//     (RenderSettings::diffusion), and against Lambert skin, mono at the bench size and stereo with
+//     MSAA 4x at the VR size, with the passes, targets and bytes each baseline adds;
 //   - diffusion profiles: one profile's bake at the default size, 64 profiles baked into a fresh
 //     cache and loaded from it again (ProfileLibrary::forScene), and a frame of 8 copies of the
 //     scene side by side whose skin materials use one profile against one profile per copy.
@@ -238,7 +238,8 @@ void addBenchCommand(CLI::App& app) {
     cmd->add_flag("--no-environment", o->noEnvironment,
                   "Skip the prefiltered specular and background against neither, and the environment's update");
     cmd->add_flag("--no-diffusion", o->noDiffusion,
-                  "Skip preskin's diffusion against the screen-space baseline (mono, and stereo with MSAA 4x)");
+                  "Skip preskin's diffusion against the screen-space and texture-space baselines (mono, and stereo "
+                  "with MSAA 4x)");
     cmd->add_flag("--no-area-lights", o->noAreaLights,
                   "Skip the frame with 64 sphere, tube, rectangle or disc lights against 64 point lights");
     cmd->add_flag("--no-profiles", o->noProfiles,
