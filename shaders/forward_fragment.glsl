@@ -152,7 +152,11 @@ void main() {
     vec3 emissive = material.emissiveAlphaCutoff.rgb;
     if (material.hasTextures.w > 0.5) emissive *= texture(emissiveTexture, transformUv(material.uv[4], inUv0)).rgb;
 
+#ifdef PRESKIN_TEXTURE_IRRADIANCE
+    float facingSign = 1.0;  // the mesh's own side: the UV layout's winding says nothing of the view
+#else
     float facingSign = gl_FrontFacing ? 1.0 : -1.0;
+#endif
     vec3 geometricN = facingSign * normalize(inNormalWs);
     vec2 uvNormal = transformUv(material.uv[2], inUv0);
     bool hasNormalMap = material.textureFlags.w > 0.5;
@@ -449,8 +453,13 @@ void main() {
     outStretch = vec2(length(dFdx(inPositionWs)), length(dFdy(inPositionWs)));
     return;
 #elif defined(PRESKIN_TEXTURE_DIFFUSION)
-    if (kMaterialModel == kModelSkin && kDebugView == kDebugNone)
-        skinDiffuse = baseColor.rgb * textureLod(diffusionTexture, vec3(inUv0, float(draw.indices.z)), 0.0).rgb;
+    if (kMaterialModel == kModelSkin && kDebugView == kDebugNone) {
+        // The sum holds the covered texels' light and, in alpha, their coverage: its filtered read
+        // divided by the filtered coverage averages the covered texels only (no dark fringe where
+        // an island's border meets empty texels).
+        vec4 sum = textureLod(diffusionTexture, vec3(inUv0, float(draw.indices.z)), 0.0);
+        skinDiffuse = baseColor.rgb * sum.rgb / max(sum.a, 1e-4);
+    }
     color += skinDiffuse;
 #else
     color += skinDiffuse;

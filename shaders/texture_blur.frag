@@ -42,5 +42,6 @@ void main() {
         level = vec4(centre.a * sum / max(coverage, 1e-6), centre.a);
     }
     outLevel = level;
-    outSum = kAccumulate != 0u ? vec4(push.weight.rgb * level.rgb, 0.0) : vec4(0.0);
+    // The sum's alpha: the coverage, added once (weight.a is 1 for the first Gaussian only).
+    outSum = kAccumulate != 0u ? push.weight * vec4(level.rgb, level.a) : vec4(0.0);
 }

@@ -168,7 +168,8 @@ PRESKIN_CONST(uint, kSpecBlurAccumulate, 0)        // 1: the vertical pass, whic
 
 struct BlurPush {
     vec4 direction;  // xy: the texel axis (1, 0) or (0, 1); z: the Gaussian's standard deviation (world m); w: layer
-    vec4 weight;     // rgb: the Gaussian's weight per channel in the profile (the vertical pass adds weight * level)
+    vec4 weight;     // rgb: the Gaussian's weight per channel in the profile (the vertical pass adds weight * level);
+                     // a: 1 for the first Gaussian (its pass adds the coverage to the sum's alpha), else 0
 };
 PRESKIN_CHECK_SIZE(BlurPush, 32)
 

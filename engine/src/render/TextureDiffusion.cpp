@@ -226,7 +226,7 @@ void TextureDiffusion::recordBlur(VkCommandBuffer cmd, uint32_t slot,
             const float sigma = float(std::sqrt(std::max(chain[k].varianceM2 - previous, 0.0)));
             previous = chain[k].varianceM2;
             p.direction = glm::vec4(1.0f, 0.0f, sigma, float(layer));
-            p.weight = glm::vec4(chain[k].weight, 0.0f);
+            p.weight = glm::vec4(chain[k].weight, k == 0 ? 1.0f : 0.0f);
             pass(false, layerViews_[3][layer], layer, k == 0 ? sets[0] : sets[1], p, false);
             toRead(intermediate_);
             if (levelReadable) {  // the level becomes the output again
