@@ -9,7 +9,7 @@
 # docs/area-light-softbox.png: the head under a soft box and under a point light (README);
 # docs/sun-penumbra.png: the head's close-up under its key light as a parallel light and as suns
 # of 0.27 and 3 degrees (README, Area lights); docs/diffusion-methods.png: the close-up with Lambert
-# skin, pre-integrated skin and the screen-space baseline (README, docs/baselines.md).
+# skin, pre-integrated skin and the two baselines (README, docs/baselines.md).
 # Needs ImageMagick (convert, montage): scripts/install-deps.sh --docs installs it.
 set -euo pipefail
 cd "$(dirname "$0")/.."
@@ -73,11 +73,13 @@ montage -label "parallel light" "$tmp/sun_0.png" -label "sun, 0.27 degrees" "$tm
   -tile 3x1 -geometry +4+4 -background '#202022' -fill '#dddddd' -pointsize 16 -depth 8 docs/sun-penumbra.png
 echo "wrote docs/sun-penumbra.png"
 # The methods preskin replaces (README, docs/baselines.md): the cheek and nose close-up with
-# Lambert skin, preskin's pre-integrated skin and the screen-space separable baseline.
+# Lambert skin, preskin's pre-integrated skin, the screen-space and the texture-space baselines.
+for m in preintegrated screen texture; do
+  "$bin" render --camera cheek_nose --width 480 --height 480 --diffusion "$m" --out "$tmp/method_$m.png" >/dev/null
+done
 "$bin" render --camera cheek_nose --width 480 --height 480 --standard --out "$tmp/method_lambert.png" >/dev/null
-"$bin" render --camera cheek_nose --width 480 --height 480 --out "$tmp/method_pre.png" >/dev/null
-"$bin" render --camera cheek_nose --width 480 --height 480 --diffusion screen --out "$tmp/method_screen.png" >/dev/null
-montage -label "Lambert skin" "$tmp/method_lambert.png" -label "pre-integrated (preskin, 1 pass)" "$tmp/method_pre.png" \
-  -label "screen-space separable (+2 passes)" "$tmp/method_screen.png" \
-  -tile 3x1 -geometry +4+4 -background '#202022' -fill '#dddddd' -pointsize 16 -depth 8 docs/diffusion-methods.png
+montage -label "Lambert skin" "$tmp/method_lambert.png" -label "pre-integrated (preskin, 1 pass)" \
+  "$tmp/method_preintegrated.png" -label "screen-space separable (+2 passes)" "$tmp/method_screen.png" \
+  -label "texture-space (+13 passes)" "$tmp/method_texture.png" \
+  -tile 4x1 -geometry +4+4 -background '#202022' -fill '#dddddd' -pointsize 16 -depth 8 docs/diffusion-methods.png
 echo "wrote docs/diffusion-methods.png"
