@@ -281,6 +281,7 @@ void addCompareCommand(CLI::App& app) {
     addDeviceOptions(*cmd, options->common);
     addSkinTechniqueOptions(*cmd, options->common);
     addShadowMapOptions(*cmd, options->common);
+    addDiffusionOptions(*cmd, options->common);
     addLutOptions(*cmd, options->common);
     addReferenceOptions(*cmd, options->reference);
     cmd->callback([options] { run(*options); });

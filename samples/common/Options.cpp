@@ -103,13 +103,7 @@ void addCommonOptions(CLI::App& cmd, CommonOptions& o) {
                    "profile's Gaussians)")
         ->check(oneOf({"preintegrated", "screen", "texture"}))
         ->capture_default_str();
-    cmd.add_option("--diffusion-taps", o.diffusionTaps, "--diffusion screen: taps per blur direction (odd)")
-        ->check(wholeNumberIn(3, 63))
-        ->capture_default_str();
-    cmd.add_option("--diffusion-texture-size", o.diffusionTextureSize,
-                   "--diffusion texture: texels per side of each skin draw's irradiance texture")
-        ->check(wholeNumberIn(16, 8192))
-        ->capture_default_str();
+    addDiffusionOptions(cmd, o);
     cmd.add_option("--light-loop", o.lightLoop, "clustered (light grid) or all (every light, brute force)")
         ->check(oneOf({"clustered", "all"}))
         ->capture_default_str();
@@ -133,6 +127,16 @@ void addSkinTechniqueOptions(CLI::App& cmd, CommonOptions& o) {
     cmd.add_flag("--skin-terms-per-fragment", o.skinTermsPerFragment,
                  "Skin: find the curvature-only terms (SH transfer, shadow lift, sphere transmittance) per fragment "
                  "instead of per vertex");
+}
+
+void addDiffusionOptions(CLI::App& cmd, CommonOptions& o) {
+    cmd.add_option("--diffusion-taps", o.diffusionTaps, "--diffusion screen: taps per blur direction (odd)")
+        ->check(wholeNumberIn(3, 63))
+        ->capture_default_str();
+    cmd.add_option("--diffusion-texture-size", o.diffusionTextureSize,
+                   "--diffusion texture: texels per side of each skin draw's irradiance texture")
+        ->check(wholeNumberIn(16, 8192))
+        ->capture_default_str();
 }
 
 void addLutOptions(CLI::App& cmd, CommonOptions& o) {

@@ -79,6 +79,8 @@ void addDeviceOptions(CLI::App& cmd, CommonOptions& o);
 void addShadowMapOptions(CLI::App& cmd, CommonOptions& o);
 // The skin technique switches (--no-lut-diffuse ... --skin-terms-per-fragment).
 void addSkinTechniqueOptions(CLI::App& cmd, CommonOptions& o);
+// The baselines' settings (--diffusion-taps, --diffusion-texture-size; RenderSettings).
+void addDiffusionOptions(CLI::App& cmd, CommonOptions& o);
 // The LUT set (--luts).
 void addLutOptions(CLI::App& cmd, CommonOptions& o);
 // How the scene's own profiles are baked (--no-cache, --cache-dir, --profile-lut-size).
