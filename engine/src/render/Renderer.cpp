@@ -164,7 +164,7 @@ void Renderer::Impl::createLayouts() {
         vk::createPipelineLayout(dev, std::span(&reduceSetLayout, 1), sizeof(uint32_t), VK_SHADER_STAGE_COMPUTE_BIT);
     reducePipeline = vk::createComputePipeline(dev, shader("shadow_reduce.comp"), reduceLayout);
 
-    // Per slot: the frame's set (9 images) and the reduction's (1 image in, 1 out).
+    // Per slot: the frame's set (10 images) and the reduction's (1 image in, 1 out).
     const VkDescriptorPoolSize sizes[] = {{VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, kSlotCount},
                                           {VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 4 * kSlotCount},
                                           {VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 11 * kSlotCount},
@@ -628,19 +628,6 @@ void Renderer::Impl::setLutLayers(const std::vector<const LutSet*>& layers) {
     scene->updateMaterials(luts->layers());
     updateSkinReach();
     dropSkinPipelines();
-}
-
-ScreenDiffusion& Renderer::Impl::prepareScreenDiffusion(const RenderTarget& target, uint32_t eyes, uint32_t slotIndex) {
-    if (!screenDiffusion)
-        screenDiffusion = std::make_unique<ScreenDiffusion>(
-            dev, [this](const char* name) { return shader(name); }, kSlotCount);
-    if (diffusionKernelsStale || screenDiffusion->taps() != settings.screenDiffusionTaps) {
-        screenDiffusion->setKernels(scene->sceneMaterials(), luts->layers(), settings.screenDiffusionTaps);
-        diffusionKernelsStale = false;
-    }
-    screenDiffusion->ensureTargets(target.extent, eyes, settings.msaaSamples,
-                                   [&](vk::Image& image) { retire(image, slotIndex); });
-    return *screenDiffusion;
 }
 
 void Renderer::Impl::updateSkinReach() {

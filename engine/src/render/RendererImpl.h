@@ -1,6 +1,7 @@
 // Renderer::Impl: the state of the sample renderer (<preskin/Renderer.h>) and the steps of a
 // frame, split along the frame's seams: the frame orchestration and per-frame data
-// (Renderer.cpp), the shadow pass (ShadowPass.cpp) and the forward pass (ForwardPass.cpp).
+// (Renderer.cpp), the shadow pass (ShadowPass.cpp), the forward pass (ForwardPass.cpp) and the
+// diffusion baselines' parts (DiffusionPasses.cpp).
 #pragma once
 
 #include <preskin/Renderer.h>
@@ -246,7 +247,7 @@ struct Renderer::Impl {
     }
     // The baseline's passes, targets and kernels, ready for a frame of this target and view.
     ScreenDiffusion& prepareScreenDiffusion(const RenderTarget& target, uint32_t eyes, uint32_t slotIndex);
-    // The same for the texture-space baseline (TextureIrradiance.cpp).
+    // The same for the texture-space baseline.
     bool textureDiffusionFrame() const {
         return settings.diffusion == Diffusion::TextureSpace && settings.debugView == DebugView::None && sceneHasSkin &&
             luts->valid();

@@ -1,13 +1,27 @@
-// The texture-space baseline's part of a frame (RenderSettings::diffusion TextureSpace,
-// render/TextureDiffusion.h): its textures and kernels made ready, the irradiance pass (every
-// skin draw into its layer, laid out by TEXCOORD_0, with the forward pass's lights, shadows and
-// ambient) and the blur, before the forward pass reads the result.
+// The baselines' parts of a frame (RenderSettings::diffusion, docs/baselines.md): the screen-space
+// baseline's targets and kernels made ready (render/ScreenDiffusion.h; its passes follow the
+// forward pass), and the texture-space baseline's (render/TextureDiffusion.h): its textures and
+// kernels, the irradiance pass (every skin draw into its layer, laid out by TEXCOORD_0, with the
+// forward pass's lights, shadows and ambient) and the blur, before the forward pass reads them.
 #include "render/RendererImpl.h"
 
 #include "shared/gpu_types.h"
 #include "vk/Pipeline.h"
 
 namespace preskin {
+
+ScreenDiffusion& Renderer::Impl::prepareScreenDiffusion(const RenderTarget& target, uint32_t eyes, uint32_t slotIndex) {
+    if (!screenDiffusion)
+        screenDiffusion = std::make_unique<ScreenDiffusion>(
+            dev, [this](const char* name) { return shader(name); }, kSlotCount);
+    if (diffusionKernelsStale || screenDiffusion->taps() != settings.screenDiffusionTaps) {
+        screenDiffusion->setKernels(scene->sceneMaterials(), luts->layers(), settings.screenDiffusionTaps);
+        diffusionKernelsStale = false;
+    }
+    screenDiffusion->ensureTargets(target.extent, eyes, settings.msaaSamples,
+                                   [&](vk::Image& image) { retire(image, slotIndex); });
+    return *screenDiffusion;
+}
 
 void Renderer::Impl::prepareTextureDiffusion() {
     if (!textureDiffusion)
