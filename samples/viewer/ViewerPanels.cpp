@@ -257,13 +257,16 @@ void Viewer::panelTechniques() {
     if (ImGui::Button("All on")) f = SkinFeatures{};
     ImGui::SameLine();
     if (ImGui::Button("Standard (all off)")) f = SkinFeatures::none();
-    int method = settings_.diffusion == Diffusion::ScreenSpace ? 1 : 0;
+    int method = static_cast<int>(settings_.diffusion);
     ImGui::RadioButton("Pre-integrated", &method, 0);
     ImGui::SameLine();
-    ImGui::RadioButton("Screen-space blur", &method, 1);
-    tooltip("--diffusion: the screen-space separable baseline preskin replaces (Lambert skin blurred by the profile in "
-            "two more passes; the techniques above but transmission and dual specular do not apply)");
-    settings_.diffusion = method == 1 ? Diffusion::ScreenSpace : Diffusion::PreIntegrated;
+    ImGui::RadioButton("Screen-space", &method, 1);
+    ImGui::SameLine();
+    ImGui::RadioButton("Texture-space", &method, 2);
+    tooltip("--diffusion: preskin's own, or a baseline it replaces (Lambert skin blurred by the profile on the screen "
+            "or in the mesh's UV layout, in more passes; of the techniques above only transmission and dual "
+            "specular apply to them)");
+    settings_.diffusion = static_cast<Diffusion>(method);
     ImGui::SliderFloat("Exposure", &settings_.exposure, 0.05f, 16.0f, "%.2f", ImGuiSliderFlags_Logarithmic);
 }
 
