@@ -25,7 +25,6 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
-#include <cstdlib>
 
 namespace preskin::test {
 namespace {
@@ -76,71 +75,29 @@ TEST_F(ScreenDiffusion, FlatUniformlyLitPlaneIsUnchangedByTheBlur) {
     EXPECT_LT(worst, 2e-3) << "the blur changed a uniformly lit plane (half-float targets round to 5e-4)";
 }
 
-// The SkinPenumbra reference edge (tests/reference/test_skin_penumbra.cpp) drawn by the baseline.
+// The SkinPenumbra reference edge (straightEdgeScene) drawn by the baseline.
 TEST_F(ScreenDiffusion, StraightShadowEdgeMatchesTheDiffusionReferenceInRed) {
-    const glm::mat4 turn = glm::rotate(glm::mat4(1.0f), glm::radians(25.0f), glm::vec3(0.0f, 0.0f, 1.0f));
-    Material receiver = skinMaterial(glm::vec3(0.8f, 0.6f, 0.5f));
-    Material plate;
-    plate.baseColorFactor = glm::vec4(0.2f, 0.2f, 0.2f, 1.0f);
-    plate.metallicFactor = 0.0f;
-    plate.doubleSided = true;
-    Primitive plane = makeQuad(0.4f, 2);
-    plane.material = 0;
-    Primitive caster = makeQuad(0.6f, 2);
-    caster.material = 1;
-    Scene scene = makeScene(
-        {{plane, glm::mat4(1.0f)}, {caster, turn * glm::translate(glm::mat4(1.0f), glm::vec3(-0.315f, 0.0f, 0.03f))}},
-        {receiver, plate});
-    Light light;
-    light.type = LightType::Directional;
-    light.directionWs = glm::normalize(glm::vec3(turn * glm::vec4(0.5f, 0.0f, -1.0f, 0.0f)));
-    light.intensity = 3.0f;
-    light.castsShadow = true;
-    scene.lights = {light};
+    const StraightEdgeScene edge = straightEdgeScene(0.4f);
     RenderSettings settings = screenSettings();
     settings.specular = false;
     // A sharp edge (what the blur is measured on, not the shadow filter): 0.1 mm texels, sigma 0.5 texel.
     settings.shadowMapSize = 4096;
     settings.shadowSoftnessTexels = 0.5f;
     const Environment dark = Environment::constant(glm::vec3(0.0f));
-    const uint32_t width = 128, height = 8;
-    const float spanM = 0.012f;
-    const glm::mat4 worldFromView = glm::inverse(glm::lookAt(glm::vec3(0.0f, 0.0f, 0.08f), glm::vec3(0.0f),
-                                                             glm::vec3(turn * glm::vec4(0.0f, 1.0f, 0.0f, 0.0f))));
-    const float aspect = float(width) / float(height);
-    const View view =
-        perspectiveView(worldFromView, 2.0f * std::atan(0.5f * spanM / aspect / 0.08f), aspect, 0.01f, 1.0f);
-    Renderer renderer(context(), scene, dark, &LutSet::loadDefault(), settings);
-    const RenderedImage screen = renderer.render(view, width, height, OutputEncoding::LinearFloat);
+    Renderer renderer(context(), edge.scene, dark, &LutSet::loadDefault(), settings);
+    const RenderedImage screen = renderer.render(edge.view, edge.width, edge.height, OutputEncoding::LinearFloat);
     RenderSettings plainSettings = unblurredSettings();
     plainSettings.specular = false;
     plainSettings.shadowMapSize = settings.shadowMapSize;
     plainSettings.shadowSoftnessTexels = settings.shadowSoftnessTexels;
     renderer.setSettings(plainSettings);
-    const RenderedImage plain = renderer.render(view, width, height, OutputEncoding::LinearFloat);
-    const DiffusionReference reference(scene, scene.lights, dark.radianceSh(), LutSet::loadDefault().profile());
-    const ReferenceImage truth = reference.render(view.eye(), width, height);
+    const RenderedImage plain = renderer.render(edge.view, edge.width, edge.height, OutputEncoding::LinearFloat);
+    const DiffusionReference reference(edge.scene, edge.scene.lights, dark.radianceSh(),
+                                       LutSet::loadDefault().profile());
+    const ReferenceImage truth = reference.render(edge.view.eye(), edge.width, edge.height);
     dumpImage("screen_diffusion_edge", screen);
-
-    auto column = [&](const std::vector<float>& rgba, uint32_t x) {
-        glm::dvec3 sum(0.0);
-        for (uint32_t y = 0; y < height; ++y)
-            for (int c = 0; c < 3; ++c) sum[c] += double(rgba[(size_t(y) * width + x) * 4 + size_t(c)]);
-        return sum / double(height);
-    };
-    glm::dvec3 lit(0.0);
-    for (uint32_t x = width - 4; x < width; ++x) lit += column(truth.rgba32f, x) / 4.0;
-    glm::dvec3 worst(0.0), worstPlain(0.0);
-    for (uint32_t x = 0; x < width; ++x) {
-        const glm::dvec3 want = column(truth.rgba32f, x);
-        worst = glm::max(worst, glm::abs(column(screen.rgba32f, x) - want) / lit);
-        worstPlain = glm::max(worstPlain, glm::abs(column(plain.rgba32f, x) - want) / lit);
-        if (std::getenv("PRESKIN_TEST_VERBOSE")) {
-            const glm::dvec3 got = column(screen.rgba32f, x) / lit, p = column(plain.rgba32f, x) / lit;
-            std::printf("%3u  truth %.3f %.3f %.3f  screen %.3f %.3f %.3f  plain %.3f %.3f %.3f\n", x, want.r / lit.r,
-                        want.g / lit.g, want.b / lit.b, got.r, got.g, got.b, p.r, p.g, p.b);
-        }
-    }
+    const glm::dvec3 worst = largestColumnDifference(screen, truth);
+    const glm::dvec3 worstPlain = largestColumnDifference(plain, truth);
     std::printf(
         "[ screen   ] straight edge against the reference: largest difference / lit level R %.3f G %.3f B %.3f "
         "(unblurred Lambert R %.3f G %.3f B %.3f)\n",

@@ -327,65 +327,21 @@ TEST_F(SkinPenumbra, SkinShadowIsTheHardEdgeWhereTheFilterPutsIt) {
 // The issue's own measure of penumbra scattering: at a straight cast-shadow edge on a plane, the
 // profile across the edge matches the ray-traced diffusion reference.
 TEST_F(SkinPenumbra, StraightEdgeMatchesTheDiffusionReference) {
-    // Skin plane 0.4 m wide (the shadow map fitted to it as to a head), a dark plate 30 mm above
-    // it over x' < -15 mm, the light tilted 26.6 degrees across the edge, which falls at x' = 0;
-    // x' is x turned 25 degrees about the plane's normal (with the plate, the light and the view),
-    // so the edge runs across the shadow map's texel rows, as edges in scenes do.
-    const glm::mat4 turn = glm::rotate(glm::mat4(1.0f), glm::radians(25.0f), glm::vec3(0.0f, 0.0f, 1.0f));
-    Material receiver;
-    receiver.baseColorFactor = glm::vec4(0.8f, 0.6f, 0.5f, 1.0f);
-    receiver.metallicFactor = 0.0f;
-    receiver.skin = SkinMaterial{};
-    Material plate;
-    plate.baseColorFactor = glm::vec4(0.2f, 0.2f, 0.2f, 1.0f);
-    plate.metallicFactor = 0.0f;
-    plate.doubleSided = true;
-    Primitive plane = makeQuad(0.4f, 2);  // in z = 0, facing +z
-    plane.material = 0;
-    Primitive caster = makeQuad(0.6f, 2);
-    caster.material = 1;
-    Scene scene = makeScene(
-        {{plane, glm::mat4(1.0f)}, {caster, turn * glm::translate(glm::mat4(1.0f), glm::vec3(-0.315f, 0.0f, 0.03f))}},
-        {receiver, plate});
-    Light light;
-    light.type = LightType::Directional;
-    light.directionWs = glm::normalize(glm::vec3(turn * glm::vec4(0.5f, 0.0f, -1.0f, 0.0f)));
-    light.intensity = 3.0f;
-    light.castsShadow = true;
-    scene.lights = {light};
+    // Skin plane 0.4 m wide (the shadow map fitted to it as to a head), the default 2048 map.
+    const StraightEdgeScene edge = straightEdgeScene(0.4f);
     RenderSettings settings;
     settings.specular = false;
     const Environment dark = Environment::constant(glm::vec3(0.0f));
-    // 12 mm across the edge in 128 x 8 pixels, from 80 mm above.
-    const uint32_t width = 128, height = 8;
-    const float spanM = 0.012f;
-    const glm::mat4 worldFromView = glm::inverse(glm::lookAt(glm::vec3(0.0f, 0.0f, 0.08f), glm::vec3(0.0f),
-                                                             glm::vec3(turn * glm::vec4(0.0f, 1.0f, 0.0f, 0.0f))));
-    const float aspect = float(width) / float(height);
-    const View view =
-        perspectiveView(worldFromView, 2.0f * std::atan(0.5f * spanM / aspect / 0.08f), aspect, 0.01f, 1.0f);
-    Renderer renderer(context(), scene, dark, &LutSet::loadDefault(), settings);
-    const RenderedImage skin = renderer.render(view, width, height, OutputEncoding::LinearFloat);
+    Renderer renderer(context(), edge.scene, dark, &LutSet::loadDefault(), settings);
+    const RenderedImage skin = renderer.render(edge.view, edge.width, edge.height, OutputEncoding::LinearFloat);
     settings.skin.penumbra = false;
     renderer.setSettings(settings);
-    const RenderedImage plain = renderer.render(view, width, height, OutputEncoding::LinearFloat);
-    const DiffusionReference reference(scene, scene.lights, dark.radianceSh(), LutSet::loadDefault().profile());
-    const ReferenceImage truth = reference.render(view.eye(), width, height);
-
-    auto column = [&](const std::vector<float>& rgba, uint32_t x) {
-        glm::dvec3 sum(0.0);
-        for (uint32_t y = 0; y < height; ++y)
-            for (int c = 0; c < 3; ++c) sum[c] += double(rgba[(size_t(y) * width + x) * 4 + size_t(c)]);
-        return sum / double(height);
-    };
-    glm::dvec3 lit(0.0);
-    for (uint32_t x = width - 4; x < width; ++x) lit += column(truth.rgba32f, x) / 4.0;  // view's right: lit
-    glm::dvec3 worst(0.0), worstPlain(0.0);
-    for (uint32_t x = 0; x < width; ++x) {
-        const glm::dvec3 want = column(truth.rgba32f, x);
-        worst = glm::max(worst, glm::abs(column(skin.rgba32f, x) - want) / lit);
-        worstPlain = glm::max(worstPlain, glm::abs(column(plain.rgba32f, x) - want) / lit);
-    }
+    const RenderedImage plain = renderer.render(edge.view, edge.width, edge.height, OutputEncoding::LinearFloat);
+    const DiffusionReference reference(edge.scene, edge.scene.lights, dark.radianceSh(),
+                                       LutSet::loadDefault().profile());
+    const ReferenceImage truth = reference.render(edge.view.eye(), edge.width, edge.height);
+    const glm::dvec3 worst = largestColumnDifference(skin, truth);
+    const glm::dvec3 worstPlain = largestColumnDifference(plain, truth);
     std::printf(
         "[ skin     ] straight edge against the reference: largest difference / lit level R %.3f G %.3f B "
         "%.3f (plain shadow R %.3f G %.3f B %.3f)\n",

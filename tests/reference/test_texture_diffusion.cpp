@@ -58,54 +58,21 @@ TEST(GaussianFit, OwnTermsOrAFitThatKeepsTheEdgeResponse) {
 using TextureDiffusion = GpuTest;
 
 TEST_F(TextureDiffusion, StraightShadowEdgeMatchesTheDiffusionReferenceInRed) {
-    // A 0.1 m skin plane (1024 texels: 0.1 mm each) under a plate whose shadow edge crosses it.
-    const glm::mat4 turn = glm::rotate(glm::mat4(1.0f), glm::radians(25.0f), glm::vec3(0.0f, 0.0f, 1.0f));
-    Material plate;
-    plate.baseColorFactor = glm::vec4(0.2f, 0.2f, 0.2f, 1.0f);
-    plate.metallicFactor = 0.0f;
-    plate.doubleSided = true;
-    Primitive plane = makeQuad(0.1f, 2);
-    plane.material = 0;
-    Primitive caster = makeQuad(0.6f, 2);
-    caster.material = 1;
-    Scene scene = makeScene(
-        {{plane, glm::mat4(1.0f)}, {caster, turn * glm::translate(glm::mat4(1.0f), glm::vec3(-0.315f, 0.0f, 0.03f))}},
-        {skinMaterial(glm::vec3(0.8f, 0.6f, 0.5f)), plate});
-    Light light;
-    light.type = LightType::Directional;
-    light.directionWs = glm::normalize(glm::vec3(turn * glm::vec4(0.5f, 0.0f, -1.0f, 0.0f)));
-    light.intensity = 3.0f;
-    light.castsShadow = true;
-    scene.lights = {light};
+    // A 0.1 m skin plane (1024 texels: 0.1 mm each) under the plate whose shadow edge crosses it.
+    const StraightEdgeScene edge = straightEdgeScene(0.1f);
     RenderSettings settings = textureSettings();
     settings.specular = false;
     settings.shadowMapSize = 4096;  // a sharp edge: what the blur is measured on
     settings.shadowSoftnessTexels = 0.5f;
     const Environment dark = Environment::constant(glm::vec3(0.0f));
-    const uint32_t width = 128, height = 8;
-    const float spanM = 0.012f;
-    const glm::mat4 worldFromView = glm::inverse(glm::lookAt(glm::vec3(0.0f, 0.0f, 0.08f), glm::vec3(0.0f),
-                                                             glm::vec3(turn * glm::vec4(0.0f, 1.0f, 0.0f, 0.0f))));
-    const float aspect = float(width) / float(height);
-    const View view =
-        perspectiveView(worldFromView, 2.0f * std::atan(0.5f * spanM / aspect / 0.08f), aspect, 0.01f, 1.0f);
-    Renderer renderer(context(), scene, dark, &LutSet::loadDefault(), settings);
-    const RenderedImage texture = renderer.render(view, width, height, OutputEncoding::LinearFloat);
+    Renderer renderer(context(), edge.scene, dark, &LutSet::loadDefault(), settings);
+    const RenderedImage texture = renderer.render(edge.view, edge.width, edge.height, OutputEncoding::LinearFloat);
     const FrameStats stats = renderer.frameStats();
-    const DiffusionReference reference(scene, scene.lights, dark.radianceSh(), LutSet::loadDefault().profile());
-    const ReferenceImage truth = reference.render(view.eye(), width, height);
+    const DiffusionReference reference(edge.scene, edge.scene.lights, dark.radianceSh(),
+                                       LutSet::loadDefault().profile());
+    const ReferenceImage truth = reference.render(edge.view.eye(), edge.width, edge.height);
     dumpImage("texture_diffusion_edge", texture);
-    auto column = [&](const std::vector<float>& rgba, uint32_t x) {
-        glm::dvec3 sum(0.0);
-        for (uint32_t y = 0; y < height; ++y)
-            for (int c = 0; c < 3; ++c) sum[c] += double(rgba[(size_t(y) * width + x) * 4 + size_t(c)]);
-        return sum / double(height);
-    };
-    glm::dvec3 lit(0.0);
-    for (uint32_t x = width - 4; x < width; ++x) lit += column(truth.rgba32f, x) / 4.0;
-    glm::dvec3 worst(0.0);
-    for (uint32_t x = 0; x < width; ++x)
-        worst = glm::max(worst, glm::abs(column(texture.rgba32f, x) - column(truth.rgba32f, x)) / lit);
+    const glm::dvec3 worst = largestColumnDifference(texture, truth);
     std::printf(
         "[ texture  ] straight edge against the reference: largest difference / lit level R %.3f G %.3f B %.3f\n",
         worst.r, worst.g, worst.b);

@@ -1,6 +1,7 @@
 #include "support/SkinTestSupport.h"
 
 #include "support/ImageCompare.h"
+#include "support/TestScenes.h"
 
 #include <preskin/Curvature.h>
 
@@ -225,6 +226,50 @@ SphereAgreement compareWithSkinReference(const RenderedImage& image, const View&
             if (srgbDifference(got, lambert) <= 2.0) ++a.lambertWithin;
         }
     return a;
+}
+
+StraightEdgeScene straightEdgeScene(float planeM) {
+    const glm::mat4 turn = glm::rotate(glm::mat4(1.0f), glm::radians(25.0f), glm::vec3(0.0f, 0.0f, 1.0f));
+    Material plate;
+    plate.baseColorFactor = glm::vec4(0.2f, 0.2f, 0.2f, 1.0f);
+    plate.metallicFactor = 0.0f;
+    plate.doubleSided = true;
+    Primitive plane = makeQuad(planeM, 2);  // in z = 0, facing +z
+    plane.material = 0;
+    Primitive caster = makeQuad(0.6f, 2);
+    caster.material = 1;
+    StraightEdgeScene e;
+    e.scene = makeScene(
+        {{plane, glm::mat4(1.0f)}, {caster, turn * glm::translate(glm::mat4(1.0f), glm::vec3(-0.315f, 0.0f, 0.03f))}},
+        {skinMaterial(glm::vec3(0.8f, 0.6f, 0.5f)), plate});
+    Light light;
+    light.type = LightType::Directional;
+    light.directionWs = glm::normalize(glm::vec3(turn * glm::vec4(0.5f, 0.0f, -1.0f, 0.0f)));
+    light.intensity = 3.0f;
+    light.castsShadow = true;
+    e.scene.lights = {light};
+    const float spanM = 0.012f;
+    const glm::mat4 worldFromView = glm::inverse(glm::lookAt(glm::vec3(0.0f, 0.0f, 0.08f), glm::vec3(0.0f),
+                                                             glm::vec3(turn * glm::vec4(0.0f, 1.0f, 0.0f, 0.0f))));
+    const float aspect = float(e.width) / float(e.height);
+    e.view = perspectiveView(worldFromView, 2.0f * std::atan(0.5f * spanM / aspect / 0.08f), aspect, 0.01f, 1.0f);
+    return e;
+}
+
+glm::dvec3 largestColumnDifference(const RenderedImage& render, const ReferenceImage& truth) {
+    const uint32_t width = truth.width, height = truth.height;
+    auto column = [&](const std::vector<float>& rgba, uint32_t x) {
+        glm::dvec3 sum(0.0);
+        for (uint32_t y = 0; y < height; ++y)
+            for (int c = 0; c < 3; ++c) sum[c] += double(rgba[(size_t(y) * width + x) * 4 + size_t(c)]);
+        return sum / double(height);
+    };
+    glm::dvec3 lit(0.0);
+    for (uint32_t x = width - 4; x < width; ++x) lit += column(truth.rgba32f, x) / 4.0;
+    glm::dvec3 worst(0.0);
+    for (uint32_t x = 0; x < width; ++x)
+        worst = glm::max(worst, glm::abs(column(render.rgba32f, x) - column(truth.rgba32f, x)) / lit);
+    return worst;
 }
 
 }  // namespace preskin::test

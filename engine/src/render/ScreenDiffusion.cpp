@@ -36,7 +36,6 @@ uint64_t imageBytes(const vk::Image& image) {
 ScreenDiffusion::ScreenDiffusion(const vk::Device& device, std::function<std::span<const uint32_t>(const char*)> shader,
                                  uint32_t slots)
     : device_(device), shader_(std::move(shader)) {
-    const VkDevice d = device_.device();
     const VkShaderStageFlags fs = VK_SHADER_STAGE_FRAGMENT_BIT;
     const vk::Binding bindings[] = {
         {gpu::kBindingDiffusionInput, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, fs},
@@ -53,13 +52,8 @@ ScreenDiffusion::ScreenDiffusion(const vk::Device& device, std::function<std::sp
     kernels_.resize(slots);
     for (auto& s : sets_)
         for (VkDescriptorSet& set : s) set = vk::allocateDescriptorSet(device_, pool_, setLayout_);
-    VkSamplerCreateInfo info{VK_STRUCTURE_TYPE_SAMPLER_CREATE_INFO};
-    info.magFilter = info.minFilter = VK_FILTER_LINEAR;
-    info.mipmapMode = VK_SAMPLER_MIPMAP_MODE_NEAREST;
-    info.addressModeU = info.addressModeV = info.addressModeW = VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_EDGE;
-    PRESKIN_VK(vkCreateSampler(d, &info, nullptr, &linear_));
-    info.magFilter = info.minFilter = VK_FILTER_NEAREST;
-    PRESKIN_VK(vkCreateSampler(d, &info, nullptr, &nearest_));
+    linear_ = vk::createClampSampler(device_, VK_FILTER_LINEAR);
+    nearest_ = vk::createClampSampler(device_, VK_FILTER_NEAREST);
 }
 
 ScreenDiffusion::~ScreenDiffusion() {

@@ -29,13 +29,8 @@ TextureDiffusion::TextureDiffusion(const vk::Device& device,
     sets_.resize(slots);
     for (auto& s : sets_)
         for (VkDescriptorSet& set : s) set = vk::allocateDescriptorSet(device_, pool_, setLayout_);
-    VkSamplerCreateInfo info{VK_STRUCTURE_TYPE_SAMPLER_CREATE_INFO};
-    info.magFilter = info.minFilter = VK_FILTER_LINEAR;
-    info.mipmapMode = VK_SAMPLER_MIPMAP_MODE_NEAREST;
-    info.addressModeU = info.addressModeV = info.addressModeW = VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_EDGE;
-    PRESKIN_VK(vkCreateSampler(device_.device(), &info, nullptr, &linear_));
-    info.magFilter = info.minFilter = VK_FILTER_NEAREST;
-    PRESKIN_VK(vkCreateSampler(device_.device(), &info, nullptr, &nearest_));
+    linear_ = vk::createClampSampler(device_, VK_FILTER_LINEAR);
+    nearest_ = vk::createClampSampler(device_, VK_FILTER_NEAREST);
     pipelines_ = {createPipeline(false), createPipeline(true)};
 }
 

@@ -192,4 +192,14 @@ VkDescriptorSet allocateDescriptorSet(const Device& device, VkDescriptorPool poo
     return set;
 }
 
+VkSampler createClampSampler(const Device& device, VkFilter filter) {
+    VkSamplerCreateInfo info{VK_STRUCTURE_TYPE_SAMPLER_CREATE_INFO};
+    info.magFilter = info.minFilter = filter;
+    info.mipmapMode = VK_SAMPLER_MIPMAP_MODE_NEAREST;
+    info.addressModeU = info.addressModeV = info.addressModeW = VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_EDGE;
+    VkSampler sampler = VK_NULL_HANDLE;
+    PRESKIN_VK(vkCreateSampler(device.device(), &info, nullptr, &sampler));
+    return sampler;
+}
+
 }  // namespace preskin::vk

@@ -57,5 +57,7 @@ VkPipelineLayout createPipelineLayout(const Device& device, std::span<const VkDe
 VkDescriptorPool createDescriptorPool(const Device& device, std::span<const VkDescriptorPoolSize> sizes,
                                       uint32_t maxSets);
 VkDescriptorSet allocateDescriptorSet(const Device& device, VkDescriptorPool pool, VkDescriptorSetLayout layout);
+// A sampler of one mip level with `filter` and clamp-to-edge addressing.
+VkSampler createClampSampler(const Device& device, VkFilter filter);
 
 }  // namespace preskin::vk
