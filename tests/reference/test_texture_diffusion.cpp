@@ -8,7 +8,8 @@
 //    from every side;
 //  - stereo with MSAA 4x: each eye equals the mono frame of that eye (no specular, so the
 //    irradiance, lit as eye 0 sees it, is the same for both), under the validation layers, and
-//    the frame reports its passes and textures.
+//    the frame reports its passes and textures;
+//  - textures beyond 2 GB are refused with an error naming the setting, before anything is drawn.
 #include "support/GpuTest.h"
 #include "support/ImageCompare.h"
 #include "support/SkinTestSupport.h"
@@ -17,6 +18,7 @@
 #include "skin/GaussianFit.h"
 
 #include <preskin/DiffusionReference.h>
+#include <preskin/Error.h>
 #include <preskin/LutSet.h>
 #include <preskin/Renderer.h>
 
@@ -25,6 +27,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <string>
 
 namespace preskin::test {
 namespace {
@@ -150,6 +153,25 @@ TEST_F(TextureDiffusion, StereoWithMsaaIsEachEyesMonoFrame) {
         std::printf("[ texture  ] stereo MSAA 4x, eye %u against its mono frame: %.3f/255\n", e, worst);
         EXPECT_LE(worst, 1.0) << "eye " << e;
     }
+}
+
+TEST_F(TextureDiffusion, TexturesBeyondTwoGigabytesAreRefusedNamingTheSetting) {
+    Primitive sphere = makeSphere(0.04f, 16, 8);
+    sphere.material = 0;
+    const Scene scene = makeScene({{sphere, glm::mat4(1.0f)}}, {skinMaterial(glm::vec3(0.8f, 0.6f, 0.5f))});
+    RenderSettings settings = textureSettings();
+    settings.textureDiffusionSize = 8192;  // 36 bytes a texel: 2.25 GiB for the one skin draw
+    Renderer renderer(context(), scene, Environment::constant(glm::vec3(0.1f)), &LutSet::loadDefault(), settings);
+    const View view = sphereView(0.04);
+    try {
+        renderer.render(view, 32, 32, OutputEncoding::LinearFloat);
+        ADD_FAILURE() << "an 8192-texel irradiance texture was accepted";
+    } catch (const Error& e) {
+        EXPECT_NE(std::string(e.what()).find("textureDiffusionSize 8192"), std::string::npos) << e.what();
+    }
+    settings.textureDiffusionSize = 64;  // the renderer still draws afterwards
+    renderer.setSettings(settings);
+    EXPECT_EQ(renderer.render(view, 32, 32, OutputEncoding::LinearFloat).rgba32f.size(), size_t(32 * 32 * 4));
 }
 
 }  // namespace

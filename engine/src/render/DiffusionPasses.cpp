@@ -8,6 +8,10 @@
 #include "shared/gpu_types.h"
 #include "vk/Pipeline.h"
 
+#include <preskin/Error.h>
+
+#include <fmt/core.h>
+
 namespace preskin {
 
 ScreenDiffusion& Renderer::Impl::prepareScreenDiffusion(const RenderTarget& target, uint32_t eyes, uint32_t slotIndex) {
@@ -21,6 +25,19 @@ ScreenDiffusion& Renderer::Impl::prepareScreenDiffusion(const RenderTarget& targ
     screenDiffusion->ensureTargets(target.extent, eyes, settings.msaaSamples,
                                    [&](vk::Image& image) { retire(image, slotIndex); });
     return *screenDiffusion;
+}
+
+void Renderer::Impl::checkTextureDiffusion() const {
+    constexpr uint64_t kMaxBytes = uint64_t(2) << 30;  // what the textures of all skin draws may hold
+    uint64_t skinDraws = 0;
+    for (const DrawItem& d : scene->draws) skinDraws += scene->materials[d.material].skin ? 1 : 0;
+    const uint64_t size = settings.textureDiffusionSize;
+    const uint64_t bytes = size * size * skinDraws * TextureDiffusion::kBytesPerTexel;
+    if (bytes > kMaxBytes)
+        throw Error(
+            fmt::format("RenderSettings: textureDiffusionSize {}: the scene's {} skin draws would need {:.1f} "
+                        "GB of irradiance textures (at most 2 GB); use a smaller size",
+                        size, skinDraws, double(bytes) / double(uint64_t(1) << 30)));
 }
 
 void Renderer::Impl::prepareTextureDiffusion() {

@@ -466,6 +466,7 @@ void Renderer::Impl::checkFrame(const View& view) const {
     }
     if (settings.eyeDrawing == EyeDrawing::InstancedLayers && !dev.shaderOutputLayer())
         throw Error("RenderSettings: instanced layered eyes need the device's shaderOutputLayer feature");
+    if (textureDiffusionFrame()) checkTextureDiffusion();
     if (settings.diffusion != Diffusion::PreIntegrated && !dev.independentBlend())
         throw Error(
             fmt::format("RenderSettings: diffusion {}: needs the independentBlend feature, which {} does not "

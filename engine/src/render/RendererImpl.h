@@ -252,6 +252,8 @@ struct Renderer::Impl {
         return settings.diffusion == Diffusion::TextureSpace && settings.debugView == DebugView::None && sceneHasSkin &&
             luts->valid();
     }
+    // Throws preskin::Error when its textures for this scene would exceed kMaxTextureDiffusionBytes.
+    void checkTextureDiffusion() const;
     // Its textures, kernels and the skin draws' layers, ready for this frame.
     void prepareTextureDiffusion();
     // The irradiance pass of every skin draw and their blur (before the forward pass).

@@ -98,10 +98,7 @@ std::array<VkImageView, 2> TextureDiffusion::irradianceViews(uint32_t layer) con
     return {layerViews_[0][layer], layerViews_[1][layer]};
 }
 
-uint64_t TextureDiffusion::targetBytes() const {
-    // RGBA16F (8 bytes) for four, RG16F (4 bytes) for the stretch.
-    return uint64_t(size_) * size_ * layers_ * (4 * 8 + 4);
-}
+uint64_t TextureDiffusion::targetBytes() const { return uint64_t(size_) * size_ * layers_ * kBytesPerTexel; }
 
 uint32_t TextureDiffusion::passesPerFrame(const std::vector<std::pair<uint32_t, uint32_t>>& layerMaterials) const {
     uint32_t passes = 0;

@@ -62,7 +62,8 @@ public:
                     const std::vector<std::pair<uint32_t, uint32_t>>& layerMaterials);
 
     uint32_t passesPerFrame(const std::vector<std::pair<uint32_t, uint32_t>>& layerMaterials) const;
-    static constexpr uint32_t kTargets = 5;  // irradiance, stretch, ping-pong level, intermediate, sum
+    static constexpr uint32_t kTargets = 5;                // irradiance, stretch, ping-pong level, intermediate, sum
+    static constexpr uint64_t kBytesPerTexel = 4 * 8 + 4;  // four RGBA16F, the RG16F stretch
     uint64_t targetBytes() const;
 
     void rebuildPipelines();
