@@ -89,6 +89,16 @@ TEST_F(BenchCli, WritesJsonAndPlot) {
         EXPECT_TRUE(techniques.at(t).at("wall").is_number()) << t;
         EXPECT_TRUE(techniques.at(t).at("cpu").is_number()) << t;
     }
+    // The methods preskin replaces, beside it: their passes and targets as their frames report them.
+    for (const char* row : {"mono", "stereo_msaa4"}) {
+        const auto& methods = j.at("diffusion_methods").at(row);
+        for (const char* m : {"preintegrated", "screen", "texture", "lambert"})
+            EXPECT_EQ(methods.at(m).at("frames"), 2) << row << " " << m;
+        EXPECT_FALSE(methods.at("preintegrated").contains("diffusion_passes")) << row;
+        EXPECT_EQ(methods.at("screen").at("diffusion_passes"), 2) << row;
+        EXPECT_EQ(methods.at("texture").at("diffusion_passes"), 13) << row;  // d'Eon's 6 Gaussians
+        EXPECT_GT(methods.at("preintegrated_over_screen").get<double>(), 0.0) << row;
+    }
     // The bundled head is not animated: the animation figures come from the animated head.
     const auto& animation = j.at("animation");
     EXPECT_NE(animation.at("scene").get<std::string>().find("head_animated.gltf"), std::string::npos);
