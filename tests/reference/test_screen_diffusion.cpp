@@ -173,35 +173,23 @@ TEST_F(ScreenDiffusion, TapsAcrossADepthDiscontinuityDoNotBleed) {
 }
 
 TEST_F(ScreenDiffusion, StereoWithMsaaIsEachEyesMonoFrame) {
-    Primitive sphere = makeSphere(0.04f, 64, 32);
-    sphere.material = 0;
-    Scene scene = makeScene({{sphere, glm::mat4(1.0f)}}, {skinMaterial(glm::vec3(0.8f, 0.6f, 0.5f))});
-    Light light = sphereLight();
-    light.castsShadow = true;
-    scene.lights = {light};
     RenderSettings settings = screenSettings();
     settings.msaaSamples = 4;
-    Renderer renderer(context(), scene, Environment::constant(glm::vec3(0.05f)), &LutSet::loadDefault(), settings);
-    const glm::mat4 worldFromHead =
-        glm::inverse(glm::lookAt(glm::vec3(0.0f, 0.0f, 0.25f), glm::vec3(0.0f), glm::vec3(0.0f, 1.0f, 0.0f)));
-    const FovAngles fov{-0.3f, 0.3f, 0.3f, -0.3f};
-    const View stereo = stereoView(worldFromHead, 0.064f, fov, fov, 0.05f, 2.0f);
-    const uint32_t size = 96;
-    const RenderedImage both = renderer.render(stereo, size, size, OutputEncoding::LinearFloat);
-    const FrameStats stats = renderer.frameStats();
+    const StereoAgainstMono result = stereoAgainstMono(context(), settings);
     for (uint32_t e = 0; e < 2; ++e) {
-        const RenderedImage mono = renderer.render(View(stereo.eyes[e]), size, size, OutputEncoding::LinearFloat);
-        const double worst = maxSrgbDifference(eyeImage(both, e), mono);
-        std::printf("[ screen   ] stereo MSAA 4x, eye %u against its mono frame: %.3f/255\n", e, worst);
-        EXPECT_LE(worst, 1.0) << "eye " << e;
+        std::printf("[ screen   ] stereo MSAA 4x, eye %u against its mono frame: %.3f/255\n", e, result.worst[e]);
+        EXPECT_LE(result.worst[e], 1.0) << "eye " << e;
     }
+    const FrameStats& stats = result.stereoStats;
     EXPECT_EQ(stats.diffusionPasses, 2u);
     EXPECT_EQ(stats.diffusionTargets, 7u);  // scene, diffuse, surface, intermediate; 3 multisampled
     // 8 bytes per texel (RGBA16F, RG32F) for each, times 4 samples for the multisampled ones.
-    const uint64_t layer = uint64_t(size) * size * 2;
+    const uint64_t layer = uint64_t(96) * 96 * 2;
     EXPECT_EQ(stats.diffusionTargetBytes, layer * 8 * 4 + layer * 8 * 4 * 3);
     RenderSettings odd = settings;
     odd.screenDiffusionTaps = 16;
+    Renderer renderer(context(), makeScene({{makeQuad(0.1f, 2), glm::mat4(1.0f)}}, {}),
+                      Environment::constant(glm::vec3(0.0f)), &LutSet::loadDefault(), settings);
     EXPECT_THROW(renderer.setSettings(odd), Error);
 }
 

@@ -131,27 +131,14 @@ TEST_F(TextureDiffusion, NoLineAlongTheUvSeam) {
 }
 
 TEST_F(TextureDiffusion, StereoWithMsaaIsEachEyesMonoFrame) {
-    Primitive sphere = makeSphere(0.04f, 64, 32);
-    sphere.material = 0;
-    Scene scene = makeScene({{sphere, glm::mat4(1.0f)}}, {skinMaterial(glm::vec3(0.8f, 0.6f, 0.5f))});
-    Light light = sphereLight();
-    light.castsShadow = true;
-    scene.lights = {light};
     RenderSettings settings = textureSettings();
     settings.msaaSamples = 4;
     settings.specular = false;
     settings.textureDiffusionSize = 256;
-    Renderer renderer(context(), scene, Environment::constant(glm::vec3(0.05f)), &LutSet::loadDefault(), settings);
-    const glm::mat4 worldFromHead =
-        glm::inverse(glm::lookAt(glm::vec3(0.0f, 0.0f, 0.25f), glm::vec3(0.0f), glm::vec3(0.0f, 1.0f, 0.0f)));
-    const FovAngles fov{-0.3f, 0.3f, 0.3f, -0.3f};
-    const View stereo = stereoView(worldFromHead, 0.064f, fov, fov, 0.05f, 2.0f);
-    const RenderedImage both = renderer.render(stereo, 96, 96, OutputEncoding::LinearFloat);
+    const StereoAgainstMono result = stereoAgainstMono(context(), settings);
     for (uint32_t e = 0; e < 2; ++e) {
-        const RenderedImage mono = renderer.render(View(stereo.eyes[e]), 96, 96, OutputEncoding::LinearFloat);
-        const double worst = maxSrgbDifference(eyeImage(both, e), mono);
-        std::printf("[ texture  ] stereo MSAA 4x, eye %u against its mono frame: %.3f/255\n", e, worst);
-        EXPECT_LE(worst, 1.0) << "eye " << e;
+        std::printf("[ texture  ] stereo MSAA 4x, eye %u against its mono frame: %.3f/255\n", e, result.worst[e]);
+        EXPECT_LE(result.worst[e], 1.0) << "eye " << e;
     }
 }
 

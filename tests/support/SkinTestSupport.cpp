@@ -272,4 +272,25 @@ glm::dvec3 largestColumnDifference(const RenderedImage& render, const ReferenceI
     return worst;
 }
 
+StereoAgainstMono stereoAgainstMono(Context& context, const RenderSettings& settings) {
+    Primitive sphere = makeSphere(0.04f, 64, 32);
+    sphere.material = 0;
+    Scene scene = makeScene({{sphere, glm::mat4(1.0f)}}, {skinMaterial(glm::vec3(0.8f, 0.6f, 0.5f))});
+    Light light = sphereLight();
+    light.castsShadow = true;
+    scene.lights = {light};
+    Renderer renderer(context, scene, Environment::constant(glm::vec3(0.05f)), &LutSet::loadDefault(), settings);
+    const glm::mat4 worldFromHead =
+        glm::inverse(glm::lookAt(glm::vec3(0.0f, 0.0f, 0.25f), glm::vec3(0.0f), glm::vec3(0.0f, 1.0f, 0.0f)));
+    const FovAngles fov{-0.3f, 0.3f, 0.3f, -0.3f};
+    const View stereo = stereoView(worldFromHead, 0.064f, fov, fov, 0.05f, 2.0f);
+    StereoAgainstMono out;
+    const RenderedImage both = renderer.render(stereo, 96, 96, OutputEncoding::LinearFloat);
+    out.stereoStats = renderer.frameStats();
+    for (uint32_t e = 0; e < 2; ++e)
+        out.worst[e] = maxSrgbDifference(eyeImage(both, e),
+                                         renderer.render(View(stereo.eyes[e]), 96, 96, OutputEncoding::LinearFloat));
+    return out;
+}
+
 }  // namespace preskin::test

@@ -101,4 +101,13 @@ StraightEdgeScene straightEdgeScene(float planeM);
 // of its four rightmost columns: the edge's lit side), per channel.
 glm::dvec3 largestColumnDifference(const RenderedImage& render, const ReferenceImage& truth);
 
+// A 40 mm skin sphere under sphereLight() (casting the shadow) rendered with `settings` as a
+// stereo pair 96x96 per eye from 0.25 m, and each eye again as a mono frame: per eye the largest
+// sRGB difference (1/255 steps), and the stereo frame's statistics.
+struct StereoAgainstMono {
+    double worst[2] = {0.0, 0.0};
+    FrameStats stereoStats;
+};
+StereoAgainstMono stereoAgainstMono(Context& context, const RenderSettings& settings);
+
 }  // namespace preskin::test

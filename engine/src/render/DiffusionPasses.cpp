@@ -66,8 +66,6 @@ void Renderer::Impl::recordTextureDiffusion(VkCommandBuffer cmd, Slot& slot, uin
     bindGeometry(cmd, boundVertices);
     vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, forwardLayout, 0, 1, &slot.set, 0, nullptr);
     const uint32_t size = texture.size();
-    const VkViewport viewport{0.0f, 0.0f, float(size), float(size), 0.0f, 1.0f};
-    const VkRect2D area{{0, 0}, {size, size}};
     for (size_t i = 0; i < scene->draws.size(); ++i) {
         const DrawItem& d = scene->draws[i];
         const GpuMaterial& m = scene->materials[d.material];
@@ -81,14 +79,7 @@ void Renderer::Impl::recordTextureDiffusion(VkCommandBuffer cmd, Slot& slot, uin
             colors[a].loadOp = VK_ATTACHMENT_LOAD_OP_CLEAR;  // texels off the mesh: coverage 0
             colors[a].storeOp = VK_ATTACHMENT_STORE_OP_STORE;
         }
-        VkRenderingInfo info{VK_STRUCTURE_TYPE_RENDERING_INFO};
-        info.renderArea = area;
-        info.layerCount = 1;
-        info.colorAttachmentCount = 2;
-        info.pColorAttachments = colors.data();
-        vkCmdBeginRendering(cmd, &info);
-        vkCmdSetViewport(cmd, 0, 1, &viewport);
-        vkCmdSetScissor(cmd, 0, 1, &area);
+        vk::beginColorRendering(cmd, {size, size}, colors);
         PipelineKey key = pipelineKey(m, TextureDiffusion::kIrradianceFormat, VK_FORMAT_UNDEFINED, 1);
         key.split = kTextureIrradiance;
         key.samples = 1;

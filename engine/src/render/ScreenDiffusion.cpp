@@ -235,17 +235,8 @@ void ScreenDiffusion::record(VkCommandBuffer cmd, uint32_t slot, const RenderTar
         color.imageLayout = VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL;
         color.loadOp = VK_ATTACHMENT_LOAD_OP_DONT_CARE;  // every pixel is written
         color.storeOp = VK_ATTACHMENT_STORE_OP_STORE;
-        VkRenderingInfo info{VK_STRUCTURE_TYPE_RENDERING_INFO};
-        info.renderArea = {{0, 0}, target.extent};
-        info.viewMask = layered ? 0u : (1u << eyes) - 1u;
-        info.layerCount = layered ? eyes : 1u;
-        info.colorAttachmentCount = 1;
-        info.pColorAttachments = &color;
-        vkCmdBeginRendering(cmd, &info);
-        const VkViewport viewport{0.0f, 0.0f, float(target.extent.width), float(target.extent.height), 0.0f, 1.0f};
-        const VkRect2D scissor{{0, 0}, target.extent};
-        vkCmdSetViewport(cmd, 0, 1, &viewport);
-        vkCmdSetScissor(cmd, 0, 1, &scissor);
+        vk::beginColorRendering(cmd, target.extent, std::span(&color, 1), layered ? 0u : (1u << eyes) - 1u,
+                                layered ? eyes : 1u);
         vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, pipeline(pass, format, eyes, layered));
         vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, layout_, 0, 1, &sets[pass], 0, nullptr);
         vkCmdPushConstants(cmd, layout_, VK_SHADER_STAGE_FRAGMENT_BIT, 0, sizeof(push), &push);

@@ -179,8 +179,6 @@ void TextureDiffusion::recordBlur(VkCommandBuffer cmd, uint32_t slot,
         }
         vkUpdateDescriptorSets(device_.device(), 2, writes.data(), 0, nullptr);
     }
-    const VkViewport viewport{0.0f, 0.0f, float(size_), float(size_), 0.0f, 1.0f};
-    const VkRect2D area{{0, 0}, {size_, size_}};
     // One pass into `output` (a layer view) with the sum as the second attachment.
     const auto pass = [&](bool vertical, VkImageView output, uint32_t layer, VkDescriptorSet set,
                           const gpu::BlurPush& p, bool clearSum) {
@@ -194,14 +192,7 @@ void TextureDiffusion::recordBlur(VkCommandBuffer cmd, uint32_t slot,
         colors[0].loadOp = VK_ATTACHMENT_LOAD_OP_DONT_CARE;  // every texel is written
         colors[1].imageView = layerViews_[4][layer];
         colors[1].loadOp = clearSum ? VK_ATTACHMENT_LOAD_OP_CLEAR : VK_ATTACHMENT_LOAD_OP_LOAD;
-        VkRenderingInfo info{VK_STRUCTURE_TYPE_RENDERING_INFO};
-        info.renderArea = area;
-        info.layerCount = 1;
-        info.colorAttachmentCount = 2;
-        info.pColorAttachments = colors.data();
-        vkCmdBeginRendering(cmd, &info);
-        vkCmdSetViewport(cmd, 0, 1, &viewport);
-        vkCmdSetScissor(cmd, 0, 1, &area);
+        vk::beginColorRendering(cmd, {size_, size_}, colors);
         vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, pipelines_[vertical ? 1 : 0]);
         vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, layout_, 0, 1, &set, 0, nullptr);
         vkCmdPushConstants(cmd, layout_, VK_SHADER_STAGE_FRAGMENT_BIT, 0, sizeof(p), &p);

@@ -279,4 +279,19 @@ void memoryBarrier(VkCommandBuffer cmd, VkPipelineStageFlags2 srcStage, VkAccess
     vkCmdPipelineBarrier2(cmd, &dep);
 }
 
+void beginColorRendering(VkCommandBuffer cmd, VkExtent2D extent, std::span<const VkRenderingAttachmentInfo> colors,
+                         uint32_t viewMask, uint32_t layerCount) {
+    VkRenderingInfo info{VK_STRUCTURE_TYPE_RENDERING_INFO};
+    info.renderArea = {{0, 0}, extent};
+    info.viewMask = viewMask;
+    info.layerCount = layerCount;
+    info.colorAttachmentCount = static_cast<uint32_t>(colors.size());
+    info.pColorAttachments = colors.data();
+    vkCmdBeginRendering(cmd, &info);
+    const VkViewport viewport{0.0f, 0.0f, float(extent.width), float(extent.height), 0.0f, 1.0f};
+    const VkRect2D scissor{{0, 0}, extent};
+    vkCmdSetViewport(cmd, 0, 1, &viewport);
+    vkCmdSetScissor(cmd, 0, 1, &scissor);
+}
+
 }  // namespace preskin::vk

@@ -89,6 +89,10 @@ uint32_t mipLevelCount(uint32_t width, uint32_t height);
 void imageBarrier(VkCommandBuffer cmd, VkImage image, VkImageAspectFlags aspect, VkImageLayout oldLayout,
                   VkImageLayout newLayout, VkPipelineStageFlags2 srcStage, VkAccessFlags2 srcAccess,
                   VkPipelineStageFlags2 dstStage, VkAccessFlags2 dstAccess, uint32_t layerCount = 1);
+// Begins dynamic rendering into `colors` (no depth) over the whole extent, `layerCount` layers
+// (or the views of `viewMask`), and sets the viewport and scissor to it.
+void beginColorRendering(VkCommandBuffer cmd, VkExtent2D extent, std::span<const VkRenderingAttachmentInfo> colors,
+                         uint32_t viewMask = 0, uint32_t layerCount = 1);
 void memoryBarrier(VkCommandBuffer cmd, VkPipelineStageFlags2 srcStage, VkAccessFlags2 srcAccess,
                    VkPipelineStageFlags2 dstStage, VkAccessFlags2 dstAccess);
 
