@@ -183,6 +183,18 @@ int addUniformImage(Scene& scene, uint8_t value) {
     return static_cast<int>(scene.images.size()) - 1;
 }
 
+// A 4x4 image whose colour channels hold `value` at 16 bits (rgba8 their rounding, as the loader makes it).
+int addUniformImage16(Scene& scene, uint16_t value) {
+    Image image;
+    image.name = "uniform16";
+    image.width = image.height = 4;
+    image.rgba16.assign(4 * 4 * 4, value);
+    for (size_t i = 3; i < image.rgba16.size(); i += 4) image.rgba16[i] = 65535;
+    for (uint16_t v : image.rgba16) image.rgba8.push_back(static_cast<uint8_t>((uint32_t(v) * 255u + 32895u) >> 16));
+    scene.images.push_back(std::move(image));
+    return static_cast<int>(scene.images.size()) - 1;
+}
+
 TEST_F(SkinToggles, MaterialInputsReachTheImage) {
     const LutSet& luts = LutSet::loadDefault();
     ToggleScene s = sphereScene();
@@ -212,6 +224,16 @@ TEST_F(SkinToggles, MaterialInputsReachTheImage) {
     skin.curvatureTexture.image = addUniformImage(textured, 200);
     skin.curvatureTextureBias = 200.0f / 255.0f;
     EXPECT_LE(maxSrgbDifference(render(textured), flat), 1.0);
+    // A 16-bit map keeps its precision: with a range so wide that 50 / m is texel 32 of 65535, its
+    // 8-bit rounding would be 0 (flat skin); the 16-bit texture renders the sphere's curvature.
+    skin.curvatureTextureBias = 0.0f;
+    skin.curvatureTextureScalePerM = 50.0f * 65535.0f / 32.0f;
+    skin.curvatureTexture.image = addUniformImage16(textured, 32);
+    ASSERT_EQ(textured.images.back().rgba8[0], 0);
+    const size_t sixteenVsVertex = countDifferingPixels(vertex, render(textured), 2.0);
+    std::printf("[ skin     ] 16-bit curvature texture: %zu pixels differ from per-vertex curvature by > 2/255\n",
+                sixteenVsVertex);
+    EXPECT_LE(sixteenVsVertex, size_t(kSize * kSize / 200));
     // A detail normal map: flat (128, 128, 255) leaves the image as it is, a tilted one changes it.
     Scene detailed = s.scene;
     SkinMaterial& d = *detailed.materials[0].skin;

@@ -93,6 +93,21 @@ inline std::vector<uint8_t> encodeImage(const fs::path& dir, const std::string& 
     return readBytes(path);
 }
 
+// Encodes 16-bit pixels as PNG and returns the bytes.
+inline std::vector<uint8_t> encodePng16(const fs::path& dir, const std::string& name, int width, int height,
+                                        int channels, const std::vector<uint16_t>& pixels) {
+    const fs::path path = dir / name;
+    auto out = OIIO::ImageOutput::create(path.string());
+    if (!out) throw std::runtime_error("no OIIO writer for " + name);
+    OIIO::ImageSpec spec(width, height, channels, OIIO::TypeDesc::UINT16);
+    spec.attribute("oiio:UnassociatedAlpha", 1);
+    if (!out->open(path.string(), spec) || !out->write_image(OIIO::TypeDesc::UINT16, pixels.data())) {
+        throw std::runtime_error("cannot write " + name + ": " + out->geterror());
+    }
+    out->close();
+    return readBytes(path);
+}
+
 // Loads `path`, expects a preskin::Error, returns its message.
 inline std::string loadError(const fs::path& path) {
     try {

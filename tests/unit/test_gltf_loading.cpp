@@ -483,6 +483,29 @@ TEST(GltfLoading, CamerasAreRigidAndKeepTheirProjection) {
     EXPECT_FLOAT_EQ(o.zfar, 10.0f);
 }
 
+// A 16-bit PNG keeps its 16 bits (rgba16, for linear uses such as curvature maps) beside the
+// 8-bit rounding; 8-bit images have no rgba16.
+TEST(GltfLoading, SixteenBitPngsKeepTheirPrecision) {
+    TempDir dir;
+    GltfBuilder b = preskin::test::triangleScene();
+    preskin::test::encodePng16(dir.path(), "grey16.png", 4, 1, 1, {0, 1, 32768, 65535});
+    preskin::test::encodePng16(dir.path(), "rgba16.png", 1, 1, 4, {129, 383, 40000, 1000});
+    preskin::test::encodeImage(dir.path(), "grey8.png", 1, 1, 1, {7});
+    b.doc["images"] = json::array({{{"uri", "grey16.png"}}, {{"uri", "rgba16.png"}}, {{"uri", "grey8.png"}}});
+    const auto s = preskin::Scene::load(b.writeGltf(dir.path()));
+    ASSERT_EQ(s.images.size(), 3u);
+    EXPECT_EQ(s.images[0].rgba16,
+              (std::vector<uint16_t>{0, 0, 0, 65535, 1, 1, 1, 65535, 32768, 32768, 32768, 65535, 65535, 65535, 65535,
+                                     65535}));
+    // 8 bits: round(v * 255 / 65535)
+    EXPECT_EQ(s.images[0].rgba8,
+              (std::vector<uint8_t>{0, 0, 0, 255, 0, 0, 0, 255, 128, 128, 128, 255, 255, 255, 255, 255}));
+    EXPECT_EQ(s.images[1].rgba16, (std::vector<uint16_t>{129, 383, 40000, 1000}));  // alpha straight, as stored
+    EXPECT_EQ(s.images[1].rgba8, (std::vector<uint8_t>{1, 1, 156, 4}));
+    EXPECT_TRUE(s.images[2].rgba16.empty());
+    EXPECT_EQ(s.images[2].rgba8, (std::vector<uint8_t>{7, 7, 7, 255}));
+}
+
 TEST(GltfLoading, SkinExtensionAndKhrTransmission) {
     TempDir dir;
     GltfBuilder b = preskin::test::triangleScene();

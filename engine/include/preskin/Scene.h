@@ -114,11 +114,14 @@ struct Sampler {
 
 // Decoded image, 8 bits per channel RGBA, top row first. The colour space is chosen per use
 // (base colour and emissive are sRGB, everything else linear), so one image can serve both.
+// 16-bit sources (PNG) also keep their full precision in rgba16, which linear uses (normal,
+// curvature, thickness, weight maps, ...) upload as 16-bit textures; sRGB uses read rgba8.
 struct Image {
     std::string name;  // the URI or "images[i]"
     uint32_t width = 0;
     uint32_t height = 0;
     std::vector<uint8_t> rgba8;
+    std::vector<uint16_t> rgba16;  // empty, or the same texels at 16 bits (rgba8 is their rounding)
 };
 
 // A material's reference to a texture: glTF textureInfo plus KHR_texture_transform.

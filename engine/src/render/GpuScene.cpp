@@ -313,14 +313,26 @@ const vk::Image& GpuScene::texture(const Scene& scene, int image, bool srgb) {
     if (src.width > maxDim || src.height > maxDim)
         throw Error(fmt::format("{}: {}x{} exceeds the device's largest texture ({})", src.name, src.width, src.height,
                                 maxDim));
+    if (!src.rgba16.empty() && src.rgba16.size() != src.rgba8.size())
+        throw Error(
+            fmt::format("{}: 16-bit image data does not match its size {}x{}", src.name, src.width, src.height));
+    // Linear uses of 16-bit sources keep their precision (curvature and height maps step visibly at
+    // 8 bits) where the device filters and blits the format (optional in Vulkan; common).
+    const bool sixteen = !srgb && !src.rgba16.empty() &&
+        device_.supportsFormat(VK_FORMAT_R16G16B16A16_UNORM,
+                               VK_FORMAT_FEATURE_2_SAMPLED_IMAGE_FILTER_LINEAR_BIT | VK_FORMAT_FEATURE_2_BLIT_SRC_BIT |
+                                   VK_FORMAT_FEATURE_2_BLIT_DST_BIT);
     vk::ImageDesc desc;
-    desc.format = srgb ? VK_FORMAT_R8G8B8A8_SRGB : VK_FORMAT_R8G8B8A8_UNORM;
+    desc.format = srgb ? VK_FORMAT_R8G8B8A8_SRGB : sixteen ? VK_FORMAT_R16G16B16A16_UNORM : VK_FORMAT_R8G8B8A8_UNORM;
     desc.width = src.width;
     desc.height = src.height;
     desc.mipLevels = vk::mipLevelCount(src.width, src.height);
     desc.usage = VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_DST_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT;
     vk::Image gpuImage(device_, desc);
-    gpuImage.uploadAndGenerateMips(src.rgba8.data(), src.rgba8.size());
+    if (sixteen)
+        gpuImage.uploadAndGenerateMips(src.rgba16.data(), src.rgba16.size() * sizeof(uint16_t));
+    else
+        gpuImage.uploadAndGenerateMips(src.rgba8.data(), src.rgba8.size());
     return textures_.emplace(key, std::move(gpuImage)).first->second;
 }
 

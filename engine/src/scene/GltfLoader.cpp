@@ -91,8 +91,9 @@ bool writeWholeFile(std::string* err, const std::string&, const std::vector<unsi
 }
 
 struct ImageState {
-    std::vector<std::string> unsupported;  // per image index: format description when unsupported
-    std::optional<std::string> error;      // "images[i] (...): why"
+    std::vector<std::string> unsupported;       // per image index: format description when unsupported
+    std::vector<std::vector<uint16_t>> rgba16;  // per image index: 16-bit PNGs' full-precision texels
+    std::optional<std::string> error;           // "images[i] (...): why"
     uint64_t totalPixels = 0;
 };
 
@@ -103,8 +104,10 @@ bool loadImage(tinygltf::Image* image, const int index, std::string* err, std::s
     if (!image->uri.empty()) where += " ('" + image->uri + "')";
     try {
         if (index < 0 || size < 0) throw std::runtime_error("invalid image data");
-        if (state.unsupported.size() <= static_cast<size_t>(index))
+        if (state.unsupported.size() <= static_cast<size_t>(index)) {
             state.unsupported.resize(static_cast<size_t>(index) + 1);
+            state.rgba16.resize(static_cast<size_t>(index) + 1);
+        }
         const std::span<const uint8_t> data(bytes, static_cast<size_t>(size));
         const ImageFormat format = sniffImageFormat(data);
         if (format == ImageFormat::Unsupported) {
@@ -113,7 +116,7 @@ bool loadImage(tinygltf::Image* image, const int index, std::string* err, std::s
             image->image.clear();
             return true;
         }
-        DecodedImage decoded = decodeImageRgba8(data, format, limits::kMaxSceneImagePixels - state.totalPixels);
+        DecodedImage decoded = decodeImage(data, format, limits::kMaxSceneImagePixels - state.totalPixels);
         state.totalPixels += uint64_t(decoded.width) * decoded.height;
         image->width = static_cast<int>(decoded.width);
         image->height = static_cast<int>(decoded.height);
@@ -121,6 +124,7 @@ bool loadImage(tinygltf::Image* image, const int index, std::string* err, std::s
         image->bits = 8;
         image->pixel_type = TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE;
         image->image = std::move(decoded.rgba8);
+        state.rgba16[static_cast<size_t>(index)] = std::move(decoded.rgba16);
         return true;
     } catch (const std::exception& e) {
         state.error = where + ": " + e.what();
@@ -619,6 +623,8 @@ Scene loadSceneBytes(std::vector<uint8_t> bytes, const fs::path& path, const Sce
             out.width = static_cast<uint32_t>(in.width);
             out.height = static_cast<uint32_t>(in.height);
             out.rgba8 = std::move(in.image);
+            if (i < imageState.rgba16.size() && imageState.rgba16[i].size() == out.rgba8.size())
+                out.rgba16 = std::move(imageState.rgba16[i]);
         }
         scene.images.push_back(std::move(out));
     }

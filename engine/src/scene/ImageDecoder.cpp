@@ -9,6 +9,7 @@
 
 #include <unistd.h>
 
+#include <bit>
 #include <csetjmp>
 #include <optional>
 
@@ -118,18 +119,29 @@ bool readPng(png_structp png, png_infop info, PngSource& source, uint64_t sceneP
         sizeProblem = e.what();
         return false;
     }
-    png_set_expand(png);    // palette to RGB, grey below 8 bits to 8, tRNS to alpha
-    png_set_scale_16(png);  // 16 bits to 8, rounded
+    const bool sixteen = png_get_bit_depth(png, info) == 16;
+    png_set_expand(png);  // palette to RGB, grey below 8 bits to 8, tRNS to alpha
+    if (sixteen && std::endian::native == std::endian::little) png_set_swap(png);  // PNG stores big-endian
     png_set_gray_to_rgb(png);
-    png_set_add_alpha(png, 0xFF, PNG_FILLER_AFTER);
+    png_set_add_alpha(png, sixteen ? 0xFFFF : 0xFF, PNG_FILLER_AFTER);
     png_set_interlace_handling(png);
     png_read_update_info(png, info);
-    if (png_get_rowbytes(png, info) != size_t(width) * 4) png_error(png, "unexpected row layout after conversion");
+    const size_t texelBytes = sixteen ? 8 : 4;
+    if (png_get_rowbytes(png, info) != size_t(width) * texelBytes)
+        png_error(png, "unexpected row layout after conversion");
     out.width = width;
     out.height = height;
-    out.rgba8.resize(size_t(width) * height * 4);
+    const size_t samples = size_t(width) * height * 4;
+    uint8_t* pixels = nullptr;
+    if (sixteen) {
+        out.rgba16.resize(samples);
+        pixels = reinterpret_cast<uint8_t*>(out.rgba16.data());
+    } else {
+        out.rgba8.resize(samples);
+        pixels = out.rgba8.data();
+    }
     rows.resize(height);
-    for (png_uint_32 y = 0; y < height; ++y) rows[y] = out.rgba8.data() + size_t(y) * width * 4;
+    for (png_uint_32 y = 0; y < height; ++y) rows[y] = pixels + size_t(y) * width * texelBytes;
     png_read_image(png, rows.data());
     png_read_end(png, nullptr);
     return true;
@@ -151,6 +163,11 @@ DecodedImage decodePng(std::span<const uint8_t> bytes, uint64_t scenePixelsLeft)
     png_destroy_read_struct(&png, &info, nullptr);
     if (sizeProblem) throw std::runtime_error(*sizeProblem);
     if (!ok) throw std::runtime_error("cannot decode the PNG data: " + source.error);
+    if (!out.rgba16.empty()) {
+        out.rgba8.resize(out.rgba16.size());
+        for (size_t i = 0; i < out.rgba16.size(); ++i)  // rounded, as png_set_scale_16
+            out.rgba8[i] = static_cast<uint8_t>((uint32_t(out.rgba16[i]) * 255u + 32895u) >> 16);
+    }
     return out;
 }
 
@@ -207,7 +224,7 @@ std::string describeImageFormat(std::span<const uint8_t> bytes) {
     return "unknown";
 }
 
-DecodedImage decodeImageRgba8(std::span<const uint8_t> bytes, ImageFormat format, uint64_t scenePixelsLeft) {
+DecodedImage decodeImage(std::span<const uint8_t> bytes, ImageFormat format, uint64_t scenePixelsLeft) {
     if (format == ImageFormat::Png) return decodePng(bytes, scenePixelsLeft);
     if (format == ImageFormat::Jpeg) return decodeJpeg(bytes, scenePixelsLeft);
     throw std::runtime_error("unsupported image format " + describeImageFormat(bytes));

@@ -1,9 +1,9 @@
 // Decodes an encoded image held in memory (PNG or JPEG, the formats core glTF allows) into 8-bit
-// RGBA, top row first: PNG with libpng (its error and warning handlers replaced, so it prints
+// RGBA, top row first, and 16-bit PNGs also into 16-bit RGBA: PNG with libpng (its error and warning handlers replaced, so it prints
 // nothing), JPEG with OpenImageIO (through an in-memory IOProxy; where the OIIO build cannot
 // read a format from memory, through a private temporary file instead). Grey becomes RGB,
 // palettes are expanded, missing alpha becomes 255, alpha stays straight (not premultiplied),
-// 16-bit data is rounded to 8 bits; gamma and colour profiles are not applied.
+// the 8-bit copy of 16-bit data is rounded; gamma and colour profiles are not applied.
 // Limits: the size is read from the header (PNG IHDR, JPEG SOF) and checked before any pixel
 // memory is allocated: limits::kMaxImagePixels per image, kMaxImageSide per side, and the
 // caller's remaining budget of the scene's limits::kMaxSceneImagePixels.
@@ -27,10 +27,11 @@ struct DecodedImage {
     uint32_t width = 0;
     uint32_t height = 0;
     std::vector<uint8_t> rgba8;
+    std::vector<uint16_t> rgba16;  // 16-bit PNGs only, in full precision; empty otherwise
 };
 
 // Throws std::runtime_error with the reason (the caller adds file and field). `scenePixelsLeft`
 // is what the scene's pixel limit still allows.
-DecodedImage decodeImageRgba8(std::span<const uint8_t> bytes, ImageFormat format, uint64_t scenePixelsLeft);
+DecodedImage decodeImage(std::span<const uint8_t> bytes, ImageFormat format, uint64_t scenePixelsLeft);
 
 }  // namespace preskin::gltf
