@@ -9,7 +9,9 @@
 # docs/area-light-softbox.png: the head under a soft box and under a point light (README);
 # docs/sun-penumbra.png: the head's close-up under its key light as a parallel light and as suns
 # of 0.27 and 3 degrees (README, Area lights); docs/diffusion-methods.png: the close-up with Lambert
-# skin, pre-integrated skin and the two baselines (README, docs/baselines.md).
+# skin, pre-integrated skin and the two baselines (README, docs/baselines.md);
+# docs/khronos-suzanne-skin.png: a public model made for other viewers, as authored and as skin
+# (README, Profiles).
 # Needs ImageMagick (convert, montage): scripts/install-deps.sh --docs installs it.
 set -euo pipefail
 cd "$(dirname "$0")/.."
@@ -83,3 +85,15 @@ montage -label "Lambert skin" "$tmp/method_lambert.png" -label "pre-integrated (
   -label "texture-space (+13 passes)" "$tmp/method_texture.png" \
   -tile 4x1 -geometry +4+4 -background '#202022' -fill '#dddddd' -pointsize 16 -depth 8 docs/diffusion-methods.png
 echo "wrote docs/diffusion-methods.png"
+# A model made for other viewers (docs/gltf-extensions.md): Khronos's Iridescence Suzanne
+# (samples/assets/suzanne, CC0; its materials carry KHR_materials_volume) as its authors' materials
+# shade in preskin's standard path, and rendered as skin (--skin all).
+for m in none all; do
+  "$bin" render samples/assets/suzanne/IridescenceSuzanne.gltf --skin "$m" --width 900 --height 420 \
+    --out "$tmp/suzanne_$m.png" >/dev/null 2>&1
+  convert "$tmp/suzanne_$m.png" -crop 900x250+0+75 +repage "$tmp/suzanne_${m}_band.png"
+done
+montage -label "as authored (standard material)" "$tmp/suzanne_none_band.png" \
+  -label "rendered as skin (--skin all)" "$tmp/suzanne_all_band.png" \
+  -tile 1x2 -geometry +4+4 -background '#202022' -fill '#dddddd' -pointsize 16 -depth 8 docs/khronos-suzanne-skin.png
+echo "wrote docs/khronos-suzanne-skin.png"

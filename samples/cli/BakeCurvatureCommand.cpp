@@ -29,7 +29,7 @@ struct BakeCurvatureOptions {
     std::string out;
     uint32_t size = 0;
     int dilation = 16;
-    double rangeQuantile = 0.999;
+    double rangeQuantile = 1.0;
     std::string skin;
 };
 
@@ -93,7 +93,7 @@ void addBakeCurvatureCommand(CLI::App& app) {
     cmd->add_option("--dilation", o->dilation, "texel rings filled around the UV charts, 0..1024 (default 16)");
     cmd->add_option(
         "--range-quantile", o->rangeQuantile,
-        "quantile of |curvature| the 16-bit range reaches, 0.5..1 (default 0.999; 1: the largest; beyond it values clamp)");
+        "quantile of |curvature| the 16-bit range reaches, 0.5..1 (default 1: the largest; beyond it values clamp)");
     cmd->add_option("--skin", o->skin, "also make this material (or all) skin before baking");
     cmd->callback([o] { run(*o); });
 }

@@ -52,9 +52,11 @@ struct CurvatureBakeSettings {
     uint32_t size = 0;  // width and height; 0: the largest texture the material has (1024 without any), at most 4096
     int dilationTexels = 16;  // rings filled around the charts
     // The quantile of |curvature| over the covered texels that the encoding's range reaches
-    // (scale = twice it); texels beyond clamp. 1: the largest; the default keeps a few extreme
-    // texels from coarsening the steps of the rest (scenes load textures at 8 bits).
-    double rangeQuantile = 0.999;
+    // (scale = twice it); texels beyond clamp. 1 (the default): the largest, nothing clamps;
+    // scenes load 16-bit PNGs at 16 bits, so the range costs no precision that matters (the
+    // head's full range, 6456 / m, steps by 0.1 / m). Smaller values suit maps that will be
+    // stored at 8 bits.
+    double rangeQuantile = 1.0;
 };
 
 // One map per skin material that some mesh instance draws. Throws preskin::Error for a size out
@@ -68,8 +70,8 @@ PRESKIN_API std::vector<CurvatureMap> bakeCurvatureMaps(const Scene& scene, cons
 //    "PRESKIN_materials_skin": {"curvatureSource": "texture", "curvatureTextureScalePerM": s,
 //                               "curvatureTextureBias": 0.5}}
 // (the curvatureTexture's index is the glTF texture the image becomes). Each file is written under
-// the rule of <preskin/OutputFile.h>. (Scenes load textures at 8 bits per channel: a step of
-// scale / 255.)
+// the rule of <preskin/OutputFile.h>. (Scenes load 16-bit PNGs at 16 bits: a step of scale / 65535;
+// a copy converted to 8 bits steps by scale / 255.)
 PRESKIN_API void writeCurvatureMap(const CurvatureMap& map, const std::filesystem::path& png);
 
 }  // namespace preskin
