@@ -78,6 +78,7 @@ void volumePass() {
     uint flags = unlimited ? kClusterVolumeUnlimited : 0u;
     vec3 center = apex;
     float radius = range;
+    float centerAlongAxis = 0.0;  // the bounding sphere's centre: the apex moved this far along the axis
     float cosOuter = -1.0;
     if (uint(light.directionType.w) == kLightSpot) {
         // The attenuation saturate(cd * scale + offset) is zero from cd = -offset / scale down.
@@ -85,9 +86,9 @@ void volumePass() {
         if (cosOuter > 0.0) {
             flags |= kClusterVolumeCone;
             if (!unlimited && cosOuter > 0.5) {
-                float t = range / (2.0 * cosOuter);
-                center = apex + axis * t;
-                radius = t;
+                centerAlongAxis = range / (2.0 * cosOuter);
+                center = apex + axis * centerAlongAxis;
+                radius = centerAlongAxis;
             }
         }
     }
@@ -102,6 +103,14 @@ void volumePass() {
         lo.z = sliceOf((depth - radius) * (1.0 - slack));
         hi.z = sliceOf((depth + radius) * (1.0 + slack));
         empty = empty || !slabRange(0u, center, radius, lo.x, hi.x) || !slabRange(1u, center, radius, lo.y, hi.y);
+        if (params.lightBoundsMin.w > 0.0) {
+            // The same sphere in world space (the view transform is rigid), against the scene's box.
+            vec3 directionWs = light.directionType.xyz;
+            vec3 centerWs = light.positionRange.xyz;
+            if (centerAlongAxis > 0.0) centerWs += normalize(directionWs) * centerAlongAxis;
+            vec3 outside = max(max(params.lightBoundsMin.xyz - centerWs, centerWs - params.lightBoundsMax.xyz), 0.0);
+            empty = empty || dot(outside, outside) > radius * radius;
+        }
     }
     ClusterLightVolume v;
     v.centerRadius = vec4(center, radius);

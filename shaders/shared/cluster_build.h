@@ -40,8 +40,10 @@ struct ClusterBuildParams {
                             // w corner lines: origin, direction interleaved ((dims.x + 1) * (dims.y + 1) pairs)
     vec4 slack;             // x depth, y radius (relative), z cone cosine; w: view near plane (m)
     vec4 slicing;           // x slice scale, y slice bias (slice = log2(depth) * x + y)
+    vec4 lightBoundsMin;    // world box a light's sphere must reach to be listed; w: 1 when used, 0: every light
+    vec4 lightBoundsMax;
 };
-PRESKIN_CHECK_SIZE(ClusterBuildParams, 64 + 5 * 16)
+PRESKIN_CHECK_SIZE(ClusterBuildParams, 64 + 7 * 16)
 
 // One local light in view space (pass 0 output).
 struct ClusterLightVolume {

@@ -38,7 +38,7 @@ View testView() {
 
 // Lists from the renderer's builder for `lights` (directional ones first, as the renderer orders them).
 ClusterGrid buildLists(Context& context, ClusterSettings settings, ClusterBuild build, const View& view,
-                       const std::vector<Light>& lights) {
+                       const std::vector<Light>& lights, const Bounds& sceneBounds = {}) {
     const vk::Device& device = ContextAccess::core(context);
     std::vector<gpu::GpuLight> gpuLights;
     uint32_t firstLocal = 0;
@@ -52,7 +52,7 @@ ClusterGrid buildLists(Context& context, ClusterSettings settings, ClusterBuild 
     ClusterBuilder builder(device);
     settings.build = build;
     const ClusterBuilder::FrameGrid frame =
-        builder.prepare(0, settings, clusterCamera(view, kWidth, kHeight), Bounds{}, lights, firstLocal, lightBuffer);
+        builder.prepare(0, settings, clusterCamera(view, kWidth, kHeight), sceneBounds, lights, firstLocal, lightBuffer);
     device.submitAndWait([&](VkCommandBuffer cmd) { builder.record(cmd, 0); });
     EXPECT_EQ(builder.usesGpu(0), build == ClusterBuild::Gpu);
     ClusterGrid grid = builder.readBack(0);
@@ -102,6 +102,42 @@ TEST_F(ClusterBuildGpu, ComputeBuildMatchesCpuBuildAndReference) {
         EXPECT_EQ(c.badLists, 0u) << c.firstProblem;
         EXPECT_GT(c.required, 2000u);
     }
+}
+
+// With fitDepthToScene a light whose range reaches no part of the scene's box lights nothing and
+// is listed nowhere, by either build; every light that reaches the box is still listed wherever
+// it touches a froxel (the independent reference, restricted to lights reaching the box).
+TEST_F(ClusterBuildGpu, LightsThatCannotReachTheSceneAreListedNowhere) {
+    const View view = testView();
+    std::vector<Light> lights;
+    for (const Light& l : randomLights(600, 24))
+        if (l.type == LightType::Point) lights.push_back(l);
+    Bounds box;
+    box.extend(glm::vec3(-1.2f, -0.6f, -1.0f));
+    box.extend(glm::vec3(1.0f, 1.0f, 0.8f));
+    size_t reaching = 0;
+    for (const Light& l : lights) reaching += pointLightReaches(l, box) ? 1 : 0;
+    ASSERT_GT(reaching, 20u);
+    ASSERT_LT(reaching, lights.size() / 2);
+    ClusterSettings settings = gridSettings();
+    settings.fitDepthToScene = true;
+    for (ClusterBuild build : {ClusterBuild::Cpu, ClusterBuild::Gpu}) {
+        const ClusterGrid grid = buildLists(context(), settings, build, view, lights, box);
+        size_t unreachableEntries = 0;
+        for (uint32_t index : grid.indices) unreachableEntries += pointLightReaches(lights[index], box) ? 0 : 1;
+        EXPECT_EQ(unreachableEntries, 0u) << (build == ClusterBuild::Cpu ? "CPU" : "GPU") << " build";
+        const ConservativeCheck c = checkConservative(grid, lights, box);
+        EXPECT_EQ(c.missing, 0u) << c.firstProblem;
+        EXPECT_EQ(c.badLists, 0u) << c.firstProblem;
+        EXPECT_GT(c.required, 500u);
+        std::printf("[ clusters ] %s build: %zu of %zu lights reach the box; %zu entries, none of the others\n",
+                    build == ClusterBuild::Cpu ? "CPU" : "GPU", reaching, lights.size(), grid.indices.size());
+    }
+    // Without the fit every light in view is listed, the unreachable ones too.
+    const ClusterGrid all = buildLists(context(), gridSettings(), ClusterBuild::Cpu, view, lights, box);
+    size_t unreachableEntries = 0;
+    for (uint32_t index : all.indices) unreachableEntries += pointLightReaches(lights[index], box) ? 0 : 1;
+    EXPECT_GT(unreachableEntries, 100u);
 }
 
 TEST_F(ClusterBuildGpu, ComputeBuildOverflowRule) {

@@ -181,10 +181,20 @@ struct ConservativeCheck {
     std::string firstProblem;
 };
 
+// Does a point light's range sphere reach the box (its distance to the box at most the range)?
+inline bool pointLightReaches(const Light& l, const Bounds& box) {
+    const glm::dvec3 p(l.positionWs);
+    const glm::dvec3 outside = glm::max(glm::max(glm::dvec3(box.min) - p, p - glm::dvec3(box.max)), glm::dvec3(0.0));
+    return !(l.range > 0.0f) || glm::length(outside) <= double(l.range);
+}
+
 // Checks every froxel of `grid` (built from `lights`, whose list entries index `lights`), as
 // seen from the grid's camera (grid.camera: for one eye the eye itself; whether a camera of
-// several eyes holds every eye is checked separately, by the eyes' own points).
-inline ConservativeCheck checkConservative(const ClusterGrid& grid, const std::vector<Light>& lights) {
+// several eyes holds every eye is checked separately, by the eyes' own points). With a box
+// (`reach` not empty; point lights only), a light is required only where its range also reaches
+// the box.
+inline ConservativeCheck checkConservative(const ClusterGrid& grid, const std::vector<Light>& lights,
+                                           const Bounds& reach = {}) {
     const Eye& view = grid.camera.eye;
     const ClusterGridShape& s = grid.shape;
     const double farM = farEnough(view, lights);
@@ -213,6 +223,7 @@ inline ConservativeCheck checkConservative(const ClusterGrid& grid, const std::v
                 const ReferenceFroxel f = referenceFroxel(s, view, x, y, z, farM);
                 for (uint32_t i = 0; i < lights.size(); ++i) {
                     if (!lightRequired(lights[i], f)) continue;
+                    if (!reach.empty() && !pointLightReaches(lights[i], reach)) continue;
                     ++check.required;
                     if (lights[i].type == LightType::Point) ++check.requiredPointEntries;
                     if (!std::binary_search(list.begin(), list.end(), i)) {

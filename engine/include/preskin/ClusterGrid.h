@@ -15,7 +15,8 @@
 //   clamp(floor(log2(d) * sliceScale + sliceBias), 0, dims.z - 1)
 // and in tile floor(fragCoord.xy / tileSizePx). With fitDepthToScene the logarithmic range is
 // the view-depth range of the scene's bounding box (clamped to [nearSliceM, view farM]), since
-// no fragment lies outside it.
+// no fragment lies outside it, and lights whose bounding sphere misses that box are listed
+// nowhere (they reach no geometry: ClusterGridShape::lightBounds).
 //
 // Assignment is conservative: a light is listed in every froxel its volume (range sphere, and
 // for spots the cone) touches; it may also be listed in a few it only nearly touches. Lights
@@ -55,7 +56,7 @@ struct ClusterSettings {
     uint32_t tileSizePx = 16;             // screen tile edge, clamped to 4..256
     uint32_t depthSlices = 32;            // clamped to 2..256
     float nearSliceM = 0.05f;             // slice 0 ends here at the earliest
-    bool fitDepthToScene = true;          // logarithmic slices span the scene's depth range only
+    bool fitDepthToScene = true;          // slices span the scene's depth range; lights missing it unlisted
     uint32_t maxLightsPerCluster = 256;   // per-froxel cap (overflow rule above), >= 1
     uint32_t maxLightIndices = 1u << 23;  // capacity of the index list (overflow rule above), >= 1
     ClusterBuild build = ClusterBuild::Auto;
@@ -94,6 +95,9 @@ struct ClusterGridShape {
     float logEndM = 100.0f;   // slice dims.z - 1 ends here (and also holds everything beyond)
     float sliceScale = 1.0f;
     float sliceBias = 0.0f;
+    // The world box a light's bounding sphere must reach to be listed: the scene's bounds with
+    // fitDepthToScene (a light that reaches no geometry lights nothing); empty: every light is.
+    Bounds lightBounds;
 
     uint32_t froxelCount() const { return dims.x * dims.y * dims.z; }
     uint32_t froxelIndex(uint32_t x, uint32_t y, uint32_t z) const { return (z * dims.y + y) * dims.x + x; }

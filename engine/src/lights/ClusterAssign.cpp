@@ -105,6 +105,7 @@ ClusterLightBounds clusterLightBounds(const ClusterLight& light, const glm::mat4
     b.axisVs = axisLength > 0.0f ? axis / axisLength : glm::vec3(0.0f, 0.0f, -1.0f);
     b.centerVs = b.apexVs;
     b.radiusM = b.rangeM;
+    float centerAlongAxis = 0.0f;  // the bounding sphere's centre: the apex moved this far along the axis
     if (light.spot) {
         const float cosOuter = std::clamp(light.cosOuter - kClusterConeSlack, -1.0f, 1.0f);
         // A cone of 90 degrees or more is culled by its range sphere only.
@@ -113,15 +114,23 @@ ClusterLightBounds clusterLightBounds(const ClusterLight& light, const glm::mat4
             b.cosOuter = cosOuter;
             b.sinOuter = std::sqrt(std::max(1.0f - cosOuter * cosOuter, 0.0f));
             if (!unlimited && cosOuter > 0.5f) {
-                const float t = b.rangeM / (2.0f * cosOuter);
-                b.centerVs = b.apexVs + b.axisVs * t;
-                b.radiusM = t;
+                centerAlongAxis = b.rangeM / (2.0f * cosOuter);
+                b.centerVs = b.apexVs + b.axisVs * centerAlongAxis;
+                b.radiusM = centerAlongAxis;
             }
         }
     }
     if (!unlimited) b.radiusM = b.radiusM * (1.0f + kClusterRadiusSlack) + 1e-6f;
 
     const ClusterGridShape& s = g.shape;
+    if (!unlimited && !s.lightBounds.empty()) {
+        // The same sphere in world space (the view transform is rigid), against the scene's box.
+        const glm::vec3 centerWs =
+            centerAlongAxis > 0.0f ? light.positionWs + glm::normalize(light.directionWs) * centerAlongAxis
+                                   : light.positionWs;
+        const glm::vec3 outside = glm::max(glm::max(s.lightBounds.min - centerWs, centerWs - s.lightBounds.max), 0.0f);
+        if (glm::dot(outside, outside) > b.radiusM * b.radiusM) return b;  // lo > hi: listed nowhere
+    }
     const float depth = -b.centerVs.z;
     const float minDepth = depth - b.radiusM;
     const float maxDepth = depth + b.radiusM;

@@ -148,6 +148,10 @@ void ClusterBuilder::prepareGpu(Slot& s, const ClusterSettings& settings, const 
     p.lightInfo = glm::uvec4(firstLocal, localCount, s.indexCapacity, 0u);
     p.slack = glm::vec4(kClusterDepthSlack, kClusterRadiusSlack, kClusterConeSlack, shape.nearM);
     p.slicing = glm::vec4(shape.sliceScale, shape.sliceBias, 0.0f, 0.0f);
+    if (!shape.lightBounds.empty()) {
+        p.lightBoundsMin = glm::vec4(shape.lightBounds.min, 1.0f);
+        p.lightBoundsMax = glm::vec4(shape.lightBounds.max, 0.0f);
+    }
 
     ensureBuffer(device_, s.params, sizeof(p), VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT, true);
     ensureBuffer(device_, s.geometry, data.size() * sizeof(glm::vec4), kStorage, true);

@@ -72,6 +72,7 @@ ClusterGridShape clusterGridShape(const ClusterSettings& settings, const Cluster
         }
         start = std::max(start, minDepth);
         end = std::min(end, maxDepth);
+        s.lightBounds = sceneBounds;
     }
     end = std::max(end, start * 1.01f);
     s.logStartM = start;
