@@ -1,9 +1,10 @@
 // Decodes an encoded image held in memory (PNG or JPEG, the formats core glTF allows) into 8-bit
-// RGBA, top row first, and 16-bit PNGs also into 16-bit RGBA: PNG with libpng (its error and warning handlers replaced, so it prints
-// nothing), JPEG with OpenImageIO (through an in-memory IOProxy; where the OIIO build cannot
-// read a format from memory, through a private temporary file instead). Grey becomes RGB,
-// palettes are expanded, missing alpha becomes 255, alpha stays straight (not premultiplied),
-// the 8-bit copy of 16-bit data is rounded; gamma and colour profiles are not applied.
+// RGBA, top row first, and 16-bit PNGs also into 16-bit RGBA: PNG with libpng (its error and
+// warning handlers replaced, so it prints nothing), JPEG with OpenImageIO (through an in-memory
+// IOProxy; where the OIIO build cannot read a format from memory, through a private temporary
+// file instead). Grey becomes RGB, palettes are expanded, missing alpha becomes opaque, alpha
+// stays straight (not premultiplied), the 8-bit copy of 16-bit data is rounded; gamma and colour
+// profiles are not applied.
 // Limits: the size is read from the header (PNG IHDR, JPEG SOF) and checked before any pixel
 // memory is allocated: limits::kMaxImagePixels per image, kMaxImageSide per side, and the
 // caller's remaining budget of the scene's limits::kMaxSceneImagePixels.
