@@ -185,14 +185,11 @@ int addUniformImage(Scene& scene, uint8_t value) {
 
 // A 4x4 image whose colour channels hold `value` at 16 bits (rgba8 their rounding, as the loader makes it).
 int addUniformImage16(Scene& scene, uint16_t value) {
-    Image image;
-    image.name = "uniform16";
-    image.width = image.height = 4;
-    image.rgba16.assign(4 * 4 * 4, value);
+    const int index = addUniformImage(scene, static_cast<uint8_t>((uint32_t(value) * 255u + 32895u) >> 16));
+    Image& image = scene.images[size_t(index)];
+    image.rgba16.assign(image.rgba8.size(), value);
     for (size_t i = 3; i < image.rgba16.size(); i += 4) image.rgba16[i] = 65535;
-    for (uint16_t v : image.rgba16) image.rgba8.push_back(static_cast<uint8_t>((uint32_t(v) * 255u + 32895u) >> 16));
-    scene.images.push_back(std::move(image));
-    return static_cast<int>(scene.images.size()) - 1;
+    return index;
 }
 
 TEST_F(SkinToggles, MaterialInputsReachTheImage) {

@@ -18,6 +18,7 @@
 #include <iterator>
 #include <stdexcept>
 #include <string>
+#include <type_traits>
 #include <vector>
 
 namespace preskin::test {
@@ -78,34 +79,27 @@ inline std::string base64(const std::vector<uint8_t>& data) {
     return out;
 }
 
-// Encodes 8-bit pixels as PNG or JPEG (by the file extension of `name`) and returns the bytes.
-inline std::vector<uint8_t> encodeImage(const fs::path& dir, const std::string& name, int width, int height,
-                                        int channels, const std::vector<uint8_t>& pixels) {
+// Encodes 8-bit (uint8_t) or 16-bit (uint16_t) pixels as PNG or JPEG (by the file extension of
+// `name`; JPEG only at 8 bits) and returns the bytes.
+template <typename T>
+std::vector<uint8_t> encodeImage(const fs::path& dir, const std::string& name, int width, int height, int channels,
+                                 const std::vector<T>& pixels) {
+    static_assert(std::is_same_v<T, uint8_t> || std::is_same_v<T, uint16_t>);
+    const OIIO::TypeDesc type = std::is_same_v<T, uint8_t> ? OIIO::TypeDesc::UINT8 : OIIO::TypeDesc::UINT16;
     const fs::path path = dir / name;
     auto out = OIIO::ImageOutput::create(path.string());
     if (!out) throw std::runtime_error("no OIIO writer for " + name);
-    OIIO::ImageSpec spec(width, height, channels, OIIO::TypeDesc::UINT8);
+    OIIO::ImageSpec spec(width, height, channels, type);
     spec.attribute("oiio:UnassociatedAlpha", 1);  // the pixels are straight alpha: store them as given
-    if (!out->open(path.string(), spec) || !out->write_image(OIIO::TypeDesc::UINT8, pixels.data())) {
+    if (!out->open(path.string(), spec) || !out->write_image(type, pixels.data())) {
         throw std::runtime_error("cannot write " + name + ": " + out->geterror());
     }
     out->close();
     return readBytes(path);
 }
-
-// Encodes 16-bit pixels as PNG and returns the bytes.
-inline std::vector<uint8_t> encodePng16(const fs::path& dir, const std::string& name, int width, int height,
-                                        int channels, const std::vector<uint16_t>& pixels) {
-    const fs::path path = dir / name;
-    auto out = OIIO::ImageOutput::create(path.string());
-    if (!out) throw std::runtime_error("no OIIO writer for " + name);
-    OIIO::ImageSpec spec(width, height, channels, OIIO::TypeDesc::UINT16);
-    spec.attribute("oiio:UnassociatedAlpha", 1);
-    if (!out->open(path.string(), spec) || !out->write_image(OIIO::TypeDesc::UINT16, pixels.data())) {
-        throw std::runtime_error("cannot write " + name + ": " + out->geterror());
-    }
-    out->close();
-    return readBytes(path);
+inline std::vector<uint8_t> encodeImage(const fs::path& dir, const std::string& name, int width, int height,
+                                        int channels, const std::vector<uint8_t>& pixels) {
+    return encodeImage<uint8_t>(dir, name, width, height, channels, pixels);
 }
 
 // Loads `path`, expects a preskin::Error, returns its message.

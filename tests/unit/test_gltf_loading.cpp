@@ -488,8 +488,8 @@ TEST(GltfLoading, CamerasAreRigidAndKeepTheirProjection) {
 TEST(GltfLoading, SixteenBitPngsKeepTheirPrecision) {
     TempDir dir;
     GltfBuilder b = preskin::test::triangleScene();
-    preskin::test::encodePng16(dir.path(), "grey16.png", 4, 1, 1, {0, 1, 32768, 65535});
-    preskin::test::encodePng16(dir.path(), "rgba16.png", 1, 1, 4, {129, 383, 40000, 1000});
+    preskin::test::encodeImage(dir.path(), "grey16.png", 4, 1, 1, std::vector<uint16_t>{0, 1, 32768, 65535});
+    preskin::test::encodeImage(dir.path(), "rgba16.png", 1, 1, 4, std::vector<uint16_t>{129, 383, 40000, 1000});
     preskin::test::encodeImage(dir.path(), "grey8.png", 1, 1, 1, {7});
     b.doc["images"] = json::array({{{"uri", "grey16.png"}}, {{"uri", "rgba16.png"}}, {{"uri", "grey8.png"}}});
     const auto s = preskin::Scene::load(b.writeGltf(dir.path()));
