@@ -135,7 +135,8 @@ struct ClusterGrid {
 };
 
 // The grid's shape for a cluster camera. `sceneBounds` (world space) fits the logarithmic
-// slices when settings.fitDepthToScene is set and the bounds are not empty.
+// slices, and becomes the box lights must reach to be listed (lightBounds), when
+// settings.fitDepthToScene is set and the bounds are not empty.
 PRESKIN_API ClusterGridShape clusterGridShape(const ClusterSettings& settings, const ClusterCamera& camera,
                                               const Bounds& sceneBounds);
 
