@@ -102,15 +102,15 @@ void volumePass() {
         empty = depth + radius < params.slack.w * (1.0 - slack);
         lo.z = sliceOf((depth - radius) * (1.0 - slack));
         hi.z = sliceOf((depth + radius) * (1.0 + slack));
-        empty = empty || !slabRange(0u, center, radius, lo.x, hi.x) || !slabRange(1u, center, radius, lo.y, hi.y);
         if (params.lightBoundsMin.w > 0.0) {
-            // The same sphere in world space (the view transform is rigid), against the scene's box.
-            vec3 directionWs = light.directionType.xyz;
+            // The same sphere in world space (the view transform is rigid), against the scene's box,
+            // before the slab scans, which most lights of a large scattered set then skip.
             vec3 centerWs = light.positionRange.xyz;
-            if (centerAlongAxis > 0.0) centerWs += normalize(directionWs) * centerAlongAxis;
+            if (centerAlongAxis > 0.0) centerWs += normalize(light.directionType.xyz) * centerAlongAxis;
             vec3 outside = max(max(params.lightBoundsMin.xyz - centerWs, centerWs - params.lightBoundsMax.xyz), 0.0);
             empty = empty || dot(outside, outside) > radius * radius;
         }
+        empty = empty || !slabRange(0u, center, radius, lo.x, hi.x) || !slabRange(1u, center, radius, lo.y, hi.y);
     }
     ClusterLightVolume v;
     v.centerRadius = vec4(center, radius);
