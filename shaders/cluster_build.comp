@@ -10,7 +10,9 @@
 //     froxel: the bounding sphere cut to the slice, then to the row (each cut bounds the light's
 //     part on the froxel's side of a plane), then against the column's slab; spots also test
 //     their cone against the froxel's bounding sphere (Wronski, "Cull that cone!", 2017). The
-//     first sweep counts, an atomic reserves the froxel's range, a second sweep writes.
+//     first sweep counts, an atomic reserves the froxel's range, a second sweep writes. With the
+//     surfaces' depth bands (slicing.z = 1, engine/src/lights/ClusterSurfaces.h) a froxel's depth
+//     slab is the part of its slice its surfaces occupy, and an empty band lists nothing.
 // The same tests as the CPU build (engine/src/lights/ClusterAssign.cpp, with its sources), so
 // both give the same lists up to float rounding at boundaries; both are conservative.
 // Overflow rule (<preskin/ClusterGrid.h>): a froxel keeps its lowest light indices up to the
@@ -31,6 +33,7 @@ layout(std430, set = 0, binding = kClusterBindingVolumes) buffer Volumes { Clust
 layout(std430, set = 0, binding = kClusterBindingRanges) writeonly buffer Ranges { uvec2 ranges[]; };
 layout(std430, set = 0, binding = kClusterBindingIndices) writeonly buffer Indices { uint indices[]; };
 layout(std430, set = 0, binding = kClusterBindingCounters) buffer Counters { ClusterCounters counters; };
+layout(std430, set = 0, binding = kClusterBindingBands) readonly buffer Bands { vec2 bands[]; };
 
 shared uint candidateMask[kClusterAssignGroupSize];
 
@@ -240,11 +243,20 @@ void assignPass() {
         fr.d0 = inGrid ? sliceStart(z) * (1.0 - params.slack.x) : 0.0;
         fr.d1 = inGrid && !lastSlice ? sliceStart(z + 1u) * (1.0 + params.slack.x) : 0.0;
         fr.lastSlice = lastSlice;
+        bool occupied = inGrid;
+        if (inGrid && params.slicing.z > 0.0) {
+            // Only the depths the frame's surfaces occupy in this froxel (none: an empty list).
+            vec2 band = bands[(z * params.dims.y + tile.y) * params.dims.x + tile.x];
+            fr.d0 = max(fr.d0, band.x);
+            fr.d1 = lastSlice ? band.y : min(fr.d1, band.y);
+            fr.lastSlice = false;
+            occupied = fr.d0 <= fr.d1;
+        }
 
         uint found = 0u;
         for (uint base = 0u; base < localCount; base += kClusterBatchLights) {
             markCandidates(base, tile, lane);
-            if (!inGrid) continue;
+            if (!occupied) continue;
             for (uint w = 0u; w < kClusterAssignGroupSize; ++w) {
                 uint mask = candidateMask[w];
                 while (mask != 0u) {

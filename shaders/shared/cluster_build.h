@@ -16,6 +16,7 @@ PRESKIN_CONST(uint, kClusterBindingVolumes, 3)   // ClusterLightVolume[] (pass 0
 PRESKIN_CONST(uint, kClusterBindingRanges, 4)    // uvec2 (offset, count) per froxel
 PRESKIN_CONST(uint, kClusterBindingIndices, 5)   // uint light indices
 PRESKIN_CONST(uint, kClusterBindingCounters, 6)  // ClusterCounters
+PRESKIN_CONST(uint, kClusterBindingBands, 7)     // vec2 per froxel: the depths surfaces occupy (slicing.z = 1)
 
 // Specialization constant 0 selects the pass.
 PRESKIN_CONST(uint, kClusterSpecPass, 0)
@@ -39,7 +40,8 @@ struct ClusterBuildParams {
                             // y row planes (dims.y + 1), z slice starts in .x (dims.z + 1),
                             // w corner lines: origin, direction interleaved ((dims.x + 1) * (dims.y + 1) pairs)
     vec4 slack;             // x depth, y radius (relative), z cone cosine; w: view near plane (m)
-    vec4 slicing;           // x slice scale, y slice bias (slice = log2(depth) * x + y)
+    vec4 slicing;           // x slice scale, y slice bias (slice = log2(depth) * x + y); z: 1 when the
+                            // bands bound each froxel (ClusterSurfaces), 0: whole froxels
     vec4 lightBoundsMin;    // world box a light's sphere must reach to be listed; w: 1 when used, 0: every light
     vec4 lightBoundsMax;
 };

@@ -22,6 +22,8 @@
 // for spots the cone) touches; it may also be listed in a few it only nearly touches. Lights
 // with unlimited range (range 0) are listed in every froxel (spots: every froxel their cone
 // reaches). Directional lights are not clustered; shaders evaluate them for every fragment.
+// With the frame's surfaces (ClusterSurfaces) "froxel" means the part of it they occupy: the
+// depth interval of their triangles in its tile and slice; froxels they miss list nothing.
 //
 // Overflow rule (the same for the CPU and the compute build):
 //  - a froxel keeps at most maxLightsPerCluster lights: the lowest light indices;
@@ -57,9 +59,23 @@ struct ClusterSettings {
     uint32_t depthSlices = 32;            // clamped to 2..256
     float nearSliceM = 0.05f;             // slice 0 ends here at the earliest
     bool fitDepthToScene = true;          // slices span the scene's depth range; lights missing it unlisted
+    bool fitListsToSurfaces = true;       // with ClusterSurfaces: lists bounded by the depths surfaces occupy
     uint32_t maxLightsPerCluster = 256;   // per-froxel cap (overflow rule above), >= 1
     uint32_t maxLightIndices = 1u << 23;  // capacity of the index list (overflow rule above), >= 1
     ClusterBuild build = ClusterBuild::Auto;
+};
+
+// The surfaces whose fragments read a grid's lists: triangles in world space, in the pose the
+// frame draws. Given them (and ClusterSettings::fitListsToSurfaces), a froxel lists only the
+// lights that reach the interval of view depths its surfaces occupy (tile by tile, slice by
+// slice), and froxels no surface crosses list nothing. Fragments must then lie on these triangles'
+// planes within a pixel of the triangles (a pixel's centre with MSAA): geometry drawn with the
+// lists but not given here may miss lights.
+struct ClusterSurfaces {
+    std::span<const glm::vec3> positionsWs;
+    std::span<const uint32_t> indices;  // triangle list into positionsWs
+
+    bool empty() const { return indices.size() < 3; }
 };
 
 // The camera a grid is built for, and the image it covers (see clusterCamera).
@@ -142,8 +158,10 @@ PRESKIN_API ClusterGridShape clusterGridShape(const ClusterSettings& settings, c
 
 // Builds the light lists on the CPU for every eye of `view` (each eye widthPx x heightPx).
 // List entries are indices into `lights`; directional lights are skipped. This is the CPU
-// build the renderer uses, for hosts that shade with their own forward pass.
+// build the renderer uses, for hosts that shade with their own forward pass; `surfaces` (the
+// triangles the pass draws) bound the lists by the depths they occupy (ClusterSurfaces).
 PRESKIN_API ClusterGrid buildClusterGrid(const ClusterSettings& settings, const View& view, uint32_t widthPx,
-                                         uint32_t heightPx, const Bounds& sceneBounds, std::span<const Light> lights);
+                                         uint32_t heightPx, const Bounds& sceneBounds, std::span<const Light> lights,
+                                         const ClusterSurfaces& surfaces = {});
 
 }  // namespace preskin

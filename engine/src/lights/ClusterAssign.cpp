@@ -125,9 +125,9 @@ ClusterLightBounds clusterLightBounds(const ClusterLight& light, const glm::mat4
     const ClusterGridShape& s = g.shape;
     if (!unlimited && !s.lightBounds.empty()) {
         // The same sphere in world space (the view transform is rigid), against the scene's box.
-        const glm::vec3 centerWs =
-            centerAlongAxis > 0.0f ? light.positionWs + glm::normalize(light.directionWs) * centerAlongAxis
-                                   : light.positionWs;
+        const glm::vec3 centerWs = centerAlongAxis > 0.0f
+            ? light.positionWs + glm::normalize(light.directionWs) * centerAlongAxis
+            : light.positionWs;
         const glm::vec3 outside = glm::max(glm::max(s.lightBounds.min - centerWs, centerWs - s.lightBounds.max), 0.0f);
         if (glm::dot(outside, outside) > b.radiusM * b.radiusM) return b;  // lo > hi: listed nowhere
     }
@@ -157,12 +157,13 @@ ClusterLightBounds clusterLightBounds(const ClusterLight& light, const glm::mat4
 }
 
 void ClusterAssigner::build(const ClusterSettings& settings, const ClusterGeometry& g, const glm::mat4& viewFromWorld,
-                            std::span<const ClusterLight> lights, ClusterGrid& grid) {
+                            std::span<const ClusterLight> lights, std::span<const glm::vec2> bands, ClusterGrid& grid) {
     const ClusterGridShape& s = g.shape;
     grid.shape = s;
     const uint32_t perSlice = s.dims.x * s.dims.y;
     const uint32_t froxels = s.froxelCount();
 
+    const bool surfaceBands = bands.size() == froxels;
     bounds_.resize(lights.size());
     tbb::parallel_for(tbb::blocked_range<size_t>(0, lights.size(), 64), [&](const tbb::blocked_range<size_t>& r) {
         for (size_t i = r.begin(); i < r.end(); ++i) bounds_[i] = clusterLightBounds(lights[i], viewFromWorld, g);
@@ -207,6 +208,28 @@ void ClusterAssigner::build(const ClusterSettings& settings, const ClusterGeomet
                     uint32_t x1 = 0;
                     if (!slabRange(g.xPlanes, b.lo.x, b.hi.x, c2, r2, x0, x1)) continue;
                     for (uint32_t x = x0; x <= x1; ++x) {
+                        const uint32_t local = y * s.dims.x + x;
+                        if (surfaceBands) {
+                            // The froxel's occupied depths: the sphere cut to them, the row, the column.
+                            const glm::vec2 band = bands[size_t(z) * perSlice + local];
+                            const float e0 = std::max(d0, band.x);
+                            const float e1 = std::min(d1, band.y);
+                            if (!(e0 <= e1)) continue;
+                            glm::vec3 c3 = b.centerVs;
+                            float r3 = b.radiusM;
+                            if (!cutByDepth(e0, e1, c3, r3) || !cutByPlane(g.yPlanes[y], 1.0f, c3, r3) ||
+                                !cutByPlane(g.yPlanes[y + 1], -1.0f, c3, r3) || !slabOverlaps(g.xPlanes, x, c3, r3))
+                                continue;
+                            if (b.cone) {  // against the part of the band the light's sphere spans
+                                const float near = std::max(e0, -b.centerVs.z - b.radiusM);
+                                const float far = std::min(e1, -b.centerVs.z + b.radiusM);
+                                if (near > far || !coneReachesSphere(b, froxelSphere(g, x, y, near, far))) continue;
+                            }
+                            sc.froxel.push_back(local);
+                            sc.light.push_back(b.index);
+                            ++sc.count[local];
+                            continue;
+                        }
                         if (b.cone && coneD0 <= coneD1 && std::isfinite(coneD1)) {
                             // The whole froxel's sphere is cached per slice; a light ending inside
                             // the slice gets the sphere of the part it can reach.
@@ -220,7 +243,6 @@ void ClusterAssigner::build(const ClusterSettings& settings, const ClusterGeomet
                             }
                             if (!coneReachesSphere(b, sphere)) continue;
                         }
-                        const uint32_t local = y * s.dims.x + x;
                         sc.froxel.push_back(local);
                         sc.light.push_back(b.index);
                         ++sc.count[local];

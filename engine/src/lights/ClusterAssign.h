@@ -13,6 +13,10 @@
 //
 // Work is split by depth slice (TBB): a slice's froxels are disjoint from every other slice's,
 // so the result does not depend on the thread count. Lists hold ascending light indices.
+//
+// With surface bands (ClusterSurfaces.h) a froxel's volume is its tile between the band's depths
+// (within the slice): the light's sphere is cut to that interval and to the tile's row, then
+// tested against its column; froxels with an empty band list nothing.
 #pragma once
 
 #include "lights/ClusterGeometry.h"
@@ -64,8 +68,9 @@ ClusterLightBounds clusterLightBounds(const ClusterLight& light, const glm::mat4
 class ClusterAssigner {
 public:
     // Fills grid.ranges / indices / overflow counts; grid.shape must equal geometry.shape.
+    // `bands`: one per froxel (froxelDepthBands), or empty for whole froxels.
     void build(const ClusterSettings& settings, const ClusterGeometry& geometry, const glm::mat4& viewFromWorld,
-               std::span<const ClusterLight> lights, ClusterGrid& grid);
+               std::span<const ClusterLight> lights, std::span<const glm::vec2> bands, ClusterGrid& grid);
 
 private:
     struct SliceScratch {

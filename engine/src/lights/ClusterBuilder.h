@@ -2,7 +2,8 @@
 // uploaded into host-visible buffers) or records the compute build (shaders/cluster_build.comp,
 // device-local buffers), per ClusterSettings::build; Auto picks the CPU on CPU devices such as
 // lavapipe, where it measured faster (docs/clustering.md), and the compute pass elsewhere.
-// Grid rules and the overflow rule: <preskin/ClusterGrid.h>.
+// With the frame's surfaces both builds bound each froxel's list by the depths its surfaces
+// occupy (ClusterSurfaces.h). Grid rules and the overflow rule: <preskin/ClusterGrid.h>.
 #pragma once
 
 #include <preskin/ClusterGrid.h>
@@ -40,9 +41,10 @@ public:
     // recorded by record(). `lights` are the frame's lights in any order: their point and spot
     // lights, in that order, are the entries of the light array the shaders read (`lightBuffer`)
     // from index `firstLocal` on.
+    // `surfaces`: the triangles the forward pass draws this frame (ClusterSurfaces; may be empty).
     FrameGrid prepare(uint32_t slot, const ClusterSettings& settings, const ClusterCamera& camera,
                       const Bounds& sceneBounds, std::span<const Light> lights, uint32_t firstLocal,
-                      const vk::Buffer& lightBuffer);
+                      const vk::Buffer& lightBuffer, const ClusterSurfaces& surfaces = {});
     // Records the compute build of the last prepare() of this slot (nothing for a CPU build),
     // ending with a barrier that makes the lists visible to fragment shaders.
     void record(VkCommandBuffer cmd, uint32_t slot);
@@ -53,8 +55,8 @@ public:
     // Froxels that lost lights in the slot's last frame (the compute build's counter is read
     // back, so call it once that frame has finished).
     uint32_t overflows(uint32_t slot) const;
-    // Bytes of the slot's light-grid buffers as allocated (froxel ranges and light indices; for
-    // the compute build also its per-light volumes), headroom included.
+    // Bytes of the slot's light-grid buffers as allocated (froxel ranges and light indices, the
+    // surfaces' depth bands; for the compute build also its per-light volumes), headroom included.
     uint64_t gridBytes(uint32_t slot) const;
     // CPU time of the last prepare() of the slot (the whole build, or the compute build's setup).
     double buildMs(uint32_t slot) const { return slots_[slot].buildMs; }
@@ -73,6 +75,7 @@ private:
         uint32_t indexCapacity = 0;
         vk::Buffer cpuRanges, cpuIndices;           // host-visible, CPU build
         vk::Buffer params, geometry, counters;      // host-visible, compute build
+        vk::Buffer bands;                           // host-visible, compute build: depth band per froxel
         vk::Buffer volumes, gpuRanges, gpuIndices;  // device-local, compute build
         VkDescriptorSet set = VK_NULL_HANDLE;
     };
@@ -86,6 +89,7 @@ private:
     ClusterAssigner assigner_;
     ClusterGrid cpuGrid_;
     std::vector<ClusterLight> local_;
+    std::vector<glm::vec2> bands_;  // this frame's surface depth bands (empty: none)
     std::array<Slot, kSlots> slots_;
     VkDescriptorSetLayout setLayout_ = VK_NULL_HANDLE;
     VkPipelineLayout pipelineLayout_ = VK_NULL_HANDLE;

@@ -4,6 +4,7 @@
 
 #include "lights/ClusterAssign.h"
 #include "lights/ClusterGeometry.h"
+#include "lights/ClusterSurfaces.h"
 #include "shared/cluster_lookup.h"
 
 namespace preskin {
@@ -14,7 +15,8 @@ uint32_t ClusterGrid::froxelAt(const glm::vec3& positionWs) const {
 }
 
 ClusterGrid buildClusterGrid(const ClusterSettings& settings, const View& view, uint32_t widthPx, uint32_t heightPx,
-                             const Bounds& sceneBounds, std::span<const Light> lights) {
+                             const Bounds& sceneBounds, std::span<const Light> lights,
+                             const ClusterSurfaces& surfaces) {
     const ClusterCamera camera = clusterCamera(view, widthPx, heightPx);
     const ClusterGeometry geometry = clusterGeometry(clusterGridShape(settings, camera, sceneBounds), camera.eye);
     std::vector<ClusterLight> local;
@@ -24,8 +26,10 @@ ClusterGrid buildClusterGrid(const ClusterSettings& settings, const View& view, 
             local.push_back(clusterLight(lights[i], static_cast<uint32_t>(i)));
     ClusterGrid grid;
     grid.camera = camera;
+    std::vector<glm::vec2> bands;
+    if (settings.fitListsToSurfaces && !surfaces.empty()) froxelDepthBands(geometry.shape, camera, surfaces, bands);
     ClusterAssigner assigner;
-    assigner.build(settings, geometry, camera.eye.viewFromWorld, local, grid);
+    assigner.build(settings, geometry, camera.eye.viewFromWorld, local, bands, grid);
     return grid;
 }
 

@@ -99,6 +99,8 @@ Renderer::Impl::Impl(Context& ctx, const Scene& s, const Environment& env, const
     sceneHasSkin =
         std::any_of(s.materials.begin(), s.materials.end(), [](const Material& m) { return m.skin.has_value(); });
     poseBounds = std::make_unique<PoseBounds>(s);
+    poseSurfaces = std::make_unique<PoseSurfaces>(s);
+    surfacesPose = UINT64_MAX;
     receiverPoseBounds = std::make_unique<PoseBounds>(skinReceiverBounds(s));
     deformer = std::make_unique<GpuDeformer>(dev, s, scene->vertices, scene->normalBasis, scene->meshFirstVertex);
     setPose(restPose(s));
@@ -367,9 +369,15 @@ bool Renderer::Impl::prepareFrame(Slot& slot, uint32_t slotIndex, const View& vi
     u.environment = glm::vec4(std::cos(environment.rotationY()), std::sin(environment.rotationY()),
                               environmentMaps->maxLevel(), 0.0f);
     if (settings.lightLoop == LightLoop::Clustered) {
+        // The triangles drawn in this pose bound the lists (recomputed when the pose changes).
+        const bool fitSurfaces = settings.clusters.fitListsToSurfaces;
+        if (fitSurfaces && surfacesPose != poseVersion) {
+            surfaces = poseSurfaces->surfaces(pose);
+            surfacesPose = poseVersion;
+        }
         const ClusterBuilder::FrameGrid grid =
             clusters->prepare(slotIndex, settings.clusters, clusterCamera(view, extent.width, extent.height), bounds,
-                              frameLights, directional, slot.lights);
+                              frameLights, directional, slot.lights, fitSurfaces ? surfaces : ClusterSurfaces{});
         u.clusterFromWorld = grid.clusterFromWorld;
         u.clusterScale = grid.lookupScale;
         u.clusterDims = grid.dims;

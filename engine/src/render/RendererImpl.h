@@ -12,6 +12,7 @@
 #include "render/GpuLuts.h"
 #include "render/GpuScene.h"
 #include "render/PoseBounds.h"
+#include "render/PoseSurfaces.h"
 #include "render/ScreenDiffusion.h"
 #include "render/TextureDiffusion.h"
 #include "vk/Pipeline.h"
@@ -99,6 +100,9 @@ struct Renderer::Impl {
     uint64_t poseVersion = 0;
     std::unique_ptr<PoseBounds> poseBounds;
     std::unique_ptr<PoseBounds> receiverPoseBounds;  // the skin's
+    std::unique_ptr<PoseSurfaces> poseSurfaces;      // the drawn triangles, for the light grid
+    uint64_t surfacesPose = UINT64_MAX;              // poseVersion of `surfaces`
+    ClusterSurfaces surfaces;                        // poseSurfaces' triangles in that pose
     std::unique_ptr<GpuDeformer> deformer;
     std::unique_ptr<GpuLuts> luts;
     std::unique_ptr<ClusterBuilder> clusters;
