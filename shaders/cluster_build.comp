@@ -11,8 +11,9 @@
 //     part on the froxel's side of a plane), then against the column's slab; spots also test
 //     their cone against the froxel's bounding sphere (Wronski, "Cull that cone!", 2017). The
 //     first sweep counts, an atomic reserves the froxel's range, a second sweep writes. With the
-//     surfaces' depth bands (slicing.z = 1, engine/src/lights/ClusterSurfaces.h) a froxel's depth
-//     slab is the part of its slice its surfaces occupy, and an empty band lists nothing.
+//     surfaces per froxel (slicing.z = 1, engine/src/lights/ClusterSurfaces.h) the sphere is first
+//     cut to their slab, its depth slab is the part of the slice they occupy, and a froxel
+//     without surfaces lists nothing.
 // The same tests as the CPU build (engine/src/lights/ClusterAssign.cpp, with its sources), so
 // both give the same lists up to float rounding at boundaries; both are conservative.
 // Overflow rule (<preskin/ClusterGrid.h>): a froxel keeps its lowest light indices up to the
@@ -33,7 +34,7 @@ layout(std430, set = 0, binding = kClusterBindingVolumes) buffer Volumes { Clust
 layout(std430, set = 0, binding = kClusterBindingRanges) writeonly buffer Ranges { uvec2 ranges[]; };
 layout(std430, set = 0, binding = kClusterBindingIndices) writeonly buffer Indices { uint indices[]; };
 layout(std430, set = 0, binding = kClusterBindingCounters) buffer Counters { ClusterCounters counters; };
-layout(std430, set = 0, binding = kClusterBindingBands) readonly buffer Bands { vec2 bands[]; };
+layout(std430, set = 0, binding = kClusterBindingSurfaces) readonly buffer Surfaces { vec4 surfaces[]; };
 
 shared uint candidateMask[kClusterAssignGroupSize];
 
@@ -169,6 +170,9 @@ struct Froxel {
     float d0;
     float d1;
     bool lastSlice;
+    vec4 slabLow;   // the surfaces' slab: planes (axis, -min along it) and (axis, -max along it),
+    vec4 slabHigh;  // used when hasSlab
+    bool hasSlab;
 };
 
 // Does light i (local index) touch the froxel?
@@ -186,6 +190,7 @@ bool froxelTouched(uint i, Froxel fr) {
     if ((flags & kClusterVolumeUnlimited) == 0u) {
         vec3 c = v.centerRadius.xyz;
         float r = v.centerRadius.w;
+        if (fr.hasSlab && (!cutByPlane(fr.slabLow, 1.0, c, r) || !cutByPlane(fr.slabHigh, -1.0, c, r))) return false;
         float depth = -c.z;
         float h = 0.0;
         if (depth < d0) {
@@ -243,13 +248,19 @@ void assignPass() {
         fr.d0 = inGrid ? sliceStart(z) * (1.0 - params.slack.x) : 0.0;
         fr.d1 = inGrid && !lastSlice ? sliceStart(z + 1u) * (1.0 + params.slack.x) : 0.0;
         fr.lastSlice = lastSlice;
+        fr.hasSlab = false;
         bool occupied = inGrid;
         if (inGrid && params.slicing.z > 0.0) {
-            // Only the depths the frame's surfaces occupy in this froxel (none: an empty list).
-            vec2 band = bands[(z * params.dims.y + tile.y) * params.dims.x + tile.x];
-            fr.d0 = max(fr.d0, band.x);
-            fr.d1 = lastSlice ? band.y : min(fr.d1, band.y);
+            // Only where the frame's surfaces are in this froxel (none: an empty list).
+            uint tiles = params.dims.x * params.dims.y;
+            vec4 extent = surfaces[z * tiles + tile.y * params.dims.x + tile.x];
+            vec4 axis = surfaces[params.dims.z * tiles + tile.y * params.dims.x + tile.x];
+            fr.d0 = max(fr.d0, extent.x);
+            fr.d1 = lastSlice ? extent.y : min(fr.d1, extent.y);
             fr.lastSlice = false;
+            fr.hasSlab = axis.w > 0.0;
+            fr.slabLow = vec4(axis.xyz, -extent.z);
+            fr.slabHigh = vec4(axis.xyz, -extent.w);
             occupied = fr.d0 <= fr.d1;
         }
 

@@ -16,7 +16,9 @@ PRESKIN_CONST(uint, kClusterBindingVolumes, 3)   // ClusterLightVolume[] (pass 0
 PRESKIN_CONST(uint, kClusterBindingRanges, 4)    // uvec2 (offset, count) per froxel
 PRESKIN_CONST(uint, kClusterBindingIndices, 5)   // uint light indices
 PRESKIN_CONST(uint, kClusterBindingCounters, 6)  // ClusterCounters
-PRESKIN_CONST(uint, kClusterBindingBands, 7)     // vec2 per froxel: the depths surfaces occupy (slicing.z = 1)
+PRESKIN_CONST(uint, kClusterBindingSurfaces, 7)  // vec4[]: where the surfaces are (slicing.z = 1): per froxel
+                                                 // (depth min, max, along min, max), then per tile the
+                                                 // slab's axis (w = 1; 0: none), engine/src/lights/ClusterSurfaces.h
 
 // Specialization constant 0 selects the pass.
 PRESKIN_CONST(uint, kClusterSpecPass, 0)
@@ -41,7 +43,7 @@ struct ClusterBuildParams {
                             // w corner lines: origin, direction interleaved ((dims.x + 1) * (dims.y + 1) pairs)
     vec4 slack;             // x depth, y radius (relative), z cone cosine; w: view near plane (m)
     vec4 slicing;           // x slice scale, y slice bias (slice = log2(depth) * x + y); z: 1 when the
-                            // bands bound each froxel (ClusterSurfaces), 0: whole froxels
+                            // surfaces bound each froxel (kClusterBindingSurfaces), 0: whole froxels
     vec4 lightBoundsMin;    // world box a light's sphere must reach to be listed; w: 1 when used, 0: every light
     vec4 lightBoundsMax;
 };

@@ -69,11 +69,19 @@ struct ClusterSettings {
 // frame draws. Given them (and ClusterSettings::fitListsToSurfaces), a froxel lists only the
 // lights that reach the interval of view depths its surfaces occupy (tile by tile, slice by
 // slice), and froxels no surface crosses list nothing. Fragments must then lie on these triangles'
-// planes within a pixel of the triangles (a pixel's centre with MSAA): geometry drawn with the
-// lists but not given here may miss lights.
+// planes within outsidePx of the triangles: geometry drawn with the lists but not given here may
+// miss lights.
 struct ClusterSurfaces {
     std::span<const glm::vec3> positionsWs;
     std::span<const uint32_t> indices;  // triangle list into positionsWs
+    // Per triangle, 1 where the pass culls its back face (a single-sided material; front faces
+    // wind counter-clockwise seen from the eye): a triangle facing away from every eye then holds
+    // no fragment. Empty: every triangle may be seen from either side.
+    std::span<const uint8_t> backFaceCulled;
+    // How far (pixels) a fragment's position may lie outside its triangle: 0 without MSAA (pixel
+    // centres inside it); with MSAA a pixel it covers in part is shaded at the centre, up to 0.71
+    // pixels away, in any eye (a stereo eye's pixels are about the cluster camera's): 1.
+    float outsidePx = 1.0f;
 
     bool empty() const { return indices.size() < 3; }
 };
@@ -82,6 +90,9 @@ struct ClusterSurfaces {
 struct ClusterCamera {
     Eye eye;
     glm::uvec2 extentPx{1u};
+    // Where the view's eyes see from, for the surfaces' back faces (ClusterSurfaces): per eye
+    // (position, 1) when perspective, (unit direction towards the eye, 0) when orthographic.
+    std::vector<glm::vec4> viewpoints;
 
     // Rows: clip x, clip y, view depth, clip w of the camera. A world point p maps to
     // c = clusterFromWorld() * p: tile from (c.xy / c.w + 1) / 2 * extentPx, slice from c.z.

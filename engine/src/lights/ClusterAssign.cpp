@@ -1,6 +1,8 @@
 // CPU light assignment for the froxel grid; the method and its sources are in ClusterAssign.h.
 #include "lights/ClusterAssign.h"
 
+#include "lights/ClusterSurfaces.h"
+
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
 
@@ -157,13 +159,13 @@ ClusterLightBounds clusterLightBounds(const ClusterLight& light, const glm::mat4
 }
 
 void ClusterAssigner::build(const ClusterSettings& settings, const ClusterGeometry& g, const glm::mat4& viewFromWorld,
-                            std::span<const ClusterLight> lights, std::span<const glm::vec2> bands, ClusterGrid& grid) {
+                            std::span<const ClusterLight> lights, const FroxelSurfaces& surfaces, ClusterGrid& grid) {
     const ClusterGridShape& s = g.shape;
     grid.shape = s;
     const uint32_t perSlice = s.dims.x * s.dims.y;
     const uint32_t froxels = s.froxelCount();
 
-    const bool surfaceBands = bands.size() == froxels;
+    const bool surfaceBands = !surfaces.empty() && surfaces.froxels == froxels;
     bounds_.resize(lights.size());
     tbb::parallel_for(tbb::blocked_range<size_t>(0, lights.size(), 64), [&](const tbb::blocked_range<size_t>& r) {
         for (size_t i = r.begin(); i < r.end(); ++i) bounds_[i] = clusterLightBounds(lights[i], viewFromWorld, g);
@@ -187,6 +189,21 @@ void ClusterAssigner::build(const ClusterSettings& settings, const ClusterGeomet
             sc.sphere.assign(perSlice, glm::vec4(-1.0f));  // radius < 0: not computed yet
             const float d0 = g.sliceStartM[z] * (1.0f - kClusterDepthSlack);
             const float d1 = z + 1 >= s.dims.z ? kInfinity : g.sliceStartM[z + 1] * (1.0f + kClusterDepthSlack);
+            // With surfaces, the columns each row of the slice has them in (lo > hi: none), and
+            // the rows that have any: lights are scanned only there.
+            glm::uvec2 rows(0u, s.dims.y - 1);
+            if (surfaceBands) {
+                sc.columns.assign(s.dims.y, glm::uvec2(1u, 0u));
+                rows = glm::uvec2(1u, 0u);
+                for (uint32_t y = 0; y < s.dims.y; ++y)
+                    for (uint32_t x = 0; x < s.dims.x; ++x)
+                        if (surfaces.occupied(size_t(z) * perSlice + y * s.dims.x + x)) {
+                            glm::uvec2& span = sc.columns[y];
+                            span = span.x > span.y ? glm::uvec2(x) : glm::uvec2(span.x, x);
+                            rows = rows.x > rows.y ? glm::uvec2(y) : glm::uvec2(rows.x, y);
+                        }
+                if (rows.x > rows.y) continue;
+            }
             for (const uint32_t candidate : sc.candidates) {
                 const ClusterLightBounds& b = bounds_[candidate];
                 glm::vec3 c1 = b.centerVs;
@@ -194,33 +211,46 @@ void ClusterAssigner::build(const ClusterSettings& settings, const ClusterGeomet
                 if (!cutByDepth(d0, d1, c1, r1)) continue;
                 uint32_t y0 = 0;
                 uint32_t y1 = 0;
-                if (!slabRange(g.yPlanes, b.lo.y, b.hi.y, c1, r1, y0, y1)) continue;
+                if (!slabRange(g.yPlanes, std::max(b.lo.y, rows.x), std::min(b.hi.y, rows.y), c1, r1, y0, y1)) continue;
                 // Depth extent of the light inside this slice, for the spot's froxel spheres.
                 const float coneD0 = std::max(d0, -b.centerVs.z - b.radiusM);
                 const float coneD1 = std::min(d1, -b.centerVs.z + b.radiusM);
                 const bool fullSlice = coneD0 == d0 && coneD1 == d1;
                 for (uint32_t y = y0; y <= y1; ++y) {
+                    uint32_t lo = b.lo.x;
+                    uint32_t hi = b.hi.x;
+                    if (surfaceBands) {
+                        lo = std::max(lo, sc.columns[y].x);
+                        hi = std::min(hi, sc.columns[y].y);
+                        if (lo > hi) continue;
+                    }
                     glm::vec3 c2 = c1;
                     float r2 = r1;
                     if (!cutByPlane(g.yPlanes[y], 1.0f, c2, r2) || !cutByPlane(g.yPlanes[y + 1], -1.0f, c2, r2))
                         continue;
                     uint32_t x0 = 0;
                     uint32_t x1 = 0;
-                    if (!slabRange(g.xPlanes, b.lo.x, b.hi.x, c2, r2, x0, x1)) continue;
+                    if (!slabRange(g.xPlanes, lo, hi, c2, r2, x0, x1)) continue;
                     for (uint32_t x = x0; x <= x1; ++x) {
                         const uint32_t local = y * s.dims.x + x;
                         if (surfaceBands) {
-                            // The froxel's occupied depths: the sphere cut to them, the row, the column.
-                            const glm::vec2 band = bands[size_t(z) * perSlice + local];
-                            const float e0 = std::max(d0, band.x);
-                            const float e1 = std::min(d1, band.y);
+                            // Where the froxel's surfaces are: the sphere cut to their slab and
+                            // depths, then to the row, then tested against the column.
+                            const glm::vec4& extent = surfaces.extent(size_t(z) * perSlice + local);
+                            const glm::vec4& axis = surfaces.axis(local);
+                            const float e0 = std::max(d0, extent.x);
+                            const float e1 = std::min(d1, extent.y);
                             if (!(e0 <= e1)) continue;
                             glm::vec3 c3 = b.centerVs;
                             float r3 = b.radiusM;
+                            if (axis.w > 0.0f &&
+                                (!cutByPlane(glm::vec4(glm::vec3(axis), -extent.z), 1.0f, c3, r3) ||
+                                 !cutByPlane(glm::vec4(glm::vec3(axis), -extent.w), -1.0f, c3, r3)))
+                                continue;
                             if (!cutByDepth(e0, e1, c3, r3) || !cutByPlane(g.yPlanes[y], 1.0f, c3, r3) ||
                                 !cutByPlane(g.yPlanes[y + 1], -1.0f, c3, r3) || !slabOverlaps(g.xPlanes, x, c3, r3))
                                 continue;
-                            if (b.cone) {  // against the part of the band the light's sphere spans
+                            if (b.cone) {  // against the part of those depths the light's sphere spans
                                 const float near = std::max(e0, -b.centerVs.z - b.radiusM);
                                 const float far = std::min(e1, -b.centerVs.z + b.radiusM);
                                 if (near > far || !coneReachesSphere(b, froxelSphere(g, x, y, near, far))) continue;

@@ -14,12 +14,13 @@
 // Work is split by depth slice (TBB): a slice's froxels are disjoint from every other slice's,
 // so the result does not depend on the thread count. Lists hold ascending light indices.
 //
-// With surface bands (ClusterSurfaces.h) a froxel's volume is its tile between the band's depths
-// (within the slice): the light's sphere is cut to that interval and to the tile's row, then
-// tested against its column; froxels with an empty band list nothing.
+// With the surfaces' froxels (ClusterSurfaces.h) a froxel's volume is the part of it its surfaces
+// occupy: the light's sphere is cut to their slab, to their depth interval (within the slice) and
+// to the tile's row, then tested against its column; froxels without surfaces list nothing.
 #pragma once
 
 #include "lights/ClusterGeometry.h"
+#include "lights/ClusterSurfaces.h"
 
 #include <preskin/ClusterGrid.h>
 
@@ -68,17 +69,18 @@ ClusterLightBounds clusterLightBounds(const ClusterLight& light, const glm::mat4
 class ClusterAssigner {
 public:
     // Fills grid.ranges / indices / overflow counts; grid.shape must equal geometry.shape.
-    // `bands`: one per froxel (froxelDepthBands), or empty for whole froxels.
+    // `surfaces`: where the surfaces are (froxelSurfaces), or empty for whole froxels.
     void build(const ClusterSettings& settings, const ClusterGeometry& geometry, const glm::mat4& viewFromWorld,
-               std::span<const ClusterLight> lights, std::span<const glm::vec2> bands, ClusterGrid& grid);
+               std::span<const ClusterLight> lights, const FroxelSurfaces& surfaces, ClusterGrid& grid);
 
 private:
     struct SliceScratch {
         std::vector<uint32_t> candidates;  // the lights whose froxel box reaches the slice, in light order
-        std::vector<uint32_t> froxel;   // froxel within the slice (y * dims.x + x), per entry
-        std::vector<uint32_t> light;    // light index, per entry
-        std::vector<uint32_t> count;    // entries per froxel of the slice
-        std::vector<glm::vec4> sphere;  // bounding sphere per froxel of the slice, for spots
+        std::vector<uint32_t> froxel;      // froxel within the slice (y * dims.x + x), per entry
+        std::vector<uint32_t> light;       // light index, per entry
+        std::vector<uint32_t> count;       // entries per froxel of the slice
+        std::vector<glm::vec4> sphere;     // bounding sphere per froxel of the slice, for spots
+        std::vector<glm::uvec2> columns;   // with surfaces: per row, the columns holding them (x > y: none)
     };
     std::vector<ClusterLightBounds> bounds_;
     std::vector<SliceScratch> slices_;

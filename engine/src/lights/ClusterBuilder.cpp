@@ -2,8 +2,6 @@
 // compute build's inputs, passes and barriers.
 #include "lights/ClusterBuilder.h"
 
-#include "lights/ClusterSurfaces.h"
-
 #include <preskin/Error.h>
 
 #include "shared/cluster_build.h"
@@ -64,7 +62,7 @@ void ClusterBuilder::createPipelines() {
         {gpu::kClusterBindingRanges, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, cs},
         {gpu::kClusterBindingIndices, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, cs},
         {gpu::kClusterBindingCounters, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, cs},
-        {gpu::kClusterBindingBands, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, cs},
+        {gpu::kClusterBindingSurfaces, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, cs},
     };
     setLayout_ = vk::createSetLayout(device_, bindings);
     pipelineLayout_ = vk::createPipelineLayout(device_, std::span(&setLayout_, 1), 0, 0);
@@ -96,8 +94,9 @@ ClusterBuilder::FrameGrid ClusterBuilder::prepare(uint32_t slot, const ClusterSe
     s.localLights = localCount;
     s.gpu = useGpu(settings);
     s.pending = false;
-    bands_.clear();
-    if (settings.fitListsToSurfaces && !surfaces.empty()) froxelDepthBands(geometry.shape, camera, surfaces, bands_);
+    froxelSurfaces_.values.clear();
+    if (settings.fitListsToSurfaces && !surfaces.empty())
+        froxelSurfaces(geometry.shape, camera, surfaces, froxelSurfaces_);
     if (s.gpu) {
         prepareGpu(s, settings, geometry, view, firstLocal, localCount, lightBuffer);
     } else {
@@ -105,7 +104,7 @@ ClusterBuilder::FrameGrid ClusterBuilder::prepare(uint32_t slot, const ClusterSe
         for (const Light& l : lights)
             if (l.type != LightType::Directional)
                 local_.push_back(clusterLight(l, firstLocal + static_cast<uint32_t>(local_.size())));
-        assigner_.build(settings, geometry, view.viewFromWorld, local_, bands_, cpuGrid_);
+        assigner_.build(settings, geometry, view.viewFromWorld, local_, froxelSurfaces_, cpuGrid_);
         ensureBuffer(device_, s.cpuRanges, cpuGrid_.ranges.size() * sizeof(glm::uvec2), kStorage, true);
         ensureBuffer(device_, s.cpuIndices, cpuGrid_.indices.size() * sizeof(uint32_t), kStorage, true);
         s.cpuRanges.upload(cpuGrid_.ranges.data(), cpuGrid_.ranges.size() * sizeof(glm::uvec2));
@@ -157,7 +156,7 @@ void ClusterBuilder::prepareGpu(Slot& s, const ClusterSettings& settings, const 
         p.lightBoundsMin = glm::vec4(shape.lightBounds.min, 1.0f);
         p.lightBoundsMax = glm::vec4(shape.lightBounds.max, 0.0f);
     }
-    p.slicing.z = bands_.empty() ? 0.0f : 1.0f;
+    p.slicing.z = froxelSurfaces_.empty() ? 0.0f : 1.0f;
 
     ensureBuffer(device_, s.params, sizeof(p), VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT, true);
     ensureBuffer(device_, s.geometry, data.size() * sizeof(glm::vec4), kStorage, true);
@@ -168,20 +167,23 @@ void ClusterBuilder::prepareGpu(Slot& s, const ClusterSettings& settings, const 
                  false);
     ensureBuffer(device_, s.gpuIndices, VkDeviceSize(s.indexCapacity) * sizeof(uint32_t),
                  kStorage | VK_BUFFER_USAGE_TRANSFER_SRC_BIT, false);
-    ensureBuffer(device_, s.bands, std::max<size_t>(bands_.size(), 1) * sizeof(glm::vec2), kStorage, true);
+    ensureBuffer(device_, s.surfaces, std::max<size_t>(froxelSurfaces_.values.size(), 1) * sizeof(glm::vec4), kStorage,
+                 true);
     s.params.upload(&p, sizeof(p));
     s.geometry.upload(data.data(), data.size() * sizeof(glm::vec4));
-    if (!bands_.empty()) s.bands.upload(bands_.data(), bands_.size() * sizeof(glm::vec2));
+    if (!froxelSurfaces_.empty())
+        s.surfaces.upload(froxelSurfaces_.values.data(), froxelSurfaces_.values.size() * sizeof(glm::vec4));
 
     const VkDescriptorBufferInfo infos[] = {
         {s.params.handle(), 0, sizeof(p)},        {lightBuffer.handle(), 0, VK_WHOLE_SIZE},
         {s.geometry.handle(), 0, VK_WHOLE_SIZE},  {s.volumes.handle(), 0, VK_WHOLE_SIZE},
         {s.gpuRanges.handle(), 0, VK_WHOLE_SIZE}, {s.gpuIndices.handle(), 0, VK_WHOLE_SIZE},
-        {s.counters.handle(), 0, VK_WHOLE_SIZE},  {s.bands.handle(), 0, VK_WHOLE_SIZE},
+        {s.counters.handle(), 0, VK_WHOLE_SIZE},  {s.surfaces.handle(), 0, VK_WHOLE_SIZE},
     };
-    const uint32_t bindings[] = {gpu::kClusterBindingParams,   gpu::kClusterBindingLights, gpu::kClusterBindingGeometry,
-                                 gpu::kClusterBindingVolumes,  gpu::kClusterBindingRanges, gpu::kClusterBindingIndices,
-                                 gpu::kClusterBindingCounters, gpu::kClusterBindingBands};
+    const uint32_t bindings[] = {gpu::kClusterBindingParams,   gpu::kClusterBindingLights,
+                                 gpu::kClusterBindingGeometry, gpu::kClusterBindingVolumes,
+                                 gpu::kClusterBindingRanges,   gpu::kClusterBindingIndices,
+                                 gpu::kClusterBindingCounters, gpu::kClusterBindingSurfaces};
     std::array<VkWriteDescriptorSet, 8> writes{};
     for (size_t i = 0; i < writes.size(); ++i) {
         writes[i] = {VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET};
@@ -236,8 +238,8 @@ const vk::Buffer& ClusterBuilder::indices(uint32_t slot) {
 uint64_t ClusterBuilder::gridBytes(uint32_t slot) const {
     const Slot& s = slots_[slot];
     auto bytes = [](const vk::Buffer& b) -> uint64_t { return b ? b.size() : 0; };
-    if (s.gpu) return bytes(s.gpuRanges) + bytes(s.gpuIndices) + bytes(s.volumes) + bytes(s.bands);
-    return bytes(s.cpuRanges) + bytes(s.cpuIndices) + bands_.capacity() * sizeof(glm::vec2);
+    if (s.gpu) return bytes(s.gpuRanges) + bytes(s.gpuIndices) + bytes(s.volumes) + bytes(s.surfaces);
+    return bytes(s.cpuRanges) + bytes(s.cpuIndices) + froxelSurfaces_.values.capacity() * sizeof(glm::vec4);
 }
 
 uint32_t ClusterBuilder::overflows(uint32_t slot) const {

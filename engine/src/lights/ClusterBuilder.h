@@ -10,6 +10,7 @@
 
 #include "lights/ClusterAssign.h"
 #include "lights/ClusterGeometry.h"
+#include "lights/ClusterSurfaces.h"
 #include "vk/Resources.h"
 
 #include <array>
@@ -55,8 +56,8 @@ public:
     // Froxels that lost lights in the slot's last frame (the compute build's counter is read
     // back, so call it once that frame has finished).
     uint32_t overflows(uint32_t slot) const;
-    // Bytes of the slot's light-grid buffers as allocated (froxel ranges and light indices, the
-    // surfaces' depth bands; for the compute build also its per-light volumes), headroom included.
+    // Bytes of the slot's light-grid buffers as allocated (froxel ranges and light indices, where
+    // the surfaces are per froxel; for the compute build also its per-light volumes), headroom included.
     uint64_t gridBytes(uint32_t slot) const;
     // CPU time of the last prepare() of the slot (the whole build, or the compute build's setup).
     double buildMs(uint32_t slot) const { return slots_[slot].buildMs; }
@@ -75,7 +76,7 @@ private:
         uint32_t indexCapacity = 0;
         vk::Buffer cpuRanges, cpuIndices;           // host-visible, CPU build
         vk::Buffer params, geometry, counters;      // host-visible, compute build
-        vk::Buffer bands;                           // host-visible, compute build: depth band per froxel
+        vk::Buffer surfaces;                        // host-visible, compute build: per froxel (ClusterSurfaces.h)
         vk::Buffer volumes, gpuRanges, gpuIndices;  // device-local, compute build
         VkDescriptorSet set = VK_NULL_HANDLE;
     };
@@ -89,7 +90,7 @@ private:
     ClusterAssigner assigner_;
     ClusterGrid cpuGrid_;
     std::vector<ClusterLight> local_;
-    std::vector<glm::vec2> bands_;  // this frame's surface depth bands (empty: none)
+    FroxelSurfaces froxelSurfaces_;  // this frame's (empty: none)
     std::array<Slot, kSlots> slots_;
     VkDescriptorSetLayout setLayout_ = VK_NULL_HANDLE;
     VkPipelineLayout pipelineLayout_ = VK_NULL_HANDLE;

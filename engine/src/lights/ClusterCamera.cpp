@@ -51,6 +51,10 @@ glm::mat4 ClusterCamera::clusterFromWorld() const {
 ClusterCamera clusterCamera(const View& view, uint32_t eyeWidthPx, uint32_t eyeHeightPx) {
     if (view.eyes.empty()) throw Error("view: it has no eyes");
     ClusterCamera camera;
+    for (const Eye& e : view.eyes)
+        camera.viewpoints.push_back(e.orthographic()
+                                        ? glm::vec4(glm::normalize(glm::vec3(glm::inverse(e.viewFromWorld)[2])), 0.0f)
+                                        : glm::vec4(e.positionWs, 1.0f));
     const glm::uvec2 eyeExtent(std::max(eyeWidthPx, 1u), std::max(eyeHeightPx, 1u));
     if (view.eyes.size() == 1) {
         camera.eye = view.eyes[0];

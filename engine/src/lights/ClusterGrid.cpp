@@ -26,10 +26,10 @@ ClusterGrid buildClusterGrid(const ClusterSettings& settings, const View& view, 
             local.push_back(clusterLight(lights[i], static_cast<uint32_t>(i)));
     ClusterGrid grid;
     grid.camera = camera;
-    std::vector<glm::vec2> bands;
-    if (settings.fitListsToSurfaces && !surfaces.empty()) froxelDepthBands(geometry.shape, camera, surfaces, bands);
+    FroxelSurfaces froxels;
+    if (settings.fitListsToSurfaces && !surfaces.empty()) froxelSurfaces(geometry.shape, camera, surfaces, froxels);
     ClusterAssigner assigner;
-    assigner.build(settings, geometry, camera.eye.viewFromWorld, local, bands, grid);
+    assigner.build(settings, geometry, camera.eye.viewFromWorld, local, froxels, grid);
     return grid;
 }
 

@@ -1,208 +1,353 @@
-// Per-froxel depth intervals of the frame's surfaces; the method is in ClusterSurfaces.h.
+// Where the frame's surfaces are in each froxel; the method is in ClusterSurfaces.h.
 #include "lights/ClusterSurfaces.h"
 
 #include <tbb/blocked_range.h>
-#include <tbb/enumerable_thread_specific.h>
 #include <tbb/parallel_for.h>
 
 #include <algorithm>
 #include <array>
 #include <cmath>
 #include <limits>
+#include <span>
 
 namespace preskin {
 
 namespace {
 
-// How far (pixels) a fragment's position may lie outside its triangle's projection: with MSAA a
-// pixel whose samples the triangle covers in part is shaded at its centre, up to 0.71 pixels away
-// (in the plane's extrapolation); an eye of a stereo view has pixels of about the cluster
-// camera's size; and the rasterizer snaps vertices to sub-pixels.
-constexpr double kMarginPx = 1.0;
+// The rasterizer snaps vertices to sub-pixels (8 bits or more) and the shader's tile lookup
+// rounds: a fragment may lie this far (pixels) outside its triangle and its tile besides
+// ClusterSurfaces::outsidePx.
+constexpr double kSnapPx = 1.0 / 64.0;
+// Without MSAA, an edge-on triangle's extents grow by this fraction of themselves.
+constexpr double kEdgeOnGrowth = 0.05;
+constexpr double kInfinity = std::numeric_limits<double>::infinity();
+constexpr float kFar = 3.0e38f;
 
-// One triangle at a time into a band array.
-class BandWriter {
+// One corner of a clipped triangle: view-space point and its cluster coordinates (clip x,
+// clip y, view depth, clip w).
+struct Corner {
+    glm::dvec3 view;
+    glm::dvec4 h;
+};
+
+// An affine function of the tile coordinates, value = x * g.x + y * g.y + g.z.
+struct Affine {
+    glm::dvec3 g{0.0};
+    double at(const glm::dvec2& p) const { return g.x * p.x + g.y * p.y + g.z; }
+};
+
+// The convex polygon t[0..n) clipped to the rectangle [lo, hi] (Sutherland-Hodgman): its corner
+// count (0: nothing inside), corners in `out`.
+int clipToRect(const glm::dvec2* t, int n, const glm::dvec2& lo, const glm::dvec2& hi, std::array<glm::dvec2, 8>& out) {
+    std::array<glm::dvec2, 8> a;
+    std::array<glm::dvec2, 8> b;
+    int count = n;
+    for (int i = 0; i < n; ++i) a[size_t(i)] = t[i];
+    for (int side = 0; side < 4 && count > 0; ++side) {
+        const int axis = side & 1;
+        const double bound = side < 2 ? lo[axis] : hi[axis];
+        const double sign = side < 2 ? 1.0 : -1.0;  // inside: sign * (p[axis] - bound) >= 0
+        int kept = 0;
+        for (int i = 0; i < count; ++i) {
+            const glm::dvec2& p = a[size_t(i)];
+            const glm::dvec2& q = a[size_t((i + 1) % count)];
+            const double dp = sign * (p[axis] - bound);
+            const double dq = sign * (q[axis] - bound);
+            if (dp >= 0.0 && kept < 8) b[size_t(kept++)] = p;
+            if ((dp >= 0.0) != (dq >= 0.0) && kept < 8) b[size_t(kept++)] = p + (q - p) * (dp / (dp - dq));
+        }
+        count = kept;
+        a = b;
+    }
+    out = a;
+    return count;
+}
+
+// One band of tile rows, one triangle at a time. Pass 0 sums area-weighted normals into the
+// tiles' axes; pass 1 (after the axes are normalised) writes the froxels' extents.
+class SurfaceWriter {
 public:
-    BandWriter(const ClusterGridShape& shape, const glm::dmat4& clusterFromWorld, bool orthographic,
-               std::vector<glm::vec2>& bands)
-        : shape_(shape), clusterFromWorld_(clusterFromWorld), orthographic_(orthographic), bands_(bands) {
+    SurfaceWriter(const ClusterGridShape& shape, const Eye& eye, double outsidePx, int pass, uint32_t rowBegin,
+                  uint32_t rowEnd, FroxelSurfaces& out)
+        : shape_(shape),
+          rowBegin_(rowBegin),
+          rowEnd_(rowEnd),
+          clipFromView_(eye.clipFromView),
+          viewFromWorld_(eye.viewFromWorld),
+          orthographic_(eye.orthographic()),
+          pass_(pass),
+          out_(out) {
         tilesPerNdc_ = 0.5 * glm::dvec2(shape.extentPx) / double(shape.tileSizePx);
-        margin_ = kMarginPx / double(shape.tileSizePx);
-        // Perspective fragments lie beyond the near plane; clipping a little nearer keeps w > 0.
-        clipDepth_ = 0.5 * double(shape.nearM);
+        outside_ = (std::max(outsidePx, 0.0) + kSnapPx) / double(shape.tileSizePx);
+        edgeOnAnywhere_ = outsidePx > 0.0;
+        clipDepth_ = 0.5 * double(shape.nearM);  // perspective fragments lie beyond the near plane
     }
 
     void triangle(const glm::vec3& a, const glm::vec3& b, const glm::vec3& c) {
-        // (clip x, clip y, view depth, clip w) of the cluster camera.
-        const std::array<glm::dvec4, 3> h{clusterFromWorld_ * glm::dvec4(glm::dvec3(a), 1.0),
-                                          clusterFromWorld_ * glm::dvec4(glm::dvec3(b), 1.0),
-                                          clusterFromWorld_ * glm::dvec4(glm::dvec3(c), 1.0)};
-        if (orthographic_) {
-            polygon(h.data(), 3);
-            return;
-        }
-        // Clip to depth >= clipDepth_ (Sutherland-Hodgman against one plane: at most 4 corners).
-        std::array<glm::dvec4, 4> clipped;
+        const std::array<glm::dvec3, 3> v{glm::dvec3(viewFromWorld_ * glm::dvec4(glm::dvec3(a), 1.0)),
+                                          glm::dvec3(viewFromWorld_ * glm::dvec4(glm::dvec3(b), 1.0)),
+                                          glm::dvec3(viewFromWorld_ * glm::dvec4(glm::dvec3(c), 1.0))};
+        const glm::dvec3 cross = glm::cross(v[1] - v[0], v[2] - v[0]);
+        const double twiceArea = glm::length(cross);
+        if (!(twiceArea > 0.0)) return;  // no area: never rasterized
+        normal_ = cross / twiceArea;
+        // Towards the camera: surfaces seen from either side share a tile's axis.
+        const double facing = orthographic_ ? normal_.z : -glm::dot(normal_, v[0]);
+        if (facing < 0.0) normal_ = -normal_;
+        area_ = 0.5 * twiceArea;
+        std::array<Corner, 4> clipped;
         int n = 0;
         for (int i = 0; i < 3; ++i) {
-            const glm::dvec4& p = h[size_t(i)];
-            const glm::dvec4& q = h[size_t((i + 1) % 3)];
-            const bool pIn = p.z >= clipDepth_;
-            const bool qIn = q.z >= clipDepth_;
-            if (pIn) clipped[size_t(n++)] = p;
-            if (pIn != qIn) clipped[size_t(n++)] = p + (q - p) * ((clipDepth_ - p.z) / (q.z - p.z));
+            const glm::dvec3& p = v[size_t(i)];
+            const glm::dvec3& q = v[size_t((i + 1) % 3)];
+            // Clip to view depth >= clipDepth_ (perspective; orthographic keeps every depth).
+            const bool pIn = orthographic_ || -p.z >= clipDepth_;
+            const bool qIn = orthographic_ || -q.z >= clipDepth_;
+            if (pIn) clipped[size_t(n++)] = corner(p);
+            if (pIn != qIn) clipped[size_t(n++)] = corner(p + (q - p) * ((-clipDepth_ - p.z) / (q.z - p.z)));
         }
         if (n >= 3) polygon(clipped.data(), n);
     }
 
 private:
-    // A convex planar polygon of n (3 or 4) clip-space corners, all with w > 0.
-    void polygon(const glm::dvec4* v, int n) {
-        std::array<glm::dvec2, 4> t;  // corners in tile units
-        glm::dvec2 lo(1e300);
-        glm::dvec2 hi(-1e300);
+    Corner corner(const glm::dvec3& view) const {
+        const glm::dvec4 clip = clipFromView_ * glm::dvec4(view, 1.0);
+        return {view, glm::dvec4(clip.x, clip.y, -view.z, clip.w)};
+    }
+
+    // A convex planar polygon of n (3 or 4) corners, all with w > 0.
+    void polygon(const Corner* v, int n) {
+        std::array<glm::dvec2, 8> t;  // corners in tile units
+        glm::dvec2 lo(kInfinity);
+        glm::dvec2 hi(-kInfinity);
         for (int i = 0; i < n; ++i) {
-            t[size_t(i)] = (glm::dvec2(v[i]) / v[i].w + 1.0) * tilesPerNdc_;
+            t[size_t(i)] = (glm::dvec2(v[i].h) / v[i].h.w + 1.0) * tilesPerNdc_;
             lo = glm::min(lo, t[size_t(i)]);
             hi = glm::max(hi, t[size_t(i)]);
         }
-        lo -= margin_;
-        hi += margin_;
+        lo -= 2.0 * outside_;
+        hi += 2.0 * outside_;
         const glm::dvec2 dims(shape_.dims);
         if (!(hi.x >= 0.0 && hi.y >= 0.0 && lo.x <= dims.x && lo.y <= dims.y)) return;  // off the grid (or NaN)
         const auto tile = [](double x, double count) {
             return static_cast<uint32_t>(std::clamp(std::floor(x), 0.0, count - 1.0));
         };
         const uint32_t x0 = tile(lo.x, dims.x), x1 = tile(hi.x, dims.x);
-        const uint32_t y0 = tile(lo.y, dims.y), y1 = tile(hi.y, dims.y);
+        const uint32_t y0 = std::max(tile(lo.y, dims.y), rowBegin_);
+        const uint32_t y1 = std::min(tile(hi.y, dims.y), rowEnd_ - 1);
+        if (rowBegin_ >= rowEnd_ || y0 > y1) return;
 
-        // depth / w and 1 / w as affine functions of the tile coordinates, from three corners.
+        if (pass_ == 0) {  // the tiles' axes: every tile of the box
+            const glm::vec4 weighted(glm::vec3(normal_ * area_), 0.0f);
+            for (uint32_t ty = y0; ty <= y1; ++ty)
+                for (uint32_t tx = x0; tx <= x1; ++tx) out_.values[out_.froxels + ty * shape_.dims.x + tx] += weighted;
+            return;
+        }
+
+        // Over w: view x, y, z and 1 as affine functions of the tile coordinates, from three corners.
         const glm::dvec2 e1 = t[1] - t[0];
         const glm::dvec2 e2 = t[2] - t[0];
         const double det = e1.x * e2.y - e1.y * e2.x;
         const double size = std::max(glm::length(e1), glm::length(e2));
-        const bool planar = std::abs(det) > 1e-9 * std::max(size * size, 1e-30);
-        glm::dvec3 A(0.0);
-        glm::dvec3 B(0.0);  // value = x * gx + y * gy + c: (gx, gy, c)
-        if (planar) {
-            const auto fit = [&](double f0, double f1, double f2) {
+        bool exact = std::abs(det) > 1e-9 * std::max(size * size, 1e-30);
+        std::array<Affine, 4> over;  // view x / w, y / w, z / w, 1 / w
+        double widen = 0.0;          // how far (m) the plane's points move within outside_ of the polygon
+        if (exact) {
+            for (int k = 0; k < 4; ++k) {
+                const auto value = [&](int i) { return (k < 3 ? v[i].view[k] : 1.0) / v[i].h.w; };
+                const double f0 = value(0), f1 = value(1), f2 = value(2);
                 const double gx = ((f1 - f0) * e2.y - (f2 - f0) * e1.y) / det;
                 const double gy = ((f2 - f0) * e1.x - (f1 - f0) * e2.x) / det;
-                return glm::dvec3(gx, gy, f0 - gx * t[0].x - gy * t[0].y);
-            };
-            A = fit(v[0].z / v[0].w, v[1].z / v[1].w, v[2].z / v[2].w);
-            B = fit(1.0 / v[0].w, 1.0 / v[1].w, 1.0 / v[2].w);
+                over[size_t(k)].g = glm::dvec3(gx, gy, f0 - gx * t[0].x - gy * t[0].y);
+            }
+            // p = Q / B (Q = view point over w, B = 1 / w): dp/dx = (Q_x B - Q B_x) / B^2. The
+            // numerator is affine, so its norm is largest at a corner of the polygon grown by
+            // outside_ (at most a corner's plus outside_ times its own rate); B is smallest there.
+            const glm::dvec3 qx(over[0].g.x, over[1].g.x, over[2].g.x);
+            const glm::dvec3 qy(over[0].g.y, over[1].g.y, over[2].g.y);
+            const double bx = over[3].g.x;
+            const double by = over[3].g.y;
+            const double bRate = std::sqrt(bx * bx + by * by);
+            double numerator = 0.0;
+            double bMin = kInfinity;
+            for (int i = 0; i < n; ++i) {
+                const glm::dvec2& p = t[size_t(i)];
+                const double b = over[3].at(p);
+                const glm::dvec3 q(over[0].at(p), over[1].at(p), over[2].at(p));
+                numerator = std::max(
+                    numerator,
+                    std::sqrt(glm::dot(qx * b - q * bx, qx * b - q * bx) + glm::dot(qy * b - q * by, qy * b - q * by)));
+                bMin = std::min(bMin, b);
+            }
+            // The numerator's own rate: d/dx of (Q_x B - Q B_x) is 0 and d/dy is Q_x B_y - Q_y B_x,
+            // likewise for the other column, so its norm changes by at most
+            // sqrt(2) (|Q_x| + |Q_y|) |grad B| per tile.
+            const double numeratorRate = std::sqrt(2.0) * (glm::length(qx) + glm::length(qy)) * bRate;
+            bMin -= bRate * outside_;
+            exact = bMin > 0.0 && std::isfinite(numerator);
+            if (exact) widen = (numerator + numeratorRate * outside_) / (bMin * bMin) * outside_;
+            exact = exact && std::isfinite(widen);
         }
-        const double orientation = det < 0.0 ? -1.0 : 1.0;
+        std::array<glm::dvec3, 8> points;
         for (uint32_t ty = y0; ty <= y1; ++ty)
             for (uint32_t tx = x0; tx <= x1; ++tx) {
-                // The tile's rectangle (grown by the margin) within the polygon's box.
-                const glm::dvec2 r0 = glm::max(glm::dvec2(tx, ty) - margin_, lo);
-                const glm::dvec2 r1 = glm::min(glm::dvec2(tx + 1, ty + 1) + margin_, hi);
-                const std::array<glm::dvec2, 4> corners{r0, glm::dvec2(r1.x, r0.y), r1, glm::dvec2(r0.x, r1.y)};
-                if (planar && separated(t.data(), n, orientation, corners)) continue;
-                // The plane's depths over the rectangle (past the corners by the margin too); a
-                // plane seen edge-on, or passing the eye there, gets the tile's whole depth.
-                double rectMin = 0.0;
-                double rectMax = std::numeric_limits<double>::infinity();
-                if (planar) {
-                    double cMin = std::numeric_limits<double>::infinity();
-                    double cMax = -cMin;
-                    bool ahead = true;
-                    for (const glm::dvec2& p : corners) {
-                        const double b = B.x * p.x + B.y * p.y + B.z;
-                        ahead = ahead && b > 0.0;
-                        const double d = (A.x * p.x + A.y * p.y + A.z) / b;
-                        cMin = std::min(cMin, d);
-                        cMax = std::max(cMax, d);
+                // The polygon's part within outside_ of the tile.
+                std::array<glm::dvec2, 8> part;
+                const int m =
+                    clipToRect(t.data(), n, glm::dvec2(tx, ty) - outside_, glm::dvec2(tx + 1, ty + 1) + outside_, part);
+                if (m == 0) continue;
+                if (exact) {
+                    for (int i = 0; i < m; ++i) {
+                        const glm::dvec2& q = part[size_t(i)];
+                        points[size_t(i)] = glm::dvec3(over[0].at(q), over[1].at(q), over[2].at(q)) / over[3].at(q);
                     }
-                    if (ahead && std::isfinite(cMin) && std::isfinite(cMax)) {
-                        rectMin = cMin;
-                        rectMax = cMax;
-                    }
+                    mark(tx, ty, std::span<const glm::dvec3>(points.data(), size_t(m)), widen, 0.0);
+                } else if (!edgeOnAnywhere_) {
+                    for (int i = 0; i < n; ++i) points[size_t(i)] = v[i].view;
+                    mark(tx, ty, std::span<const glm::dvec3>(points.data(), size_t(n)), 0.0, kEdgeOnGrowth);
+                } else {
+                    mark(tx, ty, std::span<const glm::dvec3>(), 0.0, 0.0);
                 }
-                mark(tx, ty, rectMin, rectMax);
             }
     }
 
-    // Whether one edge of the polygon has the whole rectangle outside it.
-    static bool separated(const glm::dvec2* t, int n, double orientation, const std::array<glm::dvec2, 4>& corners) {
-        for (int i = 0; i < n; ++i) {
-            const glm::dvec2 a = t[i];
-            const glm::dvec2 e = t[(i + 1) % n] - a;
-            bool allOutside = true;
-            for (const glm::dvec2& p : corners) {
-                const double side = orientation * (e.x * (p.y - a.y) - e.y * (p.x - a.x));
-                if (side >= 0.0) {
-                    allOutside = false;
-                    break;
-                }
+    // The plane's points over one tile (view space), or none for "anywhere"; the extents they span
+    // grow by `widen` (m) and by `growth` times their size.
+    void mark(uint32_t tx, uint32_t ty, std::span<const glm::dvec3> points, double widen, double growth) {
+        const glm::vec4& axisValue = out_.values[out_.froxels + ty * shape_.dims.x + tx];
+        const bool slab = axisValue.w > 0.0f;
+        const glm::dvec3 axis(axisValue);
+        double dLo = 0.0, dHi = kInfinity, sLo = -kInfinity, sHi = kInfinity;
+        if (!points.empty()) {
+            dLo = sLo = kInfinity;
+            dHi = sHi = -kInfinity;
+            for (const glm::dvec3& p : points) {
+                dLo = std::min(dLo, -p.z);
+                dHi = std::max(dHi, -p.z);
+                const double along = glm::dot(axis, p);
+                sLo = std::min(sLo, along);
+                sHi = std::max(sHi, along);
             }
-            if (allOutside) return true;
+            const double slack = 2.0 * double(kClusterDepthSlack) * std::max(std::abs(dLo), std::abs(dHi));
+            const double dGrow = widen + growth * (dHi - dLo) + slack;
+            const double sGrow = widen + growth * (sHi - sLo) + slack;
+            dLo -= dGrow;
+            dHi += dGrow;
+            sLo -= sGrow;
+            sHi += sGrow;
         }
-        return false;
-    }
-
-    void mark(uint32_t tx, uint32_t ty, double dLo, double dHi) {
-        const auto lo = static_cast<float>(dLo - std::abs(dLo) * 2.0 * double(kClusterDepthSlack));
-        const auto hi = static_cast<float>(std::min(dHi + std::abs(dHi) * 2.0 * double(kClusterDepthSlack), 3.0e38));
+        const auto lo = static_cast<float>(std::max(dLo, -double(kFar)));
+        const auto hi = static_cast<float>(std::min(dHi, double(kFar)));
+        const auto along0 = static_cast<float>(std::max(sLo, -double(kFar)));
+        const auto along1 = static_cast<float>(std::min(sHi, double(kFar)));
         const uint32_t z0 = shape_.sliceOf(lo);
         const uint32_t z1 = shape_.sliceOf(hi);
         for (uint32_t z = z0; z <= z1; ++z) {
-            glm::vec2& band = bands_[shape_.froxelIndex(tx, ty, z)];
-            band.x = std::min(band.x, lo);
-            band.y = std::max(band.y, hi);
+            glm::vec4& e = out_.values[shape_.froxelIndex(tx, ty, z)];
+            e = glm::vec4(std::min(e.x, lo), std::max(e.y, hi), slab ? std::min(e.z, along0) : -kFar,
+                          slab ? std::max(e.w, along1) : kFar);
         }
     }
 
     const ClusterGridShape& shape_;
-    glm::dmat4 clusterFromWorld_;
+    uint32_t rowBegin_;
+    uint32_t rowEnd_;
+    glm::dmat4 clipFromView_;
+    glm::dmat4 viewFromWorld_;
     bool orthographic_;
-    std::vector<glm::vec2>& bands_;
+    int pass_;
+    FroxelSurfaces& out_;
     glm::dvec2 tilesPerNdc_{1.0};
-    double margin_ = 0.0;
+    double outside_ = 0.0;  // tile units
+    bool edgeOnAnywhere_ = false;
     double clipDepth_ = 0.0;
+    glm::dvec3 normal_{0.0};
+    double area_ = 0.0;
 };
+
+// Whether the triangle's front (counter-clockwise) side faces any of the viewpoints; a triangle
+// seen edge-on within a relative 1e-4 counts as facing.
+bool facesAnEye(const glm::vec3& a, const glm::vec3& b, const glm::vec3& c, std::span<const glm::vec4> viewpoints) {
+    const glm::dvec3 pa(a);
+    const glm::dvec3 n = glm::cross(glm::dvec3(b) - pa, glm::dvec3(c) - pa);
+    for (const glm::vec4& e : viewpoints) {
+        const glm::dvec3 toEye = glm::dvec3(e) - pa * double(e.w);
+        if (glm::dot(n, toEye) >= -1e-4 * glm::length(n) * glm::length(toEye)) return true;
+    }
+    return false;
+}
 
 }  // namespace
 
-void froxelDepthBands(const ClusterGridShape& shape, const ClusterCamera& camera, const ClusterSurfaces& surfaces,
-                      std::vector<glm::vec2>& bands) {
-    const size_t froxels = shape.froxelCount();
-    bands.assign(froxels, kEmptyBand);
-    const glm::dmat4 clusterFromWorld(camera.clusterFromWorld());
-    const bool orthographic = camera.eye.orthographic();
+void froxelSurfaces(const ClusterGridShape& shape, const ClusterCamera& camera, const ClusterSurfaces& surfaces,
+                    FroxelSurfaces& out) {
+    const size_t tiles = size_t(shape.dims.x) * shape.dims.y;
+    out.froxels = shape.froxelCount();
+    out.values.assign(out.froxels, glm::vec4(kFar, -kFar, kFar, -kFar));
+    out.values.resize(out.froxels + tiles, glm::vec4(0.0f));
     const size_t triangles = surfaces.indices.size() / 3;
     const size_t vertexCount = surfaces.positionsWs.size();
-    const auto run = [&](size_t begin, size_t end, std::vector<glm::vec2>& out) {
-        BandWriter writer(shape, clusterFromWorld, orthographic, out);
-        for (size_t t = begin; t < end; ++t) {
-            const uint32_t* i = surfaces.indices.data() + 3 * t;
-            if (i[0] >= vertexCount || i[1] >= vertexCount || i[2] >= vertexCount) continue;
-            const glm::vec3& a = surfaces.positionsWs[i[0]];
-            const glm::vec3& b = surfaces.positionsWs[i[1]];
-            const glm::vec3& c = surfaces.positionsWs[i[2]];
-            if (!std::isfinite(a.x + a.y + a.z + b.x + b.y + b.z + c.x + c.y + c.z)) continue;
-            writer.triangle(a, b, c);
+    const bool culling = surfaces.backFaceCulled.size() == triangles && !camera.viewpoints.empty();
+
+    // Triangles binned by bands of tile rows (their corners' rows; every band for one crossing
+    // the near clip); each band is written by one thread, so no value is shared.
+    const uint32_t rowsPerBand = std::max<uint32_t>(1, (shape.dims.y + 15) / 16);
+    const uint32_t bandCount = (shape.dims.y + rowsPerBand - 1) / rowsPerBand;
+    std::vector<std::vector<uint32_t>> banded(bandCount);
+    const glm::mat4 clusterFromWorld = camera.clusterFromWorld();
+    const float tilesPerNdcY = 0.5f * float(shape.extentPx.y) / float(shape.tileSizePx);
+    const float marginTiles = (std::max(surfaces.outsidePx, 0.0f) + 1.0f) / float(shape.tileSizePx);
+    const bool orthographic = camera.eye.orthographic();
+    for (size_t t = 0; t < triangles; ++t) {
+        const uint32_t* i = surfaces.indices.data() + 3 * t;
+        if (i[0] >= vertexCount || i[1] >= vertexCount || i[2] >= vertexCount) continue;
+        const glm::vec3& a = surfaces.positionsWs[i[0]];
+        const glm::vec3& b = surfaces.positionsWs[i[1]];
+        const glm::vec3& c = surfaces.positionsWs[i[2]];
+        if (!std::isfinite(a.x + a.y + a.z + b.x + b.y + b.z + c.x + c.y + c.z)) continue;
+        if (culling && surfaces.backFaceCulled[t] != 0 && !facesAnEye(a, b, c, camera.viewpoints)) continue;
+        float lo = std::numeric_limits<float>::infinity();
+        float hi = -lo;
+        bool ahead = true;  // every corner beyond the writer's near clip
+        for (const glm::vec3* p : {&a, &b, &c}) {
+            const glm::vec4 h = clusterFromWorld * glm::vec4(*p, 1.0f);
+            ahead = ahead && (orthographic || h.z >= 0.5f * shape.nearM);
+            const float row = (h.y / h.w + 1.0f) * tilesPerNdcY;
+            lo = std::min(lo, row);
+            hi = std::max(hi, row);
         }
-    };
-    // Small meshes in one pass; large ones split over threads, each with its own bands, merged.
-    constexpr size_t kChunk = 16384;
-    if (triangles <= kChunk) {
-        run(0, triangles, bands);
-        return;
+        uint32_t first = 0;
+        uint32_t last = bandCount - 1;
+        if (ahead) {
+            if (!(hi + marginTiles >= 0.0f && lo - marginTiles <= float(shape.dims.y))) continue;
+            const auto band = [&](float row) {
+                return static_cast<uint32_t>(std::clamp(std::floor(row), 0.0f, float(shape.dims.y - 1))) / rowsPerBand;
+            };
+            first = band(lo - marginTiles);
+            last = band(hi + marginTiles);
+        }
+        for (uint32_t k = first; k <= last; ++k) banded[k].push_back(static_cast<uint32_t>(t));
     }
-    tbb::enumerable_thread_specific<std::vector<glm::vec2>> partial(
-        [&] { return std::vector<glm::vec2>(froxels, kEmptyBand); });
-    tbb::parallel_for(tbb::blocked_range<size_t>(0, triangles, kChunk),
-                      [&](const tbb::blocked_range<size_t>& r) { run(r.begin(), r.end(), partial.local()); });
-    for (const std::vector<glm::vec2>& p : partial)
-        tbb::parallel_for(tbb::blocked_range<size_t>(0, froxels, 4096), [&](const tbb::blocked_range<size_t>& r) {
-            for (size_t f = r.begin(); f < r.end(); ++f) {
-                bands[f].x = std::min(bands[f].x, p[f].x);
-                bands[f].y = std::max(bands[f].y, p[f].y);
+    const auto pass = [&](int which) {
+        tbb::parallel_for(tbb::blocked_range<uint32_t>(0, bandCount, 1), [&](const tbb::blocked_range<uint32_t>& r) {
+            for (uint32_t k = r.begin(); k < r.end(); ++k) {
+                SurfaceWriter writer(shape, camera.eye, double(surfaces.outsidePx), which, k * rowsPerBand,
+                                     std::min((k + 1) * rowsPerBand, shape.dims.y), out);
+                for (const uint32_t t : banded[k]) {
+                    const uint32_t* i = surfaces.indices.data() + 3 * size_t(t);
+                    writer.triangle(surfaces.positionsWs[i[0]], surfaces.positionsWs[i[1]], surfaces.positionsWs[i[2]]);
+                }
             }
         });
+    };
+    pass(0);
+    // The tiles' axes: the mean normal, where the surfaces agree on one.
+    for (size_t k = out.froxels; k < out.values.size(); ++k) {
+        const glm::vec3 sum(out.values[k]);
+        const float length = glm::length(sum);
+        out.values[k] = length > 0.0f && std::isfinite(length) ? glm::vec4(sum / length, 1.0f) : glm::vec4(0.0f);
+    }
+    pass(1);
 }
 
 }  // namespace preskin

@@ -1,17 +1,24 @@
-// Where the fragments that read a light grid can be: per froxel the interval of view depths that
-// the frame's surfaces (ClusterSurfaces, <preskin/ClusterGrid.h>) occupy inside it. Both builds
-// then test a light against that interval instead of the froxel's whole slice, and list nothing
-// in froxels no surface crosses (the "2.5D" culling of T. Harada, "A 2.5D Culling for Forward+",
-// SIGGRAPH Asia 2012 technical briefs, with an interval instead of a bit mask).
+// Where the fragments that read a light grid can be: per froxel the part of it that the frame's
+// surfaces (ClusterSurfaces, <preskin/ClusterGrid.h>) occupy, as an interval of view depths and a
+// slab between two planes normal to the tile's mean surface normal. Both builds cut each light's
+// sphere to these before their row and column tests, and list nothing in froxels no surface
+// crosses: the "2.5D" culling of T. Harada ("A 2.5D Culling for Forward+", SIGGRAPH Asia 2012
+// technical briefs), with intervals instead of a bit mask, plus the slab, which stays thin where a
+// surface is seen at a slant and its depth interval is not.
 //
-// Per triangle, in the cluster camera: clipped to the near plane, projected to pixels; every tile
-// that its pixel box meets and no edge of it separates gets the depth range of the triangle's
-// plane over that part of the tile. On a plane both depth / w and 1 / w are affine in the image,
-// so depth is a ratio of two affine functions, whose extremes over a rectangle lie at its
-// corners: exact for the plane. A fragment's position is its triangle's plane at the pixel's
-// centre, which with MSAA may lie outside the triangle (a pixel it covers in part): the boxes are
-// grown by a pixel for that, and depths by kClusterDepthSlack on both ends. A plane seen edge-on
-// (or passing the eye near the triangle) gives its tiles their whole depth.
+// Per triangle, in the cluster camera: clipped to the near plane, projected to tiles, then to
+// each tile it reaches (grown by how far a fragment may lie outside it): the part inside gives the
+// depths and the extent along the axis of the slices it spans. On a plane, each view-space
+// coordinate over w and 1 / w are affine in the image, so depth and dot(axis, p) are ratios of
+// affine functions, whose extremes over a convex polygon lie at its corners: exact for the plane.
+// A fragment's position is its triangle's plane at the pixel's centre, which with MSAA may lie
+// outside the triangle (ClusterSurfaces::outsidePx; the rasterizer's snapping adds 1/64 pixel):
+// the extents grow by that distance times a bound on how fast the plane's points move across the
+// image there, and by kClusterDepthSlack. A plane seen edge-on (or passing the eye near the
+// triangle) gives, without MSAA, the triangle's own extents grown by a twentieth (a fragment then
+// interpolates its corners with weights in [0, 1], up to the snapping); with MSAA, the tile's
+// whole depth. The slab's axis per tile: the triangles' normals turned towards the camera, summed
+// weighted by area over every tile of each triangle's box (a first, rougher pass).
 #pragma once
 
 #include "lights/ClusterGeometry.h"
@@ -24,13 +31,23 @@
 
 namespace preskin {
 
-// An empty band: no surface in the froxel.
-inline constexpr glm::vec2 kEmptyBand{3.0e38f, -3.0e38f};
+// Where the surfaces are, laid out as the compute build reads it (one vec4 array):
+//   values[f], f < froxels: (min depth, max depth, min along the axis, max along the axis); min
+//     depth > max depth where there is no surface;
+//   values[froxels + t], t < tiles (x fastest): the tile's slab axis (unit, view space) and w = 1,
+//     or w = 0 where it has none.
+struct FroxelSurfaces {
+    std::vector<glm::vec4> values;
+    size_t froxels = 0;
 
-// Fills `bands` (one per froxel, x fastest, then y, then z) with the view-depth interval
-// [min, max] the surfaces occupy in each froxel, kEmptyBand where they occupy none. Triangles
-// with an index out of range or a non-finite corner are skipped.
-void froxelDepthBands(const ClusterGridShape& shape, const ClusterCamera& camera, const ClusterSurfaces& surfaces,
-                      std::vector<glm::vec2>& bands);
+    bool empty() const { return values.empty(); }
+    const glm::vec4& extent(size_t froxel) const { return values[froxel]; }
+    const glm::vec4& axis(size_t tile) const { return values[froxels + tile]; }
+    bool occupied(size_t froxel) const { return values[froxel].x <= values[froxel].y; }
+};
+
+// Fills `out` for this grid. Triangles with an index out of range or a non-finite corner are skipped.
+void froxelSurfaces(const ClusterGridShape& shape, const ClusterCamera& camera, const ClusterSurfaces& surfaces,
+                    FroxelSurfaces& out);
 
 }  // namespace preskin

@@ -22,6 +22,9 @@ PoseSurfaces::PoseSurfaces(const Scene& scene) {
             for (const MorphTarget& t : p.targets) part.delta.push_back(t.positionDeltas);
             if (skinned && p.influences.size() == p.vertices.size()) part.influences = p.influences;
             for (const uint32_t i : p.indices) indices_.push_back(static_cast<uint32_t>(base + i));
+            const bool doubleSided = p.material >= 0 && size_t(p.material) < scene.materials.size() &&
+                scene.materials[size_t(p.material)].doubleSided;
+            backFaceCulled_.resize(indices_.size() / 3, doubleSided ? 0 : 1);
             base += p.vertices.size();
             parts_.push_back(std::move(part));
         }
@@ -58,7 +61,7 @@ ClusterSurfaces PoseSurfaces::surfaces(const ScenePose& pose) {
         };
         tbb::parallel_for(tbb::blocked_range<size_t>(0, part.rest.size(), 4096), deform);
     }
-    return ClusterSurfaces{positions_, indices_};
+    return ClusterSurfaces{positions_, indices_, backFaceCulled_};
 }
 
 }  // namespace preskin

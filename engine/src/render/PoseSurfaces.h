@@ -31,7 +31,8 @@ private:
     std::vector<Part> parts_;
     std::vector<glm::mat4> restWorldFromObject_;  // per instance
     std::vector<glm::vec3> positions_;
-    std::vector<uint32_t> indices_;  // the scene's triangle lists, offset per part
+    std::vector<uint32_t> indices_;        // the scene's triangle lists, offset per part
+    std::vector<uint8_t> backFaceCulled_;  // per triangle: its material is single-sided
 };
 
 }  // namespace preskin

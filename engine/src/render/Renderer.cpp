@@ -375,9 +375,16 @@ bool Renderer::Impl::prepareFrame(Slot& slot, uint32_t slotIndex, const View& vi
             surfaces = poseSurfaces->surfaces(pose);
             surfacesPose = poseVersion;
         }
+        ClusterSurfaces frameSurfaces;
+        if (fitSurfaces) {
+            frameSurfaces = surfaces;
+            // Without MSAA a fragment is shaded inside its triangle; with it, at the centre of a
+            // pixel the triangle covers in part.
+            frameSurfaces.outsidePx = settings.msaaSamples > 1 ? 1.0f : 0.0f;
+        }
         const ClusterBuilder::FrameGrid grid =
             clusters->prepare(slotIndex, settings.clusters, clusterCamera(view, extent.width, extent.height), bounds,
-                              frameLights, directional, slot.lights, fitSurfaces ? surfaces : ClusterSurfaces{});
+                              frameLights, directional, slot.lights, frameSurfaces);
         u.clusterFromWorld = grid.clusterFromWorld;
         u.clusterScale = grid.lookupScale;
         u.clusterDims = grid.dims;
