@@ -94,6 +94,8 @@ void run(const BenchOptions& o) {
 
     RenderSettings base;
     base.clusters = o.clusters;
+    base.clusters.fitListsToSurfaces = !o.noSurfaceFit;
+    base.clusters.reuseSurfaces = !o.noSurfaceReuse;
     base.clusters.build = o.build == "cpu" ? ClusterBuild::Cpu
         : o.build == "gpu"                 ? ClusterBuild::Gpu
                                            : ClusterBuild::Auto;
@@ -117,6 +119,8 @@ void run(const BenchOptions& o) {
     j.field("depth_slices", base.clusters.depthSlices);
     j.field("near_slice_m", base.clusters.nearSliceM);
     j.field("fit_depth_to_scene", base.clusters.fitDepthToScene);
+    j.field("fit_lists_to_surfaces", base.clusters.fitListsToSurfaces);
+    j.field("reuse_surfaces", base.clusters.reuseSurfaces);
     j.field("max_lights_per_cluster", base.clusters.maxLightsPerCluster);
     j.field("max_light_indices", base.clusters.maxLightIndices);
     j.field("build", o.build);
@@ -221,6 +225,10 @@ void addBenchCommand(CLI::App& app) {
     cmd->add_option("--near-slice", o->clusters.nearSliceM, "Depth where the first slice ends at the earliest (m)")
         ->capture_default_str()
         ->check(numberIn(0.0, 1e6));
+    cmd->add_flag("--no-surface-fit", o->noSurfaceFit,
+                  "Light lists for whole froxels, not bounded by where the scene's surfaces are");
+    cmd->add_flag("--no-surface-reuse", o->noSurfaceReuse,
+                  "Find where the surfaces are every frame, as for a moving view (else a still view reuses it)");
     cmd->add_option("--max-per-cluster", o->clusters.maxLightsPerCluster, "Lights kept per cluster")
         ->capture_default_str()
         ->check(wholeNumberIn(1, 1 << 20));

@@ -51,6 +51,8 @@ struct BenchOptions {
     ClusterSettings clusters;
     std::string build = "auto";
     bool noBuildCompare = false;
+    bool noSurfaceFit = false;    // --no-surface-fit: ClusterSettings::fitListsToSurfaces off
+    bool noSurfaceReuse = false;  // --no-surface-reuse: ClusterSettings::reuseSurfaces off
     bool noBrute = false;
     bool noSkin = false;
     bool noPerPixel = false;

@@ -59,7 +59,8 @@ struct ClusterSettings {
     uint32_t depthSlices = 32;            // clamped to 2..256
     float nearSliceM = 0.05f;             // slice 0 ends here at the earliest
     bool fitDepthToScene = true;          // slices span the scene's depth range; lights missing it unlisted
-    bool fitListsToSurfaces = true;       // with ClusterSurfaces: lists bounded by the depths surfaces occupy
+    bool fitListsToSurfaces = true;       // with ClusterSurfaces: lists bounded by where the surfaces are
+    bool reuseSurfaces = true;            // renderer: a still view of an unchanged pose reuses them (version)
     uint32_t maxLightsPerCluster = 256;   // per-froxel cap (overflow rule above), >= 1
     uint32_t maxLightIndices = 1u << 23;  // capacity of the index list (overflow rule above), >= 1
     ClusterBuild build = ClusterBuild::Auto;
@@ -82,6 +83,9 @@ struct ClusterSurfaces {
     // centres inside it); with MSAA a pixel it covers in part is shaded at the centre, up to 0.71
     // pixels away, in any eye (a stereo eye's pixels are about the cluster camera's): 1.
     float outsidePx = 1.0f;
+    // Nonzero: the same version promises the same triangles, so a builder may reuse what it found
+    // for them when the camera and grid are unchanged too (a static scene seen from a still view).
+    uint64_t version = 0;
 
     bool empty() const { return indices.size() < 3; }
 };

@@ -141,14 +141,19 @@ ClusterLightBounds clusterLightBounds(const ClusterLight& light, const glm::mat4
     b.hi.z = s.sliceOf(maxDepth * (1.0f + 2.0f * kClusterDepthSlack));
     uint32_t first = 0;
     uint32_t last = 0;
-    if (!slabRange(g.xPlanes, 0, s.dims.x - 1, b.centerVs, b.radiusM, first, last)) {
+    // The slabs are tested within the sphere's projected tiles where those are known.
+    glm::uvec2 columns(0u, s.dims.x - 1);
+    glm::uvec2 rows(0u, s.dims.y - 1);
+    if (g.sphereTiles(0, b.centerVs, b.radiusM, first, last)) columns = glm::uvec2(first, last);
+    if (g.sphereTiles(1, b.centerVs, b.radiusM, first, last)) rows = glm::uvec2(first, last);
+    if (!slabRange(g.xPlanes, columns.x, columns.y, b.centerVs, b.radiusM, first, last)) {
         b.lo = glm::uvec3(1u);
         b.hi = glm::uvec3(0u);
         return b;
     }
     b.lo.x = first;
     b.hi.x = last;
-    if (!slabRange(g.yPlanes, 0, s.dims.y - 1, b.centerVs, b.radiusM, first, last)) {
+    if (!slabRange(g.yPlanes, rows.x, rows.y, b.centerVs, b.radiusM, first, last)) {
         b.lo = glm::uvec3(1u);
         b.hi = glm::uvec3(0u);
         return b;
@@ -166,6 +171,7 @@ void ClusterAssigner::build(const ClusterSettings& settings, const ClusterGeomet
     const uint32_t froxels = s.froxelCount();
 
     const bool surfaceBands = !surfaces.empty() && surfaces.froxels == froxels;
+    const uint32_t stamp = ++stamp_ == 0 ? ++stamp_ : stamp_;  // marks this build's cached spheres
     bounds_.resize(lights.size());
     tbb::parallel_for(tbb::blocked_range<size_t>(0, lights.size(), 64), [&](const tbb::blocked_range<size_t>& r) {
         for (size_t i = r.begin(); i < r.end(); ++i) bounds_[i] = clusterLightBounds(lights[i], viewFromWorld, g);
@@ -186,22 +192,21 @@ void ClusterAssigner::build(const ClusterSettings& settings, const ClusterGeomet
             sc.froxel.clear();
             sc.light.clear();
             sc.count.assign(perSlice, 0u);
-            sc.sphere.assign(perSlice, glm::vec4(-1.0f));  // radius < 0: not computed yet
+            sc.largest = 0;
+            if (!surfaceBands) {
+                sc.sphere.assign(perSlice, glm::vec4(-1.0f));  // radius < 0: not computed yet
+            } else if (sc.sphereStamp.size() != perSlice) {
+                sc.sphere.resize(perSlice);
+                sc.sphereStamp.assign(perSlice, 0u);  // stamp != 0: not computed in this build
+            }
             const float d0 = g.sliceStartM[z] * (1.0f - kClusterDepthSlack);
             const float d1 = z + 1 >= s.dims.z ? kInfinity : g.sliceStartM[z + 1] * (1.0f + kClusterDepthSlack);
-            // With surfaces, the columns each row of the slice has them in (lo > hi: none), and
-            // the rows that have any: lights are scanned only there.
+            // With surfaces, lights are scanned only over the rows and columns that hold them.
             glm::uvec2 rows(0u, s.dims.y - 1);
+            const glm::uvec2* columns = nullptr;
             if (surfaceBands) {
-                sc.columns.assign(s.dims.y, glm::uvec2(1u, 0u));
-                rows = glm::uvec2(1u, 0u);
-                for (uint32_t y = 0; y < s.dims.y; ++y)
-                    for (uint32_t x = 0; x < s.dims.x; ++x)
-                        if (surfaces.occupied(size_t(z) * perSlice + y * s.dims.x + x)) {
-                            glm::uvec2& span = sc.columns[y];
-                            span = span.x > span.y ? glm::uvec2(x) : glm::uvec2(span.x, x);
-                            rows = rows.x > rows.y ? glm::uvec2(y) : glm::uvec2(rows.x, y);
-                        }
+                columns = surfaces.rowColumns.data() + size_t(z) * s.dims.y;
+                rows = surfaces.sliceRows[z];
                 if (rows.x > rows.y) continue;
             }
             for (const uint32_t candidate : sc.candidates) {
@@ -220,8 +225,8 @@ void ClusterAssigner::build(const ClusterSettings& settings, const ClusterGeomet
                     uint32_t lo = b.lo.x;
                     uint32_t hi = b.hi.x;
                     if (surfaceBands) {
-                        lo = std::max(lo, sc.columns[y].x);
-                        hi = std::min(hi, sc.columns[y].y);
+                        lo = std::max(lo, columns[y].x);
+                        hi = std::min(hi, columns[y].y);
                         if (lo > hi) continue;
                     }
                     glm::vec3 c2 = c1;
@@ -250,14 +255,16 @@ void ClusterAssigner::build(const ClusterSettings& settings, const ClusterGeomet
                             if (!cutByDepth(e0, e1, c3, r3) || !cutByPlane(g.yPlanes[y], 1.0f, c3, r3) ||
                                 !cutByPlane(g.yPlanes[y + 1], -1.0f, c3, r3) || !slabOverlaps(g.xPlanes, x, c3, r3))
                                 continue;
-                            if (b.cone) {  // against the part of those depths the light's sphere spans
-                                const float near = std::max(e0, -b.centerVs.z - b.radiusM);
-                                const float far = std::min(e1, -b.centerVs.z + b.radiusM);
-                                if (near > far || !coneReachesSphere(b, froxelSphere(g, x, y, near, far))) continue;
+                            if (b.cone) {  // against the sphere of the occupied depths, once per froxel
+                                if (sc.sphereStamp[local] != stamp) {
+                                    sc.sphere[local] = froxelSphere(g, x, y, e0, e1);
+                                    sc.sphereStamp[local] = stamp;
+                                }
+                                if (!coneReachesSphere(b, sc.sphere[local])) continue;
                             }
                             sc.froxel.push_back(local);
                             sc.light.push_back(b.index);
-                            ++sc.count[local];
+                            sc.largest = std::max(sc.largest, ++sc.count[local]);
                             continue;
                         }
                         if (b.cone && coneD0 <= coneD1 && std::isfinite(coneD1)) {
@@ -275,7 +282,7 @@ void ClusterAssigner::build(const ClusterSettings& settings, const ClusterGeomet
                         }
                         sc.froxel.push_back(local);
                         sc.light.push_back(b.index);
-                        ++sc.count[local];
+                        sc.largest = std::max(sc.largest, ++sc.count[local]);
                     }
                 }
             }
@@ -289,15 +296,38 @@ void ClusterAssigner::build(const ClusterSettings& settings, const ClusterGeomet
     uint64_t running = 0;
     grid.overflowedClusters = 0;
     grid.requestedIndices = 0;
+    bool capped = false;
+    std::vector<uint64_t> sliceBase(s.dims.z + 1, 0);
     for (uint32_t z = 0; z < s.dims.z; ++z) {
-        const SliceScratch& sc = slices_[z];
-        for (uint32_t local = 0; local < perSlice; ++local) {
-            const uint64_t n = sc.count[local];
-            const uint64_t kept = std::min({n, perCluster, capacity - running});
-            if (kept < n) ++grid.overflowedClusters;
-            grid.ranges[z * perSlice + local] = glm::uvec2(static_cast<uint32_t>(running), static_cast<uint32_t>(kept));
-            running += kept;
-            grid.requestedIndices += n;
+        capped = capped || slices_[z].largest > perCluster;
+        sliceBase[z + 1] = sliceBase[z] + slices_[z].froxel.size();
+    }
+    capped = capped || sliceBase[s.dims.z] > capacity;
+    if (!capped) {  // no cap applies: every slice's offsets from its own start, in parallel
+        tbb::parallel_for(tbb::blocked_range<uint32_t>(0, s.dims.z, 1), [&](const tbb::blocked_range<uint32_t>& r) {
+            for (uint32_t z = r.begin(); z < r.end(); ++z) {
+                const SliceScratch& sc = slices_[z];
+                auto offset = static_cast<uint32_t>(sliceBase[z]);
+                glm::uvec2* out = grid.ranges.data() + size_t(z) * perSlice;
+                for (uint32_t local = 0; local < perSlice; ++local) {
+                    out[local] = glm::uvec2(offset, sc.count[local]);
+                    offset += sc.count[local];
+                }
+            }
+        });
+        running = grid.requestedIndices = sliceBase[s.dims.z];
+    } else {
+        for (uint32_t z = 0; z < s.dims.z; ++z) {
+            const SliceScratch& sc = slices_[z];
+            for (uint32_t local = 0; local < perSlice; ++local) {
+                const uint64_t n = sc.count[local];
+                const uint64_t kept = std::min({n, perCluster, capacity - running});
+                if (kept < n) ++grid.overflowedClusters;
+                grid.ranges[z * perSlice + local] =
+                    glm::uvec2(static_cast<uint32_t>(running), static_cast<uint32_t>(kept));
+                running += kept;
+                grid.requestedIndices += n;
+            }
         }
     }
     grid.indices.resize(running);

@@ -75,14 +75,16 @@ public:
 
 private:
     struct SliceScratch {
-        std::vector<uint32_t> candidates;  // the lights whose froxel box reaches the slice, in light order
-        std::vector<uint32_t> froxel;      // froxel within the slice (y * dims.x + x), per entry
-        std::vector<uint32_t> light;       // light index, per entry
-        std::vector<uint32_t> count;       // entries per froxel of the slice
-        std::vector<glm::vec4> sphere;     // bounding sphere per froxel of the slice, for spots
-        std::vector<glm::uvec2> columns;   // with surfaces: per row, the columns holding them (x > y: none)
+        std::vector<uint32_t> candidates;   // the lights whose froxel box reaches the slice, in light order
+        std::vector<uint32_t> froxel;       // froxel within the slice (y * dims.x + x), per entry
+        std::vector<uint32_t> light;        // light index, per entry
+        std::vector<uint32_t> count;        // entries per froxel of the slice
+        uint32_t largest = 0;               // the largest count
+        std::vector<glm::vec4> sphere;      // bounding sphere per froxel of the slice, for spots
+        std::vector<uint32_t> sphereStamp;  // with surfaces: the build that computed `sphere`
     };
     std::vector<ClusterLightBounds> bounds_;
+    uint32_t stamp_ = 0;
     std::vector<SliceScratch> slices_;
 };
 

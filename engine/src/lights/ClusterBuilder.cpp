@@ -94,9 +94,25 @@ ClusterBuilder::FrameGrid ClusterBuilder::prepare(uint32_t slot, const ClusterSe
     s.localLights = localCount;
     s.gpu = useGpu(settings);
     s.pending = false;
-    froxelSurfaces_.values.clear();
-    if (settings.fitListsToSurfaces && !surfaces.empty())
-        froxelSurfaces(geometry.shape, camera, surfaces, froxelSurfaces_);
+    if (!settings.fitListsToSurfaces || surfaces.empty()) {
+        froxelSurfaces_.values.clear();
+        surfacesKey_ = {};
+    } else {
+        // The same triangles seen by the same camera into the same grid: last frame's work holds.
+        const SurfacesKey key{surfaces.version,
+                              surfaces.outsidePx,
+                              camera.eye.viewFromWorld,
+                              camera.eye.clipFromView,
+                              camera.extentPx,
+                              camera.viewpoints,
+                              geometry.shape.dims,
+                              geometry.shape.tileSizePx,
+                              glm::vec4(geometry.shape.nearM, geometry.shape.logStartM, geometry.shape.logEndM, 0.0f)};
+        if (surfaces.version == 0 || !(key == surfacesKey_) || froxelSurfaces_.empty()) {
+            froxelSurfaces(geometry.shape, camera, surfaces, froxelSurfaces_);
+            surfacesKey_ = key;
+        }
+    }
     if (s.gpu) {
         prepareGpu(s, settings, geometry, view, firstLocal, localCount, lightBuffer);
     } else {

@@ -91,6 +91,20 @@ private:
     ClusterGrid cpuGrid_;
     std::vector<ClusterLight> local_;
     FroxelSurfaces froxelSurfaces_;  // this frame's (empty: none)
+    // What froxelSurfaces_ was computed from (ClusterSurfaces::version 0: never reused).
+    struct SurfacesKey {
+        uint64_t version = 0;
+        float outsidePx = 0.0f;
+        glm::mat4 viewFromWorld{0.0f};
+        glm::mat4 clipFromView{0.0f};
+        glm::uvec2 extentPx{0u};
+        std::vector<glm::vec4> viewpoints;
+        glm::uvec3 dims{0u};
+        uint32_t tileSizePx = 0;
+        glm::vec4 depths{0.0f};  // near, log start, log end
+        bool operator==(const SurfacesKey&) const = default;
+    };
+    SurfacesKey surfacesKey_;
     std::array<Slot, kSlots> slots_;
     VkDescriptorSetLayout setLayout_ = VK_NULL_HANDLE;
     VkPipelineLayout pipelineLayout_ = VK_NULL_HANDLE;

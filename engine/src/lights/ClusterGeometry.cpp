@@ -82,9 +82,55 @@ ClusterGridShape clusterGridShape(const ClusterSettings& settings, const Cluster
     return s;
 }
 
+bool ClusterGeometry::sphereTiles(int axis, const glm::vec3& center, float radius, uint32_t& lo, uint32_t& hi) const {
+    const glm::dmat4& p = clipFromView;
+    // The projection's terms for this axis: scale, the other axis's, depth's and the constant.
+    const glm::dvec4 row =
+        axis == 0 ? glm::dvec4(p[0][0], p[1][0], p[2][0], p[3][0]) : glm::dvec4(p[1][1], p[0][1], p[2][1], p[3][1]);
+    // The usual form: no x-y mixing, w = -z (perspective) or 1.
+    const bool perspective = p[2][3] == -1.0 && p[3][3] == 0.0;
+    const bool orthographic = p[2][3] == 0.0 && p[3][3] == 1.0;
+    if (row.y != 0.0 || p[0][3] != 0.0 || p[1][3] != 0.0 || !(perspective || orthographic) || !std::isfinite(radius))
+        return false;
+    const double c = axis == 0 ? double(center.x) : double(center.y);
+    const double r = radius;
+    double ndc0 = 0.0;
+    double ndc1 = 0.0;
+    if (orthographic) {
+        ndc0 = row.x * (c - r) + row.z * double(center.z) + row.w;
+        ndc1 = row.x * (c + r) + row.z * double(center.z) + row.w;
+    } else {
+        if (row.w != 0.0) return false;
+        const double depth = -double(center.z);
+        const double d2 = c * c + depth * depth;
+        if (!(depth > r * 1.001) || !(d2 > r * r)) return false;  // reaches the eye's plane
+        // Slopes a / depth of the two tangent lines from the eye in the (axis, depth) plane.
+        const double root = r * std::sqrt(d2 - r * r);
+        const double denominator = depth * depth - r * r;
+        const double t0 = (c * depth - root) / denominator;
+        const double t1 = (c * depth + root) / denominator;
+        // ndc = (scale a + depth term z) / -z = scale t - depth term
+        ndc0 = row.x * t0 - row.z;
+        ndc1 = row.x * t1 - row.z;
+    }
+    const double tilesPerNdc = 0.5 * double(axis == 0 ? shape.extentPx.x : shape.extentPx.y) / double(shape.tileSizePx);
+    const double count = double(axis == 0 ? shape.dims.x : shape.dims.y);
+    const double a = (std::min(ndc0, ndc1) + 1.0) * tilesPerNdc - 1.0;
+    const double b = (std::max(ndc0, ndc1) + 1.0) * tilesPerNdc + 1.0;
+    if (!(a <= b) || b < 0.0 || a >= count) {  // NaN, or wholly outside: an empty range
+        lo = 1;
+        hi = 0;
+        return std::isfinite(a) && std::isfinite(b);
+    }
+    lo = static_cast<uint32_t>(std::clamp(std::floor(a), 0.0, count - 1.0));
+    hi = static_cast<uint32_t>(std::clamp(std::floor(b), 0.0, count - 1.0));
+    return true;
+}
+
 ClusterGeometry clusterGeometry(const ClusterGridShape& shape, const Eye& view) {
     ClusterGeometry g;
     g.shape = shape;
+    g.clipFromView = glm::dmat4(view.clipFromView);
     const glm::uvec3 dims = shape.dims;
     Unprojector u{glm::dmat4(view.clipFromView), glm::inverse(glm::dmat4(view.clipFromView)),
                   glm::dvec2(shape.extentPx)};

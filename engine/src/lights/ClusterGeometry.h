@@ -25,6 +25,13 @@ struct ClusterGeometry {
     std::vector<float> sliceStartM;       // dims.z + 1; the last entry is +infinity
     std::vector<glm::vec4> cornerOrigin;  // (dims.x + 1) * (dims.y + 1), x fastest; w unused
     std::vector<glm::vec4> cornerDir;     // same layout
+    glm::dmat4 clipFromView{1.0};         // the cluster camera's projection
+
+    // The columns (axis 0) or rows (axis 1) whose slabs a view-space sphere may overlap, from
+    // its projection (the tangents from the eye, or its extent for an orthographic camera) grown
+    // by a tile: a range to test the slabs in instead of all of them. False when no such range
+    // is known (a sphere reaching the eye's plane, an unusual projection): test them all.
+    bool sphereTiles(int axis, const glm::vec3& center, float radius, uint32_t& lo, uint32_t& hi) const;
 
     uint32_t cornerIndex(uint32_t i, uint32_t j) const { return j * (shape.dims.x + 1) + i; }
 };

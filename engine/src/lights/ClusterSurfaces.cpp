@@ -22,6 +22,7 @@ constexpr double kSnapPx = 1.0 / 64.0;
 constexpr double kEdgeOnGrowth = 0.05;
 constexpr double kInfinity = std::numeric_limits<double>::infinity();
 constexpr float kFar = 3.0e38f;
+constexpr uint32_t kNone = ~0u;  // an empty span: (kNone, kNone)
 
 // One corner of a clipped triangle: view-space point and its cluster coordinates (clip x,
 // clip y, view depth, clip w).
@@ -36,30 +37,34 @@ struct Affine {
     double at(const glm::dvec2& p) const { return g.x * p.x + g.y * p.y + g.z; }
 };
 
-// The convex polygon t[0..n) clipped to the rectangle [lo, hi] (Sutherland-Hodgman): its corner
-// count (0: nothing inside), corners in `out`.
+// The convex polygon t[0..n) clipped to the rectangle [lo, hi] (Sutherland-Hodgman; sides that
+// every corner is inside of are skipped): its corner count (0: nothing inside), corners in `out`.
 int clipToRect(const glm::dvec2* t, int n, const glm::dvec2& lo, const glm::dvec2& hi, std::array<glm::dvec2, 8>& out) {
-    std::array<glm::dvec2, 8> a;
-    std::array<glm::dvec2, 8> b;
+    std::array<glm::dvec2, 8> other;
+    glm::dvec2* from = out.data();
+    glm::dvec2* to = other.data();
     int count = n;
-    for (int i = 0; i < n; ++i) a[size_t(i)] = t[i];
+    for (int i = 0; i < n; ++i) from[i] = t[i];
     for (int side = 0; side < 4 && count > 0; ++side) {
         const int axis = side & 1;
         const double bound = side < 2 ? lo[axis] : hi[axis];
         const double sign = side < 2 ? 1.0 : -1.0;  // inside: sign * (p[axis] - bound) >= 0
+        bool allInside = true;
+        for (int i = 0; i < count && allInside; ++i) allInside = sign * (from[i][axis] - bound) >= 0.0;
+        if (allInside) continue;
         int kept = 0;
         for (int i = 0; i < count; ++i) {
-            const glm::dvec2& p = a[size_t(i)];
-            const glm::dvec2& q = a[size_t((i + 1) % count)];
+            const glm::dvec2& p = from[i];
+            const glm::dvec2& q = from[i + 1 == count ? 0 : i + 1];
             const double dp = sign * (p[axis] - bound);
             const double dq = sign * (q[axis] - bound);
-            if (dp >= 0.0 && kept < 8) b[size_t(kept++)] = p;
-            if ((dp >= 0.0) != (dq >= 0.0) && kept < 8) b[size_t(kept++)] = p + (q - p) * (dp / (dp - dq));
+            if (dp >= 0.0 && kept < 8) to[kept++] = p;
+            if ((dp >= 0.0) != (dq >= 0.0) && kept < 8) to[kept++] = p + (q - p) * (dp / (dp - dq));
         }
         count = kept;
-        a = b;
+        std::swap(from, to);
     }
-    out = a;
+    if (from != out.data()) std::copy(from, from + count, out.data());
     return count;
 }
 
@@ -243,6 +248,8 @@ private:
         const uint32_t z0 = shape_.sliceOf(lo);
         const uint32_t z1 = shape_.sliceOf(hi);
         for (uint32_t z = z0; z <= z1; ++z) {
+            glm::uvec2& span = out_.rowColumns[size_t(z) * shape_.dims.y + ty];
+            span = glm::uvec2(std::min(span.x, tx), std::max(span.y == kNone ? tx : span.y, tx));
             glm::vec4& e = out_.values[shape_.froxelIndex(tx, ty, z)];
             e = glm::vec4(std::min(e.x, lo), std::max(e.y, hi), slab ? std::min(e.z, along0) : -kFar,
                           slab ? std::max(e.w, along1) : kFar);
@@ -283,8 +290,8 @@ void froxelSurfaces(const ClusterGridShape& shape, const ClusterCamera& camera, 
                     FroxelSurfaces& out) {
     const size_t tiles = size_t(shape.dims.x) * shape.dims.y;
     out.froxels = shape.froxelCount();
-    out.values.assign(out.froxels, glm::vec4(kFar, -kFar, kFar, -kFar));
-    out.values.resize(out.froxels + tiles, glm::vec4(0.0f));
+    out.values.resize(out.froxels + tiles);  // each band clears its own rows below
+    out.rowColumns.resize(size_t(shape.dims.z) * shape.dims.y);
     const size_t triangles = surfaces.indices.size() / 3;
     const size_t vertexCount = surfaces.positionsWs.size();
     const bool culling = surfaces.backFaceCulled.size() == triangles && !camera.viewpoints.empty();
@@ -331,8 +338,23 @@ void froxelSurfaces(const ClusterGridShape& shape, const ClusterCamera& camera, 
     const auto pass = [&](int which) {
         tbb::parallel_for(tbb::blocked_range<uint32_t>(0, bandCount, 1), [&](const tbb::blocked_range<uint32_t>& r) {
             for (uint32_t k = r.begin(); k < r.end(); ++k) {
-                SurfaceWriter writer(shape, camera.eye, double(surfaces.outsidePx), which, k * rowsPerBand,
-                                     std::min((k + 1) * rowsPerBand, shape.dims.y), out);
+                const uint32_t rowBegin = k * rowsPerBand;
+                const uint32_t rowEnd = std::min((k + 1) * rowsPerBand, shape.dims.y);
+                if (which == 0) {  // the band's rows start empty
+                    const size_t first = size_t(rowBegin) * shape.dims.x;
+                    const size_t last = size_t(rowEnd) * shape.dims.x;
+                    for (uint32_t z = 0; z < shape.dims.z; ++z) {
+                        std::fill(out.values.begin() + ptrdiff_t(z * tiles + first),
+                                  out.values.begin() + ptrdiff_t(z * tiles + last),
+                                  glm::vec4(kFar, -kFar, kFar, -kFar));
+                        std::fill(out.rowColumns.begin() + ptrdiff_t(size_t(z) * shape.dims.y + rowBegin),
+                                  out.rowColumns.begin() + ptrdiff_t(size_t(z) * shape.dims.y + rowEnd),
+                                  glm::uvec2(kNone));
+                    }
+                    std::fill(out.values.begin() + ptrdiff_t(out.froxels + first),
+                              out.values.begin() + ptrdiff_t(out.froxels + last), glm::vec4(0.0f));
+                }
+                SurfaceWriter writer(shape, camera.eye, double(surfaces.outsidePx), which, rowBegin, rowEnd, out);
                 for (const uint32_t t : banded[k]) {
                     const uint32_t* i = surfaces.indices.data() + 3 * size_t(t);
                     writer.triangle(surfaces.positionsWs[i[0]], surfaces.positionsWs[i[1]], surfaces.positionsWs[i[2]]);
@@ -348,6 +370,18 @@ void froxelSurfaces(const ClusterGridShape& shape, const ClusterCamera& camera, 
         out.values[k] = length > 0.0f && std::isfinite(length) ? glm::vec4(sum / length, 1.0f) : glm::vec4(0.0f);
     }
     pass(1);
+    // Empty spans as lo > hi, and each slice's rows.
+    out.sliceRows.assign(shape.dims.z, glm::uvec2(1u, 0u));
+    for (uint32_t z = 0; z < shape.dims.z; ++z)
+        for (uint32_t y = 0; y < shape.dims.y; ++y) {
+            glm::uvec2& span = out.rowColumns[size_t(z) * shape.dims.y + y];
+            if (span.x == kNone) {
+                span = glm::uvec2(1u, 0u);
+                continue;
+            }
+            glm::uvec2& rows = out.sliceRows[z];
+            rows = rows.x > rows.y ? glm::uvec2(y) : glm::uvec2(rows.x, y);
+        }
 }
 
 }  // namespace preskin

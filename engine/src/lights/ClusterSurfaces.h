@@ -36,9 +36,12 @@ namespace preskin {
 //     depth > max depth where there is no surface;
 //   values[froxels + t], t < tiles (x fastest): the tile's slab axis (unit, view space) and w = 1,
 //     or w = 0 where it has none.
+// Besides, per slice and row the columns holding surfaces, and per slice the rows (x > y: none).
 struct FroxelSurfaces {
     std::vector<glm::vec4> values;
     size_t froxels = 0;
+    std::vector<glm::uvec2> rowColumns;  // [slice * rows + row]
+    std::vector<glm::uvec2> sliceRows;   // [slice]
 
     bool empty() const { return values.empty(); }
     const glm::vec4& extent(size_t froxel) const { return values[froxel]; }

@@ -381,6 +381,7 @@ bool Renderer::Impl::prepareFrame(Slot& slot, uint32_t slotIndex, const View& vi
             // Without MSAA a fragment is shaded inside its triangle; with it, at the centre of a
             // pixel the triangle covers in part.
             frameSurfaces.outsidePx = settings.msaaSamples > 1 ? 1.0f : 0.0f;
+            if (settings.clusters.reuseSurfaces) frameSurfaces.version = poseVersion + 1;
         }
         const ClusterBuilder::FrameGrid grid =
             clusters->prepare(slotIndex, settings.clusters, clusterCamera(view, extent.width, extent.height), bounds,
