@@ -160,7 +160,8 @@ bool coneReachesFroxel(ClusterLightVolume v, uvec2 tile, float dA, float dB) {
              along < -radius);
 }
 
-// One invocation's froxel: its tile's boundary planes and its dilated depth slab [d0, d1].
+// One invocation's froxel: its tile's boundary planes and its dilated depth slab [d0, d1]; with
+// the surfaces, also where they are in it: depths [bandD0, bandD1] and the slab along the axis.
 struct Froxel {
     uvec3 f;
     vec4 row0;
@@ -170,47 +171,59 @@ struct Froxel {
     float d0;
     float d1;
     bool lastSlice;
-    vec4 slabLow;   // the surfaces' slab: planes (axis, -min along it) and (axis, -max along it),
-    vec4 slabHigh;  // used when hasSlab
+    bool surfaces;
+    float bandD0;
+    float bandD1;
+    vec4 slabLow;   // planes (axis, -min along it) and (axis, -max along it), used when hasSlab
+    vec4 slabHigh;
     bool hasSlab;
 };
 
-// Does light i (local index) touch the froxel?
+// The light's bounding sphere cut to the slab (with `slab`), to the depths [d0, d1] (no far
+// bound when open) and to the froxel's row: does it overlap the froxel's column?
+bool sphereReaches(ClusterLightVolume v, Froxel fr, float d0, float d1, bool open, bool slab) {
+    vec3 c = v.centerRadius.xyz;
+    float r = v.centerRadius.w;
+    if (slab && (!cutByPlane(fr.slabLow, 1.0, c, r) || !cutByPlane(fr.slabHigh, -1.0, c, r))) return false;
+    float depth = -c.z;
+    float h = 0.0;
+    if (depth < d0) {
+        h = d0 - depth;
+        c.z = -d0;
+    } else if (!open && depth > d1) {
+        h = depth - d1;
+        c.z = -d1;
+    }
+    if (h > r) return false;
+    r = sqrt(max(r * r - h * h, 0.0));
+    if (!cutByPlane(fr.row0, 1.0, c, r) || !cutByPlane(fr.row1, -1.0, c, r)) return false;
+    return !(planeDistance(fr.column0, c) < -r || planeDistance(fr.column1, c) > r);
+}
+
+// Does light i (local index) touch the froxel (with the surfaces: the part of it they occupy)?
+// As the CPU build: the whole froxel's test, then the surfaces' part's; a spot's cone against the
+// sphere of the surfaces' depths (or of the part of the slice the light's sphere spans).
 bool froxelTouched(uint i, Froxel fr) {
     uvec3 f = fr.f;
-    float d0 = fr.d0;
-    float d1 = fr.d1;
-    bool lastSlice = fr.lastSlice;
     ClusterLightVolume v = volumes[i];
     uint flags = v.box.w;
     if (f.z < (v.box.z & 0xffffu) || f.z > (v.box.z >> 16)) return false;
-    float coneD0 = d0;
-    float coneD1 = d1;
-    bool coneOpen = lastSlice;
-    if ((flags & kClusterVolumeUnlimited) == 0u) {
-        vec3 c = v.centerRadius.xyz;
-        float r = v.centerRadius.w;
-        if (fr.hasSlab && (!cutByPlane(fr.slabLow, 1.0, c, r) || !cutByPlane(fr.slabHigh, -1.0, c, r))) return false;
-        float depth = -c.z;
-        float h = 0.0;
-        if (depth < d0) {
-            h = d0 - depth;
-            c.z = -d0;
-        } else if (!lastSlice && depth > d1) {
-            h = depth - d1;
-            c.z = -d1;
-        }
-        if (h > r) return false;
-        r = sqrt(max(r * r - h * h, 0.0));
-        if (!cutByPlane(fr.row0, 1.0, c, r) || !cutByPlane(fr.row1, -1.0, c, r)) return false;
-        if (planeDistance(fr.column0, c) < -r || planeDistance(fr.column1, c) > r) return false;
+    bool limited = (flags & kClusterVolumeUnlimited) == 0u;
+    if (limited && !sphereReaches(v, fr, fr.d0, fr.d1, fr.lastSlice, false)) return false;
+    if (limited && fr.surfaces && !sphereReaches(v, fr, fr.bandD0, fr.bandD1, false, fr.hasSlab)) return false;
+    if ((flags & kClusterVolumeCone) == 0u) return true;
+    if (fr.surfaces) return coneReachesFroxel(v, f.xy, fr.bandD0, fr.bandD1);
+    float coneD0 = fr.d0;
+    float coneD1 = fr.d1;
+    bool coneOpen = fr.lastSlice;
+    if (limited) {
         float lightNear = -v.centerRadius.z - v.centerRadius.w;
         float lightFar = -v.centerRadius.z + v.centerRadius.w;
-        coneD0 = max(d0, lightNear);
-        coneD1 = lastSlice ? lightFar : min(d1, lightFar);
+        coneD0 = max(fr.d0, lightNear);
+        coneD1 = fr.lastSlice ? lightFar : min(fr.d1, lightFar);
         coneOpen = false;
     }
-    if ((flags & kClusterVolumeCone) == 0u || coneOpen || coneD0 > coneD1) return true;
+    if (coneOpen || coneD0 > coneD1) return true;
     return coneReachesFroxel(v, f.xy, coneD0, coneD1);
 }
 
@@ -248,20 +261,20 @@ void assignPass() {
         fr.d0 = inGrid ? sliceStart(z) * (1.0 - params.slack.x) : 0.0;
         fr.d1 = inGrid && !lastSlice ? sliceStart(z + 1u) * (1.0 + params.slack.x) : 0.0;
         fr.lastSlice = lastSlice;
+        fr.surfaces = inGrid && params.slicing.z > 0.0;
         fr.hasSlab = false;
         bool occupied = inGrid;
-        if (inGrid && params.slicing.z > 0.0) {
+        if (fr.surfaces) {
             // Only where the frame's surfaces are in this froxel (none: an empty list).
             uint tiles = params.dims.x * params.dims.y;
             vec4 extent = surfaces[z * tiles + tile.y * params.dims.x + tile.x];
             vec4 axis = surfaces[params.dims.z * tiles + tile.y * params.dims.x + tile.x];
-            fr.d0 = max(fr.d0, extent.x);
-            fr.d1 = lastSlice ? extent.y : min(fr.d1, extent.y);
-            fr.lastSlice = false;
+            fr.bandD0 = max(fr.d0, extent.x);
+            fr.bandD1 = lastSlice ? extent.y : min(fr.d1, extent.y);
             fr.hasSlab = axis.w > 0.0;
             fr.slabLow = vec4(axis.xyz, -extent.z);
             fr.slabHigh = vec4(axis.xyz, -extent.w);
-            occupied = fr.d0 <= fr.d1;
+            occupied = fr.bandD0 <= fr.bandD1;
         }
 
         uint found = 0u;

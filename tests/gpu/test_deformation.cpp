@@ -23,6 +23,7 @@
 
 #include "render/GpuDeformer.h"
 #include "render/GpuScene.h"
+#include "render/PoseSurfaces.h"
 #include "vk/Device.h"
 #include "vk/Resources.h"
 
@@ -161,6 +162,41 @@ TEST_F(GpuDeformation, GpuMatchesCpuDeformation) {
             EXPECT_LE(worstN, 1e-5) << what;
             EXPECT_LE(worstT, 1e-5) << what;
         }
+    }
+}
+
+// The light grid's triangles (render/PoseSurfaces.h) follow the deformation: their corners are
+// the deformed vertices (deformPrimitive, the reference the GPU pass is held to above).
+TEST(PoseSurfaces, TrianglesFollowTheDeformation) {
+    for (bool morph : {false, true}) {
+        const Scene scene = morph ? tubeWithMorph() : Scene::load(kTube);
+        ASSERT_EQ(scene.instances.size(), 1u);
+        PoseSurfaces posed(scene);
+        for (float t : {0.0f, 1.0f, 2.5f}) {
+            ScenePose pose = tubePose(scene, t);
+            if (morph) pose.instances[0].morphWeights = {0.8f};
+            const ClusterSurfaces surfaces = posed.surfaces(pose);
+            const std::vector<Vertex> cpu = cpuDeform(scene, pose);
+            ASSERT_EQ(surfaces.positionsWs.size(), cpu.size());
+            const double scale = meshScale(cpu);
+            double worst = 0.0;
+            for (size_t i = 0; i < cpu.size(); ++i)
+                worst = std::max(worst, double(glm::length(surfaces.positionsWs[i] - cpu[i].positionOs)) / scale);
+            EXPECT_LE(worst, 1e-5) << (morph ? "morph + skin" : "skin") << " at t = " << t;
+            size_t indices = 0;
+            for (const Primitive& p : scene.meshes[size_t(scene.instances[0].mesh)].primitives)
+                indices += p.indices.size();
+            EXPECT_EQ(surfaces.indices.size(), indices);
+            EXPECT_EQ(surfaces.backFaceCulled.size(), indices / 3);
+        }
+        // A pose that bends it moves the triangles.
+        const ClusterSurfaces rest = posed.surfaces(tubePose(scene, 0.0f));
+        const std::vector<glm::vec3> restPositions(rest.positionsWs.begin(), rest.positionsWs.end());
+        const ClusterSurfaces bent = posed.surfaces(tubePose(scene, 1.0f));
+        double moved = 0.0;
+        for (size_t i = 0; i < restPositions.size(); ++i)
+            moved = std::max(moved, double(glm::length(bent.positionsWs[i] - restPositions[i])));
+        EXPECT_GT(moved, 0.05 * meshScale(cpuDeform(scene, tubePose(scene, 0.0f))));
     }
 }
 

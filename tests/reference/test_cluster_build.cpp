@@ -38,7 +38,8 @@ View testView() {
 
 // Lists from the renderer's builder for `lights` (directional ones first, as the renderer orders them).
 ClusterGrid buildLists(Context& context, ClusterSettings settings, ClusterBuild build, const View& view,
-                       const std::vector<Light>& lights, const Bounds& sceneBounds = {}) {
+                       const std::vector<Light>& lights, const Bounds& sceneBounds = {},
+                       const ClusterSurfaces& surfaces = {}) {
     const vk::Device& device = ContextAccess::core(context);
     std::vector<gpu::GpuLight> gpuLights;
     uint32_t firstLocal = 0;
@@ -51,8 +52,8 @@ ClusterGrid buildLists(Context& context, ClusterSettings settings, ClusterBuild 
     lightBuffer.upload(gpuLights.data(), gpuLights.size() * sizeof(gpu::GpuLight));
     ClusterBuilder builder(device);
     settings.build = build;
-    const ClusterBuilder::FrameGrid frame =
-        builder.prepare(0, settings, clusterCamera(view, kWidth, kHeight), sceneBounds, lights, firstLocal, lightBuffer);
+    const ClusterBuilder::FrameGrid frame = builder.prepare(0, settings, clusterCamera(view, kWidth, kHeight),
+                                                            sceneBounds, lights, firstLocal, lightBuffer, surfaces);
     device.submitAndWait([&](VkCommandBuffer cmd) { builder.record(cmd, 0); });
     EXPECT_EQ(builder.usesGpu(0), build == ClusterBuild::Gpu);
     ClusterGrid grid = builder.readBack(0);
@@ -262,13 +263,14 @@ struct Frames {
     RenderedImage brute, clusteredCpu, clusteredGpu, starved;
 };
 
-Frames renderFrames(Context& context, bool skin) {
+Frames renderFrames(Context& context, bool skin, uint32_t msaaSamples = 1) {
     const Scene scene = testScene(skin);
     const View view = testView();
     static const LutSet luts = LutSet::load(std::filesystem::path(PRESKIN_SOURCE_DIR) / "luts");
     RenderSettings settings;
     settings.clusters.tileSizePx = 16;
     settings.clusters.depthSlices = 16;
+    settings.msaaSamples = msaaSamples;
     Renderer renderer(context, scene, Environment::constant(glm::vec3(0.05f)), &luts, settings);
     renderer.setLights(frameLights(scene, view, settings.clusters));
     Frames f;
@@ -322,6 +324,73 @@ TEST_F(ClusterBuildGpu, ClusteredRendersMatchBruteForceSkinMaterial) {
     EXPECT_GT(differing, 500u);
 }
 
+// With MSAA a pixel a triangle covers in part is shaded at its centre, off the triangle: the
+// lists bounded by the surfaces allow for it (ClusterSurfaces::outsidePx).
+TEST_F(ClusterBuildGpu, ClusteredRendersMatchBruteForceWithMsaa) {
+    const Frames f = renderFrames(context(), true, 4);
+    EXPECT_LE(maxByteDifference(f.brute, f.clusteredCpu), 1) << "CPU build";
+    EXPECT_LE(maxByteDifference(f.brute, f.clusteredGpu), 1) << "compute build";
+    size_t differing = 0;
+    EXPECT_GT(maxByteDifference(f.brute, f.starved, &differing), 8);
+    EXPECT_GT(differing, 500u);
+}
+
+// The scene's triangles in world space (its single-sided materials: back faces culled), as the
+// renderer gives them to the light grid.
+struct SceneTriangles {
+    std::vector<glm::vec3> positions;
+    std::vector<uint32_t> indices;
+    std::vector<uint8_t> culled;
+
+    explicit SceneTriangles(const Scene& scene) {
+        for (const MeshInstance& inst : scene.instances)
+            for (const Primitive& p : scene.meshes[size_t(inst.mesh)].primitives) {
+                const auto base = static_cast<uint32_t>(positions.size());
+                for (const Vertex& v : p.vertices)
+                    positions.push_back(glm::vec3(inst.worldFromObject * glm::vec4(v.positionOs, 1.0f)));
+                for (uint32_t i : p.indices) indices.push_back(base + i);
+            }
+        culled.assign(indices.size() / 3, 1);
+    }
+    ClusterSurfaces surfaces(float outsidePx) const { return ClusterSurfaces{positions, indices, culled, outsidePx}; }
+};
+
+// With the scene's surfaces both builds cut each light to where they are in each froxel, and
+// list the same lights; every light reaching a point of the surfaces is listed where it is.
+TEST_F(ClusterBuildGpu, ComputeBuildWithSurfacesMatchesCpuBuild) {
+    const View view = testView();
+    const Scene scene = testScene(false);
+    const SceneTriangles triangles(scene);
+    ClusterSettings settings = gridSettings();
+    settings.fitDepthToScene = true;
+    const std::vector<Light> lights = frameLights(scene, view, settings);
+    for (float outsidePx : {0.0f, 1.0f}) {
+        const ClusterSurfaces surfaces = triangles.surfaces(outsidePx);
+        const ClusterGrid cpu =
+            buildLists(context(), settings, ClusterBuild::Cpu, view, lights, scene.worldBounds(), surfaces);
+        const ClusterGrid gpu =
+            buildLists(context(), settings, ClusterBuild::Gpu, view, lights, scene.worldBounds(), surfaces);
+        const ClusterGrid whole = buildLists(context(), settings, ClusterBuild::Cpu, view, lights, scene.worldBounds());
+        EXPECT_EQ(gpu.overflowedClusters, 0u);
+        const auto cpuLists = froxelLists(cpu);
+        const auto gpuLists = froxelLists(gpu);
+        size_t differing = 0;
+        for (size_t i = 0; i < cpuLists.size(); ++i) {
+            std::vector<uint32_t> onlyOne;
+            std::set_symmetric_difference(cpuLists[i].begin(), cpuLists[i].end(), gpuLists[i].begin(),
+                                          gpuLists[i].end(), std::back_inserter(onlyOne));
+            differing += onlyOne.size();
+        }
+        EXPECT_LE(double(differing), 1e-3 * double(cpu.indices.size()))
+            << differing << " of " << cpu.indices.size() << " entries differ (outsidePx " << outsidePx << ")";
+        EXPECT_GT(cpu.indices.size(), 200u);
+        EXPECT_LT(double(cpu.indices.size()), 0.8 * double(whole.indices.size()));
+        std::printf(
+            "[ clusters ] surfaces, outsidePx %.0f: CPU %zu, compute %zu entries, %zu differ; whole froxels %zu\n",
+            double(outsidePx), cpu.indices.size(), gpu.indices.size(), differing, whole.indices.size());
+    }
+}
+
 TEST_F(ClusterBuildGpu, LightCountViewReportsEachPixelsList) {
     const Scene scene = testScene(false);
     const View view = testView();
@@ -333,7 +402,10 @@ TEST_F(ClusterBuildGpu, LightCountViewReportsEachPixelsList) {
     const std::vector<Light> lights = frameLights(scene, view, settings.clusters);
     renderer.setLights(lights);
     const RenderedImage image = renderer.render(view, kWidth, kHeight, OutputEncoding::LinearFloat);
-    const ClusterGrid grid = buildClusterGrid(settings.clusters, view, kWidth, kHeight, scene.worldBounds(), lights);
+    // The renderer bounds the lists by the scene's surfaces; so does this grid.
+    const SceneTriangles triangles(scene);
+    const ClusterGrid grid = buildClusterGrid(settings.clusters, view, kWidth, kHeight, scene.worldBounds(), lights,
+                                              triangles.surfaces(0.0f));
     // The renderer lists lights by their index in its own array (directional first): here the
     // directional light is already first, so indices agree and so do the list lengths.
     size_t covered = 0, agree = 0;
