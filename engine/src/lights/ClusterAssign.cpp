@@ -170,7 +170,7 @@ void ClusterAssigner::build(const ClusterSettings& settings, const ClusterGeomet
     const uint32_t perSlice = s.dims.x * s.dims.y;
     const uint32_t froxels = s.froxelCount();
 
-    const bool surfaceBands = !surfaces.empty() && surfaces.froxels == froxels;
+    const bool withSurfaces = !surfaces.empty() && surfaces.froxels == froxels;
     const uint32_t stamp = ++stamp_ == 0 ? ++stamp_ : stamp_;  // marks this build's cached spheres
     bounds_.resize(lights.size());
     tbb::parallel_for(tbb::blocked_range<size_t>(0, lights.size(), 64), [&](const tbb::blocked_range<size_t>& r) {
@@ -193,7 +193,7 @@ void ClusterAssigner::build(const ClusterSettings& settings, const ClusterGeomet
             sc.light.clear();
             sc.count.assign(perSlice, 0u);
             sc.largest = 0;
-            if (!surfaceBands) {
+            if (!withSurfaces) {
                 sc.sphere.assign(perSlice, glm::vec4(-1.0f));  // radius < 0: not computed yet
             } else if (sc.sphereStamp.size() != perSlice) {
                 sc.sphere.resize(perSlice);
@@ -204,7 +204,7 @@ void ClusterAssigner::build(const ClusterSettings& settings, const ClusterGeomet
             // With surfaces, lights are scanned only over the rows and columns that hold them.
             glm::uvec2 rows(0u, s.dims.y - 1);
             const glm::uvec2* columns = nullptr;
-            if (surfaceBands) {
+            if (withSurfaces) {
                 columns = surfaces.rowColumns.data() + size_t(z) * s.dims.y;
                 rows = surfaces.sliceRows[z];
                 if (rows.x > rows.y) continue;
@@ -224,7 +224,7 @@ void ClusterAssigner::build(const ClusterSettings& settings, const ClusterGeomet
                 for (uint32_t y = y0; y <= y1; ++y) {
                     uint32_t lo = b.lo.x;
                     uint32_t hi = b.hi.x;
-                    if (surfaceBands) {
+                    if (withSurfaces) {
                         lo = std::max(lo, columns[y].x);
                         hi = std::min(hi, columns[y].y);
                         if (lo > hi) continue;
@@ -238,7 +238,7 @@ void ClusterAssigner::build(const ClusterSettings& settings, const ClusterGeomet
                     if (!slabRange(g.xPlanes, lo, hi, c2, r2, x0, x1)) continue;
                     for (uint32_t x = x0; x <= x1; ++x) {
                         const uint32_t local = y * s.dims.x + x;
-                        if (surfaceBands) {
+                        if (withSurfaces) {
                             // Where the froxel's surfaces are: the sphere cut to their slab and
                             // depths, then to the row, then tested against the column.
                             const glm::vec4& extent = surfaces.extent(size_t(z) * perSlice + local);

@@ -78,7 +78,6 @@ public:
           rowBegin_(rowBegin),
           rowEnd_(rowEnd),
           clipFromView_(eye.clipFromView),
-          viewFromWorld_(eye.viewFromWorld),
           orthographic_(eye.orthographic()),
           pass_(pass),
           out_(out) {
@@ -88,38 +87,39 @@ public:
         clipDepth_ = 0.5 * double(shape.nearM);  // perspective fragments lie beyond the near plane
     }
 
-    void triangle(const glm::vec3& a, const glm::vec3& b, const glm::vec3& c) {
-        const std::array<glm::dvec3, 3> v{glm::dvec3(viewFromWorld_ * glm::dvec4(glm::dvec3(a), 1.0)),
-                                          glm::dvec3(viewFromWorld_ * glm::dvec4(glm::dvec3(b), 1.0)),
-                                          glm::dvec3(viewFromWorld_ * glm::dvec4(glm::dvec3(c), 1.0))};
-        const glm::dvec3 cross = glm::cross(v[1] - v[0], v[2] - v[0]);
+    // One triangle from its corners (Corner: view-space point and cluster coordinates).
+    void triangle(const Corner& a, const Corner& b, const Corner& c) {
+        const std::array<const Corner*, 3> v{&a, &b, &c};
+        const glm::dvec3 cross = glm::cross(b.view - a.view, c.view - a.view);
         const double twiceArea = glm::length(cross);
         if (!(twiceArea > 0.0)) return;  // no area: never rasterized
         normal_ = cross / twiceArea;
         // Towards the camera: surfaces seen from either side share a tile's axis.
-        const double facing = orthographic_ ? normal_.z : -glm::dot(normal_, v[0]);
+        const double facing = orthographic_ ? normal_.z : -glm::dot(normal_, a.view);
         if (facing < 0.0) normal_ = -normal_;
         area_ = 0.5 * twiceArea;
         std::array<Corner, 4> clipped;
         int n = 0;
         for (int i = 0; i < 3; ++i) {
-            const glm::dvec3& p = v[size_t(i)];
-            const glm::dvec3& q = v[size_t((i + 1) % 3)];
+            const Corner& p = *v[size_t(i)];
+            const Corner& q = *v[size_t((i + 1) % 3)];
             // Clip to view depth >= clipDepth_ (perspective; orthographic keeps every depth).
-            const bool pIn = orthographic_ || -p.z >= clipDepth_;
-            const bool qIn = orthographic_ || -q.z >= clipDepth_;
-            if (pIn) clipped[size_t(n++)] = corner(p);
-            if (pIn != qIn) clipped[size_t(n++)] = corner(p + (q - p) * ((-clipDepth_ - p.z) / (q.z - p.z)));
+            const bool pIn = orthographic_ || -p.view.z >= clipDepth_;
+            const bool qIn = orthographic_ || -q.view.z >= clipDepth_;
+            if (pIn) clipped[size_t(n++)] = p;
+            if (pIn != qIn)
+                clipped[size_t(n++)] =
+                    corner(p.view + (q.view - p.view) * ((-clipDepth_ - p.view.z) / (q.view.z - p.view.z)));
         }
         if (n >= 3) polygon(clipped.data(), n);
     }
 
-private:
     Corner corner(const glm::dvec3& view) const {
         const glm::dvec4 clip = clipFromView_ * glm::dvec4(view, 1.0);
         return {view, glm::dvec4(clip.x, clip.y, -view.z, clip.w)};
     }
 
+private:
     // A convex planar polygon of n (3 or 4) corners, all with w > 0.
     void polygon(const Corner* v, int n) {
         std::array<glm::dvec2, 8> t;  // corners in tile units
@@ -260,7 +260,6 @@ private:
     uint32_t rowBegin_;
     uint32_t rowEnd_;
     glm::dmat4 clipFromView_;
-    glm::dmat4 viewFromWorld_;
     bool orthographic_;
     int pass_;
     FroxelSurfaces& out_;
@@ -301,7 +300,17 @@ void froxelSurfaces(const ClusterGridShape& shape, const ClusterCamera& camera, 
     const uint32_t rowsPerBand = std::max<uint32_t>(1, (shape.dims.y + 15) / 16);
     const uint32_t bandCount = (shape.dims.y + rowsPerBand - 1) / rowsPerBand;
     std::vector<std::vector<uint32_t>> banded(bandCount);
-    const glm::mat4 clusterFromWorld = camera.clusterFromWorld();
+    // Every vertex in view space and cluster coordinates, once.
+    std::vector<Corner> corners(vertexCount);
+    {
+        const SurfaceWriter writer(shape, camera.eye, 0.0, 0, 0, 0, out);
+        const glm::dmat4 viewFromWorld(camera.eye.viewFromWorld);
+        tbb::parallel_for(tbb::blocked_range<size_t>(0, vertexCount, 4096), [&](const tbb::blocked_range<size_t>& r) {
+            for (size_t i = r.begin(); i < r.end(); ++i)
+                corners[i] =
+                    writer.corner(glm::dvec3(viewFromWorld * glm::dvec4(glm::dvec3(surfaces.positionsWs[i]), 1.0)));
+        });
+    }
     const float tilesPerNdcY = 0.5f * float(shape.extentPx.y) / float(shape.tileSizePx);
     const float marginTiles = (std::max(surfaces.outsidePx, 0.0f) + 1.0f) / float(shape.tileSizePx);
     const bool orthographic = camera.eye.orthographic();
@@ -316,10 +325,10 @@ void froxelSurfaces(const ClusterGridShape& shape, const ClusterCamera& camera, 
         float lo = std::numeric_limits<float>::infinity();
         float hi = -lo;
         bool ahead = true;  // every corner beyond the writer's near clip
-        for (const glm::vec3* p : {&a, &b, &c}) {
-            const glm::vec4 h = clusterFromWorld * glm::vec4(*p, 1.0f);
-            ahead = ahead && (orthographic || h.z >= 0.5f * shape.nearM);
-            const float row = (h.y / h.w + 1.0f) * tilesPerNdcY;
+        for (int k = 0; k < 3; ++k) {
+            const glm::dvec4& h = corners[i[k]].h;
+            ahead = ahead && (orthographic || h.z >= 0.5 * double(shape.nearM));
+            const auto row = static_cast<float>((h.y / h.w + 1.0) * double(tilesPerNdcY));
             lo = std::min(lo, row);
             hi = std::max(hi, row);
         }
@@ -357,7 +366,7 @@ void froxelSurfaces(const ClusterGridShape& shape, const ClusterCamera& camera, 
                 SurfaceWriter writer(shape, camera.eye, double(surfaces.outsidePx), which, rowBegin, rowEnd, out);
                 for (const uint32_t t : banded[k]) {
                     const uint32_t* i = surfaces.indices.data() + 3 * size_t(t);
-                    writer.triangle(surfaces.positionsWs[i[0]], surfaces.positionsWs[i[1]], surfaces.positionsWs[i[2]]);
+                    writer.triangle(corners[i[0]], corners[i[1]], corners[i[2]]);
                 }
             }
         });
