@@ -300,17 +300,15 @@ void froxelSurfaces(const ClusterGridShape& shape, const ClusterCamera& camera, 
     const uint32_t rowsPerBand = std::max<uint32_t>(1, (shape.dims.y + 15) / 16);
     const uint32_t bandCount = (shape.dims.y + rowsPerBand - 1) / rowsPerBand;
     std::vector<std::vector<uint32_t>> banded(bandCount);
-    // Every vertex in view space and cluster coordinates, once.
-    std::vector<Corner> corners(vertexCount);
-    {
-        const SurfaceWriter writer(shape, camera.eye, 0.0, 0, 0, 0, out);
-        const glm::dmat4 viewFromWorld(camera.eye.viewFromWorld);
-        tbb::parallel_for(tbb::blocked_range<size_t>(0, vertexCount, 4096), [&](const tbb::blocked_range<size_t>& r) {
-            for (size_t i = r.begin(); i < r.end(); ++i)
-                corners[i] =
-                    writer.corner(glm::dvec3(viewFromWorld * glm::dvec4(glm::dvec3(surfaces.positionsWs[i]), 1.0)));
-        });
-    }
+    // Every vertex in view space, once (kept between builds: 12 bytes per vertex).
+    std::vector<glm::vec3>& views = out.viewScratch;
+    views.resize(vertexCount);
+    const glm::dmat4 viewFromWorld(camera.eye.viewFromWorld);
+    tbb::parallel_for(tbb::blocked_range<size_t>(0, vertexCount, 4096), [&](const tbb::blocked_range<size_t>& r) {
+        for (size_t i = r.begin(); i < r.end(); ++i)
+            views[i] = glm::vec3(viewFromWorld * glm::dvec4(glm::dvec3(surfaces.positionsWs[i]), 1.0));
+    });
+    const glm::mat4& clipFromView = camera.eye.clipFromView;
     const float tilesPerNdcY = 0.5f * float(shape.extentPx.y) / float(shape.tileSizePx);
     const float marginTiles = (std::max(surfaces.outsidePx, 0.0f) + 1.0f) / float(shape.tileSizePx);
     const bool orthographic = camera.eye.orthographic();
@@ -326,9 +324,10 @@ void froxelSurfaces(const ClusterGridShape& shape, const ClusterCamera& camera, 
         float hi = -lo;
         bool ahead = true;  // every corner beyond the writer's near clip
         for (int k = 0; k < 3; ++k) {
-            const glm::dvec4& h = corners[i[k]].h;
-            ahead = ahead && (orthographic || h.z >= 0.5 * double(shape.nearM));
-            const auto row = static_cast<float>((h.y / h.w + 1.0) * double(tilesPerNdcY));
+            const glm::vec3& view = views[i[k]];
+            const glm::vec4 clip = clipFromView * glm::vec4(view, 1.0f);
+            ahead = ahead && (orthographic || -view.z >= 0.5f * shape.nearM);
+            const float row = (clip.y / clip.w + 1.0f) * tilesPerNdcY;
             lo = std::min(lo, row);
             hi = std::max(hi, row);
         }
@@ -366,7 +365,8 @@ void froxelSurfaces(const ClusterGridShape& shape, const ClusterCamera& camera, 
                 SurfaceWriter writer(shape, camera.eye, double(surfaces.outsidePx), which, rowBegin, rowEnd, out);
                 for (const uint32_t t : banded[k]) {
                     const uint32_t* i = surfaces.indices.data() + 3 * size_t(t);
-                    writer.triangle(corners[i[0]], corners[i[1]], corners[i[2]]);
+                    writer.triangle(writer.corner(glm::dvec3(views[i[0]])), writer.corner(glm::dvec3(views[i[1]])),
+                                    writer.corner(glm::dvec3(views[i[2]])));
                 }
             }
         });

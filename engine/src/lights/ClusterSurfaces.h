@@ -42,6 +42,7 @@ struct FroxelSurfaces {
     size_t froxels = 0;
     std::vector<glm::uvec2> rowColumns;  // [slice * rows + row]
     std::vector<glm::uvec2> sliceRows;   // [slice]
+    std::vector<glm::vec3> viewScratch;  // the surfaces' vertices in view space (kept between builds)
 
     bool empty() const { return values.empty(); }
     const glm::vec4& extent(size_t froxel) const { return values[froxel]; }
