@@ -86,15 +86,7 @@ TEST_F(ClusterBuildGpu, ComputeBuildMatchesCpuBuildAndReference) {
         ASSERT_EQ(gpu.ranges.size(), cpu.ranges.size());
         EXPECT_EQ(gpu.overflowedClusters, 0u);
         EXPECT_EQ(gpu.requestedIndices, cpu.requestedIndices);
-        const auto cpuLists = froxelLists(cpu);
-        const auto gpuLists = froxelLists(gpu);
-        size_t differing = 0;
-        for (size_t i = 0; i < cpuLists.size(); ++i) {
-            std::vector<uint32_t> onlyOne;
-            std::set_symmetric_difference(cpuLists[i].begin(), cpuLists[i].end(), gpuLists[i].begin(),
-                                          gpuLists[i].end(), std::back_inserter(onlyOne));
-            differing += onlyOne.size();
-        }
+        const size_t differing = differingEntries(cpu, gpu);
         // Both builds run the same tests; float rounding may differ only where a light grazes a froxel.
         EXPECT_LE(double(differing), 1e-3 * double(cpu.indices.size()))
             << differing << " of " << cpu.indices.size() << " entries differ";
@@ -372,15 +364,7 @@ TEST_F(ClusterBuildGpu, ComputeBuildWithSurfacesMatchesCpuBuild) {
             buildLists(context(), settings, ClusterBuild::Gpu, view, lights, scene.worldBounds(), surfaces);
         const ClusterGrid whole = buildLists(context(), settings, ClusterBuild::Cpu, view, lights, scene.worldBounds());
         EXPECT_EQ(gpu.overflowedClusters, 0u);
-        const auto cpuLists = froxelLists(cpu);
-        const auto gpuLists = froxelLists(gpu);
-        size_t differing = 0;
-        for (size_t i = 0; i < cpuLists.size(); ++i) {
-            std::vector<uint32_t> onlyOne;
-            std::set_symmetric_difference(cpuLists[i].begin(), cpuLists[i].end(), gpuLists[i].begin(),
-                                          gpuLists[i].end(), std::back_inserter(onlyOne));
-            differing += onlyOne.size();
-        }
+        const size_t differing = differingEntries(cpu, gpu);
         EXPECT_LE(double(differing), 1e-3 * double(cpu.indices.size()))
             << differing << " of " << cpu.indices.size() << " entries differ (outsidePx " << outsidePx << ")";
         EXPECT_GT(cpu.indices.size(), 200u);

@@ -18,10 +18,12 @@
 #include <preskin/View.h>
 
 #include <glm/glm.hpp>
+#include <glm/gtc/matrix_transform.hpp>
 
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <iterator>
 #include <limits>
 #include <sstream>
 #include <string>
@@ -162,6 +164,27 @@ inline std::vector<std::vector<uint32_t>> froxelLists(const ClusterGrid& grid) {
 }
 
 // A depth beyond every light's reach, to close the last slice.
+// Entries that are in one grid's list of a froxel and not in the other's, over all froxels.
+inline size_t differingEntries(const ClusterGrid& a, const ClusterGrid& b) {
+    const auto listsA = froxelLists(a);
+    const auto listsB = froxelLists(b);
+    size_t differing = 0;
+    for (size_t i = 0; i < listsA.size() && i < listsB.size(); ++i) {
+        std::vector<uint32_t> onlyOne;
+        std::set_symmetric_difference(listsA[i].begin(), listsA[i].end(), listsB[i].begin(), listsB[i].end(),
+                                      std::back_inserter(onlyOne));
+        differing += onlyOne.size();
+    }
+    return differing;
+}
+
+// The view of the grid tests (160 x 120 pixels): from above and in front of the origin.
+inline View clusterTestView(float widthPx, float heightPx) {
+    const glm::mat4 worldFromView =
+        glm::inverse(glm::lookAt(glm::vec3(0.3f, 1.0f, 4.0f), glm::vec3(0.0f), glm::vec3(0.0f, 1.0f, 0.0f)));
+    return perspectiveView(worldFromView, 0.8f, widthPx / heightPx, 0.2f, 12.0f);
+}
+
 inline double farEnough(const Eye& view, const std::vector<Light>& lights) {
     double farM = view.farM;
     for (const Light& l : lights) {

@@ -24,11 +24,7 @@ namespace {
 constexpr uint32_t kWidth = 160;
 constexpr uint32_t kHeight = 120;
 
-View testView() {
-    const glm::mat4 worldFromView =
-        glm::inverse(glm::lookAt(glm::vec3(0.3f, 1.0f, 4.0f), glm::vec3(0.0f), glm::vec3(0.0f, 1.0f, 0.0f)));
-    return perspectiveView(worldFromView, 0.8f, float(kWidth) / float(kHeight), 0.2f, 12.0f);
-}
+View testView() { return clusterTestView(float(kWidth), float(kHeight)); }
 
 ClusterSettings testSettings() {
     ClusterSettings s;
