@@ -37,18 +37,17 @@ struct Affine {
     double at(const glm::dvec2& p) const { return g.x * p.x + g.y * p.y + g.z; }
 };
 
-// The convex polygon t[0..n) clipped to the rectangle [lo, hi] (Sutherland-Hodgman; sides that
-// every corner is inside of are skipped): its corner count (0: nothing inside), corners in `out`.
-int clipToRect(const glm::dvec2* t, int n, const glm::dvec2& lo, const glm::dvec2& hi, std::array<glm::dvec2, 8>& out) {
+// The convex polygon t[0..n) clipped to the strip lo <= p[axis] <= hi (Sutherland-Hodgman; a side
+// that every corner is inside of is skipped): its corner count (0: nothing inside), corners in
+// `out` (at most n + 2 of them; n <= 6).
+int clipToStrip(const glm::dvec2* t, int n, int axis, double lo, double hi, std::array<glm::dvec2, 8>& out) {
     std::array<glm::dvec2, 8> other;
-    glm::dvec2* from = out.data();
+    const glm::dvec2* from = t;
     glm::dvec2* to = other.data();
     int count = n;
-    for (int i = 0; i < n; ++i) from[i] = t[i];
-    for (int side = 0; side < 4 && count > 0; ++side) {
-        const int axis = side & 1;
-        const double bound = side < 2 ? lo[axis] : hi[axis];
-        const double sign = side < 2 ? 1.0 : -1.0;  // inside: sign * (p[axis] - bound) >= 0
+    for (int side = 0; side < 2 && count > 0; ++side) {
+        const double bound = side == 0 ? lo : hi;
+        const double sign = side == 0 ? 1.0 : -1.0;  // inside: sign * (p[axis] - bound) >= 0
         bool allInside = true;
         for (int i = 0; i < count && allInside; ++i) allInside = sign * (from[i][axis] - bound) >= 0.0;
         if (allInside) continue;
@@ -62,7 +61,8 @@ int clipToRect(const glm::dvec2* t, int n, const glm::dvec2& lo, const glm::dvec
             if ((dp >= 0.0) != (dq >= 0.0) && kept < 8) to[kept++] = p + (q - p) * (dp / (dp - dq));
         }
         count = kept;
-        std::swap(from, to);
+        from = to;
+        to = to == other.data() ? out.data() : other.data();
     }
     if (from != out.data()) std::copy(from, from + count, out.data());
     return count;
@@ -194,12 +194,22 @@ private:
             exact = exact && std::isfinite(widen);
         }
         std::array<glm::dvec3, 8> points;
-        for (uint32_t ty = y0; ty <= y1; ++ty)
-            for (uint32_t tx = x0; tx <= x1; ++tx) {
-                // The polygon's part within outside_ of the tile.
-                std::array<glm::dvec2, 8> part;
+        std::array<glm::dvec2, 8> row;   // the polygon's part within outside_ of a row of tiles
+        std::array<glm::dvec2, 8> part;  // and of one tile of it
+        for (uint32_t ty = y0; ty <= y1; ++ty) {
+            const int rowCount = clipToStrip(t.data(), n, 1, double(ty) - outside_, double(ty + 1) + outside_, row);
+            if (rowCount == 0) continue;
+            double left = kInfinity, right = -kInfinity;
+            for (int i = 0; i < rowCount; ++i) {
+                left = std::min(left, row[size_t(i)].x);
+                right = std::max(right, row[size_t(i)].x);
+            }
+            // Tiles whose grown columns [tx - outside_, tx + 1 + outside_] meet [left, right].
+            const uint32_t first = std::max(x0, tile(left - 1.0 - outside_, dims.x));
+            const uint32_t last = std::min(x1, tile(right + outside_, dims.x));
+            for (uint32_t tx = first; tx <= last; ++tx) {
                 const int m =
-                    clipToRect(t.data(), n, glm::dvec2(tx, ty) - outside_, glm::dvec2(tx + 1, ty + 1) + outside_, part);
+                    clipToStrip(row.data(), rowCount, 0, double(tx) - outside_, double(tx + 1) + outside_, part);
                 if (m == 0) continue;
                 if (exact) {
                     for (int i = 0; i < m; ++i) {
@@ -214,6 +224,7 @@ private:
                     mark(tx, ty, std::span<const glm::dvec3>(), 0.0, 0.0);
                 }
             }
+        }
     }
 
     // The plane's points over one tile (view space), or none for "anywhere"; the extents they span
