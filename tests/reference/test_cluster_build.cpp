@@ -36,10 +36,11 @@ View testView() {
     return perspectiveView(worldFromView, 0.9f, float(kWidth) / float(kHeight), 0.3f, 12.0f);
 }
 
-// Lists from the renderer's builder for `lights` (directional ones first, as the renderer orders them).
+// Lists from the renderer's builder for `lights` (directional ones first, as the renderer orders them);
+// `before`: a view the same builder built lists for first (on the CPU), as a moving camera does.
 ClusterGrid buildLists(Context& context, ClusterSettings settings, ClusterBuild build, const View& view,
                        const std::vector<Light>& lights, const Bounds& sceneBounds = {},
-                       const ClusterSurfaces& surfaces = {}) {
+                       const ClusterSurfaces& surfaces = {}, const View* before = nullptr) {
     const vk::Device& device = ContextAccess::core(context);
     std::vector<gpu::GpuLight> gpuLights;
     uint32_t firstLocal = 0;
@@ -51,6 +52,12 @@ ClusterGrid buildLists(Context& context, ClusterSettings settings, ClusterBuild 
                            VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, true);
     lightBuffer.upload(gpuLights.data(), gpuLights.size() * sizeof(gpu::GpuLight));
     ClusterBuilder builder(device);
+    if (before) {
+        settings.build = ClusterBuild::Cpu;
+        builder.prepare(0, settings, clusterCamera(*before, kWidth, kHeight), sceneBounds, lights, firstLocal,
+                        lightBuffer, surfaces);
+        device.submitAndWait([&](VkCommandBuffer cmd) { builder.record(cmd, 0); });
+    }
     settings.build = build;
     const ClusterBuilder::FrameGrid frame = builder.prepare(0, settings, clusterCamera(view, kWidth, kHeight),
                                                             sceneBounds, lights, firstLocal, lightBuffer, surfaces);
@@ -373,6 +380,29 @@ TEST_F(ClusterBuildGpu, ComputeBuildWithSurfacesMatchesCpuBuild) {
             "[ clusters ] surfaces, outsidePx %.0f: CPU %zu, compute %zu entries, %zu differ; whole froxels %zu\n",
             double(outsidePx), cpu.indices.size(), gpu.indices.size(), differing, whole.indices.size());
     }
+}
+
+// The CPU build writes each froxel row within the span holding surfaces only; the compute build
+// reads every froxel, so what an earlier view left outside the spans must not reach it.
+TEST_F(ClusterBuildGpu, ComputeBuildAfterAnotherViewListsOnlyThisViewsSurfaces) {
+    const View view = testView();
+    const glm::mat4 worldFromOther = glm::inverse(
+        glm::lookAt(glm::vec3(-1.6f, 0.6f, 2.4f), glm::vec3(0.2f, 0.0f, 0.0f), glm::vec3(0.0f, 1.0f, 0.0f)));
+    const View other = perspectiveView(worldFromOther, 0.9f, float(kWidth) / float(kHeight), 0.3f, 12.0f);
+    const Scene scene = testScene(false);
+    const SceneTriangles triangles(scene);
+    ClusterSettings settings = gridSettings();
+    settings.fitDepthToScene = true;
+    const std::vector<Light> lights = frameLights(scene, view, settings);
+    const ClusterSurfaces surfaces = triangles.surfaces(0.0f);
+    const ClusterGrid cpu =
+        buildLists(context(), settings, ClusterBuild::Cpu, view, lights, scene.worldBounds(), surfaces);
+    const ClusterGrid gpu =
+        buildLists(context(), settings, ClusterBuild::Gpu, view, lights, scene.worldBounds(), surfaces, &other);
+    const size_t differing = differingEntries(cpu, gpu);
+    EXPECT_GT(cpu.indices.size(), 200u);
+    EXPECT_LE(double(differing), 1e-3 * double(cpu.indices.size()))
+        << differing << " of " << cpu.indices.size() << " entries differ";
 }
 
 TEST_F(ClusterBuildGpu, LightCountViewReportsEachPixelsList) {

@@ -241,7 +241,7 @@ void ClusterAssigner::build(const ClusterSettings& settings, const ClusterGeomet
                         if (withSurfaces) {
                             // Where the froxel's surfaces are: the sphere cut to their slab and
                             // depths, then to the row, then tested against the column.
-                            const glm::vec4& extent = surfaces.extent(size_t(z) * perSlice + local);
+                            const glm::vec4& extent = surfaces.spanExtent(size_t(z) * perSlice + local);
                             const glm::vec4& axis = surfaces.axis(local);
                             const float e0 = std::max(d0, extent.x);
                             const float e1 = std::min(d1, extent.y);

@@ -187,6 +187,7 @@ void ClusterBuilder::prepareGpu(Slot& s, const ClusterSettings& settings, const 
                  true);
     s.params.upload(&p, sizeof(p));
     s.geometry.upload(data.data(), data.size() * sizeof(glm::vec4));
+    froxelSurfaces_.fillOutsideSpans();  // the compute build reads every froxel
     if (!froxelSurfaces_.empty())
         s.surfaces.upload(froxelSurfaces_.values.data(), froxelSurfaces_.values.size() * sizeof(glm::vec4));
 

@@ -22,7 +22,8 @@ constexpr double kSnapPx = 1.0 / 64.0;
 constexpr double kEdgeOnGrowth = 0.05;
 constexpr double kInfinity = std::numeric_limits<double>::infinity();
 constexpr float kFar = 3.0e38f;
-constexpr uint32_t kNone = ~0u;  // an empty span: (kNone, kNone)
+constexpr uint32_t kNone = ~0u;                          // an empty span: (kNone, kNone)
+const glm::vec4 kEmptyExtent(kFar, -kFar, kFar, -kFar);  // no surface: min > max
 
 // One corner of a clipped triangle: view-space point and its cluster coordinates (clip x,
 // clip y, view depth, clip w).
@@ -72,9 +73,10 @@ int clipToStrip(const glm::dvec2* t, int n, int axis, double lo, double hi, std:
 // tiles' axes; pass 1 (after the axes are normalised) writes the froxels' extents.
 class SurfaceWriter {
 public:
-    SurfaceWriter(const ClusterGridShape& shape, const Eye& eye, double outsidePx, int pass, uint32_t rowBegin,
-                  uint32_t rowEnd, FroxelSurfaces& out)
+    SurfaceWriter(const ClusterGridShape& shape, std::span<const float> sliceStarts, const Eye& eye, double outsidePx,
+                  int pass, uint32_t rowBegin, uint32_t rowEnd, FroxelSurfaces& out)
         : shape_(shape),
+          sliceStarts_(sliceStarts),
           rowBegin_(rowBegin),
           rowEnd_(rowEnd),
           clipFromView_(eye.clipFromView),
@@ -256,18 +258,39 @@ private:
         const auto hi = static_cast<float>(std::min(dHi, double(kFar)));
         const auto along0 = static_cast<float>(std::max(sLo, -double(kFar)));
         const auto along1 = static_cast<float>(std::min(sHi, double(kFar)));
-        const uint32_t z0 = shape_.sliceOf(lo);
-        const uint32_t z1 = shape_.sliceOf(hi);
+        const uint32_t z0 = sliceOf(lo);
+        const uint32_t z1 = sliceOf(hi);
         for (uint32_t z = z0; z <= z1; ++z) {
+            // A row's froxels are written within its span only: those the span grows over start
+            // empty here.
             glm::uvec2& span = out_.rowColumns[size_t(z) * shape_.dims.y + ty];
-            span = glm::uvec2(std::min(span.x, tx), std::max(span.y == kNone ? tx : span.y, tx));
-            glm::vec4& e = out_.values[shape_.froxelIndex(tx, ty, z)];
+            const size_t row = shape_.froxelIndex(0, ty, z);
+            glm::vec4* const first = out_.values.data() + row;
+            if (span.x == kNone) {
+                first[tx] = kEmptyExtent;
+                span = glm::uvec2(tx);
+            } else if (tx < span.x) {
+                std::fill(first + tx, first + span.x, kEmptyExtent);
+                span.x = tx;
+            } else if (tx > span.y) {
+                std::fill(first + span.y + 1, first + tx + 1, kEmptyExtent);
+                span.y = tx;
+            }
+            glm::vec4& e = first[tx];
             e = glm::vec4(std::min(e.x, lo), std::max(e.y, hi), slab ? std::min(e.z, along0) : -kFar,
                           slab ? std::max(e.w, along1) : kFar);
         }
     }
 
+    // The slice of a view depth: the slice starts at or below it (shape_.sliceOf's, by search;
+    // the extents' slack covers their rounding).
+    uint32_t sliceOf(float depth) const {
+        return static_cast<uint32_t>(std::upper_bound(sliceStarts_.begin(), sliceStarts_.end(), depth) -
+                                     sliceStarts_.begin());
+    }
+
     const ClusterGridShape& shape_;
+    std::span<const float> sliceStarts_;  // slices 1 to dims.z - 1
     uint32_t rowBegin_;
     uint32_t rowEnd_;
     glm::dmat4 clipFromView_;
@@ -296,10 +319,35 @@ bool facesAnEye(const glm::vec3& a, const glm::vec3& b, const glm::vec3& c, std:
 
 }  // namespace
 
+glm::vec4 FroxelSurfaces::extent(size_t froxel) const {
+    const size_t tiles = size_t(dims.x) * dims.y;
+    const size_t tile = froxel % tiles;
+    const glm::uvec2 span = rowColumns[froxel / tiles * dims.y + tile / dims.x];
+    const size_t x = tile % dims.x;
+    return x >= span.x && x <= span.y ? values[froxel] : kEmptyExtent;
+}
+
+void FroxelSurfaces::fillOutsideSpans() {
+    if (filled || values.empty()) return;
+    for (size_t row = 0; row < rowColumns.size(); ++row) {
+        const glm::uvec2 span = rowColumns[row];
+        glm::vec4* const first = values.data() + row * dims.x;
+        if (span.x > span.y) {
+            std::fill(first, first + dims.x, kEmptyExtent);
+            continue;
+        }
+        std::fill(first, first + span.x, kEmptyExtent);
+        std::fill(first + span.y + 1, first + dims.x, kEmptyExtent);
+    }
+    filled = true;
+}
+
 void froxelSurfaces(const ClusterGridShape& shape, const ClusterCamera& camera, const ClusterSurfaces& surfaces,
                     FroxelSurfaces& out) {
     const size_t tiles = size_t(shape.dims.x) * shape.dims.y;
     out.froxels = shape.froxelCount();
+    out.dims = shape.dims;
+    out.filled = false;
     out.values.resize(out.froxels + tiles);  // each band clears its own rows below
     out.rowColumns.resize(size_t(shape.dims.z) * shape.dims.y);
     const size_t triangles = surfaces.indices.size() / 3;
@@ -354,18 +402,17 @@ void froxelSurfaces(const ClusterGridShape& shape, const ClusterCamera& camera, 
         }
         for (uint32_t k = first; k <= last; ++k) banded[k].push_back(static_cast<uint32_t>(t));
     }
+    std::vector<float> sliceStarts;
+    for (uint32_t z = 1; z < shape.dims.z; ++z) sliceStarts.push_back(shape.sliceStartM(z));
     const auto pass = [&](int which) {
         tbb::parallel_for(tbb::blocked_range<uint32_t>(0, bandCount, 1), [&](const tbb::blocked_range<uint32_t>& r) {
             for (uint32_t k = r.begin(); k < r.end(); ++k) {
                 const uint32_t rowBegin = k * rowsPerBand;
                 const uint32_t rowEnd = std::min((k + 1) * rowsPerBand, shape.dims.y);
-                if (which == 0) {  // the band's rows start empty
+                if (which == 0) {  // the band's rows start empty (their froxels as their spans grow)
                     const size_t first = size_t(rowBegin) * shape.dims.x;
                     const size_t last = size_t(rowEnd) * shape.dims.x;
                     for (uint32_t z = 0; z < shape.dims.z; ++z) {
-                        std::fill(out.values.begin() + ptrdiff_t(z * tiles + first),
-                                  out.values.begin() + ptrdiff_t(z * tiles + last),
-                                  glm::vec4(kFar, -kFar, kFar, -kFar));
                         std::fill(out.rowColumns.begin() + ptrdiff_t(size_t(z) * shape.dims.y + rowBegin),
                                   out.rowColumns.begin() + ptrdiff_t(size_t(z) * shape.dims.y + rowEnd),
                                   glm::uvec2(kNone));
@@ -373,7 +420,8 @@ void froxelSurfaces(const ClusterGridShape& shape, const ClusterCamera& camera, 
                     std::fill(out.values.begin() + ptrdiff_t(out.froxels + first),
                               out.values.begin() + ptrdiff_t(out.froxels + last), glm::vec4(0.0f));
                 }
-                SurfaceWriter writer(shape, camera.eye, double(surfaces.outsidePx), which, rowBegin, rowEnd, out);
+                SurfaceWriter writer(shape, sliceStarts, camera.eye, double(surfaces.outsidePx), which, rowBegin,
+                                     rowEnd, out);
                 for (const uint32_t t : banded[k]) {
                     const uint32_t* i = surfaces.indices.data() + 3 * size_t(t);
                     writer.triangle(writer.corner(glm::dvec3(views[i[0]])), writer.corner(glm::dvec3(views[i[1]])),

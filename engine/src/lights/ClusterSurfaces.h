@@ -36,18 +36,29 @@ namespace preskin {
 //     depth > max depth where there is no surface;
 //   values[froxels + t], t < tiles (x fastest): the tile's slab axis (unit, view space) and w = 1,
 //     or w = 0 where it has none.
-// Besides, per slice and row the columns holding surfaces, and per slice the rows (x > y: none).
+// Besides, per slice and row the columns holding surfaces (a span), and per slice the rows
+// (x > y: none). A build writes each row's froxels within its span only (the CPU build reads
+// nothing else); fillOutsideSpans() empties the rest, for a reader of the whole array.
 struct FroxelSurfaces {
     std::vector<glm::vec4> values;
     size_t froxels = 0;
+    glm::uvec3 dims{0u};
     std::vector<glm::uvec2> rowColumns;  // [slice * rows + row]
     std::vector<glm::uvec2> sliceRows;   // [slice]
     std::vector<glm::vec3> viewScratch;  // the surfaces' vertices in view space (kept between builds)
+    bool filled = false;                 // every froxel written (fillOutsideSpans)
 
     bool empty() const { return values.empty(); }
-    const glm::vec4& extent(size_t froxel) const { return values[froxel]; }
+    // A froxel within its row's span (x in rowColumns[z * rows + y]).
+    const glm::vec4& spanExtent(size_t froxel) const { return values[froxel]; }
+    // Any froxel (empty outside its row's span).
+    glm::vec4 extent(size_t froxel) const;
     const glm::vec4& axis(size_t tile) const { return values[froxels + tile]; }
-    bool occupied(size_t froxel) const { return values[froxel].x <= values[froxel].y; }
+    bool occupied(size_t froxel) const {
+        const glm::vec4 e = extent(froxel);
+        return e.x <= e.y;
+    }
+    void fillOutsideSpans();
 };
 
 // Fills `out` for this grid. Triangles with an index out of range or a non-finite corner are skipped.
