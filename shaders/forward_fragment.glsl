@@ -172,6 +172,7 @@ void main() {
     shadow.thicknessM = 0.0;
     shadow.kernelWidthM = 0.0;
     shadow.penumbraWidthM = 0.0;
+    shadow.blockerDistanceM = 0.0;
     PreskinShadowSample wideShadow = shadow;  // skin with penumbra scattering: the wide map's
     // Skin's signed curvature in profile 1/mm (the shadow lookup and the skin surface use it).
     float skinCurvaturePerMm = 0.0;
@@ -299,7 +300,8 @@ void main() {
             vec3 irradiance;
             preskinLightIncidence(lights[0], inPositionWs, L, irradiance);
             penumbra = preskinSkinShadow(skin, profiles, penumbraLut, shadow.visibility, shadow.kernelWidthM,
-                                         shadow.penumbraWidthM, wideShadow.visibility, wideShadow.kernelWidthM, frame.wideShadow.z, L, features);
+                                         shadow.penumbraWidthM, wideShadow.visibility, wideShadow.kernelWidthM, frame.wideShadow.z,
+                                         wideShadow.blockerDistanceM, L, features);
             float thicknessM = 0.0;
             if (preskinTransmissionGate(geometricN, L, features))
                 thicknessM = preskinShadowThickness(shadowMap, shadowClipFromWorld, shadowParams,

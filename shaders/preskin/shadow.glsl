@@ -26,6 +26,7 @@ struct PreskinShadowSample {
     float thicknessM;     // receiver depth minus nearest occluder depth along the light, metres
     float kernelWidthM;   // standard deviation of the filter on the light's image plane, metres
     float penumbraWidthM; // of that, the light's own penumbra (a light with a size; 0 for a parallel light)
+    float blockerDistanceM; // along the light from the filter's occluding texels (weighted mean) to the receiver; 0: none
 };
 
 // Distance along the light from the nearest occluder to positionWs (metres), 0 outside the map.
@@ -212,6 +213,7 @@ PreskinShadowSample preskinSampleShadow(sampler2D shadowMap, mat4 shadowClipFrom
     result.thicknessM = preskinShadowThickness(shadowMap, shadowClipFromWorld, params, positionWs);
     // The weights' standard deviation (mean of the two axes), the filter's width across an edge.
     result.kernelWidthM = sqrt(pcf.varianceTexels) * params.x;
+    result.blockerDistanceM = inside ? max(z - pcf.blockerDepth, 0.0) * params.z : 0.0;
     return result;
 }
 

@@ -272,13 +272,16 @@ vec3 preskinSkinShadow(PreskinSkinSurface s, PreskinProfileMix m, sampler2DArray
 // sees the edge (|Phi^-1(visibility)| < 2, blended out by 3) and from the wide map's filter
 // beyond, moved half a wide texel into the shadow (the wide map's edges lie that far on the lit
 // side on average); the penumbra LUT at the wide filter's width returns the profile's hard-edge
-// response there; towards the terminator (N.L from 0.35 down to 0.15) this fades to the shadow
-// map's alone. wideVisibility, wideFilterWidthLightM: the wide map's sample; wideTexelM: its
-// texel size (m). Where the shadow map's filter is as wide as the wide map's (a light with a
+// response there; towards the terminator (N.L from 0.35 down to 0.15) and where the wide map's
+// occluders lie within red's reach of the receiver this fades to the shadow map's alone.
+// wideVisibility, wideFilterWidthLightM, wideBlockerDistanceM: the wide map's sample
+// (PreskinShadowSample's visibility, kernelWidthM, blockerDistanceM); wideTexelM: its texel size
+// (m). Where the shadow map's filter is as wide as the wide map's (a light with a
 // size), the shadow map's alone.
 vec3 preskinSkinShadow(PreskinSkinSurface s, PreskinProfileMix m, sampler2DArray penumbraLut, float visibility,
                        float filterWidthLightM, float penumbraWidthLightM, float wideVisibility,
-                       float wideFilterWidthLightM, float wideTexelM, vec3 L, uint features) {
+                       float wideFilterWidthLightM, float wideTexelM, float wideBlockerDistanceM, vec3 L,
+                       uint features) {
     if ((features & kSkinPenumbra) == 0u) return vec3(visibility);
     bool fineEdge = visibility > 0.0 && visibility < 1.0;
     bool wideEdge = wideVisibility > 0.0 && wideVisibility < 1.0;
@@ -290,6 +293,12 @@ vec3 preskinSkinShadow(PreskinSkinSurface s, PreskinProfileMix m, sampler2DArray
     vec3 widths = penumbraWidthLightM > 0.0 ? preskinPenumbraChannelWidths(m, penumbraLut) : vec3(0.0);
     vec3 fineOnly =
         preskinSkinShadow(s, m, penumbraLut, visibility, filterWidthLightM, penumbraWidthLightM, widths, L, features);
+    // An occluder within red's reach of the receiver along the light is the skin's own relief (a
+    // crease's wall, an eyelid), not the far occluder over a plane that the penumbra LUT assumes:
+    // the wide edge fades in as the occluders' distance grows from 1.5 to 3 RMS widths of the
+    // widest profile.
+    float widestMm = 1.0 / m.mapping[0].penumbraWidth.x;
+    wideTrust *= smoothstep(1.5 * widestMm, 3.0 * widestMm, wideBlockerDistanceM * 1000.0 * s.scatterScale);
     if (wideTrust <= 0.0) return fineOnly;
     float slope = max(abs(dot(s.geometricNormal, L)), 0.2);
     float toProfileMm = 1000.0 / slope * s.scatterScale;
@@ -316,9 +325,9 @@ vec3 preskinSkinShadow(PreskinSkinSurface s, PreskinProfileMix m, sampler2DArray
 
 vec3 preskinSkinShadow(PreskinSkinSurface s, PreskinProfileMix m, sampler2DArray penumbraLut, float visibility,
                        float filterWidthLightM, float wideVisibility, float wideFilterWidthLightM, float wideTexelM,
-                       vec3 L, uint features) {
+                       float wideBlockerDistanceM, vec3 L, uint features) {
     return preskinSkinShadow(s, m, penumbraLut, visibility, filterWidthLightM, 0.0, wideVisibility,
-                             wideFilterWidthLightM, wideTexelM, L, features);
+                             wideFilterWidthLightM, wideTexelM, wideBlockerDistanceM, L, features);
 }
 
 // Light transmitted through the surface from a light behind it (after Jimenez et al. 2010):

@@ -274,7 +274,8 @@ TEST_F(SkinFidelity, InsideOfABowlIsShadedWithTheConcaveResponse) {
 // A groove (z = -3 mm exp(-x^2 / 2 (2.5 mm)^2) in a skin plane), lit across it at 37 degrees from
 // the normal: in its concave floor (mean curvature to -0.2 / mm) skin must come closer to the
 // diffusion reference than Lambert, by a clear margin (a crease the concave model and the wide
-// shadow map both see).
+// shadow map both see; the wide map's occluders there are the groove's own walls, within red's
+// reach, and with its edge kept there the ratio is 0.42).
 TEST_F(SkinFidelity, ConcaveGrooveIsCloserToTheReferenceThanLambert) {
     const double depthM = 0.003, widthM = 0.0025, halfM = 0.02;
     const uint32_t n = 80;
@@ -323,7 +324,7 @@ TEST_F(SkinFidelity, ConcaveGrooveIsCloserToTheReferenceThanLambert) {
         skinOverLambert(truth, skin, lambert, pixels, [&](size_t i) { return truth.curvaturePerMm[i] <= -0.01f; });
     std::printf("[ fidelity ] groove floor: %zu concave pixels, skin / Lambert RMSE %.3f\n", pixels, ratio);
     EXPECT_GT(pixels, size_t(size) * 10);
-    EXPECT_LT(ratio, 0.6);
+    EXPECT_LT(ratio, 0.3);
 }
 
 }  // namespace
