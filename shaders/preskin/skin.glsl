@@ -297,7 +297,10 @@ vec3 preskinSkinShadow(PreskinSkinSurface s, PreskinProfileMix m, sampler2DArray
     // crease's wall, an eyelid), not the far occluder over a plane that the penumbra LUT assumes:
     // the wide edge fades in as the occluders' distance grows from 1.5 to 3 RMS widths of the
     // widest profile.
-    float widestMm = 1.0 / m.mapping[0].penumbraWidth.x;
+    float widestMm = m.weight.x / m.mapping[0].penumbraWidth.x;  // the mix's, weighted
+    if (int(PRESKIN_PROFILE_MIX_MAX) > 1) for (int i = 1; i < m.count; ++i) {
+        if (m.weight[i] > 0.0) widestMm += m.weight[i] / preskinMixMapping(m, i).penumbraWidth.x;
+    }
     wideTrust *= smoothstep(1.5 * widestMm, 3.0 * widestMm, wideBlockerDistanceM * 1000.0 * s.scatterScale);
     if (wideTrust <= 0.0) return fineOnly;
     float slope = max(abs(dot(s.geometricNormal, L)), 0.2);
