@@ -198,7 +198,7 @@ TEST(ClusterSurfaces, BackFacesOfSingleSidedTrianglesFacingNoEyeHoldNothing) {
             FroxelSurfaces out;
             froxelSurfaces(shape, camera, ClusterSurfaces{positions, indices, flags, 0.0f}, out);
             size_t occupied = 0;
-            for (size_t f = 0; f < out.froxels; ++f) occupied += out.occupied(f) ? 1 : 0;
+            for (size_t f = 0; f < out.froxels(); ++f) occupied += out.occupied(f) ? 1 : 0;
             if (culled && !counterClockwise)
                 EXPECT_EQ(occupied, 0u) << "a culled back face";
             else

@@ -170,7 +170,7 @@ void ClusterAssigner::build(const ClusterSettings& settings, const ClusterGeomet
     const uint32_t perSlice = s.dims.x * s.dims.y;
     const uint32_t froxels = s.froxelCount();
 
-    const bool withSurfaces = !surfaces.empty() && surfaces.froxels == froxels;
+    const bool withSurfaces = !surfaces.empty() && surfaces.froxels() == froxels;
     const uint32_t stamp = ++stamp_ == 0 ? ++stamp_ : stamp_;  // marks this build's cached spheres
     bounds_.resize(lights.size());
     tbb::parallel_for(tbb::blocked_range<size_t>(0, lights.size(), 64), [&](const tbb::blocked_range<size_t>& r) {

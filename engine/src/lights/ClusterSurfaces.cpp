@@ -147,7 +147,8 @@ private:
         if (pass_ == 0) {  // the tiles' axes: every tile of the box
             const glm::vec4 weighted(glm::vec3(normal_ * area_), 0.0f);
             for (uint32_t ty = y0; ty <= y1; ++ty)
-                for (uint32_t tx = x0; tx <= x1; ++tx) out_.values[out_.froxels + ty * shape_.dims.x + tx] += weighted;
+                for (uint32_t tx = x0; tx <= x1; ++tx)
+                    out_.values[out_.froxels() + ty * shape_.dims.x + tx] += weighted;
             return;
         }
 
@@ -232,7 +233,7 @@ private:
     // The plane's points over one tile (view space), or none for "anywhere"; the extents they span
     // grow by `widen` (m) and by `growth` times their size.
     void mark(uint32_t tx, uint32_t ty, std::span<const glm::dvec3> points, double widen, double growth) {
-        const glm::vec4& axisValue = out_.values[out_.froxels + ty * shape_.dims.x + tx];
+        const glm::vec4& axisValue = out_.values[out_.froxels() + ty * shape_.dims.x + tx];
         const bool slab = axisValue.w > 0.0f;
         const glm::dvec3 axis(axisValue);
         double dLo = 0.0, dHi = kInfinity, sLo = -kInfinity, sHi = kInfinity;
@@ -345,10 +346,9 @@ void FroxelSurfaces::fillOutsideSpans() {
 void froxelSurfaces(const ClusterGridShape& shape, const ClusterCamera& camera, const ClusterSurfaces& surfaces,
                     FroxelSurfaces& out) {
     const size_t tiles = size_t(shape.dims.x) * shape.dims.y;
-    out.froxels = shape.froxelCount();
     out.dims = shape.dims;
     out.filled = false;
-    out.values.resize(out.froxels + tiles);  // each band clears its own rows below
+    out.values.resize(out.froxels() + tiles);  // each band clears its own rows below
     out.rowColumns.resize(size_t(shape.dims.z) * shape.dims.y);
     const size_t triangles = surfaces.indices.size() / 3;
     const size_t vertexCount = surfaces.positionsWs.size();
@@ -417,8 +417,8 @@ void froxelSurfaces(const ClusterGridShape& shape, const ClusterCamera& camera, 
                                   out.rowColumns.begin() + ptrdiff_t(size_t(z) * shape.dims.y + rowEnd),
                                   glm::uvec2(kNone));
                     }
-                    std::fill(out.values.begin() + ptrdiff_t(out.froxels + first),
-                              out.values.begin() + ptrdiff_t(out.froxels + last), glm::vec4(0.0f));
+                    std::fill(out.values.begin() + ptrdiff_t(out.froxels() + first),
+                              out.values.begin() + ptrdiff_t(out.froxels() + last), glm::vec4(0.0f));
                 }
                 SurfaceWriter writer(shape, sliceStarts, camera.eye, double(surfaces.outsidePx), which, rowBegin,
                                      rowEnd, out);
@@ -432,7 +432,7 @@ void froxelSurfaces(const ClusterGridShape& shape, const ClusterCamera& camera, 
     };
     pass(0);
     // The tiles' axes: the mean normal, where the surfaces agree on one.
-    for (size_t k = out.froxels; k < out.values.size(); ++k) {
+    for (size_t k = out.froxels(); k < out.values.size(); ++k) {
         const glm::vec3 sum(out.values[k]);
         const float length = glm::length(sum);
         out.values[k] = length > 0.0f && std::isfinite(length) ? glm::vec4(sum / length, 1.0f) : glm::vec4(0.0f);

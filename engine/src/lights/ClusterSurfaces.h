@@ -41,7 +41,6 @@ namespace preskin {
 // nothing else); fillOutsideSpans() empties the rest, for a reader of the whole array.
 struct FroxelSurfaces {
     std::vector<glm::vec4> values;
-    size_t froxels = 0;
     glm::uvec3 dims{0u};
     std::vector<glm::uvec2> rowColumns;  // [slice * rows + row]
     std::vector<glm::uvec2> sliceRows;   // [slice]
@@ -49,11 +48,12 @@ struct FroxelSurfaces {
     bool filled = false;                 // every froxel written (fillOutsideSpans)
 
     bool empty() const { return values.empty(); }
+    size_t froxels() const { return size_t(dims.x) * dims.y * dims.z; }
     // A froxel within its row's span (x in rowColumns[z * rows + y]).
     const glm::vec4& spanExtent(size_t froxel) const { return values[froxel]; }
     // Any froxel (empty outside its row's span).
     glm::vec4 extent(size_t froxel) const;
-    const glm::vec4& axis(size_t tile) const { return values[froxels + tile]; }
+    const glm::vec4& axis(size_t tile) const { return values[froxels() + tile]; }
     bool occupied(size_t froxel) const {
         const glm::vec4 e = extent(froxel);
         return e.x <= e.y;
