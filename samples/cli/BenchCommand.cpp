@@ -216,9 +216,10 @@ void addBenchCommand(CLI::App& app) {
                     "Seconds per point before warm-up and repetitions are cut (at least one frame)")
         ->capture_default_str()
         ->check(numberIn(0.0, 1e6));
-    cmd->add_option("--tile", o->clusters.tileSizePx, "Cluster tile size in pixels")
+    cmd->add_option("--tile", o->clusters.tileSizePx,
+                    "Cluster tile size in pixels; 0 chooses it from the lights' projected size (16, 8 or 4)")
         ->capture_default_str()
-        ->check(wholeNumberIn(4, 256));
+        ->check(wholeNumberIn(0, 0) | wholeNumberIn(4, 256));
     cmd->add_option("--slices", o->clusters.depthSlices, "Cluster depth slices")
         ->capture_default_str()
         ->check(wholeNumberIn(2, 256));

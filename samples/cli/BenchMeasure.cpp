@@ -47,7 +47,11 @@ void writeMeasurement(JsonWriter& j, const Measurement& m) {
                 m.frames.back().eyeDrawing == EyeDrawing::InstancedLayers ? "instanced layers" : "multiview");
     }
     j.field("overflowed_clusters", m.overflows());
-    if (!m.frames.empty()) j.field("cluster_grid_bytes", m.frames.back().clusterGridBytes);
+    if (!m.frames.empty() && m.frames.back().clusterTileSizePx > 0) {
+        j.field("cluster_grid_bytes", m.frames.back().clusterGridBytes);
+        j.field("cluster_tile_px", m.frames.back().clusterTileSizePx);
+        j.field("cluster_slices", m.frames.back().clusterDims.z);
+    }
     if (!m.frames.empty() && m.frames.back().diffusionPasses > 0) {
         j.field("diffusion_passes", m.frames.back().diffusionPasses);
         j.field("diffusion_targets", m.frames.back().diffusionTargets);

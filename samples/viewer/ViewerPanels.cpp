@@ -263,9 +263,10 @@ void Viewer::panelTechniques() {
     ImGui::RadioButton("Screen-space", &method, 1);
     ImGui::SameLine();
     ImGui::RadioButton("Texture-space", &method, 2);
-    tooltip("--diffusion: preskin's own, or a baseline it replaces (Lambert skin blurred by the profile on the screen "
-            "or in the mesh's UV layout, in more passes; of the techniques above only transmission and dual "
-            "specular apply to them)");
+    tooltip(
+        "--diffusion: preskin's own, or a baseline it replaces (Lambert skin blurred by the profile on the screen "
+        "or in the mesh's UV layout, in more passes; of the techniques above only transmission and dual "
+        "specular apply to them)");
     settings_.diffusion = static_cast<Diffusion>(method);
     ImGui::SliderFloat("Exposure", &settings_.exposure, 0.05f, 16.0f, "%.2f", ImGuiSliderFlags_Logarithmic);
 }
@@ -485,8 +486,15 @@ void Viewer::panelLights() {
     ImGui::RadioButton("Every light (brute force)", &loop, 1);
     settings_.lightLoop = loop == 0 ? LightLoop::Clustered : LightLoop::All;
     if (settings_.lightLoop == LightLoop::Clustered) {
-        int tile = static_cast<int>(settings_.clusters.tileSizePx);
-        if (ImGui::SliderInt("Tile size", &tile, 16, 256, "%d px")) settings_.clusters.tileSizePx = uint32_t(tile);
+        bool autoTile = settings_.clusters.tileSizePx == 0;
+        if (ImGui::Checkbox("Tile size from the lights", &autoTile))
+            settings_.clusters.tileSizePx = autoTile ? 0u : std::max(lastStats_.clusterTileSizePx, 4u);
+        if (autoTile) {
+            ImGui::TextDisabled("Tile size: %u px", lastStats_.clusterTileSizePx);
+        } else {
+            int tile = static_cast<int>(settings_.clusters.tileSizePx);
+            if (ImGui::SliderInt("Tile size", &tile, 4, 256, "%d px")) settings_.clusters.tileSizePx = uint32_t(tile);
+        }
         int slices = static_cast<int>(settings_.clusters.depthSlices);
         if (ImGui::SliderInt("Depth slices", &slices, 1, 64)) settings_.clusters.depthSlices = uint32_t(slices);
     }

@@ -108,6 +108,92 @@ TEST(ClusterGridShape, FitsTheSceneDepthRange) {
                 1e-5f);
 }
 
+// The automatic tile (ClusterSettings::tileSizePx = 0): the largest of 16, 8, 4 px that the median
+// listed light spans 8 tiles in radius. Lights are placed by their radius in pixels, measured on
+// the image (the world distance between two pixels at the light's depth), not by the rule's formula.
+TEST(ClusterGridShape, AutomaticTileFollowsTheMedianLightsProjectedSize) {
+    Bounds box;
+    box.extend(glm::vec3(-3.0f));
+    box.extend(glm::vec3(3.0f));
+    ClusterSettings settings;  // the defaults: automatic tile, 32 slices, fitted to the box
+    ASSERT_EQ(settings.tileSizePx, 0u);
+    auto shapeFor = [&](uint32_t width, uint32_t height, const std::vector<std::pair<float, int>>& radiiPx) {
+        const View view = clusterTestView(float(width), float(height));
+        std::vector<Light> lights{shadowedDirectionalLight(glm::vec3(0.0f, -1.0f, 0.0f), 1.0f)};
+        std::mt19937 rng(7);
+        std::uniform_real_distribution<float> u(0.2f, 0.8f);
+        std::uniform_real_distribution<float> depth(3.0f, 5.0f);
+        for (const auto& [radiusPx, count] : radiiPx)
+            for (int i = 0; i < count; ++i) {
+                const float px = u(rng) * float(width);
+                const float py = u(rng) * float(height);
+                const float d = depth(rng);
+                const glm::vec3 c = pointAtPixel(view.eye(), px, py, float(width), float(height), d);
+                const glm::vec3 side = pointAtPixel(view.eye(), px + radiusPx, py, float(width), float(height), d);
+                lights.push_back(pointLight(c, glm::length(side - c)));
+            }
+        return clusterGridShape(settings, clusterCamera(view, width, height), box, lights);
+    };
+    struct Case {
+        std::vector<std::pair<float, int>> radiiPx;
+        uint32_t tile;
+    };
+    const Case cases[] = {
+        {{{200.0f, 40}}, 16},
+        {{{130.0f, 40}}, 16},
+        {{{120.0f, 40}}, 8},
+        {{{70.0f, 40}}, 8},
+        {{{60.0f, 40}}, 4},
+        {{{10.0f, 40}}, 4},
+        {{{40.0f, 51}, {200.0f, 50}}, 4},
+        {{{40.0f, 49}, {200.0f, 52}}, 16},
+        {{}, 16},
+    };
+    for (const Case& c : cases) {
+        const ClusterGridShape s = shapeFor(1280, 720, c.radiiPx);
+        const float first = c.radiiPx.empty() ? 0.0f : c.radiiPx.front().first;
+        EXPECT_EQ(s.tileSizePx, c.tile) << "lights of " << first << " px first";
+        EXPECT_EQ(s.dims.z, c.tile < 16 ? 16u : 32u);
+        EXPECT_EQ(s.dims.x, (1280u + s.tileSizePx - 1) / s.tileSizePx);
+    }
+    // Lights listed nowhere (their sphere misses the scene's box) do not count: 200 small ones beyond it.
+    {
+        const View view = clusterTestView(1280.0f, 720.0f);
+        std::vector<Light> lights;
+        for (int i = 0; i < 40; ++i) lights.push_back(pointLight(glm::vec3(0.01f * float(i), 0.0f, 0.0f), 1.0f));
+        for (int i = 0; i < 200; ++i) lights.push_back(pointLight(glm::vec3(0.01f * float(i), 0.0f, -6.0f), 0.01f));
+        EXPECT_EQ(clusterGridShape(settings, clusterCamera(view, 1280, 720), box, lights).tileSizePx, 16u);
+        // Unlimited lights are as large as can be.
+        for (Light& l : lights) l.range = 0.0f;
+        EXPECT_EQ(clusterGridShape(settings, clusterCamera(view, 1280, 720), box, lights).tileSizePx, 16u);
+    }
+    // At most 2^20 froxels: 4 px tiles at 1920 x 1080 would be 480 x 270 x 16 = 2.07 M.
+    const ClusterGridShape large = shapeFor(1920, 1080, {{10.0f, 40}});
+    EXPECT_EQ(large.tileSizePx, 8u);
+    EXPECT_LE(large.froxelCount(), 1u << 20);
+    // A tile that is set is kept.
+    settings.tileSizePx = 24;
+    EXPECT_EQ(shapeFor(1280, 720, {{10.0f, 40}}).tileSizePx, 24u);
+}
+
+// With the automatic tile the lists stay complete: small lights (4 px tiles) against the reference.
+TEST(ClusterGrid, AutomaticTileListsEveryTouchingLight) {
+    const View view = testView();
+    ClusterSettings settings;
+    settings.fitDepthToScene = false;
+    std::vector<Light> lights{shadowedDirectionalLight(glm::vec3(0.0f, -1.0f, 0.0f), 1.0f)};
+    std::mt19937 rng(3);
+    std::uniform_real_distribution<float> u(0.0f, 1.0f);
+    for (int i = 0; i < 300; ++i) {
+        const glm::vec3 c = pointAtPixel(view.eye(), u(rng) * float(kWidth), u(rng) * float(kHeight), float(kWidth),
+                                         float(kHeight), 2.0f + 4.0f * u(rng));
+        lights.push_back(pointLight(c, 0.05f + 0.1f * u(rng)));
+    }
+    const ClusterGrid grid = buildClusterGrid(settings, view, kWidth, kHeight, {}, lights);
+    EXPECT_EQ(grid.shape.tileSizePx, 4u);
+    expectConservative(grid, lights, "automatic tile");
+}
+
 TEST(ClusterGrid, EveryTouchingLightIsListed) {
     const View view = testView();
     for (uint32_t seed : {1u, 2u, 3u}) {

@@ -55,7 +55,11 @@ namespace preskin {
 enum class ClusterBuild { Auto, Cpu, Gpu };
 
 struct ClusterSettings {
-    uint32_t tileSizePx = 16;             // screen tile edge, clamped to 4..256
+    // Screen tile edge, clamped to 4..256. 0: chosen each frame from the lights, the largest of 16,
+    // 8 and 4 px that the median light's bounding sphere spans 8 tiles in radius (projected at its
+    // depth), so that a light is not listed for many pixels it misses; a tile under 16 px takes
+    // at most 16 depth slices and the grid at most 2^20 froxels (else larger tiles).
+    uint32_t tileSizePx = 0;
     uint32_t depthSlices = 32;            // clamped to 2..256
     float nearSliceM = 0.05f;             // slice 0 ends here at the earliest
     bool fitDepthToScene = true;          // slices span the scene's depth range; lights missing it unlisted
@@ -167,9 +171,10 @@ struct ClusterGrid {
 
 // The grid's shape for a cluster camera. `sceneBounds` (world space) fits the logarithmic
 // slices, and becomes the box lights must reach to be listed (lightBounds), when
-// settings.fitDepthToScene is set and the bounds are not empty.
+// settings.fitDepthToScene is set and the bounds are not empty. `lights` choose the tile size
+// when settings.tileSizePx is 0 (none: 16 px).
 PRESKIN_API ClusterGridShape clusterGridShape(const ClusterSettings& settings, const ClusterCamera& camera,
-                                              const Bounds& sceneBounds);
+                                              const Bounds& sceneBounds, std::span<const Light> lights = {});
 
 // Builds the light lists on the CPU for every eye of `view` (each eye widthPx x heightPx).
 // List entries are indices into `lights`; directional lights are skipped. This is the CPU

@@ -180,8 +180,10 @@ struct FrameStats {
     double recordCpuMs = 0.0;        // CPU time of Renderer::record without the light-list build
     uint32_t eyes = 0;               // eyes drawn
     EyeDrawing eyeDrawing = EyeDrawing::Multiview;  // how (never Auto)
-    bool clusterBuildGpu = false;   // the light lists came from the compute pass (ClusterSettings::build)
-    uint64_t clusterGridBytes = 0;  // the light grid's buffers as allocated (ranges, indices, headroom included)
+    bool clusterBuildGpu = false;    // the light lists came from the compute pass (ClusterSettings::build)
+    uint64_t clusterGridBytes = 0;   // the light grid's buffers as allocated (ranges, indices, headroom included)
+    glm::uvec3 clusterDims{0u};      // the light grid's tiles across, down and depth slices
+    uint32_t clusterTileSizePx = 0;  // its tile edge (ClusterSettings::tileSizePx, or the one chosen)
     // What the diffusion method adds to the one forward pass (RenderSettings::diffusion): passes,
     // render targets and their bytes (0 for PreIntegrated).
     uint32_t diffusionPasses = 0;

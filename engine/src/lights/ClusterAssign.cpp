@@ -93,7 +93,17 @@ bool coneReachesSphere(const ClusterLightBounds& b, const glm::vec4& sphere) {
     return !(closest > radius || along > radius + b.rangeM || along < -radius);
 }
 
+float slackenedCosOuter(const ClusterLight& light) {
+    return std::clamp(light.cosOuter - kClusterConeSlack, -1.0f, 1.0f);
+}
+
 }  // namespace
+
+float clusterSphereOffsetM(const ClusterLight& light) {
+    const bool unlimited = !(light.rangeM > 0.0f) || !std::isfinite(light.rangeM);
+    const float cosOuter = slackenedCosOuter(light);
+    return light.spot && !unlimited && cosOuter > 0.5f ? light.rangeM / (2.0f * cosOuter) : 0.0f;
+}
 
 ClusterLightBounds clusterLightBounds(const ClusterLight& light, const glm::mat4& viewFromWorld,
                                       const ClusterGeometry& g) {
@@ -107,19 +117,18 @@ ClusterLightBounds clusterLightBounds(const ClusterLight& light, const glm::mat4
     b.axisVs = axisLength > 0.0f ? axis / axisLength : glm::vec3(0.0f, 0.0f, -1.0f);
     b.centerVs = b.apexVs;
     b.radiusM = b.rangeM;
-    float centerAlongAxis = 0.0f;  // the bounding sphere's centre: the apex moved this far along the axis
+    const float centerAlongAxis = clusterSphereOffsetM(light);
+    if (centerAlongAxis > 0.0f) {
+        b.centerVs = b.apexVs + b.axisVs * centerAlongAxis;
+        b.radiusM = centerAlongAxis;
+    }
     if (light.spot) {
-        const float cosOuter = std::clamp(light.cosOuter - kClusterConeSlack, -1.0f, 1.0f);
+        const float cosOuter = slackenedCosOuter(light);
         // A cone of 90 degrees or more is culled by its range sphere only.
         if (cosOuter > 0.0f) {
             b.cone = true;
             b.cosOuter = cosOuter;
             b.sinOuter = std::sqrt(std::max(1.0f - cosOuter * cosOuter, 0.0f));
-            if (!unlimited && cosOuter > 0.5f) {
-                centerAlongAxis = b.rangeM / (2.0f * cosOuter);
-                b.centerVs = b.apexVs + b.axisVs * centerAlongAxis;
-                b.radiusM = centerAlongAxis;
-            }
         }
     }
     if (!unlimited) b.radiusM = b.radiusM * (1.0f + kClusterRadiusSlack) + 1e-6f;

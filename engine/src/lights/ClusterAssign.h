@@ -61,6 +61,10 @@ struct ClusterLightBounds {
     glm::uvec3 hi{0u};
 };
 
+// How far along a spot's axis its bounding sphere's centre lies, the sphere's radius then: the
+// smallest sphere around a cone narrower than 60 degrees. 0: the range sphere about the apex.
+float clusterSphereOffsetM(const ClusterLight& light);
+
 // Bounds of one light for this grid (view transform and geometry).
 ClusterLightBounds clusterLightBounds(const ClusterLight& light, const glm::mat4& viewFromWorld,
                                       const ClusterGeometry& geometry);

@@ -86,7 +86,7 @@ ClusterBuilder::FrameGrid ClusterBuilder::prepare(uint32_t slot, const ClusterSe
     const auto start = std::chrono::steady_clock::now();
     Slot& s = slots_[slot];
     const Eye& view = camera.eye;
-    const ClusterGeometry geometry = clusterGeometry(clusterGridShape(settings, camera, sceneBounds), view);
+    const ClusterGeometry geometry = clusterGeometry(clusterGridShape(settings, camera, sceneBounds, lights), view);
     const auto localCount = static_cast<uint32_t>(
         std::count_if(lights.begin(), lights.end(), [](const Light& l) { return l.type != LightType::Directional; }));
     s.camera = camera;

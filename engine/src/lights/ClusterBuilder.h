@@ -59,6 +59,8 @@ public:
     // Bytes of the slot's light-grid buffers as allocated (froxel ranges and light indices, where
     // the surfaces are per froxel; for the compute build also its per-light volumes), headroom included.
     uint64_t gridBytes(uint32_t slot) const;
+    // The grid shape of the slot's last prepare() (its tile size the automatic one where chosen).
+    const ClusterGridShape& shape(uint32_t slot) const { return slots_[slot].shape; }
     // CPU time of the last prepare() of the slot (the whole build, or the compute build's setup).
     double buildMs(uint32_t slot) const { return slots_[slot].buildMs; }
     // The slot's last lists, read back from whichever build made them (waits for the device).

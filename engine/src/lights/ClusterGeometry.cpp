@@ -2,6 +2,8 @@
 // geometry; see ClusterGeometry.h and <preskin/ClusterGrid.h>.
 #include "lights/ClusterGeometry.h"
 
+#include "lights/ClusterAssign.h"
+
 #include <algorithm>
 #include <cmath>
 #include <limits>
@@ -43,16 +45,59 @@ glm::vec4 orientedPlane(const glm::dvec3& a, const glm::dvec3& b, const glm::dve
     return glm::vec4(glm::vec3(n), float(w));
 }
 
+// The automatic tile (ClusterSettings::tileSizePx = 0): the largest of 16, 8 and 4 pixels that the
+// median local light's bounding sphere spans kAutoTileRadiusTiles times in radius, projected at
+// its view depth (clamped to the slices' fitted range, where the surfaces it lights are). A light
+// is listed for every pixel of each tile it touches anywhere, so tiles small against the lights
+// keep the lists near the exact count. At most kAutoTileSamples lights, evenly strided, are
+// measured; lights whose sphere misses shape.lightBounds (listed nowhere) are not.
+constexpr float kAutoTileRadiusTiles = 8.0f;
+constexpr size_t kAutoTileSamples = 4096;
+// Finer tiles than 16 px take at most kAutoFineSlices slices (the surfaces bound each froxel's
+// depths, so slices matter less than tiles) and at most kAutoMaxFroxels froxels (the grid's memory
+// and build time; a larger image gets larger tiles).
+constexpr uint32_t kAutoFineSlices = 16;
+constexpr uint64_t kAutoMaxFroxels = uint64_t(1) << 20;
+
+uint32_t autoTileSizePx(const ClusterGridShape& s, const Eye& view, std::span<const Light> lights) {
+    const float pixelsPerTangent = 0.5f * float(s.extentPx.y) * std::abs(view.clipFromView[1][1]);
+    const bool perspective = view.clipFromView[2][3] != 0.0f;
+    const size_t stride = std::max<size_t>(1, lights.size() / kAutoTileSamples);
+    std::vector<float> radiiPx;
+    radiiPx.reserve(std::min(lights.size(), kAutoTileSamples + 1));
+    for (size_t i = 0; i < lights.size(); i += stride) {
+        if (lights[i].type == LightType::Directional) continue;
+        const ClusterLight light = clusterLight(lights[i], 0);
+        if (!(light.rangeM > 0.0f) || !std::isfinite(light.rangeM)) {
+            radiiPx.push_back(std::numeric_limits<float>::infinity());
+            continue;
+        }
+        const float offset = clusterSphereOffsetM(light);
+        const float radius = offset > 0.0f ? offset : light.rangeM;
+        const glm::vec3 center =
+            offset > 0.0f ? light.positionWs + glm::normalize(light.directionWs) * offset : light.positionWs;
+        if (!s.lightBounds.empty()) {
+            const glm::vec3 outside = glm::max(glm::max(s.lightBounds.min - center, center - s.lightBounds.max), 0.0f);
+            if (glm::dot(outside, outside) > radius * radius) continue;
+        }
+        const float depth = std::clamp(-(view.viewFromWorld * glm::vec4(center, 1.0f)).z, s.logStartM, s.logEndM);
+        radiiPx.push_back(radius * pixelsPerTangent / (perspective ? depth : 1.0f));
+    }
+    uint32_t tile = 16;
+    if (radiiPx.empty()) return tile;
+    const auto median = radiiPx.begin() + std::ptrdiff_t(radiiPx.size() / 2);
+    std::nth_element(radiiPx.begin(), median, radiiPx.end());
+    while (tile > 4 && !(*median >= kAutoTileRadiusTiles * float(tile))) tile /= 2;
+    return tile;
+}
+
 }  // namespace
 
 ClusterGridShape clusterGridShape(const ClusterSettings& settings, const ClusterCamera& camera,
-                                  const Bounds& sceneBounds) {
+                                  const Bounds& sceneBounds, std::span<const Light> lights) {
     const Eye& view = camera.eye;
     ClusterGridShape s;
-    s.tileSizePx = std::clamp<uint32_t>(settings.tileSizePx, 4, 256);
     s.extentPx = glm::max(camera.extentPx, glm::uvec2(1u));
-    s.dims.x = (s.extentPx.x + s.tileSizePx - 1) / s.tileSizePx;
-    s.dims.y = (s.extentPx.y + s.tileSizePx - 1) / s.tileSizePx;
     s.dims.z = std::clamp<uint32_t>(settings.depthSlices, 2, 256);
     s.nearM = std::isfinite(view.nearM) && view.nearM > 0.0f ? view.nearM : 1e-3f;
     const float farM = std::isfinite(view.farM) ? std::max(view.farM, s.nearM * 4.0f) : s.nearM * 1e6f;
@@ -77,6 +122,19 @@ ClusterGridShape clusterGridShape(const ClusterSettings& settings, const Cluster
     end = std::max(end, start * 1.01f);
     s.logStartM = start;
     s.logEndM = end;
+    auto tiles = [&](uint32_t tile) {
+        return glm::uvec2((s.extentPx.x + tile - 1) / tile, (s.extentPx.y + tile - 1) / tile);
+    };
+    s.tileSizePx = std::clamp<uint32_t>(settings.tileSizePx, 4, 256);
+    if (settings.tileSizePx == 0) {
+        const uint32_t fineSlices = std::min(s.dims.z, kAutoFineSlices);
+        uint32_t tile = autoTileSizePx(s, view, lights);
+        while (tile < 16 && uint64_t(tiles(tile).x) * tiles(tile).y * fineSlices > kAutoMaxFroxels) tile *= 2;
+        s.tileSizePx = tile;
+        if (tile < 16) s.dims.z = fineSlices;
+    }
+    s.dims.x = tiles(s.tileSizePx).x;
+    s.dims.y = tiles(s.tileSizePx).y;
     s.sliceScale = float(s.dims.z - 1) / std::log2(end / start);
     s.sliceBias = 1.0f - std::log2(start) * s.sliceScale;
     return s;

@@ -571,6 +571,10 @@ FrameStats Renderer::Impl::stats(uint32_t slotIndex) const {
     s.clusterBuildCpuMs = settings.lightLoop == LightLoop::Clustered ? clusters->buildMs(slotIndex) : 0.0;
     s.clusterBuildGpu = settings.lightLoop == LightLoop::Clustered && clusters->usesGpu(slotIndex);
     s.clusterGridBytes = settings.lightLoop == LightLoop::Clustered ? clusters->gridBytes(slotIndex) : 0;
+    if (settings.lightLoop == LightLoop::Clustered) {
+        s.clusterDims = clusters->shape(slotIndex).dims;
+        s.clusterTileSizePx = clusters->shape(slotIndex).tileSizePx;
+    }
     s.recordCpuMs = std::max(slot.recordMs - s.clusterBuildCpuMs, 0.0);
     s.eyes = slot.eyes;
     s.eyeDrawing = eyeDrawing();
