@@ -219,7 +219,7 @@ void addBenchCommand(CLI::App& app) {
     cmd->add_option("--tile", o->clusters.tileSizePx,
                     "Cluster tile size in pixels; 0 chooses it from the lights' projected size (16, 8 or 4)")
         ->capture_default_str()
-        ->check(wholeNumberIn(0, 0) | wholeNumberIn(4, 256));
+        ->check(zeroOrWholeNumberIn(4, 256));
     cmd->add_option("--slices", o->clusters.depthSlices, "Cluster depth slices")
         ->capture_default_str()
         ->check(wholeNumberIn(2, 256));

@@ -170,6 +170,17 @@ CLI::Validator wholeNumberIn(int64_t min, int64_t max) {
         "in " + range);
 }
 
+CLI::Validator zeroOrWholeNumberIn(int64_t min, int64_t max) {
+    const std::string range = "[" + std::to_string(min) + ", " + std::to_string(max) + "]";
+    return CLI::Validator(
+        [inRange = wholeNumberIn(min, max), range](std::string& text) -> std::string {
+            std::string copy = text;
+            if (text == "0" || inRange(copy).empty()) return {};
+            return "value: '" + shown(text) + "' is neither 0 nor a whole number in " + range;
+        },
+        "0 or in " + range);
+}
+
 CLI::Validator oneOf(std::initializer_list<std::string> words) {
     std::string list;
     for (const std::string& w : words) list += (list.empty() ? "" : ", ") + w;

@@ -19,6 +19,8 @@ namespace preskin::cli {
 CLI::Validator numberIn(double min, double max);
 // A whole number in [min, max].
 CLI::Validator wholeNumberIn(int64_t min, int64_t max);
+// 0 (an option's "chosen automatically") or a whole number in [min, max].
+CLI::Validator zeroOrWholeNumberIn(int64_t min, int64_t max);
 // One of the given words.
 CLI::Validator oneOf(std::initializer_list<std::string> words);
 

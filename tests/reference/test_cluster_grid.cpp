@@ -14,6 +14,7 @@
 #include <glm/gtc/matrix_transform.hpp>
 
 #include <algorithm>
+#include <limits>
 #include <random>
 #include <string>
 
@@ -163,6 +164,11 @@ TEST(ClusterGridShape, AutomaticTileFollowsTheMedianLightsProjectedSize) {
         for (int i = 0; i < 40; ++i) lights.push_back(pointLight(glm::vec3(0.01f * float(i), 0.0f, 0.0f), 1.0f));
         for (int i = 0; i < 200; ++i) lights.push_back(pointLight(glm::vec3(0.01f * float(i), 0.0f, -6.0f), 0.01f));
         EXPECT_EQ(clusterGridShape(settings, clusterCamera(view, 1280, 720), box, lights).tileSizePx, 16u);
+        // Lights at a NaN position light nothing and do not count either.
+        std::vector<Light> withNan = lights;
+        for (int i = 0; i < 200; ++i)
+            withNan.push_back(pointLight(glm::vec3(std::numeric_limits<float>::quiet_NaN()), 0.01f));
+        EXPECT_EQ(clusterGridShape(settings, clusterCamera(view, 1280, 720), box, withNan).tileSizePx, 16u);
         // Unlimited lights are as large as can be.
         for (Light& l : lights) l.range = 0.0f;
         EXPECT_EQ(clusterGridShape(settings, clusterCamera(view, 1280, 720), box, lights).tileSizePx, 16u);

@@ -81,7 +81,8 @@ uint32_t autoTileSizePx(const ClusterGridShape& s, const Eye& view, std::span<co
             if (glm::dot(outside, outside) > radius * radius) continue;
         }
         const float depth = std::clamp(-(view.viewFromWorld * glm::vec4(center, 1.0f)).z, s.logStartM, s.logEndM);
-        radiiPx.push_back(radius * pixelsPerTangent / (perspective ? depth : 1.0f));
+        const float radiusPx = radius * pixelsPerTangent / (perspective ? depth : 1.0f);
+        if (!std::isnan(radiusPx)) radiiPx.push_back(radiusPx);  // a light at a NaN position lights nothing
     }
     uint32_t tile = 16;
     if (radiiPx.empty()) return tile;
