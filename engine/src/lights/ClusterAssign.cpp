@@ -105,6 +105,18 @@ float clusterSphereOffsetM(const ClusterLight& light) {
     return light.spot && !unlimited && cosOuter > 0.5f ? light.rangeM / (2.0f * cosOuter) : 0.0f;
 }
 
+glm::vec4 clusterLightSphereWs(const ClusterLight& light) {
+    const float offset = clusterSphereOffsetM(light);
+    if (offset > 0.0f) return glm::vec4(light.positionWs + glm::normalize(light.directionWs) * offset, offset);
+    const bool unlimited = !(light.rangeM > 0.0f) || !std::isfinite(light.rangeM);
+    return glm::vec4(light.positionWs, unlimited ? kInfinity : light.rangeM);
+}
+
+bool sphereReachesBox(const Bounds& box, const glm::vec3& center, float radius) {
+    const glm::vec3 outside = glm::max(glm::max(box.min - center, center - box.max), 0.0f);
+    return !(glm::dot(outside, outside) > radius * radius);
+}
+
 ClusterLightBounds clusterLightBounds(const ClusterLight& light, const glm::mat4& viewFromWorld,
                                       const ClusterGeometry& g) {
     ClusterLightBounds b;
@@ -136,11 +148,8 @@ ClusterLightBounds clusterLightBounds(const ClusterLight& light, const glm::mat4
     const ClusterGridShape& s = g.shape;
     if (!unlimited && !s.lightBounds.empty()) {
         // The same sphere in world space (the view transform is rigid), against the scene's box.
-        const glm::vec3 centerWs = centerAlongAxis > 0.0f
-            ? light.positionWs + glm::normalize(light.directionWs) * centerAlongAxis
-            : light.positionWs;
-        const glm::vec3 outside = glm::max(glm::max(s.lightBounds.min - centerWs, centerWs - s.lightBounds.max), 0.0f);
-        if (glm::dot(outside, outside) > b.radiusM * b.radiusM) return b;  // lo > hi: listed nowhere
+        if (!sphereReachesBox(s.lightBounds, glm::vec3(clusterLightSphereWs(light)), b.radiusM))
+            return b;  // lo > hi: listed nowhere
     }
     const float depth = -b.centerVs.z;
     const float minDepth = depth - b.radiusM;

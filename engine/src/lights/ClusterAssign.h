@@ -64,6 +64,11 @@ struct ClusterLightBounds {
 // How far along a spot's axis its bounding sphere's centre lies, the sphere's radius then: the
 // smallest sphere around a cone narrower than 60 degrees. 0: the range sphere about the apex.
 float clusterSphereOffsetM(const ClusterLight& light);
+// That sphere in world space: xyz its centre, w its radius (infinite for an unlimited light),
+// before the float slack.
+glm::vec4 clusterLightSphereWs(const ClusterLight& light);
+// Whether a sphere reaches a box (the box's nearest point lies within the radius).
+bool sphereReachesBox(const Bounds& box, const glm::vec3& center, float radius);
 
 // Bounds of one light for this grid (view transform and geometry).
 ClusterLightBounds clusterLightBounds(const ClusterLight& light, const glm::mat4& viewFromWorld,

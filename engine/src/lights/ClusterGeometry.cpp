@@ -67,19 +67,14 @@ uint32_t autoTileSizePx(const ClusterGridShape& s, const Eye& view, std::span<co
     radiiPx.reserve(std::min(lights.size(), kAutoTileSamples + 1));
     for (size_t i = 0; i < lights.size(); i += stride) {
         if (lights[i].type == LightType::Directional) continue;
-        const ClusterLight light = clusterLight(lights[i], 0);
-        if (!(light.rangeM > 0.0f) || !std::isfinite(light.rangeM)) {
-            radiiPx.push_back(std::numeric_limits<float>::infinity());
+        const glm::vec4 sphere = clusterLightSphereWs(clusterLight(lights[i], 0));
+        const glm::vec3 center(sphere);
+        const float radius = sphere.w;
+        if (std::isinf(radius)) {
+            radiiPx.push_back(radius);
             continue;
         }
-        const float offset = clusterSphereOffsetM(light);
-        const float radius = offset > 0.0f ? offset : light.rangeM;
-        const glm::vec3 center =
-            offset > 0.0f ? light.positionWs + glm::normalize(light.directionWs) * offset : light.positionWs;
-        if (!s.lightBounds.empty()) {
-            const glm::vec3 outside = glm::max(glm::max(s.lightBounds.min - center, center - s.lightBounds.max), 0.0f);
-            if (glm::dot(outside, outside) > radius * radius) continue;
-        }
+        if (!s.lightBounds.empty() && !sphereReachesBox(s.lightBounds, center, radius)) continue;
         const float depth = std::clamp(-(view.viewFromWorld * glm::vec4(center, 1.0f)).z, s.logStartM, s.logEndM);
         const float radiusPx = radius * pixelsPerTangent / (perspective ? depth : 1.0f);
         if (!std::isnan(radiusPx)) radiiPx.push_back(radiusPx);  // a light at a NaN position lights nothing
