@@ -62,9 +62,9 @@ constexpr uint64_t kAutoMaxFroxels = uint64_t(1) << 20;
 uint32_t autoTileSizePx(const ClusterGridShape& s, const Eye& view, std::span<const Light> lights) {
     const float pixelsPerTangent = 0.5f * float(s.extentPx.y) * std::abs(view.clipFromView[1][1]);
     const bool perspective = view.clipFromView[2][3] != 0.0f;
-    const size_t stride = std::max<size_t>(1, lights.size() / kAutoTileSamples);
+    const size_t stride = std::max<size_t>(1, (lights.size() + kAutoTileSamples - 1) / kAutoTileSamples);
     std::vector<float> radiiPx;
-    radiiPx.reserve(std::min(lights.size(), kAutoTileSamples + 1));
+    radiiPx.reserve(std::min(lights.size(), kAutoTileSamples));
     for (size_t i = 0; i < lights.size(); i += stride) {
         if (lights[i].type == LightType::Directional) continue;
         const glm::vec4 sphere = clusterLightSphereWs(clusterLight(lights[i], 0));
