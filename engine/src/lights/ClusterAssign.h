@@ -46,19 +46,23 @@ struct ClusterLight {
 // beside the GPU record: the one place a scene light is converted).
 ClusterLight clusterLight(const Light& light, uint32_t index);
 
-// A light in view space with its bounding sphere and the box of froxels it may touch.
-struct ClusterLightBounds {
-    glm::vec3 centerVs{0.0f};
-    float radiusM = 0.0f;  // infinity for unlimited lights
+// A spot's cone in view space, for the froxels' cone test.
+struct ClusterCone {
     glm::vec3 apexVs{0.0f};
     float rangeM = 0.0f;  // infinity for unlimited lights
     glm::vec3 axisVs{0.0f, 0.0f, -1.0f};
     float cosOuter = -1.0f;
     float sinOuter = 0.0f;
-    bool cone = false;  // spot with a cone narrower than a half space
-    uint32_t index = 0;
-    glm::uvec3 lo{1u};  // inclusive froxel box; empty when any lo > hi
+};
+
+// A light in view space with its bounding sphere and the box of froxels it may touch.
+struct ClusterLightBounds {
+    glm::vec3 centerVs{0.0f};
+    float radiusM = 0.0f;  // infinity for unlimited lights
+    glm::uvec3 lo{1u};     // inclusive froxel box; empty when any lo > hi
     glm::uvec3 hi{0u};
+    uint32_t index = 0;
+    bool cone = false;  // a spot with a cone narrower than a half space, written to `cone`
 };
 
 // How far along a spot's axis its bounding sphere's centre lies, the sphere's radius then: the
@@ -70,9 +74,9 @@ glm::vec4 clusterLightSphereWs(const ClusterLight& light);
 // Whether a sphere reaches a box (the box's nearest point lies within the radius).
 bool sphereReachesBox(const Bounds& box, const glm::vec3& center, float radius);
 
-// Bounds of one light for this grid (view transform and geometry).
+// Bounds of one light for this grid (view transform and geometry); a cone's also into `cone`.
 ClusterLightBounds clusterLightBounds(const ClusterLight& light, const glm::mat4& viewFromWorld,
-                                      const ClusterGeometry& geometry);
+                                      const ClusterGeometry& geometry, ClusterCone& cone);
 
 // Keeps its scratch memory between builds.
 class ClusterAssigner {
@@ -83,8 +87,19 @@ public:
                std::span<const ClusterLight> lights, const FroxelSurfaces& surfaces, ClusterGrid& grid);
 
 private:
+    // A light as a slice scans it: what its froxel tests read, copied so that a slice reads its
+    // candidates in sequence.
+    static constexpr uint32_t kNoCone = ~0u;
+    struct Candidate {
+        glm::vec3 centerVs;
+        float radiusM;
+        glm::uvec2 columns;  // the froxel box's first and last column
+        glm::uvec2 rows;     // and row
+        uint32_t index;      // the value the lists hold
+        uint32_t cone;       // the light's cone (cones_) for a cone, else kNoCone
+    };
     struct SliceScratch {
-        std::vector<uint32_t> candidates;   // the lights whose froxel box reaches the slice, in light order
+        std::vector<Candidate> candidates;  // the lights whose froxel box reaches the slice, in light order
         std::vector<uint32_t> froxel;       // froxel within the slice (y * dims.x + x), per entry
         std::vector<uint32_t> light;        // light index, per entry
         std::vector<uint32_t> count;        // entries per froxel of the slice
@@ -93,6 +108,7 @@ private:
         std::vector<uint32_t> sphereStamp;  // with surfaces: the build that computed `sphere`
     };
     std::vector<ClusterLightBounds> bounds_;
+    std::vector<ClusterCone> cones_;  // written for the lights whose bounds have `cone`
     uint32_t stamp_ = 0;
     std::vector<SliceScratch> slices_;
 };

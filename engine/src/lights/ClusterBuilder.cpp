@@ -86,12 +86,10 @@ ClusterBuilder::FrameGrid ClusterBuilder::prepare(uint32_t slot, const ClusterSe
     const auto start = std::chrono::steady_clock::now();
     Slot& s = slots_[slot];
     const Eye& view = camera.eye;
-    const ClusterGeometry geometry = clusterGeometry(clusterGridShape(settings, camera, sceneBounds, lights), view);
-    const auto localCount = static_cast<uint32_t>(
-        std::count_if(lights.begin(), lights.end(), [](const Light& l) { return l.type != LightType::Directional; }));
+    clusterGeometry(clusterGridShape(settings, camera, sceneBounds, lights), view, geometry_);
+    const ClusterGeometry& geometry = geometry_;
     s.camera = camera;
     s.shape = geometry.shape;
-    s.localLights = localCount;
     s.gpu = useGpu(settings);
     s.pending = false;
     if (!settings.fitListsToSurfaces || surfaces.empty()) {
@@ -114,12 +112,15 @@ ClusterBuilder::FrameGrid ClusterBuilder::prepare(uint32_t slot, const ClusterSe
         }
     }
     if (s.gpu) {
-        prepareGpu(s, settings, geometry, view, firstLocal, localCount, lightBuffer);
+        s.localLights = static_cast<uint32_t>(std::count_if(
+            lights.begin(), lights.end(), [](const Light& l) { return l.type != LightType::Directional; }));
+        prepareGpu(s, settings, geometry, view, firstLocal, s.localLights, lightBuffer);
     } else {
         local_.clear();
         for (const Light& l : lights)
             if (l.type != LightType::Directional)
                 local_.push_back(clusterLight(l, firstLocal + static_cast<uint32_t>(local_.size())));
+        s.localLights = static_cast<uint32_t>(local_.size());
         assigner_.build(settings, geometry, view.viewFromWorld, local_, froxelSurfaces_, cpuGrid_);
         ensureBuffer(device_, s.cpuRanges, cpuGrid_.ranges.size() * sizeof(glm::uvec2), kStorage, true);
         ensureBuffer(device_, s.cpuIndices, cpuGrid_.indices.size() * sizeof(uint32_t), kStorage, true);

@@ -89,6 +89,7 @@ private:
                     uint32_t firstLocal, uint32_t localCount, const vk::Buffer& lightBuffer);
 
     const vk::Device& device_;
+    ClusterGeometry geometry_;  // this frame's, its memory kept between frames
     ClusterAssigner assigner_;
     ClusterGrid cpuGrid_;
     std::vector<ClusterLight> local_;

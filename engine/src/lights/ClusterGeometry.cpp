@@ -4,6 +4,9 @@
 
 #include "lights/ClusterAssign.h"
 
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
+
 #include <algorithm>
 #include <cmath>
 #include <limits>
@@ -183,6 +186,11 @@ bool ClusterGeometry::sphereTiles(int axis, const glm::vec3& center, float radiu
 
 ClusterGeometry clusterGeometry(const ClusterGridShape& shape, const Eye& view) {
     ClusterGeometry g;
+    clusterGeometry(shape, view, g);
+    return g;
+}
+
+void clusterGeometry(const ClusterGridShape& shape, const Eye& view, ClusterGeometry& g) {
     g.shape = shape;
     g.clipFromView = glm::dmat4(view.clipFromView);
     const glm::uvec3 dims = shape.dims;
@@ -217,17 +225,28 @@ ClusterGeometry clusterGeometry(const ClusterGridShape& shape, const Eye& view) 
     g.sliceStartM.resize(dims.z + 1);
     for (uint32_t z = 0; z <= dims.z; ++z) g.sliceStartM[z] = shape.sliceStartM(z);
 
+    // Corner lines: the unprojection is linear in the corner's NDC x and y at a fixed depth, so
+    // each column's and row's share of it is computed once.
     g.cornerOrigin.resize(size_t(dims.x + 1) * (dims.y + 1));
     g.cornerDir.resize(g.cornerOrigin.size());
-    for (uint32_t j = 0; j <= dims.y; ++j)
-        for (uint32_t i = 0; i <= dims.x; ++i) {
-            const glm::dvec3 a = u.point(edgeX(i), edgeY(j), d1);
-            const glm::dvec3 b = u.point(edgeX(i), edgeY(j), d2);
-            const glm::dvec3 dir = (b - a) / (d2 - d1);
-            g.cornerOrigin[g.cornerIndex(i, j)] = glm::vec4(glm::vec3(a - dir * d1), 0.0f);
-            g.cornerDir[g.cornerIndex(i, j)] = glm::vec4(glm::vec3(dir), 0.0f);
+    const glm::dmat4& m = u.viewFromClip;
+    std::vector<glm::dvec4> columns(dims.x + 1);
+    for (uint32_t i = 0; i <= dims.x; ++i) columns[i] = m[0] * (edgeX(i) / width * 2.0 - 1.0);
+    const glm::dvec4 near = m[2] * ndcDepth(u.clipFromView, d1) + m[3];
+    const glm::dvec4 far = m[2] * ndcDepth(u.clipFromView, d2) + m[3];
+    tbb::parallel_for(tbb::blocked_range<uint32_t>(0, dims.y + 1, 16), [&](const tbb::blocked_range<uint32_t>& r) {
+        for (uint32_t j = r.begin(); j < r.end(); ++j) {
+            const glm::dvec4 row = m[1] * (edgeY(j) / height * 2.0 - 1.0);
+            for (uint32_t i = 0; i <= dims.x; ++i) {
+                const glm::dvec4 pa = columns[i] + row + near;
+                const glm::dvec4 pb = columns[i] + row + far;
+                const glm::dvec3 a = glm::dvec3(pa) / pa.w;
+                const glm::dvec3 dir = (glm::dvec3(pb) / pb.w - a) / (d2 - d1);
+                g.cornerOrigin[g.cornerIndex(i, j)] = glm::vec4(glm::vec3(a - dir * d1), 0.0f);
+                g.cornerDir[g.cornerIndex(i, j)] = glm::vec4(glm::vec3(dir), 0.0f);
+            }
         }
-    return g;
+    });
 }
 
 }  // namespace preskin

@@ -38,6 +38,8 @@ struct ClusterGeometry {
 
 // `camera` is the cluster camera's eye (ClusterCamera::eye).
 ClusterGeometry clusterGeometry(const ClusterGridShape& shape, const Eye& camera);
+// The same into `out`, reusing its memory (a renderer's grid every frame).
+void clusterGeometry(const ClusterGridShape& shape, const Eye& camera, ClusterGeometry& out);
 
 // Relative growth applied to slice boundaries and light bounds so that float rounding (here and
 // in the shader's slice formula) never drops a light at a boundary. Used by both builds.

@@ -18,7 +18,8 @@ ClusterGrid buildClusterGrid(const ClusterSettings& settings, const View& view, 
                              const Bounds& sceneBounds, std::span<const Light> lights,
                              const ClusterSurfaces& surfaces) {
     const ClusterCamera camera = clusterCamera(view, widthPx, heightPx);
-    const ClusterGeometry geometry = clusterGeometry(clusterGridShape(settings, camera, sceneBounds, lights), camera.eye);
+    const ClusterGeometry geometry =
+        clusterGeometry(clusterGridShape(settings, camera, sceneBounds, lights), camera.eye);
     std::vector<ClusterLight> local;
     local.reserve(lights.size());
     for (size_t i = 0; i < lights.size(); ++i)

@@ -277,6 +277,8 @@ private:
                 std::fill(first + span.y + 1, first + tx + 1, kEmptyExtent);
                 span.y = tx;
             }
+            out_.occupiedBits[(size_t(z) * shape_.dims.y + ty) * out_.wordsPerRow() + tx / 64] |= uint64_t(1)
+                << (tx % 64);
             glm::vec4& e = first[tx];
             e = glm::vec4(std::min(e.x, lo), std::max(e.y, hi), slab ? std::min(e.z, along0) : -kFar,
                           slab ? std::max(e.w, along1) : kFar);
@@ -350,6 +352,7 @@ void froxelSurfaces(const ClusterGridShape& shape, const ClusterCamera& camera, 
     out.filled = false;
     out.values.resize(out.froxels() + tiles);  // each band clears its own rows below
     out.rowColumns.resize(size_t(shape.dims.z) * shape.dims.y);
+    out.occupiedBits.resize(out.rowColumns.size() * out.wordsPerRow());
     const size_t triangles = surfaces.indices.size() / 3;
     const size_t vertexCount = surfaces.positionsWs.size();
     const bool culling = surfaces.backFaceCulled.size() == triangles && !camera.viewpoints.empty();
@@ -416,6 +419,11 @@ void froxelSurfaces(const ClusterGridShape& shape, const ClusterCamera& camera, 
                         std::fill(out.rowColumns.begin() + ptrdiff_t(size_t(z) * shape.dims.y + rowBegin),
                                   out.rowColumns.begin() + ptrdiff_t(size_t(z) * shape.dims.y + rowEnd),
                                   glm::uvec2(kNone));
+                        std::fill(out.occupiedBits.begin() +
+                                      ptrdiff_t((size_t(z) * shape.dims.y + rowBegin) * out.wordsPerRow()),
+                                  out.occupiedBits.begin() +
+                                      ptrdiff_t((size_t(z) * shape.dims.y + rowEnd) * out.wordsPerRow()),
+                                  uint64_t(0));
                     }
                     std::fill(out.values.begin() + ptrdiff_t(out.froxels() + first),
                               out.values.begin() + ptrdiff_t(out.froxels() + last), glm::vec4(0.0f));

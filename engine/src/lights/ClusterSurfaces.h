@@ -37,18 +37,26 @@ namespace preskin {
 //   values[froxels + t], t < tiles (x fastest): the tile's slab axis (unit, view space) and w = 1,
 //     or w = 0 where it has none.
 // Besides, per slice and row the columns holding surfaces (a span), and per slice the rows
-// (x > y: none). A build writes each row's froxels within its span only (the CPU build reads
-// nothing else); fillOutsideSpans() empties the rest, for a reader of the whole array.
+// (x > y: none), and a bit per froxel set where a surface is, so that a reader skips a span's
+// empty froxels without reading them. A build writes each row's froxels within its span only
+// (the CPU build reads nothing else); fillOutsideSpans() empties the rest, for a reader of the
+// whole array.
 struct FroxelSurfaces {
     std::vector<glm::vec4> values;
     glm::uvec3 dims{0u};
     std::vector<glm::uvec2> rowColumns;  // [slice * rows + row]
     std::vector<glm::uvec2> sliceRows;   // [slice]
+    std::vector<uint64_t> occupiedBits;  // [(slice * rows + row) * wordsPerRow() + column / 64], bit column % 64
     std::vector<glm::vec3> viewScratch;  // the surfaces' vertices in view space (kept between builds)
     bool filled = false;                 // every froxel written (fillOutsideSpans)
 
     bool empty() const { return values.empty(); }
     size_t froxels() const { return size_t(dims.x) * dims.y * dims.z; }
+    size_t wordsPerRow() const { return (size_t(dims.x) + 63) / 64; }
+    // The bits of row `row` of slice `slice`.
+    const uint64_t* occupiedRow(uint32_t slice, uint32_t row) const {
+        return occupiedBits.data() + (size_t(slice) * dims.y + row) * wordsPerRow();
+    }
     // A froxel within its row's span (x in rowColumns[z * rows + y]).
     const glm::vec4& spanExtent(size_t froxel) const { return values[froxel]; }
     // Any froxel (empty outside its row's span).
