@@ -43,10 +43,15 @@ ClusterGrid buildLists(Context& context, ClusterSettings settings, ClusterBuild 
                        const ClusterSurfaces& surfaces = {}, const View* before = nullptr) {
     const vk::Device& device = ContextAccess::core(context);
     std::vector<gpu::GpuLight> gpuLights;
+    std::vector<ClusterLight> gridLights;
     uint32_t firstLocal = 0;
     for (const Light& l : lights) {
-        gpuLights.push_back(toGpuLight(l, false));  // the renderer's own conversion
-        if (l.type == LightType::Directional) ++firstLocal;
+        // The renderer's own conversions.
+        if (l.type == LightType::Directional)
+            ++firstLocal;
+        else
+            gridLights.push_back(clusterLight(l, static_cast<uint32_t>(gpuLights.size())));
+        gpuLights.push_back(toGpuLight(l, false));
     }
     vk::Buffer lightBuffer(device, std::max<size_t>(gpuLights.size(), 1) * sizeof(gpu::GpuLight),
                            VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, true);
@@ -54,13 +59,13 @@ ClusterGrid buildLists(Context& context, ClusterSettings settings, ClusterBuild 
     ClusterBuilder builder(device);
     if (before) {
         settings.build = ClusterBuild::Cpu;
-        builder.prepare(0, settings, clusterCamera(*before, kWidth, kHeight), sceneBounds, lights, firstLocal,
+        builder.prepare(0, settings, clusterCamera(*before, kWidth, kHeight), sceneBounds, gridLights, firstLocal,
                         lightBuffer, surfaces);
         device.submitAndWait([&](VkCommandBuffer cmd) { builder.record(cmd, 0); });
     }
     settings.build = build;
     const ClusterBuilder::FrameGrid frame = builder.prepare(0, settings, clusterCamera(view, kWidth, kHeight),
-                                                            sceneBounds, lights, firstLocal, lightBuffer, surfaces);
+                                                            sceneBounds, gridLights, firstLocal, lightBuffer, surfaces);
     device.submitAndWait([&](VkCommandBuffer cmd) { builder.record(cmd, 0); });
     EXPECT_EQ(builder.usesGpu(0), build == ClusterBuild::Gpu);
     ClusterGrid grid = builder.readBack(0);

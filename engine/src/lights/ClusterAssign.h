@@ -24,6 +24,8 @@
 
 #include <preskin/ClusterGrid.h>
 
+#include <shared/gpu_types.h>
+
 #include <glm/glm.hpp>
 
 #include <cstdint>
@@ -45,6 +47,13 @@ struct ClusterLight {
 // A point or spot light as the grid bounds it, `index` the value its lists hold (LightRecord.cpp,
 // beside the GPU record: the one place a scene light is converted).
 ClusterLight clusterLight(const Light& light, uint32_t index);
+
+// A frame's light array as the shaders read it, `records`: the shadow light (`shadowLight`, -1:
+// none) first, the other directional lights, then the point and spot lights in their order; and
+// those point and spot lights as the grid bounds them, `local` (`index`: the entry in `records`).
+// Returns the number of directional entries. Converted in parallel: a frame may hold 65,536.
+uint32_t frameLightRecords(std::span<const Light> lights, int shadowLight, std::vector<gpu::GpuLight>& records,
+                           std::vector<ClusterLight>& local);
 
 // A spot's cone in view space, for the froxels' cone test.
 struct ClusterCone {

@@ -81,7 +81,7 @@ void ClusterBuilder::createPipelines() {
 
 ClusterBuilder::FrameGrid ClusterBuilder::prepare(uint32_t slot, const ClusterSettings& settings,
                                                   const ClusterCamera& camera, const Bounds& sceneBounds,
-                                                  std::span<const Light> lights, uint32_t firstLocal,
+                                                  std::span<const ClusterLight> lights, uint32_t firstLocal,
                                                   const vk::Buffer& lightBuffer, const ClusterSurfaces& surfaces) {
     const auto start = std::chrono::steady_clock::now();
     Slot& s = slots_[slot];
@@ -90,6 +90,7 @@ ClusterBuilder::FrameGrid ClusterBuilder::prepare(uint32_t slot, const ClusterSe
     const ClusterGeometry& geometry = geometry_;
     s.camera = camera;
     s.shape = geometry.shape;
+    s.localLights = static_cast<uint32_t>(lights.size());
     s.gpu = useGpu(settings);
     s.pending = false;
     if (!settings.fitListsToSurfaces || surfaces.empty()) {
@@ -112,16 +113,9 @@ ClusterBuilder::FrameGrid ClusterBuilder::prepare(uint32_t slot, const ClusterSe
         }
     }
     if (s.gpu) {
-        s.localLights = static_cast<uint32_t>(std::count_if(
-            lights.begin(), lights.end(), [](const Light& l) { return l.type != LightType::Directional; }));
         prepareGpu(s, settings, geometry, view, firstLocal, s.localLights, lightBuffer);
     } else {
-        local_.clear();
-        for (const Light& l : lights)
-            if (l.type != LightType::Directional)
-                local_.push_back(clusterLight(l, firstLocal + static_cast<uint32_t>(local_.size())));
-        s.localLights = static_cast<uint32_t>(local_.size());
-        assigner_.build(settings, geometry, view.viewFromWorld, local_, froxelSurfaces_, cpuGrid_);
+        assigner_.build(settings, geometry, view.viewFromWorld, lights, froxelSurfaces_, cpuGrid_);
         ensureBuffer(device_, s.cpuRanges, cpuGrid_.ranges.size() * sizeof(glm::uvec2), kStorage, true);
         ensureBuffer(device_, s.cpuIndices, cpuGrid_.indices.size() * sizeof(uint32_t), kStorage, true);
         s.cpuRanges.upload(cpuGrid_.ranges.data(), cpuGrid_.ranges.size() * sizeof(glm::uvec2));

@@ -39,12 +39,12 @@ public:
 
     // This frame's lists for `slot`, for the cluster camera of the frame's view: the CPU build
     // runs (and uploads) here; the compute build's inputs are written here and its passes
-    // recorded by record(). `lights` are the frame's lights in any order: their point and spot
-    // lights, in that order, are the entries of the light array the shaders read (`lightBuffer`)
-    // from index `firstLocal` on.
+    // recorded by record(). `lights` are the frame's point and spot lights as the grid bounds
+    // them (clusterLight), written with their records in the light array the shaders read
+    // (`lightBuffer`): light i is entry firstLocal + i, its `index`.
     // `surfaces`: the triangles the forward pass draws this frame (ClusterSurfaces; may be empty).
     FrameGrid prepare(uint32_t slot, const ClusterSettings& settings, const ClusterCamera& camera,
-                      const Bounds& sceneBounds, std::span<const Light> lights, uint32_t firstLocal,
+                      const Bounds& sceneBounds, std::span<const ClusterLight> lights, uint32_t firstLocal,
                       const vk::Buffer& lightBuffer, const ClusterSurfaces& surfaces = {});
     // Records the compute build of the last prepare() of this slot (nothing for a CPU build),
     // ending with a barrier that makes the lists visible to fragment shaders.
@@ -92,7 +92,6 @@ private:
     ClusterGeometry geometry_;  // this frame's, its memory kept between frames
     ClusterAssigner assigner_;
     ClusterGrid cpuGrid_;
-    std::vector<ClusterLight> local_;
     FroxelSurfaces froxelSurfaces_;  // this frame's (empty: none)
     // What froxelSurfaces_ was computed from (ClusterSurfaces::version 0: never reused).
     struct SurfacesKey {

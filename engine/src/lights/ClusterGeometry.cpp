@@ -62,15 +62,14 @@ constexpr size_t kAutoTileSamples = 4096;
 constexpr uint32_t kAutoFineSlices = 16;
 constexpr uint64_t kAutoMaxFroxels = uint64_t(1) << 20;
 
-uint32_t autoTileSizePx(const ClusterGridShape& s, const Eye& view, std::span<const Light> lights) {
+uint32_t autoTileSizePx(const ClusterGridShape& s, const Eye& view, std::span<const ClusterLight> lights) {
     const float pixelsPerTangent = 0.5f * float(s.extentPx.y) * std::abs(view.clipFromView[1][1]);
     const bool perspective = view.clipFromView[2][3] != 0.0f;
     const size_t stride = std::max<size_t>(1, (lights.size() + kAutoTileSamples - 1) / kAutoTileSamples);
     std::vector<float> radiiPx;
     radiiPx.reserve(std::min(lights.size(), kAutoTileSamples));
     for (size_t i = 0; i < lights.size(); i += stride) {
-        if (lights[i].type == LightType::Directional) continue;
-        const glm::vec4 sphere = clusterLightSphereWs(clusterLight(lights[i], 0));
+        const glm::vec4 sphere = clusterLightSphereWs(lights[i]);
         const glm::vec3 center(sphere);
         const float radius = sphere.w;
         if (std::isinf(radius)) {
@@ -94,6 +93,17 @@ uint32_t autoTileSizePx(const ClusterGridShape& s, const Eye& view, std::span<co
 
 ClusterGridShape clusterGridShape(const ClusterSettings& settings, const ClusterCamera& camera,
                                   const Bounds& sceneBounds, std::span<const Light> lights) {
+    // The lights the automatic tile would measure, as the grid bounds them.
+    std::vector<ClusterLight> sampled;
+    const size_t stride = std::max<size_t>(1, (lights.size() + kAutoTileSamples - 1) / kAutoTileSamples);
+    if (settings.tileSizePx == 0)
+        for (size_t i = 0; i < lights.size(); i += stride)
+            if (lights[i].type != LightType::Directional) sampled.push_back(clusterLight(lights[i], 0));
+    return clusterGridShape(settings, camera, sceneBounds, std::span<const ClusterLight>(sampled));
+}
+
+ClusterGridShape clusterGridShape(const ClusterSettings& settings, const ClusterCamera& camera,
+                                  const Bounds& sceneBounds, std::span<const ClusterLight> lights) {
     const Eye& view = camera.eye;
     ClusterGridShape s;
     s.extentPx = glm::max(camera.extentPx, glm::uvec2(1u));

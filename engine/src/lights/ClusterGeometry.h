@@ -14,6 +14,7 @@
 
 #include <glm/glm.hpp>
 
+#include <span>
 #include <vector>
 
 namespace preskin {
@@ -35,6 +36,12 @@ struct ClusterGeometry {
 
     uint32_t cornerIndex(uint32_t i, uint32_t j) const { return j * (shape.dims.x + 1) + i; }
 };
+
+struct ClusterLight;
+
+// clusterGridShape (<preskin/ClusterGrid.h>) from the local lights as the grid bounds them.
+ClusterGridShape clusterGridShape(const ClusterSettings& settings, const ClusterCamera& camera,
+                                  const Bounds& sceneBounds, std::span<const ClusterLight> lights);
 
 // `camera` is the cluster camera's eye (ClusterCamera::eye).
 ClusterGeometry clusterGeometry(const ClusterGridShape& shape, const Eye& camera);

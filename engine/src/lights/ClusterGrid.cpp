@@ -18,13 +18,13 @@ ClusterGrid buildClusterGrid(const ClusterSettings& settings, const View& view, 
                              const Bounds& sceneBounds, std::span<const Light> lights,
                              const ClusterSurfaces& surfaces) {
     const ClusterCamera camera = clusterCamera(view, widthPx, heightPx);
-    const ClusterGeometry geometry =
-        clusterGeometry(clusterGridShape(settings, camera, sceneBounds, lights), camera.eye);
     std::vector<ClusterLight> local;
     local.reserve(lights.size());
     for (size_t i = 0; i < lights.size(); ++i)
         if (lights[i].type != LightType::Directional)
             local.push_back(clusterLight(lights[i], static_cast<uint32_t>(i)));
+    const ClusterGeometry geometry = clusterGeometry(
+        clusterGridShape(settings, camera, sceneBounds, std::span<const ClusterLight>(local)), camera.eye);
     ClusterGrid grid;
     grid.camera = camera;
     FroxelSurfaces froxels;

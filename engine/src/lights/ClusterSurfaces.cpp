@@ -22,7 +22,9 @@ constexpr double kSnapPx = 1.0 / 64.0;
 constexpr double kEdgeOnGrowth = 0.05;
 constexpr double kInfinity = std::numeric_limits<double>::infinity();
 constexpr float kFar = 3.0e38f;
-constexpr uint32_t kNone = ~0u;                          // an empty span: (kNone, kNone)
+constexpr uint32_t kNone = ~0u;
+constexpr size_t kBinChunk =
+    4096;  // triangles binned by one task                          // an empty span: (kNone, kNone)
 const glm::vec4 kEmptyExtent(kFar, -kFar, kFar, -kFar);  // no surface: min > max
 
 // One corner of a clipped triangle: view-space point and its cluster coordinates (clip x,
@@ -285,11 +287,13 @@ private:
         }
     }
 
-    // The slice of a view depth: the slice starts at or below it (shape_.sliceOf's, by search;
-    // the extents' slack covers their rounding).
+    // The slice of a view depth: the slice starts at or below it (shape_.sliceOf's, by counting
+    // them without branches, which surfaces at any depth would mispredict; the extents' slack
+    // covers the rounding).
     uint32_t sliceOf(float depth) const {
-        return static_cast<uint32_t>(std::upper_bound(sliceStarts_.begin(), sliceStarts_.end(), depth) -
-                                     sliceStarts_.begin());
+        uint32_t z = 0;
+        for (const float start : sliceStarts_) z += depth < start ? 0u : 1u;
+        return z;
     }
 
     const ClusterGridShape& shape_;
@@ -361,7 +365,6 @@ void froxelSurfaces(const ClusterGridShape& shape, const ClusterCamera& camera, 
     // the near clip); each band is written by one thread, so no value is shared.
     const uint32_t rowsPerBand = std::max<uint32_t>(1, (shape.dims.y + 15) / 16);
     const uint32_t bandCount = (shape.dims.y + rowsPerBand - 1) / rowsPerBand;
-    std::vector<std::vector<uint32_t>> banded(bandCount);
     // Every vertex in view space, once (kept between builds: 12 bytes per vertex).
     std::vector<glm::vec3>& views = out.viewScratch;
     views.resize(vertexCount);
@@ -374,37 +377,48 @@ void froxelSurfaces(const ClusterGridShape& shape, const ClusterCamera& camera, 
     const float tilesPerNdcY = 0.5f * float(shape.extentPx.y) / float(shape.tileSizePx);
     const float marginTiles = (std::max(surfaces.outsidePx, 0.0f) + 1.0f) / float(shape.tileSizePx);
     const bool orthographic = camera.eye.orthographic();
-    for (size_t t = 0; t < triangles; ++t) {
-        const uint32_t* i = surfaces.indices.data() + 3 * t;
-        if (i[0] >= vertexCount || i[1] >= vertexCount || i[2] >= vertexCount) continue;
-        const glm::vec3& a = surfaces.positionsWs[i[0]];
-        const glm::vec3& b = surfaces.positionsWs[i[1]];
-        const glm::vec3& c = surfaces.positionsWs[i[2]];
-        if (!std::isfinite(a.x + a.y + a.z + b.x + b.y + b.z + c.x + c.y + c.z)) continue;
-        if (culling && surfaces.backFaceCulled[t] != 0 && !facesAnEye(a, b, c, camera.viewpoints)) continue;
-        float lo = std::numeric_limits<float>::infinity();
-        float hi = -lo;
-        bool ahead = true;  // every corner beyond the writer's near clip
-        for (int k = 0; k < 3; ++k) {
-            const glm::vec3& view = views[i[k]];
-            const glm::vec4 clip = clipFromView * glm::vec4(view, 1.0f);
-            ahead = ahead && (orthographic || -view.z >= 0.5f * shape.nearM);
-            const float row = (clip.y / clip.w + 1.0f) * tilesPerNdcY;
-            lo = std::min(lo, row);
-            hi = std::max(hi, row);
+    // In fixed chunks of triangles, each chunk's bins kept apart so that a band reads its
+    // triangles in order whatever thread binned which chunk.
+    const size_t chunks = (triangles + kBinChunk - 1) / kBinChunk;
+    std::vector<std::vector<uint32_t>>& banded = out.bandScratch;
+    banded.resize(chunks * bandCount);
+    tbb::parallel_for(size_t(0), chunks, [&](size_t chunk) {
+        std::vector<uint32_t>* bins = banded.data() + chunk * bandCount;
+        for (uint32_t k = 0; k < bandCount; ++k) bins[k].clear();
+        const size_t end = std::min(triangles, (chunk + 1) * kBinChunk);
+        for (size_t t = chunk * kBinChunk; t < end; ++t) {
+            const uint32_t* i = surfaces.indices.data() + 3 * t;
+            if (i[0] >= vertexCount || i[1] >= vertexCount || i[2] >= vertexCount) continue;
+            const glm::vec3& a = surfaces.positionsWs[i[0]];
+            const glm::vec3& b = surfaces.positionsWs[i[1]];
+            const glm::vec3& c = surfaces.positionsWs[i[2]];
+            if (!std::isfinite(a.x + a.y + a.z + b.x + b.y + b.z + c.x + c.y + c.z)) continue;
+            if (culling && surfaces.backFaceCulled[t] != 0 && !facesAnEye(a, b, c, camera.viewpoints)) continue;
+            float lo = std::numeric_limits<float>::infinity();
+            float hi = -lo;
+            bool ahead = true;  // every corner beyond the writer's near clip
+            for (int k = 0; k < 3; ++k) {
+                const glm::vec3& view = views[i[k]];
+                const glm::vec4 clip = clipFromView * glm::vec4(view, 1.0f);
+                ahead = ahead && (orthographic || -view.z >= 0.5f * shape.nearM);
+                const float row = (clip.y / clip.w + 1.0f) * tilesPerNdcY;
+                lo = std::min(lo, row);
+                hi = std::max(hi, row);
+            }
+            uint32_t first = 0;
+            uint32_t last = bandCount - 1;
+            if (ahead) {
+                if (!(hi + marginTiles >= 0.0f && lo - marginTiles <= float(shape.dims.y))) continue;
+                const auto band = [&](float row) {
+                    return static_cast<uint32_t>(std::clamp(std::floor(row), 0.0f, float(shape.dims.y - 1))) /
+                        rowsPerBand;
+                };
+                first = band(lo - marginTiles);
+                last = band(hi + marginTiles);
+            }
+            for (uint32_t k = first; k <= last; ++k) bins[k].push_back(static_cast<uint32_t>(t));
         }
-        uint32_t first = 0;
-        uint32_t last = bandCount - 1;
-        if (ahead) {
-            if (!(hi + marginTiles >= 0.0f && lo - marginTiles <= float(shape.dims.y))) continue;
-            const auto band = [&](float row) {
-                return static_cast<uint32_t>(std::clamp(std::floor(row), 0.0f, float(shape.dims.y - 1))) / rowsPerBand;
-            };
-            first = band(lo - marginTiles);
-            last = band(hi + marginTiles);
-        }
-        for (uint32_t k = first; k <= last; ++k) banded[k].push_back(static_cast<uint32_t>(t));
-    }
+    });
     std::vector<float> sliceStarts;
     for (uint32_t z = 1; z < shape.dims.z; ++z) sliceStarts.push_back(shape.sliceStartM(z));
     const auto pass = [&](int which) {
@@ -430,11 +444,12 @@ void froxelSurfaces(const ClusterGridShape& shape, const ClusterCamera& camera, 
                 }
                 SurfaceWriter writer(shape, sliceStarts, camera.eye, double(surfaces.outsidePx), which, rowBegin,
                                      rowEnd, out);
-                for (const uint32_t t : banded[k]) {
-                    const uint32_t* i = surfaces.indices.data() + 3 * size_t(t);
-                    writer.triangle(writer.corner(glm::dvec3(views[i[0]])), writer.corner(glm::dvec3(views[i[1]])),
-                                    writer.corner(glm::dvec3(views[i[2]])));
-                }
+                for (size_t chunk = 0; chunk < chunks; ++chunk)
+                    for (const uint32_t t : banded[chunk * bandCount + k]) {
+                        const uint32_t* i = surfaces.indices.data() + 3 * size_t(t);
+                        writer.triangle(writer.corner(glm::dvec3(views[i[0]])), writer.corner(glm::dvec3(views[i[1]])),
+                                        writer.corner(glm::dvec3(views[i[2]])));
+                    }
             }
         });
     };

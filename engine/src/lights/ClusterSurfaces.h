@@ -48,7 +48,8 @@ struct FroxelSurfaces {
     std::vector<glm::uvec2> sliceRows;   // [slice]
     std::vector<uint64_t> occupiedBits;  // [(slice * rows + row) * wordsPerRow() + column / 64], bit column % 64
     std::vector<glm::vec3> viewScratch;  // the surfaces' vertices in view space (kept between builds)
-    bool filled = false;                 // every froxel written (fillOutsideSpans)
+    std::vector<std::vector<uint32_t>> bandScratch;  // triangles per chunk and band of rows (likewise)
+    bool filled = false;                             // every froxel written (fillOutsideSpans)
 
     bool empty() const { return values.empty(); }
     size_t froxels() const { return size_t(dims.x) * dims.y * dims.z; }

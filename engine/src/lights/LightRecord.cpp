@@ -4,6 +4,8 @@
 
 #include "lights/ClusterAssign.h"
 
+#include <tbb/parallel_for.h>
+
 #include <algorithm>
 #include <cmath>
 #include <numbers>
@@ -76,6 +78,44 @@ ClusterLight clusterLight(const Light& light, uint32_t index) {
     c.cosOuter = c.spot ? std::cos(light.outerConeAngle) : -1.0f;
     c.index = index;
     return c;
+}
+
+uint32_t frameLightRecords(std::span<const Light> lights, int shadowLight, std::vector<gpu::GpuLight>& records,
+                           std::vector<ClusterLight>& local) {
+    constexpr size_t kChunk = 4096;
+    const size_t chunks = (lights.size() + kChunk - 1) / kChunk;
+    // Per chunk of lights: its directional lights, then where its local lights start.
+    std::vector<size_t> directionalIn(chunks, 0);
+    std::vector<size_t> localStart(chunks + 1, 0);
+    tbb::parallel_for(size_t(0), chunks, [&](size_t c) {
+        const size_t end = std::min(lights.size(), (c + 1) * kChunk);
+        for (size_t i = c * kChunk; i < end; ++i) {
+            const bool directional = lights[i].type == LightType::Directional;
+            directionalIn[c] += directional ? 1 : 0;
+            localStart[c + 1] += directional ? 0 : 1;
+        }
+    });
+    for (size_t c = 0; c < chunks; ++c) localStart[c + 1] += localStart[c];
+    records.clear();
+    if (shadowLight >= 0) records.push_back(toGpuLight(lights[size_t(shadowLight)], true));
+    for (size_t c = 0; c < chunks; ++c)
+        for (size_t i = c * kChunk; directionalIn[c] > 0 && i < std::min(lights.size(), (c + 1) * kChunk); ++i)
+            if (lights[i].type == LightType::Directional && int(i) != shadowLight)
+                records.push_back(toGpuLight(lights[i], false));
+    const auto directional = static_cast<uint32_t>(records.size());
+    records.resize(directional + localStart[chunks]);
+    local.resize(localStart[chunks]);
+    tbb::parallel_for(size_t(0), chunks, [&](size_t c) {
+        size_t k = localStart[c];
+        const size_t end = std::min(lights.size(), (c + 1) * kChunk);
+        for (size_t i = c * kChunk; i < end; ++i) {
+            if (lights[i].type == LightType::Directional) continue;
+            local[k] = clusterLight(lights[i], directional + static_cast<uint32_t>(k));
+            records[directional + k] = toGpuLight(lights[i], false);
+            ++k;
+        }
+    });
+    return directional;
 }
 
 int shadowLightIndex(const std::vector<Light>& lights) {

@@ -314,17 +314,9 @@ bool Renderer::Impl::prepareFrame(Slot& slot, uint32_t slotIndex, const View& vi
     }
     deformer->prepare(slotIndex, pose);
     const int shadowLight = settings.shadows ? shadowLightIndex(frameLights) : -1;
-    std::vector<gpu::GpuLight> gpuLights;
-    gpuLights.reserve(frameLights.size());
     // Directional lights first, the shadow light (if any) at index 0: forward.frag shades it on
     // its own and loops over the rest; then the point and spot lights the grid lists, in order.
-    if (shadowLight >= 0) gpuLights.push_back(toGpuLight(frameLights[size_t(shadowLight)], true));
-    for (size_t i = 0; i < frameLights.size(); ++i)
-        if (frameLights[i].type == LightType::Directional && int(i) != shadowLight)
-            gpuLights.push_back(toGpuLight(frameLights[i], false));
-    const uint32_t directional = static_cast<uint32_t>(gpuLights.size());
-    for (const Light& l : frameLights)
-        if (l.type != LightType::Directional) gpuLights.push_back(toGpuLight(l, false));
+    const uint32_t directional = frameLightRecords(frameLights, shadowLight, gpuLights, gridLights);
     const VkDeviceSize bytes = std::max<size_t>(gpuLights.size(), 1) * sizeof(gpu::GpuLight);
     if (bytes > slot.lights.size()) slot.lights = vk::Buffer(dev, bytes * 2, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, true);
     slot.lights.upload(gpuLights.data(), gpuLights.size() * sizeof(gpu::GpuLight));
@@ -385,7 +377,7 @@ bool Renderer::Impl::prepareFrame(Slot& slot, uint32_t slotIndex, const View& vi
         }
         const ClusterBuilder::FrameGrid grid =
             clusters->prepare(slotIndex, settings.clusters, clusterCamera(view, extent.width, extent.height), bounds,
-                              frameLights, directional, slot.lights, frameSurfaces);
+                              gridLights, directional, slot.lights, frameSurfaces);
         u.clusterFromWorld = grid.clusterFromWorld;
         u.clusterScale = grid.lookupScale;
         u.clusterDims = grid.dims;

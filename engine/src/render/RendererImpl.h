@@ -91,6 +91,8 @@ struct Renderer::Impl {
     std::vector<Light> extractedLights;
     std::vector<Light> frameLights;
     uint32_t frameAreaLightTypes = 0;  // areaLightTypes(frameLights), kept with them (pipeline keys read it per draw)
+    std::vector<gpu::GpuLight> gpuLights;             // this frame's light array, as the shaders read it
+    std::vector<ClusterLight> gridLights;             // its point and spot lights as the light grid bounds them
     std::unique_ptr<GpuEnvironment> environmentMaps;  // the backdrop, the prefiltered cube, the DFG table
     Bounds bounds;                                    // of the scene in the current pose
     Bounds receivers;       // of the skin in the current pose: what the shadow map is fitted to (render/ShadowFit.h)
