@@ -34,6 +34,11 @@ struct Corner {
     glm::dvec4 h;
 };
 
+glm::dvec4 clusterCoordinates(const glm::dmat4& clipFromView, const glm::dvec3& view) {
+    const glm::dvec4 clip = clipFromView * glm::dvec4(view, 1.0);
+    return {clip.x, clip.y, -view.z, clip.w};
+}
+
 // An affine function of the tile coordinates, value = x * g.x + y * g.y + g.z.
 struct Affine {
     glm::dvec3 g{0.0};
@@ -118,10 +123,7 @@ public:
         if (n >= 3) polygon(clipped.data(), n);
     }
 
-    Corner corner(const glm::dvec3& view) const {
-        const glm::dvec4 clip = clipFromView_ * glm::dvec4(view, 1.0);
-        return {view, glm::dvec4(clip.x, clip.y, -view.z, clip.w)};
-    }
+    Corner corner(const glm::dvec3& view) const { return {view, clusterCoordinates(clipFromView_, view)}; }
 
 private:
     // A convex planar polygon of n (3 or 4) corners, all with w > 0.
@@ -367,11 +369,16 @@ void froxelSurfaces(const ClusterGridShape& shape, const ClusterCamera& camera, 
     const uint32_t bandCount = (shape.dims.y + rowsPerBand - 1) / rowsPerBand;
     // Every vertex in view space, once (kept between builds: 12 bytes per vertex).
     std::vector<glm::vec3>& views = out.viewScratch;
+    std::vector<glm::dvec4>& clusters = out.clusterScratch;
     views.resize(vertexCount);
+    clusters.resize(vertexCount);
     const glm::dmat4 viewFromWorld(camera.eye.viewFromWorld);
+    const glm::dmat4 clipFromViewD(camera.eye.clipFromView);
     tbb::parallel_for(tbb::blocked_range<size_t>(0, vertexCount, 4096), [&](const tbb::blocked_range<size_t>& r) {
-        for (size_t i = r.begin(); i < r.end(); ++i)
+        for (size_t i = r.begin(); i < r.end(); ++i) {
             views[i] = glm::vec3(viewFromWorld * glm::dvec4(glm::dvec3(surfaces.positionsWs[i]), 1.0));
+            clusters[i] = clusterCoordinates(clipFromViewD, glm::dvec3(views[i]));
+        }
     });
     const glm::mat4& clipFromView = camera.eye.clipFromView;
     const float tilesPerNdcY = 0.5f * float(shape.extentPx.y) / float(shape.tileSizePx);
@@ -447,8 +454,8 @@ void froxelSurfaces(const ClusterGridShape& shape, const ClusterCamera& camera, 
                 for (size_t chunk = 0; chunk < chunks; ++chunk)
                     for (const uint32_t t : banded[chunk * bandCount + k]) {
                         const uint32_t* i = surfaces.indices.data() + 3 * size_t(t);
-                        writer.triangle(writer.corner(glm::dvec3(views[i[0]])), writer.corner(glm::dvec3(views[i[1]])),
-                                        writer.corner(glm::dvec3(views[i[2]])));
+                        const auto vertex = [&](uint32_t v) { return Corner{glm::dvec3(views[v]), clusters[v]}; };
+                        writer.triangle(vertex(i[0]), vertex(i[1]), vertex(i[2]));
                     }
             }
         });

@@ -44,10 +44,11 @@ namespace preskin {
 struct FroxelSurfaces {
     std::vector<glm::vec4> values;
     glm::uvec3 dims{0u};
-    std::vector<glm::uvec2> rowColumns;  // [slice * rows + row]
-    std::vector<glm::uvec2> sliceRows;   // [slice]
-    std::vector<uint64_t> occupiedBits;  // [(slice * rows + row) * wordsPerRow() + column / 64], bit column % 64
-    std::vector<glm::vec3> viewScratch;  // the surfaces' vertices in view space (kept between builds)
+    std::vector<glm::uvec2> rowColumns;      // [slice * rows + row]
+    std::vector<glm::uvec2> sliceRows;       // [slice]
+    std::vector<uint64_t> occupiedBits;      // [(slice * rows + row) * wordsPerRow() + column / 64], bit column % 64
+    std::vector<glm::vec3> viewScratch;      // the surfaces' vertices in view space (kept between builds)
+    std::vector<glm::dvec4> clusterScratch;  // and in cluster coordinates (clip x, clip y, view depth, clip w)
     std::vector<std::vector<uint32_t>> bandScratch;  // triangles per chunk and band of rows (likewise)
     bool filled = false;                             // every froxel written (fillOutsideSpans)
 
