@@ -251,7 +251,8 @@ uint64_t ClusterBuilder::gridBytes(uint32_t slot) const {
     const Slot& s = slots_[slot];
     auto bytes = [](const vk::Buffer& b) -> uint64_t { return b ? b.size() : 0; };
     if (s.gpu) return bytes(s.gpuRanges) + bytes(s.gpuIndices) + bytes(s.volumes) + bytes(s.surfaces);
-    return bytes(s.cpuRanges) + bytes(s.cpuIndices) + froxelSurfaces_.values.capacity() * sizeof(glm::vec4);
+    return bytes(s.cpuRanges) + bytes(s.cpuIndices) + froxelSurfaces_.values.capacity() * sizeof(glm::vec4) +
+        froxelSurfaces_.occupiedBits.capacity() * sizeof(uint64_t);
 }
 
 uint32_t ClusterBuilder::overflows(uint32_t slot) const {
