@@ -30,7 +30,7 @@ Ball ball(const glm::vec3& c, float r) { return {c, r * r}; }
 
 // Does the ball overlap the slab between planes k and k + 1 (a column or a row of tiles)? (Its
 // tests, like the cuts below, are free of branches: lights come in no order a branch predicts.)
-[[gnu::always_inline]] inline bool slabOverlaps(const std::vector<glm::vec4>& planes, uint32_t k, const Ball& s) {
+bool slabOverlaps(const std::vector<glm::vec4>& planes, uint32_t k, const Ball& s) {
     const float below = std::min(signedDistance(planes[k], s.c), 0.0f);      // inside: >= -r
     const float above = std::max(signedDistance(planes[k + 1], s.c), 0.0f);  // inside: <= r
     return (below * below <= s.r2) & (above * above <= s.r2);
