@@ -428,27 +428,25 @@ void froxelSurfaces(const ClusterGridShape& shape, const ClusterCamera& camera, 
     });
     std::vector<float> sliceStarts;
     for (uint32_t z = 1; z < shape.dims.z; ++z) sliceStarts.push_back(shape.sliceStartM(z));
-    const auto pass = [&](int which) {
-        tbb::parallel_for(tbb::blocked_range<uint32_t>(0, bandCount, 1), [&](const tbb::blocked_range<uint32_t>& r) {
-            for (uint32_t k = r.begin(); k < r.end(); ++k) {
-                const uint32_t rowBegin = k * rowsPerBand;
-                const uint32_t rowEnd = std::min((k + 1) * rowsPerBand, shape.dims.y);
-                if (which == 0) {  // the band's rows start empty (their froxels as their spans grow)
-                    const size_t first = size_t(rowBegin) * shape.dims.x;
-                    const size_t last = size_t(rowEnd) * shape.dims.x;
-                    for (uint32_t z = 0; z < shape.dims.z; ++z) {
-                        std::fill(out.rowColumns.begin() + ptrdiff_t(size_t(z) * shape.dims.y + rowBegin),
-                                  out.rowColumns.begin() + ptrdiff_t(size_t(z) * shape.dims.y + rowEnd),
-                                  glm::uvec2(kNone));
-                        std::fill(out.occupiedBits.begin() +
-                                      ptrdiff_t((size_t(z) * shape.dims.y + rowBegin) * out.wordsPerRow()),
-                                  out.occupiedBits.begin() +
-                                      ptrdiff_t((size_t(z) * shape.dims.y + rowEnd) * out.wordsPerRow()),
-                                  uint64_t(0));
-                    }
-                    std::fill(out.values.begin() + ptrdiff_t(out.froxels() + first),
-                              out.values.begin() + ptrdiff_t(out.froxels() + last), glm::vec4(0.0f));
-                }
+    // Per band: its rows emptied, then its tiles' axes (pass 0: the triangles' normals summed; the
+    // mean normal where they agree on one), then its froxels' extents (pass 1). A band's passes
+    // read and write its own rows only.
+    tbb::parallel_for(tbb::blocked_range<uint32_t>(0, bandCount, 1), [&](const tbb::blocked_range<uint32_t>& r) {
+        for (uint32_t k = r.begin(); k < r.end(); ++k) {
+            const uint32_t rowBegin = k * rowsPerBand;
+            const uint32_t rowEnd = std::min((k + 1) * rowsPerBand, shape.dims.y);
+            const size_t first = out.froxels() + size_t(rowBegin) * shape.dims.x;
+            const size_t last = out.froxels() + size_t(rowEnd) * shape.dims.x;
+            for (uint32_t z = 0; z < shape.dims.z; ++z) {
+                std::fill(out.rowColumns.begin() + ptrdiff_t(size_t(z) * shape.dims.y + rowBegin),
+                          out.rowColumns.begin() + ptrdiff_t(size_t(z) * shape.dims.y + rowEnd), glm::uvec2(kNone));
+                std::fill(
+                    out.occupiedBits.begin() + ptrdiff_t((size_t(z) * shape.dims.y + rowBegin) * out.wordsPerRow()),
+                    out.occupiedBits.begin() + ptrdiff_t((size_t(z) * shape.dims.y + rowEnd) * out.wordsPerRow()),
+                    uint64_t(0));
+            }
+            std::fill(out.values.begin() + ptrdiff_t(first), out.values.begin() + ptrdiff_t(last), glm::vec4(0.0f));
+            const auto pass = [&](int which) {
                 SurfaceWriter writer(shape, sliceStarts, camera.eye, double(surfaces.outsidePx), which, rowBegin,
                                      rowEnd, out);
                 for (size_t chunk = 0; chunk < chunks; ++chunk)
@@ -457,17 +455,17 @@ void froxelSurfaces(const ClusterGridShape& shape, const ClusterCamera& camera, 
                         const auto vertex = [&](uint32_t v) { return Corner{glm::dvec3(views[v]), clusters[v]}; };
                         writer.triangle(vertex(i[0]), vertex(i[1]), vertex(i[2]));
                     }
+            };
+            pass(0);
+            for (size_t tile = first; tile < last; ++tile) {
+                const glm::vec3 sum(out.values[tile]);
+                const float length = glm::length(sum);
+                out.values[tile] =
+                    length > 0.0f && std::isfinite(length) ? glm::vec4(sum / length, 1.0f) : glm::vec4(0.0f);
             }
-        });
-    };
-    pass(0);
-    // The tiles' axes: the mean normal, where the surfaces agree on one.
-    for (size_t k = out.froxels(); k < out.values.size(); ++k) {
-        const glm::vec3 sum(out.values[k]);
-        const float length = glm::length(sum);
-        out.values[k] = length > 0.0f && std::isfinite(length) ? glm::vec4(sum / length, 1.0f) : glm::vec4(0.0f);
-    }
-    pass(1);
+            pass(1);
+        }
+    });
     // Empty spans as lo > hi, and each slice's rows.
     out.sliceRows.assign(shape.dims.z, glm::uvec2(1u, 0u));
     for (uint32_t z = 0; z < shape.dims.z; ++z)
