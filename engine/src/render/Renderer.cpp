@@ -367,17 +367,16 @@ bool Renderer::Impl::prepareFrame(Slot& slot, uint32_t slotIndex, const View& vi
             surfaces = poseSurfaces->surfaces(pose);
             surfacesPose = poseVersion;
         }
-        ClusterSurfaces frameSurfaces;
-        if (fitSurfaces) {
-            frameSurfaces = surfaces;
+        if (fitSurfaces) {  // this frame's terms of the pose's triangles, set in place
             // Without MSAA a fragment is shaded inside its triangle; with it, at the centre of a
             // pixel the triangle covers in part.
-            frameSurfaces.outsidePx = settings.msaaSamples > 1 ? 1.0f : 0.0f;
-            if (settings.clusters.reuseSurfaces) frameSurfaces.version = poseVersion + 1;
+            surfaces.outsidePx = settings.msaaSamples > 1 ? 1.0f : 0.0f;
+            surfaces.version = settings.clusters.reuseSurfaces ? poseVersion + 1 : 0;
         }
+        const ClusterSurfaces none;
         const ClusterBuilder::FrameGrid grid =
             clusters->prepare(slotIndex, settings.clusters, clusterCamera(view, extent.width, extent.height), bounds,
-                              gridLights, directional, slot.lights, frameSurfaces);
+                              gridLights, directional, slot.lights, fitSurfaces ? surfaces : none);
         u.clusterFromWorld = grid.clusterFromWorld;
         u.clusterScale = grid.lookupScale;
         u.clusterDims = grid.dims;
