@@ -22,9 +22,8 @@ constexpr double kSnapPx = 1.0 / 64.0;
 constexpr double kEdgeOnGrowth = 0.05;
 constexpr double kInfinity = std::numeric_limits<double>::infinity();
 constexpr float kFar = 3.0e38f;
-constexpr uint32_t kNone = ~0u;
-constexpr size_t kBinChunk =
-    4096;  // triangles binned by one task                          // an empty span: (kNone, kNone)
+constexpr uint32_t kNone = ~0u;                          // an empty span: (kNone, kNone)
+constexpr size_t kBinChunk = 4096;                       // triangles binned by one task
 const glm::vec4 kEmptyExtent(kFar, -kFar, kFar, -kFar);  // no surface: min > max
 
 // One corner of a clipped triangle: view-space point and its cluster coordinates (clip x,
