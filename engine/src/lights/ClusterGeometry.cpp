@@ -93,13 +93,12 @@ uint32_t autoTileSizePx(const ClusterGridShape& s, const Eye& view, std::span<co
 
 ClusterGridShape clusterGridShape(const ClusterSettings& settings, const ClusterCamera& camera,
                                   const Bounds& sceneBounds, std::span<const Light> lights) {
-    // The lights the automatic tile would measure, as the grid bounds them.
-    std::vector<ClusterLight> sampled;
-    const size_t stride = std::max<size_t>(1, (lights.size() + kAutoTileSamples - 1) / kAutoTileSamples);
+    // The local lights as the grid bounds them (only the automatic tile reads them).
+    std::vector<ClusterLight> local;
     if (settings.tileSizePx == 0)
-        for (size_t i = 0; i < lights.size(); i += stride)
-            if (lights[i].type != LightType::Directional) sampled.push_back(clusterLight(lights[i], 0));
-    return clusterGridShape(settings, camera, sceneBounds, std::span<const ClusterLight>(sampled));
+        for (const Light& light : lights)
+            if (light.type != LightType::Directional) local.push_back(clusterLight(light, 0));
+    return clusterGridShape(settings, camera, sceneBounds, std::span<const ClusterLight>(local));
 }
 
 ClusterGridShape clusterGridShape(const ClusterSettings& settings, const ClusterCamera& camera,
