@@ -169,7 +169,6 @@ void main() {
 
     PreskinShadowSample shadow;
     shadow.visibility = 1.0;
-    shadow.thicknessM = 0.0;
     shadow.kernelWidthM = 0.0;
     shadow.penumbraWidthM = 0.0;
     shadow.blockerDistanceM = 0.0;
@@ -302,16 +301,16 @@ void main() {
             penumbra = preskinSkinShadow(skin, profiles, penumbraLut, shadow.visibility, shadow.kernelWidthM,
                                          shadow.penumbraWidthM, wideShadow.visibility, wideShadow.kernelWidthM, frame.wideShadow.z,
                                          wideShadow.blockerDistanceM, L, features);
-            float thicknessM = 0.0;
+            PreskinShadowOccluder occluder = PreskinShadowOccluder(0.0, 1.0);
             if (preskinTransmissionGate(geometricN, L, features))
-                thicknessM = preskinShadowThickness(shadowMap, shadowClipFromWorld, shadowParams,
-                                                    preskinThicknessPointWs(inPositionWs, geometricN, skin.scatterScale));
+                occluder = preskinShadowOccluder(shadowMap, shadowClipFromWorld, shadowParams,
+                                                 preskinThicknessPointWs(inPositionWs, geometricN, skin.scatterScale));
             vec3 sphereT = inSphereTransmittance;
             if (!kSkinSphereTransmittancePerVertex)
                 sphereT = preskinSkinSphereTransmittance(profiles, transmittanceLut, skin.curvaturePerMm, geometricN, L,
                                                          features);
             transmitted =
-                preskinSkinTransmission(skin, profiles, transmittanceLut, L, irradiance, thicknessM, sphereT, features);
+                preskinSkinTransmission(skin, profiles, transmittanceLut, L, irradiance, occluder, sphereT, features);
             PreskinSkinLightParts lit;
             if (kCapShadowLight)
                 lit = preskinSkinLightParts(skin, lighting, profiles, diffuseLut, V,

@@ -9,8 +9,8 @@
 // the position (no texel blocks, no plateaus between taps). Receiver-plane depth bias (Isidoro,
 // "Shadow Mapping: GPU-based Tips and Techniques", GDC 2006) tilts the compared depth per texel
 // along the surface so wide kernels do not self-shadow sloped receivers. Also gives what skin
-// needs: the occluder depth (thickness) and the filter's width in world units (penumbra LUT),
-// the standard deviation of the weights actually used.
+// needs: the filter's width in world units (penumbra LUT), the standard deviation of the weights
+// actually used, and the occluder's distance and slope (transmission, preskinShadowOccluder).
 // Lights with a size get penumbrae that widen with the occluder's distance (below).
 // Limits: one orthographic map (no cascades); a wide penumbra's kernel samples one texel in s x s
 // (occluders thinner than s texels can flicker through it); the window narrows wide
@@ -23,19 +23,37 @@
 
 struct PreskinShadowSample {
     float visibility;     // filtered, 0 (shadowed) .. 1 (lit)
-    float thicknessM;     // receiver depth minus nearest occluder depth along the light, metres
     float kernelWidthM;   // standard deviation of the filter on the light's image plane, metres
     float penumbraWidthM; // of that, the light's own penumbra (a light with a size; 0 for a parallel light)
     float blockerDistanceM; // along the light from the filter's occluding texels (weighted mean) to the receiver; 0: none
 };
 
-// Distance along the light from the nearest occluder to positionWs (metres), 0 outside the map.
-float preskinShadowThickness(sampler2D shadowMap, mat4 shadowClipFromWorld, vec4 params, vec3 positionWs) {
+// Where the light enters the body that shadows positionWs: the nearest occluder in the map.
+struct PreskinShadowOccluder {
+    float distanceM;  // along the light from that surface to positionWs, metres (0 outside the map)
+    float cosine;     // its normal's cosine to the light (1 outside the map)
+};
+
+// The occluder of positionWs: its distance from the map's depth (the shadow pass's slope bias,
+// kShadowDepthBiasSlope times the depth's slope per texel, added back), its cosine from the
+// depth's differences to the neighbouring texels.
+PreskinShadowOccluder preskinShadowOccluder(sampler2D shadowMap, mat4 shadowClipFromWorld, vec4 params,
+                                            vec3 positionWs) {
     vec4 clip = shadowClipFromWorld * vec4(positionWs, 1.0);
     vec2 uv = clip.xy * 0.5 + 0.5;
-    if (any(lessThan(uv, vec2(0.0))) || any(greaterThan(uv, vec2(1.0)))) return 0.0;
-    ivec2 texel = clamp(ivec2(uv * params.w), ivec2(0), ivec2(params.w) - 1);
-    return max(clip.z - texelFetch(shadowMap, texel, 0).r, 0.0) * params.z;
+    if (any(lessThan(uv, vec2(0.0))) || any(greaterThan(uv, vec2(1.0)))) return PreskinShadowOccluder(0.0, 1.0);
+    ivec2 last = ivec2(params.w) - 1;
+    ivec2 texel = clamp(ivec2(uv * params.w), ivec2(0), last);
+    float z = texelFetch(shadowMap, texel, 0).r;
+    float left = texelFetch(shadowMap, max(texel - ivec2(1, 0), ivec2(0)), 0).r;
+    float right = texelFetch(shadowMap, min(texel + ivec2(1, 0), last), 0).r;
+    float down = texelFetch(shadowMap, max(texel - ivec2(0, 1), ivec2(0)), 0).r;
+    float up = texelFetch(shadowMap, min(texel + ivec2(0, 1), last), 0).r;
+    // Per axis the flatter one-sided difference: across the occluder's outline one side is another surface.
+    vec2 dz = vec2(abs(right - z) < abs(z - left) ? right - z : z - left, abs(up - z) < abs(z - down) ? up - z : z - down);
+    vec2 slope = dz * params.z / params.x;  // metres of depth per metre
+    float biasM = kShadowDepthBiasSlope * max(abs(slope.x), abs(slope.y)) * params.x;
+    return PreskinShadowOccluder(max(clip.z - z, 0.0) * params.z + biasM, inversesqrt(1.0 + dot(slope, slope)));
 }
 
 // How a map is filtered: the Gaussian PCF below on a shadow map, or on a coarser map whose texels
@@ -210,7 +228,6 @@ PreskinShadowSample preskinSampleShadow(sampler2D shadowMap, mat4 shadowClipFrom
     PreskinShadowPcf pcf = preskinShadowPcf(shadowMap, t, mapSize, z, bias, dzPerTexel, G, stride, sigma);
     bool inside = all(greaterThanEqual(uv, vec2(0.0))) && all(lessThanEqual(uv, vec2(1.0))) && z <= 1.0;
     result.visibility = inside ? pcf.visibility : 1.0;
-    result.thicknessM = preskinShadowThickness(shadowMap, shadowClipFromWorld, params, positionWs);
     // The weights' standard deviation (mean of the two axes), the filter's width across an edge.
     result.kernelWidthM = sqrt(pcf.varianceTexels) * params.x;
     result.blockerDistanceM = inside ? max(z - pcf.blockerDepth, 0.0) * params.z : 0.0;

@@ -18,9 +18,9 @@
 //  - ambient: L2 SH radiance convolved per channel with the skin's zonal transfer A_l(curvature)
 //    instead of Lambert's (pi, 2pi/3, pi/4);
 //  - transmission through thin parts (Jimenez et al., "Real-Time Realistic Skin Translucency",
-//    IEEE CG&A 2010): thickness from the shadow map, T(thickness) from the profile, times
-//    saturate(-NoL) on the side facing away from the light, less what the diffuse LUT already
-//    holds (the light through the osculating sphere);
+//    IEEE CG&A 2010): on the side facing away from the light, the profile's integral over the
+//    lit surface behind it (found in the shadow map: its distance and its slope), less what the
+//    diffuse LUT already holds (the light through the osculating sphere);
 //  - specular: two GGX lobes (roughness multipliers and mix in the material) with F0 = 0.028
 //    (IOR 1.4) times the specular map.
 // Every technique can be switched off (kSkin* bits of shared/skin_features.h in `features`); off falls back to the
@@ -28,9 +28,9 @@
 //
 // Inputs are in world units (metres) except where named; the material's scatter scale
 // converts them to profile millimetres. Includes preskin/brdf.glsl, preskin/lut.glsl,
-// preskin/sh.glsl and preskin/skin_surface.glsl (building the surface from a host's textures);
-// needs the four LUT array samplers and the fragment's profile mix (PreskinProfileMix of
-// preskin/lut.glsl; preskinSingleProfile for one profile; see README, "Embedding").
+// preskin/sh.glsl, preskin/shadow.glsl and preskin/skin_surface.glsl (building the surface from
+// a host's textures); needs the four LUT array samplers and the fragment's profile mix
+// (PreskinProfileMix of preskin/lut.glsl; preskinSingleProfile for one profile; see README, "Embedding").
 // Limits: curvature and thickness are scalar per fragment; transmission only for the light that
 // owns the shadow map; the diffuse LUT assumes locally spherical geometry of the mean curvature
 // (a cylinder reads as a sphere of twice its radius); the concave patch's extent is a model
@@ -42,6 +42,7 @@
 #include "preskin/ibl.glsl"
 #include "preskin/lut.glsl"
 #include "preskin/sh.glsl"
+#include "preskin/shadow.glsl"
 #include "preskin/skin_surface.glsl"
 #include "preskin/skin_vertex.glsl"
 #include "shared/skin_features.h"
@@ -333,29 +334,33 @@ vec3 preskinSkinShadow(PreskinSkinSurface s, PreskinProfileMix m, sampler2DArray
                              wideFilterWidthLightM, wideTexelM, wideBlockerDistanceM, L, features);
 }
 
-// Light transmitted through the surface from a light behind it (after Jimenez et al. 2010):
-// thicknessM from the shadow map at preskinThicknessPointWs (metres); the thickness from
-// the surface along L is that plus the shrink depth times c = saturate(-NoL); T(thickness) from
-// the profile (its plane integral at that depth, exact for a slab), times c, the far side's
-// cosine for a slab. Only light the diffuse LUT does not already hold is added: the LUT
-// integrates over the osculating sphere of convex skin, so T of that sphere's thickness,
-// sphereT (preskinSkinSphereTransmittance), is subtracted. On a sphere the two cancel; a thin
-// sheet (an ear) keeps T of the sheet. Nothing is added where the skin faces the light.
-// Limits: sheets thinner than the shrink read as that thick.
+// Light transmitted through the surface from a light behind it (after Jimenez et al. 2010): the
+// lit surface where the light enters (`occluder`, preskinShadowOccluder read at
+// preskinThicknessPointWs) is taken as its tangent plane there, which lies a distance
+// (path along the light) x (its cosine to the light) from the point read, plus the shrink depth
+// back to the surface; the profile's integral over that plane is T(distance) (exact for Gaussian
+// sums), times the plane's irradiance, its cosine. So a sheet lit obliquely scatters through its
+// thickness, not through the light's longer path across it (exact for a slab at any angle). Only
+// light the diffuse LUT does not already hold is added: the LUT integrates over the osculating
+// sphere of convex skin, so the same term on that sphere, sphereT
+// (preskinSkinSphereTransmittance), is subtracted. On a sphere the two cancel; a thin sheet (an
+// ear) keeps T of the sheet. Nothing is added where the skin faces the light.
+// Limits: sheets thinner than the shrink read as that thick; the occluder's slope is one texel's.
 vec3 preskinSkinTransmission(PreskinSkinSurface s, PreskinProfileMix m, sampler2DArray transmittanceLut, vec3 L,
-                             vec3 irradiance, float thicknessM, vec3 sphereT, uint features) {
+                             vec3 irradiance, PreskinShadowOccluder occluder, vec3 sphereT, uint features) {
     float c = preskinSaturate(-dot(s.geometricNormal, L));
     if ((features & kSkinTransmission) == 0u || c <= 0.0) return vec3(0.0);
-    float thicknessMm = thicknessM * 1000.0 * s.thicknessScale * s.scatterScale + kSkinThicknessShrinkMm * c;
-    vec3 T = max(preskinTransmittanceLut(m, transmittanceLut, thicknessMm) - sphereT, vec3(0.0));
-    return T * c * s.transmissionTint * s.albedo / PRESKIN_PI * irradiance;
+    float distanceMm =
+        occluder.distanceM * 1000.0 * s.thicknessScale * s.scatterScale * occluder.cosine + kSkinThicknessShrinkMm;
+    vec3 T = max(preskinTransmittanceLut(m, transmittanceLut, distanceMm) - sphereT, vec3(0.0));
+    return T * occluder.cosine * s.transmissionTint * s.albedo / PRESKIN_PI * irradiance;
 }
 
 // The same, the sphere's transmittance found at the surface's curvature.
 vec3 preskinSkinTransmission(PreskinSkinSurface s, PreskinProfileMix m, sampler2DArray transmittanceLut, vec3 L,
-                             vec3 irradiance, float thicknessM, uint features) {
+                             vec3 irradiance, PreskinShadowOccluder occluder, uint features) {
     vec3 sphereT = preskinSkinSphereTransmittance(m, transmittanceLut, s.curvaturePerMm, s.geometricNormal, L, features);
-    return preskinSkinTransmission(s, m, transmittanceLut, L, irradiance, thicknessM, sphereT, features);
+    return preskinSkinTransmission(s, m, transmittanceLut, L, irradiance, occluder, sphereT, features);
 }
 
 // Skin's SH band scales at one curvature (PreskinShTransfer of preskin/lut.glsl): the SH transfer

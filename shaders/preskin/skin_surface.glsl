@@ -131,7 +131,7 @@ float preskinSkinCurvaturePerM(uint source, float vertexCurvaturePerM, sampler2D
 // Skin's specular reflectance at normal incidence.
 vec3 preskinSkinF0(float specularIntensity, float specularMap) { return vec3(kSkinF0 * specularIntensity * specularMap); }
 
-// Where to read the shadow map's thickness (what preskinSkinTransmission expects):
+// Where to read the shadow map's occluder (what preskinSkinTransmission expects):
 // kSkinThicknessShrinkMm profile-mm inside along the normal, so the shadow map's depth bias does
 // not dominate where the light enters at a grazing angle.
 vec3 preskinThicknessPointWs(vec3 positionWs, vec3 geometricNormal, float scatterScale) {

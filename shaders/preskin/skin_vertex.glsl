@@ -51,19 +51,22 @@ vec2 preskinSkinShadowLift(float curvaturePerMm, float scatterScale, PreskinProf
 }
 
 // What the diffuse LUT already holds of the light a directional light sends through convex skin:
-// the transmittance through its osculating sphere (radius a = 1/curvature) along L, measured from
-// the point kSkinThicknessShrinkMm = d inside, (a - d) c + sqrt((a - d)^2 c^2 + 2 a d - d^2) + d c,
-// c = saturate(-dot(geometricNormal, L)). Zero where the LUT diffuse is off, on flat or concave
-// skin and where the skin faces the light.
+// preskinSkinTransmission's transmittance on the osculating sphere (radius a = 1/curvature). From
+// the point kSkinThicknessShrinkMm = d inside, the light's path to the sphere's lit side is
+// t = (a - d) c + r, r = sqrt((a - d)^2 c^2 + 2 a d - d^2), where the surface's cosine to the light
+// is r / a: T(t r / a + d), c = saturate(-dot(geometricNormal, L)). Zero where the LUT diffuse is
+// off and on flat or concave skin; where the skin faces the light, its value at the terminator
+// (c = 0), so that found per vertex it interpolates across the terminator without a step.
 vec3 preskinSkinSphereTransmittance(PreskinProfileMix m, sampler2DArray transmittanceLut, float curvaturePerMm,
                                     vec3 geometricNormal, vec3 L, uint features) {
     float c = preskinSaturate(-dot(geometricNormal, L));
     if ((features & (kSkinTransmission | kSkinLutDiffuse)) != (kSkinTransmission | kSkinLutDiffuse) ||
-        curvaturePerMm <= 0.0 || c <= 0.0)
+        curvaturePerMm <= 0.0)
         return vec3(0.0);
     float d = kSkinThicknessShrinkMm;
     float a = 1.0 / curvaturePerMm;
-    float sphereMm = (a - d) * c + sqrt(max((a - d) * (a - d) * c * c + 2.0 * a * d - d * d, 0.0)) + d * c;
+    float r = sqrt(max((a - d) * (a - d) * c * c + 2.0 * a * d - d * d, 0.0));
+    float sphereMm = ((a - d) * c + r) * r / a + d;
     return preskinTransmittanceLut(m, transmittanceLut, sphereMm);
 }
 

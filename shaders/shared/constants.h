@@ -32,6 +32,12 @@ PRESKIN_CONST(float, kShY22, 0.546274f)
 PRESKIN_CONST(float, kSkinF0, 0.028f)
 PRESKIN_CONST(float, kSkinThicknessShrinkMm, 2.0f)
 
+// The shadow pass's depth bias (vkCmdSetDepthBias): the constant factor and the slope factor,
+// which moves each texel's stored depth away from the light by that many times its depth slope
+// per texel (transmission adds it back to the thickness it reads).
+PRESKIN_CONST(float, kShadowDepthBiasConstant, 1.0f)
+PRESKIN_CONST(float, kShadowDepthBiasSlope, 1.5f)
+
 // Vertex attribute locations of the forward and shadow passes (Vertex of <preskin/Scene.h>).
 PRESKIN_CONST(uint, kAttributePosition, 0)
 PRESKIN_CONST(uint, kAttributeNormal, 1)

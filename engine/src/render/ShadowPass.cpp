@@ -125,7 +125,7 @@ void Renderer::Impl::recordShadowPass(VkCommandBuffer cmd, Slot& slot, uint32_t 
     const VkRect2D scissor{{0, 0}, {size, size}};
     vkCmdSetViewport(cmd, 0, 1, &viewport);
     vkCmdSetScissor(cmd, 0, 1, &scissor);
-    vkCmdSetDepthBias(cmd, 1.0f, 0.0f, 1.5f);
+    vkCmdSetDepthBias(cmd, gpu::kShadowDepthBiasConstant, 0.0f, gpu::kShadowDepthBiasSlope);
     VkBuffer boundVertices = VK_NULL_HANDLE;
     bindGeometry(cmd, boundVertices);
     // Opaque draws depth only, then alpha-masked ones through shadow_mask.frag; blended ones cast
