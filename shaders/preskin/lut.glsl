@@ -116,6 +116,14 @@ LutMapping preskinMixMapping(PreskinProfileMix p, int i) {
     return i == 1 ? p.mapping[1] : (i == 2 ? p.mapping[2] : p.mapping[3]);
 }
 
+// The local patch radius of a mix (its profiles' LutSet::localPatchMm, weighted), profile mm.
+float preskinMixPatchMm(PreskinProfileMix p) {
+    float patchMm = p.weight.x * p.mapping[0].diffuseNoL.w;
+    if (int(PRESKIN_PROFILE_MIX_MAX) > 1) for (int i = 1; i < p.count; ++i)
+        patchMm += p.weight[i] * preskinMixMapping(p, i).diffuseNoL.w;
+    return patchMm;
+}
+
 // The diffuse rows of a mix's entries at one fragment's curvature (preskinDiffuseRow): entry
 // i's texel row in y0[i], its weight in fy[i].
 struct PreskinDiffuseRows {

@@ -30,9 +30,18 @@ struct PreskinShadowSample {
 
 // Where the light enters the body that shadows positionWs: the nearest occluder in the map.
 struct PreskinShadowOccluder {
-    float distanceM;  // along the light from that surface to positionWs, metres (0 outside the map)
+    float distanceM;  // along the light from that surface to the receiver, metres (0 outside the map)
     float cosine;     // its normal's cosine to the light (1 outside the map)
+    vec2 slope;       // its depth's slope along the map's axes, metres of depth per metre
+    vec2 uv;          // where the receiver falls on the map
+    float depth;      // the receiver's depth on the map
 };
+
+// How far the shadow pass's slope bias moved a surface of depth slope `slope` (metres per metre)
+// away from the light, metres.
+float preskinShadowSlopeBiasM(vec2 slope, vec4 params) {
+    return kShadowDepthBiasSlope * max(abs(slope.x), abs(slope.y)) * params.x;
+}
 
 // The occluder of positionWs: its distance from the map's depth (the shadow pass's slope bias,
 // kShadowDepthBiasSlope times the depth's slope per texel, added back), its cosine from the
@@ -41,7 +50,7 @@ PreskinShadowOccluder preskinShadowOccluder(sampler2D shadowMap, mat4 shadowClip
                                             vec3 positionWs) {
     vec4 clip = shadowClipFromWorld * vec4(positionWs, 1.0);
     vec2 uv = clip.xy * 0.5 + 0.5;
-    if (any(lessThan(uv, vec2(0.0))) || any(greaterThan(uv, vec2(1.0)))) return PreskinShadowOccluder(0.0, 1.0);
+    if (any(lessThan(uv, vec2(0.0))) || any(greaterThan(uv, vec2(1.0)))) return PreskinShadowOccluder(0.0, 1.0, vec2(0.0), uv, clip.z);
     ivec2 last = ivec2(params.w) - 1;
     ivec2 texel = clamp(ivec2(uv * params.w), ivec2(0), last);
     float z = texelFetch(shadowMap, texel, 0).r;
@@ -52,8 +61,43 @@ PreskinShadowOccluder preskinShadowOccluder(sampler2D shadowMap, mat4 shadowClip
     // Per axis the flatter one-sided difference: across the occluder's outline one side is another surface.
     vec2 dz = vec2(abs(right - z) < abs(z - left) ? right - z : z - left, abs(up - z) < abs(z - down) ? up - z : z - down);
     vec2 slope = dz * params.z / params.x;  // metres of depth per metre
-    float biasM = kShadowDepthBiasSlope * max(abs(slope.x), abs(slope.y)) * params.x;
-    return PreskinShadowOccluder(max(clip.z - z, 0.0) * params.z + biasM, inversesqrt(1.0 + dot(slope, slope)));
+    return PreskinShadowOccluder(max(clip.z - z, 0.0) * params.z + preskinShadowSlopeBiasM(slope, params),
+                                 inversesqrt(1.0 + dot(slope, slope)), slope, uv, clip.z);
+}
+
+// The receiver plane's depth slope along the map's axes (metres per metre) for its normal and the
+// direction L towards the light.
+vec2 preskinShadowReceiverSlope(mat4 shadowClipFromWorld, vec3 normal, vec3 L) {
+    vec3 mapU = normalize(vec3(shadowClipFromWorld[0][0], shadowClipFromWorld[1][0], shadowClipFromWorld[2][0]));
+    vec3 mapV = normalize(vec3(shadowClipFromWorld[0][1], shadowClipFromWorld[1][1], shadowClipFromWorld[2][1]));
+    float NoL = dot(normal, L);
+    return vec2(dot(normal, mapU), dot(normal, mapV)) / (NoL < 0.0 ? min(NoL, -0.05) : max(NoL, 0.05));
+}
+
+// How much of the occluder's tangent plane (o, its distanceM from the receiver) is there around
+// the plane's point nearest the receiver, within radiusM: of four taps on the map there (along
+// its axes), the share whose depth lies nearer the occluder's plane than the receiver's
+// (receiverSlope, preskinShadowReceiverSlope). Near an occluder's outline the plane goes on where
+// the occluder does not; a curved occluder stays counted while it is nearer its own plane.
+float preskinOccluderCoverage(sampler2D shadowMap, vec4 params, PreskinShadowOccluder o, vec2 receiverSlope,
+                              float radiusM) {
+    float norm2 = 1.0 + dot(o.slope, o.slope);
+    vec2 footM = o.distanceM * o.slope / norm2;  // the nearest point, metres along the map's axes
+    float receiverM = o.depth * params.z;
+    float occluderM = receiverM - o.distanceM;
+    float metresPerUv = params.w * params.x;
+    ivec2 last = ivec2(params.w) - 1;
+    float on = 0.0;
+    const vec2 taps[4] = vec2[4](vec2(1.0, 0.0), vec2(-1.0, 0.0), vec2(0.0, 1.0), vec2(0.0, -1.0));
+    for (int k = 0; k < 4; ++k) {
+        vec2 tapM = footM + radiusM * taps[k];
+        vec2 uv = o.uv + tapM / metresPerUv;
+        ivec2 texel = clamp(ivec2(uv * params.w), ivec2(0), last);
+        float mapM = texelFetch(shadowMap, texel, 0).r * params.z;
+        float midM = 0.5 * (occluderM + dot(o.slope, tapM) + receiverM + dot(receiverSlope, tapM));
+        on += mapM < midM ? 1.0 : 0.0;
+    }
+    return 0.25 * on;
 }
 
 // How a map is filtered: the Gaussian PCF below on a shadow map, or on a coarser map whose texels

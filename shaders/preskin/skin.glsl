@@ -20,7 +20,8 @@
 //  - transmission through thin parts (Jimenez et al., "Real-Time Realistic Skin Translucency",
 //    IEEE CG&A 2010): on the side facing away from the light, the profile's integral over the
 //    lit surface behind it (found in the shadow map: its distance and its slope), less what the
-//    diffuse LUT already holds (the light through the osculating sphere);
+//    diffuse LUT already holds (the light through the osculating sphere); and the same from a
+//    nearby occluder's lit side into skin it shadows (preskinSkinShadowedScatter);
 //  - specular: two GGX lobes (roughness multipliers and mix in the material) with F0 = 0.028
 //    (IOR 1.4) times the specular map.
 // Every technique can be switched off (kSkin* bits of shared/skin_features.h in `features`); off falls back to the
@@ -354,6 +355,26 @@ vec3 preskinSkinTransmission(PreskinSkinSurface s, PreskinProfileMix m, sampler2
         occluder.distanceM * 1000.0 * s.thicknessScale * s.scatterScale * occluder.cosine + kSkinThicknessShrinkMm;
     vec3 T = max(preskinTransmittanceLut(m, transmittanceLut, distanceMm) - sphereT, vec3(0.0));
     return T * occluder.cosine * s.transmissionTint * s.albedo / PRESKIN_PI * irradiance;
+}
+
+// Light from a nearby occluder into the skin it shadows: where skin facing the light lies in a
+// shadow cast from within the profile's reach (a lid over the skin below it, a nostril's rim, a
+// fold), the light the shadow takes lands on the occluder's lit side and reaches the shadowed
+// point through the skin, as it does through a thin part. The same model as transmission: the
+// occluder's lit surface as its tangent plane (`occluder`, read at the point, its distanceM the
+// shadow filter's mean distance to the occluding texels), T(distance x cosine) x cosine, here
+// times the shadowed share, 1 - visibility, and the share of that plane the occluder covers
+// around the plane's point nearest the receiver (preskinOccluderCoverage). Occluders far beyond
+// the profile's reach add nothing (T vanishes); the light the receiver's own lit side sends
+// across the shadow's edge is the penumbra LUT's.
+vec3 preskinSkinShadowedScatter(PreskinSkinSurface s, PreskinProfileMix m, sampler2DArray transmittanceLut,
+                                vec3 irradiance, PreskinShadowOccluder occluder, float visibility, float coverage,
+                                uint features) {
+    if ((features & kSkinTransmission) == 0u || occluder.distanceM <= 0.0) return vec3(0.0);
+    float distanceMm = occluder.distanceM * 1000.0 * s.thicknessScale * s.scatterScale * occluder.cosine;
+    vec3 T = preskinTransmittanceLut(m, transmittanceLut, distanceMm);
+    return T * occluder.cosine * (1.0 - visibility) * coverage * s.transmissionTint * s.albedo / PRESKIN_PI *
+           irradiance;
 }
 
 // The same, the sphere's transmittance found at the surface's curvature.

@@ -23,6 +23,7 @@
 
 #include <glm/gtc/matrix_transform.hpp>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 
@@ -341,6 +342,68 @@ TEST_F(SkinFidelity, ConcaveGrooveIsCloserToTheReferenceThanLambert) {
     std::printf("[ fidelity ] groove floor: %zu concave pixels, skin / Lambert RMSE %.3f\n", pixels, ratio);
     EXPECT_GT(pixels, size_t(size) * 10);
     EXPECT_LT(ratio, 0.3);
+}
+
+// A plate lying 1 mm above a floor (both skin, 2 mm thick, 40 mm wide), lit 30 degrees above
+// the horizon across its edge: the floor beside the edge is in the plate's shadow, and the light
+// the shadow takes lands on the plate's top, 3 mm above the floor, from where it scatters down
+// through the profile's reach (the reference's integral over every surface). In the strip 0.5 to
+// 2.5 mm from the plate's edge skin must carry that red: its error against the reference below
+// 0.6 times that of skin without it (transmission off: the floor's own light only, the penumbra
+// scattering across the shadow's far edge included), its mean within 40 % of the reference's.
+TEST_F(SkinFidelity, ShadowOfANearbyPlateCarriesTheLightItsLitSideScatters) {
+    Primitive floor = makeQuad(0.3f, 8);
+    floor.material = 0;
+    Primitive plate = makeBox(glm::vec3(0.04f, 0.08f, 0.002f));
+    plate.material = 0;
+    const float edgeX = -0.0002f;  // the plate's edge; its shadow on the floor ends at x = 5 mm
+    Scene scene = makeScene(
+        {{floor, glm::mat4(1.0f)}, {plate, glm::translate(glm::mat4(1.0f), glm::vec3(edgeX - 0.02f, 0.0f, 0.002f))}},
+        {skinMaterial({0.8f, 0.6f, 0.5f})});
+    scene.lights = {shadowedDirectionalLight({0.866f, 0.0f, -0.5f}, 3.0f)};
+    const uint32_t size = 64;
+    const View view = perspectiveView(
+        glm::inverse(glm::lookAt(glm::vec3(0.0f, 0.0f, 0.06f), glm::vec3(0.0f), glm::vec3(0.0f, 1.0f, 0.0f))),
+        2.0f * std::atan(0.01f / 0.06f), 1.0f, 0.01f, 1.0f);
+    const Environment dark = Environment::constant(glm::vec3(0.0f));
+    RenderSettings settings;
+    settings.specular = false;
+    Renderer renderer(context(), scene, dark, &LutSet::loadDefault(), settings);
+    const RenderedImage skin = renderer.render(view, size, size, OutputEncoding::LinearFloat);
+    settings.skin.transmission = false;
+    renderer.setSettings(settings);
+    const RenderedImage without = renderer.render(view, size, size, OutputEncoding::LinearFloat);
+    ReferenceSettings coarse;
+    coarse.leafRatio = 1.0;
+    coarse.finestLeafRatio = 4.0;
+    coarse.momentTolerance = 1e-5;
+    const DiffusionReference reference(scene, scene.lights, dark.radianceSh(), LutSet::loadDefault().profile(), coarse);
+    const ReferenceImage truth = reference.render(view.eye(), size, size);
+    // Columns of the strip (the view spans x = -10 .. 10 mm at the floor), rows away from the
+    // image's top and bottom.
+    double skinRed = 0.0, withoutRed = 0.0, truthRed = 0.0, skinSquared = 0.0, withoutSquared = 0.0;
+    size_t pixels = 0;
+    for (uint32_t y = 8; y < size - 8; ++y)
+        for (uint32_t x = 0; x < size; ++x) {
+            const double xMm = (double(x) + 0.5) / size * 20.0 - 10.0;
+            if (xMm < 0.5 || xMm > 2.5) continue;
+            const double r = double(truth.rgba32f[4 * (size_t(y) * size + x)]);
+            const double s = pixelLinear(skin, x, y).r, w = pixelLinear(without, x, y).r;
+            skinRed += s;
+            withoutRed += w;
+            truthRed += r;
+            skinSquared += (s - r) * (s - r);
+            withoutSquared += (w - r) * (w - r);
+            ++pixels;
+        }
+    const double n = double(std::max<size_t>(pixels, 1));
+    std::printf(
+        "[ fidelity ] floor beside a plate's edge, in its shadow: %zu pixels, red skin %.4f (without the "
+        "plate's light %.4f) reference %.4f; RMSE %.4f (without %.4f)\n",
+        pixels, skinRed / n, withoutRed / n, truthRed / n, std::sqrt(skinSquared / n), std::sqrt(withoutSquared / n));
+    EXPECT_GT(pixels, size_t(100));
+    EXPECT_LT(std::sqrt(skinSquared / n), 0.6 * std::sqrt(withoutSquared / n));
+    EXPECT_NEAR(skinRed / n, truthRed / n, 0.4 * truthRed / n);
 }
 
 }  // namespace
