@@ -51,13 +51,13 @@ PreskinShadowOccluder preskinShadowOccluder(sampler2D shadowMap, mat4 shadowClip
     vec4 clip = shadowClipFromWorld * vec4(positionWs, 1.0);
     vec2 uv = clip.xy * 0.5 + 0.5;
     if (any(lessThan(uv, vec2(0.0))) || any(greaterThan(uv, vec2(1.0)))) return PreskinShadowOccluder(0.0, 1.0, vec2(0.0), uv, clip.z);
-    ivec2 last = ivec2(params.w) - 1;
-    ivec2 texel = clamp(ivec2(uv * params.w), ivec2(0), last);
-    float z = texelFetch(shadowMap, texel, 0).r;
-    float left = texelFetch(shadowMap, max(texel - ivec2(1, 0), ivec2(0)), 0).r;
-    float right = texelFetch(shadowMap, min(texel + ivec2(1, 0), last), 0).r;
-    float down = texelFetch(shadowMap, max(texel - ivec2(0, 1), ivec2(0)), 0).r;
-    float up = texelFetch(shadowMap, min(texel + ivec2(0, 1), last), 0).r;
+    // Two gathers: the texel with the ones right and up of it, and with the ones left and down
+    // (gather order: (0, 1), (1, 1), (1, 0), (0, 0) of the 2 x 2 quad; clamped at the map's edge).
+    vec2 texelF = floor(uv * params.w);
+    vec4 upRight = textureGather(shadowMap, (texelF + 1.0) / params.w, 0);
+    vec4 downLeft = textureGather(shadowMap, texelF / params.w, 0);
+    float z = upRight.w;
+    float right = upRight.z, up = upRight.x, left = downLeft.x, down = downLeft.z;
     // Per axis the flatter one-sided difference: across the occluder's outline one side is another surface.
     vec2 dz = vec2(abs(right - z) < abs(z - left) ? right - z : z - left, abs(up - z) < abs(z - down) ? up - z : z - down);
     vec2 slope = dz * params.z / params.x;  // metres of depth per metre

@@ -21,7 +21,7 @@
 //    IEEE CG&A 2010): on the side facing away from the light, the profile's integral over the
 //    lit surface behind it (found in the shadow map: its distance and its slope), less what the
 //    diffuse LUT already holds (the light through the osculating sphere); and the same from a
-//    nearby occluder's lit side into skin it shadows (preskinSkinShadowedScatter);
+//    nearby occluder's lit side into skin it shadows;
 //  - specular: two GGX lobes (roughness multipliers and mix in the material) with F0 = 0.028
 //    (IOR 1.4) times the specular map.
 // Every technique can be switched off (kSkin* bits of shared/skin_features.h in `features`); off falls back to the
@@ -335,49 +335,47 @@ vec3 preskinSkinShadow(PreskinSkinSurface s, PreskinProfileMix m, sampler2DArray
                              wideFilterWidthLightM, wideTexelM, wideBlockerDistanceM, L, features);
 }
 
-// Light transmitted through the surface from a light behind it (after Jimenez et al. 2010): the
-// lit surface where the light enters (`occluder`, preskinShadowOccluder read at
-// preskinThicknessPointWs) is taken as its tangent plane there, which lies a distance
-// (path along the light) x (its cosine to the light) from the point read, plus the shrink depth
-// back to the surface; the profile's integral over that plane is T(distance) (exact for Gaussian
-// sums), times the plane's irradiance, its cosine. So a sheet lit obliquely scatters through its
-// thickness, not through the light's longer path across it (exact for a slab at any angle). Only
-// light the diffuse LUT does not already hold is added: the LUT integrates over the osculating
-// sphere of convex skin, so the same term on that sphere, sphereT
-// (preskinSkinSphereTransmittance), is subtracted. On a sphere the two cancel; a thin sheet (an
-// ear) keeps T of the sheet. Nothing is added where the skin faces the light.
-// Limits: sheets thinner than the shrink read as that thick; the occluder's slope is one texel's.
+// Light that reaches the skin through the skin from a lit surface the light meets first
+// (`occluder`, preskinShadowOccluder): the profile's integral over that surface, taken as its
+// tangent plane, which lies (path along the light) x (its cosine to the light) from the point
+// read: T(distance) (exact for Gaussian sums) times the plane's irradiance, its cosine.
+//  - Where the skin faces away from the light: transmission through thin parts (after Jimenez et
+//    al. 2010), the occluder read at preskinThicknessPointWs, the shrink depth added back. A sheet
+//    lit obliquely scatters through its thickness, not through the light's longer path across it
+//    (exact for a slab at any angle). Only light the diffuse LUT does not already hold is added:
+//    the LUT integrates over the osculating sphere of convex skin, so the same term on that
+//    sphere, sphereT (preskinSkinSphereTransmittance), is subtracted. On a sphere the two
+//    cancel; a thin sheet (an ear) keeps T of the sheet.
+//  - Where the skin faces the light but lies in a shadow cast from within the profile's reach
+//    (a lid over the skin below it, a nostril's rim, a fold), the light the shadow takes lands on
+//    the occluder's lit side and reaches the point the same way: the occluder read at the point,
+//    its distanceM the shadow filter's mean distance to the occluding texels, times the shadowed
+//    share 1 - visibility and the share of the plane the occluder covers around the plane's point
+//    nearest the receiver (`coverage`, preskinOccluderCoverage). Occluders far beyond the
+//    profile's reach add nothing (T vanishes); the light the receiver's own lit side sends across
+//    the shadow's edge is the penumbra LUT's.
+// A zero occluder distance adds nothing. Limits: sheets thinner than the shrink read as that
+// thick; the occluder's slope is one texel's; the coverage is four taps.
+vec3 preskinSkinTransmission(PreskinSkinSurface s, PreskinProfileMix m, sampler2DArray transmittanceLut, vec3 L,
+                             vec3 irradiance, PreskinShadowOccluder occluder, vec3 sphereT, float visibility,
+                             float coverage, uint features) {
+    if ((features & kSkinTransmission) == 0u || occluder.distanceM <= 0.0) return vec3(0.0);
+    bool facesAway = dot(s.geometricNormal, L) < 0.0;
+    float distanceMm = occluder.distanceM * 1000.0 * s.thicknessScale * s.scatterScale * occluder.cosine +
+                       (facesAway ? kSkinThicknessShrinkMm : 0.0);
+    vec3 T = max(preskinTransmittanceLut(m, transmittanceLut, distanceMm) - (facesAway ? sphereT : vec3(0.0)),
+                 vec3(0.0));
+    float share = facesAway ? 1.0 : (1.0 - visibility) * coverage;
+    return T * (occluder.cosine * share) * s.transmissionTint * s.albedo / PRESKIN_PI * irradiance;
+}
+
+// Transmission alone (the skin facing away from the light), the sphere's transmittance given.
 vec3 preskinSkinTransmission(PreskinSkinSurface s, PreskinProfileMix m, sampler2DArray transmittanceLut, vec3 L,
                              vec3 irradiance, PreskinShadowOccluder occluder, vec3 sphereT, uint features) {
-    float c = preskinSaturate(-dot(s.geometricNormal, L));
-    if ((features & kSkinTransmission) == 0u || c <= 0.0) return vec3(0.0);
-    float distanceMm =
-        occluder.distanceM * 1000.0 * s.thicknessScale * s.scatterScale * occluder.cosine + kSkinThicknessShrinkMm;
-    vec3 T = max(preskinTransmittanceLut(m, transmittanceLut, distanceMm) - sphereT, vec3(0.0));
-    return T * occluder.cosine * s.transmissionTint * s.albedo / PRESKIN_PI * irradiance;
+    return preskinSkinTransmission(s, m, transmittanceLut, L, irradiance, occluder, sphereT, 1.0, 0.0, features);
 }
 
-// Light from a nearby occluder into the skin it shadows: where skin facing the light lies in a
-// shadow cast from within the profile's reach (a lid over the skin below it, a nostril's rim, a
-// fold), the light the shadow takes lands on the occluder's lit side and reaches the shadowed
-// point through the skin, as it does through a thin part. The same model as transmission: the
-// occluder's lit surface as its tangent plane (`occluder`, read at the point, its distanceM the
-// shadow filter's mean distance to the occluding texels), T(distance x cosine) x cosine, here
-// times the shadowed share, 1 - visibility, and the share of that plane the occluder covers
-// around the plane's point nearest the receiver (preskinOccluderCoverage). Occluders far beyond
-// the profile's reach add nothing (T vanishes); the light the receiver's own lit side sends
-// across the shadow's edge is the penumbra LUT's.
-vec3 preskinSkinShadowedScatter(PreskinSkinSurface s, PreskinProfileMix m, sampler2DArray transmittanceLut,
-                                vec3 irradiance, PreskinShadowOccluder occluder, float visibility, float coverage,
-                                uint features) {
-    if ((features & kSkinTransmission) == 0u || occluder.distanceM <= 0.0) return vec3(0.0);
-    float distanceMm = occluder.distanceM * 1000.0 * s.thicknessScale * s.scatterScale * occluder.cosine;
-    vec3 T = preskinTransmittanceLut(m, transmittanceLut, distanceMm);
-    return T * occluder.cosine * (1.0 - visibility) * coverage * s.transmissionTint * s.albedo / PRESKIN_PI *
-           irradiance;
-}
-
-// The same, the sphere's transmittance found at the surface's curvature.
+// Transmission alone, the sphere's transmittance found at the surface's curvature.
 vec3 preskinSkinTransmission(PreskinSkinSurface s, PreskinProfileMix m, sampler2DArray transmittanceLut, vec3 L,
                              vec3 irradiance, PreskinShadowOccluder occluder, uint features) {
     vec3 sphereT = preskinSkinSphereTransmittance(m, transmittanceLut, s.curvaturePerMm, s.geometricNormal, L, features);
