@@ -293,6 +293,36 @@ TEST_F(SkinFidelity, InsideOfABowlIsShadedWithTheConcaveResponse) {
 // diffusion reference than Lambert, by a clear margin (a crease the concave model and the wide
 // shadow map both see; the wide map's occluders there are the groove's own walls, within red's
 // reach, and with its edge kept there the ratio is 0.42).
+// A scene seen from 60 mm above the origin looking down (20 mm across at z = 0, kFromAboveSize
+// pixels square), no ambient, specular off: skin with every technique, skin with `other`'s
+// techniques, and the reference (a coarse quadrature, enough at this size).
+constexpr uint32_t kFromAboveSize = 64;
+struct FromAbove {
+    RenderedImage skin, other;
+    ReferenceImage truth;
+};
+FromAbove renderFromAbove(Context& context, const Scene& scene, const SkinFeatures& other) {
+    const View view = perspectiveView(
+        glm::inverse(glm::lookAt(glm::vec3(0.0f, 0.0f, 0.06f), glm::vec3(0.0f), glm::vec3(0.0f, 1.0f, 0.0f))),
+        2.0f * std::atan(0.01f / 0.06f), 1.0f, 0.01f, 1.0f);
+    const Environment dark = Environment::constant(glm::vec3(0.0f));
+    RenderSettings settings;
+    settings.specular = false;
+    Renderer renderer(context, scene, dark, &LutSet::loadDefault(), settings);
+    FromAbove images;
+    images.skin = renderer.render(view, kFromAboveSize, kFromAboveSize, OutputEncoding::LinearFloat);
+    settings.skin = other;
+    renderer.setSettings(settings);
+    images.other = renderer.render(view, kFromAboveSize, kFromAboveSize, OutputEncoding::LinearFloat);
+    ReferenceSettings coarse;
+    coarse.leafRatio = 1.0;
+    coarse.finestLeafRatio = 4.0;
+    coarse.momentTolerance = 1e-5;
+    const DiffusionReference reference(scene, scene.lights, dark.radianceSh(), LutSet::loadDefault().profile(), coarse);
+    images.truth = reference.render(view.eye(), kFromAboveSize, kFromAboveSize);
+    return images;
+}
+
 TEST_F(SkinFidelity, ConcaveGrooveIsCloserToTheReferenceThanLambert) {
     const double depthM = 0.003, widthM = 0.0025, halfM = 0.02;
     const uint32_t n = 80;
@@ -318,24 +348,10 @@ TEST_F(SkinFidelity, ConcaveGrooveIsCloserToTheReferenceThanLambert) {
     Scene scene = makeScene({{groove, glm::mat4(1.0f)}}, {skinMaterial({0.8f, 0.6f, 0.5f})});
     const Light light = shadowedDirectionalLight({0.6f, 0.0f, -0.8f}, 3.0f);
     scene.lights = {light};
-    const uint32_t size = 64;
-    const View view = perspectiveView(
-        glm::inverse(glm::lookAt(glm::vec3(0.0f, 0.0f, 0.06f), glm::vec3(0.0f), glm::vec3(0.0f, 1.0f, 0.0f))),
-        2.0f * std::atan(0.01f / 0.06f), 1.0f, 0.01f, 1.0f);
-    const Environment dark = Environment::constant(glm::vec3(0.0f));
-    RenderSettings settings;
-    settings.specular = false;
-    Renderer renderer(context(), scene, dark, &LutSet::loadDefault(), settings);
-    const RenderedImage skin = renderer.render(view, size, size, OutputEncoding::LinearFloat);
-    settings.skin = SkinFeatures::none();
-    renderer.setSettings(settings);
-    const RenderedImage lambert = renderer.render(view, size, size, OutputEncoding::LinearFloat);
-    ReferenceSettings coarse;
-    coarse.leafRatio = 1.0;
-    coarse.finestLeafRatio = 4.0;
-    coarse.momentTolerance = 1e-5;
-    const DiffusionReference reference(scene, scene.lights, dark.radianceSh(), LutSet::loadDefault().profile(), coarse);
-    const ReferenceImage truth = reference.render(view.eye(), size, size);
+    const uint32_t size = kFromAboveSize;
+    const FromAbove images = renderFromAbove(context(), scene, SkinFeatures::none());
+    const ReferenceImage& truth = images.truth;
+    const RenderedImage &skin = images.skin, &lambert = images.other;
     size_t pixels = 0;
     const double ratio =
         skinOverLambert(truth, skin, lambert, pixels, [&](size_t i) { return truth.curvaturePerMm[i] <= -0.01f; });
@@ -361,24 +377,12 @@ TEST_F(SkinFidelity, ShadowOfANearbyPlateCarriesTheLightItsLitSideScatters) {
         {{floor, glm::mat4(1.0f)}, {plate, glm::translate(glm::mat4(1.0f), glm::vec3(edgeX - 0.02f, 0.0f, 0.002f))}},
         {skinMaterial({0.8f, 0.6f, 0.5f})});
     scene.lights = {shadowedDirectionalLight({0.866f, 0.0f, -0.5f}, 3.0f)};
-    const uint32_t size = 64;
-    const View view = perspectiveView(
-        glm::inverse(glm::lookAt(glm::vec3(0.0f, 0.0f, 0.06f), glm::vec3(0.0f), glm::vec3(0.0f, 1.0f, 0.0f))),
-        2.0f * std::atan(0.01f / 0.06f), 1.0f, 0.01f, 1.0f);
-    const Environment dark = Environment::constant(glm::vec3(0.0f));
-    RenderSettings settings;
-    settings.specular = false;
-    Renderer renderer(context(), scene, dark, &LutSet::loadDefault(), settings);
-    const RenderedImage skin = renderer.render(view, size, size, OutputEncoding::LinearFloat);
-    settings.skin.transmission = false;
-    renderer.setSettings(settings);
-    const RenderedImage without = renderer.render(view, size, size, OutputEncoding::LinearFloat);
-    ReferenceSettings coarse;
-    coarse.leafRatio = 1.0;
-    coarse.finestLeafRatio = 4.0;
-    coarse.momentTolerance = 1e-5;
-    const DiffusionReference reference(scene, scene.lights, dark.radianceSh(), LutSet::loadDefault().profile(), coarse);
-    const ReferenceImage truth = reference.render(view.eye(), size, size);
+    const uint32_t size = kFromAboveSize;
+    SkinFeatures noTransmission;
+    noTransmission.transmission = false;
+    const FromAbove images = renderFromAbove(context(), scene, noTransmission);
+    const ReferenceImage& truth = images.truth;
+    const RenderedImage &skin = images.skin, &without = images.other;
     // Columns of the strip (the view spans x = -10 .. 10 mm at the floor), rows away from the
     // image's top and bottom.
     double skinRed = 0.0, withoutRed = 0.0, truthRed = 0.0, skinSquared = 0.0, withoutSquared = 0.0;
