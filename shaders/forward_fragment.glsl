@@ -304,21 +304,9 @@ void main() {
             // The lit surface the light reaches first, from where it scatters to this point
             // through the skin: behind it where the skin faces away (transmission), or above it
             // where a nearby occluder shadows skin facing the light.
-            bool facesAway = preskinTransmissionGate(geometricN, L, features);
-            bool castOn = !facesAway && (features & kSkinTransmission) != 0u && shadow.visibility < 1.0 &&
-                          shadow.blockerDistanceM > 0.0;
-            PreskinShadowOccluder occluder = PreskinShadowOccluder(0.0, 1.0, vec2(0.0), vec2(0.0), 0.0);
-            float coverage = 0.0;
-            if (facesAway || castOn) {
-                vec3 readWs = facesAway ? preskinThicknessPointWs(inPositionWs, geometricN, skin.scatterScale) : inPositionWs;
-                occluder = preskinShadowOccluder(shadowMap, shadowClipFromWorld, shadowParams, readWs);
-                if (castOn) {
-                    occluder.distanceM = shadow.blockerDistanceM + preskinShadowSlopeBiasM(occluder.slope, shadowParams);
-                    coverage = preskinOccluderCoverage(
-                        shadowMap, shadowParams, occluder, preskinShadowReceiverSlope(shadowClipFromWorld, geometricN, L),
-                        preskinMixPatchMm(profiles) * 0.001 / max(skin.scatterScale, 1e-6));
-                }
-            }
+            float coverage;
+            PreskinShadowOccluder occluder = preskinSkinOccluder(skin, profiles, shadowMap, shadowClipFromWorld, shadowParams,
+                                                                 inPositionWs, shadow, L, features, coverage);
             vec3 sphereT = inSphereTransmittance;
             if (!kSkinSphereTransmittancePerVertex)
                 sphereT = preskinSkinSphereTransmittance(profiles, transmittanceLut, skin.curvaturePerMm, geometricN, L,

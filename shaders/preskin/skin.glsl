@@ -351,9 +351,10 @@ vec3 preskinSkinShadow(PreskinSkinSurface s, PreskinProfileMix m, sampler2DArray
 //    the occluder's lit side and reaches the point the same way: the occluder read at the point,
 //    its distanceM the shadow filter's mean distance to the occluding texels, times the shadowed
 //    share 1 - visibility and the share of the plane the occluder covers around the plane's point
-//    nearest the receiver (`coverage`, preskinOccluderCoverage). Occluders far beyond the
-//    profile's reach add nothing (T vanishes); the light the receiver's own lit side sends across
-//    the shadow's edge is the penumbra LUT's.
+//    nearest the receiver (`coverage`, preskinOccluderCoverage). preskinSkinOccluder finds the
+//    occluder and its coverage for either case. Occluders far beyond the profile's reach add
+//    nothing (T vanishes); the light the receiver's own lit side sends across the shadow's edge
+//    is the penumbra LUT's.
 // A zero occluder distance adds nothing. Limits: sheets thinner than the shrink read as that
 // thick; the occluder's slope is one texel's; the coverage is four taps.
 vec3 preskinSkinTransmission(PreskinSkinSurface s, PreskinProfileMix m, sampler2DArray transmittanceLut, vec3 L,
@@ -367,6 +368,33 @@ vec3 preskinSkinTransmission(PreskinSkinSurface s, PreskinProfileMix m, sampler2
                  vec3(0.0));
     float share = facesAway ? 1.0 : (1.0 - visibility) * coverage;
     return T * (occluder.cosine * share) * s.transmissionTint * s.albedo / PRESKIN_PI * irradiance;
+}
+
+// The occluder preskinSkinTransmission takes for the light that owns the shadow map (towards L),
+// and in `coverage` the share of its plane it covers: where the skin faces away from the light,
+// read at preskinThicknessPointWs (coverage 1); where it faces the light inside the shadow
+// (`shadow`, the shadow map's sample at the point: visibility below 1, occluders found), read at
+// the point, its distance the filter's mean distance to the occluding texels (the slope bias
+// added back), its coverage within the profiles' local patch (preskinOccluderCoverage);
+// elsewhere none (distance 0).
+PreskinShadowOccluder preskinSkinOccluder(PreskinSkinSurface s, PreskinProfileMix m, sampler2D shadowMap,
+                                          mat4 shadowClipFromWorld, vec4 params, vec3 positionWs,
+                                          PreskinShadowSample shadow, vec3 L, uint features, out float coverage) {
+    coverage = 1.0;
+    bool facesAway = preskinTransmissionGate(s.geometricNormal, L, features);
+    bool shadowed = !facesAway && (features & kSkinTransmission) != 0u && shadow.visibility < 1.0 &&
+                    shadow.blockerDistanceM > 0.0;
+    if (!facesAway && !shadowed) return PreskinShadowOccluder(0.0, 1.0, vec2(0.0), vec2(0.0), 0.0);
+    // One read for either case (a CPU driver runs both sides of a branch its lanes split over).
+    vec3 readWs = facesAway ? preskinThicknessPointWs(positionWs, s.geometricNormal, s.scatterScale) : positionWs;
+    PreskinShadowOccluder o = preskinShadowOccluder(shadowMap, shadowClipFromWorld, params, readWs);
+    if (shadowed) {
+        o.distanceM = shadow.blockerDistanceM + preskinShadowSlopeBiasM(o.slope, params);
+        coverage = preskinOccluderCoverage(shadowMap, params, o,
+                                           preskinShadowReceiverSlope(shadowClipFromWorld, s.geometricNormal, L),
+                                           preskinMixPatchMm(m) * 0.001 / max(s.scatterScale, 1e-6));
+    }
+    return o;
 }
 
 // Transmission alone (the skin facing away from the light), the sphere's transmittance given.
