@@ -172,6 +172,7 @@ void main() {
     shadow.kernelWidthM = 0.0;
     shadow.penumbraWidthM = 0.0;
     shadow.blockerDistanceM = 0.0;
+    shadow.gradientWs = vec3(0.0);
     PreskinShadowSample wideShadow = shadow;  // skin with penumbra scattering: the wide map's
     // Skin's signed curvature in profile 1/mm (the shadow lookup and the skin surface use it).
     float skinCurvaturePerMm = 0.0;
@@ -298,9 +299,7 @@ void main() {
             vec3 L;
             vec3 irradiance;
             preskinLightIncidence(lights[0], inPositionWs, L, irradiance);
-            penumbra = preskinSkinShadow(skin, profiles, penumbraLut, shadow.visibility, shadow.kernelWidthM,
-                                         shadow.penumbraWidthM, wideShadow.visibility, wideShadow.kernelWidthM, frame.wideShadow.z,
-                                         wideShadow.blockerDistanceM, L, features);
+            penumbra = preskinSkinShadow(skin, profiles, penumbraLut, shadow, wideShadow, frame.wideShadow.z, L, features);
             // The lit surface the light reaches first, from where it scatters to this point
             // through the skin: behind it where the skin faces away (transmission), or above it
             // where a nearby occluder shadows skin facing the light.

@@ -26,6 +26,8 @@ struct PreskinShadowSample {
     float kernelWidthM;   // standard deviation of the filter on the light's image plane, metres
     float penumbraWidthM; // of that, the light's own penumbra (a light with a size; 0 for a parallel light)
     float blockerDistanceM; // along the light from the filter's occluding texels (weighted mean) to the receiver; 0: none
+    vec3 gradientWs;      // the visibility's gradient in the light's image plane (per metre, world space): across
+                          // the shadow's edge towards its lit side, 0 where the filter sees no edge
 };
 
 // Where the light enters the body that shadows positionWs: the nearest occluder in the map.
@@ -131,6 +133,8 @@ struct PreskinShadowPcf {
     float varianceTexels;  // the weights' variance (mean of the two axes), texels^2
     float blockerDepth;    // the occluding texels' weighted mean depth (map units); z where none
     float blockerWeight;   // their share of the weights
+    vec2 gradient;         // sum of weight x (lit - visibility) x offset over the weights: the visibility's
+                           // gradient direction in texels (towards the lit side), 0 without an edge
 };
 
 PreskinShadowPcf preskinShadowPcf(sampler2D shadowMap, vec2 t, float mapSize, float z, float bias, vec2 dzPerTexel,
@@ -140,6 +144,8 @@ PreskinShadowPcf preskinShadowPcf(sampler2D shadowMap, vec2 t, float mapSize, fl
     float weightSum = 0.0;  // summed like `sum`, so fully lit gives exactly 1 and fully shadowed 0
     float blockerSum = 0.0;
     float blockerWeight = 0.0;
+    vec2 litMoment = vec2(0.0);  // sums of weight x lit x offset and of weight x offset
+    vec2 moment = vec2(0.0);
     // Column and row k lie at offset origin + step k from t: the lattice's points along its axes
     // (stride > 1), or the texels (stride 1).
     bool sparse = stride > 1.0;
@@ -178,6 +184,8 @@ PreskinShadowPcf preskinShadowPcf(sampler2D shadowMap, vec2 t, float mapSize, fl
                 float lit = occluder >= z - bias + dot(dzPerTexel, texel - t) ? 1.0 : 0.0;
                 sum += w * lit;
                 weightSum += w;
+                litMoment += w * lit * (texel - t);
+                moment += w * (texel - t);
                 blockerSum += w * (1.0 - lit) * occluder;
                 blockerWeight += w * (1.0 - lit);
             }
@@ -196,6 +204,10 @@ PreskinShadowPcf preskinShadowPcf(sampler2D shadowMap, vec2 t, float mapSize, fl
                               wx[2 * i] * wy[2 * j]);
                 sum += dot(w, lit);
                 weightSum += dot(w, vec4(1.0));
+                vec4 dx = vec4(x0, x0 + 1.0, x0 + 1.0, x0);
+                vec4 dy = vec4(y0 + 1.0, y0 + 1.0, y0, y0);
+                litMoment += vec2(dot(w * lit, dx), dot(w * lit, dy));
+                moment += vec2(dot(w, dx), dot(w, dy));
                 vec4 blocked = w * (1.0 - lit);
                 blockerSum += dot(blocked, occluder);
                 blockerWeight += dot(blocked, vec4(1.0));
@@ -208,6 +220,7 @@ PreskinShadowPcf preskinShadowPcf(sampler2D shadowMap, vec2 t, float mapSize, fl
     r.varianceTexels = variance;
     r.blockerDepth = blockerWeight > 0.0 ? blockerSum / blockerWeight : z;
     r.blockerWeight = blockerWeight / weightSum;
+    r.gradient = (litMoment - r.visibility * moment) / weightSum;
     return r;
 }
 
@@ -275,6 +288,10 @@ PreskinShadowSample preskinSampleShadow(sampler2D shadowMap, mat4 shadowClipFrom
     // The weights' standard deviation (mean of the two axes), the filter's width across an edge.
     result.kernelWidthM = sqrt(pcf.varianceTexels) * params.x;
     result.blockerDistanceM = inside ? max(z - pcf.blockerDepth, 0.0) * params.z : 0.0;
+    // The Gaussian's gradient is its first moment over its variance (texels); texel coordinates
+    // change by mapSize / 2 times rows r0, r1 of the transform per metre.
+    vec3 gradient = (pcf.gradient.x * r0 + pcf.gradient.y * r1) * (0.5 * mapSize / max(pcf.varianceTexels, 1e-6));
+    result.gradientWs = inside ? gradient : vec3(0.0);
     return result;
 }
 

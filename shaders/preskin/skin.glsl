@@ -236,15 +236,27 @@ vec3 preskinSoftEdge(vec3 hard, float x, float penumbraMm, vec3 p) {
     return mix(hard, softEdge, penumbraMm * penumbraMm / v2);
 }
 
+// Receiver millimetres per millimetre across a shadow edge in the light's image plane. The light
+// projects the receiver's tangent plane onto its image plane, shortening only the direction in
+// it that climbs towards the light, by N.L; a distance across an edge is stretched by
+// 1 / sqrt(1 - (m . N)^2), m the unit direction across the edge in the image plane: 1 / N.L for
+// an edge facing the light's approach, 1 for one running along it. m is along the visibility's
+// gradient (PreskinShadowSample::gradientWs, any length); without one (no edge in the filter),
+// the largest, 1 / N.L. Clamped to 5 near the terminator.
+float preskinEdgeStretch(vec3 N, vec3 L, vec3 gradientWs) {
+    float m2 = dot(gradientWs, gradientWs);
+    float mN = dot(gradientWs, N);
+    float c = m2 > 0.0 ? sqrt(max(1.0 - mN * mN / m2, 0.0)) : abs(dot(N, L));
+    return 1.0 / max(c, 0.2);
+}
+
 // Per-channel shadow for skin given the channels' widths (preskinPenumbraChannelWidths; read only
-// with a penumbra), the two public forms' common part.
-vec3 preskinSkinShadow(PreskinSkinSurface s, PreskinProfileMix m, sampler2DArray penumbraLut, float visibility,
-                       float filterWidthLightM, float penumbraWidthLightM, vec3 channelWidthsMm, vec3 L,
-                       uint features) {
+// with a penumbra) and the receiver's profile mm per metre across the edge in the light's image
+// plane, the two public forms' common part.
+vec3 preskinSkinShadow(PreskinProfileMix m, sampler2DArray penumbraLut, float visibility, float filterWidthLightM,
+                       float penumbraWidthLightM, vec3 channelWidthsMm, float toProfileMm, uint features) {
     // Fully lit or fully shadowed: the LUT's end columns are exactly 1 and 0, skip the fetch.
     if ((features & kSkinPenumbra) == 0u || visibility <= 0.0 || visibility >= 1.0) return vec3(visibility);
-    float slope = max(abs(dot(s.geometricNormal, L)), 0.2);
-    float toProfileMm = 1000.0 / slope * s.scatterScale;
     float sigmaProfileMm = filterWidthLightM * toProfileMm;
     vec3 hard = preskinPenumbraLut(m, penumbraLut, visibility, sigmaProfileMm);
     if (penumbraWidthLightM <= 0.0) return hard;
@@ -253,18 +265,15 @@ vec3 preskinSkinShadow(PreskinSkinSurface s, PreskinProfileMix m, sampler2DArray
 }
 
 // Per-channel shadow for skin: the penumbra LUT indexed by the filtered visibility and the
-// filter's width on the receiver (the light-plane width stretched by the receiver's slope). The
-// LUT takes the shadow as a hard edge that the filter blurred; a light with a size
-// (penumbraWidthLightM > 0, preskinSampleShadow's) has a soft one (preskinSoftEdge).
-vec3 preskinSkinShadow(PreskinSkinSurface s, PreskinProfileMix m, sampler2DArray penumbraLut, float visibility,
-                       float filterWidthLightM, float penumbraWidthLightM, vec3 L, uint features) {
-    vec3 widths = penumbraWidthLightM > 0.0 ? preskinPenumbraChannelWidths(m, penumbraLut) : vec3(0.0);
-    return preskinSkinShadow(s, m, penumbraLut, visibility, filterWidthLightM, penumbraWidthLightM, widths, L, features);
-}
-
-vec3 preskinSkinShadow(PreskinSkinSurface s, PreskinProfileMix m, sampler2DArray penumbraLut, float visibility,
-                       float filterWidthLightM, vec3 L, uint features) {
-    return preskinSkinShadow(s, m, penumbraLut, visibility, filterWidthLightM, 0.0, L, features);
+// filter's width on the receiver (its width in the light's image plane stretched across the edge,
+// preskinEdgeStretch). The LUT takes the shadow as a hard edge that the filter blurred; a light
+// with a size (shadow.penumbraWidthM > 0, preskinSampleShadow's) has a soft one (preskinSoftEdge).
+vec3 preskinSkinShadow(PreskinSkinSurface s, PreskinProfileMix m, sampler2DArray penumbraLut,
+                       PreskinShadowSample shadow, vec3 L, uint features) {
+    vec3 widths = shadow.penumbraWidthM > 0.0 ? preskinPenumbraChannelWidths(m, penumbraLut) : vec3(0.0);
+    float toProfileMm = 1000.0 * s.scatterScale * preskinEdgeStretch(s.geometricNormal, L, shadow.gradientWs);
+    return preskinSkinShadow(m, penumbraLut, shadow.visibility, shadow.kernelWidthM, shadow.penumbraWidthM, widths,
+                             toProfileMm, features);
 }
 
 // The same with skin's wide shadow map (shaders/shadow_reduce.comp: each texel the nearest depth of
@@ -274,27 +283,31 @@ vec3 preskinSkinShadow(PreskinSkinSurface s, PreskinProfileMix m, sampler2DArray
 // sees the edge (|Phi^-1(visibility)| < 2, blended out by 3) and from the wide map's filter
 // beyond, moved half a wide texel into the shadow (the wide map's edges lie that far on the lit
 // side on average); the penumbra LUT at the wide filter's width returns the profile's hard-edge
-// response there; towards the terminator (N.L from 0.35 down to 0.15) and where the wide map's
+// response there; at the terminator (N.L from 0.1 down to 0.02) and where the wide map's
 // occluders lie within red's reach of the receiver this fades to the shadow map's alone.
-// wideVisibility, wideFilterWidthLightM, wideBlockerDistanceM: the wide map's sample
-// (PreskinShadowSample's visibility, kernelWidthM, blockerDistanceM); wideTexelM: its texel size
-// (m). Where the shadow map's filter is as wide as the wide map's (a light with a
-// size), the shadow map's alone.
-vec3 preskinSkinShadow(PreskinSkinSurface s, PreskinProfileMix m, sampler2DArray penumbraLut, float visibility,
-                       float filterWidthLightM, float penumbraWidthLightM, float wideVisibility,
-                       float wideFilterWidthLightM, float wideTexelM, float wideBlockerDistanceM, vec3 L,
+// wide: the wide map's sample; wideTexelM: its texel size (m). Where the shadow map's filter is as
+// wide as the wide map's (a light with a size), the shadow map's alone.
+vec3 preskinSkinShadow(PreskinSkinSurface s, PreskinProfileMix m, sampler2DArray penumbraLut,
+                       PreskinShadowSample shadow, PreskinShadowSample wide, float wideTexelM, vec3 L,
                        uint features) {
+    float visibility = shadow.visibility;
     if ((features & kSkinPenumbra) == 0u) return vec3(visibility);
     bool fineEdge = visibility > 0.0 && visibility < 1.0;
-    bool wideEdge = wideVisibility > 0.0 && wideVisibility < 1.0;
+    bool wideEdge = wide.visibility > 0.0 && wide.visibility < 1.0;
     if (!fineEdge && !wideEdge) return vec3(visibility);  // far from any edge (the wide map is never lit where this is not)
-    // Towards the terminator the wide kernel stretches over the skin by 1 / N.L and takes in the
+    // Across the edge both maps' filters see, the sharper one's gradient weighing most (their sum
+    // turns smoothly from one to the other as either filter leaves the edge).
+    float toProfileMm = 1000.0 * s.scatterScale *
+                        preskinEdgeStretch(s.geometricNormal, L, shadow.gradientWs + wide.gradientWs);
+    // At the terminator the wide kernel stretches over the skin by up to 1 / N.L and takes in the
     // receiver's own curve, which the diffuse LUT already holds: there the shadow map alone.
-    float wideTrust = smoothstep(0.15, 0.35, dot(s.geometricNormal, L));
-    wideTrust *= 1.0 - smoothstep(0.7, 1.0, filterWidthLightM / max(wideFilterWidthLightM, 1e-12));
-    vec3 widths = penumbraWidthLightM > 0.0 ? preskinPenumbraChannelWidths(m, penumbraLut) : vec3(0.0);
-    vec3 fineOnly =
-        preskinSkinShadow(s, m, penumbraLut, visibility, filterWidthLightM, penumbraWidthLightM, widths, L, features);
+    // (Where that curve rises within red's reach it is also a near occluder, faded below; a fade
+    // from N.L 0.35 lost red's reach on skin the light grazes, half of it at N.L 0.25.)
+    float wideTrust = smoothstep(0.02, 0.1, dot(s.geometricNormal, L));
+    wideTrust *= 1.0 - smoothstep(0.7, 1.0, shadow.kernelWidthM / max(wide.kernelWidthM, 1e-12));
+    vec3 widths = shadow.penumbraWidthM > 0.0 ? preskinPenumbraChannelWidths(m, penumbraLut) : vec3(0.0);
+    vec3 fineOnly = preskinSkinShadow(m, penumbraLut, visibility, shadow.kernelWidthM, shadow.penumbraWidthM, widths,
+                                      toProfileMm, features);
     // An occluder within red's reach of the receiver along the light is the skin's own relief (a
     // crease's wall, an eyelid), not the far occluder over a plane that the penumbra LUT assumes:
     // the wide edge fades in as the occluders' distance grows from 1.5 to 3 RMS widths of the
@@ -303,36 +316,27 @@ vec3 preskinSkinShadow(PreskinSkinSurface s, PreskinProfileMix m, sampler2DArray
     if (int(PRESKIN_PROFILE_MIX_MAX) > 1) for (int i = 1; i < m.count; ++i) {
         if (m.weight[i] > 0.0) widestMm += m.weight[i] / preskinMixMapping(m, i).penumbraWidth.x;
     }
-    wideTrust *= smoothstep(1.5 * widestMm, 3.0 * widestMm, wideBlockerDistanceM * 1000.0 * s.scatterScale);
+    wideTrust *= smoothstep(1.5 * widestMm, 3.0 * widestMm, wide.blockerDistanceM * 1000.0 * s.scatterScale);
     if (wideTrust <= 0.0) return fineOnly;
-    float slope = max(abs(dot(s.geometricNormal, L)), 0.2);
-    float toProfileMm = 1000.0 / slope * s.scatterScale;
-    float sigmaFine = filterWidthLightM * toProfileMm;
-    float sigmaWide = wideFilterWidthLightM * toProfileMm;
+    float sigmaFine = shadow.kernelWidthM * toProfileMm;
+    float sigmaWide = wide.kernelWidthM * toProfileMm;
     float x;
     if (fineEdge) {
         float q = preskinNormalQuantile(visibility);
         x = sigmaFine * q;
         if (wideEdge) {
-            float xWide = sigmaWide * preskinNormalQuantile(wideVisibility) + 0.5 * wideTexelM * toProfileMm;
+            float xWide = sigmaWide * preskinNormalQuantile(wide.visibility) + 0.5 * wideTexelM * toProfileMm;
             x = mix(xWide, x, smoothstep(3.0, 2.0, abs(q)));
             x = clamp(x, sigmaFine * (q - 0.5), sigmaFine * (q + 0.5));  // where the fine filter puts it
         }
     } else {
         // The fine filter is saturated: the edge lies beyond its reach, 3 sigma, on the side it says.
-        x = sigmaWide * preskinNormalQuantile(wideVisibility) + 0.5 * wideTexelM * toProfileMm;
+        x = sigmaWide * preskinNormalQuantile(wide.visibility) + 0.5 * wideTexelM * toProfileMm;
         x = visibility >= 1.0 ? max(x, 3.0 * sigmaFine) : min(x, -3.0 * sigmaFine);
     }
-    vec3 wide = preskinPenumbraLut(m, penumbraLut, preskinNormalCdf(x / sigmaWide), sigmaWide);
-    if (penumbraWidthLightM > 0.0) wide = preskinSoftEdge(wide, x, penumbraWidthLightM * toProfileMm, widths);
-    return mix(fineOnly, wide, wideTrust);
-}
-
-vec3 preskinSkinShadow(PreskinSkinSurface s, PreskinProfileMix m, sampler2DArray penumbraLut, float visibility,
-                       float filterWidthLightM, float wideVisibility, float wideFilterWidthLightM, float wideTexelM,
-                       float wideBlockerDistanceM, vec3 L, uint features) {
-    return preskinSkinShadow(s, m, penumbraLut, visibility, filterWidthLightM, 0.0, wideVisibility,
-                             wideFilterWidthLightM, wideTexelM, wideBlockerDistanceM, L, features);
+    vec3 edge = preskinPenumbraLut(m, penumbraLut, preskinNormalCdf(x / sigmaWide), sigmaWide);
+    if (shadow.penumbraWidthM > 0.0) edge = preskinSoftEdge(edge, x, shadow.penumbraWidthM * toProfileMm, widths);
+    return mix(fineOnly, edge, wideTrust);
 }
 
 // Light that reaches the skin through the skin from a lit surface the light meets first

@@ -40,6 +40,8 @@
 #include <cstdio>
 #include <limits>
 #include <optional>
+#include <ostream>
+#include <string>
 
 namespace preskin::test {
 namespace {
@@ -325,10 +327,24 @@ TEST_F(SkinPenumbra, SkinShadowIsTheHardEdgeWhereTheFilterPutsIt) {
 }
 
 // The issue's own measure of penumbra scattering: at a straight cast-shadow edge on a plane, the
-// profile across the edge matches the ray-traced diffusion reference.
-TEST_F(SkinPenumbra, StraightEdgeMatchesTheDiffusionReference) {
+// profile across the edge matches the ray-traced diffusion reference, with the light high and
+// across the edge, and low (14.5 degrees above the plane: N.L 0.25) approaching across the edge
+// and turned 60 degrees along it, where the light's image plane foreshortens the receiver by 4
+// and by 1.14 across the edge.
+struct EdgeLight {
+    const char* name;
+    float elevationDeg;
+    float azimuthDeg;
+};
+
+std::string edgeLightName(const ::testing::TestParamInfo<EdgeLight>& p) { return p.param.name; }
+void PrintTo(const EdgeLight& light, std::ostream* os) { *os << light.name; }
+
+class SkinPenumbraEdge : public GpuTest, public ::testing::WithParamInterface<EdgeLight> {};
+
+TEST_P(SkinPenumbraEdge, StraightEdgeMatchesTheDiffusionReference) {
     // Skin plane 0.4 m wide (the shadow map fitted to it as to a head), the default 2048 map.
-    const StraightEdgeScene edge = straightEdgeScene(0.4f);
+    const StraightEdgeScene edge = straightEdgeScene(0.4f, GetParam().elevationDeg, GetParam().azimuthDeg);
     RenderSettings settings;
     settings.specular = false;
     const Environment dark = Environment::constant(glm::vec3(0.0f));
@@ -343,14 +359,20 @@ TEST_F(SkinPenumbra, StraightEdgeMatchesTheDiffusionReference) {
     const glm::dvec3 worst = largestColumnDifference(skin, truth);
     const glm::dvec3 worstPlain = largestColumnDifference(plain, truth);
     std::printf(
-        "[ skin     ] straight edge against the reference: largest difference / lit level R %.3f G %.3f B "
-        "%.3f (plain shadow R %.3f G %.3f B %.3f)\n",
-        worst.r, worst.g, worst.b, worstPlain.r, worstPlain.g, worstPlain.b);
+        "[ skin     ] straight edge, light %.1f degrees up, %.0f along: largest difference / lit level R %.3f G "
+        "%.3f B %.3f (plain shadow R %.3f G %.3f B %.3f)\n",
+        double(GetParam().elevationDeg), double(GetParam().azimuthDeg), worst.r, worst.g, worst.b, worstPlain.r,
+        worstPlain.g, worstPlain.b);
     for (int c = 0; c < 3; ++c) {
         EXPECT_LT(worst[c], 0.05) << "channel " << c;
         EXPECT_GT(worstPlain[c], worst[c]) << "channel " << c << ": the check should tell penumbra scattering apart";
     }
 }
+
+INSTANTIATE_TEST_SUITE_P(Lights, SkinPenumbraEdge,
+                         ::testing::Values(EdgeLight{"High", 63.434949f, 0.0f}, EdgeLight{"LowAcross", 30.0f, 0.0f},
+                                           EdgeLight{"LowTurned", 14.5f, 60.0f}),
+                         edgeLightName);
 
 TEST_F(SkinPenumbra, WideShadowReachMustBeAFiniteLength) {
     const Scene scene = makeScene({{makeQuad(0.1f, 2), glm::mat4(1.0f)}}, {});

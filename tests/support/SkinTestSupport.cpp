@@ -228,7 +228,7 @@ SphereAgreement compareWithSkinReference(const RenderedImage& image, const View&
     return a;
 }
 
-StraightEdgeScene straightEdgeScene(float planeM) {
+StraightEdgeScene straightEdgeScene(float planeM, float lightElevationDeg, float lightAzimuthDeg) {
     const glm::mat4 turn = glm::rotate(glm::mat4(1.0f), glm::radians(25.0f), glm::vec3(0.0f, 0.0f, 1.0f));
     Material plate;
     plate.baseColorFactor = glm::vec4(0.2f, 0.2f, 0.2f, 1.0f);
@@ -238,22 +238,27 @@ StraightEdgeScene straightEdgeScene(float planeM) {
     plane.material = 0;
     Primitive caster = makeQuad(0.6f, 2);
     caster.material = 1;
-    StraightEdgeScene e;
-    e.scene = makeScene(
-        {{plane, glm::mat4(1.0f)}, {caster, turn * glm::translate(glm::mat4(1.0f), glm::vec3(-0.315f, 0.0f, 0.03f))}},
-        {skinMaterial(glm::vec3(0.8f, 0.6f, 0.5f)), plate});
+    // The light travels along (cos a cos e, sin a cos e, -sin e) before the turn: the plate's edge,
+    // 30 mm up, casts its shadow at x' = 0 from x' = -30 mm cot(e) cos(a).
+    const float e = glm::radians(lightElevationDeg), a = glm::radians(lightAzimuthDeg);
+    const float edgeM = -0.03f * std::cos(e) / std::sin(e) * std::cos(a);
+    StraightEdgeScene out;
+    out.scene = makeScene({{plane, glm::mat4(1.0f)},
+                           {caster, turn * glm::translate(glm::mat4(1.0f), glm::vec3(edgeM - 0.3f, 0.0f, 0.03f))}},
+                          {skinMaterial(glm::vec3(0.8f, 0.6f, 0.5f)), plate});
     Light light;
     light.type = LightType::Directional;
-    light.directionWs = glm::normalize(glm::vec3(turn * glm::vec4(0.5f, 0.0f, -1.0f, 0.0f)));
+    light.directionWs = glm::normalize(
+        glm::vec3(turn * glm::vec4(std::cos(a) * std::cos(e), std::sin(a) * std::cos(e), -std::sin(e), 0.0f)));
     light.intensity = 3.0f;
     light.castsShadow = true;
-    e.scene.lights = {light};
+    out.scene.lights = {light};
     const float spanM = 0.012f;
     const glm::mat4 worldFromView = glm::inverse(glm::lookAt(glm::vec3(0.0f, 0.0f, 0.08f), glm::vec3(0.0f),
                                                              glm::vec3(turn * glm::vec4(0.0f, 1.0f, 0.0f, 0.0f))));
-    const float aspect = float(e.width) / float(e.height);
-    e.view = perspectiveView(worldFromView, 2.0f * std::atan(0.5f * spanM / aspect / 0.08f), aspect, 0.01f, 1.0f);
-    return e;
+    const float aspect = float(out.width) / float(out.height);
+    out.view = perspectiveView(worldFromView, 2.0f * std::atan(0.5f * spanM / aspect / 0.08f), aspect, 0.01f, 1.0f);
+    return out;
 }
 
 glm::dvec3 largestColumnDifference(const RenderedImage& render, const ReferenceImage& truth) {

@@ -84,18 +84,19 @@ SphereAgreement compareWithSkinReference(const RenderedImage& image, const View&
                                          double roughness, const DiffuseLookup& diffuse);
 
 // The straight cast-shadow edge of the penumbra and diffusion-method tests: a skin plane `planeM`
-// wide in z = 0 (albedo 0.8, 0.6, 0.5), a dark plate 30 mm above it over x' < -15 mm, the shadow
-// light tilted 26.6 degrees across the edge, which falls at x' = 0; x' is x turned 25 degrees about
-// the plane's normal (with the plate, the light and the view), so the edge runs across the shadow
-// map's texel rows, as edges in scenes do. Seen from 80 mm above: 12 mm across the edge in
-// width x height pixels.
+// wide in z = 0 (albedo 0.8, 0.6, 0.5), a dark plate 30 mm above it over x' below its edge, the
+// shadow light `lightElevationDeg` above the plane (default 63.4: tilted 26.6 degrees across the
+// edge), its approach turned `lightAzimuthDeg` from across the edge towards along it; the edge
+// falls at x' = 0, x' being x turned 25 degrees about the plane's normal (with the plate, the
+// light and the view), so the edge runs across the shadow map's texel rows, as edges in scenes
+// do. Seen from 80 mm above: 12 mm across the edge in width x height pixels.
 struct StraightEdgeScene {
     Scene scene;
     View view;
     uint32_t width = 128;
     uint32_t height = 8;
 };
-StraightEdgeScene straightEdgeScene(float planeM);
+StraightEdgeScene straightEdgeScene(float planeM, float lightElevationDeg = 63.434949f, float lightAzimuthDeg = 0.0f);
 
 // Per column (rows averaged), the largest |render - truth| over the truth's lit level (the mean
 // of its four rightmost columns: the edge's lit side), per channel.
