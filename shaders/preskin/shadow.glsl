@@ -144,8 +144,8 @@ PreskinShadowPcf preskinShadowPcf(sampler2D shadowMap, vec2 t, float mapSize, fl
     float weightSum = 0.0;  // summed like `sum`, so fully lit gives exactly 1 and fully shadowed 0
     float blockerSum = 0.0;
     float blockerWeight = 0.0;
-    vec2 litMoment = vec2(0.0);  // sums of weight x lit x offset and of weight x offset
-    vec2 moment = vec2(0.0);
+    vec2 litMoment = vec2(0.0);     // sum of weight x lit x offset
+    vec2 sparseMoment = vec2(0.0);  // sum of weight x offset at stride s > 1 (separable at stride 1)
     // Column and row k lie at offset origin + step k from t: the lattice's points along its axes
     // (stride > 1), or the texels (stride 1).
     bool sparse = stride > 1.0;
@@ -164,12 +164,14 @@ PreskinShadowPcf preskinShadowPcf(sampler2D shadowMap, vec2 t, float mapSize, fl
     float sumY = 0.0;
     float varianceX = 0.0;
     float varianceY = 0.0;
+    vec2 weightMoment = vec2(0.0);  // the weights' first moments along each axis
     for (int k = 0; k < 2 * G; ++k) {
         vec2 d = origin + step * float(k);
         wx[k] = max(exp(-d.x * d.x / twoVariance) - window, 0.0);
         wy[k] = max(exp(-d.y * d.y / twoVariance) - window, 0.0);
         sumX += wx[k];
         sumY += wy[k];
+        weightMoment += vec2(wx[k] * d.x, wy[k] * d.y);
         varianceX += wx[k] * d.x * d.x;
         varianceY += wy[k] * d.y * d.y;
     }
@@ -185,7 +187,7 @@ PreskinShadowPcf preskinShadowPcf(sampler2D shadowMap, vec2 t, float mapSize, fl
                 sum += w * lit;
                 weightSum += w;
                 litMoment += w * lit * (texel - t);
-                moment += w * (texel - t);
+                sparseMoment += w * (texel - t);
                 blockerSum += w * (1.0 - lit) * occluder;
                 blockerWeight += w * (1.0 - lit);
             }
@@ -202,12 +204,12 @@ PreskinShadowPcf preskinShadowPcf(sampler2D shadowMap, vec2 t, float mapSize, fl
                 vec4 lit = vec4(greaterThanEqual(occluder, receiver));
                 vec4 w = vec4(wx[2 * i] * wy[2 * j + 1], wx[2 * i + 1] * wy[2 * j + 1], wx[2 * i + 1] * wy[2 * j],
                               wx[2 * i] * wy[2 * j]);
-                sum += dot(w, lit);
+                vec4 wLit = w * lit;
+                float litSum = wLit.x + wLit.y + wLit.z + wLit.w;
+                sum += litSum;
                 weightSum += dot(w, vec4(1.0));
-                vec4 dx = vec4(x0, x0 + 1.0, x0 + 1.0, x0);
-                vec4 dy = vec4(y0 + 1.0, y0 + 1.0, y0, y0);
-                litMoment += vec2(dot(w * lit, dx), dot(w * lit, dy));
-                moment += vec2(dot(w, dx), dot(w, dy));
+                // The lit weights' first moment: the texels' offsets are x0 + (0, 1, 1, 0), y0 + (1, 1, 0, 0).
+                litMoment += vec2(x0, y0) * litSum + vec2(wLit.y + wLit.z, wLit.x + wLit.y);
                 vec4 blocked = w * (1.0 - lit);
                 blockerSum += dot(blocked, occluder);
                 blockerWeight += dot(blocked, vec4(1.0));
@@ -220,6 +222,7 @@ PreskinShadowPcf preskinShadowPcf(sampler2D shadowMap, vec2 t, float mapSize, fl
     r.varianceTexels = variance;
     r.blockerDepth = blockerWeight > 0.0 ? blockerSum / blockerWeight : z;
     r.blockerWeight = blockerWeight / weightSum;
+    vec2 moment = sparse ? sparseMoment : weightMoment * vec2(sumY, sumX);  // sum of weight x offset
     r.gradient = (litMoment - r.visibility * moment) / weightSum;
     return r;
 }
