@@ -18,10 +18,11 @@
 //    receiver in profile mm): green and blue within 0.02, red within 0.06 (its response is
 //    renormalised to the wide map's window).
 //  - Against the ray-traced diffusion reference (DiffusionReference) at a straight cast-shadow
-//    edge on a plane under a plate (the light's tilt across the edge 27 degrees, the default
-//    2048 shadow map fitted to the skin): the red, green and blue profiles across the edge (rows
-//    averaged) within 5 % of each channel's lit level, where the plain shadow (no penumbra
-//    scattering) is off by more.
+//    edge on a plane under a plate (the default 2048 shadow map fitted to the skin), under three
+//    lights: 63 degrees above the plane across the edge, 30 degrees across it, and 14.5 degrees
+//    turned 60 degrees along it (the receiver's stretch across the edge is then 1.14, not
+//    1 / N.L = 4): the red, green and blue profiles across the edge (rows averaged) within 5 % of
+//    each channel's lit level, where the plain shadow (no penumbra scattering) is off by more.
 #include "support/GpuTest.h"
 #include "support/ImageCompare.h"
 #include "support/SkinTestSupport.h"
