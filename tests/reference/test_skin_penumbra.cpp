@@ -328,10 +328,10 @@ TEST_F(SkinPenumbra, SkinShadowIsTheHardEdgeWhereTheFilterPutsIt) {
 }
 
 // The issue's own measure of penumbra scattering: at a straight cast-shadow edge on a plane, the
-// profile across the edge matches the ray-traced diffusion reference, with the light high and
-// across the edge, and low (14.5 degrees above the plane: N.L 0.25) approaching across the edge
-// and turned 60 degrees along it, where the light's image plane foreshortens the receiver by 4
-// and by 1.14 across the edge.
+// profile across the edge matches the ray-traced diffusion reference, with the light 63 and 30
+// degrees above the plane approaching across the edge, and 14.5 degrees above it (N.L 0.25)
+// turned 60 degrees along the edge, where the light's image plane foreshortens the receiver by 4
+// but by only 1.14 across the edge.
 struct EdgeLight {
     const char* name;
     float elevationDeg;
