@@ -7,7 +7,9 @@
 // renormalised. The skin's normal basis (averaged normals, <preskin/NormalBasis.h>) moves like
 // the normal: each vector takes the normal's morph delta in proportion to its length along the
 // rest normal and the normal's transform and scale, so rigid motion carries it exactly (the rest
-// pose's neighbourhood is kept: a fold that forms is seen by curvature, not by the basis). A
+// pose's neighbourhood is kept: a fold that forms is seen by curvature, not by the basis); its
+// opposing neighbours' normal integrals move by the normal's transform and scale alone, their
+// centroid's offset by the blended matrix's 3x3 (as a tangent does). A
 // skinned vertex ends in world space (the joint matrices put it there), an unskinned one stays in
 // object space. uv, tangent.w and curvature are copied (curvature.comp
 // recomputes curvature afterwards where the material asks for it). A normal or tangent that the
@@ -50,8 +52,8 @@ void main() {
     vec3 tangent = restTangent;
     uint basisSrc = (push.vertices.x + v) * kNormalBasisFloats;
     uint basisDst = (push.vertices.y + v) * kNormalBasisFloats;
-    vec3 basis[kNormalBasisCount];
-    for (uint b = 0; b < kNormalBasisCount; ++b)
+    vec3 basis[2 * kNormalBasisCount + 1];  // averaged, opposing, centroid offset
+    for (uint b = 0; b < 2 * kNormalBasisCount + 1; ++b)
         basis[b] = vec3(restBasis[basisSrc + 3 * b], restBasis[basisSrc + 3 * b + 1], restBasis[basisSrc + 3 * b + 2]);
 
     uint targets = push.vertices.w;
@@ -67,6 +69,7 @@ void main() {
     vec3 normalDelta = normal - restNormal;
     for (uint b = 0; b < kNormalBasisCount; ++b) basis[b] += dot(basis[b], restNormal) * normalDelta;
     mat3 normalTransform = mat3(1.0);
+    mat3 linear = mat3(1.0);
     if (push.offsets.y != 0xffffffffu) {
         DeformInfluences inf = influences[push.offsets.y + v];
         uint jointBase = push.offsets.w;
@@ -76,7 +79,7 @@ void main() {
             m += inf.weights1.x * joints[jointBase + inf.joints1.x] + inf.weights1.y * joints[jointBase + inf.joints1.y] +
                  inf.weights1.z * joints[jointBase + inf.joints1.z] + inf.weights1.w * joints[jointBase + inf.joints1.w];
         position = (m * vec4(position, 1.0)).xyz;
-        mat3 linear = mat3(m);
+        linear = mat3(m);
         // The inverse transpose up to a positive factor: the cofactor matrix times sign(det).
         mat3 cofactor = mat3(cross(linear[1], linear[2]), cross(linear[2], linear[0]), cross(linear[0], linear[1]));
         normalTransform = (determinant(linear) < 0.0 ? -1.0 : 1.0) * cofactor;
@@ -91,8 +94,8 @@ void main() {
     store3(dst + kVertexTangent, tl > 0.0 && !isinf(tl) ? tangent / tl : restTangent);
     for (uint i = kVertexTangent + 3; i < kVertexFloats; ++i) outVertices[dst + i] = rest[src + i];
     float basisScale = nl > 0.0 && !isinf(nl) ? 1.0 / nl : 1.0;
-    for (uint b = 0; b < kNormalBasisCount; ++b) {
-        vec3 m = basisScale * (normalTransform * basis[b]);
+    for (uint b = 0; b < 2 * kNormalBasisCount + 1; ++b) {
+        vec3 m = b < 2 * kNormalBasisCount ? basisScale * (normalTransform * basis[b]) : linear * basis[b];
         outBasis[basisDst + 3 * b] = m.x;
         outBasis[basisDst + 3 * b + 1] = m.y;
         outBasis[basisDst + 3 * b + 2] = m.z;

@@ -70,6 +70,10 @@ layout(location = 10) in vec3 inSphereTransmittance;     // kSkinSphereTransmitt
 layout(location = 11) centroid in vec3 inNormalRedWs;             // skin: per-channel prefiltered geometric normals
 layout(location = 12) centroid in vec3 inNormalGreenWs;
 layout(location = 13) centroid in vec3 inNormalBlueWs;
+layout(location = 14) in vec3 inOpposingRedWs;  // skin: the opposing neighbours per channel (preskinOpposingNormal)
+layout(location = 15) in vec3 inOpposingGreenWs;
+layout(location = 16) in vec3 inOpposingBlueWs;
+layout(location = 17) in vec3 inOpposingCentroidWs;
 
 layout(location = 0) out vec4 outColor;
 #ifdef PRESKIN_TEXTURE_IRRADIANCE
@@ -312,6 +316,12 @@ void main() {
                                                          features);
             transmitted = preskinSkinTransmission(skin, profiles, transmittanceLut, L, irradiance, occluder, sphereT,
                                                   shadow.visibility, coverage, features);
+            // The neighbours facing this point across a gap, a contact or a thin part: the same
+            // light as transmission's where both see the same surface, so the larger of the two.
+            transmitted = max(transmitted, preskinSkinOpposingLight(skin, shadowMap, shadowClipFromWorld, shadowParams,
+                                                                    inPositionWs, inOpposingCentroidWs, inOpposingRedWs,
+                                                                    inOpposingGreenWs, inOpposingBlueWs, L, irradiance,
+                                                                    features));
             PreskinSkinLightParts lit;
             if (kCapShadowLight)
                 lit = preskinSkinLightParts(skin, lighting, profiles, diffuseLut, V,

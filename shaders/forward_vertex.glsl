@@ -29,6 +29,8 @@ layout(location = kAttributeTangent) in vec4 inTangentOs;
 layout(location = kAttributeUv0) in vec2 inUv0;
 layout(location = kAttributeCurvature) in float inCurvature;
 layout(location = kAttributeNormalBasis) in vec3 inNormalBasis[kNormalBasisCount];
+layout(location = kAttributeOpposing) in vec3 inOpposing[kNormalBasisCount];
+layout(location = kAttributeOpposingCentroid) in vec3 inOpposingCentroid;
 
 layout(location = 0) out vec3 outPositionWs;
 layout(location = 1) out vec3 outNormalWs;
@@ -44,6 +46,10 @@ layout(location = 10) out vec3 outSphereTransmittance;     // kSkinSphereTransmi
 layout(location = 11) out vec3 outNormalRedWs;             // skin: the per-channel prefiltered geometric normals
 layout(location = 12) out vec3 outNormalGreenWs;
 layout(location = 13) out vec3 outNormalBlueWs;
+layout(location = 14) out vec3 outOpposingRedWs;           // skin: the opposing neighbours per channel
+layout(location = 15) out vec3 outOpposingGreenWs;
+layout(location = 16) out vec3 outOpposingBlueWs;
+layout(location = 17) out vec3 outOpposingCentroidWs;      // their centroid, from the vertex
 
 void main() {
     uint eye = uint(PRESKIN_EYE_INDEX);
@@ -56,6 +62,10 @@ void main() {
     outNormalRedWs = outNormalWs;
     outNormalGreenWs = outNormalWs;
     outNormalBlueWs = outNormalWs;
+    outOpposingRedWs = vec3(0.0);
+    outOpposingGreenWs = vec3(0.0);
+    outOpposingBlueWs = vec3(0.0);
+    outOpposingCentroidWs = mat3(instance.worldFromObject) * inOpposingCentroid;
     // The material's profile mix at this vertex, as the fragment stage finds it at its texel.
     PreskinProfileMix profile = materialProfileMix(
         materialBlendedProfiles() > 0 ? textureLod(profileWeightTexture, inUv0, 0.0).rgb : vec3(0.0));
@@ -73,6 +83,17 @@ void main() {
         outNormalRedWs = normalWorldFromObject * preskinPrefilteredNormal(inNormalOs, inNormalBasis, weights[0]);
         outNormalGreenWs = normalWorldFromObject * preskinPrefilteredNormal(inNormalOs, inNormalBasis, weights[1]);
         outNormalBlueWs = normalWorldFromObject * preskinPrefilteredNormal(inNormalOs, inNormalBasis, weights[2]);
+        // The opposing sums keep their length (a share of the light), not the transform's scale.
+        vec3 o[3] = vec3[3](preskinOpposingNormal(inOpposing, weights[0]), preskinOpposingNormal(inOpposing, weights[1]),
+                            preskinOpposingNormal(inOpposing, weights[2]));
+        for (int c = 0; c < 3; ++c) {
+            vec3 ws = normalWorldFromObject * o[c];
+            float len = length(ws);
+            o[c] = len > 0.0 ? ws * (length(o[c]) / len) : vec3(0.0);
+        }
+        outOpposingRedWs = o[0];
+        outOpposingGreenWs = o[1];
+        outOpposingBlueWs = o[2];
     }
     outCurvaturePerM = inCurvature * instance.params.x;
     outEye = eye;

@@ -374,6 +374,33 @@ vec3 preskinSkinTransmission(PreskinSkinSurface s, PreskinProfileMix m, sampler2
     return T * (occluder.cosine * share) * s.transmissionTint * s.albedo / PRESKIN_PI * irradiance;
 }
 
+// Light from the neighbours that face the point across an air gap or a contact, or from the
+// other side of a thin part (the upper lip's underside facing the lit lower lip, a fold facing
+// its wall, the far side of an ear): their profile-weighted normal integral per channel,
+// opposing* = sum_b a_cb O_b (preskinOpposingNormal of preskin/skin_vertex.glsl, world space), dotted
+// with L is the share of the light on them that reaches the point (for a sheet d thick,
+// the profile's transmittance T(d) times the cosine). Whether the light reaches them: the shadow
+// map at their centroid (centroidOffsetWs from positionWs), lifted kSkinOpposingLiftMm towards the
+// point, filtered over kSkinOpposingFilterMm, occluders nearer than kSkinOpposingReliefMm along
+// the light not counted: the relief that forms the gap (a lip over the lips' line, a helix over its
+// fold) shadows the centroid, deep in the gap, but not the lit surface around it that sends the
+// light, while a far occluder (a nose, a hat) shadows both. Distances in profile millimetres.
+// The light transmission takes from the far side of a thin part is also here: take the larger.
+// Limits: one shadow lookup for the whole neighbourhood; neighbours on other meshes are not seen.
+vec3 preskinSkinOpposingLight(PreskinSkinSurface s, sampler2D shadowMap, mat4 shadowClipFromWorld, vec4 params,
+                              vec3 positionWs, vec3 centroidOffsetWs, vec3 opposingR, vec3 opposingG,
+                              vec3 opposingB, vec3 L, vec3 irradiance, uint features) {
+    vec3 facing = vec3(dot(opposingR, L), dot(opposingG, L), dot(opposingB, L));
+    if ((features & kSkinTransmission) == 0u || max(max(facing.r, facing.g), facing.b) <= 0.0) return vec3(0.0);
+    float toWorldM = 0.001 / max(s.scatterScale, 1e-6);
+    vec3 towards = normalize(opposingR + opposingG + opposingB);
+    vec3 centroidWs = positionWs + centroidOffsetWs + towards * (kSkinOpposingLiftMm * toWorldM);
+    PreskinShadowSample lit = preskinSampleShadow(
+        shadowMap, shadowClipFromWorld, params, centroidWs, towards,
+        PreskinShadowFilter(2, 0.0, kSkinOpposingReliefMm * toWorldM, 1.0), 0.0, kSkinOpposingFilterMm * toWorldM);
+    return max(facing, vec3(0.0)) * lit.visibility * s.transmissionTint * s.albedo / PRESKIN_PI * irradiance;
+}
+
 // The occluder preskinSkinTransmission takes for the light that owns the shadow map (towards L),
 // and in `coverage` the share of its plane it covers: where the skin faces away from the light,
 // read at preskinThicknessPointWs (coverage 1); where it faces the light inside the shadow

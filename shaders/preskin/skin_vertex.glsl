@@ -28,6 +28,16 @@ vec3 preskinPrefilteredNormal(vec3 normal, vec3 basis[kNormalBasisCount], vec4 w
     return n;
 }
 
+// The opposing neighbours seen through one colour channel's profile (<preskin/NormalBasis.h>):
+// sum_b a_b O_b for `opposing` the vertex's O_0 .. O_3 and `weights` the channel's basis weights,
+// the vector whose dot product with a light's direction is the share of the light falling on them
+// that reaches the vertex (preskinSkinOpposingLight). Not unit length; interpolate as it is.
+vec3 preskinOpposingNormal(vec3 opposing[kNormalBasisCount], vec4 weights) {
+    vec3 n = vec3(0.0);
+    for (int b = 0; b < int(kNormalBasisCount); ++b) n += weights[b] * opposing[b];
+    return n;
+}
+
 // The shadow lookup's lift for curvaturePerMm (profile 1/mm): x the height in world metres of the
 // osculating sphere's sagitta over the local patch (radius rho = m.diffuseNoL.w profile mm,
 // LutSet::localPatchMm), (1 - cos(rho |k|)) / |k|; y the N.L above which the lift has faded out,

@@ -16,9 +16,10 @@ PRESKIN_CONST(uint, kVertexPosition, 0)
 PRESKIN_CONST(uint, kVertexNormal, 3)
 PRESKIN_CONST(uint, kVertexTangent, 6)
 PRESKIN_CONST(uint, kVertexCurvature, 12)
-// A vertex's skin normal basis in a float[] buffer: kNormalBasisCount vec3 (NormalBasis of
-// <preskin/NormalBasis.h>), a second buffer laid out like the vertices.
-PRESKIN_CONST(uint, kNormalBasisFloats, 12)
+// A vertex's skin normal basis in a float[] buffer (NormalBasis of <preskin/NormalBasis.h>):
+// kNormalBasisCount vec3 averaged normals, kNormalBasisCount vec3 opposing normals, the opposing
+// centroid's offset (vec3); a second buffer laid out like the vertices.
+PRESKIN_CONST(uint, kNormalBasisFloats, 27)
 // Morph deltas per vertex and target: position 3, normal 3, tangent 3.
 PRESKIN_CONST(uint, kDeltaFloats, 9)
 

@@ -90,6 +90,24 @@ double sphereIntegral(double sigmaMm, double radiusMm) {
     return 1.0 + sum * h / 3.0;
 }
 
+// The opposing neighbours' integral along n_x on the same sphere: over the far hemisphere,
+// int c G(chord) (n_y . n_x) dA with c = min(-10 n_y . n_x, 1) (<preskin/NormalBasis.h>).
+double sphereOpposingIntegral(double sigmaMm, double radiusMm) {
+    const int n = 4000;
+    const double h = 0.5 * kPi / n;
+    double sum = 0.0;
+    for (int i = 0; i <= n; ++i) {
+        const double psi = 0.5 * kPi + i * h;
+        const double chord = 2.0 * radiusMm * std::sin(0.5 * psi);
+        const double c = std::min(-10.0 * std::cos(psi), 1.0);
+        const double f = chord <= kReachMm ? c * gaussian2d(sigmaMm, chord) * std::cos(psi) * 2.0 * kPi * radiusMm *
+                                                 radiusMm * std::sin(psi)
+                                           : 0.0;
+        sum += f * (i == 0 || i == n ? 1.0 : (i % 2 ? 4.0 : 2.0));
+    }
+    return sum * h / 3.0;
+}
+
 }  // namespace
 
 TEST(NormalBasis, PlaneGivesItsNormal) {
@@ -99,7 +117,7 @@ TEST(NormalBasis, PlaneGivesItsNormal) {
     ASSERT_EQ(basis.size(), m.positions.size());
     for (size_t v = 0; v < m.positions.size(); ++v)
         for (int b = 0; b < preskin::kNormalBasisCount; ++b)
-            EXPECT_LT(glm::length(basis[v][size_t(b)] - glm::vec3(0.0f, 1.0f, 0.0f)), 1e-5f) << "vertex " << v;
+            EXPECT_LT(glm::length(basis[v].averaged[size_t(b)] - glm::vec3(0.0f, 1.0f, 0.0f)), 1e-5f) << "vertex " << v;
 }
 
 TEST(NormalBasis, SphereGivesTheNormalTimesTheHemisphereIntegral) {
@@ -112,16 +130,82 @@ TEST(NormalBasis, SphereGivesTheNormalTimesTheHemisphereIntegral) {
             double worst = 0.0, worstAngle = 0.0;
             for (size_t v = 0; v < m.positions.size(); ++v) {
                 if (std::abs(m.normals[v].y) > 0.8f) continue;  // away from the poles' thin triangles
-                const glm::dvec3 got(basis[v][size_t(b)]);
+                const glm::dvec3 got(basis[v].averaged[size_t(b)]);
                 worst = std::max(worst, std::abs(glm::length(got) - expected));
                 worstAngle = std::max(
                     worstAngle, std::acos(std::min(1.0, glm::dot(glm::normalize(got), glm::dvec3(m.normals[v])))));
             }
-            EXPECT_LT(worst, 0.02 * expected + 1e-3)
+            // (2.5 %: the cut at 90 degrees is taken sample by sample on the 96 x 48 mesh.)
+            EXPECT_LT(worst, 0.025 * expected + 1e-3)
                 << "radius " << radiusMm << " mm, basis " << b << ", expected " << expected;
             EXPECT_LT(worstAngle, 0.02) << "radius " << radiusMm << " mm, basis " << b;
         }
     }
+}
+
+// The far hemisphere within reach: the opposing integral lies along -n_x with the length of the
+// 1D integral, and the centroid lies behind the vertex, inside the sphere.
+TEST(NormalBasis, SpheresFarSideIsItsOpposingNeighbourhood) {
+    const float radiusMm = 3.0f;
+    const TestMesh m = sphere(radiusMm * 1e-3f, 96, 48);
+    const std::vector<preskin::NormalBasis> basis = preskin::computeNormalBasis(m.positions, m.normals, m.indices, 1000.0);
+    for (int b = 0; b < preskin::kNormalBasisCount; ++b) {
+        const double expected = sphereOpposingIntegral(preskin::kNormalBasisSigmaMm[size_t(b)], radiusMm);
+        double worstAlong = 0.0, worst = 0.0;
+        for (size_t v = 0; v < m.positions.size(); ++v) {
+            if (std::abs(m.normals[v].y) > 0.8f) continue;
+            const glm::dvec3 got(basis[v].opposing[size_t(b)]);
+            worstAlong = std::max(worstAlong, std::abs(glm::dot(got, glm::dvec3(m.normals[v])) - expected));
+            worst = std::max(worst, glm::length(got - expected * glm::dvec3(m.normals[v])));
+            if (b == 0) {
+                const double depthMm = -1e3 * glm::dot(glm::dvec3(basis[v].opposingCentroid), glm::dvec3(m.normals[v]));
+                EXPECT_GT(depthMm, double(radiusMm)) << "vertex " << v;  // past the centre, towards the far side
+                EXPECT_LT(depthMm, 2.0 * double(radiusMm)) << "vertex " << v;
+            }
+        }
+        // The tree code samples far nodes at their centroids, a little inside the sphere: 4 %
+        // along the normal, and a few degrees across it, on a sphere smaller than the widest basis.
+        EXPECT_LT(worstAlong, 0.05 * std::abs(expected) + 1e-4) << "basis " << b << ", expected " << expected;
+        EXPECT_LT(worst, 0.12 * std::abs(expected) + 1e-4) << "basis " << b << ", expected " << expected;
+    }
+}
+
+// Two parallel plates facing each other d apart: at the middle of one, the other is its opposing
+// neighbourhood, O_b = n_other exp(-d^2 / (2 sigma_b^2)) (the basis Gaussian's plane integral, less
+// its part beyond the reach),
+// its centroid straight across; the averaged normals are the plate's own.
+TEST(NormalBasis, FacingPlatesSeeEachOtherAcrossTheGap) {
+    const float gapMm = 1.5f;
+    TestMesh m = plane(60, 0.001f);  // 60 mm, normals +y
+    const TestMesh upper = plane(60, 0.001f);
+    const auto base = uint32_t(m.positions.size());
+    for (size_t i = 0; i < upper.positions.size(); ++i) {
+        m.positions.push_back(upper.positions[i] + glm::vec3(0.0f, gapMm * 1e-3f, 0.0f));
+        m.normals.emplace_back(0.0f, -1.0f, 0.0f);
+    }
+    for (size_t t = 0; t < upper.indices.size(); t += 3)  // wound the other way: it faces down
+        m.indices.insert(m.indices.end(),
+                         {base + upper.indices[t], base + upper.indices[t + 2], base + upper.indices[t + 1]});
+    const std::vector<preskin::NormalBasis> basis = preskin::computeNormalBasis(m.positions, m.normals, m.indices, 1000.0);
+    const size_t middle = 30 * 61 + 30;
+    for (size_t v : {middle, base + middle}) {
+        const float side = v == middle ? 1.0f : -1.0f;
+        for (int b = 0; b < preskin::kNormalBasisCount; ++b) {
+            const double sigma = preskin::kNormalBasisSigmaMm[size_t(b)];
+            // The plane integral of the Gaussian cut at its reach R = 3 sigma (<preskin/NormalBasis.h>'s
+            // tree code): exp(-d^2 / (2 sigma^2)) - exp(-R^2 / (2 sigma^2)).
+            const double expected = std::exp(-double(gapMm) * double(gapMm) / (2.0 * sigma * sigma)) - std::exp(-4.5);
+            const glm::vec3 o = basis[v].opposing[size_t(b)];
+            EXPECT_NEAR(double(o.y), -double(side) * expected, 0.01 * expected + 1e-4) << "basis " << b;
+            EXPECT_NEAR(double(glm::length(glm::vec2(o.x, o.z))), 0.0, 1e-4) << "basis " << b;
+            EXPECT_LT(glm::length(basis[v].averaged[size_t(b)] - glm::vec3(0.0f, side, 0.0f)), 1e-5f);
+        }
+        EXPECT_LT(glm::length(basis[v].opposingCentroid - glm::vec3(0.0f, side * gapMm * 1e-3f, 0.0f)), 1e-5f);
+    }
+    // A plate alone has none.
+    const TestMesh single = plane(60, 0.001f);
+    for (const preskin::NormalBasis& n : preskin::computeNormalBasis(single.positions, single.normals, single.indices, 1000.0))
+        for (const glm::vec3& o : n.opposing) EXPECT_EQ(o, glm::vec3(0.0f));
 }
 
 TEST(NormalBasis, DenseMeshesMatchCoarseOnes) {
@@ -138,7 +222,7 @@ TEST(NormalBasis, DenseMeshesMatchCoarseOnes) {
             for (size_t v = 0; v < basis->size(); v += 7) {
                 const glm::vec3 n = basis == &d ? dense.normals[v] : coarse.normals[v];
                 if (std::abs(n.y) > 0.8f) continue;
-                EXPECT_NEAR(glm::length((*basis)[v][size_t(b)]), expected, 0.02 * expected + 1e-3) << "basis " << b;
+                EXPECT_NEAR(glm::length((*basis)[v].averaged[size_t(b)]), expected, 0.02 * expected + 1e-3) << "basis " << b;
             }
     }
 }

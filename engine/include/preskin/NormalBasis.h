@@ -20,6 +20,15 @@
 //    which the vertex normal itself stands.
 // The shader combines them: n_c = normalize((1 - sum_b a_cb) n + sum_b a_cb M_b).
 //
+// The neighbours the basis leaves out, those facing more than 90 degrees away (the other side of
+// a thin part, the lip across the lips' line, a fold's far wall), are kept apart: per vertex and
+// Gaussian O_b(x) = int_opp c G_b(|x - y|) n(y) dA(y) (c fades them in from the 90-degree cut,
+// full from 96 degrees on: min(-10 n(y) . n(x), 1)), and their centroid. Lit, they send light into x
+// across the gap or through the tissue; skin shading takes it as sum_b a_cb max(O_b . L, 0) times
+// the light's visibility at the centroid (preskin/skin.glsl, preskinSkinOpposingLight). For a
+// sheet of thickness d facing x, |O_b| = exp(-d^2 / (2 sigma_b^2)): the basis's plane integral,
+// so sum_b a_cb |O_b| is the profile's transmittance through the sheet.
+//
 // Limits: the basis is fixed in world millimetres (the material's scatter scale moves the profile
 // onto it): profiles wider than about 8 mm or narrower than 0.5 mm are only partly resolved (the
 // narrow part is the vertex normal, which is exact there for smooth meshes); the geometry is
@@ -41,9 +50,14 @@ namespace preskin {
 inline constexpr int kNormalBasisCount = 4;
 inline constexpr std::array<double, kNormalBasisCount> kNormalBasisSigmaMm = {0.5, 1.0, 2.0, 4.0};
 
-using NormalBasis = std::array<glm::vec3, kNormalBasisCount>;  // M_0 .. M_3 of one vertex
+// One vertex's neighbourhood as skin sees it (read by the GPU as kNormalBasisFloats floats).
+struct NormalBasis {
+    std::array<glm::vec3, kNormalBasisCount> averaged{};  // M_0 .. M_3
+    std::array<glm::vec3, kNormalBasisCount> opposing{};  // O_0 .. O_3 (zero where no neighbour faces away)
+    glm::vec3 opposingCentroid{0.0f};  // the opposing neighbours' centroid, from the vertex (units of the positions)
+};
 
-// The basis normals of every vertex of a triangle mesh. `normals`: per-vertex unit normals;
+// The basis normals and opposing neighbours of every vertex of a triangle mesh. `normals`: per-vertex unit normals;
 // `mmPerUnit`: millimetres per unit of `positions` (1000 for metres). Vertices duplicated along
 // seams are welded by position and normal hemisphere, as for curvature. Throws preskin::Error
 // when the counts disagree, an index is out of range or mmPerUnit is not a positive finite number.

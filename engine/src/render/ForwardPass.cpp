@@ -148,9 +148,14 @@ VkPipeline Renderer::Impl::createForwardPipeline(const PipelineKey& key) const {
         {gpu::kAttributeUv0, 0, VK_FORMAT_R32G32_SFLOAT, offsetof(Vertex, uv0)},
         {gpu::kAttributeCurvature, 0, VK_FORMAT_R32_SFLOAT, offsetof(Vertex, curvaturePerM)},
     };
-    for (uint32_t b = 0; b < gpu::kNormalBasisCount; ++b)
-        desc.vertexAttributes.push_back(
-            {gpu::kAttributeNormalBasis + b, 1, VK_FORMAT_R32G32B32_SFLOAT, uint32_t(b * sizeof(glm::vec3))});
+    for (uint32_t b = 0; b < gpu::kNormalBasisCount; ++b) {
+        desc.vertexAttributes.push_back({gpu::kAttributeNormalBasis + b, 1, VK_FORMAT_R32G32B32_SFLOAT,
+                                         uint32_t(offsetof(NormalBasis, averaged) + b * sizeof(glm::vec3))});
+        desc.vertexAttributes.push_back({gpu::kAttributeOpposing + b, 1, VK_FORMAT_R32G32B32_SFLOAT,
+                                         uint32_t(offsetof(NormalBasis, opposing) + b * sizeof(glm::vec3))});
+    }
+    desc.vertexAttributes.push_back({gpu::kAttributeOpposingCentroid, 1, VK_FORMAT_R32G32B32_SFLOAT,
+                                     uint32_t(offsetof(NormalBasis, opposingCentroid))});
     desc.alphaToCoverage = alphaToCoverage;
     desc.alphaToOne = alphaToCoverage && dev.alphaToOne();
     desc.cullMode = key.doubleSided ? VK_CULL_MODE_NONE : VK_CULL_MODE_BACK_BIT;

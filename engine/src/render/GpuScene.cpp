@@ -3,6 +3,7 @@
 #include <preskin/NormalBasis.h>
 #include <preskin/SkinParameters.h>
 
+#include "shared/deform.h"
 #include "vk/Check.h"
 #include "vk/Pipeline.h"
 
@@ -17,8 +18,10 @@
 namespace preskin {
 
 static_assert(sizeof(Vertex) == 52, "Vertex is read by the GPU with the layout of forward.vert");
-static_assert(sizeof(NormalBasis) == gpu::kNormalBasisCount * 12 && kNormalBasisCount == int(gpu::kNormalBasisCount),
-              "NormalBasis is read by the GPU as kNormalBasisCount vec3 at consecutive locations");
+static_assert(sizeof(NormalBasis) == gpu::kNormalBasisFloats * 4 && kNormalBasisCount == int(gpu::kNormalBasisCount) &&
+                  offsetof(NormalBasis, opposing) == gpu::kNormalBasisCount * 12 &&
+                  offsetof(NormalBasis, opposingCentroid) == gpu::kNormalBasisCount * 24,
+              "NormalBasis is read by the GPU as consecutive vec3: averaged, opposing, centroid");
 
 namespace {
 

@@ -1,6 +1,7 @@
 // The geometry half of the skin's per-channel prefiltered normals (see <preskin/NormalBasis.h>):
-// per vertex x, M_b(x) = n(x) + int G_b(|x - y|) (n(y) - n(x)) dA(y) over the mesh with the
-// vertex normals interpolated linearly, for the basis Gaussians G_b (the difference vanishes at x,
+// per vertex x, M_b(x) = n(x) + int G_b(|x - y|) (n(y) - n(x)) dA(y) over the neighbours facing
+// within 90 degrees of n(x), and O_b(x) = int G_b n(y) dA(y) with their centroid over the others,
+// the vertex normals interpolated linearly, for the basis Gaussians G_b (the difference vanishes at x,
 // so the narrow Gaussians need no fine pieces there), as a tree code (Barnes & Hut): a bounding
 // volume hierarchy over the triangles holds each node's area, centroid and normal integral; a node
 // small for the Gaussians it reaches, whose normals agree, counts as one sample at its centroid;
@@ -34,6 +35,7 @@ constexpr double kTriangleTheta = 2.0;
 constexpr double kNodeTheta = 0.5;
 constexpr double kCoherentNormals = 0.95;  // ... and its normal integral is at least this fraction of its area
 constexpr int kLeafTriangles = 4;
+constexpr double kOpposingRamp = 0.1;  // opposing neighbours weigh -n . nx / this, at most 1
 
 struct Node {
     dvec3 centroid{0.0};
@@ -107,9 +109,33 @@ struct Kernel {
     }
 };
 
-// Adds int G (n - nx) dA over the triangle (p, with corner normals n) to sum, split into four while
-// it is too large for the Gaussian.
-void addTriangle(const Kernel& g, const dvec3& x, const dvec3& nx, const dvec3 (&p)[3], const dvec3 (&n)[3], dvec3& sum,
+// What one Gaussian gathers around x: over the neighbours facing within 90 degrees of nx,
+// int G (n - nx) dA; over those facing away, weighted by c = min(-n . nx / kOpposingRamp, 1) (they
+// fade in past the 90-degree cut, within 6 degrees: a wall meeting x at a right angle, which a
+// coarse mesh would spread over a whole triangle, adds nothing), int c G n dA, int c G (y - x) dA
+// and int c G dA.
+struct Sums {
+    dvec3 averaged{0.0};
+    dvec3 opposing{0.0};
+    dvec3 centroid{0.0};
+    double weight = 0.0;
+    // A sample of weight w (G dA) with normal integral n (n dA) at y.
+    void add(double w, const dvec3& n, double area, const dvec3& y, const dvec3& x, const dvec3& nx) {
+        if (glm::dot(n, nx) > 0.0) {
+            averaged += w * (n - area * nx);
+        } else {
+            const double length = glm::length(n);
+            const double c = length > 0.0 ? std::clamp(-glm::dot(n, nx) / (length * kOpposingRamp), 0.0, 1.0) : 0.0;
+            opposing += (c * w) * n;
+            centroid += (c * w * area) * (y - x);
+            weight += c * w * area;
+        }
+    }
+};
+
+// Adds the triangle (p, with corner normals n) to sum, split into four while it is too large for
+// the Gaussian.
+void addTriangle(const Kernel& g, const dvec3& x, const dvec3& nx, const dvec3 (&p)[3], const dvec3 (&n)[3], Sums& sum,
                  int depth) {
     const dvec3 centre = (p[0] + p[1] + p[2]) / 3.0;
     double size = 0.0;
@@ -131,19 +157,18 @@ void addTriangle(const Kernel& g, const dvec3& x, const dvec3& nx, const dvec3 (
     }
     const double third = 0.5 * glm::length(glm::cross(p[1] - p[0], p[2] - p[0])) / 3.0;
     for (int k = 0; k < 3; ++k) {  // the edge midpoints, a third of the area each
-        const dvec3 ny = 0.5 * (n[k] + n[(k + 1) % 3]);
-        if (glm::dot(ny, nx) <= 0.0) continue;  // the far side of a thin part: transmission's
-        const dvec3 d = 0.5 * (p[k] + p[(k + 1) % 3]) - x;
+        const dvec3 y = 0.5 * (p[k] + p[(k + 1) % 3]);
+        const dvec3 d = y - x;
         const double r2 = glm::dot(d, d);
         if (r2 > g.reach * g.reach) continue;
-        sum += (g(r2) * third) * (ny - nx);
+        sum.add(g(r2) * third, 0.5 * (n[k] + n[(k + 1) % 3]), 1.0, y, x, nx);
     }
 }
 
-// int G (n - nx) dA over the mesh for one Gaussian (its own traversal: each Gaussian opens the
-// tree only as far as its own width needs).
-dvec3 integrate(const Mesh& m, const Kernel& g, const dvec3& x, const dvec3& nx, std::vector<int32_t>& stack) {
-    dvec3 sum(0.0);
+// The sums over the mesh for one Gaussian (its own traversal: each Gaussian opens the tree only as
+// far as its own width needs).
+Sums integrate(const Mesh& m, const Kernel& g, const dvec3& x, const dvec3& nx, std::vector<int32_t>& stack) {
+    Sums sum;
     stack.assign(1, 0);
     while (!stack.empty()) {
         const Node& node = m.nodes[size_t(stack.back())];
@@ -151,13 +176,14 @@ dvec3 integrate(const Mesh& m, const Kernel& g, const dvec3& x, const dvec3& nx,
         const double distance = glm::length(node.centroid - x);
         if (distance - node.radius > g.reach) continue;
         // Its normals lie within about acos(|int n dA| / area) of their mean: wholly on one side of
-        // the cut at 90 degrees from nx, the node counts as one sample (or none).
+        // the cut at 90 degrees from nx and small for the Gaussian, the node counts as one sample.
         const double coherence = node.area > 0.0 ? glm::length(node.normalIntegral) / node.area : 0.0;
         const double side = coherence > 0.0 ? glm::dot(node.normalIntegral, nx) / (coherence * node.area) : 0.0;
         const double spread = std::sqrt(std::max(0.0, 1.0 - coherence * coherence));
-        if (coherence >= kCoherentNormals && side < -spread) continue;
-        if (coherence >= kCoherentNormals && side > spread && node.radius < g.largestPiece(distance, kNodeTheta)) {
-            if (distance <= g.reach) sum += g(distance * distance) * (node.normalIntegral - node.area * nx);
+        if (coherence >= kCoherentNormals && std::abs(side) > spread &&
+            node.radius < g.largestPiece(distance, kNodeTheta)) {
+            if (distance <= g.reach)
+                sum.add(g(distance * distance), node.normalIntegral, node.area, node.centroid, x, nx);
             continue;
         }
         if (node.left >= 0) {
@@ -235,8 +261,17 @@ std::vector<NormalBasis> computeNormalBasis(std::span<const glm::vec3> positions
             std::vector<int32_t> stack;
             for (uint32_t w = range.begin(); w != range.end(); ++w) {
                 if (m.n[w] == dvec3(0.0)) continue;
-                for (size_t b = 0; b < kernels.size(); ++b)
-                    welded[w][b] = glm::vec3(m.n[w] + integrate(m, kernels[b], m.p[w], m.n[w], stack));
+                dvec3 centroid(0.0);
+                double weight = 0.0;
+                for (size_t b = 0; b < kernels.size(); ++b) {
+                    const Sums s = integrate(m, kernels[b], m.p[w], m.n[w], stack);
+                    welded[w].averaged[b] = glm::vec3(m.n[w] + s.averaged);
+                    welded[w].opposing[b] = glm::vec3(s.opposing);
+                    centroid += s.centroid;
+                    weight += s.weight;
+                }
+                // The Gaussians' centroids together, the narrow ones (nearest neighbours) weighing most.
+                if (weight > 1e-9) welded[w].opposingCentroid = glm::vec3(centroid / (weight * mmPerUnit));
             }
         });
     }
