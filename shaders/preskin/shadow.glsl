@@ -236,10 +236,10 @@ PreskinShadowPcf preskinShadowPcf(sampler2D shadowMap, vec2 t, float mapSize, fl
 // depth over the widest penumbra the receiver can have (occluders at the map's near plane).
 PreskinShadowSample preskinSampleShadow(sampler2D shadowMap, mat4 shadowClipFromWorld, vec4 params,
                                         vec3 positionWs, vec3 geometricNormalWs, PreskinShadowFilter shadowFilter,
-                                        float penumbraPerM, float widthM) {
+                                        float penumbraPerM) {
     PreskinShadowSample result;
     float mapSize = params.w;
-    float sigma = max(max(params.y, 0.25), widthM / params.x);
+    float sigma = max(params.y, 0.25);
     // Normal offset: a quarter texel along the normal, growing to 1.75 texels only where the light
     // grazes (cos < 0.25). An offset along the normal moves the lookup across the map by its
     // component perpendicular to the light, which at grazing light puts cast-shadow edges off their
@@ -268,7 +268,7 @@ PreskinShadowSample preskinSampleShadow(sampler2D shadowMap, mat4 shadowClipFrom
 
     vec2 t = uv * mapSize - 0.5;
     const int G = shadowFilter.gathersPerAxis;
-    float stride = sigma > 1.6 ? min(ceil(2.5 * sigma / (float(G) - 0.5)), 16.0) : 1.0;
+    float stride = 1.0;
     result.penumbraWidthM = 0.0;
     if (penumbraPerM > 0.0) {
         // The widest penumbra's radius (about 2 penumbraPerM per metre), covered by 4 x 4 texels at
@@ -296,13 +296,6 @@ PreskinShadowSample preskinSampleShadow(sampler2D shadowMap, mat4 shadowClipFrom
     vec3 gradient = (pcf.gradient.x * r0 + pcf.gradient.y * r1) * (0.5 * mapSize / max(pcf.varianceTexels, 1e-6));
     result.gradientWs = inside ? gradient : vec3(0.0);
     return result;
-}
-
-PreskinShadowSample preskinSampleShadow(sampler2D shadowMap, mat4 shadowClipFromWorld, vec4 params,
-                                        vec3 positionWs, vec3 geometricNormalWs, PreskinShadowFilter shadowFilter,
-                                        float penumbraPerM) {
-    return preskinSampleShadow(shadowMap, shadowClipFromWorld, params, positionWs, geometricNormalWs, shadowFilter,
-                               penumbraPerM, 0.0);
 }
 
 // A parallel light's.

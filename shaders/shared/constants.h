@@ -32,12 +32,11 @@ PRESKIN_CONST(float, kShY22, 0.546274f)
 PRESKIN_CONST(float, kSkinF0, 0.028f)
 PRESKIN_CONST(float, kSkinThicknessShrinkMm, 2.0f)
 // Skin's light from opposing neighbours (preskinSkinOpposingLight of preskin/skin.glsl), profile
-// mm: the shadow lookup at their centroid is lifted this far towards the shaded point, filtered
-// this wide, and ignores occluders nearer than the relief distance along the light (on the head's
-// `lips` view, skin's error over Lambert's 0.661 with 3 mm, 0.622 with 6, 0.541 with 15, 0.535
-// with no shadow lookup at all: the relief that forms a gap shadows the gap, not its lit rims).
+// mm: the shadow lookup at their centroid is lifted this far towards the shaded point and ignores
+// occluders nearer than the relief distance along the light (on the head's `lips` view, skin's
+// error over Lambert's 0.661 with 3 mm, 0.622 with 6, 0.541 with 15, 0.535 with no shadow lookup
+// at all: the relief that forms a gap shadows the gap, not its lit rims).
 PRESKIN_CONST(float, kSkinOpposingLiftMm, 0.5f)
-PRESKIN_CONST(float, kSkinOpposingFilterMm, 1.0f)
 PRESKIN_CONST(float, kSkinOpposingReliefMm, 15.0f)
 
 // The shadow pass's depth bias (vkCmdSetDepthBias): the constant factor and the slope factor,
