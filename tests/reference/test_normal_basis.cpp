@@ -100,9 +100,9 @@ double sphereOpposingIntegral(double sigmaMm, double radiusMm) {
         const double psi = 0.5 * kPi + i * h;
         const double chord = 2.0 * radiusMm * std::sin(0.5 * psi);
         const double c = std::min(-10.0 * std::cos(psi), 1.0);
-        const double f = chord <= kReachMm ? c * gaussian2d(sigmaMm, chord) * std::cos(psi) * 2.0 * kPi * radiusMm *
-                                                 radiusMm * std::sin(psi)
-                                           : 0.0;
+        const double f = chord <= kReachMm
+            ? c * gaussian2d(sigmaMm, chord) * std::cos(psi) * 2.0 * kPi * radiusMm * radiusMm * std::sin(psi)
+            : 0.0;
         sum += f * (i == 0 || i == n ? 1.0 : (i % 2 ? 4.0 : 2.0));
     }
     return sum * h / 3.0;
@@ -148,7 +148,8 @@ TEST(NormalBasis, SphereGivesTheNormalTimesTheHemisphereIntegral) {
 TEST(NormalBasis, SpheresFarSideIsItsOpposingNeighbourhood) {
     const float radiusMm = 3.0f;
     const TestMesh m = sphere(radiusMm * 1e-3f, 96, 48);
-    const std::vector<preskin::NormalBasis> basis = preskin::computeNormalBasis(m.positions, m.normals, m.indices, 1000.0);
+    const std::vector<preskin::NormalBasis> basis =
+        preskin::computeNormalBasis(m.positions, m.normals, m.indices, 1000.0);
     for (int b = 0; b < preskin::kNormalBasisCount; ++b) {
         const double expected = sphereOpposingIntegral(preskin::kNormalBasisSigmaMm[size_t(b)], radiusMm);
         double worstAlong = 0.0, worst = 0.0;
@@ -186,7 +187,8 @@ TEST(NormalBasis, FacingPlatesSeeEachOtherAcrossTheGap) {
     for (size_t t = 0; t < upper.indices.size(); t += 3)  // wound the other way: it faces down
         m.indices.insert(m.indices.end(),
                          {base + upper.indices[t], base + upper.indices[t + 2], base + upper.indices[t + 1]});
-    const std::vector<preskin::NormalBasis> basis = preskin::computeNormalBasis(m.positions, m.normals, m.indices, 1000.0);
+    const std::vector<preskin::NormalBasis> basis =
+        preskin::computeNormalBasis(m.positions, m.normals, m.indices, 1000.0);
     const size_t middle = 30 * 61 + 30;
     for (size_t v : {middle, base + middle}) {
         const float side = v == middle ? 1.0f : -1.0f;
@@ -204,7 +206,8 @@ TEST(NormalBasis, FacingPlatesSeeEachOtherAcrossTheGap) {
     }
     // A plate alone has none.
     const TestMesh single = plane(60, 0.001f);
-    for (const preskin::NormalBasis& n : preskin::computeNormalBasis(single.positions, single.normals, single.indices, 1000.0))
+    for (const preskin::NormalBasis& n :
+         preskin::computeNormalBasis(single.positions, single.normals, single.indices, 1000.0))
         for (const glm::vec3& o : n.opposing) EXPECT_EQ(o, glm::vec3(0.0f));
 }
 
@@ -222,7 +225,8 @@ TEST(NormalBasis, DenseMeshesMatchCoarseOnes) {
             for (size_t v = 0; v < basis->size(); v += 7) {
                 const glm::vec3 n = basis == &d ? dense.normals[v] : coarse.normals[v];
                 if (std::abs(n.y) > 0.8f) continue;
-                EXPECT_NEAR(glm::length((*basis)[v].averaged[size_t(b)]), expected, 0.02 * expected + 1e-3) << "basis " << b;
+                EXPECT_NEAR(glm::length((*basis)[v].averaged[size_t(b)]), expected, 0.02 * expected + 1e-3)
+                    << "basis " << b;
             }
     }
 }

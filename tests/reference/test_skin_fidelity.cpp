@@ -324,6 +324,39 @@ FromAbove renderFromAbove(Context& context, const Scene& scene, const SkinFeatur
     return images;
 }
 
+// Red in a strip of columns (xMm(x): the column's place, kept where it lies in [fromMm, toMm]),
+// rows away from the image's top and bottom: the means of skin, of skin without a term and of the
+// reference, and both renders' RMSE against it.
+struct StripRed {
+    size_t pixels = 0;
+    double skin = 0.0, without = 0.0, truth = 0.0, skinRmse = 0.0, withoutRmse = 0.0;
+};
+template <typename Place>
+StripRed stripRed(const FromAbove& images, Place xMm, double fromMm, double toMm) {
+    const uint32_t size = kFromAboveSize;
+    StripRed strip;
+    for (uint32_t y = 8; y < size - 8; ++y)
+        for (uint32_t x = 0; x < size; ++x) {
+            const double place = xMm(x);
+            if (place < fromMm || place > toMm) continue;
+            const double r = double(images.truth.rgba32f[4 * (size_t(y) * size + x)]);
+            const double s = pixelLinear(images.skin, x, y).r, w = pixelLinear(images.other, x, y).r;
+            strip.skin += s;
+            strip.without += w;
+            strip.truth += r;
+            strip.skinRmse += (s - r) * (s - r);
+            strip.withoutRmse += (w - r) * (w - r);
+            ++strip.pixels;
+        }
+    const double n = double(std::max<size_t>(strip.pixels, 1));
+    strip.skin /= n;
+    strip.without /= n;
+    strip.truth /= n;
+    strip.skinRmse = std::sqrt(strip.skinRmse / n);
+    strip.withoutRmse = std::sqrt(strip.withoutRmse / n);
+    return strip;
+}
+
 TEST_F(SkinFidelity, ConcaveGrooveIsCloserToTheReferenceThanLambert) {
     const double depthM = 0.003, widthM = 0.0025, halfM = 0.02;
     const uint32_t n = 80;
@@ -382,33 +415,16 @@ TEST_F(SkinFidelity, ShadowOfANearbyPlateCarriesTheLightItsLitSideScatters) {
     SkinFeatures noTransmission;
     noTransmission.transmission = false;
     const FromAbove images = renderFromAbove(context(), scene, noTransmission);
-    const ReferenceImage& truth = images.truth;
-    const RenderedImage &skin = images.skin, &without = images.other;
-    // Columns of the strip (the view spans x = -10 .. 10 mm at the floor), rows away from the
-    // image's top and bottom.
-    double skinRed = 0.0, withoutRed = 0.0, truthRed = 0.0, skinSquared = 0.0, withoutSquared = 0.0;
-    size_t pixels = 0;
-    for (uint32_t y = 8; y < size - 8; ++y)
-        for (uint32_t x = 0; x < size; ++x) {
-            const double xMm = (double(x) + 0.5) / size * 20.0 - 10.0;
-            if (xMm < 0.5 || xMm > 2.5) continue;
-            const double r = double(truth.rgba32f[4 * (size_t(y) * size + x)]);
-            const double s = pixelLinear(skin, x, y).r, w = pixelLinear(without, x, y).r;
-            skinRed += s;
-            withoutRed += w;
-            truthRed += r;
-            skinSquared += (s - r) * (s - r);
-            withoutSquared += (w - r) * (w - r);
-            ++pixels;
-        }
-    const double n = double(std::max<size_t>(pixels, 1));
+    // The view spans x = -10 .. 10 mm at the floor.
+    const StripRed strip = stripRed(
+        images, [&](uint32_t x) { return (double(x) + 0.5) / size * 20.0 - 10.0; }, 0.5, 2.5);
     std::printf(
         "[ fidelity ] floor beside a plate's edge, in its shadow: %zu pixels, red skin %.4f (without the "
         "plate's light %.4f) reference %.4f; RMSE %.4f (without %.4f)\n",
-        pixels, skinRed / n, withoutRed / n, truthRed / n, std::sqrt(skinSquared / n), std::sqrt(withoutSquared / n));
-    EXPECT_GT(pixels, size_t(100));
-    EXPECT_LT(std::sqrt(skinSquared / n), 0.6 * std::sqrt(withoutSquared / n));
-    EXPECT_NEAR(skinRed / n, truthRed / n, 0.4 * truthRed / n);
+        strip.pixels, strip.skin, strip.without, strip.truth, strip.skinRmse, strip.withoutRmse);
+    EXPECT_GT(strip.pixels, size_t(100));
+    EXPECT_LT(strip.skinRmse, 0.6 * strip.withoutRmse);
+    EXPECT_NEAR(strip.skin, strip.truth, 0.4 * strip.truth);
 }
 
 // The underside of a plate 8 mm thick lying 1 mm above a floor, both skin and one mesh, seen from
@@ -426,7 +442,8 @@ TEST_F(SkinFidelity, UndersideOfAnOverhangCarriesTheLightOfTheLitFloorAcrossTheG
         v.positionOs = glm::vec3(v.positionOs.x - 0.02f, v.positionOs.y, 0.001f);
         v.normalOs = glm::vec3(0.0f, 0.0f, -1.0f);
     }
-    for (size_t t = 0; t < underside.indices.size(); t += 3) std::swap(underside.indices[t + 1], underside.indices[t + 2]);
+    for (size_t t = 0; t < underside.indices.size(); t += 3)
+        std::swap(underside.indices[t + 1], underside.indices[t + 2]);
     underside.boundsOs = {};
     for (const Vertex& v : underside.vertices) underside.boundsOs.extend(v.positionOs);
     floor.material = underside.material = 0;
@@ -443,32 +460,16 @@ TEST_F(SkinFidelity, UndersideOfAnOverhangCarriesTheLightOfTheLitFloorAcrossTheG
     SkinFeatures noTransmission;
     noTransmission.transmission = false;
     const FromAbove images = renderFromAbove(context(), scene, noTransmission, -0.06f);
-    const ReferenceImage& truth = images.truth;
-    const RenderedImage &skin = images.skin, &without = images.other;
     // From below the image's x runs along -x; the view spans 20.3 mm at the underside.
-    double skinRed = 0.0, withoutRed = 0.0, truthRed = 0.0, skinSquared = 0.0, withoutSquared = 0.0;
-    size_t pixels = 0;
-    for (uint32_t y = 8; y < size - 8; ++y)
-        for (uint32_t x = 0; x < size; ++x) {
-            const double xMm = -((double(x) + 0.5) / size * 2.0 - 1.0) * 10.0 * 0.061 / 0.06;
-            if (xMm < -3.0 || xMm > -0.3) continue;
-            const double r = double(truth.rgba32f[4 * (size_t(y) * size + x)]);
-            const double s = pixelLinear(skin, x, y).r, w = pixelLinear(without, x, y).r;
-            skinRed += s;
-            withoutRed += w;
-            truthRed += r;
-            skinSquared += (s - r) * (s - r);
-            withoutSquared += (w - r) * (w - r);
-            ++pixels;
-        }
-    const double n = double(std::max<size_t>(pixels, 1));
+    const StripRed strip = stripRed(
+        images, [&](uint32_t x) { return -((double(x) + 0.5) / size * 2.0 - 1.0) * 10.0 * 0.061 / 0.06; }, -3.0, -0.3);
     std::printf(
         "[ fidelity ] an overhang's underside 1 mm over a lit floor: %zu pixels, red skin %.4f (without the "
         "floor's light %.4f) reference %.4f; RMSE %.4f (without %.4f)\n",
-        pixels, skinRed / n, withoutRed / n, truthRed / n, std::sqrt(skinSquared / n), std::sqrt(withoutSquared / n));
-    EXPECT_GT(pixels, size_t(100));
-    EXPECT_LT(std::sqrt(skinSquared / n), 0.5 * std::sqrt(withoutSquared / n));
-    EXPECT_NEAR(skinRed / n, truthRed / n, 0.3 * truthRed / n);
+        strip.pixels, strip.skin, strip.without, strip.truth, strip.skinRmse, strip.withoutRmse);
+    EXPECT_GT(strip.pixels, size_t(100));
+    EXPECT_LT(strip.skinRmse, 0.5 * strip.withoutRmse);
+    EXPECT_NEAR(strip.skin, strip.truth, 0.3 * strip.truth);
 }
 
 }  // namespace
