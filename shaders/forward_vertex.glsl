@@ -65,7 +65,7 @@ void main() {
     outOpposingRedWs = vec3(0.0);
     outOpposingGreenWs = vec3(0.0);
     outOpposingBlueWs = vec3(0.0);
-    outOpposingCentroidWs = mat3(instance.worldFromObject) * inOpposingCentroid;
+    outOpposingCentroidWs = vec3(0.0);
     // The material's profile mix at this vertex, as the fragment stage finds it at its texel.
     PreskinProfileMix profile = materialProfileMix(
         materialBlendedProfiles() > 0 ? textureLod(profileWeightTexture, inUv0, 0.0).rgb : vec3(0.0));
@@ -91,6 +91,7 @@ void main() {
             float len = length(ws);
             o[c] = len > 0.0 ? ws * (length(o[c]) / len) : vec3(0.0);
         }
+        outOpposingCentroidWs = mat3(instance.worldFromObject) * inOpposingCentroid;
         outOpposingRedWs = o[0];
         outOpposingGreenWs = o[1];
         outOpposingBlueWs = o[2];

@@ -73,39 +73,35 @@ double gaussian2d(double sigmaMm, double rMm) {
     return std::exp(-rMm * rMm / (2.0 * sigmaMm * sigmaMm)) / (2.0 * kPi * sigmaMm * sigmaMm);
 }
 
-// 1 + int over the near hemisphere of a sphere of radius a (mm) of G(chord) (n_y . n_x - 1) dA,
-// by composite Simpson in the polar angle psi from x (chord 2 a sin(psi / 2), dA = 2 pi a^2 sin psi).
-double sphereIntegral(double sigmaMm, double radiusMm) {
+// int over psi in [from, from + pi / 2] of f(psi) G(chord) 2 pi a^2 sin psi on a sphere of radius a
+// (mm), f a function of the polar angle psi from x: composite Simpson, the chord 2 a sin(psi / 2)
+// (the Gaussian cut at the basis's reach), dA = 2 pi a^2 sin psi dpsi.
+template <typename Weight>
+double sphereQuarterIntegral(double sigmaMm, double radiusMm, double from, Weight f) {
     const int n = 4000;
     const double h = 0.5 * kPi / n;
     double sum = 0.0;
     for (int i = 0; i <= n; ++i) {
-        const double psi = i * h;
+        const double psi = from + i * h;
         const double chord = 2.0 * radiusMm * std::sin(0.5 * psi);
-        const double f = chord <= kReachMm
-            ? gaussian2d(sigmaMm, chord) * (std::cos(psi) - 1.0) * 2.0 * kPi * radiusMm * radiusMm * std::sin(psi)
+        const double value = chord <= kReachMm
+            ? f(psi) * gaussian2d(sigmaMm, chord) * 2.0 * kPi * radiusMm * radiusMm * std::sin(psi)
             : 0.0;
-        sum += f * (i == 0 || i == n ? 1.0 : (i % 2 ? 4.0 : 2.0));
+        sum += value * (i == 0 || i == n ? 1.0 : (i % 2 ? 4.0 : 2.0));
     }
-    return 1.0 + sum * h / 3.0;
+    return sum * h / 3.0;
+}
+
+// 1 + int over the near hemisphere of G(chord) (n_y . n_x - 1) dA.
+double sphereIntegral(double sigmaMm, double radiusMm) {
+    return 1.0 + sphereQuarterIntegral(sigmaMm, radiusMm, 0.0, [](double psi) { return std::cos(psi) - 1.0; });
 }
 
 // The opposing neighbours' integral along n_x on the same sphere: over the far hemisphere,
 // int c G(chord) (n_y . n_x) dA with c = min(-10 n_y . n_x, 1) (<preskin/NormalBasis.h>).
 double sphereOpposingIntegral(double sigmaMm, double radiusMm) {
-    const int n = 4000;
-    const double h = 0.5 * kPi / n;
-    double sum = 0.0;
-    for (int i = 0; i <= n; ++i) {
-        const double psi = 0.5 * kPi + i * h;
-        const double chord = 2.0 * radiusMm * std::sin(0.5 * psi);
-        const double c = std::min(-10.0 * std::cos(psi), 1.0);
-        const double f = chord <= kReachMm
-            ? c * gaussian2d(sigmaMm, chord) * std::cos(psi) * 2.0 * kPi * radiusMm * radiusMm * std::sin(psi)
-            : 0.0;
-        sum += f * (i == 0 || i == n ? 1.0 : (i % 2 ? 4.0 : 2.0));
-    }
-    return sum * h / 3.0;
+    return sphereQuarterIntegral(sigmaMm, radiusMm, 0.5 * kPi,
+                                 [](double psi) { return std::min(-10.0 * std::cos(psi), 1.0) * std::cos(psi); });
 }
 
 }  // namespace

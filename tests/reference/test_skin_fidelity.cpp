@@ -357,6 +357,19 @@ StripRed stripRed(const FromAbove& images, Place xMm, double fromMm, double toMm
     return strip;
 }
 
+// Prints the strip's figures under `what` and expects the term that `without` lacks to carry the
+// reference's red there: skin's RMSE below rmseRatio times skin's without it, its mean within
+// meanTolerance of the reference's.
+void expectStripCarriesTheRed(const StripRed& strip, const char* what, const char* term, double rmseRatio,
+                              double meanTolerance) {
+    std::printf(
+        "[ fidelity ] %s: %zu pixels, red skin %.4f (without %s %.4f) reference %.4f; RMSE %.4f (without %.4f)\n", what,
+        strip.pixels, strip.skin, term, strip.without, strip.truth, strip.skinRmse, strip.withoutRmse);
+    EXPECT_GT(strip.pixels, size_t(100));
+    EXPECT_LT(strip.skinRmse, rmseRatio * strip.withoutRmse);
+    EXPECT_NEAR(strip.skin, strip.truth, meanTolerance * strip.truth);
+}
+
 TEST_F(SkinFidelity, ConcaveGrooveIsCloserToTheReferenceThanLambert) {
     const double depthM = 0.003, widthM = 0.0025, halfM = 0.02;
     const uint32_t n = 80;
@@ -418,13 +431,7 @@ TEST_F(SkinFidelity, ShadowOfANearbyPlateCarriesTheLightItsLitSideScatters) {
     // The view spans x = -10 .. 10 mm at the floor.
     const StripRed strip = stripRed(
         images, [&](uint32_t x) { return (double(x) + 0.5) / size * 20.0 - 10.0; }, 0.5, 2.5);
-    std::printf(
-        "[ fidelity ] floor beside a plate's edge, in its shadow: %zu pixels, red skin %.4f (without the "
-        "plate's light %.4f) reference %.4f; RMSE %.4f (without %.4f)\n",
-        strip.pixels, strip.skin, strip.without, strip.truth, strip.skinRmse, strip.withoutRmse);
-    EXPECT_GT(strip.pixels, size_t(100));
-    EXPECT_LT(strip.skinRmse, 0.6 * strip.withoutRmse);
-    EXPECT_NEAR(strip.skin, strip.truth, 0.4 * strip.truth);
+    expectStripCarriesTheRed(strip, "floor beside a plate's edge, in its shadow", "the plate's light", 0.6, 0.4);
 }
 
 // The underside of a plate 8 mm thick lying 1 mm above a floor, both skin and one mesh, seen from
@@ -463,13 +470,7 @@ TEST_F(SkinFidelity, UndersideOfAnOverhangCarriesTheLightOfTheLitFloorAcrossTheG
     // From below the image's x runs along -x; the view spans 20.3 mm at the underside.
     const StripRed strip = stripRed(
         images, [&](uint32_t x) { return -((double(x) + 0.5) / size * 2.0 - 1.0) * 10.0 * 0.061 / 0.06; }, -3.0, -0.3);
-    std::printf(
-        "[ fidelity ] an overhang's underside 1 mm over a lit floor: %zu pixels, red skin %.4f (without the "
-        "floor's light %.4f) reference %.4f; RMSE %.4f (without %.4f)\n",
-        strip.pixels, strip.skin, strip.without, strip.truth, strip.skinRmse, strip.withoutRmse);
-    EXPECT_GT(strip.pixels, size_t(100));
-    EXPECT_LT(strip.skinRmse, 0.5 * strip.withoutRmse);
-    EXPECT_NEAR(strip.skin, strip.truth, 0.3 * strip.truth);
+    expectStripCarriesTheRed(strip, "an overhang's underside 1 mm over a lit floor", "the floor's light", 0.5, 0.3);
 }
 
 }  // namespace
