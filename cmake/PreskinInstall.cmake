@@ -1,6 +1,10 @@
 # `cmake --install` in GNUInstallDirs places:
-#   lib/libpreskin.so*                      the library (public API only, hidden internals)
+#   lib/libpreskin.so*                      the core library (public API only, hidden internals):
+#                                            what a host links; no OpenImageIO, no Embree
 #   include/preskin/*.h                      its public headers
+#   lib/libpreskin_imageio.so*, include/preskin/imageio/
+#                                            component `imageio`: OpenImageIO as an image codec
+#                                            (EXR, TIFF in; EXR out), for the tools and hosts that want it
 #   lib/libpreskin_reference.so*, include/preskin/DiffusionReference.h, Deformation.h
 #                                            component `reference`: the diffusion reference (Embree)
 #                                            and the CPU deformation
@@ -9,16 +13,24 @@
 #                                            and the renderer's own entry points (forward.frag, ...)
 #   share/preskin/luts/                      the default LUT set and its manifest
 #   share/preskin/samples/assets/head/       the sample scene the tools render by default
-#   bin/preskin, bin/preskin-viewer          the tools (they find share/preskin beside them)
+#   bin/preskin, bin/preskin-viewer          component `tools`: the tools (they find share/preskin
+#                                            beside them; they need `imageio` and `reference`)
 #   lib/cmake/preskin/                       find_package(preskin CONFIG): preskin::preskin (and
-#                                            preskin::reference when that component is installed), version file
+#                                            preskin::imageio, preskin::reference when those
+#                                            components are installed), version file
+# `cmake --install BUILD --component Unspecified` installs the core alone (library, headers,
+# shaders, LUTs, the sample head); without --component every component is installed.
 #   lib/pkgconfig/preskin.pc                 pkg-config
 include(CMakePackageConfigHelpers)
 set(PRESKIN_INSTALL_CMAKEDIR ${CMAKE_INSTALL_LIBDIR}/cmake/preskin)
 
-install(TARGETS preskin EXPORT preskinTargets
-  LIBRARY DESTINATION ${CMAKE_INSTALL_LIBDIR} NAMELINK_COMPONENT Development)
+install(TARGETS preskin EXPORT preskinTargets LIBRARY DESTINATION ${CMAKE_INSTALL_LIBDIR})
 install(DIRECTORY ${PROJECT_SOURCE_DIR}/engine/include/preskin DESTINATION ${CMAKE_INSTALL_INCLUDEDIR})
+install(TARGETS preskin_imageio EXPORT preskinImageIoTargets
+  LIBRARY DESTINATION ${CMAKE_INSTALL_LIBDIR} COMPONENT imageio NAMELINK_COMPONENT imageio)
+install(DIRECTORY ${PROJECT_SOURCE_DIR}/engine/imageio/include/preskin DESTINATION ${CMAKE_INSTALL_INCLUDEDIR}
+  COMPONENT imageio)
+install(EXPORT preskinImageIoTargets NAMESPACE preskin:: DESTINATION ${PRESKIN_INSTALL_CMAKEDIR} COMPONENT imageio)
 install(TARGETS preskin_reference EXPORT preskinReferenceTargets
   LIBRARY DESTINATION ${CMAKE_INSTALL_LIBDIR} COMPONENT reference NAMELINK_COMPONENT reference)
 install(DIRECTORY ${PROJECT_SOURCE_DIR}/engine/reference/include/preskin DESTINATION ${CMAKE_INSTALL_INCLUDEDIR}
@@ -30,9 +42,9 @@ install(DIRECTORY ${PROJECT_SOURCE_DIR}/luts/ DESTINATION ${PRESKIN_INSTALL_DATA
   FILES_MATCHING PATTERN "manifest.json" PATTERN "*.exr" PATTERN "*.md")
 install(DIRECTORY ${PROJECT_SOURCE_DIR}/samples/assets/head DESTINATION ${PRESKIN_INSTALL_DATADIR}/samples/assets
   PATTERN "*.py" EXCLUDE)
-install(TARGETS preskin_cli RUNTIME DESTINATION ${CMAKE_INSTALL_BINDIR})
+install(TARGETS preskin_cli RUNTIME DESTINATION ${CMAKE_INSTALL_BINDIR} COMPONENT tools)
 if(TARGET preskin_viewer)
-  install(TARGETS preskin_viewer RUNTIME DESTINATION ${CMAKE_INSTALL_BINDIR})
+  install(TARGETS preskin_viewer RUNTIME DESTINATION ${CMAKE_INSTALL_BINDIR} COMPONENT tools)
 endif()
 
 install(EXPORT preskinTargets NAMESPACE preskin:: DESTINATION ${PRESKIN_INSTALL_CMAKEDIR})

@@ -5,7 +5,8 @@
 # commit in a git worktree, and build/bin/preskin). Covers the head (front, close-ups, stereo
 # with MSAA 4x, 300 scattered lights clustered and 64 in one loop, the sunny sky with its
 # background), the animated head and tube at a time, the four-profile heads, both skin spheres,
-# and `compare` on the 10 mm sphere and the head. Exit status 1 when anything differs.
+# and `compare` on the 10 mm sphere and the head. PNGs are compared by their pixels
+# (scripts/png-pixels.py), reports by their figures. Exit status 1 when anything differs.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 [ $# -eq 2 ] || { echo "usage: $0 OLD_PRESKIN NEW_PRESKIN" >&2; exit 2; }
@@ -49,7 +50,8 @@ def figures(d):
     return d
 print(int(figures(json.load(open(sys.argv[1]))) == figures(json.load(open(sys.argv[2])))))' "$f" "$work/new/$name")
     else
-        same=$(cmp -s "$f" "$work/new/$name" && echo 1 || echo 0)
+        # Pixels, not bytes: two PNG writers may compress the same pixels differently.
+        same=$(python3 scripts/png-pixels.py "$f" "$work/new/$name" >/dev/null && echo 1 || echo 0)
     fi
     if [ "$same" = 1 ]; then echo "same      $name"; else echo "DIFFERENT $name"; status=1; fi
 done

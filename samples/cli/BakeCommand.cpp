@@ -1,8 +1,9 @@
 // `preskin bake`: bakes the pre-integrated skin LUTs (diffuse ring integral after Penner &
 // Borshukov 2011, penumbra, SH transfer, transmittance) of a diffusion profile on all cores and
-// writes them as half-float EXR plus manifest.json (and PNG previews with --preview):
+// writes them as half-float EXR (or raw half floats with --raw) plus manifest.json (and PNG
+// previews with --preview):
 //   preskin bake --profile deon|burley|FILE.json [--albedo R,G,B] [--mfp R,G,B] [--size N]
-//                [--preview] --out DIR
+//                [--preview] [--raw] --out DIR
 // Bad input (a profile file, a size, a colour) is refused before anything is written.
 // Limits: --size sets every table axis at once (16..4096); finer control is in the library
 // (preskin::LutBakeSettings).
@@ -34,6 +35,7 @@ struct BakeOptions {
     std::string meanFreePath;
     std::string size;
     bool preview = false;
+    bool raw = false;
     std::string out;
 };
 
@@ -108,7 +110,7 @@ void runBake(const BakeOptions& o) {
         return LutSet::bake(profile, settings, [&bar](double fraction) { bar(fraction); });
     }();
     const auto baked = std::chrono::steady_clock::now();
-    luts.save(o.out, {.previewPngs = o.preview});
+    luts.save(o.out, {.previewPngs = o.preview, .rawTables = o.raw});
     const auto saved = std::chrono::steady_clock::now();
 
     auto ms = [](auto d) { return std::chrono::duration<double, std::milli>(d).count(); };
@@ -137,6 +139,9 @@ void addBakeCommand(CLI::App& app) {
     command->add_option("--mfp", options->meanFreePath, "burley: mean free path per channel in mm, R,G,B");
     command->add_option("--size", options->size, "samples along every table axis, 16..4096 (default 256)");
     command->add_flag("--preview", options->preview, "also write preview_*.png visualisations of each table");
+    command->add_flag("--raw", options->raw,
+                      "write the tables as raw little-endian half floats (<table>.f16) instead of EXR: what the core "
+                      "library reads without the image component");
     command->add_option("--out", options->out, "output folder (created if missing)")->required();
     command->callback([options] { runBake(*options); });
 }

@@ -2,7 +2,10 @@
 #include "CommandLine.h"  // samples/common
 #include "Commands.h"
 
+#include <preskin/imageio/ImageIo.h>
+
 int main(int argc, char** argv) {
+    preskin::imageio::registerCodecs();  // EXR and TIFF in, EXR out
     CLI::App app{"preskin: pre-integrated skin shading for forward renderers"};
     app.require_subcommand(1);
     app.set_help_all_flag("--help-all", "Show help for every subcommand");

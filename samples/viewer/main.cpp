@@ -9,9 +9,12 @@
 
 #include "CommandLine.h"  // samples/common
 
+#include <preskin/imageio/ImageIo.h>
+
 #include <CLI/CLI.hpp>
 
 int main(int argc, char** argv) {
+    preskin::imageio::registerCodecs();  // EXR environments and textures, EXR screenshots
     preskin::viewer::ViewerOptions options;
     CLI::App app{"preskin-viewer: interactive pre-integrated skin viewer (GLFW + Dear ImGui)"};
     app.footer(

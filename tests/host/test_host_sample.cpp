@@ -1,10 +1,12 @@
-// samples/host built against an installed preskin, as an engine builds against it: `cmake
-// --install` into a fresh prefix, samples/host configured with CMAKE_PREFIX_PATH (its own
+// samples/host built against an installed preskin core, as an engine builds against it: `cmake
+// --install --component Unspecified` (the core alone: no image component, no tools) into a fresh
+// prefix, samples/host configured with CMAKE_PREFIX_PATH (its own
 // find_package(preskin CONFIG), glslang run on its own shader with preskin_SHADER_DIR) and built,
-// its picture of the head compared with the installed `preskin render` of the same view (no
+// its picture of the head compared with `preskin render` (the build's) of the same view (no
 // shadows: the host sample has no shadow pass; the environment's specular from its SH, as the host
 // sample binds no prefiltered environment) within the golden tolerance: every channel within
 // 5/255 on at least 99.9% of the pixels. The validation layers are on in both programs.
+#include "support/ElfClosure.h"
 #include "support/ImageCompare.h"
 #include "support/Process.h"
 
@@ -33,7 +35,9 @@ TEST(HostSample, BuiltAgainstTheInstallRendersLikePreskinRender) {
         EXPECT_EQ(r.exitCode, 0) << program.string() << " " << (args.empty() ? "" : args[0]) << "\n" << r.out << r.err;
         return r;
     };
-    run(PRESKIN_CMAKE_COMMAND, {"--install", PRESKIN_BINARY_DIR, "--prefix", prefix.string()}, 120.0);
+    run(PRESKIN_CMAKE_COMMAND,
+        {"--install", PRESKIN_BINARY_DIR, "--prefix", prefix.string(), "--component", "Unspecified"}, 120.0);
+    EXPECT_FALSE(fs::exists(prefix / "include" / "preskin" / "imageio"));
     run(PRESKIN_CMAKE_COMMAND,
         {"-S", PRESKIN_SOURCE_DIR "/samples/host", "-B", build.string(), "-G", PRESKIN_CMAKE_GENERATOR,
          "-DCMAKE_BUILD_TYPE=Release", "-DCMAKE_PREFIX_PATH=" + prefix.string(),
@@ -41,6 +45,12 @@ TEST(HostSample, BuiltAgainstTheInstallRendersLikePreskinRender) {
         120.0);
     run(PRESKIN_CMAKE_COMMAND, {"--build", build.string()}, 300.0);
     ASSERT_FALSE(HasFailure());
+
+    // The host loads the core and nothing of OpenImageIO.
+    const ElfClosure closure = elfClosure(build / "preskin-host");
+    EXPECT_EQ(closure.libraries.count("libpreskin.so.0.1"), 1u);
+    for (const auto& [name, library] : closure.libraries)
+        EXPECT_EQ(name.find("OpenImageIO"), std::string::npos) << name << " needed by " << library.neededBy;
 
     const ProcessResult help = run(build / "preskin-host", {"--help"}, 30.0);
     EXPECT_EQ(help.out.rfind("usage: preskin-host", 0), 0u) << help.out;
@@ -50,7 +60,7 @@ TEST(HostSample, BuiltAgainstTheInstallRendersLikePreskinRender) {
         run(build / "preskin-host", {"--device", testDevice(), "--width", size, "--height", size, "--out", "host.png"},
             120.0, {"VK_INSTANCE_LAYERS=VK_LAYER_KHRONOS_validation"});
     EXPECT_EQ((host.out + host.err).find("Validation"), std::string::npos) << host.out << host.err;
-    run(prefix / "bin" / "preskin",
+    run(PRESKIN_CLI_PATH,
         {"render", "--device", testDevice(), "--validation", "--no-shadows", "--no-specular-ibl", "--width", size,
          "--height", size, "--out", "preskin.png"},
         120.0);

@@ -74,6 +74,10 @@ public:
     VkQueue queue() const;
     uint32_t queueFamilyIndex() const;
     std::string deviceName() const;
+    // The driver as it names itself (VkPhysicalDeviceDriverProperties: name and info), its
+    // version number and the device's Vulkan version, e.g.
+    // "NVIDIA 550.54.15 (driver version 0x89cd83c0, Vulkan 1.3.277)".
+    std::string driverDescription() const;
     bool isSoftwareDevice() const;
     // The MSAA sample counts the device offers for a colour and depth target, ascending (1 first).
     std::vector<uint32_t> msaaSampleCounts() const;

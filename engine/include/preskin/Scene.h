@@ -13,6 +13,7 @@
 
 #include <preskin/Animation.h>
 #include <preskin/Export.h>
+#include <preskin/ImageCodec.h>
 #include <preskin/SkinMaterial.h>
 #include <preskin/SkinProfile.h>
 
@@ -22,8 +23,10 @@
 #include <cmath>
 #include <cstdint>
 #include <filesystem>
+#include <functional>
 #include <limits>
 #include <optional>
+#include <span>
 #include <string>
 #include <vector>
 
@@ -223,6 +226,14 @@ struct SceneLoadOptions {
     // symbolic link there that leads out of the folder is refused unless this is set (a scene
     // unpacked from an archive can carry such links).
     bool allowLinksOutsideFolder = false;
+    // Images the host decodes itself (as Filament's gltfio TextureProvider): called for every image
+    // of the scene with its encoded bytes, its URI (empty for images in buffer views) and its
+    // media type (empty when the file states none); returns the decoded image (8- or 16-bit, or
+    // float clamped to [0, 1]; 1 to 4 channels), or nothing to let preskin decode it with the
+    // registered codecs (<preskin/ImageCodec.h>). Its exceptions refuse the scene, naming the image.
+    std::function<std::optional<PixelImage>(std::span<const uint8_t> bytes, const std::string& uri,
+                                            const std::string& mimeType)>
+        decodeImage;
 };
 
 struct Scene {

@@ -1,14 +1,15 @@
-// Environment loading (OpenImageIO) and L2 SH projection; see <preskin/Environment.h>.
+// Environment loading (the registered image codecs) and L2 SH projection; see <preskin/Environment.h>.
 #include <preskin/Environment.h>
 #include <preskin/Error.h>
+#include <preskin/ImageCodec.h>
 #include <preskin/Limits.h>
 
 #include "env/EnvironmentHeader.h"
+#include "image/ImageCodecs.h"
 #include "io/InputFile.h"
 #include "io/MessageText.h"
 #include "io/NumberRule.h"
 
-#include <OpenImageIO/imageio.h>
 #include <fmt/core.h>
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_reduce.h>
@@ -122,11 +123,10 @@ Environment Environment::load(const std::filesystem::path& path, float intensity
     if (auto problem = io::numberProblem(rotationY)) throw Error(fmt::format("{}: rotation: {}", name, *problem));
 
     // Format and size come from the file's own header, checked before any decoder allocates.
-    const std::vector<uint8_t> prefix =
-        io::readInputFileStart(path, name, limits::kMaxImageFileBytes, env::kEnvironmentHeaderBytes);
+    const std::vector<uint8_t> bytes = io::readInputFile(path, name, limits::kMaxImageFileBytes);
     env::EnvironmentHeader header;
     try {
-        header = env::readEnvironmentHeader(prefix);
+        header = env::readEnvironmentHeader(std::span(bytes).first(std::min(bytes.size(), env::kEnvironmentHeaderBytes)));
     } catch (const std::exception& e) {
         throw Error(fmt::format("{}: {}", name, e.what()));
     }
@@ -139,44 +139,34 @@ Environment Environment::load(const std::filesystem::path& path, float intensity
         throw Error(fmt::format("{}: size: {}x{} is not equirectangular (width must be twice the height)", name,
                                 header.width, header.height));
 
-    auto input = OIIO::ImageInput::create(header.format == env::EnvironmentFormat::OpenExr ? "openexr" : "hdr");
-    if (!input) throw Error(fmt::format("{}: format: {}", name, io::messageText(OIIO::geterror())));
-    OIIO::ImageSpec spec;
-    if (!input->open(name, spec)) {
-        const std::string why = input->geterror();
-        OIIO::geterror();
-        throw Error(fmt::format("{}: cannot read environment image: {}", name, io::messageText(why)));
+    // Radiance files decode in the core; OpenEXR through a registered codec (preskin::imageio).
+    const DecodeLimits decodeLimits{uint64_t(limits::kMaxEnvironmentWidth) * limits::kMaxEnvironmentHeight,
+                                    uint32_t(limits::kMaxEnvironmentWidth)};
+    PixelImage decoded;
+    try {
+        decoded = decodeImage(bytes, decodeLimits, "cannot decode environment image");
+    } catch (const Error& e) {
+        throw Error(fmt::format("{}: {}", name, e.what()));
     }
-    if (spec.width != header.width || spec.height != header.height || spec.depth > 1 || spec.deep)
-        throw Error(fmt::format("{}: size: the decoder reads {}x{}, the header says {}x{}", name, spec.width,
-                                spec.height, header.width, header.height));
-    if (spec.nchannels < 3) throw Error(fmt::format("{}: channels: {} channel(s), RGB needed", name, spec.nchannels));
+    if (int64_t(decoded.width) != header.width || int64_t(decoded.height) != header.height)
+        throw Error(fmt::format("{}: size: the decoder reads {}x{}, the header says {}x{}", name, decoded.width,
+                                decoded.height, header.width, header.height));
+    if (decoded.channels < 3)
+        throw Error(fmt::format("{}: channels: {} channel(s), RGB needed", name, decoded.channels));
     Environment env;
     env.intensity_ = intensity;
-    env.image_.width = static_cast<uint32_t>(spec.width);
-    env.image_.height = static_cast<uint32_t>(spec.height);
-    // Read in bands of rows: a file whose pixels stop early fails before the whole image is
-    // allocated. Every pixel passes the input-number rule.
-    constexpr int kBandRows = 64;
-    const size_t rowFloats = size_t(spec.width) * 3;
-    for (int y0 = 0; y0 < spec.height; y0 += kBandRows) {
-        const int y1 = std::min(spec.height, y0 + kBandRows);
-        const size_t offset = env.image_.rgb.size();
-        env.image_.rgb.resize(offset + rowFloats * size_t(y1 - y0));
-        if (!input->read_scanlines(0, 0, y0, y1, 0, 0, 3, OIIO::TypeDesc::FLOAT, env.image_.rgb.data() + offset)) {
-            const std::string why = input->geterror();
-            throw Error(fmt::format("{}: cannot decode environment image: {}", name,
-                                    io::messageText(why.empty() ? "read failed" : why)));
-        }
-        for (size_t i = offset; i < env.image_.rgb.size(); ++i) {
-            float& v = env.image_.rgb[i];
-            if (auto problem = io::numberProblem(v))
-                throw Error(fmt::format("{}: pixel ({}, {}): radiance {}", name, (i / 3) % env.image_.width,
-                                        (i / 3) / env.image_.width, *problem));
-            v = std::max(v, 0.0f) * intensity;  // tiny negatives from lossy EXR compression are clamped
-        }
+    env.image_.width = decoded.width;
+    env.image_.height = decoded.height;
+    env.image_.rgb = image::toRgbFloat(decoded);
+    decoded = {};
+    // Every pixel passes the input-number rule.
+    for (size_t i = 0; i < env.image_.rgb.size(); ++i) {
+        float& v = env.image_.rgb[i];
+        if (auto problem = io::numberProblem(v))
+            throw Error(fmt::format("{}: pixel ({}, {}): radiance {}", name, (i / 3) % env.image_.width,
+                                    (i / 3) / env.image_.width, *problem));
+        v = std::max(v, 0.0f) * intensity;  // tiny negatives from lossy EXR compression are clamped
     }
-    input->close();
     env.radianceSh_ = projectEquirect(env.image_, rotationY);
     env.rotationY_ = rotationY;
     return env;

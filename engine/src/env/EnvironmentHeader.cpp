@@ -29,7 +29,8 @@ EnvironmentHeader radiance(std::span<const uint8_t> prefix) {
         fail("resolution", "the Radiance resolution line is not '-Y <height> +X <width>'");
     }
     if (ySign != '-' || xSign != '+') fail("resolution", "orientation " + copy + " is not supported (only -Y +X)");
-    return {EnvironmentFormat::RadianceHdr, width, height};
+    if (lineEnd == std::string_view::npos) fail("resolution", "no end of the Radiance resolution line");
+    return {EnvironmentFormat::RadianceHdr, width, height, lineEnd + 1};
 }
 
 int32_t readI32(std::span<const uint8_t> bytes, size_t offset) {

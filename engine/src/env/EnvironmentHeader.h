@@ -19,6 +19,7 @@ struct EnvironmentHeader {
     EnvironmentFormat format = EnvironmentFormat::RadianceHdr;
     int64_t width = 0;
     int64_t height = 0;
+    size_t pixelOffset = 0;  // Radiance: where the scanlines start (after the resolution line)
 };
 
 // Parses `prefix` (the file's first bytes, up to 64 KiB). Throws std::runtime_error naming the

@@ -1,11 +1,14 @@
-// Writing rendered images: PNG (8-bit sRGB) or EXR (half float, linear) through OpenImageIO,
+// Writing rendered images: PNG (8-bit sRGB, libpng in the core) or EXR (half float, linear,
+// through a registered codec: preskin::imageio),
 // under the output rule of <preskin/OutputFile.h> (a temporary file renamed into place, missing
 // folders made), so a failed run never leaves a partly written image behind.
 #include <preskin/Error.h>
+#include <preskin/ImageCodec.h>
 #include <preskin/OutputFile.h>
 #include <preskin/Renderer.h>
 
-#include <OpenImageIO/imageio.h>
+#include "image/ImageCodecs.h"
+
 #include <fmt/core.h>
 #include <sys/stat.h>
 #include <unistd.h>
@@ -37,6 +40,7 @@ void checkOutputPath(const std::filesystem::path& path, OutputEncoding encoding)
     if (ext != wanted)
         throw Error(
             fmt::format("{}: output: type '{}' does not match the encoding (expected {})", path.string(), ext, wanted));
+    image::encoderFor(path);
     checkOutputFile(path);
 }
 
@@ -97,26 +101,15 @@ void writeImage(const std::filesystem::path& path, const RenderedImage& eyes) {
             throw Error(fmt::format("{}: pixels: {} values of the rendered image are not finite; nothing written",
                                     path.string(), nonFinite));
     }
-    const std::string format = display ? "png" : "openexr";
-    OIIO::ImageSpec spec(int(image.width), int(image.height), 4,
-                         display ? OIIO::TypeDesc::UINT8 : OIIO::TypeDesc::HALF);
-    spec.attribute("oiio:ColorSpace", display ? "sRGB" : "Linear");
-    if (!display) spec.attribute("compression", "zip");
-    spec.attribute("DateTime", "");  // no time stamp: the same image is the same bytes
-    writeOutputFile(path, [&](const std::filesystem::path& temp) {
-        auto out = OIIO::ImageOutput::create(format);
-        if (!out) throw Error(fmt::format("{}: no {} writer: {}", path.string(), format, OIIO::geterror()));
-        if (!out->open(temp.string(), spec))
-            throw Error(fmt::format("{}: cannot create file: {}", path.string(), out->geterror()));
-        const bool ok = display ? out->write_image(OIIO::TypeDesc::UINT8, image.rgba8.data())
-                                : out->write_image(OIIO::TypeDesc::FLOAT, linear.data());
-        if (!ok) {
-            const std::string error = out->geterror();
-            out->close();
-            throw Error(fmt::format("{}: cannot write image: {}", path.string(), error));
-        }
-        if (!out->close()) throw Error(fmt::format("{}: cannot finish image: {}", path.string(), out->geterror()));
-    });
+    PixelImage pixels;
+    pixels.width = image.width;
+    pixels.height = image.height;
+    pixels.channels = 4;
+    if (display)
+        pixels.texels = image.rgba8;
+    else
+        pixels.texels = std::move(linear);
+    encodeImage(path, pixels);  // PNG in the core, EXR through a registered codec (preskin::imageio)
 }
 
 }  // namespace preskin

@@ -5,7 +5,7 @@
 #include <preskin/OutputFile.h>
 #include <preskin/Scene.h>
 
-#include <OpenImageIO/imageio.h>
+#include "image/PngFile.h"
 #include <fmt/core.h>
 #include <nlohmann/json.hpp>
 
@@ -190,14 +190,17 @@ void writeCurvatureMap(const CurvatureMap& map, const std::filesystem::path& png
     jsonPath.replace_extension(".json");
     checkOutputFile(png);
     checkOutputFile(jsonPath);
-    const std::vector<uint16_t> texels = map.encoded();
+    PixelImage image;
+    image.width = map.width;
+    image.height = map.height;
+    image.channels = 1;
+    image.texels = map.encoded();
     writeOutputFile(png, [&](const std::filesystem::path& temporary) {
-        auto out = OIIO::ImageOutput::create("png");
-        if (!out) throw Error(fmt::format("{}: cannot create a PNG writer: {}", png.string(), OIIO::geterror()));
-        const OIIO::ImageSpec spec(int(map.width), int(map.height), 1, OIIO::TypeDesc::UINT16);
-        if (!out->open(temporary.string(), spec) || !out->write_image(OIIO::TypeDesc::UINT16, texels.data()) ||
-            !out->close())
-            throw Error(fmt::format("{}: cannot write: {}", png.string(), out->geterror()));
+        try {
+            image::encodePng(temporary, image);
+        } catch (const std::exception& e) {
+            throw Error(fmt::format("{}: cannot write: {}", png.string(), e.what()));
+        }
     });
     size_t covered = 0;
     for (uint8_t c : map.covered) covered += c == 1;

@@ -1,7 +1,9 @@
 // glTF 2.0 loading: file and container checks, tinygltf with confined file access and an
-// OpenImageIO image callback, then meshes, nodes, lights and cameras (see GltfLoader.h).
+// image callback decoding through the registered codecs, then meshes, nodes, lights and cameras (see GltfLoader.h).
 #include "scene/GltfLoader.h"
 #include "anim/NodeHierarchy.h"
+#include "image/ImageCodecs.h"
+#include "image/ImageFormat.h"
 #include "io/FolderConfinement.h"
 #include "io/InputFile.h"
 #include "io/JsonDocument.h"
@@ -14,12 +16,12 @@
 #include "scene/GltfNodes.h"
 #include "scene/GltfPrepass.h"
 #include "scene/GltfSkins.h"
-#include "scene/ImageDecoder.h"
 
 #include <preskin/Error.h>
 #include <preskin/LightRecord.h>
 #include <preskin/Limits.h>
 
+#include <fmt/core.h>
 #include <glm/gtc/quaternion.hpp>
 
 #include <algorithm>
@@ -91,12 +93,16 @@ bool writeWholeFile(std::string* err, const std::string&, const std::vector<unsi
 }
 
 struct ImageState {
+    const SceneLoadOptions* options = nullptr;
     std::vector<std::string> unsupported;       // per image index: format description when unsupported
-    std::vector<std::vector<uint16_t>> rgba16;  // per image index: 16-bit PNGs' full-precision texels
+    std::vector<std::vector<uint16_t>> rgba16;  // per image index: texels of sources deeper than 8 bits
     std::optional<std::string> error;           // "images[i] (...): why"
     uint64_t totalPixels = 0;
 };
 
+// Decodes one image: the host's decoder first (SceneLoadOptions::decodeImage), then the
+// registered codecs (<preskin/ImageCodec.h>). A format no codec reads is left undecoded with a
+// warning, unless the image component would read it: then the scene needs that component.
 bool loadImage(tinygltf::Image* image, const int index, std::string* err, std::string*, int, int,
                const unsigned char* bytes, int size, void* user) {
     auto& state = *static_cast<ImageState*>(user);
@@ -109,23 +115,39 @@ bool loadImage(tinygltf::Image* image, const int index, std::string* err, std::s
             state.rgba16.resize(static_cast<size_t>(index) + 1);
         }
         const std::span<const uint8_t> data(bytes, static_cast<size_t>(size));
-        const ImageFormat format = sniffImageFormat(data);
-        if (format == ImageFormat::Unsupported) {
+        const DecodeLimits limits{limits::kMaxSceneImagePixels - state.totalPixels, limits::kMaxImageSide};
+        std::optional<PixelImage> decoded;
+        if (state.options->decodeImage) {
+            decoded = state.options->decodeImage(data, image->uri, image->mimeType);
+            if (decoded && (!decoded->consistent() || decoded->width == 0 || decoded->height == 0))
+                throw std::runtime_error(fmt::format("the host's decoder returned {}x{} texels of {} channels that do "
+                                                     "not match its data",
+                                                     decoded->width, decoded->height, decoded->channels));
+            if (decoded) image::checkImageSize(decoded->width, decoded->height, {limits.maxPixels, limits.maxSide});
+        }
+        if (!decoded && !canDecodeImage(data)) {
+            const image::ImageFormat format = image::sniffImageFormat(data);
+            if (image::decodedByImageComponent(format)) decodeImage(data, limits, where);  // throws, naming the component
             state.unsupported[static_cast<size_t>(index)] = describeImageFormat(data) + " data";
             image->width = image->height = 0;
             image->image.clear();
             return true;
         }
-        DecodedImage decoded = decodeImage(data, format, limits::kMaxSceneImagePixels - state.totalPixels);
-        state.totalPixels += uint64_t(decoded.width) * decoded.height;
-        image->width = static_cast<int>(decoded.width);
-        image->height = static_cast<int>(decoded.height);
+        if (!decoded) decoded = decodeImage(data, limits, where);
+        state.totalPixels += uint64_t(decoded->width) * decoded->height;
+        std::vector<uint8_t> rgba8;
+        image::toRgba(*decoded, rgba8, state.rgba16[static_cast<size_t>(index)]);
+        image->width = static_cast<int>(decoded->width);
+        image->height = static_cast<int>(decoded->height);
         image->component = 4;
         image->bits = 8;
         image->pixel_type = TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE;
-        image->image = std::move(decoded.rgba8);
-        state.rgba16[static_cast<size_t>(index)] = std::move(decoded.rgba16);
+        image->image = std::move(rgba8);
         return true;
+    } catch (const Error& e) {  // decodeImage's, which names the image
+        state.error = e.what();
+        if (err) *err += *state.error;
+        return false;
     } catch (const std::exception& e) {
         state.error = where + ": " + e.what();
         if (err) *err += *state.error;
@@ -573,6 +595,7 @@ Scene loadSceneBytes(std::vector<uint8_t> bytes, const fs::path& path, const Sce
     loader.SetFsCallbacks(
         tinygltf::FsCallbacks{&fileExists, &expandFilePath, &readWholeFile, &writeWholeFile, &fsState});
     ImageState imageState;
+    imageState.options = &options;
     loader.SetImageLoader(&loadImage, &imageState);
     tinygltf::Model model;
     std::string err, warn;
@@ -595,6 +618,17 @@ Scene loadSceneBytes(std::vector<uint8_t> bytes, const fs::path& path, const Sce
         }
     }
     scene.environmentPath = prepass.environmentPath;
+    if (scene.environmentPath) {
+        // A format only the image component reads fails here, naming the scene, not at its load.
+        const std::vector<uint8_t> head =
+            io::readInputFileStart(*scene.environmentPath, file, limits::kMaxImageFileBytes, 64);
+        const image::ImageFormat format = image::sniffImageFormat(head);
+        if (image::decodedByImageComponent(format) && !canDecodeImage(head))
+            fail(file, "extensions.PRESKIN_environment.uri",
+                 fmt::format("'{}' is {}: no decoder for it in this program (the image component preskin::imageio "
+                             "reads it: link preskin::imageio and call preskin::imageio::registerCodecs())",
+                             io::messageText(scene.environmentPath->filename().string()), image::formatName(format)));
+    }
     scene.environmentIntensity = prepass.environmentIntensity;
     scene.environmentRotation = prepass.environmentRotation;
     scene.profiles = prepass.profiles;
@@ -616,7 +650,7 @@ Scene loadSceneBytes(std::vector<uint8_t> bytes, const fs::path& path, const Sce
         Image out;
         out.name = !in.uri.empty() ? in.uri : !in.name.empty() ? in.name : where;
         if (!ctx.unsupportedImageFormat[i].empty()) {
-            ctx.warn(where, ctx.unsupportedImageFormat[i] + " is not decoded (PNG and JPEG are supported)");
+            ctx.warn(where, ctx.unsupportedImageFormat[i] + " is not decoded (no decoder for it in this program: PNG and JPEG are built in; a host plugs others in, <preskin/ImageCodec.h>)");
         } else if (in.image.empty() || in.width <= 0 || in.height <= 0 || in.component != 4) {
             ctx.fail(where, "no pixel data could be read");
         } else {

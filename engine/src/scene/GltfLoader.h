@@ -1,11 +1,12 @@
-// glTF 2.0 (.gltf and .glb) to preskin::Scene, through Debian's tinygltf 2.7 and OpenImageIO.
+// glTF 2.0 (.gltf and .glb) to preskin::Scene, through Debian's tinygltf 2.7.
 //
 // Order: read the file (a regular file within the limits of <preskin/Limits.h>) -> split the .glb
 // container -> parse the JSON (depth- and size-limited, io/JsonDocument.h) and check it
 // (GltfPrepass: versions, required extensions, object counts, URIs and links, buffer, view and
 // accessor ranges, every index, lights) -> tinygltf
 // parses the model, reading files only through callbacks that refuse anything outside the scene's
-// folder, and decoding images through a callback that uses OpenImageIO -> conversion: samplers,
+// folder, and decoding images through a callback: the host's decoder (SceneLoadOptions::decodeImage),
+// then the registered codecs (<preskin/ImageCodec.h>) -> conversion: samplers,
 // images, materials (GltfMaterials), meshes, the node hierarchy of the default scene (or scene 0,
 // or all root nodes when the file has no scenes) flattened into world-space instances, lights and
 // cameras.

@@ -1,4 +1,4 @@
-// LutSet files: four half-float RGB EXR tables (OpenImageIO) and manifest.json describing the
+// LutSet files: four half-float RGB EXR tables (through a registered codec: preskin::imageio) and manifest.json describing the
 // profile, settings, axes (range, unit, mapping, formula), sizes, sample counts, conventions and
 // an FNV-1a content hash per table; optional 8-bit sRGB PNG previews. Saving writes temporary
 // files and renames them into place (manifest last); loading validates everything and names the
@@ -12,15 +12,17 @@
 #include "skin/ProfileJson.h"
 
 #include <preskin/Error.h>
+#include <preskin/ImageCodec.h>
 #include <preskin/Limits.h>
 
 #include "env/EnvironmentHeader.h"
+#include "image/ImageCodecs.h"
+#include "image/PngFile.h"
 #include "io/InputFile.h"
 #include "io/JsonDocument.h"
 #include "io/MessageText.h"
 #include "io/NumberRule.h"
 
-#include <OpenImageIO/imageio.h>
 #include <fmt/core.h>
 #include <zlib.h>
 #include <nlohmann/json.hpp>
@@ -212,17 +214,21 @@ std::string manifestText(const LutSet& set, bool raw) {
 // ---- image writing -------------------------------------------------------------------------
 
 void writeExr(const fs::path& path, const fs::path& shownPath, const LutTable& table) {
-    std::vector<uint16_t> half(table.rgb.size());
-    for (size_t i = 0; i < half.size(); ++i) half[i] = skin::floatToHalfBits(table.rgb[i]);
-    auto out = OIIO::ImageOutput::create("openexr");
-    if (!out) throw Error(fmt::format("{}: cannot create an EXR writer: {}", shown(shownPath), OIIO::geterror()));
-    OIIO::ImageSpec spec(table.width(), table.height(), 3, OIIO::TypeDesc::HALF);
-    spec.attribute("compression", "zip");
-    spec.attribute("oiio:ColorSpace", "linear");
-    spec.attribute("preskin:table", table.name);
-    spec.attribute("DateTime", "");  // no time stamp: the same bake is the same bytes
-    if (!out->open(path.string(), spec) || !out->write_image(OIIO::TypeDesc::HALF, half.data()) || !out->close())
-        throw Error(fmt::format("{}: cannot write: {}", shown(shownPath), out->geterror()));
+    PixelImage image;
+    image.width = uint32_t(table.width());
+    image.height = uint32_t(table.height());
+    image.channels = 3;
+    image.texels = table.rgb;  // the table's values are halves already: written as half, exactly
+    EncodeOptions options;
+    options.halfFloat = true;
+    options.attributes = {{"preskin:table", table.name}};
+    try {
+        image::encoderFor(shownPath)->encode(path, image, options);
+    } catch (const Error&) {
+        throw;
+    } catch (const std::exception& e) {
+        throw Error(fmt::format("{}: cannot write: {}", shown(shownPath), io::messageText(e.what())));
+    }
 }
 
 void writeRaw(const fs::path& path, const fs::path& shownPath, const LutTable& table) {
@@ -252,11 +258,16 @@ void writePreview(const fs::path& path, const fs::path& shownPath, const LutTabl
                        static_cast<size_t>(c)] = static_cast<uint8_t>(std::lround(255.0f * srgbEncode(v[c])));
         }
     }
-    auto out = OIIO::ImageOutput::create("png");
-    if (!out) throw Error(fmt::format("{}: cannot create a PNG writer: {}", shown(shownPath), OIIO::geterror()));
-    OIIO::ImageSpec spec(width, height, 3, OIIO::TypeDesc::UINT8);
-    if (!out->open(path.string(), spec) || !out->write_image(OIIO::TypeDesc::UINT8, pixels.data()) || !out->close())
-        throw Error(fmt::format("{}: cannot write: {}", shown(shownPath), out->geterror()));
+    PixelImage image;
+    image.width = uint32_t(width);
+    image.height = uint32_t(height);
+    image.channels = 3;
+    image.texels = std::move(pixels);
+    try {
+        image::encodePng(path, image);
+    } catch (const std::exception& e) {
+        throw Error(fmt::format("{}: cannot write: {}", shown(shownPath), io::messageText(e.what())));
+    }
 }
 
 void writeText(const fs::path& path, const fs::path& shownPath, const std::string& text) {
@@ -357,20 +368,14 @@ void readExr(const fs::path& exrPath, const ManifestReader& reader, const std::s
     } catch (const std::runtime_error& e) {
         throw Error(fmt::format("{}: {}", shown(exrPath), e.what()));
     }
-    auto in = OIIO::ImageInput::create("openexr");
-    OIIO::ImageSpec opened;
-    if (!in || !in->open(exrPath.string(), opened)) {
-        const std::string why = in ? in->geterror() : OIIO::geterror();
-        OIIO::geterror();
-        throw Error(fmt::format("{}: cannot read: {}", shown(exrPath), io::messageText(why)));
-    }
-    const OIIO::ImageSpec& spec = in->spec();
-    if (spec.width != width || spec.height != height || spec.nchannels != 3)
+    const std::vector<uint8_t> bytes = io::readInputFile(exrPath, shown(exrPath), limits::kMaxImageFileBytes);
+    const PixelImage image =
+        decodeImage(bytes, DecodeLimits{limits::kMaxImagePixels, limits::kMaxImageSide}, shown(exrPath));
+    if (image.width != uint32_t(width) || image.height != uint32_t(height) || image.channels != 3)
         throw Error(fmt::format("{}: image is {}x{} with {} channels, but {} {} says {}x{} RGB", shown(exrPath),
-                                spec.width, spec.height, spec.nchannels, reader.source, path, width, height));
-    if (!in->read_image(0, 0, 0, 3, OIIO::TypeDesc::HALF, half.data()))
-        throw Error(fmt::format("{}: cannot read: {}", shown(exrPath), io::messageText(in->geterror())));
-    in->close();
+                                image.width, image.height, image.channels, reader.source, path, width, height));
+    const std::vector<float> rgb = image::toRgbFloat(image);
+    for (size_t i = 0; i < rgb.size(); ++i) half[i] = skin::floatToHalfBits(rgb[i]);
 }
 
 LutTable readTable(const fs::path& dir, const ManifestReader& reader, const nlohmann::json& tables,
@@ -447,6 +452,7 @@ void LutSet::save(const fs::path& dir, const LutSaveOptions& options) const {
             throw Error(
                 fmt::format("{}: table {}: {} values are not finite; nothing written", shown(dir), table->name, bad));
     }
+    if (!options.rawTables) image::encoderFor(dir / kDiffuseFile.fileName);  // an EXR writer is registered
     struct Pending {
         fs::path finalPath;
         std::function<void(const fs::path& temp)> write;

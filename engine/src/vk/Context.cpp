@@ -3,6 +3,8 @@
 
 #include "vk/Device.h"
 
+#include <fmt/core.h>
+
 namespace preskin {
 
 Context::Context(std::unique_ptr<vk::Device> device) : device_(std::move(device)) {}
@@ -24,6 +26,18 @@ VkDevice Context::device() const { return device_->device(); }
 VkQueue Context::queue() const { return device_->queue(); }
 uint32_t Context::queueFamilyIndex() const { return device_->queueFamilyIndex(); }
 std::string Context::deviceName() const { return device_->properties().deviceName; }
+std::string Context::driverDescription() const {
+    VkPhysicalDeviceDriverProperties driver{};
+    driver.sType = VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_DRIVER_PROPERTIES;
+    VkPhysicalDeviceProperties2 properties{};
+    properties.sType = VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_PROPERTIES_2;
+    properties.pNext = &driver;
+    vkGetPhysicalDeviceProperties2(device_->physicalDevice(), &properties);
+    const uint32_t api = properties.properties.apiVersion;
+    return fmt::format("{} {} (driver version 0x{:x}, Vulkan {}.{}.{})", driver.driverName, driver.driverInfo,
+                       properties.properties.driverVersion, VK_API_VERSION_MAJOR(api), VK_API_VERSION_MINOR(api),
+                       VK_API_VERSION_PATCH(api));
+}
 bool Context::isSoftwareDevice() const { return device_->properties().deviceType == VK_PHYSICAL_DEVICE_TYPE_CPU; }
 std::vector<uint32_t> Context::msaaSampleCounts() const {
     std::vector<uint32_t> counts;

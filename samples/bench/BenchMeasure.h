@@ -9,9 +9,11 @@
 #include "JsonWriter.h"
 #include "Options.h"  // samples/common
 
+#include <preskin/Animation.h>
 #include <preskin/ClusterGrid.h>
 #include <preskin/Context.h>
 #include <preskin/Renderer.h>
+#include <preskin/Scene.h>
 #include <preskin/View.h>
 
 #include <fmt/core.h>
@@ -65,14 +67,23 @@ struct BenchOptions {
     bool noEnvironment = false;
     bool noDiffusion = false;
     int profileLutSize = 256;
+    bool noCache = false;  // the profiles' LUT cache off (CommonOptions::noCache)
     std::string animatedScene;
     uint32_t vrWidth = 640;
     uint32_t vrHeight = 720;
     uint32_t vrLights = 256;
+    uint32_t vrMsaa = 1;  // samples of the stereo frame and its two mono frames (when the device offers them)
     float ipdM = 0.063f;
     std::string device;
     bool validation = false;
+    // The CPU deformation (the reference library's deformPrimitive, which the CLI links): the
+    // animation section's CPU curvature figures use it; without it (the GPU kit links no
+    // reference) they are left out.
+    void (*cpuDeform)(const Primitive&, const InstancePose&, std::vector<Vertex>&) = nullptr;
 };
+
+// Runs the sections `o` asks for and returns the JSON report (BenchRun.cpp).
+std::string runBench(const BenchOptions& o);
 
 // A scene path as the JSON reports it: relative to the data folder for bundled assets, so results
 // do not carry the machine's folders.

@@ -27,6 +27,7 @@ void BenchRun::vrSection() {
         std::optional<Measurement> msaa1, msaa4;
         Measurement recordStereo, recordMono;
         double combinedBuildMs = 0.0, perEyeBuildMs = 0.0;
+        uint32_t eyeMsaa = 1;
         PerPixel perPixel[2];
     };
     std::optional<VrRun> vr;
@@ -42,13 +43,20 @@ void BenchRun::vrSection() {
         VrRun run;
         // One renderer per eye count and sample count, as an application keeps them: a renderer
         // resizes its attachments when either changes.
-        Renderer stereoRenderer(context, scene, environment, profiles, base);
-        Renderer monoRenderer(context, scene, environment, profiles, base);
+        // The eyes' frames at --vr-msaa samples where the device offers them (else 1).
+        const std::vector<uint32_t> offered = renderer.msaaSampleCounts();
+        RenderSettings eyeSettings = base;
+        if (std::find(offered.begin(), offered.end(), o.vrMsaa) != offered.end()) eyeSettings.msaaSamples = o.vrMsaa;
+        run.eyeMsaa = eyeSettings.msaaSamples;
+        Renderer stereoRenderer(context, scene, environment, profiles, eyeSettings);
+        Renderer monoRenderer(context, scene, environment, profiles, eyeSettings);
         std::vector<Measurement> eyes = bench.measure(
-            {{&stereoRenderer, base, fmt::format("{} lights, stereo {}x{} per eye", o.vrLights, o.vrWidth, o.vrHeight),
+            {{&stereoRenderer, eyeSettings,
+              fmt::format("{} lights, stereo {}x{} per eye, MSAA {}x", o.vrLights, o.vrWidth, o.vrHeight,
+                          eyeSettings.msaaSamples),
               0.0, &stereo, o.vrWidth, o.vrHeight},
-             {&monoRenderer, base, "left eye mono", 0.0, &left, o.vrWidth, o.vrHeight},
-             {&monoRenderer, base, "right eye mono", 0.0, &right, o.vrWidth, o.vrHeight}},
+             {&monoRenderer, eyeSettings, "left eye mono", 0.0, &left, o.vrWidth, o.vrHeight},
+             {&monoRenderer, eyeSettings, "right eye mono", 0.0, &right, o.vrWidth, o.vrHeight}},
             lights);
         run.stereo = std::move(eyes[0]);
         run.left = std::move(eyes[1]);
@@ -67,7 +75,6 @@ void BenchRun::vrSection() {
             run.recordStereo = std::move(recorded[0]);
             run.recordMono = std::move(recorded[1]);
         }
-        const std::vector<uint32_t> offered = renderer.msaaSampleCounts();
         if (std::find(offered.begin(), offered.end(), 4u) != offered.end()) {
             RenderSettings four = base;
             four.msaaSamples = 4;
@@ -111,6 +118,7 @@ void BenchRun::vrSection() {
         j.field("eye_width", o.vrWidth);
         j.field("eye_height", o.vrHeight);
         j.field("ipd_m", o.ipdM);
+        j.field("msaa_samples", vr->eyeMsaa);
         j.key("stereo");
         writeMeasurement(j, vr->stereo);
         j.key("left_mono");
