@@ -8,7 +8,7 @@ packages=(
   build-essential cmake ninja-build pkg-config git
   libvulkan-dev libvulkan-volk-dev mesa-vulkan-drivers vulkan-validationlayers vulkan-tools
   glslang-tools glslang-dev spirv-tools
-  libglm-dev libglfw3-dev libtinygltf-dev nlohmann-json3-dev libstb-dev libopenimageio-dev libpng-dev
+  libglm-dev libglfw3-dev libtinygltf-dev nlohmann-json3-dev libstb-dev libjpeg-dev libpng-dev libopenimageio-dev
   libimgui-dev libcli11-dev libfmt-dev libtbb-dev libembree-dev
   libgtest-dev libbenchmark-dev xvfb xauth libx11-dev
   python3-numpy python3-matplotlib clang libclang-rt-14-dev valgrind

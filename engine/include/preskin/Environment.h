@@ -92,7 +92,8 @@ inline constexpr uint32_t kMaxEnvironmentLights = 16;
 class PRESKIN_API Environment {
 public:
     // Reads an equirectangular Radiance .hdr or OpenEXR file (recognised by its content) of at
-    // most 8192x4096 (<preskin/Limits.h>); throws preskin::Error naming the file on a missing,
+    // most 8192x4096 (<preskin/Limits.h>): Radiance in the core library, OpenEXR through a
+    // registered codec (the image component preskin::imageio, <preskin/ImageCodec.h>); throws preskin::Error naming the file on a missing,
     // unreadable, oversized or non-2:1 image, or a pixel or argument that the input-number rule
     // refuses (not finite, or beyond 1e6 in magnitude).
     static Environment load(const std::filesystem::path& path, float intensity = 1.0f, float rotationY = 0.0f);

@@ -41,7 +41,9 @@
 // comes from the material.
 //
 // Files (save/load): diffuse.exr, penumbra.exr, sh_transfer.exr, transmittance.exr (RGB half,
-// zip) and manifest.json (profile, settings, every axis with range, unit, mapping and formula,
+// zip; written and read through a registered codec: the image component preskin::imageio) or
+// raw half-float tables (LutSaveOptions::rawTables; the core reads and writes them itself) and
+// manifest.json (profile, settings, every axis with range, unit, mapping and formula,
 // sizes, sample counts, conventions and an FNV-1a content hash per table). Every file is first
 // written under a temporary name and then renamed into place, the manifest last; targets are
 // checked before the renames, and on failure the temporary files (and folders save created) are

@@ -552,61 +552,6 @@ void Renderer::Impl::record(VkCommandBuffer cmd, const RenderTarget& target, con
     slot.recordMs = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
 }
 
-FrameStats Renderer::Impl::stats(uint32_t slotIndex) const {
-    FrameStats s;
-    if (slotIndex >= kSlotCount) return s;
-    const Slot& slot = slots[slotIndex];
-    s.wallMs = slot.wallMs;
-    s.lightCount = slot.lightCount;
-    s.clusterOverflows = clusters->overflows(slotIndex);
-    s.clusterBuildCpuMs = settings.lightLoop == LightLoop::Clustered ? clusters->buildMs(slotIndex) : 0.0;
-    s.clusterBuildGpu = settings.lightLoop == LightLoop::Clustered && clusters->usesGpu(slotIndex);
-    s.clusterGridBytes = settings.lightLoop == LightLoop::Clustered ? clusters->gridBytes(slotIndex) : 0;
-    if (settings.lightLoop == LightLoop::Clustered) {
-        s.clusterDims = clusters->shape(slotIndex).dims;
-        s.clusterTileSizePx = clusters->shape(slotIndex).tileSizePx;
-    }
-    s.recordCpuMs = std::max(slot.recordMs - s.clusterBuildCpuMs, 0.0);
-    s.eyes = slot.eyes;
-    s.eyeDrawing = eyeDrawing();
-    if (slot.split && screenDiffusion) {
-        s.diffusionPasses = ScreenDiffusion::kPasses;
-        s.diffusionTargets = screenDiffusion->targetCount();
-        s.diffusionTargetBytes = screenDiffusion->targetBytes();
-    }
-    if (slot.texture && textureDiffusion) {
-        s.diffusionPasses = textureDiffusion->passesPerFrame(layerMaterials);
-        s.diffusionTargets = TextureDiffusion::kTargets;
-        s.diffusionTargetBytes = textureDiffusion->targetBytes();
-    }
-    if (!slot.recorded || !slot.queries) return s;
-    std::array<uint64_t, kQueryCount> ticks{};
-    // The baselines' passes write two more.
-    const uint32_t written = slot.split || slot.texture ? kQueryCount : kQueryCount - 2;
-    const VkResult r = vkGetQueryPoolResults(dev.device(), slot.queries, 0, written, written * sizeof(uint64_t),
-                                             ticks.data(), sizeof(uint64_t), VK_QUERY_RESULT_64_BIT);
-    if (r != VK_SUCCESS) return s;
-    const double toMs = double(dev.timestampPeriodNs()) * 1e-6;
-    auto ms = [&](int a, int b) { return double(ticks[size_t(b)] - ticks[size_t(a)]) * toMs; };
-    s.passes = {{"deform", ms(0, 1)},
-                {"curvature", ms(1, 2)},
-                {"shadow", ms(2, 3)},
-                {"clusters", ms(3, 4)},
-                {"forward", ms(4, 5)}};
-    s.gpuMs = ms(0, 5);
-    if (slot.texture) {
-        s.passes[4] = {"texture irradiance", ms(4, 6)};
-        s.passes.push_back({"texture blur", ms(6, 7)});
-        s.passes.push_back({"forward", ms(7, 5)});
-    }
-    if (slot.split) {
-        s.passes.push_back({"diffusion rows", ms(5, 6)});
-        s.passes.push_back({"diffusion columns", ms(6, 7)});
-        s.gpuMs = ms(0, 7);
-    }
-    return s;
-}
-
 void Renderer::Impl::checkProfileLayers(size_t layerCount) const {
     if (layerCount == 0) return;
     const std::vector<Material>& materials = scene->sceneMaterials();
