@@ -78,6 +78,9 @@ std::string runBench(const BenchOptions& o) {
     common.noCache = o.noCache;
     const std::filesystem::path scenePath = o.scene.empty() ? defaultScenePath() : std::filesystem::path(o.scene);
     const Scene scene = loadScene(scenePath, common);
+    // A scene named for a later section is checked before any measurement.
+    if (!o.noAnimation && !o.animatedScene.empty() && loadScene(o.animatedScene, common).animations.empty())
+        throw Error(fmt::format("--animated-scene {}: animations: the scene has none", o.animatedScene));
     for (const std::string& warning : scene.warnings) fmt::print(stderr, "preskin: warning: {}\n", warning);
     Scene standardScene = scene;
     const bool hasSkin = removeSkin(standardScene);

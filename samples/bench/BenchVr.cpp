@@ -50,14 +50,14 @@ void BenchRun::vrSection() {
         run.eyeMsaa = eyeSettings.msaaSamples;
         Renderer stereoRenderer(context, scene, environment, profiles, eyeSettings);
         Renderer monoRenderer(context, scene, environment, profiles, eyeSettings);
-        std::vector<Measurement> eyes = bench.measure(
-            {{&stereoRenderer, eyeSettings,
-              fmt::format("{} lights, stereo {}x{} per eye, MSAA {}x", o.vrLights, o.vrWidth, o.vrHeight,
-                          eyeSettings.msaaSamples),
-              0.0, &stereo, o.vrWidth, o.vrHeight},
-             {&monoRenderer, eyeSettings, "left eye mono", 0.0, &left, o.vrWidth, o.vrHeight},
-             {&monoRenderer, eyeSettings, "right eye mono", 0.0, &right, o.vrWidth, o.vrHeight}},
-            lights);
+        std::vector<Measurement> eyes =
+            bench.measure({{&stereoRenderer, eyeSettings,
+                            fmt::format("{} lights, stereo {}x{} per eye, MSAA {}x", o.vrLights, o.vrWidth, o.vrHeight,
+                                        eyeSettings.msaaSamples),
+                            0.0, &stereo, o.vrWidth, o.vrHeight},
+                           {&monoRenderer, eyeSettings, "left eye mono", 0.0, &left, o.vrWidth, o.vrHeight},
+                           {&monoRenderer, eyeSettings, "right eye mono", 0.0, &right, o.vrWidth, o.vrHeight}},
+                          lights);
         run.stereo = std::move(eyes[0]);
         run.left = std::move(eyes[1]);
         run.right = std::move(eyes[2]);

@@ -5,6 +5,7 @@
 // Files: DIR/<material>_curvature.png and .json (the name's characters other than letters,
 // digits, '-' and '_' as '_'; the material index when names repeat). Every output is checked
 // before anything is baked.
+#include "CommandLine.h"  // samples/common
 #include "Commands.h"
 #include "Options.h"  // samples/common
 
@@ -53,8 +54,9 @@ void run(const BakeCurvatureOptions& o) {
     settings.rangeQuantile = o.rangeQuantile;
     std::vector<CurvatureMap> maps = bakeCurvatureMaps(scene, settings);
     if (maps.empty())
-        throw Error(fmt::format("{}: no skin material is drawn (make materials skin with --skin NAME or all)",
-                                scenePath.string()));
+        throw Error(
+            fmt::format("{}: materials: no skin material is drawn (make materials skin with --skin NAME or all)",
+                        scenePath.string()));
     std::set<std::string> stems;
     std::vector<std::filesystem::path> paths;
     for (const CurvatureMap& map : maps) {
@@ -89,7 +91,8 @@ void addBakeCurvatureCommand(CLI::App& app) {
     cmd->add_option("scene", o->scene, "glTF scene (default: the bundled head)");
     cmd->add_option("--out", o->out, "output folder (created if missing)")->required();
     cmd->add_option("--size", o->size,
-                    "map width and height, 16..8192 (default: the material's largest texture, 1024 without one)");
+                    "map width and height, 16..8192 (default: the material's largest texture, 1024 without one)")
+        ->check(wholeNumberIn(16, 8192));
     cmd->add_option("--dilation", o->dilation, "texel rings filled around the UV charts, 0..1024 (default 16)");
     cmd->add_option(
         "--range-quantile", o->rangeQuantile,

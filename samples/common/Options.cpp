@@ -382,14 +382,18 @@ void applySkinOption(Scene& scene, const CommonOptions& o) {
 }
 
 Environment loadEnvironment(const Scene& scene, const CommonOptions& o) {
-    if (!o.env.empty())
-        return Environment::load(o.env, o.envIntensity >= 0.0f ? o.envIntensity : 1.0f,
-                                 glm::radians(o.envRotationDeg.value_or(0.0f)));
-    if (scene.environmentPath)
-        return Environment::load(*scene.environmentPath,
-                                 o.envIntensity >= 0.0f ? o.envIntensity : scene.environmentIntensity,
-                                 o.envRotationDeg ? glm::radians(*o.envRotationDeg) : scene.environmentRotation);
-    return Environment::constant(glm::vec3(0.25f) * (o.envIntensity >= 0.0f ? o.envIntensity : 1.0f));
+    const float sceneIntensity = o.envIntensity >= 0.0f ? o.envIntensity : scene.environmentIntensity;
+    const float sceneRotation = o.envRotationDeg ? glm::radians(*o.envRotationDeg) : scene.environmentRotation;
+    Environment environment = !o.env.empty() ? Environment::load(o.env, o.envIntensity >= 0.0f ? o.envIntensity : 1.0f,
+                                                                 glm::radians(o.envRotationDeg.value_or(0.0f)))
+        : scene.environmentPath              ? Environment::load(*scene.environmentPath, sceneIntensity, sceneRotation)
+        : !scene.environmentData.empty()
+        ? Environment::load(scene.environmentData,
+                            scene.sourcePath.string() + ": extensions.PRESKIN_environment.uri (data URI)",
+                            sceneIntensity, sceneRotation)
+        : Environment::constant(glm::vec3(0.25f) * (o.envIntensity >= 0.0f ? o.envIntensity : 1.0f));
+    for (const std::string& warning : environment.warnings()) fmt::print(stderr, "preskin: warning: {}\n", warning);
+    return environment;
 }
 
 Light defaultKeyLight() {
@@ -404,7 +408,7 @@ Light defaultKeyLight() {
 
 int environmentLightCount(const Scene& scene, const CommonOptions& o) {
     if (o.envLights >= 0) return o.envLights;
-    const bool environmentImage = !o.env.empty() || scene.environmentPath.has_value();
+    const bool environmentImage = !o.env.empty() || scene.hasEnvironmentImage();
     return (scene.lights.empty() || o.noSceneLights) && environmentImage ? 1 : 0;
 }
 

@@ -139,9 +139,9 @@ ojson makeReport(const json& bench, const ReportInfo& info) {
     v["frame_budget_ms"] = 1000.0 / 90.0;
     v["budget_left_ms"] = 1000.0 / 90.0 - stereoMs;
     r["vr"] = v;
-    const std::string vrSize = fmt::format("2 x {}x{}, MSAA {}x, {} lights, skin", v["eye_width"].get<int>(),
-                                           v["eye_height"].get<int>(), v["msaa_samples"].get<int>(),
-                                           v["lights"].get<int>());
+    const std::string vrSize =
+        fmt::format("2 x {}x{}, MSAA {}x, {} lights, skin", v["eye_width"].get<int>(), v["eye_height"].get<int>(),
+                    v["msaa_samples"].get<int>(), v["lights"].get<int>());
     goals.push_back(goal("stereo frame / two mono frames <= 0.85 (GPU time, " + vrSize + ")", v["stereo_over_two_mono"],
                          0.85, true));
     goals.push_back(goal("VR frame within 11.1 ms (90 Hz; GPU time, " + vrSize + ")", stereoMs, 1000.0 / 90.0, true,
@@ -158,16 +158,18 @@ ojson makeReport(const json& bench, const ReportInfo& info) {
         o["grid_build"] = at(row, {"clustered", "cluster_build"});
         const json& passesMs = at(row, {"clustered", "gpu_pass_ms"});
         const double clustersMs = passesMs.contains("clusters") && passesMs["clusters"].is_number()
-                                      ? passesMs["clusters"].get<double>()
-                                      : 0.0;
+            ? passesMs["clusters"].get<double>()
+            : 0.0;
         o["grid_pass_share_of_frame_gpu"] = clustersMs / number(row, {"clustered", "gpu_ms"});
         rows.push_back(o);
     }
     lights["counts"] = rows;
     const json* at4096 = lightRow(bench, 4096);
     const json* at65536 = lightRow(bench, 65536);
-    if (!at4096 || !at65536) throw std::runtime_error("the bench report has no light_loop rows at 4096 and 65536 lights");
-    lights["frame_65536_over_4096"] = number(*at65536, {"clustered", "gpu_ms"}) / number(*at4096, {"clustered", "gpu_ms"});
+    if (!at4096 || !at65536)
+        throw std::runtime_error("the bench report has no light_loop rows at 4096 and 65536 lights");
+    lights["frame_65536_over_4096"] =
+        number(*at65536, {"clustered", "gpu_ms"}) / number(*at4096, {"clustered", "gpu_ms"});
     const json& area = at(bench, {"area_lights"});
     ojson areaOut;
     for (const char* shape : {"point", "sphere", "tube", "rectangle", "disc"}) {
@@ -178,9 +180,9 @@ ojson makeReport(const json& bench, const ReportInfo& info) {
     }
     lights["area_64_lights"] = areaOut;
     r["lights"] = lights;
-    goals.push_back(goal(fmt::format("65,536 lights / 4,096 lights at density {} <= 1.5 (GPU time)",
-                                     lights["density"].get<double>()),
-                         lights["frame_65536_over_4096"], 1.5, true));
+    goals.push_back(goal(
+        fmt::format("65,536 lights / 4,096 lights at density {} <= 1.5 (GPU time)", lights["density"].get<double>()),
+        lights["frame_65536_over_4096"], 1.5, true));
 
     // The animated head.
     const json& anim = at(bench, {"animation"});
@@ -204,7 +206,8 @@ std::string reportMarkdown(const ojson& r) {
     md << fmt::format("- device: {}\n- driver: {}\n- date: {}\n- mode: {}\n- command: `{}`\n- elapsed: {:.0f} s\n\n",
                       r["device"].get<std::string>(), r["driver"].get<std::string>(), r["date"].get<std::string>(),
                       r["mode"].get<std::string>(), r["command"].get<std::string>(), r["elapsed_s"].get<double>());
-    md << r["timing"].get<std::string>() << ".\n\n## Goals\n\n| goal | target | measured | holds |\n| --- | --- | --- | --- |\n";
+    md << r["timing"].get<std::string>()
+       << ".\n\n## Goals\n\n| goal | target | measured | holds |\n| --- | --- | --- | --- |\n";
     for (const auto& g : r["goals"])
         md << fmt::format("| {} | {} | {} | {} |\n", g["goal"].get<std::string>(), ratio(g["target"]),
                           ratio(g["measured"]) + (g.contains("note") ? " (" + g["note"].get<std::string>() + ")" : ""),
@@ -215,9 +218,10 @@ std::string reportMarkdown(const ojson& r) {
     for (const char* key : {"standard", "skin", "skin_techniques_off", "preintegrated", "screen_space", "texture_space",
                             "ibl_and_background", "neither"})
         md << fmt::format("| {} | {} | {} |\n", key, ms(h[key]["gpu_ms"]), passes(h[key]));
-    md << fmt::format("\nskin / standard {}; preskin / screen-space {}, / texture-space {}; IBL and background share {}\n",
-                      ratio(h["skin_over_standard"]), ratio(h["preintegrated_over_screen_space"]),
-                      ratio(h["preintegrated_over_texture_space"]), ratio(h["ibl_and_background_share"]));
+    md << fmt::format(
+        "\nskin / standard {}; preskin / screen-space {}, / texture-space {}; IBL and background share {}\n",
+        ratio(h["skin_over_standard"]), ratio(h["preintegrated_over_screen_space"]),
+        ratio(h["preintegrated_over_texture_space"]), ratio(h["ibl_and_background_share"]));
     md << "\n| technique | forward-pass cost, GPU ms (skin frame minus the frame without it) |\n| --- | --- |\n";
     for (auto it = h["technique_cost_forward_gpu_ms"].begin(); it != h["technique_cost_forward_gpu_ms"].end(); ++it)
         md << fmt::format("| {} | {} |\n", it.key(), ms(it.value()));
@@ -230,24 +234,27 @@ std::string reportMarkdown(const ojson& r) {
     md << fmt::format("\nstereo / two monos {}; {} ms of the 11.11 ms frame left\n", ratio(v["stereo_over_two_mono"]),
                       ms(v["budget_left_ms"]));
     const ojson& l = r["lights"];
-    md << fmt::format("\n## Lights at density {}\n\n| lights | GPU ms | grid build | grid pass share | passes |\n"
-                      "| --- | --- | --- | --- | --- |\n",
-                      l["density"].get<double>());
+    md << fmt::format(
+        "\n## Lights at density {}\n\n| lights | GPU ms | grid build | grid pass share | passes |\n"
+        "| --- | --- | --- | --- | --- |\n",
+        l["density"].get<double>());
     for (const auto& row : l["counts"])
         md << fmt::format("| {} | {} | {} | {} | {} |\n", row["lights"].get<int>(), ms(row["frame"]["gpu_ms"]),
                           row["grid_build"].get<std::string>(), ratio(row["grid_pass_share_of_frame_gpu"]),
                           passes(row["frame"]));
-    md << fmt::format("\n65,536 / 4,096 lights: {}\n\n| 64 lights of shape | forward ms per light | over a point's |\n"
-                      "| --- | --- | --- |\n",
-                      ratio(l["frame_65536_over_4096"]));
+    md << fmt::format(
+        "\n65,536 / 4,096 lights: {}\n\n| 64 lights of shape | forward ms per light | over a point's |\n"
+        "| --- | --- | --- |\n",
+        ratio(l["frame_65536_over_4096"]));
     for (auto it = l["area_64_lights"].begin(); it != l["area_64_lights"].end(); ++it)
         md << fmt::format("| {} | {} | {} |\n", it.key(), ms(it.value()["forward_ms_per_light"]),
                           ratio(it.value()["per_light_over_point"]));
     const ojson& a = r["animation"];
-    md << fmt::format("\n## The animated head\n\nframe {} GPU ms ({}); deformation {} ms and curvature {} ms: {} of the "
-                      "frame\n",
-                      ms(a["frame"]["gpu_ms"]), passes(a["frame"]), ms(a["deform_gpu_ms"]), ms(a["curvature_gpu_ms"]),
-                      ratio(a["deform_and_curvature_share"]));
+    md << fmt::format(
+        "\n## The animated head\n\nframe {} GPU ms ({}); deformation {} ms and curvature {} ms: {} of the "
+        "frame\n",
+        ms(a["frame"]["gpu_ms"]), passes(a["frame"]), ms(a["deform_gpu_ms"]), ms(a["curvature_gpu_ms"]),
+        ratio(a["deform_and_curvature_share"]));
     md << "\n## The bench's own goals (wall time on software devices)\n\n| goal | target | measured | holds |\n"
           "| --- | --- | --- | --- |\n";
     for (const auto& g : r["bench_goals"])

@@ -19,8 +19,8 @@
 #include <preskin/Error.h>
 #include <preskin/OutputFile.h>
 
-#include <CLI/CLI.hpp>
 #include <fmt/core.h>
+#include <CLI/CLI.hpp>
 
 #include <chrono>
 #include <ctime>
@@ -54,12 +54,12 @@ preskin::cli::bench::BenchOptions benchOptions(const KitOptions& k) {
     o.skinCounts = "256";
     o.vrLights = 256;
     o.vrMsaa = 4;
-    o.noBrute = true;          // a loop over every light at 65,536: the clustered frames are the figures
-    o.noBuildCompare = true;   // the grid is built where the kit says (below), not both ways
-    o.noPerPixel = true;       // list lengths are the bench's correctness figure, not a GPU one
-    o.noLutBake = true;        // a CPU figure
-    o.noProfiles = true;       // a CPU figure
-    o.noCache = true;          // no profile cache written on the machine
+    o.noBrute = true;         // a loop over every light at 65,536: the clustered frames are the figures
+    o.noBuildCompare = true;  // the grid is built where the kit says (below), not both ways
+    o.noPerPixel = true;      // list lengths are the bench's correctness figure, not a GPU one
+    o.noLutBake = true;       // a CPU figure
+    o.noProfiles = true;      // a CPU figure
+    o.noCache = true;         // no profile cache written on the machine
     o.budgetS = 60.0;
     if (k.quick) {
         o.width = 320;

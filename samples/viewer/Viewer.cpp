@@ -210,15 +210,16 @@ void Viewer::loadStartupContent() {
         scene = Scene{};
     }
 
-    environmentIntensity_ = options_.common.envIntensity >= 0.0f ? options_.common.envIntensity
-        : (options_.common.env.empty() && scene.environmentPath) ? scene.environmentIntensity
-                                                                 : 1.0f;
+    environmentIntensity_ = options_.common.envIntensity >= 0.0f       ? options_.common.envIntensity
+        : (options_.common.env.empty() && scene.hasEnvironmentImage()) ? scene.environmentIntensity
+                                                                       : 1.0f;
     environmentFromScene_ = options_.common.env.empty();
     try {
         environment_ = cli::loadEnvironment(scene, options_.common);
         environmentRotationDeg_ = glm::degrees(environment_.rotationY());
         environmentName_ = !options_.common.env.empty() ? options_.common.env
             : scene.environmentPath                     ? scene.environmentPath->string()
+            : scene.hasEnvironmentImage()               ? "the scene's embedded environment"
                                                         : "uniform grey";
     } catch (const std::exception& e) {
         error(fmt::format("environment not loaded: {} (using a uniform grey)", e.what()));

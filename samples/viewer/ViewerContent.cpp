@@ -207,12 +207,15 @@ void Viewer::startEnvironmentLoad(std::optional<std::filesystem::path> path, flo
     common.envIntensity = intensity;
     if (rotationDeg) common.envRotationDeg = rotationDeg;
     Scene sceneEnvironment;  // only the scene's environment fields
+    sceneEnvironment.sourcePath = scene_.sourcePath;
     sceneEnvironment.environmentPath = scene_.environmentPath;
+    sceneEnvironment.environmentData = scene_.environmentData;
     sceneEnvironment.environmentIntensity = scene_.environmentIntensity;
     sceneEnvironment.environmentRotation = scene_.environmentRotation;
-    const std::string name = path ? path->string()
-        : scene_.environmentPath  ? scene_.environmentPath->string()
-                                  : std::string("uniform grey");
+    const std::string name = path      ? path->string()
+        : scene_.environmentPath       ? scene_.environmentPath->string()
+        : scene_.hasEnvironmentImage() ? std::string("the scene's embedded environment")
+                                       : std::string("uniform grey");
     environmentJob_ = std::async(std::launch::async, [common, sceneEnvironment, name, intensity, fromScene = !path] {
         EnvironmentLoad result;
         result.name = name;
@@ -315,7 +318,7 @@ void Viewer::pollJobs() {
             for (const std::string& w : loaded.scene->warnings) info("warning: " + w);
             info(fmt::format("{} loaded in {:.0f} ms", loaded.path.string(), loaded.loadMs));
             const bool newEnvironment =
-                environmentFromScene_ && (loaded.scene->environmentPath || scene_.environmentPath);
+                environmentFromScene_ && (loaded.scene->hasEnvironmentImage() || scene_.hasEnvironmentImage());
             scenePathInput_ = loaded.path.string();
             adoptScene(std::move(*loaded.scene), loaded.path);
             if (newEnvironment) startEnvironmentLoad(std::nullopt, scene_.environmentIntensity);

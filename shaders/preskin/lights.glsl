@@ -231,6 +231,20 @@ PreskinLightSample preskinLightSample(GpuLight light, vec3 positionWs, vec3 N, v
     vec3 intensity = light.colorIntensity.rgb * window;
     float radius = sun ? light.spotScaleOffset.z : light.spotScaleOffset.x;
     if (sun) type = kLightSphere;
+    // The area-light size floor: a rectangle's half extents, a disc's and a tube's radius below a
+    // thousandth of the distance are computed at that size. Below it the edges' form factors lose
+    // their float precision (a 1e-10 m rectangle lost most of its light, a 1e-30 m one all of it);
+    // the irradiance per candela does not (1 / d^2 times the facing cosine for a vanishing flat
+    // light), so the light keeps its power, as a point light with its cosine falloff would, within
+    // about 1e-6.
+    float sizeFloor = 1e-3 * length(center);
+    if (preskinIsLight(type, kLightRectangle)) {
+        vec3 u = light.directionType.xyz, v = light.spotScaleOffset.xyz;
+        light.directionType.xyz = u * max(1.0, sizeFloor / length(u));  // half sizes >= 5e-10 (toGpuLight)
+        light.spotScaleOffset.xyz = v * max(1.0, sizeFloor / length(v));
+    } else if (preskinIsLight(type, kLightDisc) || preskinIsLight(type, kLightTube)) {
+        radius = max(radius, sizeFloor);
+    }
     // The projected area the candela spread over: a sphere's or disc's pi r^2, a rectangle's w h, a
     // tube's broadside 2 r l + pi r^2.
     float area = PRESKIN_PI * radius * radius;

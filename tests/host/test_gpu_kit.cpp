@@ -81,11 +81,10 @@ TEST(GpuKit, MovedKitRunsInAnEmptyEnvironmentAndReportsEveryFigure) {
 
     // The quick run in an empty environment, validation on.
     const fs::path report = work / "report";
-    const ProcessResult ran = runProcess(
-        "/usr/bin/env",
-        {"-i", "LP_NUM_THREADS=2", (kit / "run.sh").string(), "--device", testDevice(), "--quick", "--validation",
-         "--out", report.string()},
-        {}, work, 540.0);
+    const ProcessResult ran = runProcess("/usr/bin/env",
+                                         {"-i", "LP_NUM_THREADS=2", (kit / "run.sh").string(), "--device", testDevice(),
+                                          "--quick", "--validation", "--out", report.string()},
+                                         {}, work, 540.0);
     ASSERT_EQ(ran.exitCode, 0) << ran.out << ran.err;
     EXPECT_EQ((ran.out + ran.err).find("Validation"), std::string::npos) << ran.err;
     const std::string text = readFile(report / "gpu-report.json");

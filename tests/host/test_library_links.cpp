@@ -44,9 +44,8 @@ TEST(LibraryLinks, PreskinNeedsNoEmbreeAndTheReferenceDoes) {
 // What libpreskin may load beyond the C/C++ runtime (the Vulkan loader it opens itself, with
 // dlopen, and is not among its DT_NEEDED): the glTF parser and stb_image (which tinygltf links),
 // PNG and JPEG decoding with zlib, fmt and TBB.
-const std::vector<std::string> kCoreLibraries = {"libtinygltf.so.2d", "libstb.so.0", "libpng16.so.16",
-                                                 "libz.so.1",         "libjpeg.so.62", "libfmt.so.9",
-                                                 "libtbb.so.12"};
+const std::vector<std::string> kCoreLibraries = {"libtinygltf.so.2d", "libstb.so.0", "libpng16.so.16", "libz.so.1",
+                                                 "libjpeg.so.62",     "libfmt.so.9", "libtbb.so.12"};
 
 void expectLeanClosure(const std::filesystem::path& library, const char* what) {
     ASSERT_TRUE(std::filesystem::exists(library)) << library;
@@ -81,10 +80,10 @@ TEST(LibraryLinks, InstalledCoreClosureIsTheAllowedSmallLibraries) {
     const std::filesystem::path prefix = std::filesystem::path(PRESKIN_BINARY_DIR) / "core-install-test";
     std::error_code ec;
     std::filesystem::remove_all(prefix, ec);
-    const ProcessResult install = runProcess(
-        PRESKIN_CMAKE_COMMAND,
-        {"--install", PRESKIN_BINARY_DIR, "--prefix", prefix.string(), "--component", "Unspecified"}, {},
-        PRESKIN_BINARY_DIR, 120.0);
+    const ProcessResult install =
+        runProcess(PRESKIN_CMAKE_COMMAND,
+                   {"--install", PRESKIN_BINARY_DIR, "--prefix", prefix.string(), "--component", "Unspecified"}, {},
+                   PRESKIN_BINARY_DIR, 120.0);
     ASSERT_EQ(install.exitCode, 0) << install.out << install.err;
     std::filesystem::path library;
     for (const auto& entry : std::filesystem::recursive_directory_iterator(prefix))

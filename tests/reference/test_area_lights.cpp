@@ -155,6 +155,72 @@ TEST_F(AreaLights, TubeOverThePlaneIsCloseToTheReference) {
     EXPECT_LT(planeError(light, "tube"), 0.03);
 }
 
+// The area-light size floor (preskin/lights.glsl): a rectangle or disc far smaller than its
+// distance keeps its power (a point light with its cosine falloff), where the edges' form factors
+// in single precision lost it (1e-30 m and 1e-20 m gave black, 1e-10 m most of the light gone).
+// Each tiny light against the same light at a size the form factors resolve (a few millimetres at
+// 0.2 to 1 m, where the difference between the two is below 1e-4): every pixel within 1 % of the
+// largest radiance (2 % for the line of light, near its own plane), and the image's energy within 1 %.
+class TinyAreaLights : public AreaLights {
+protected:
+    RenderedImage plane(const Light& light) {
+        Material material;
+        material.baseColorFactor = glm::vec4(0.8f, 0.8f, 0.8f, 1.0f);
+        material.metallicFactor = 0.0f;
+        material.roughnessFactor = 0.5f;
+        Primitive quad = makeQuad(2.0f, 8);
+        quad.material = 0;
+        Scene scene = makeScene({{quad, glm::mat4(1.0f)}}, {material});
+        scene.lights = {light};
+        RenderSettings settings;
+        settings.shadows = false;
+        Renderer renderer(context(), scene, Environment::constant(glm::vec3(0.0f)), nullptr, settings);
+        const View view = perspectiveView(
+            glm::inverse(glm::lookAt(glm::vec3(0.0f, 0.0f, 1.6f), glm::vec3(0.0f), glm::vec3(0.0f, 1.0f, 0.0f))), 0.7f,
+            1.0f, 0.1f, 10.0f);
+        return renderer.render(view, kSize, kSize, OutputEncoding::LinearFloat);
+    }
+
+    void expectSamePower(const Light& tiny, const Light& resolved, const char* name, double pixelBound = 0.01) {
+        const RenderedImage a = plane(tiny), b = plane(resolved);
+        dumpImage(std::string("area_light_tiny_") + name, a);
+        double sumA = 0.0, sumB = 0.0, largest = 0.0, worst = 0.0;
+        for (size_t i = 0; i < a.rgba32f.size(); i += 4) {
+            ASSERT_TRUE(std::isfinite(a.rgba32f[i + 1]));
+            sumA += double(a.rgba32f[i + 1]);
+            sumB += double(b.rgba32f[i + 1]);
+            largest = std::max(largest, double(b.rgba32f[i + 1]));
+            worst = std::max(worst, std::abs(double(a.rgba32f[i + 1]) - double(b.rgba32f[i + 1])));
+        }
+        std::printf("[ area lights ] tiny %s: energy %.6f against %.6f (%.4f), largest pixel difference %.2e of %.4f\n",
+                    name, sumA, sumB, sumA / sumB, worst / largest, largest);
+        EXPECT_GT(sumB, 0.0);
+        EXPECT_NEAR(sumA / sumB, 1.0, 0.01) << name;
+        EXPECT_LT(worst / largest, pixelBound) << name;
+    }
+};
+
+TEST_F(TinyAreaLights, RectanglesAndDiscsFarSmallerThanTheirDistanceKeepTheirPower) {
+    Light rectangle = areaLight(LightType::Rectangle, {0.1f, -0.1f, 0.3f}, {0.3f, 0.2f, -1.0f}, 0.05f);
+    rectangle.width = rectangle.height = 1e-30f;
+    Light rectangleResolved = rectangle;
+    rectangleResolved.width = rectangleResolved.height = 0.003f;
+    expectSamePower(rectangle, rectangleResolved, "rectangle 1e-30 m");
+
+    Light thin = rectangle;  // a line of light: one side tiny, the other not
+    thin.width = 1e-10f;
+    thin.height = 0.3f;
+    Light thinResolved = thin;
+    thinResolved.width = 0.002f;
+    expectSamePower(thin, thinResolved, "rectangle 1e-10 m by 0.3 m", 0.02);
+
+    Light disc = areaLight(LightType::Disc, {-0.1f, 0.1f, 0.25f}, {-0.2f, 0.1f, -1.0f}, 0.05f);
+    disc.radius = 1e-20f;
+    Light discResolved = disc;
+    discResolved.radius = 0.0015f;
+    expectSamePower(disc, discResolved, "disc 1e-20 m");
+}
+
 // Specular: a plane of roughness 0.4 reflecting a rectangle, metal (F0 1, where the linearly
 // transformed cosine alone is measured) and a black dielectric (F0 0.04, no diffuse: Schlick's
 // Fresnel taken at the light's representative direction adds its error), against the GGX BRDF

@@ -61,7 +61,8 @@ std::optional<DynamicEntries> readDynamic(const fs::path& file, std::string& pro
     for (const Elf64_Phdr& s : segments) {
         if (s.p_type != PT_DYNAMIC) continue;
         std::vector<Elf64_Dyn> entries;
-        for (uint64_t at = s.p_offset; at + sizeof(Elf64_Dyn) <= std::min<uint64_t>(bytes.size(), s.p_offset + s.p_filesz);
+        for (uint64_t at = s.p_offset;
+             at + sizeof(Elf64_Dyn) <= std::min<uint64_t>(bytes.size(), s.p_offset + s.p_filesz);
              at += sizeof(Elf64_Dyn)) {
             Elf64_Dyn d{};
             std::memcpy(&d, bytes.data() + at, sizeof d);
@@ -97,8 +98,8 @@ std::vector<std::string> ElfClosure::outside(const std::vector<std::string>& all
 }
 
 ElfClosure elfClosure(const fs::path& file, const std::vector<fs::path>& searchFirst, bool systemFolders) {
-    static const std::vector<std::string> kSystem = {"/lib/x86_64-linux-gnu", "/usr/lib/x86_64-linux-gnu",
-                                                     "/lib64", "/usr/lib64", "/lib", "/usr/lib"};
+    static const std::vector<std::string> kSystem = {
+        "/lib/x86_64-linux-gnu", "/usr/lib/x86_64-linux-gnu", "/lib64", "/usr/lib64", "/lib", "/usr/lib"};
     ElfClosure closure;
     std::vector<std::pair<fs::path, std::string>> pending = {{file, file.filename().string()}};
     while (!pending.empty()) {
@@ -136,9 +137,9 @@ ElfClosure elfClosure(const fs::path& file, const std::vector<fs::path>& searchF
 }
 
 const std::vector<std::string>& runtimeLibraries() {
-    static const std::vector<std::string> kRuntime = {
-        "libc.so.6",       "libm.so.6",      "libdl.so.2",    "libpthread.so.0", "librt.so.1",
-        "libstdc++.so.6", "libgcc_s.so.1", "ld-linux-x86-64.so.2"};
+    static const std::vector<std::string> kRuntime = {"libc.so.6",       "libm.so.6",           "libdl.so.2",
+                                                      "libpthread.so.0", "librt.so.1",          "libstdc++.so.6",
+                                                      "libgcc_s.so.1",   "ld-linux-x86-64.so.2"};
     return kRuntime;
 }
 

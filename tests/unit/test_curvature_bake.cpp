@@ -158,9 +158,19 @@ TEST(CurvatureBake, HostileUvLayoutsAreBounded) {
         v.curvaturePerM = 1.0f;
         p.vertices.push_back(v);
     }
-    p.indices = {0, 3, 2};  // spans 3e30 textures in u
+    p.indices = {0, 3, 2};  // spans 3e30 textures in u: skipped, and then nothing is covered
     CurvatureBakeSettings settings;
     settings.size = 16;
+    try {
+        (void)bakeCurvatureMaps(oneSkinPrimitive(p, glm::mat4(1.0f)), settings);
+        ADD_FAILURE() << "a bake that covers nothing succeeded";
+    } catch (const Error& e) {
+        EXPECT_NE(std::string(e.what()).find("cover no texel centre of the 16x16 map (1 wider than the map in UV)"),
+                  std::string::npos)
+            << e.what();
+    }
+    // With a triangle that is baked beside it, the broken one is skipped and counted.
+    p.indices = {0, 3, 2, 0, 1, 2};
     std::vector<CurvatureMap> maps = bakeCurvatureMaps(oneSkinPrimitive(p, glm::mat4(1.0f)), settings);
     ASSERT_EQ(maps.size(), 1u);
     EXPECT_EQ(maps[0].skippedTriangles, 1);

@@ -6,6 +6,7 @@
 
 #include <preskin/Error.h>
 #include <preskin/LightRecord.h>
+#include <preskin/Limits.h>
 #include <preskin/Scene.h>
 
 #include <gtest/gtest.h>
@@ -91,6 +92,26 @@ TEST(GltfAreaLights, ShapesSizesAndFrames) {
     const Scene plain =
         Scene::load(sceneWithLight({{"type", "point"}, {"intensity", 5}}, turned).writeGltf(dir.path(), "b"));
     EXPECT_EQ(plain.lights.at(0).type, LightType::Point);
+}
+
+// Sizes inside (0, 1e6] that single precision cannot hold (1e-300 was 0, then refused with a
+// message printing 0 and no file) are taken at the floor, limits::kMinAreaLightSizeM.
+TEST(GltfAreaLights, SizesBelowTheFloorAreTakenAtTheFloor) {
+    TempDir dir;
+    for (const json& shape : {json{{"shape", "disc"}, {"radius", 1e-300}},
+                              json{{"shape", "rectangle"}, {"width", 1e-30}, {"height", 1e-300}},
+                              json{{"shape", "tube"}, {"radius", 1e-45}, {"length", 2e-9}}}) {
+        const Scene s = Scene::load(sceneWithLight(areaLight(shape)).writeGltf(dir.path(), "tiny"));
+        const Light& l = s.lights.at(0);
+        EXPECT_TRUE(s.warnings.empty()) << s.warnings.front();
+        for (const float size : {l.radius, l.width, l.height})
+            if (size != 0.0f) {
+                EXPECT_FLOAT_EQ(size, float(limits::kMinAreaLightSizeM)) << shape.dump();
+            }
+        if (l.type == LightType::Tube) {
+            EXPECT_FLOAT_EQ(l.length, 2e-9f);
+        }
+    }
 }
 
 json sunLight(const json& shape) {

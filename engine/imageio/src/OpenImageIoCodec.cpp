@@ -155,8 +155,8 @@ public:
         OIIO::geterror();
         input->close();
         if (!ok || !why.empty())
-            throw std::runtime_error("cannot decode the " + formatName + " data: " +
-                                     (why.empty() ? std::string("read failed") : why));
+            throw std::runtime_error("cannot decode the " + formatName +
+                                     " data: " + (why.empty() ? std::string("read failed") : why));
         return out;
     }
 
@@ -174,7 +174,8 @@ public:
         for (const auto& [key, value] : options.attributes) spec.attribute(key, value);
         auto out = OIIO::ImageOutput::create("openexr");
         if (!out) throw std::runtime_error("no OpenEXR writer: " + oiioError({}));
-        if (!out->open(path.string(), spec)) throw std::runtime_error("cannot create file: " + oiioError(out->geterror()));
+        if (!out->open(path.string(), spec))
+            throw std::runtime_error("cannot create file: " + oiioError(out->geterror()));
         if (!out->write_image(OIIO::TypeDesc::FLOAT, values->data())) {
             const std::string error = oiioError(out->geterror());
             out->close();

@@ -59,9 +59,11 @@ struct CurvatureBakeSettings {
     double rangeQuantile = 1.0;
 };
 
-// One map per skin material that some mesh instance draws. Throws preskin::Error for a size out
-// of [16, 8192], or when a material's triangles cover its map more than 64 times over in UV (no
-// real layout does; the work would not end).
+// One map per skin material that some mesh instance draws. Throws preskin::Error, baking nothing,
+// for a size out of [16, 8192] (0: the default above), and for a material whose triangles have no
+// UV layout (no TEXCOORD_0, or every UV the same: the rule texture-space diffusion shares,
+// hasUvLayout in <preskin/SkinParameters.h>), cover the map more than 64 times over (their summed
+// UV area; no real layout does), or cover no texel centre at all.
 PRESKIN_API std::vector<CurvatureMap> bakeCurvatureMaps(const Scene& scene, const CurvatureBakeSettings& settings = {});
 
 // Writes the map as a one-channel 16-bit PNG at `png` and, beside it with the extension .json,

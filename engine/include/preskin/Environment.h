@@ -15,6 +15,8 @@
 
 #include <array>
 #include <filesystem>
+#include <span>
+#include <string>
 #include <vector>
 
 namespace preskin {
@@ -97,6 +99,10 @@ public:
     // unreadable, oversized or non-2:1 image, or a pixel or argument that the input-number rule
     // refuses (not finite, or beyond 1e6 in magnitude).
     static Environment load(const std::filesystem::path& path, float intensity = 1.0f, float rotationY = 0.0f);
+    // The same from the file's content in memory (a scene's data URI: Scene::environmentData);
+    // `label` names it in messages.
+    static Environment load(std::span<const uint8_t> bytes, const std::string& label, float intensity = 1.0f,
+                            float rotationY = 0.0f);
     // An image the host decoded itself (linear RGB radiance, width twice the height), turned by
     // rotationY; throws preskin::Error on a size or texel load() would refuse.
     static Environment fromImage(EquirectImage image, float rotationY = 0.0f);
@@ -112,6 +118,9 @@ public:
     float intensity() const { return intensity_; }
     // The turn about +Y the image was loaded with (radians; 0 for constant environments).
     float rotationY() const { return rotationY_; }
+    // What load() accepted but the host should hear of: texels of negative radiance (a lossy
+    // encoding's small undershoot is not reported), taken as 0.
+    const std::vector<std::string>& warnings() const { return warnings_; }
     // Radiance arriving from world direction `directionWs` (unit): the image's texel there
     // (nearest, intensity applied, turned by rotationY), or the constant.
     glm::vec3 radiance(const glm::vec3& directionWs) const;
@@ -122,6 +131,7 @@ private:
     float intensity_ = 1.0f;
     float rotationY_ = 0.0f;
     glm::vec3 constant_{0.0f};
+    std::vector<std::string> warnings_;
 };
 
 }  // namespace preskin

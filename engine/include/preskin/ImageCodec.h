@@ -85,7 +85,8 @@ PRESKIN_API std::string describeImageFormat(std::span<const uint8_t> head);
 // Decodes with the first codec that reads the data. Throws preskin::Error "<label>: <problem>"
 // when none does (naming the format, and preskin::imageio where it would read it) or the codec
 // fails.
-PRESKIN_API PixelImage decodeImage(std::span<const uint8_t> bytes, const DecodeLimits& limits, const std::string& label);
+PRESKIN_API PixelImage decodeImage(std::span<const uint8_t> bytes, const DecodeLimits& limits,
+                                   const std::string& label);
 // True when a codec reads data starting with `head`.
 PRESKIN_API bool canDecodeImage(std::span<const uint8_t> head);
 

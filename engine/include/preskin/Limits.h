@@ -52,4 +52,10 @@ inline constexpr uint64_t kMaxSkinProfiles = 255;
 // Numbers.
 inline constexpr double kMaxInputMagnitude = 1e6;
 
+// Area-light sizes (PRESKIN_lights_area radius, length, width, height) are (0, 1e6] metres; a
+// size below this floor is taken as the floor (a size of 1e-300 would otherwise become 0 in
+// single precision). A light that small renders as a point light of the same power: the shaders
+// compute any size below a thousandth of the distance at that size (preskin/lights.glsl).
+inline constexpr double kMinAreaLightSizeM = 1e-9;
+
 }  // namespace preskin::limits

@@ -253,6 +253,8 @@ struct Scene {
     std::vector<Animation> animations;
     // Scene-level environment from the PRESKIN_environment extension (a file next to the scene).
     std::optional<std::filesystem::path> environmentPath;  // absolute; the file exists at load
+    std::vector<uint8_t> environmentData;  // the environment's file content when the scene embeds it (a data URI)
+    bool hasEnvironmentImage() const { return environmentPath.has_value() || !environmentData.empty(); }
     float environmentIntensity = 1.0f;
     float environmentRotation = 0.0f;  // radians about +Y, right-handed (+Z turns towards +X)
     // Non-fatal problems found while loading ("file: field: what was ignored"), for the host to show.

@@ -27,6 +27,12 @@ PRESKIN_API int normalLevelCount(const glm::vec3& lodBias, uint32_t mipLevels, b
 // world millimetre: sqrt(texel area / surface area), the surface transformed by worldFromObject
 // (scene units: metres). Accumulates into uvArea / surfaceAreaMm2 so several primitives sharing
 // a material combine; density = sqrt(uvArea * width * height / surfaceAreaMm2).
+// The UV rule shared by texture-space diffusion and curvature bakes: a material's triangles have a
+// TEXCOORD_0 layout when their summed UV area (accumulateTexelDensity's uvArea, in units of the
+// unit square) exceeds 1e-9; none: no TEXCOORD_0 (every UV 0), or every UV the same.
+inline constexpr double kMinUvLayoutArea = 1e-9;
+inline bool hasUvLayout(double uvArea) { return uvArea > kMinUvLayoutArea; }
+
 PRESKIN_API void accumulateTexelDensity(const Primitive& primitive, const glm::mat4& worldFromObject, double& uvArea,
                                         double& surfaceAreaMm2);
 PRESKIN_API float texelsPerMm(double uvArea, double surfaceAreaMm2, uint32_t width, uint32_t height);

@@ -83,6 +83,7 @@ Environment Environment::downsampled(uint32_t maxWidth) const {
     out.intensity_ = intensity_;
     out.rotationY_ = rotationY_;
     out.constant_ = constant_;
+    out.warnings_ = warnings_;
     return out;
 }
 
@@ -119,14 +120,21 @@ ShRgb projectEquirect(const EquirectImage& image, float rotationY) {
 Environment Environment::load(const std::filesystem::path& path, float intensity, float rotationY) {
     const std::string name = path.string();
     if (auto problem = io::numberProblem(intensity)) throw Error(fmt::format("{}: intensity: {}", name, *problem));
+    const std::vector<uint8_t> bytes = io::readInputFile(path, name, limits::kMaxImageFileBytes);
+    return load(bytes, name, intensity, rotationY);
+}
+
+Environment Environment::load(std::span<const uint8_t> bytes, const std::string& name, float intensity,
+                              float rotationY) {
+    if (auto problem = io::numberProblem(intensity)) throw Error(fmt::format("{}: intensity: {}", name, *problem));
     if (intensity < 0.0f) throw Error(fmt::format("{}: intensity: {} is negative", name, intensity));
     if (auto problem = io::numberProblem(rotationY)) throw Error(fmt::format("{}: rotation: {}", name, *problem));
 
     // Format and size come from the file's own header, checked before any decoder allocates.
-    const std::vector<uint8_t> bytes = io::readInputFile(path, name, limits::kMaxImageFileBytes);
     env::EnvironmentHeader header;
     try {
-        header = env::readEnvironmentHeader(std::span(bytes).first(std::min(bytes.size(), env::kEnvironmentHeaderBytes)));
+        header =
+            env::readEnvironmentHeader(std::span(bytes).first(std::min(bytes.size(), env::kEnvironmentHeaderBytes)));
     } catch (const std::exception& e) {
         throw Error(fmt::format("{}: {}", name, e.what()));
     }
@@ -151,22 +159,38 @@ Environment Environment::load(const std::filesystem::path& path, float intensity
     if (int64_t(decoded.width) != header.width || int64_t(decoded.height) != header.height)
         throw Error(fmt::format("{}: size: the decoder reads {}x{}, the header says {}x{}", name, decoded.width,
                                 decoded.height, header.width, header.height));
-    if (decoded.channels < 3)
-        throw Error(fmt::format("{}: channels: {} channel(s), RGB needed", name, decoded.channels));
     Environment env;
     env.intensity_ = intensity;
     env.image_.width = decoded.width;
     env.image_.height = decoded.height;
     env.image_.rgb = image::toRgbFloat(decoded);
     decoded = {};
-    // Every pixel passes the input-number rule.
+    // Every pixel passes the input-number rule. Negative radiance is taken as 0; beyond a lossy
+    // encoding's undershoot (a millionth of the image's mean magnitude) the host is told.
+    double magnitude = 0.0;
     for (size_t i = 0; i < env.image_.rgb.size(); ++i) {
-        float& v = env.image_.rgb[i];
+        const float v = env.image_.rgb[i];
         if (auto problem = io::numberProblem(v))
             throw Error(fmt::format("{}: pixel ({}, {}): radiance {}", name, (i / 3) % env.image_.width,
                                     (i / 3) / env.image_.width, *problem));
-        v = std::max(v, 0.0f) * intensity;  // tiny negatives from lossy EXR compression are clamped
+        magnitude += std::abs(double(v));
     }
+    const double undershoot = -1e-6 * magnitude / double(std::max<size_t>(env.image_.rgb.size(), 1));
+    size_t negative = 0, first = 0;
+    float lowest = 0.0f;
+    for (size_t i = 0; i < env.image_.rgb.size(); ++i) {
+        float& v = env.image_.rgb[i];
+        if (double(v) < undershoot) {
+            if (negative++ == 0) first = i;
+            lowest = std::min(lowest, v);
+        }
+        v = std::max(v, 0.0f) * intensity;
+    }
+    if (negative > 0)
+        env.warnings_.push_back(fmt::format(
+            "{}: pixels: {} of {} values are negative radiance (the lowest {}, the first at pixel ({}, {})); taken as 0",
+            name, negative, env.image_.rgb.size(), lowest, (first / 3) % env.image_.width,
+            (first / 3) / env.image_.width));
     env.radianceSh_ = projectEquirect(env.image_, rotationY);
     env.rotationY_ = rotationY;
     return env;

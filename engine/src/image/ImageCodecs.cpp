@@ -83,9 +83,9 @@ std::string lowerExtension(const std::filesystem::path& path) {
 
 std::string componentHint(ImageFormat format) {
     return decodedByImageComponent(format)
-               ? " (the image component preskin::imageio reads it: link preskin::imageio and call "
-                 "preskin::imageio::registerCodecs())"
-               : "";
+        ? " (the image component preskin::imageio reads it: link preskin::imageio and call "
+          "preskin::imageio::registerCodecs())"
+        : "";
 }
 
 }  // namespace
@@ -120,7 +120,9 @@ void toRgba(const PixelImage& image, std::vector<uint8_t>& rgba8, std::vector<ui
     rgba8.assign(texels * 4, 255);
     rgba16.clear();
     // Channel c of the RGBA texel from the source's n channels: grey to RGB, alpha or opaque.
-    auto source = [n](uint32_t c) -> int { return c < 3 ? (n >= 3 ? int(c) : 0) : (n == 2 || n == 4 ? int(n) - 1 : -1); };
+    auto source = [n](uint32_t c) -> int {
+        return c < 3 ? (n >= 3 ? int(c) : 0) : (n == 2 || n == 4 ? int(n) - 1 : -1);
+    };
     if (const auto* u8 = std::get_if<std::vector<uint8_t>>(&image.texels)) {
         for (size_t i = 0; i < texels; ++i)
             for (uint32_t c = 0; c < 4; ++c)
@@ -138,7 +140,8 @@ void toRgba(const PixelImage& image, std::vector<uint8_t>& rgba8, std::vector<ui
             for (uint32_t c = 0; c < 4; ++c)
                 if (const int s = source(c); s >= 0) {
                     const float v = f32[i * n + size_t(s)];
-                    rgba16[i * 4 + c] = uint16_t(std::lround(std::isnan(v) ? 0.0f : std::clamp(v, 0.0f, 1.0f) * 65535.0f));
+                    rgba16[i * 4 + c] =
+                        uint16_t(std::lround(std::isnan(v) ? 0.0f : std::clamp(v, 0.0f, 1.0f) * 65535.0f));
                 }
     }
     for (size_t i = 0; i < rgba16.size(); ++i)  // rounded, as libpng's png_set_scale_16

@@ -1,8 +1,8 @@
 // JPEG decoding through libjpeg-turbo (see JpegFile.h).
 #include "image/JpegFile.h"
 
-#include <cstdio>  // jpeglib.h needs FILE and size_t declared first
 #include <jpeglib.h>
+#include <cstdio>  // jpeglib.h needs FILE and size_t declared first
 
 #include <csetjmp>
 #include <optional>

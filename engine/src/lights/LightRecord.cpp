@@ -1,6 +1,7 @@
 // Scene lights as GPU light records (<preskin/LightRecord.h>) and as the light grid bounds them
 // (lights/ClusterAssign.h).
 #include <preskin/LightRecord.h>
+#include <preskin/Limits.h>
 
 #include "lights/ClusterAssign.h"
 
@@ -55,16 +56,19 @@ gpu::GpuLight toGpuLight(const Light& light, bool shadowed) {
     if (light.type == LightType::Directional)
         g.spotScaleOffset.z = std::sin(std::clamp(light.angularRadius, 0.0f, 0.25f * std::numbers::pi_v<float>));
     if (!isAreaLight(light.type)) return g;
-    // Area lights: shared/light.h's layout; the width axis made perpendicular to the normal.
+    // Area lights: shared/light.h's layout; the width axis made perpendicular to the normal. Sizes
+    // below limits::kMinAreaLightSizeM are taken at it: the shaders square them (a 1e-30 m side
+    // would vanish), and below a thousandth of the distance they compute any size at that anyway.
     const AreaLightAxes axes = areaLightAxes(light);
-    g.spotScaleOffset = glm::vec4(light.radius, 0.0f, 0.0f, 0.0f);
+    const auto size = [](float v) { return std::max(v, float(limits::kMinAreaLightSizeM)); };
+    g.spotScaleOffset = glm::vec4(size(light.radius), 0.0f, 0.0f, 0.0f);
     if (light.type == LightType::Sphere) g.directionType = glm::vec4(0.0f, 0.0f, 0.0f, float(gpu::kLightSphere));
     if (light.type == LightType::Tube)
-        g.directionType = glm::vec4(axes.width * (0.5f * light.length), float(gpu::kLightTube));
+        g.directionType = glm::vec4(axes.width * (0.5f * size(light.length)), float(gpu::kLightTube));
     if (light.type == LightType::Disc) g.directionType = glm::vec4(axes.normal, float(gpu::kLightDisc));
     if (light.type == LightType::Rectangle) {
-        g.directionType = glm::vec4(axes.width * (0.5f * light.width), float(gpu::kLightRectangle));
-        g.spotScaleOffset = glm::vec4(axes.height * (0.5f * light.height), 0.0f);
+        g.directionType = glm::vec4(axes.width * (0.5f * size(light.width)), float(gpu::kLightRectangle));
+        g.spotScaleOffset = glm::vec4(axes.height * (0.5f * size(light.height)), 0.0f);
     }
     return g;
 }

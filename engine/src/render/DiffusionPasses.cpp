@@ -28,6 +28,12 @@ ScreenDiffusion& Renderer::Impl::prepareScreenDiffusion(const RenderTarget& targ
 }
 
 void Renderer::Impl::checkTextureDiffusion() const {
+    if (!scene->skinWithoutUvLayout.empty())
+        throw Error(fmt::format(
+            "{}: {}: texture-space diffusion (--diffusion texture) lays skin out in TEXCOORD_0, and this skin "
+            "material has no UV layout (no TEXCOORD_0, or every UV the same); use pre-integrated or screen-space "
+            "diffusion",
+            sceneName, scene->skinWithoutUvLayout.front()));
     constexpr uint64_t kMaxBytes = uint64_t(2) << 30;  // what the textures of all skin draws may hold
     uint64_t skinDraws = 0;
     for (const DrawItem& d : scene->draws) skinDraws += scene->materials[d.material].skin ? 1 : 0;

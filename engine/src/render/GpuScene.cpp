@@ -3,6 +3,7 @@
 #include <preskin/NormalBasis.h>
 #include <preskin/SkinParameters.h>
 
+#include "io/MessageText.h"
 #include "shared/deform.h"
 #include "vk/Check.h"
 #include "vk/Pipeline.h"
@@ -157,6 +158,10 @@ GpuScene::GpuScene(const vk::Device& device, const Scene& scene) : device_(devic
         }
     }
     restInstances = std::move(instanceData);
+    for (size_t i = 0; i < scene.materials.size(); ++i)
+        if (scene.materials[i].skin && worldArea[i] > 0.0 && !hasUvLayout(uvArea[i]))
+            skinWithoutUvLayout.push_back(
+                fmt::format("materials[{}] ('{}')", i, io::messageText(scene.materials[i].name)));
 
     // Default textures.
     const uint8_t whitePixel[4] = {255, 255, 255, 255};

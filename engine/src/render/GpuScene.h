@@ -12,6 +12,7 @@
 
 #include <map>
 #include <memory>
+#include <string>
 #include <utility>
 #include <vector>
 
@@ -81,6 +82,9 @@ public:
     std::vector<gpu::GpuInstance> restInstances;  // per scene instance (the rest pose), for the renderer
     std::vector<DrawItem> draws;
     std::vector<GpuMaterial> materials;  // scene materials, then the default material
+    // Skin materials that are drawn but have no TEXCOORD_0 layout (hasUvLayout), as
+    // "materials[i] ('name')": texture-space diffusion cannot lay them out.
+    std::vector<std::string> skinWithoutUvLayout;
 
 private:
     const vk::Image& texture(const Scene& scene, int image, bool srgb);

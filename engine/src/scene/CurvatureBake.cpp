@@ -4,10 +4,11 @@
 #include <preskin/Error.h>
 #include <preskin/OutputFile.h>
 #include <preskin/Scene.h>
+#include <preskin/SkinParameters.h>
 
-#include "image/PngFile.h"
 #include <fmt/core.h>
 #include <nlohmann/json.hpp>
+#include "image/PngFile.h"
 
 #include <algorithm>
 #include <cmath>
@@ -34,23 +35,23 @@ uint32_t mapSize(const Scene& scene, const Material& material, uint32_t requeste
 }
 
 // Accumulates one triangle's interpolated curvature into the texels whose centres it covers and
-// adds the texels of its bounding box to `visited`. False (nothing done) for a triangle wider than
-// the texture in UV: a layout that wraps within a triangle, or broken UVs.
+// adds the texels of its bounding box to `visited`. The layout repeats (UVs outside [0, 1) wrap):
+// the triangle is placed by the tile of its lowest corner and each covered texel centre wrapped
+// into the map, so a triangle reaching exactly 1.0 or crossing a tile's edge is baked whole.
+// False (nothing done) for a triangle wider than the texture in UV: a layout that wraps within a
+// triangle, or broken UVs.
 bool rasterise(const glm::vec2 uv[3], const float value[3], uint32_t width, uint32_t height, std::vector<double>& sum,
                std::vector<uint32_t>& count, uint64_t& visited) {
-    // Wrap the triangle into [0, 1) by its first corner's tile.
-    const glm::vec2 tile = glm::floor(uv[0]);
+    const glm::vec2 tile = glm::floor(glm::min(uv[0], glm::min(uv[1], uv[2])));
     glm::vec2 p[3];
     for (int i = 0; i < 3; ++i) p[i] = (uv[i] - tile) * glm::vec2(float(width), float(height));
     const float area = (p[1].x - p[0].x) * (p[2].y - p[0].y) - (p[2].x - p[0].x) * (p[1].y - p[0].y);
     const glm::vec2 lo = glm::min(p[0], glm::min(p[1], p[2])), hi = glm::max(p[0], glm::max(p[1], p[2]));
     if (!(hi.x - lo.x <= float(width)) || !(hi.y - lo.y <= float(height))) return false;
     if (!(std::abs(area) > 1e-12f)) return true;
-    // Clamped in float first: the box may lie partly off the texture.
-    const int x0 = int(std::clamp(std::floor(lo.x), 0.0f, float(width))),
-              x1 = int(std::clamp(std::ceil(hi.x), -1.0f, float(width) - 1.0f));
-    const int y0 = int(std::clamp(std::floor(lo.y), 0.0f, float(height))),
-              y1 = int(std::clamp(std::ceil(hi.y), -1.0f, float(height) - 1.0f));
+    // Texel centres x + 0.5 in [lo, hi]: at most two tiles' worth, wrapped when written.
+    const int x0 = int(std::floor(lo.x)), x1 = int(std::ceil(hi.x)) - 1;
+    const int y0 = int(std::floor(lo.y)), y1 = int(std::ceil(hi.y)) - 1;
     if (x1 >= x0 && y1 >= y0) visited += uint64_t(x1 - x0 + 1) * uint64_t(y1 - y0 + 1);
     for (int y = y0; y <= y1; ++y) {
         for (int x = x0; x <= x1; ++x) {
@@ -61,12 +62,41 @@ bool rasterise(const glm::vec2 uv[3], const float value[3], uint32_t width, uint
                 w[i] = ((b.x - a.x) * (c.y - a.y) - (c.x - a.x) * (b.y - a.y)) / area;
             }
             if (w[0] < 0.0f || w[1] < 0.0f || w[2] < 0.0f) continue;
-            const size_t i = size_t(y) * width + size_t(x);
+            const size_t i = size_t(y % int(height)) * width + size_t(x % int(width));
             sum[i] += double(w[0] * value[0] + w[1] * value[1] + w[2] * value[2]);
             ++count[i];
         }
     }
     return true;
+}
+
+// What the material's triangles hold in UV, over the meshes its instances draw (once each): the
+// UV and surface areas of all of them (accumulateTexelDensity: the rule texture-space diffusion
+// shares, hasUvLayout) and the UV area of those the bake rasterises (no wider than the map).
+struct MaterialAreas {
+    double uv = 0.0, surface = 0.0, bakeableUv = 0.0;
+};
+
+MaterialAreas materialAreas(const Scene& scene, int material) {
+    MaterialAreas areas;
+    std::vector<bool> meshDone(scene.meshes.size(), false);
+    for (const MeshInstance& instance : scene.instances) {
+        if (instance.mesh < 0 || size_t(instance.mesh) >= scene.meshes.size() || meshDone[size_t(instance.mesh)])
+            continue;
+        meshDone[size_t(instance.mesh)] = true;
+        for (const Primitive& p : scene.meshes[size_t(instance.mesh)].primitives) {
+            if (p.material != material) continue;
+            accumulateTexelDensity(p, glm::mat4(1.0f), areas.uv, areas.surface);
+            for (size_t t = 0; t + 2 < p.indices.size(); t += 3) {
+                const glm::vec2 a = p.vertices[p.indices[t]].uv0, b = p.vertices[p.indices[t + 1]].uv0,
+                                c = p.vertices[p.indices[t + 2]].uv0;
+                const glm::vec2 extent = glm::max(a, glm::max(b, c)) - glm::min(a, glm::min(b, c));
+                if (extent.x <= 1.0f && extent.y <= 1.0f)
+                    areas.bakeableUv += 0.5 * std::abs(double((b - a).x * (c - a).y - (b - a).y * (c - a).x));
+            }
+        }
+    }
+    return areas;
 }
 
 }  // namespace
@@ -92,6 +122,18 @@ std::vector<CurvatureMap> bakeCurvatureMaps(const Scene& scene, const CurvatureB
     for (size_t m = 0; m < scene.materials.size(); ++m) {
         const Material& material = scene.materials[m];
         if (!material.skin) continue;
+        // The layout, before any work: none at all, or charts stacked more than 64 deep.
+        const MaterialAreas areas = materialAreas(scene, int(m));
+        const std::string label = fmt::format("bake-curvature: materials[{}] ('{}')", m, material.name);
+        if (areas.surface > 0.0 && !hasUvLayout(areas.uv))  // drawn, but flat in UV
+            throw Error(label +
+                        ": its triangles have no UV layout (no TEXCOORD_0, or every UV the same); "
+                        "nothing baked");
+        if (areas.bakeableUv > 64.0)
+            throw Error(
+                fmt::format("{}: its triangles cover the map {:.0f} times over in UV (more than 64: "
+                            "charts stacked beyond any real layout); nothing baked",
+                            label, areas.bakeableUv));
         CurvatureMap map;
         map.material = int(m);
         map.materialName = material.name;
@@ -125,12 +167,13 @@ std::vector<CurvatureMap> bakeCurvatureMaps(const Scene& scene, const CurvatureB
                         value[c] = v.curvaturePerM / std::max(firstScale, 1e-12f);
                     }
                     if (!rasterise(uv, value, map.width, map.height, sum, count, visited)) ++map.skippedTriangles;
-                    // Overlapping charts beyond any real layout (the work would not end in time).
+                    // Long thin triangles whose bounding boxes sweep the map over and over (the
+                    // work would not end in time).
                     if (visited > budget)
                         throw Error(
-                            fmt::format("bake-curvature: materials[{}] ('{}'): its triangles cover the {}x{} "
-                                        "map more than 64 times over in UV; nothing baked",
-                                        m, material.name, map.width, map.height));
+                            fmt::format("{}: its triangles' bounds in UV sweep the {}x{} map more than 64 "
+                                        "times over; nothing baked",
+                                        label, map.width, map.height));
                 }
             }
         }
@@ -144,6 +187,11 @@ std::vector<CurvatureMap> bakeCurvatureMaps(const Scene& scene, const CurvatureB
             map.covered[i] = 1;
             magnitudes.push_back(std::abs(map.curvaturePerM[i]));
         }
+        if (magnitudes.empty())
+            throw Error(
+                fmt::format("{}: its triangles cover no texel centre of the {}x{} map ({} wider than the map "
+                            "in UV); nothing baked",
+                            label, map.width, map.height, map.skippedTriangles));
         // Dilation: ring by ring, each empty texel next to filled ones takes their mean.
         const int w = int(map.width), h = int(map.height);
         for (int pass = 0; pass < settings.dilationTexels; ++pass) {

@@ -178,6 +178,27 @@ void checkRelativePath(const std::string& path, const std::string& raw, const st
 
 }  // namespace
 
+const std::vector<std::string>& supportedRequiredExtensions() {
+    static const std::vector<std::string> names = {"KHR_lights_punctual",
+                                                   "KHR_materials_diffuse_transmission",
+                                                   "KHR_materials_emissive_strength",
+                                                   "KHR_materials_scatter",
+                                                   "KHR_materials_volume",
+                                                   "KHR_materials_volume_scatter",
+                                                   "KHR_mesh_quantization",
+                                                   "KHR_texture_transform",
+                                                   "PRESKIN_environment",
+                                                   "PRESKIN_lights_area",
+                                                   "PRESKIN_materials_skin"};
+    return names;
+}
+
+std::vector<uint8_t> decodeBase64DataUri(const std::string& uri, const std::string& file, const std::string& where) {
+    if (const std::string problem = base64Problem(uri); !problem.empty()) fail(file, where, "data URI: " + problem);
+    const std::string bytes = tinygltf::base64_decode(uri.substr(uri.find(";base64,") + 8));
+    return std::vector<uint8_t>(bytes.begin(), bytes.end());
+}
+
 fs::path resolveUri(const std::string& uri, const fs::path& sceneFolder, const std::string& file,
                     const std::string& where, bool allowOutsideLinks) {
     if (uri.rfind("data:", 0) == 0) {

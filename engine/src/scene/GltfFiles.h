@@ -35,10 +35,16 @@ struct GlbChunks {
 GlbChunks splitGlb(std::span<const uint8_t> bytes, const std::string& file);
 
 // True for the data URIs tinygltf decodes (base64 with a known media type).
+// Extensions whose presence in extensionsRequired is accepted.
+const std::vector<std::string>& supportedRequiredExtensions();
+
 bool isDecodableDataUri(const std::string& uri);
 
 // Why the base64 payload of a decodable data URI is not strict base64, or "" when it is.
 std::string base64Problem(const std::string& uri);
+// The bytes of a base64 data URI of any media type ("data:<type>;base64,<payload>"); fails naming
+// `file` and `where` when it is not base64 or the payload is malformed.
+std::vector<uint8_t> decodeBase64DataUri(const std::string& uri, const std::string& file, const std::string& where);
 
 // Percent-decodes as tinygltf does before it opens a file ('+' also becomes a space).
 std::string decodeUriLikeTinygltf(const std::string& uri);

@@ -120,14 +120,16 @@ bool loadImage(tinygltf::Image* image, const int index, std::string* err, std::s
         if (state.options->decodeImage) {
             decoded = state.options->decodeImage(data, image->uri, image->mimeType);
             if (decoded && (!decoded->consistent() || decoded->width == 0 || decoded->height == 0))
-                throw std::runtime_error(fmt::format("the host's decoder returned {}x{} texels of {} channels that do "
-                                                     "not match its data",
-                                                     decoded->width, decoded->height, decoded->channels));
+                throw std::runtime_error(
+                    fmt::format("the host's decoder returned {}x{} texels of {} channels that do "
+                                "not match its data",
+                                decoded->width, decoded->height, decoded->channels));
             if (decoded) image::checkImageSize(decoded->width, decoded->height, {limits.maxPixels, limits.maxSide});
         }
         if (!decoded && !canDecodeImage(data)) {
             const image::ImageFormat format = image::sniffImageFormat(data);
-            if (image::decodedByImageComponent(format)) decodeImage(data, limits, where);  // throws, naming the component
+            if (image::decodedByImageComponent(format))
+                decodeImage(data, limits, where);  // throws, naming the component
             state.unsupported[static_cast<size_t>(index)] = describeImageFormat(data) + " data";
             image->width = image->height = 0;
             image->image.clear();
@@ -216,7 +218,7 @@ void applyAreaShape(const LoadContext& ctx, const tinygltf::Value& area, const s
         const auto v = numberField(ctx, area, key, where);
         if (!v) ctx.fail(where + "." + key, std::string("missing (a ") + *shape + " light needs it)");
         if (!(*v > 0.0) || *v > 1e6) ctx.fail(where + "." + key, number(*v) + " is outside (0, 1e6] metres");
-        return static_cast<float>(*v);
+        return static_cast<float>(std::max(*v, limits::kMinAreaLightSizeM));
     };
     if (*shape == "sphere") {
         out.type = LightType::Sphere;
@@ -618,16 +620,22 @@ Scene loadSceneBytes(std::vector<uint8_t> bytes, const fs::path& path, const Sce
         }
     }
     scene.environmentPath = prepass.environmentPath;
-    if (scene.environmentPath) {
+    scene.environmentData = prepass.environmentData;
+    if (scene.environmentPath || !scene.environmentData.empty()) {
         // A format only the image component reads fails here, naming the scene, not at its load.
-        const std::vector<uint8_t> head =
-            io::readInputFileStart(*scene.environmentPath, file, limits::kMaxImageFileBytes, 64);
+        const std::vector<uint8_t> head = scene.environmentPath
+            ? io::readInputFileStart(*scene.environmentPath, file, limits::kMaxImageFileBytes, 64)
+            : std::vector<uint8_t>(scene.environmentData.begin(),
+                                   scene.environmentData.begin() + std::min<size_t>(64, scene.environmentData.size()));
         const image::ImageFormat format = image::sniffImageFormat(head);
+        const std::string shown = scene.environmentPath
+            ? "'" + io::messageText(scene.environmentPath->filename().string()) + "'"
+            : "its data URI";
         if (image::decodedByImageComponent(format) && !canDecodeImage(head))
             fail(file, "extensions.PRESKIN_environment.uri",
-                 fmt::format("'{}' is {}: no decoder for it in this program (the image component preskin::imageio "
+                 fmt::format("{} is {}: no decoder for it in this program (the image component preskin::imageio "
                              "reads it: link preskin::imageio and call preskin::imageio::registerCodecs())",
-                             io::messageText(scene.environmentPath->filename().string()), image::formatName(format)));
+                             shown, image::formatName(format)));
     }
     scene.environmentIntensity = prepass.environmentIntensity;
     scene.environmentRotation = prepass.environmentRotation;
@@ -650,7 +658,10 @@ Scene loadSceneBytes(std::vector<uint8_t> bytes, const fs::path& path, const Sce
         Image out;
         out.name = !in.uri.empty() ? in.uri : !in.name.empty() ? in.name : where;
         if (!ctx.unsupportedImageFormat[i].empty()) {
-            ctx.warn(where, ctx.unsupportedImageFormat[i] + " is not decoded (no decoder for it in this program: PNG and JPEG are built in; a host plugs others in, <preskin/ImageCodec.h>)");
+            ctx.warn(
+                where,
+                ctx.unsupportedImageFormat[i] +
+                    " is not decoded (no decoder for it in this program: PNG and JPEG are built in; a host plugs others in, <preskin/ImageCodec.h>)");
         } else if (in.image.empty() || in.width <= 0 || in.height <= 0 || in.component != 4) {
             ctx.fail(where, "no pixel data could be read");
         } else {

@@ -3,6 +3,8 @@
 
 #include <preskin/Error.h>
 
+#include <fmt/core.h>
+
 #include <algorithm>
 #include <cmath>
 #include <set>
@@ -169,12 +171,25 @@ void parseProfileChoice(const LoadContext& ctx, const tinygltf::Value& skin, con
 SkinMaterial parseSkinExtension(const LoadContext& ctx, const tinygltf::Value& skin, const std::string& where,
                                 SkinMaterial s) {
     if (!skin.IsObject()) ctx.fail(where, "not an object");
-    static const std::set<std::string> known = {
-        "scatterScale",      "curvatureSource",   "curvatureTexture",    "curvatureTextureScalePerM", "curvatureTextureBias",
-        "deformedCurvature", "normalLodBias",     "detailNormalTexture", "detailUvScale",
-        "transmission",      "transmissionColor", "thicknessScale",      "specularIntensity",
-        "specularTexture",   "lobeRoughness0",    "lobeRoughness1",      "lobeMix",
-        "profile",           "profileBlend"};
+    static const std::set<std::string> known = {"scatterScale",
+                                                "curvatureSource",
+                                                "curvatureTexture",
+                                                "curvatureTextureScalePerM",
+                                                "curvatureTextureBias",
+                                                "deformedCurvature",
+                                                "normalLodBias",
+                                                "detailNormalTexture",
+                                                "detailUvScale",
+                                                "transmission",
+                                                "transmissionColor",
+                                                "thicknessScale",
+                                                "specularIntensity",
+                                                "specularTexture",
+                                                "lobeRoughness0",
+                                                "lobeRoughness1",
+                                                "lobeMix",
+                                                "profile",
+                                                "profileBlend"};
     for (const std::string& key : skin.Keys()) {
         if (!known.count(key) && key != "extensions" && key != "extras")
             ctx.warn(where + "." + key, "unknown field; ignored");
@@ -377,8 +392,17 @@ void convertMaterials(const LoadContext& ctx) {
             out.diffuseTransmissionFactor =
                 clampedFactor(ctx, numberField(ctx, it->second, "diffuseTransmissionFactor", at).value_or(0.0), 0.0,
                               1.0, at + ".diffuseTransmissionFactor");
-            out.diffuseTransmissionColor = glm::clamp(
-                vec3Field(ctx, it->second, "diffuseTransmissionColorFactor", at).value_or(glm::vec3(1.0f)), 0.0f, 1.0f);
+            // As PRESKIN_materials_skin's transmissionColor: a negative component is refused; above 1
+            // (more light out than in) is clamped with a warning, as the factors are.
+            glm::vec3 color =
+                vec3Field(ctx, it->second, "diffuseTransmissionColorFactor", at).value_or(glm::vec3(1.0f));
+            if (glm::any(glm::lessThan(color, glm::vec3(0.0f))))
+                ctx.fail(at + ".diffuseTransmissionColorFactor", "negative component");
+            if (glm::any(glm::greaterThan(color, glm::vec3(1.0f))))
+                ctx.warn(at + ".diffuseTransmissionColorFactor",
+                         fmt::format("({}, {}, {}) has components above 1; clamped", number(color.r), number(color.g),
+                                     number(color.b)));
+            out.diffuseTransmissionColor = glm::min(color, glm::vec3(1.0f));
             if (it->second.Has("diffuseTransmissionTexture") || it->second.Has("diffuseTransmissionColorTexture")) {
                 ctx.warn(at, "transmission textures are not used; only the factors are read");
             }

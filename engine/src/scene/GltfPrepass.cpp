@@ -21,23 +21,6 @@ namespace preskin::gltf {
 namespace fs = std::filesystem;
 using nlohmann::json;
 
-const std::vector<std::string>& supportedRequiredExtensions() {
-    static const std::vector<std::string> names = {
-        "KHR_lights_punctual",
-        "KHR_materials_diffuse_transmission",
-        "KHR_materials_emissive_strength",
-        "KHR_materials_scatter",
-        "KHR_materials_volume",
-        "KHR_materials_volume_scatter",
-        "KHR_mesh_quantization",
-        "KHR_texture_transform",
-        "PRESKIN_environment",
-        "PRESKIN_lights_area",
-        "PRESKIN_materials_skin",
-    };
-    return names;
-}
-
 namespace {
 
 // Top-level arrays, and whether each is one of the large kinds with its own smaller limit.
@@ -616,7 +599,10 @@ void checkEnvironment(const Checker& c, const json& doc, PrepassResult& result) 
     const std::string where = "extensions.PRESKIN_environment";
     const json* uri = Checker::member(*env, "uri");
     if (!uri || !uri->is_string()) c.error(where + ".uri", "missing or not a string");
-    result.environmentPath = c.existingFile(uri->get<std::string>(), where + ".uri");
+    if (const std::string text = uri->get<std::string>(); text.rfind("data:", 0) == 0)
+        result.environmentData = decodeBase64DataUri(text, c.file, where + ".uri");
+    else
+        result.environmentPath = c.existingFile(text, where + ".uri");
     if (auto intensity = c.numberField(*env, "intensity", where)) {
         if (*intensity < 0.0) c.error(where + ".intensity", io::numberText(*intensity) + " is negative");
         result.environmentIntensity = static_cast<float>(*intensity);

@@ -32,11 +32,9 @@
 
 namespace preskin::gltf {
 
-// Extensions whose presence in extensionsRequired is accepted.
-const std::vector<std::string>& supportedRequiredExtensions();
-
 struct PrepassResult {
     std::optional<std::filesystem::path> environmentPath;
+    std::vector<uint8_t> environmentData;  // a data URI's bytes (environmentPath then unset)
     float environmentIntensity = 1.0f;
     float environmentRotation = 0.0f;
     std::vector<SkinProfile> profiles;  // the root PRESKIN_materials_skin extension's

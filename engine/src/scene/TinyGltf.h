@@ -14,3 +14,8 @@
 #pragma GCC diagnostic ignored "-Wnull-dereference"
 #include <tiny_gltf.h>
 #pragma GCC diagnostic pop
+
+namespace tinygltf {
+// Part of the library's implementation section, exported by libtinygltf but declared only there.
+std::string base64_decode(std::string const& s);
+}  // namespace tinygltf

@@ -427,7 +427,9 @@ LutTable readTable(const fs::path& dir, const ManifestReader& reader, const nloh
     for (size_t i = 0; i < values; ++i) {
         const uint16_t h = halfAt(i);
         if ((h & 0x7c00u) == 0x7c00u)  // exponent all ones: infinity or NaN
-            throw Error(fmt::format("{}: texel {} holds a non-finite value", shown(tablePath), i / 3));
+            throw Error(fmt::format("{}: texel ({}, {}) {}: {} is not finite", shown(tablePath),
+                                    (i / 3) % size_t(width), (i / 3) / size_t(width), "RGB"[i % 3],
+                                    (h & 0x3ffu) ? "NaN" : "infinity"));
         expected.rgb[i] = kHalfToFloat[h];
     }
     const std::string actual = raw ? hash : skin::halfContentHash(half);  // raw: the CRC above
