@@ -22,7 +22,8 @@ if [ -e "$dir" ] && [ -n "$(ls -A "$dir" 2>/dev/null || echo file)" ]; then
     exit 1
 fi
 [ -f "$build/CMakeCache.txt" ] || ./scripts/build.sh
-cmake --build "$build" --target preskin_gpu_kit preskin_cli >/dev/null
+# One build and one install at a time in this build folder (tests run this script beside others).
+flock "$build/.install.lock" cmake --build "$build" --target preskin_gpu_kit preskin_cli >/dev/null
 
 tmp="$(mktemp -d "$(dirname "$(realpath -m "$dir")")/.gpu-kit.XXXXXX")"
 trap 'rm -rf "$tmp"' EXIT
@@ -30,7 +31,7 @@ chmod 755 "$tmp"
 mkdir -p "$tmp/lib/vulkan" "$tmp/share/preskin/samples/assets" "$tmp/LICENSES"
 
 # The program, its RUNPATH rewritten to $ORIGIN/../lib by the install.
-cmake --install "$build" --component gpukit --prefix "$tmp" >/dev/null
+flock "$build/.install.lock" cmake --install "$build" --component gpukit --prefix "$tmp" >/dev/null
 exe="$tmp/bin/preskin-gpu-kit"
 [ -x "$exe" ] || { echo "gpu-kit: the install wrote no bin/preskin-gpu-kit" >&2; exit 1; }
 

@@ -35,8 +35,10 @@ TEST(HostSample, BuiltAgainstTheInstallRendersLikePreskinRender) {
         EXPECT_EQ(r.exitCode, 0) << program.string() << " " << (args.empty() ? "" : args[0]) << "\n" << r.out << r.err;
         return r;
     };
-    run(PRESKIN_CMAKE_COMMAND,
-        {"--install", PRESKIN_BINARY_DIR, "--prefix", prefix.string(), "--component", "Unspecified"}, 120.0);
+    {
+        const ProcessResult installed = installBuild(prefix, "Unspecified", 120.0);
+        ASSERT_EQ(installed.exitCode, 0) << installed.out << installed.err;
+    }
     EXPECT_FALSE(fs::exists(prefix / "include" / "preskin" / "imageio"));
     run(PRESKIN_CMAKE_COMMAND,
         {"-S", PRESKIN_SOURCE_DIR "/samples/host", "-B", build.string(), "-G", PRESKIN_CMAKE_GENERATOR,
@@ -95,9 +97,7 @@ TEST(HostSample, PkgConfigFindsAMovedInstall) {
     std::error_code ec;
     fs::remove_all(work, ec);
     fs::create_directories(work);
-    const ProcessResult install =
-        runProcess(PRESKIN_CMAKE_COMMAND, {"--install", PRESKIN_BINARY_DIR, "--prefix", (work / "installed").string()},
-                   {}, work, 120.0);
+    const ProcessResult install = installBuild(work / "installed", "", 120.0);
     ASSERT_EQ(install.exitCode, 0) << install.out << install.err;
     const fs::path prefix = work / "moved";
     fs::rename(work / "installed", prefix);

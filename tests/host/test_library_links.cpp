@@ -80,10 +80,7 @@ TEST(LibraryLinks, InstalledCoreClosureIsTheAllowedSmallLibraries) {
     const std::filesystem::path prefix = std::filesystem::path(PRESKIN_BINARY_DIR) / "core-install-test";
     std::error_code ec;
     std::filesystem::remove_all(prefix, ec);
-    const ProcessResult install =
-        runProcess(PRESKIN_CMAKE_COMMAND,
-                   {"--install", PRESKIN_BINARY_DIR, "--prefix", prefix.string(), "--component", "Unspecified"}, {},
-                   PRESKIN_BINARY_DIR, 120.0);
+    const ProcessResult install = installBuild(prefix, "Unspecified", 120.0);
     ASSERT_EQ(install.exitCode, 0) << install.out << install.err;
     std::filesystem::path library;
     for (const auto& entry : std::filesystem::recursive_directory_iterator(prefix))

@@ -156,3 +156,17 @@ ProcessResult runWithMemoryLimit(const fs::path& program, const std::vector<std:
 }
 
 }  // namespace preskin::test
+
+namespace preskin::test {
+
+ProcessResult installBuild(const std::filesystem::path& prefix, const std::string& component, double limitS) {
+    std::vector<std::string> args = {(std::filesystem::path(PRESKIN_BINARY_DIR) / ".install.lock").string(), PRESKIN_CMAKE_COMMAND,
+                                     "--install", PRESKIN_BINARY_DIR, "--prefix", prefix.string()};
+    if (!component.empty()) {
+        args.push_back("--component");
+        args.push_back(component);
+    }
+    return runProcess("/usr/bin/flock", args, {}, PRESKIN_BINARY_DIR, limitS);
+}
+
+}  // namespace preskin::test

@@ -22,6 +22,11 @@ struct ProcessResult {
 };
 
 std::string readFile(const std::filesystem::path& path);
+
+// `cmake --install` of the build into `prefix` (one `component`, or every one when empty), one
+// at a time across the test processes (a lock file in the build folder): installs write the
+// build's install manifests.
+ProcessResult installBuild(const std::filesystem::path& prefix, const std::string& component, double limitS);
 // The Vulkan device the tests run on: $PRESKIN_TEST_DEVICE, else "llvmpipe".
 std::string testDevice();
 
