@@ -127,7 +127,8 @@ TEST_F(BakeCli, CurvatureMapOfTheHead) {
 TEST_F(BakeCli, BadCurvatureInputIsRefusedAndNothingIsWritten) {
     const std::string plain = std::string(PRESKIN_SOURCE_DIR) + "/samples/assets/tube/tube.gltf";
     const std::vector<std::pair<std::vector<std::string>, std::string>> cases{
-        {{"--size", "8"}, "size: must be in [16, 8192], got 8"},
+        {{"--size", "8"}, "--size: value: 8 is outside [16, 8192]"},
+        {{"--size", "0"}, "--size: value: 0 is outside [16, 8192]"},
         {{"--dilation", "5000"}, "dilation: must be in [0, 1024], got 5000"},
         {{"/nonexistent/scene.gltf"}, "/nonexistent/scene.gltf"},
         {{"--skin", "nose"}, "no material named 'nose'"},

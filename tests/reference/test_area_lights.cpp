@@ -69,22 +69,32 @@ protected:
     // A white Lambert plane (z = 0, facing +Z, 2 m wide) seen from 1.6 m above, lit by `light`
     // alone: the largest difference from the reference irradiance's radiance, relative to the
     // image's largest radiance.
-    double planeError(const Light& light, const char* name) {
+    // The plane (0.8 grey, roughness `roughness`) under `light` alone, seen from 1.6 m above.
+    RenderedImage renderPlane(const Light& light, bool specular, float roughness = 1.0f) {
         Material material;
         material.baseColorFactor = glm::vec4(0.8f, 0.8f, 0.8f, 1.0f);
         material.metallicFactor = 0.0f;
+        material.roughnessFactor = roughness;
         Primitive plane = makeQuad(2.0f, 8);
         plane.material = 0;
         Scene scene = makeScene({{plane, glm::mat4(1.0f)}}, {material});
         scene.lights = {light};
         RenderSettings settings;
-        settings.specular = false;
+        settings.specular = specular;
         settings.shadows = false;
         Renderer renderer(context(), scene, Environment::constant(glm::vec3(0.0f)), nullptr, settings);
+        return renderer.render(planeView(), kSize, kSize, OutputEncoding::LinearFloat);
+    }
+
+    static View planeView() {
         const glm::mat4 worldFromView =
             glm::inverse(glm::lookAt(glm::vec3(0.0f, 0.0f, 1.6f), glm::vec3(0.0f), glm::vec3(0.0f, 1.0f, 0.0f)));
-        const View view = perspectiveView(worldFromView, 0.7f, 1.0f, 0.1f, 10.0f);
-        const RenderedImage image = renderer.render(view, kSize, kSize, OutputEncoding::LinearFloat);
+        return perspectiveView(worldFromView, 0.7f, 1.0f, 0.1f, 10.0f);
+    }
+
+    double planeError(const Light& light, const char* name) {
+        const RenderedImage image = renderPlane(light, false);
+        const View view = planeView();
         dumpImage(std::string("area_light_plane_") + name, image);
 
         const glm::dmat4 worldFromClip = glm::inverse(glm::dmat4(view.eye().clipFromWorld()));
@@ -163,26 +173,8 @@ TEST_F(AreaLights, TubeOverThePlaneIsCloseToTheReference) {
 // largest radiance (2 % for the line of light, near its own plane), and the image's energy within 1 %.
 class TinyAreaLights : public AreaLights {
 protected:
-    RenderedImage plane(const Light& light) {
-        Material material;
-        material.baseColorFactor = glm::vec4(0.8f, 0.8f, 0.8f, 1.0f);
-        material.metallicFactor = 0.0f;
-        material.roughnessFactor = 0.5f;
-        Primitive quad = makeQuad(2.0f, 8);
-        quad.material = 0;
-        Scene scene = makeScene({{quad, glm::mat4(1.0f)}}, {material});
-        scene.lights = {light};
-        RenderSettings settings;
-        settings.shadows = false;
-        Renderer renderer(context(), scene, Environment::constant(glm::vec3(0.0f)), nullptr, settings);
-        const View view = perspectiveView(
-            glm::inverse(glm::lookAt(glm::vec3(0.0f, 0.0f, 1.6f), glm::vec3(0.0f), glm::vec3(0.0f, 1.0f, 0.0f))), 0.7f,
-            1.0f, 0.1f, 10.0f);
-        return renderer.render(view, kSize, kSize, OutputEncoding::LinearFloat);
-    }
-
     void expectSamePower(const Light& tiny, const Light& resolved, const char* name, double pixelBound = 0.01) {
-        const RenderedImage a = plane(tiny), b = plane(resolved);
+        const RenderedImage a = renderPlane(tiny, true, 0.5f), b = renderPlane(resolved, true, 0.5f);
         dumpImage(std::string("area_light_tiny_") + name, a);
         double sumA = 0.0, sumB = 0.0, largest = 0.0, worst = 0.0;
         for (size_t i = 0; i < a.rgba32f.size(); i += 4) {

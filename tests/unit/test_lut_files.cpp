@@ -9,6 +9,8 @@
 
 #include <OpenImageIO/imageio.h>
 #include <fmt/core.h>
+#include "support/ErrorText.h"
+
 #include <gtest/gtest.h>
 #include <zlib.h>
 #include <nlohmann/json.hpp>
@@ -61,15 +63,6 @@ void expectSameTables(const LutSet& a, const LutSet& b) {
         EXPECT_EQ(ta.height(), tb.height());
         EXPECT_EQ(ta.rgb, tb.rgb) << ta.name;
     }
-}
-
-std::string errorOf(const std::function<void()>& f) {
-    try {
-        f();
-    } catch (const Error& e) {
-        return e.what();
-    }
-    return "(no error)";
 }
 
 nlohmann::json readJson(const fs::path& p) {
