@@ -14,9 +14,16 @@
 # A technique's cost is the all-on frame minus the frame with that technique off (its standard
 # fallback on); the standard frame is the same scene with the skin extension removed
 # (`--skin none`). Both at LIGHTS scattered lights (default 256) on the bundled head.
+#  - what each buys: with REFERENCES=DIR, `preskin compare` of the README's four head views (front
+#    1024x1024; cheek_nose, lips, ear 768x768) with the same switch, skin's error over Lambert's
+#    against the diffusion reference (pooled RMSE; all, concave, near cast-shadow edges, averaged
+#    over the views). DIR keeps the references (<view>.exr; the first run computes each, 5 to 15
+#    minutes at 768x768 on two cores, and later runs read them back).
+# The quality tiers (--skin-quality low, medium) get the same rows.
 #   scripts/skin-cost.sh [OUT.md]
 #   env: FRAMES (default 1), WIDTH, HEIGHT, LIGHTS, REPS (bench, default 5), JOBS (parallel
-#   valgrind runs, default: cores), SCENE (default: the bundled head), NO_BENCH=1 (instructions only)
+#   valgrind runs, default: cores), SCENE (default: the bundled head), NO_BENCH=1 (instructions only),
+#   REFERENCES=DIR (the fidelity columns)
 set -euo pipefail
 cd "$(dirname "$0")/.."
 out="${1:-docs/skin-cost-table.md}"
@@ -68,6 +75,10 @@ configs=(
   "sh_ambient|--no-sh-skin"
   "transmission|--no-transmission"
   "dual_specular|--no-dual-specular"
+  "opposing_light|--no-opposing-light"
+  "specular_ibl|--no-specular-ibl"
+  "quality_medium|--skin-quality medium"
+  "quality_low|--skin-quality low"
   "all_off|--standard"
   "no_shadows|--no-shadows"
   "standard_no_shadows|--skin none --no-shadows"
@@ -90,6 +101,31 @@ export -f measure
 export preskin scene lights width height frames work
 printf '%s\n' "${configs[@]}" | xargs -d '\n' -P "$jobs" -I{} bash -c 'measure "$1"' _ {}
 
+# What each switch buys: compare on the four views, reading (or first computing) the references.
+if [ -n "${REFERENCES:-}" ]; then
+  mkdir -p "$REFERENCES"
+  views=("front 1024" "cheek_nose 768" "lips 768" "ear 768")
+  for v in "${views[@]}"; do  # the references first, one at a time (each uses every core)
+    set -- $v
+    "$preskin" compare --camera "$1" --width "$2" --height "$2" --reference "$REFERENCES/$1.exr" \
+      --json "$work/fidelity-skin-$1.json" >/dev/null 2>"$work/fidelity-skin-$1.log" ||
+      { echo "skin-cost: compare $1 failed:" >&2; tail -3 "$work/fidelity-skin-$1.log" >&2; exit 1; }
+  done
+  for c in "lut_diffuse|--no-lut-diffuse" "normal_prefilter|--no-normal-prefilter" "penumbra|--no-penumbra" \
+           "sh_ambient|--no-sh-skin" "transmission|--no-transmission" "opposing_light|--no-opposing-light" \
+           "quality_medium|--skin-quality medium" "quality_low|--skin-quality low"; do
+    name="${c%%|*}" flags="${c#*|}"
+    for v in "${views[@]}"; do
+      set -- $v
+      # shellcheck disable=SC2086
+      "$preskin" compare --camera "$1" --width "$2" --height "$2" --reference "$REFERENCES/$1.exr" $flags \
+        --json "$work/fidelity-$name-$1.json" >/dev/null 2>"$work/fidelity-$name-$1.log" ||
+        { echo "skin-cost: compare $name $1 failed:" >&2; tail -3 "$work/fidelity-$name-$1.log" >&2; exit 1; }
+    done
+    echo "skin-cost: fidelity of $name measured" >&2
+  done
+fi
+
 bench_json=""
 if [ -z "${NO_BENCH:-}" ]; then
   # shellcheck disable=SC2086
@@ -100,16 +136,30 @@ fi
 
 device="$(grep -m1 '^preskin: frame time on ' "$work/skin.log" | sed 's/^preskin: frame time on //; s/: gpu .*//; s/ (median of [0-9]* frames)$//')"
 python3 - "$work" "$out" "$width" "$height" "$lights" "$frames" "$bench_json" "$device" <<'PY'
-import json, os, sys
+import glob, json, os, sys
 work, out, width, height, lights, frames, bench_path, device = sys.argv[1:9]
 frames = int(frames)
 count = {n[:-6]: int(open(os.path.join(work, n)).read()) / frames for n in os.listdir(work) if n.endswith(".count")}
 bench = json.load(open(bench_path)) if bench_path else None
 t = bench["skin_techniques"] if bench else None
+# fidelity[name][view]: compare's regions (skin's pooled RMSE over Lambert's)
+fidelity = {}
+for path in glob.glob(os.path.join(work, "fidelity-*.json")):
+    name, view = os.path.basename(path)[len("fidelity-"):-len(".json")].rsplit("-", 1)
+    fidelity.setdefault(name, {})[view] = json.load(open(path))["regions"]
+views = ["front", "cheek_nose", "lips", "ear"]
+def fid(name):
+    """'all / concave / near edges' means over the views, and the per-view 'all'; blanks without references."""
+    if name not in fidelity:
+        return "| |"
+    f = fidelity[name]
+    mean = lambda region: sum(f[v][region]["ratioToLambertPooled"] for v in views) / len(views)
+    each = ", ".join(f"{f[v]['all']['ratioToLambertPooled']:.3f}" for v in views)
+    return f"| {mean('all'):.3f} / {mean('concave'):.3f} / {mean('shadowEdge'):.3f} | {each} |"
 skin, std = count["skin"], count["standard"]
 M = lambda v: f"{v / 1e6:.1f}"
 lines = [
-    "# What the skin techniques cost",
+    "# What the skin techniques cost, and what they buy",
     "",
     f"Measured by `scripts/skin-cost.sh` ({device or 'default Vulkan device'}), the bundled head with {lights} "
     "scattered lights. Instructions: valgrind's callgrind, whole process, the measured frames of `preskin render "
@@ -118,35 +168,40 @@ lines = [
     + (f" Time: `preskin bench` skin_techniques at {bench['width']}x{bench['height']}, interleaved frames, medians."
        if bench else ""),
     "A technique's cost is the all-on frame minus the frame with that technique off (its standard fallback on); "
-    "the costs overlap, so they do not add up to the total.",
+    "the costs overlap, so they do not add up to the total. Fidelity: `preskin compare` of the README's four head "
+    "views (front 1024x1024, cheek_nose, lips and ear 768x768) with the technique off, skin's pooled RMSE over "
+    "Lambert's against the diffusion reference (below 1: closer than Lambert; higher than the all-on row: the "
+    "technique buys accuracy there); specular is off in `compare`, so the specular rows buy nothing there.",
     "",
-    "| | instructions per frame (M) | share of the skin frame | wall ms | process CPU ms | forward-pass ms |",
-    "| --- | ---: | ---: | ---: | ---: | ---: |",
+    "| | instructions per frame (M) | share of the skin frame | wall ms | process CPU ms | forward-pass ms "
+    "| fidelity with it off: all / concave / near cast-shadow edges (mean of views) | all, per view |",
+    "| --- | ---: | ---: | ---: | ---: | ---: | --- | --- |",
 ]
 def timed(name):
-    if not t:
-        return "| | | |"
+    if not t or name not in t["cost_ms"]:
+        return "| | | "
     c = t["cost_ms"][name]
-    return f"| {c['wall']:.1f} | {c['cpu']:.1f} | {c['forward_gpu']:.1f} |"
+    return f"| {c['wall']:.1f} | {c['cpu']:.1f} | {c['forward_gpu']:.1f} "
 def frame(m):
-    return f"| {m['wall_ms']:.1f} | {m['cpu_ms']:.1f} | {m['gpu_pass_ms']['forward']:.1f} |"
+    return f"| {m['wall_ms']:.1f} | {m['cpu_ms']:.1f} | {m['gpu_pass_ms']['forward']:.1f} "
 lines.append(f"| skin frame, all techniques on | {M(skin)} | 100% "
-             + (frame(t["skin"]) if t else "| | | |"))
+             + (frame(t["skin"]) if t else "| | | ") + fid("skin"))
 lines.append(f"| standard-material frame (`--skin none`) | {M(std)} | {100 * std / skin:.0f}% "
-             + (frame(t["standard_material"]) if t else "| | | |"))
+             + (frame(t["standard_material"]) if t else "| | | ") + "| | |")
 labels = {"lut_diffuse": "diffuse LUT fetches (per light, per channel)",
           "normal_prefilter": "normal samples (three prefiltered normals)",
           "penumbra": "penumbra LUT", "sh_ambient": "SH transfer", "transmission": "thickness and transmission",
-          "dual_specular": "dual specular"}
+          "opposing_light": "the opposing neighbours' light", "dual_specular": "dual specular",
+          "specular_ibl": "specular IBL (prefiltered environment)"}
 for name, label in labels.items():
     d = skin - count[name]
-    lines.append(f"| {label} (`{name}`) | {M(d)} | {100 * d / skin:.0f}% {timed(name)}")
+    lines.append(f"| {label} (`{name}`) | {M(d)} | {100 * d / skin:.0f}% {timed(name)}{fid(name)}")
 d = skin - count["no_shadows"]
 ds = std - count["standard_no_shadows"]
-lines.append(f"| shadow map and filter, skin (`--no-shadows`) | {M(d)} | {100 * d / skin:.0f}% | | | |")
-lines.append(f"| shadow map and filter, standard material | {M(ds)} | {100 * ds / skin:.0f}% | | | |")
+lines.append(f"| shadow map and filter, skin (`--no-shadows`) | {M(d)} | {100 * d / skin:.0f}% | | | | | |")
+lines.append(f"| shadow map and filter, standard material | {M(ds)} | {100 * ds / skin:.0f}% | | | | | |")
 lines.append(f"| skin shader, every technique off (`--standard`) | {M(count['all_off'])} | "
-             f"{100 * count['all_off'] / skin:.0f}% | | | |")
+             f"{100 * count['all_off'] / skin:.0f}% | | | | | |")
 lines += [
     "",
     f"Skin / standard, instructions: {skin / std:.2f} (mono), "
@@ -157,7 +212,15 @@ lines += [
        f"= {t['skin_over_standard_cpu']:.2f}."
        if t else ""),
     "",
+    "## Quality tiers (`--skin-quality`, `SkinMaterial::quality`)",
+    "",
+    "| tier | instructions per frame (M) | / standard frame | fidelity: all / concave / near cast-shadow edges "
+    "(mean of views) | all, per view |",
+    "| --- | ---: | ---: | --- | --- |",
 ]
+for name, label in (("skin", "high (every technique)"), ("quality_medium", "medium"), ("quality_low", "low")):
+    lines.append(f"| {label} | {M(count[name])} | {count[name] / std:.2f} {fid(name)}")
+lines.append("")
 os.makedirs(os.path.dirname(out) or ".", exist_ok=True)
 open(out, "w").write("\n".join(lines))
 print("\n".join(lines))

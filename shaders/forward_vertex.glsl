@@ -84,17 +84,20 @@ void main() {
         outNormalGreenWs = normalWorldFromObject * preskinPrefilteredNormal(inNormalOs, inNormalBasis, weights[1]);
         outNormalBlueWs = normalWorldFromObject * preskinPrefilteredNormal(inNormalOs, inNormalBasis, weights[2]);
         // The opposing sums keep their length (a share of the light), not the transform's scale.
-        vec3 o[3] = vec3[3](preskinOpposingNormal(inOpposing, weights[0]), preskinOpposingNormal(inOpposing, weights[1]),
-                            preskinOpposingNormal(inOpposing, weights[2]));
-        for (int c = 0; c < 3; ++c) {
-            vec3 ws = normalWorldFromObject * o[c];
-            float len = length(ws);
-            o[c] = len > 0.0 ? ws * (length(o[c]) / len) : vec3(0.0);
+        if ((kSkinFeatures & kSkinOpposingLight) != 0u) {
+            vec3 o[3] = vec3[3](preskinOpposingNormal(inOpposing, weights[0]),
+                                preskinOpposingNormal(inOpposing, weights[1]),
+                                preskinOpposingNormal(inOpposing, weights[2]));
+            for (int c = 0; c < 3; ++c) {
+                vec3 ws = normalWorldFromObject * o[c];
+                float len = length(ws);
+                o[c] = len > 0.0 ? ws * (length(o[c]) / len) : vec3(0.0);
+            }
+            outOpposingCentroidWs = mat3(instance.worldFromObject) * inOpposingCentroid;
+            outOpposingRedWs = o[0];
+            outOpposingGreenWs = o[1];
+            outOpposingBlueWs = o[2];
         }
-        outOpposingCentroidWs = mat3(instance.worldFromObject) * inOpposingCentroid;
-        outOpposingRedWs = o[0];
-        outOpposingGreenWs = o[1];
-        outOpposingBlueWs = o[2];
     }
     outCurvaturePerM = inCurvature * instance.params.x;
     outEye = eye;

@@ -124,6 +124,12 @@ void addSkinTechniqueOptions(CLI::App& cmd, CommonOptions& o) {
     cmd.add_flag("--no-sh-skin", o.noShSkin, "Skin: Lambert SH ambient instead of the skin transfer");
     cmd.add_flag("--no-transmission", o.noTransmission, "Skin: no transmission through thin parts");
     cmd.add_flag("--no-dual-specular", o.noDualSpecular, "Skin: one GGX lobe instead of two");
+    cmd.add_flag("--no-opposing-light", o.noOpposingLight,
+                 "Skin: no light from neighbours facing the point across a gap or a thin part");
+    cmd.add_option("--skin-quality", o.skinQuality,
+                   "Skin: every skin material at this quality tier (low, medium, high; default: each material's "
+                   "own, high unless its PRESKIN_materials_skin quality says otherwise)")
+        ->check(oneOf({"low", "medium", "high"}));
     cmd.add_flag("--skin-terms-per-fragment", o.skinTermsPerFragment,
                  "Skin: find the curvature-only terms (SH transfer, shadow lift, sphere transmittance) per fragment "
                  "instead of per vertex");
@@ -306,6 +312,11 @@ RenderSettings renderSettings(const CommonOptions& o) {
     s.skin.shAmbient = !o.noShSkin;
     s.skin.transmission = !o.noTransmission;
     s.skin.dualSpecular = !o.noDualSpecular;
+    s.skin.opposingLight = !o.noOpposingLight;
+    if (!o.skinQuality.empty())
+        s.skinQuality = o.skinQuality == "low" ? SkinQuality::Low
+            : o.skinQuality == "medium"        ? SkinQuality::Medium
+                                               : SkinQuality::High;
     s.skinTermsPerVertex = !o.skinTermsPerFragment;
     if (o.standard) s.skin = SkinFeatures::none();
     s.specular = !o.noSpecular;

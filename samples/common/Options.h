@@ -37,6 +37,8 @@ struct CommonOptions {
     bool noShSkin = false;
     bool noTransmission = false;
     bool noDualSpecular = false;
+    bool noOpposingLight = false;
+    std::string skinQuality;  // --skin-quality: "" (each material's own), low, medium or high
     bool skinTermsPerFragment = false;
     bool noSpecular = false;
     bool noSpecularIbl = false;

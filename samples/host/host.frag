@@ -9,7 +9,7 @@
 #include "preskin/skin.glsl"
 #include "preskin/tonemap.glsl"
 
-layout(constant_id = 0) const uint kFeatures = kSkinAll;
+layout(constant_id = 0) const uint kFeatures = kSkinQualityHigh;  // or kSkinQualityMedium, kSkinQualityLow
 
 layout(set = 0, binding = 0) uniform Frame {
     LutMapping lut;             // preskin::lutMapping(luts)

@@ -254,9 +254,18 @@ void Viewer::panelTechniques() {
     ImGui::Checkbox("Transmission (thin parts)", &f.transmission);
     ImGui::Checkbox("Dual specular lobes", &f.dualSpecular);
     tooltip("Off: one GGX lobe");
+    ImGui::Checkbox("Opposing neighbours' light", &f.opposingLight);
+    tooltip("Off: no light from skin facing the point across a gap (lips, ear folds, nostrils)");
     if (ImGui::Button("All on")) f = SkinFeatures{};
     ImGui::SameLine();
     if (ImGui::Button("Standard (all off)")) f = SkinFeatures::none();
+    // Quality tier: every skin material's own, or all at one tier.
+    int tier = settings_.skinQuality ? 1 + static_cast<int>(*settings_.skinQuality) : 0;
+    ImGui::Combo("Quality tier", &tier, "each material's own\0low\0medium\0high\0");
+    settings_.skinQuality = tier == 0 ? std::nullopt : std::optional<SkinQuality>(static_cast<SkinQuality>(tier - 1));
+    tooltip(
+        "The techniques skin compiles in: high all, medium without the opposing light and second lobe, low "
+        "the diffuse LUT, SH transfer and per-channel normals only");
     int method = static_cast<int>(settings_.diffusion);
     ImGui::RadioButton("Pre-integrated", &method, 0);
     ImGui::SameLine();

@@ -25,7 +25,10 @@
 //  - specular: two GGX lobes (roughness multipliers and mix in the material) with F0 = 0.028
 //    (IOR 1.4) times the specular map.
 // Every technique can be switched off (kSkin* bits of shared/skin_features.h in `features`); off falls back to the
-// standard equivalent, so with no bits set this equals the standard dielectric BRDF.
+// standard equivalent, so with no bits set this equals the standard dielectric BRDF. The quality
+// tiers are such masks: kSkinQualityHigh (every technique), kSkinQualityMedium, kSkinQualityLow
+// (shared/skin_features.h; docs/skin-cost.md gives each one's cost and fidelity); a host passes
+// one as a specialization constant, so what a tier leaves out is compiled out.
 //
 // Inputs are in world units (metres) except where named; the material's scatter scale
 // converts them to profile millimetres. Includes preskin/brdf.glsl, preskin/lut.glsl,
@@ -391,7 +394,7 @@ vec3 preskinSkinOpposingLight(PreskinSkinSurface s, sampler2D shadowMap, mat4 sh
                               vec3 positionWs, vec3 centroidOffsetWs, vec3 opposingR, vec3 opposingG,
                               vec3 opposingB, vec3 L, vec3 irradiance, uint features) {
     vec3 facing = vec3(dot(opposingR, L), dot(opposingG, L), dot(opposingB, L));
-    if ((features & kSkinTransmission) == 0u || max(max(facing.r, facing.g), facing.b) <= 0.0) return vec3(0.0);
+    if ((features & kSkinOpposingLight) == 0u || max(max(facing.r, facing.g), facing.b) <= 0.0) return vec3(0.0);
     float toWorldM = 0.001 / max(s.scatterScale, 1e-6);
     vec3 towards = normalize(opposingR + opposingG + opposingB);
     vec3 centroidWs = positionWs + centroidOffsetWs + towards * (kSkinOpposingLiftMm * toWorldM);

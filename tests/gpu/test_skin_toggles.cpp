@@ -133,6 +133,15 @@ ToggleScene transmissionScene() {
     return s;
 }
 
+// The underside of an overhang seen from below, lit across the gap by the floor under it.
+ToggleScene overhangToggleScene() {
+    ToggleScene s;
+    s.name = "overhang";
+    s.scene = overhangScene();
+    s.view = lookAtView(glm::vec3(-0.01f, 0.0f, -0.06f), glm::vec3(-0.01f, 0.0f, 0.0f), 0.6f, 0.01f);
+    return s;
+}
+
 constexpr uint32_t kSize = 128;
 
 class SkinToggles : public GpuTest {};
@@ -146,14 +155,16 @@ TEST_F(SkinToggles, EachTechniqueChangesTheImage) {
     ToggleScene sphere = sphereScene();
     ToggleScene penumbra = penumbraScene();
     ToggleScene transmission = transmissionScene();
+    ToggleScene overhang = overhangToggleScene();
     const std::vector<Case> cases = {{"lutDiffuse", &SkinFeatures::lutDiffuse, &sphere},
                                      {"normalPrefilter", &SkinFeatures::normalPrefilter, &sphere},
                                      {"shAmbient", &SkinFeatures::shAmbient, &sphere},
                                      {"dualSpecular", &SkinFeatures::dualSpecular, &sphere},
                                      {"penumbra", &SkinFeatures::penumbra, &penumbra},
-                                     {"transmission", &SkinFeatures::transmission, &transmission}};
+                                     {"transmission", &SkinFeatures::transmission, &transmission},
+                                     {"opposingLight", &SkinFeatures::opposingLight, &overhang}};
     const LutSet& luts = LutSet::loadDefault();
-    for (ToggleScene* s : {&sphere, &penumbra, &transmission}) {
+    for (ToggleScene* s : {&sphere, &penumbra, &transmission, &overhang}) {
         Renderer renderer(context(), s->scene, s->environment, &luts, s->settings);
         const RenderedImage all = renderer.render(s->view, kSize, kSize, OutputEncoding::LinearFloat);
         dumpImage("skin_toggles_" + s->name + "_all", all);

@@ -425,9 +425,10 @@ TEST_F(SkinFidelity, ShadowOfANearbyPlateCarriesTheLightItsLitSideScatters) {
         {skinMaterial({0.8f, 0.6f, 0.5f})});
     scene.lights = {shadowedDirectionalLight({0.866f, 0.0f, -0.5f}, 3.0f)};
     const uint32_t size = kFromAboveSize;
-    SkinFeatures noTransmission;
-    noTransmission.transmission = false;
-    const FromAbove images = renderFromAbove(context(), scene, noTransmission);
+    SkinFeatures noNeighbours;  // neither transmission nor the opposing neighbours' light
+    noNeighbours.transmission = false;
+    noNeighbours.opposingLight = false;
+    const FromAbove images = renderFromAbove(context(), scene, noNeighbours);
     // The view spans x = -10 .. 10 mm at the floor.
     const StripRed strip = stripRed(
         images, [&](uint32_t x) { return (double(x) + 0.5) / size * 20.0 - 10.0; }, 0.5, 2.5);
@@ -443,30 +444,12 @@ TEST_F(SkinFidelity, ShadowOfANearbyPlateCarriesTheLightItsLitSideScatters) {
 // below 0.5 times that of skin without it (transmission off: through 8 mm the plate's lit top
 // sends nothing), its mean within 30 % of the reference's.
 TEST_F(SkinFidelity, UndersideOfAnOverhangCarriesTheLightOfTheLitFloorAcrossTheGap) {
-    Primitive floor = makeQuad(0.08f, 80);  // 1 mm cells, facing up
-    Primitive underside = makeQuad(0.04f, 40);
-    for (Vertex& v : underside.vertices) {  // facing down, x from -40 to 0 mm, 1 mm up
-        v.positionOs = glm::vec3(v.positionOs.x - 0.02f, v.positionOs.y, 0.001f);
-        v.normalOs = glm::vec3(0.0f, 0.0f, -1.0f);
-    }
-    for (size_t t = 0; t < underside.indices.size(); t += 3)
-        std::swap(underside.indices[t + 1], underside.indices[t + 2]);
-    underside.boundsOs = {};
-    for (const Vertex& v : underside.vertices) underside.boundsOs.extend(v.positionOs);
-    floor.material = underside.material = 0;
-    Primitive body = makeBox(glm::vec3(0.04f, 0.04f, 0.008f));  // the plate's other faces, casting its shadow
-    body.material = 0;
-    Scene scene = makeScene({{body, glm::translate(glm::mat4(1.0f), glm::vec3(-0.02f, 0.0f, 0.00501f))}},
-                            {skinMaterial({0.8f, 0.6f, 0.5f})});
-    Mesh gap;
-    gap.primitives = {floor, underside};
-    scene.instances.push_back({int(scene.meshes.size()), glm::mat4(1.0f), ""});
-    scene.meshes.push_back(std::move(gap));
-    scene.lights = {shadowedDirectionalLight({-0.866f, 0.0f, -0.5f}, 3.0f)};
+    const Scene scene = overhangScene();
     const uint32_t size = kFromAboveSize;
-    SkinFeatures noTransmission;
-    noTransmission.transmission = false;
-    const FromAbove images = renderFromAbove(context(), scene, noTransmission, -0.06f);
+    SkinFeatures noNeighbours;  // neither transmission nor the opposing neighbours' light
+    noNeighbours.transmission = false;
+    noNeighbours.opposingLight = false;
+    const FromAbove images = renderFromAbove(context(), scene, noNeighbours, -0.06f);
     // From below the image's x runs along -x; the view spans 20.3 mm at the underside.
     const StripRed strip = stripRed(
         images, [&](uint32_t x) { return -((double(x) + 0.5) / size * 2.0 - 1.0) * 10.0 * 0.061 / 0.06; }, -3.0, -0.3);

@@ -1,6 +1,7 @@
 #include "support/SkinTestSupport.h"
 
 #include "support/ImageCompare.h"
+#include "support/TestLights.h"
 #include "support/TestScenes.h"
 
 #include <preskin/Curvature.h>
@@ -226,6 +227,30 @@ SphereAgreement compareWithSkinReference(const RenderedImage& image, const View&
             if (srgbDifference(got, lambert) <= 2.0) ++a.lambertWithin;
         }
     return a;
+}
+
+Scene overhangScene() {
+    Primitive floor = makeQuad(0.08f, 80);  // 1 mm cells, facing up
+    Primitive underside = makeQuad(0.04f, 40);
+    for (Vertex& v : underside.vertices) {  // facing down, x from -40 to 0 mm, 1 mm up
+        v.positionOs = glm::vec3(v.positionOs.x - 0.02f, v.positionOs.y, 0.001f);
+        v.normalOs = glm::vec3(0.0f, 0.0f, -1.0f);
+    }
+    for (size_t t = 0; t < underside.indices.size(); t += 3)
+        std::swap(underside.indices[t + 1], underside.indices[t + 2]);
+    underside.boundsOs = {};
+    for (const Vertex& v : underside.vertices) underside.boundsOs.extend(v.positionOs);
+    floor.material = underside.material = 0;
+    Primitive body = makeBox(glm::vec3(0.04f, 0.04f, 0.008f));  // the plate's other faces, casting its shadow
+    body.material = 0;
+    Scene scene = makeScene({{body, glm::translate(glm::mat4(1.0f), glm::vec3(-0.02f, 0.0f, 0.00501f))}},
+                            {skinMaterial({0.8f, 0.6f, 0.5f})});
+    Mesh gap;
+    gap.primitives = {floor, underside};
+    scene.instances.push_back({int(scene.meshes.size()), glm::mat4(1.0f), ""});
+    scene.meshes.push_back(std::move(gap));
+    scene.lights = {shadowedDirectionalLight({-0.866f, 0.0f, -0.5f}, 3.0f)};
+    return scene;
 }
 
 StraightEdgeScene straightEdgeScene(float planeM, float lightElevationDeg, float lightAzimuthDeg) {

@@ -98,6 +98,12 @@ struct StraightEdgeScene {
 };
 StraightEdgeScene straightEdgeScene(float planeM, float lightElevationDeg = 63.434949f, float lightAzimuthDeg = 0.0f);
 
+// A skin plate's underside 1 mm over a lit skin floor (x from -40 to 0 mm over a floor 80 mm
+// wide, 1 mm cells), the plate's other faces casting its shadow, one shadowed directional light
+// 30 degrees above the floor from +x: the underside sees the lit floor across the gap (the
+// opposing neighbours' light). Seen from below (z < 0) it shows the underside.
+Scene overhangScene();
+
 // Per column (rows averaged), the largest |render - truth| over the truth's lit level (the mean
 // of its four rightmost columns: the edge's lit side), per channel.
 glm::dvec3 largestColumnDifference(const RenderedImage& render, const ReferenceImage& truth);

@@ -21,6 +21,7 @@
 #include <filesystem>
 #include <map>
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -38,11 +39,17 @@ struct SkinFeatures {
     bool shAmbient = true;
     bool transmission = true;
     bool dualSpecular = true;
+    // The light of neighbours that face the point across a gap, a contact or a thin part (the
+    // lips' line, the ear's folds; <preskin/NormalBasis.h>), from the shadow-casting light.
+    bool opposingLight = true;
 
-    static SkinFeatures none() { return {false, false, false, false, false, false}; }
+    static SkinFeatures none() { return {false, false, false, false, false, false, false}; }
     uint32_t mask() const;
     bool operator==(const SkinFeatures&) const = default;
 };
+
+// The techniques a quality tier compiles in, as SkinFeatures (shared/skin_features.h's kSkinQuality*).
+PRESKIN_API SkinFeatures skinQualityFeatures(SkinQuality quality);
 
 enum class DebugView { None, Curvature, Normals, Shadow, Penumbra, LightCount, ShAmbient, Transmission };
 
@@ -92,6 +99,8 @@ enum class Diffusion { PreIntegrated, ScreenSpace, TextureSpace };
 
 struct RenderSettings {
     SkinFeatures skin;
+    // Every skin material at this quality tier instead of its own (SkinMaterial::quality).
+    std::optional<SkinQuality> skinQuality;
     DebugView debugView = DebugView::None;
     LightLoop lightLoop = LightLoop::Clustered;
     ClusterSettings clusters;

@@ -17,6 +17,11 @@ enum class CurvatureSource {
     Derivatives,  // screen-space derivatives length(fwidth(N)) / length(fwidth(P)) (Penner)
 };
 
+// Which skin techniques a material's shading compiles in: High all of them (the default), Medium
+// and Low fewer, for skin that is small on screen (a crowd, a distant character). The tiers'
+// techniques: shared/skin_features.h (kSkinQuality*); their cost and fidelity: docs/skin-cost.md.
+enum class SkinQuality { Low, Medium, High };
+
 // Per-vertex curvature of an animated (skinned or morphed) mesh.
 enum class DeformedCurvature {
     Recomputed,  // from the deformed mesh every frame on the GPU, with computeVertexCurvature's estimator (default)
@@ -37,6 +42,7 @@ struct SkinMaterial {
     // The diffusion profile: an index into Scene::profiles, -1 for the renderer's default set
     // (the bundled skin). Its LUTs are layer profile + 1 of the renderer's LUT arrays.
     int profile = -1;
+    SkinQuality quality = SkinQuality::High;
     // Spatially varying profiles: up to three more profiles (indices as `profile`) weighted per
     // texel by the red, green and blue channels of profileWeightTexture (linear, TEXCOORD_0);
     // `profile` gets 1 - (r + g + b), and weights summing above 1 are scaled to sum to 1. Each
@@ -48,7 +54,7 @@ struct SkinMaterial {
     float scatterScale = 1.0f;
     CurvatureSource curvatureSource = CurvatureSource::Vertex;
     SkinTextureRef curvatureTexture;
-    float curvatureTextureScalePerM = 100.0f;                             // texture value 1.0 means this many 1/m
+    float curvatureTextureScalePerM = 100.0f;  // texture value 1.0 means this many 1/m
     // The texture value of zero curvature: curvature = (value - bias) * scale. 0 for maps of
     // convex curvature only, 0.5 for signed maps (bakeCurvatureMaps, `preskin bake-curvature`).
     float curvatureTextureBias = 0.0f;

@@ -59,9 +59,11 @@ PipelineKey Renderer::Impl::pipelineKey(const GpuMaterial& m, VkFormat format, V
     const uint32_t mode = splitDiffusion() ? kForwardSplit : textureDiffusionFrame() ? kForwardTexture : kForwardPlain;
     // The baselines replace skin's diffusion: Lambert diffuse, one normal, plain shadows and
     // Lambert's SH; the skin's specular and transmission stay.
-    const uint32_t skinMask = mode != kForwardPlain
-        ? settings.skin.mask() & (gpu::kSkinTransmission | gpu::kSkinDualSpecular)
-        : settings.skin.mask();
+    const uint32_t tierMask = skinQualityFeatures(settings.skinQuality.value_or(m.quality)).mask();
+    const uint32_t skinMask = tierMask &
+        (mode != kForwardPlain
+             ? settings.skin.mask() & (gpu::kSkinTransmission | gpu::kSkinOpposingLight | gpu::kSkinDualSpecular)
+             : settings.skin.mask());
     return PipelineKey{
         skin ? gpu::kModelSkin : gpu::kModelStandard,
         static_cast<uint32_t>(m.alphaMode),

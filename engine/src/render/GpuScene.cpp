@@ -229,6 +229,7 @@ GpuScene::GpuScene(const vk::Device& device, const Scene& scene) : device_(devic
         const Material& mat = i < defaultMaterial ? sceneMaterials_[i] : fallback;
         GpuMaterial gm;
         gm.skin = mat.skin.has_value();
+        if (mat.skin) gm.quality = mat.skin->quality;
         gm.alphaMode = mat.alphaMode;
         gm.doubleSided = mat.doubleSided;
         if (mat.skin)

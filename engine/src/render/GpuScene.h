@@ -30,6 +30,7 @@ struct DrawItem {
 struct GpuMaterial {
     VkDescriptorSet set = VK_NULL_HANDLE;
     bool skin = false;
+    SkinQuality quality = SkinQuality::High;  // skin: the material's own tier
     AlphaMode alphaMode = AlphaMode::Opaque;
     bool doubleSided = false;
     float texelsPerMm = 0.0f;  // normal-map texels per world millimetre on the meshes using it

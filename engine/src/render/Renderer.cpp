@@ -77,10 +77,26 @@ bool finite(const glm::mat4& m) {
     return true;
 }
 
+SkinFeatures skinQualityFeatures(SkinQuality quality) {
+    const uint32_t m = quality == SkinQuality::Low ? gpu::kSkinQualityLow
+        : quality == SkinQuality::Medium           ? gpu::kSkinQualityMedium
+                                                   : gpu::kSkinQualityHigh;
+    SkinFeatures f;
+    f.lutDiffuse = (m & gpu::kSkinLutDiffuse) != 0u;
+    f.normalPrefilter = (m & gpu::kSkinNormalPrefilter) != 0u;
+    f.penumbra = (m & gpu::kSkinPenumbra) != 0u;
+    f.shAmbient = (m & gpu::kSkinShAmbient) != 0u;
+    f.transmission = (m & gpu::kSkinTransmission) != 0u;
+    f.dualSpecular = (m & gpu::kSkinDualSpecular) != 0u;
+    f.opposingLight = (m & gpu::kSkinOpposingLight) != 0u;
+    return f;
+}
+
 uint32_t SkinFeatures::mask() const {
     return (lutDiffuse ? gpu::kSkinLutDiffuse : 0u) | (normalPrefilter ? gpu::kSkinNormalPrefilter : 0u) |
         (penumbra ? gpu::kSkinPenumbra : 0u) | (shAmbient ? gpu::kSkinShAmbient : 0u) |
-        (transmission ? gpu::kSkinTransmission : 0u) | (dualSpecular ? gpu::kSkinDualSpecular : 0u);
+        (transmission ? gpu::kSkinTransmission : 0u) | (dualSpecular ? gpu::kSkinDualSpecular : 0u) |
+        (opposingLight ? gpu::kSkinOpposingLight : 0u);
 }
 
 Renderer::Impl::Impl(Context& ctx, const Scene& s, const Environment& env, const std::vector<const LutSet*>& lutLayers,

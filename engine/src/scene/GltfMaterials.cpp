@@ -189,6 +189,7 @@ SkinMaterial parseSkinExtension(const LoadContext& ctx, const tinygltf::Value& s
                                                 "lobeRoughness1",
                                                 "lobeMix",
                                                 "profile",
+                                                "quality",
                                                 "profileBlend"};
     for (const std::string& key : skin.Keys()) {
         if (!known.count(key) && key != "extensions" && key != "extras")
@@ -196,6 +197,16 @@ SkinMaterial parseSkinExtension(const LoadContext& ctx, const tinygltf::Value& s
     }
     constexpr double inf = std::numeric_limits<double>::infinity();
     skinNumber(ctx, skin, "scatterScale", where, s.scatterScale, 0.0, inf, true);
+    if (auto quality = stringField(ctx, skin, "quality", where)) {
+        if (*quality == "low")
+            s.quality = SkinQuality::Low;
+        else if (*quality == "medium")
+            s.quality = SkinQuality::Medium;
+        else if (*quality == "high")
+            s.quality = SkinQuality::High;
+        else
+            ctx.fail(where + ".quality", "'" + io::messageText(*quality) + "' (expected low, medium or high)");
+    }
     if (auto source = stringField(ctx, skin, "curvatureSource", where)) {
         if (*source == "vertex")
             s.curvatureSource = CurvatureSource::Vertex;
