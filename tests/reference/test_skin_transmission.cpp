@@ -76,6 +76,7 @@ TEST_F(SkinTransmission, ThinSlabGlowsRedThickBlockStaysDark) {
     const RenderedImage on = renderer.render(view, size, size, OutputEncoding::LinearFloat);
     RenderSettings noTransmission = settings;
     noTransmission.skin.transmission = false;
+    noTransmission.skin.opposingLight = false;  // it carries the far side's light through thin parts too
     renderer.setSettings(noTransmission);
     const RenderedImage off = renderer.render(view, size, size, OutputEncoding::LinearFloat);
     dumpImage("skin_transmission_on", on);
