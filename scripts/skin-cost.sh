@@ -153,9 +153,11 @@ def fid(name):
     if name not in fidelity:
         return "| |"
     f = fidelity[name]
-    mean = lambda region: sum(f[v][region]["ratioToLambertPooled"] for v in views) / len(views)
+    def mean(region):  # over the views where the region has pixels
+        r = [f[v][region]["ratioToLambertPooled"] for v in views if f[v][region]["pixels"] > 0]
+        return f"{sum(r) / len(r):.3f}" if r else "no pixels"
     each = ", ".join(f"{f[v]['all']['ratioToLambertPooled']:.3f}" for v in views)
-    return f"| {mean('all'):.3f} / {mean('concave'):.3f} / {mean('shadowEdge'):.3f} | {each} |"
+    return f"| {mean('all')} / {mean('concave')} / {mean('shadowEdge')} | {each} |"
 skin, std = count["skin"], count["standard"]
 M = lambda v: f"{v / 1e6:.1f}"
 lines = [

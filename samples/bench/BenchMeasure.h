@@ -66,6 +66,10 @@ struct BenchOptions {
     bool noAreaLights = false;
     bool noEnvironment = false;
     bool noDiffusion = false;
+    bool noLights = false;  // the light-loop section (clustered, brute force, the other build, per pixel)
+    // --only: the sections to run, comma-separated (kBenchSections); every other one is skipped.
+    // Empty: every section not turned off by its own flag.
+    std::string only;
     int profileLutSize = 256;
     bool noCache = false;  // the profiles' LUT cache off (CommonOptions::noCache)
     std::string animatedScene;
@@ -81,6 +85,13 @@ struct BenchOptions {
     // reference) they are left out.
     void (*cpuDeform)(const Primitive&, const InstancePose&, std::vector<Vertex>&) = nullptr;
 };
+
+// The sections of the report, in the order they run, as --only names them.
+inline constexpr const char* kBenchSections[] = {"lut-bake",  "lights", "area-lights", "skin",    "environment",
+                                                 "diffusion", "vr",     "animation",   "profiles"};
+
+// `o` with --only applied: every section it does not name turned off (Error naming an unknown one).
+BenchOptions selectSections(BenchOptions o);
 
 // Runs the sections `o` asks for and returns the JSON report (BenchRun.cpp).
 std::string runBench(const BenchOptions& o);

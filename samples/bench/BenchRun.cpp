@@ -44,7 +44,9 @@
 
 #include <algorithm>
 #include <cmath>
+#include <iterator>
 #include <memory>
+#include <sstream>
 #include <string>
 #include <vector>
 
@@ -64,9 +66,36 @@ std::vector<uint32_t> parseCounts(const std::string& text, const char* flag) {
 
 }  // namespace
 
-std::string runBench(const BenchOptions& o) {
+BenchOptions selectSections(BenchOptions o) {
+    if (o.only.empty()) return o;
+    std::vector<std::string> named;
+    std::stringstream list(o.only);
+    for (std::string name; std::getline(list, name, ',');) {
+        if (std::find_if(std::begin(kBenchSections), std::end(kBenchSections),
+                         [&](const char* s) { return name == s; }) == std::end(kBenchSections)) {
+            std::string valid;
+            for (const char* s : kBenchSections) valid += (valid.empty() ? "" : ", ") + std::string(s);
+            throw Error(fmt::format("--only {}: '{}' is not a section (sections: {})", o.only, name, valid));
+        }
+        named.push_back(name);
+    }
+    auto skipped = [&](const char* section) { return std::find(named.begin(), named.end(), section) == named.end(); };
+    o.noLutBake = o.noLutBake || skipped("lut-bake");
+    o.noLights = o.noLights || skipped("lights");
+    o.noAreaLights = o.noAreaLights || skipped("area-lights");
+    o.noSkin = o.noSkin || skipped("skin");
+    o.noEnvironment = o.noEnvironment || skipped("environment");
+    o.noDiffusion = o.noDiffusion || skipped("diffusion");
+    o.noVr = o.noVr || skipped("vr");
+    o.noAnimation = o.noAnimation || skipped("animation");
+    o.noProfiles = o.noProfiles || skipped("profiles");
+    return o;
+}
+
+std::string runBench(const BenchOptions& options) {
     const auto started = Clock::now();
-    const std::vector<uint32_t> counts = parseCounts(o.counts, "--counts");
+    const BenchOptions o = selectSections(options);
+    const std::vector<uint32_t> counts = o.noLights ? std::vector<uint32_t>{} : parseCounts(o.counts, "--counts");
     const std::vector<uint32_t> skinCounts =
         o.noSkin ? std::vector<uint32_t>{} : parseCounts(o.skinCounts, "--skin-counts");
 
@@ -149,7 +178,7 @@ std::string runBench(const BenchOptions& o) {
                profiles, *context, view,      base,  renderer,      bench,   j,           goals};
     // The LUT bake first (lut_bake), the profiles' figures at the end (profiles).
     if (!o.noLutBake) r.lutBakeSection();
-    r.lightLoopSection(counts);
+    if (!o.noLights) r.lightLoopSection(counts);
     if (!o.noAreaLights) r.areaLightsSection();
     r.skinSection(skinCounts);
     if (!o.noEnvironment) r.environmentSection();

@@ -85,6 +85,11 @@ void addBenchCommand(CLI::App& app) {
     cmd->add_option("--build", o->build, "Light-list build: auto, cpu or gpu (compute pass)")
         ->check(oneOf({"auto", "cpu", "gpu"}))
         ->capture_default_str();
+    cmd->add_option("--only", o->only,
+                    "Run only these sections, comma-separated: lut-bake, lights, area-lights, skin, environment, "
+                    "diffusion, vr, animation, profiles (the --no-* flags still turn parts of them off)");
+    cmd->add_flag("--no-lights", o->noLights,
+                  "Skip the light-loop section (clustered vs brute force, the other build, lights per pixel)");
     cmd->add_flag("--no-build-compare", o->noBuildCompare, "Skip measuring the other light-list build");
     cmd->add_flag("--no-brute", o->noBrute, "Skip brute force");
     cmd->add_flag("--no-skin", o->noSkin, "Skip skin vs standard material");

@@ -191,6 +191,14 @@ void run(const Options& o) {
     fmt::print("  {:<11} {:>7}  {:>30}  {:>30}  {:>14}\n", "region", "pixels", "skin rmse r, g, b (pooled)",
                "lambert rmse r, g, b (pooled)", "skin / lambert");
     for (const Region& region : regions) {
+        if (region.pixels == 0) {  // nothing to measure: no figures, not zeros and ratios of 1
+            j.key(region.name);
+            j.beginObject();
+            j.field("pixels", region.pixels);
+            j.endObject();
+            fmt::print("  {:<11} {:>7}  no pixels\n", region.name, region.pixels);
+            continue;
+        }
         const ErrorStats s = measureError(skin.rgba32f, ref, region);
         const ErrorStats l = measureError(lambert.rgba32f, ref, region);
         j.key(region.name);

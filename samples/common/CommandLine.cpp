@@ -3,6 +3,7 @@
 
 #include <preskin/Error.h>
 #include <preskin/Limits.h>
+#include <preskin/Version.h>
 
 #include <fmt/core.h>
 
@@ -20,11 +21,11 @@ namespace preskin::cli {
 
 namespace {
 
-// User text inside a message: one line, at most 80 characters.
-std::string shown(const std::string& text) {
+// User text inside a message: one line, at most `limit` characters.
+std::string shown(const std::string& text, size_t limit = 80) {
     std::string out;
     for (const char c : text) {
-        if (out.size() >= 80) return out + "...";
+        if (out.size() >= limit) return out + "...";
         out += static_cast<unsigned char>(c) < 0x20 || c == 0x7f ? '?' : c;
     }
     return out;
@@ -195,7 +196,9 @@ CLI::Validator oneOf(std::initializer_list<std::string> words) {
 }
 
 std::string describeParseError(const CLI::ParseError& error, const CLI::App& app) {
-    const std::string what = shown(error.what()).substr(0, 200);
+    // The validators' messages show the user's text cut short already; the lists of valid
+    // values they add are kept whole.
+    const std::string what = shown(error.what(), 400);
     if (dynamic_cast<const CLI::ExtrasError*>(&error)) {
         // "The following argument was not expected: X" / "The following arguments were not expected: X Y"
         const size_t colon = what.find(": ");
@@ -257,6 +260,9 @@ std::string describeParseError(const CLI::ParseError& error, const CLI::App& app
 }
 
 int runCommandLine(CLI::App& app, int argc, char** argv, const std::function<int()>& afterParse) {
+    // "preskin 0.1.0": the program's name and the version of the libpreskin it loaded.
+    const std::string name = app.get_description().substr(0, app.get_description().find(':'));
+    app.set_version_flag("--version", fmt::format("{} {}", name, preskin::version()));
     try {
         const std::string unknown = findUnknownOption(app, argc, argv);
         if (!unknown.empty()) {

@@ -95,6 +95,8 @@ void addCommonOptions(CLI::App& cmd, CommonOptions& o) {
         ->expected(1, 2);
     cmd.add_option("--debug", o.debug,
                    "Debug view: none, curvature, normals, shadow, penumbra, lightcount, shambient, transmission")
+        ->check(
+            oneOf({"none", "curvature", "normals", "shadow", "penumbra", "lightcount", "shambient", "transmission"}))
         ->capture_default_str();
     cmd.add_option("--diffusion", o.diffusion,
                    "How skin's diffuse light scatters: preintegrated (preskin, in the one forward pass) or screen "
@@ -212,7 +214,8 @@ View makeView(const Scene& scene, const std::filesystem::path& scenePath, const 
 
 void addStereoOptions(CLI::App& cmd, StereoOptions& o) {
     auto* stereo = cmd.add_flag("--stereo", o.stereo,
-                                "Render a stereo pair (one multiview pass), eyes side by side, left eye left");
+                                "Render a stereo pair (one multiview pass), eyes side by side, left eye left; "
+                                "--width and --height are each eye's (the image is twice as wide)");
     cmd.add_option("--ipd", o.ipdM, "Interpupillary distance of --stereo and --eye, metres")
         ->check(numberIn(0.0, 1.0))
         ->capture_default_str();
@@ -252,6 +255,10 @@ OutputEncoding encodingFor(const std::filesystem::path& out) {
     const std::string ext = lower(out.extension().string());
     if (ext == ".png") return OutputEncoding::DisplaySrgb8;
     if (ext == ".exr") return OutputEncoding::LinearFloat;
+    std::error_code ec;
+    if (std::filesystem::is_directory(out, ec) || !out.has_filename())
+        throw Error(fmt::format("--out {}: is a folder; name the image file in it (.png or .exr)", out.string()));
+    if (ext.empty()) throw Error(fmt::format("--out {}: no file extension; name a .png or .exr file", out.string()));
     throw Error(fmt::format("--out {}: unsupported image type '{}' (use .png or .exr)", out.string(), ext));
 }
 
@@ -339,7 +346,10 @@ RenderSettings renderSettings(const CommonOptions& o) {
     else if (d == "transmission")
         s.debugView = DebugView::Transmission;
     else
-        throw Error(fmt::format("--debug {}: unknown debug view", o.debug));
+        throw Error(
+            fmt::format("--debug {}: unknown debug view (none, curvature, normals, shadow, penumbra, lightcount, "
+                        "shambient or transmission)",
+                        o.debug));
     s.lightLoop = o.lightLoop == "all" ? LightLoop::All : LightLoop::Clustered;
     s.diffusion = diffusionMethod(o.diffusion);
     if (o.diffusionTaps % 2 == 0)

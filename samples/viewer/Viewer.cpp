@@ -201,8 +201,10 @@ void Viewer::loadStartupContent() {
         options_.scene.empty() ? cli::defaultScenePath() : std::filesystem::path(options_.scene);
     scenePathInput_ = scenePath.string();
     Scene scene;
+    bool sceneLoaded = false;
     try {
         scene = cli::loadScene(scenePath, options_.common);
+        sceneLoaded = true;
         for (const std::string& w : scene.warnings) info("warning: " + w);
         cli::applySkinOption(scene, options_.common);
     } catch (const std::exception& e) {
@@ -238,7 +240,7 @@ void Viewer::loadStartupContent() {
         lutsName_ = "default d'Eon & Luebke set";
     }
 
-    adoptScene(std::move(scene), scenePath);
+    adoptScene(std::move(scene), scenePath, sceneLoaded ? "scene loaded" : "empty scene: the scene was not loaded");
     if (!options_.animation.empty() || options_.timeS || options_.play) {
         try {
             if (scene_.animations.empty()) throw Error("the scene has no animations");
@@ -302,7 +304,7 @@ void Viewer::error(std::string text) {
 // Frame loop
 
 bool Viewer::jobsPending() const {
-    return sceneJob_.valid() || environmentJob_.valid() || baker_.busy() || shaders_->compiling();
+    return sceneJob_.valid() || environmentJob_.valid() || !dropped_.empty() || baker_.busy() || shaders_->compiling();
 }
 
 int Viewer::run() {
@@ -375,7 +377,13 @@ int Viewer::run() {
 }
 
 void Viewer::handleDrops() {
-    for (const std::filesystem::path& p : std::exchange(dropped_, {})) loadFile(p);
+    // One file at a time, in the order dropped: a scene that arrives starts its own environment's
+    // load, and an environment dropped after the scene must replace that one, not race it.
+    while (!dropped_.empty() && !sceneJob_.valid() && !environmentJob_.valid()) {
+        const std::filesystem::path next = dropped_.front();
+        dropped_.erase(dropped_.begin());
+        loadFile(next);
+    }
 }
 
 void Viewer::recreateSwapchain() {

@@ -145,7 +145,8 @@ private:
     // rotationDeg: the turn about +Y; unset: --env-rotation's, or the scene's.
     void startEnvironmentLoad(std::optional<std::filesystem::path> path, float intensity,
                               std::optional<float> rotationDeg = std::nullopt);
-    void adoptScene(Scene scene, const std::filesystem::path& path);
+    // `why`: said in the log line of the renderer's rebuild.
+    void adoptScene(Scene scene, const std::filesystem::path& path, const char* why);
     void rebuildRenderer(const char* why);
     void applyLights();
     void applyPose(float dtS);  // advances playback and gives the renderer this frame's pose

@@ -40,7 +40,7 @@ int findKeyLight(const std::vector<Light>& lights) {
 
 }  // namespace
 
-void Viewer::adoptScene(Scene scene, const std::filesystem::path& path) {
+void Viewer::adoptScene(Scene scene, const std::filesystem::path& path, const char* why) {
     scene_ = std::move(scene);
     loadedMaterials_ = scene_.materials;
     scenePath_ = path;
@@ -59,7 +59,7 @@ void Viewer::adoptScene(Scene scene, const std::filesystem::path& path) {
     animationTimeS_ = animation_ >= 0 ? scene_.animations[0].startS() : 0.0f;
     playing_ = false;
     prepareProfiles();
-    rebuildRenderer("scene loaded");
+    rebuildRenderer(why);
 }
 
 void Viewer::prepareProfiles() {
@@ -320,7 +320,7 @@ void Viewer::pollJobs() {
             const bool newEnvironment =
                 environmentFromScene_ && (loaded.scene->hasEnvironmentImage() || scene_.hasEnvironmentImage());
             scenePathInput_ = loaded.path.string();
-            adoptScene(std::move(*loaded.scene), loaded.path);
+            adoptScene(std::move(*loaded.scene), loaded.path, "scene loaded");
             if (newEnvironment) startEnvironmentLoad(std::nullopt, scene_.environmentIntensity);
         }
     }

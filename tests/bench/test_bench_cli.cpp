@@ -12,6 +12,7 @@
 #include <filesystem>
 #include <fstream>
 #include <random>
+#include <set>
 #include <sstream>
 #include <string>
 
@@ -163,9 +164,45 @@ TEST_F(BenchCli, MeasuresSceneWithItsOwnProfiles) {
     EXPECT_GT(j.at("skin_vs_standard")[0].at("skin").at("wall_ms").get<double>(), 0.0);
 }
 
+// The report's sections (its top-level keys beyond the run's description and goals).
+std::set<std::string> sections(const nlohmann::json& report) {
+    static const std::set<std::string> header = {
+        "tool", "device",        "driver",       "software_device",  "scene",  "width", "height",
+        "seed", "light_density", "scene_lights", "cluster_settings", "method", "goals", "elapsed_s"};
+    std::set<std::string> out;
+    for (const auto& [key, value] : report.items())
+        if (!header.count(key)) out.insert(key);
+    return out;
+}
+
+// --only runs the named sections and nothing else (the docs' VR and animation benches rely on it).
+TEST_F(BenchCli, OnlyRunsTheNamedSections) {
+    const std::vector<std::string> tiny = {"--width",     "32", "--height", "18", "--vr-width",    "16",
+                                           "--vr-height", "18", "--reps",   "1",  "--warmup",      "0",
+                                           "--budget-s",  "1",  "--counts", "8",  "--skin-counts", "8"};
+    struct Case {
+        std::string only;
+        std::set<std::string> expected;
+    };
+    for (const Case& c :
+         {Case{"vr", {"vr"}},
+          Case{"lights,skin", {"light_loop", "cluster_build", "skin_vs_standard", "skin_techniques"}}}) {
+        const fs::path json = dir_ / ("only-" + c.only + ".json");
+        std::vector<std::string> args = tiny;
+        args.insert(args.end(), {"--only", c.only, "--out", json.string()});
+        std::string err;
+        ASSERT_EQ(bench(args, err), 0) << c.only << ": " << err;
+        EXPECT_EQ(sections(nlohmann::json::parse(std::ifstream(json))), c.expected) << c.only;
+    }
+}
+
 TEST_F(BenchCli, RefusesBadArgumentsBeforeWork) {
     std::string err;
     const fs::path json = dir_ / "bench.json";
+    EXPECT_EQ(bench({"--only", "vr,lighting", "--out", json.string()}, err), 1);
+    EXPECT_NE(err.find("--only vr,lighting: 'lighting' is not a section (sections: lut-bake, lights,"),
+              std::string::npos)
+        << err;
     EXPECT_EQ(bench({"--counts", "8,x", "--out", json.string()}, err), 1);
     EXPECT_NE(err.find("--counts"), std::string::npos) << err;
     { std::ofstream(dir_ / "a_file") << "x"; }  // a file where the report's folder should be

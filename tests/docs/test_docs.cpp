@@ -12,6 +12,7 @@
 #include <preskin/Limits.h>
 
 #include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
 
 #include <fmt/core.h>
 
@@ -152,6 +153,32 @@ void setOption(std::vector<std::string>& args, const std::string& option, const 
     args.push_back(value);
 }
 
+// The value after `option`, or "".
+std::string optionValue(const std::vector<std::string>& args, const std::string& option) {
+    for (size_t i = 0; i + 1 < args.size(); ++i)
+        if (args[i] == option) return args[i + 1];
+    return {};
+}
+
+// The sections of a `preskin bench` report: its top-level keys that hold measurements.
+std::set<std::string> benchSections(const fs::path& report) {
+    static const std::set<std::string> header = {
+        "tool", "device",        "driver",       "software_device",  "scene",  "width", "height",
+        "seed", "light_density", "scene_lights", "cluster_settings", "method", "goals", "elapsed_s"};
+    std::set<std::string> out;
+    const nlohmann::json j = nlohmann::json::parse(readFile(report), nullptr, false);
+    if (!j.is_object()) return {"(not a JSON object)"};
+    for (const auto& [key, value] : j.items())
+        if (!header.count(key)) out.insert(key);
+    return out;
+}
+
+std::string joined(const std::set<std::string>& words) {
+    std::string out;
+    for (const std::string& w : words) out += (out.empty() ? "" : ", ") + w;
+    return out.empty() ? "(none)" : out;
+}
+
 std::string shellQuoted(const std::vector<std::string>& args) {
     std::string out;
     for (const std::string& a : args) out += (out.empty() ? "" : " ") + a;
@@ -234,6 +261,13 @@ TEST_F(Docs, EveryShownCommandRunsAsWritten) {
             const std::string err = r.err.size() > 400 ? r.err.substr(r.err.size() - 400) : r.err;
             failures.push_back(
                 fmt::format("{}:{}: {}\n  ran: {}\n  exit {}: {}", c.file, c.line, c.text, line, r.exitCode, err));
+        } else if (const std::string out = optionValue(args, "--out");
+                   tool == "build/bin/preskin" && args[1] == "bench" && !out.empty() && fs::exists(kSource / out)) {
+            // A bench that rewrites a committed report writes the same sections it holds.
+            const std::set<std::string> wrote = benchSections(dir_ / out), committed = benchSections(kSource / out);
+            if (wrote != committed)
+                failures.push_back(fmt::format("{}:{}: {}\n  writes the sections {}; the committed {} holds {}", c.file,
+                                               c.line, c.text, joined(wrote), out, joined(committed)));
         }
     }
     std::printf("[ docs     ] %d commands ran, %d not rerun here\n", ran, skipped);
@@ -256,7 +290,7 @@ TEST_F(Docs, EverySynopsisNamesOnlyOptionsOfItsCommand) {
         const std::vector<std::string> args = words(c.text);
         std::string help;
         if (args[0] == "build/bin/preskin" && args.size() > 1)
-            help = args[1] == "--help-all" ? allHelp : commandHelp(args[1]);
+            help = args[1] == "--help-all" || args[1] == "--version" ? allHelp : commandHelp(args[1]);
         else if (args[0] == "build/bin/preskin-viewer")
             help = viewerHelp;
         else

@@ -141,5 +141,44 @@ TEST_F(NewUser, RenderSampleScriptTakesTheCallersOut) {
     EXPECT_TRUE(fs::exists(out));
 }
 
+// --version names the program and the version of the library it loaded (the project's).
+TEST_F(NewUser, VersionNamesTheProgramAndTheLibrary) {
+    const ProcessResult r = run({"--version"});
+    EXPECT_EQ(r.exitCode, 0) << r.err;
+    EXPECT_EQ(r.out, std::string("preskin ") + PRESKIN_PROJECT_VERSION + "\n") << r.out;
+}
+
+// An unknown debug view lists the ones there are; an --out that is a folder or has no
+// extension says what to name instead of "unsupported image type ''".
+TEST_F(NewUser, DebugViewsAndOutputNamesSayWhatIsExpected) {
+    const fs::path out = dir_ / "out.png";
+    expectError(
+        run(small({"render", kTriangle.string(), "--debug", "albedo", "--out", out.string()})),
+        {"--debug", "albedo", "none, curvature, normals, shadow, penumbra, lightcount, shambient, transmission"}, out);
+    fs::create_directories(dir_ / "renders");
+    expectError(run(small({"render", kTriangle.string(), "--out", (dir_ / "renders").string()})),
+                {"--out " + (dir_ / "renders").string() + ": is a folder; name the image file in it (.png or .exr)"},
+                dir_ / "renders" / "out.png");
+    expectError(run(small({"render", kTriangle.string(), "--out", (dir_ / "renders" / "").string()})),
+                {"is a folder; name the image file in it"}, dir_ / "renders" / "out.png");
+    expectError(run(small({"render", kTriangle.string(), "--out", (dir_ / "image").string()})),
+                {"--out " + (dir_ / "image").string() + ": no file extension; name a .png or .exr file"},
+                dir_ / "image");
+    // --help says that --width is each eye's with --stereo.
+    const ProcessResult help = run({"render", "--help"});
+    EXPECT_NE(help.out.find("--width and --height are each eye's"), std::string::npos) << help.out;
+}
+
+// The bundled spheres have UV poles but no normal map: loading them warns about nothing.
+TEST_F(NewUser, BundledScenesLoadWithoutWarnings) {
+    for (const char* scene : {"spheres/sphere_10mm.gltf", "spheres/sphere_40mm.gltf", "head/head.gltf"}) {
+        const fs::path out = dir_ / "out.png";
+        const ProcessResult r =
+            run(small({"render", (kSource / "samples" / "assets" / scene).string(), "--out", out.string()}));
+        EXPECT_EQ(r.exitCode, 0) << scene << ": " << r.err;
+        EXPECT_EQ(r.err.find("warning"), std::string::npos) << scene << ": " << r.err;
+    }
+}
+
 }  // namespace
 }  // namespace preskin::test

@@ -545,6 +545,43 @@ TEST_F(Viewer, BadInputIsReportedAndViewerKeepsRunning) {
     EXPECT_TRUE(readPng(shot)) << "the viewer kept running and rendered (with its panels)\n" << describe(r);
 }
 
+// Files dropped together (or given as --drop, repeatable) load one after another in their order:
+// a scene, then an environment that replaces the one the scene brings.
+TEST_F(Viewer, DroppedSceneAndEnvironmentLoadInTheirOrder) {
+    requireDisplay();
+    const fs::path shot = dir_ / "drops.png";
+    const fs::path scene = fs::path(PRESKIN_SOURCE_DIR) / "samples/assets/head/head_softbox.gltf";
+    const fs::path sky = fs::path(PRESKIN_SOURCE_DIR) / "samples/assets/sky/sunny_sky_1k.hdr";
+    std::vector<std::string> args = scriptedArgs(shot, 3);
+    args.insert(args.end(), {"--drop", scene.string(), "--drop", sky.string()});
+    const ProcessResult r = viewer(args);
+    ASSERT_EQ(r.exitCode, 0) << describe(r);
+    EXPECT_EQ(r.err.find("still loading"), std::string::npos) << describe(r);
+    const size_t sceneLoaded = r.out.find("head_softbox.gltf loaded");
+    const size_t lastEnvironment = r.out.rfind("preskin-viewer: environment ");
+    ASSERT_NE(sceneLoaded, std::string::npos) << describe(r);
+    ASSERT_NE(lastEnvironment, std::string::npos) << describe(r);
+    EXPECT_LT(sceneLoaded, lastEnvironment) << describe(r);
+    const std::string skyLine = "preskin-viewer: environment " + sky.string();
+    EXPECT_EQ(r.out.substr(lastEnvironment, skyLine.size()), skyLine)
+        << "the dropped sky is the environment in the end\n"
+        << describe(r);
+    EXPECT_FALSE(mentionsValidation(r)) << describe(r);
+}
+
+// A scene that is not found is reported, and the log does not call the empty scene loaded.
+TEST_F(Viewer, MissingSceneIsNotCalledLoaded) {
+    requireDisplay();
+    std::vector<std::string> args{(dir_ / "missing.gltf").string()};
+    for (const std::string& a : scriptedArgs(dir_ / "missing.png", 2)) args.push_back(a);
+    const ProcessResult r = viewer(args);
+    EXPECT_EQ(r.exitCode, 1) << describe(r);
+    EXPECT_NE(r.err.find("scene not loaded"), std::string::npos) << describe(r);
+    EXPECT_NE(r.err.find("missing.gltf"), std::string::npos) << describe(r);
+    EXPECT_EQ(r.out.find("(scene loaded)"), std::string::npos) << describe(r);
+    EXPECT_NE(r.out.find("renderer built (empty scene: the scene was not loaded)"), std::string::npos) << describe(r);
+}
+
 TEST_F(Viewer, LiveBurleyBakeMatchesBakedLutFiles) {
     requireDisplay();
     const std::string albedo = "0.8,0.5,0.35";

@@ -111,6 +111,19 @@ TEST_F(ReferenceCli, CompareJsonIsDocumentedAndReproducible) {
     EXPECT_NEAR(all["skin"]["rmsePooled"].get<double>() / all["lambert"]["rmsePooled"].get<double>(),
                 all["ratioToLambertPooled"].get<double>(), 1e-4);
 
+    // A lone sphere casts no shadow and has no concave skin: those regions have no pixels, and
+    // say so instead of figures (no ratio of 1 for nothing measured).
+    for (const char* region : {"shadowEdge", "concave"}) {
+        const nlohmann::json& empty = report["regions"][region];
+        EXPECT_EQ(empty["pixels"].get<int>(), 0) << region;
+        EXPECT_EQ(empty.size(), 1u) << region << ": " << empty.dump();
+        bool said = false;
+        std::istringstream lines(r1.out);
+        for (std::string line; std::getline(lines, line);)
+            if (line.find(std::string("  ") + region + " ") == 0) said = line.find("no pixels") != std::string::npos;
+        EXPECT_TRUE(said) << region << "\n" << r1.out;
+    }
+
     const std::string docs = preskin::test::readFile(fs::path(PRESKIN_SOURCE_DIR) / "docs" / "reference.md");
     std::set<std::string> keys;
     collectKeys(report, keys);

@@ -49,6 +49,16 @@ std::vector<uint32_t> toTriangleList(const LoadContext& ctx, const std::vector<u
     return list;
 }
 
+// Whether the primitive's material bends its normal by a tangent-space map (the normal map, or
+// skin's detail normal map): only then does a vertex without a UV direction matter.
+bool readsTangents(const tinygltf::Model& model, int material) {
+    if (material < 0 || material >= static_cast<int>(model.materials.size())) return false;
+    const tinygltf::Material& m = model.materials[size_t(material)];
+    if (m.normalTexture.index >= 0) return true;
+    const auto skin = m.extensions.find("PRESKIN_materials_skin");
+    return skin != m.extensions.end() && skin->second.IsObject() && skin->second.Has("detailNormalTexture");
+}
+
 size_t repairNormals(Primitive& primitive) {
     std::vector<size_t> broken;
     for (size_t i = 0; i < primitive.vertices.size(); ++i) {
@@ -213,7 +223,7 @@ void convertMeshes(const LoadContext& ctx) {
                 }
             } else {
                 const size_t fallbacks = generateTangents(out);
-                if (fallbacks > 0 && uvs) {
+                if (fallbacks > 0 && uvs && readsTangents(model, prim.material)) {
                     ctx.warn(where + ".attributes.TEXCOORD_0",
                              std::to_string(fallbacks) +
                                  " vertices have no usable UV direction; their tangent is arbitrary");

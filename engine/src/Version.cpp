@@ -1,0 +1,7 @@
+#include <preskin/Version.h>
+
+namespace preskin {
+
+const char* version() { return PRESKIN_VERSION_STRING; }
+
+}  // namespace preskin
