@@ -11,7 +11,7 @@
 # of 0.27 and 3 degrees (README, Area lights); docs/diffusion-methods.png: the close-up with Lambert
 # skin, pre-integrated skin and the two baselines (README, docs/baselines.md);
 # docs/khronos-suzanne-skin.png: a public model made for other viewers, as authored and as skin
-# (README, Profiles).
+# (README, Profiles); docs/viewer.png: the viewer with its panels (README).
 # Needs ImageMagick (convert, montage): scripts/install-deps.sh --docs installs it.
 set -euo pipefail
 cd "$(dirname "$0")/.."
@@ -97,3 +97,14 @@ montage -label "as authored (standard material)" "$tmp/suzanne_none_band.png" \
   -label "rendered as skin (--skin all)" "$tmp/suzanne_all_band.png" \
   -tile 1x2 -geometry +4+4 -background '#202022' -fill '#dddddd' -pointsize 16 -depth 8 docs/khronos-suzanne-skin.png
 echo "wrote docs/khronos-suzanne-skin.png"
+# The viewer with its panels (README, The viewer): the bundled head at 1600x900 under a virtual
+# display (xvfb-run; scripts/install-deps.sh installs it), the screenshot taken with the panels.
+viewer=${PRESKIN_BUILD_DIR:-build}/bin/preskin-viewer
+if [ -x "$viewer" ]; then
+  xvfb-run -a -s "-screen 0 1600x900x24" "$viewer" --width 1600 --height 900 --frames 12 --no-shader-reload \
+    --screenshot "$tmp/viewer.png" --screenshot-ui >/dev/null
+  cp "$tmp/viewer.png" docs/viewer.png
+  echo "wrote docs/viewer.png"
+else
+  echo "make-docs-images: $viewer is not built (PRESKIN_BUILD_VIEWER=OFF); docs/viewer.png kept" >&2
+fi

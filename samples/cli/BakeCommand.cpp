@@ -8,6 +8,7 @@
 // Limits: --size sets every table axis at once (16..4096); finer control is in the library
 // (preskin::LutBakeSettings).
 #include "Commands.h"
+#include "Options.h"  // samples/common
 #include "ProgressBar.h"
 
 #include <preskin/DiffusionProfile.h>
@@ -39,29 +40,6 @@ struct BakeOptions {
     std::string out;
 };
 
-double parseNumber(std::string_view text, bool& ok) {
-    double value = 0.0;
-    const auto [end, error] = std::from_chars(text.data(), text.data() + text.size(), value);
-    ok = error == std::errc() && end == text.data() + text.size() && std::isfinite(value);
-    return value;
-}
-
-glm::dvec3 parseRgb(const std::string& text, const char* option) {
-    glm::dvec3 rgb(0.0);
-    size_t start = 0;
-    for (int c = 0; c < 3; ++c) {
-        const size_t comma = text.find(',', start);
-        const bool last = c == 2;
-        if (last != (comma == std::string::npos))
-            throw Error(fmt::format("{}: expected three comma-separated numbers R,G,B, got '{}'", option, text));
-        bool ok = false;
-        rgb[c] = parseNumber(std::string_view(text).substr(start, last ? std::string::npos : comma - start), ok);
-        if (!ok) throw Error(fmt::format("{}: expected three comma-separated numbers R,G,B, got '{}'", option, text));
-        start = comma + 1;
-    }
-    return rgb;
-}
-
 int parseSize(const std::string& text) {
     int value = 0;
     const auto [end, error] = std::from_chars(text.data(), text.data() + text.size(), value);
@@ -72,37 +50,10 @@ int parseSize(const std::string& text) {
     return value;
 }
 
-DiffusionProfile selectProfile(const BakeOptions& o) {
-    const bool burley = o.profile == "burley";
-    if (!burley && (!o.albedo.empty() || !o.meanFreePath.empty()))
-        throw Error(fmt::format("--albedo and --mfp apply only to --profile burley (got --profile {})", o.profile));
-    if (burley) {
-        if (o.albedo.empty() || o.meanFreePath.empty())
-            throw Error(
-                "--profile burley: needs --albedo R,G,B (surface albedo, 0..1) and --mfp R,G,B (mean free path, mm)");
-        const glm::dvec3 albedo = parseRgb(o.albedo, "--albedo");
-        const glm::dvec3 meanFreePathMm = parseRgb(o.meanFreePath, "--mfp");
-        return DiffusionProfile::burley(albedo, meanFreePathMm);
-    }
-    if (o.profile == "deon") return DiffusionProfile::deonLuebke();
-    std::error_code ec;
-    if (!std::filesystem::exists(o.profile, ec)) {
-        std::string lower = o.profile;
-        for (char& c : lower) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
-        const bool keyword = lower == "deon" || lower == "burley";
-        throw Error(
-            fmt::format("--profile {}: value: neither a keyword (deon or burley{}) nor a profile JSON file "
-                        "(looked for {})",
-                        o.profile, keyword ? "; did you mean " + lower + "?" : "",
-                        std::filesystem::absolute(o.profile, ec).lexically_normal().string()));
-    }
-    return DiffusionProfile::fromJsonFile(o.profile);
-}
-
 void runBake(const BakeOptions& o) {
     // Everything is validated before the (possibly long) bake, and the bake before any file.
     const LutBakeSettings settings = o.size.empty() ? LutBakeSettings{} : LutBakeSettings::withSize(parseSize(o.size));
-    const DiffusionProfile profile = selectProfile(o);
+    const DiffusionProfile profile = selectProfile({o.profile, o.albedo, o.meanFreePath}, false);
 
     const auto start = std::chrono::steady_clock::now();
     const LutSet luts = [&] {

@@ -220,6 +220,7 @@ void addRenderCommand(CLI::App& app) {
                     "START:END:FPS with --out DIR/name_%04d.png");
     addStereoOptions(*cmd, options->stereo);
     addCommonOptions(*cmd, options->common);
+    addProfileChoiceOptions(*cmd, options->common);
     cmd->callback([options] { run(*options); });
 }
 

@@ -9,10 +9,13 @@
 #include <fmt/format.h>
 
 #include <algorithm>
+#include <cctype>
+#include <charconv>
 #include <cmath>
 #include <cstdlib>
 #include <numbers>
 #include <sstream>
+#include <system_error>
 
 namespace preskin::cli {
 
@@ -292,7 +295,66 @@ ContextDesc contextDesc(const CommonOptions& o) {
     return desc;
 }
 
+glm::dvec3 parseRgb(const std::string& text, const char* option) {
+    glm::dvec3 rgb(0.0);
+    size_t start = 0;
+    for (int c = 0; c < 3; ++c) {
+        const size_t comma = text.find(',', start);
+        const bool last = c == 2;
+        if (last != (comma == std::string::npos))
+            throw Error(fmt::format("{}: expected three comma-separated numbers R,G,B, got '{}'", option, text));
+        const std::string part = text.substr(start, last ? std::string::npos : comma - start);
+        double value = 0.0;
+        const auto [end, error] = std::from_chars(part.data(), part.data() + part.size(), value);
+        if (error != std::errc() || end != part.data() + part.size() || !std::isfinite(value))
+            throw Error(fmt::format("{}: expected three comma-separated numbers R,G,B, got '{}'", option, text));
+        rgb[c] = value;
+        start = comma + 1;
+    }
+    return rgb;
+}
+
+DiffusionProfile selectProfile(const ProfileChoice& c, bool burleyDefaults) {
+    const bool burley = c.profile == "burley";
+    if (!burley && (!c.albedo.empty() || !c.meanFreePath.empty()))
+        throw Error(fmt::format("--albedo and --mfp apply only to --profile burley (got --profile {})", c.profile));
+    if (burley) {
+        if (!burleyDefaults && (c.albedo.empty() || c.meanFreePath.empty()))
+            throw Error(
+                "--profile burley: needs --albedo R,G,B (surface albedo, 0..1) and --mfp R,G,B (mean free path, mm)");
+        const glm::dvec3 albedo = parseRgb(c.albedo.empty() ? kDefaultBurleyAlbedo : c.albedo, "--albedo");
+        const glm::dvec3 meanFreePathMm =
+            parseRgb(c.meanFreePath.empty() ? kDefaultBurleyMfp : c.meanFreePath, "--mfp");
+        return DiffusionProfile::burley(albedo, meanFreePathMm);
+    }
+    if (c.profile == "deon") return DiffusionProfile::deonLuebke();
+    std::error_code ec;
+    if (!std::filesystem::exists(c.profile, ec)) {
+        std::string lowered = c.profile;
+        for (char& ch : lowered) ch = static_cast<char>(std::tolower(static_cast<unsigned char>(ch)));
+        const bool keyword = lowered == "deon" || lowered == "burley";
+        throw Error(
+            fmt::format("--profile {}: value: neither a keyword (deon or burley{}) nor a profile JSON file "
+                        "(looked for {})",
+                        c.profile, keyword ? "; did you mean " + lowered + "?" : "",
+                        std::filesystem::absolute(c.profile, ec).lexically_normal().string()));
+    }
+    return DiffusionProfile::fromJsonFile(c.profile);
+}
+
+void addProfileChoiceOptions(CLI::App& cmd, CommonOptions& o) {
+    auto* profile = cmd.add_option("--profile", o.profile.profile,
+                                   "Diffusion profile baked at start (at --profile-lut-size) as the default LUT set: "
+                                   "deon, burley (with --albedo and --mfp, or the viewer's defaults) or a profile "
+                                   "JSON file");
+    cmd.add_option("--albedo", o.profile.albedo, "--profile burley: surface albedo per channel, R,G,B in (0, 1]");
+    cmd.add_option("--mfp", o.profile.meanFreePath, "--profile burley: mean free path per channel in mm, R,G,B");
+    profile->excludes(cmd.get_option("--luts"));
+}
+
 LutSet loadLuts(const CommonOptions& o) {
+    if (!o.profile.profile.empty())
+        return LutSet::bake(selectProfile(o.profile, true), LutBakeSettings::withSize(int(o.profileLutSize)));
     if (!o.luts.empty()) return LutSet::load(o.luts);
     const std::filesystem::path bundled = dataDir() / "luts";
     std::error_code ec;

@@ -20,6 +20,18 @@
 
 namespace preskin::cli {
 
+// A diffusion profile as `--profile` names it: deon, burley (surface albedo and mean free path in
+// mm, R,G,B each) or a profile JSON file (docs/gltf-extensions.md's forms).
+struct ProfileChoice {
+    std::string profile;  // "": none chosen
+    std::string albedo;
+    std::string meanFreePath;
+};
+// The viewer's and `preskin render`'s Burley parameters when none are given (skin's values of
+// Christensen & Burley 2015's measured set).
+inline constexpr const char* kDefaultBurleyAlbedo = "0.83,0.57,0.45";
+inline constexpr const char* kDefaultBurleyMfp = "1.2,0.5,0.25";
+
 struct CommonOptions {
     std::string env;
     float envIntensity = -1.0f;           // < 0: the scene's (or 1)
@@ -59,6 +71,7 @@ struct CommonOptions {
     bool noShadows = false;
     uint32_t msaa = 1;
     std::string luts;                // LUT set folder; default: the committed luts/ (d'Eon)
+    ProfileChoice profile;           // render --profile: baked at start instead of a LUT folder
     bool allowOutsideLinks = false;  // SceneLoadOptions::allowLinksOutsideFolder
     bool noCache = false;            // bake the scene's profiles without the on-disk cache
     std::string cacheDir;            // profile cache folder; default: the XDG cache folder
@@ -125,6 +138,13 @@ View applyStereoOptions(const View& mono, const StereoOptions& o);
 ContextDesc contextDesc(const CommonOptions& o);
 // --luts DIR, else the committed default set (luts/ of the data folder), else a fresh bake.
 LutSet loadLuts(const CommonOptions& o);
+// "R,G,B" as three finite numbers; Error naming `option` otherwise.
+glm::dvec3 parseRgb(const std::string& text, const char* option);
+// The profile `choice` names. burley without albedo or mean free path: `burleyDefaults` fills in
+// kDefaultBurley*, else it is refused; --albedo or --mfp with another profile is refused.
+DiffusionProfile selectProfile(const ProfileChoice& choice, bool burleyDefaults);
+// render's --profile, --albedo and --mfp into o.profile.
+void addProfileChoiceOptions(CLI::App& cmd, CommonOptions& o);
 // The default set (loadLuts) and the scene's diffusion profiles, baked or read from the cache
 // (--no-cache, --cache-dir, --profile-lut-size); prints the cache's warnings.
 // `defaultLuts`: layer 0, or loadLuts(o) when null.

@@ -27,11 +27,11 @@ struct ViewerOptions {
     bool screenshotUi = false;  // the screenshot includes the panels
     bool hideUi = false;
     bool noShaderReload = false;
-    bool compileShaders = false;            // compile shaders/ at start, as a hot reload would
-    std::vector<std::string> drops;         // files loaded at start as if dropped on the window
-    std::string profile;                    // "deon" or "burley": re-bake the LUTs at start, as the panel does
-    std::string albedo = "0.83,0.57,0.45";  // burley: R,G,B surface albedo
-    std::string mfp = "1.2,0.5,0.25";       // burley: R,G,B mean free path, mm
+    bool compileShaders = false;                     // compile shaders/ at start, as a hot reload would
+    std::vector<std::string> drops;                  // files loaded at start as if dropped on the window
+    std::string profile;                             // "deon" or "burley": re-bake the LUTs at start, as the panel does
+    std::string albedo = cli::kDefaultBurleyAlbedo;  // burley: R,G,B surface albedo
+    std::string mfp = cli::kDefaultBurleyMfp;        // burley: R,G,B mean free path, mm
     int lutSize = 256;
     cli::StereoOptions stereo;  // --stereo starts the side-by-side preview, --eye shows one eye
     std::string animation;      // start with this animation (name or index) at --time

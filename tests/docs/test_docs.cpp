@@ -22,6 +22,7 @@
 #include <cstring>
 #include <filesystem>
 #include <fstream>
+#include <map>
 #include <regex>
 #include <set>
 #include <sstream>
@@ -386,6 +387,44 @@ TEST(DocsFigures, HostSampleSizeAndLimitsMatchTheCode) {
             << line << " (Limits.h: " << withCommas(value) << ")";
     }
     EXPECT_NE(limitsDoc.find("at most " + withCommas(limits::kMaxImageSide) + " per side"), std::string::npos);
+}
+
+// The README's listing of the shortest host shader is samples/host/host.frag, character for
+// character (the file is what HostSample.* builds and runs).
+TEST(DocsFigures, ReadmeHostShaderIsTheSamplesOwn) {
+    const std::string readme = readFile(kSource / "README.md");
+    const size_t section = readme.find("### Skin in your own forward shader");
+    ASSERT_NE(section, std::string::npos);
+    const size_t begin = readme.find("```glsl\n", section);
+    ASSERT_NE(begin, std::string::npos);
+    const size_t end = readme.find("```\n", begin + 8);
+    ASSERT_NE(end, std::string::npos);
+    EXPECT_EQ(readme.substr(begin + 8, end - begin - 8), readFile(kSource / "samples" / "host" / "host.frag"));
+}
+
+// The skin frame's cost as the README and docs/skin-cost.md quote it is the generated figure:
+// each quality tier's instructions over the standard frame's from docs/skin-cost-table.md
+// (scripts/skin-cost.sh), skin over standard in wall time from docs/bench-lavapipe.json (preskin
+// bench). A page that types its own figure, or keeps an old one, fails here.
+TEST(DocsFigures, SkinCostFiguresAreTheGeneratedOnes) {
+    const std::string table = readFile(kSource / "docs" / "skin-cost-table.md");
+    // "| high (every technique) | 1743.3 | 1.69 | ..." in the table's tier section.
+    std::map<std::string, std::string> ratio;
+    static const std::regex row(R"(\n\| (high|medium|low)[^|]*\| [0-9.]+ \| ([0-9.]+) )");
+    for (auto it = std::sregex_iterator(table.begin(), table.end(), row); it != std::sregex_iterator(); ++it)
+        ratio[(*it)[1]] = (*it)[2];
+    ASSERT_EQ(ratio.size(), 3u) << "docs/skin-cost-table.md has no tier rows: run scripts/skin-cost.sh";
+    const std::string tiers = fmt::format("high {}, medium {}, low {}", ratio["high"], ratio["medium"], ratio["low"]);
+    const nlohmann::json bench = nlohmann::json::parse(readFile(kSource / "docs" / "bench-lavapipe.json"));
+    std::string wall;
+    for (const nlohmann::json& r : bench.at("skin_vs_standard"))
+        wall += (wall.empty() ? "" : ", ") + fmt::format("{:.2f}", r.at("skin_over_standard").get<double>());
+    const std::string readme = readFile(kSource / "README.md");
+    EXPECT_NE(readme.find(tiers), std::string::npos) << "README.md should quote the table's tiers: " << tiers;
+    EXPECT_NE(readFile(kSource / "docs" / "skin-cost.md").find(tiers), std::string::npos)
+        << "docs/skin-cost.md should quote the table's tiers: " << tiers;
+    EXPECT_NE(readme.find(wall + " in wall time"), std::string::npos)
+        << "README.md should quote docs/bench-lavapipe.json's skin / standard: " << wall << " in wall time";
 }
 
 }  // namespace

@@ -4,6 +4,7 @@
 // pkg-config: HostSample.PkgConfigFindsAMovedInstall; the documented commands: Docs.*; the
 // viewer's --msaa: Viewer.MsaaTheDeviceDoesNotOfferIsRefusedAtStart.)
 #include "support/CliTest.h"
+#include "support/ImageCompare.h"
 #include "support/Process.h"
 
 #include <gtest/gtest.h>
@@ -139,6 +140,38 @@ TEST_F(NewUser, RenderSampleScriptTakesTheCallersOut) {
                    {"PRESKIN_SKIP_SETUP=1", std::string("PRESKIN_BUILD_DIR=") + PRESKIN_BINARY_DIR}, dir_, 120.0);
     EXPECT_EQ(r.exitCode, 0) << r.err;
     EXPECT_TRUE(fs::exists(out));
+}
+
+// `render --profile` bakes a profile at start as the viewer's --profile does (burley with the
+// viewer's parameters unless --albedo and --mfp say otherwise): the image is the one rendered with
+// the same profile baked by `preskin bake` into a LUT folder, and differs from the default d'Eon set.
+TEST_F(NewUser, RenderTakesAProfileAsTheViewerDoes) {
+    const fs::path burley = dir_ / "burley.png", baked = dir_ / "baked.png", deon = dir_ / "deon.png";
+    const ProcessResult a =
+        run(small({"render", "--camera", "cheek_nose", "--profile", "burley", "--out", burley.string()}));
+    ASSERT_EQ(a.exitCode, 0) << a.err;
+    const ProcessResult bake = run({"bake", "--profile", "burley", "--albedo", "0.83,0.57,0.45", "--mfp",
+                                    "1.2,0.5,0.25", "--size", "256", "--out", (dir_ / "luts").string()});
+    ASSERT_EQ(bake.exitCode, 0) << bake.err;
+    const ProcessResult b =
+        run(small({"render", "--camera", "cheek_nose", "--luts", (dir_ / "luts").string(), "--out", baked.string()}));
+    ASSERT_EQ(b.exitCode, 0) << b.err;
+    const ProcessResult c = run(small({"render", "--camera", "cheek_nose", "--out", deon.string()}));
+    ASSERT_EQ(c.exitCode, 0) << c.err;
+    std::string error;
+    const RenderedImage imageA = readPng(burley, error), imageB = readPng(baked, error), imageC = readPng(deon, error);
+    ASSERT_FALSE(imageA.rgba8.empty()) << error;
+    int largest = 0;
+    // The LUT folder stores half floats: a step of 1/255 at most.
+    EXPECT_EQ(pixelsDifferingBy(imageA, imageB, 1, largest), 0u) << "largest difference " << largest;
+    EXPECT_GT(pixelsDifferingBy(imageA, imageC, 1, largest), 0u) << "burley should not render as d'Eon";
+    const fs::path out = dir_ / "out.png";
+    expectError(
+        run(small({"render", "--profile", "burley", "--luts", (dir_ / "luts").string(), "--out", out.string()})),
+        {"--profile", "--luts"}, out);
+    expectError(run(small({"render", "--profile", "deon", "--albedo", "0.5,0.5,0.5", "--out", out.string()})),
+                {"--albedo and --mfp apply only to --profile burley"}, out);
+    expectError(run(small({"render", "--profile", "Burley", "--out", out.string()})), {"did you mean burley?"}, out);
 }
 
 // --version names the program and the version of the library it loaded (the project's).

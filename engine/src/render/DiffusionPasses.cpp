@@ -100,7 +100,7 @@ void Renderer::Impl::recordTextureDiffusion(VkCommandBuffer cmd, Slot& slot, uin
         vkCmdDrawIndexed(cmd, d.indexCount, 1, d.firstIndex, vertexOffset, 0);
         vkCmdEndRendering(cmd);
     }
-    timestamp(cmd, slot, 6);
+    timestamp(cmd, slot, 7);
     texture.recordBlur(cmd, slotIndex, layerMaterials);
 }
 

@@ -40,28 +40,26 @@ FrameStats Renderer::Impl::stats(uint32_t slotIndex) const {
     }
     if (!slot.recorded || !slot.queries) return s;
     std::array<uint64_t, kQueryCount> ticks{};
-    // The baselines' passes write two more.
+    // 0..6 every frame (6: the shadow map drawn, its reduction next), the baselines' passes 7 and 8.
     const uint32_t written = slot.split || slot.texture ? kQueryCount : kQueryCount - 2;
     const VkResult r = vkGetQueryPoolResults(dev.device(), slot.queries, 0, written, written * sizeof(uint64_t),
                                              ticks.data(), sizeof(uint64_t), VK_QUERY_RESULT_64_BIT);
     if (r != VK_SUCCESS) return s;
     const double toMs = double(dev.timestampPeriodNs()) * 1e-6;
     auto ms = [&](int a, int b) { return double(ticks[size_t(b)] - ticks[size_t(a)]) * toMs; };
-    s.passes = {{"deform", ms(0, 1)},
-                {"curvature", ms(1, 2)},
-                {"shadow", ms(2, 3)},
-                {"clusters", ms(3, 4)},
-                {"forward", ms(4, 5)}};
+    s.passes = {{"deform", ms(0, 1)},           {"curvature", ms(1, 2)}, {"shadow", ms(2, 6)},
+                {"shadow reduction", ms(6, 3)},  // the wide shadow map skin reads (0 without skin)
+                {"clusters", ms(3, 4)},         {"forward", ms(4, 5)}};
     s.gpuMs = ms(0, 5);
     if (slot.texture) {
-        s.passes[4] = {"texture irradiance", ms(4, 6)};
-        s.passes.push_back({"texture blur", ms(6, 7)});
-        s.passes.push_back({"forward", ms(7, 5)});
+        s.passes[5] = {"texture irradiance", ms(4, 7)};
+        s.passes.push_back({"texture blur", ms(7, 8)});
+        s.passes.push_back({"forward", ms(8, 5)});
     }
     if (slot.split) {
-        s.passes.push_back({"diffusion rows", ms(5, 6)});
-        s.passes.push_back({"diffusion columns", ms(6, 7)});
-        s.gpuMs = ms(0, 7);
+        s.passes.push_back({"diffusion rows", ms(5, 7)});
+        s.passes.push_back({"diffusion columns", ms(7, 8)});
+        s.gpuMs = ms(0, 8);
     }
     return s;
 }

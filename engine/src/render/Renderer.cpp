@@ -541,21 +541,24 @@ void Renderer::Impl::record(VkCommandBuffer cmd, const RenderTarget& target, con
     timestamp(cmd, slot, 1);
     deformer->recordCurvature(cmd, slotIndex);
     timestamp(cmd, slot, 2);
-    if (shadow) recordShadowPass(cmd, slot, slotIndex);
+    if (shadow)
+        recordShadowPass(cmd, slot, slotIndex);  // writes 6 between the map and the wide map's reduction
+    else
+        timestamp(cmd, slot, 6);
     timestamp(cmd, slot, 3);
     clusters->record(cmd, slotIndex);  // the compute build, when this frame uses it
     timestamp(cmd, slot, 4);
     if (texture) {
         recordTextureDiffusion(cmd, slot, slotIndex);
-        timestamp(cmd, slot, 7);
+        timestamp(cmd, slot, 8);
     }
     if (split) {
         recordForwardPass(cmd, slot, slotIndex, forwardTarget, view, split->splitAttachments(),
                           isDisplayFormat(target.format));
         timestamp(cmd, slot, 5);
         split->record(cmd, slotIndex, target, view, eyeDrawing() == EyeDrawing::InstancedLayers,
-                      [&] { timestamp(cmd, slot, 6); });
-        timestamp(cmd, slot, 7);
+                      [&] { timestamp(cmd, slot, 7); });
+        timestamp(cmd, slot, 8);
     } else {
         recordForwardPass(cmd, slot, slotIndex, target, view);
         timestamp(cmd, slot, 5);

@@ -32,7 +32,7 @@ inline constexpr VkFormat kDepthFormat = VK_FORMAT_D32_SFLOAT;
 inline constexpr uint32_t kSlotCount = 2;
 // start, after deformation, after curvature, after shadow, after clustering, after forward, and
 // with screen-space diffusion after its horizontal and vertical passes
-inline constexpr uint32_t kQueryCount = 8;
+inline constexpr uint32_t kQueryCount = 9;
 // The widest environment image the renderer keeps (the backdrop's; the lights' search and the
 // specular map read narrower copies): an 8192-wide image would hold 400 MB.
 inline constexpr uint32_t kEnvironmentKeptWidth = 2048;

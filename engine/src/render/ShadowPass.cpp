@@ -159,6 +159,7 @@ void Renderer::Impl::recordShadowPass(VkCommandBuffer cmd, Slot& slot, uint32_t 
                      VK_ACCESS_2_DEPTH_STENCIL_ATTACHMENT_WRITE_BIT,
                      VK_PIPELINE_STAGE_2_FRAGMENT_SHADER_BIT | VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT,
                      VK_ACCESS_2_SHADER_SAMPLED_READ_BIT);
+    timestamp(cmd, slot, 6);  // the map drawn; the wide map's reduction (skin only) follows
     if (sceneHasSkin) recordWideShadow(cmd, slot);
 }
 
