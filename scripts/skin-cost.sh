@@ -18,12 +18,13 @@
 #    1024x1024; cheek_nose, lips, ear 768x768) with the same switch, skin's error over Lambert's
 #    against the diffusion reference (pooled RMSE; all, concave, near cast-shadow edges, averaged
 #    over the views). DIR keeps the references (<view>.exr; the first run computes each, 5 to 15
-#    minutes at 768x768 on two cores, and later runs read them back).
+#    minutes at 768x768 on two cores, and later runs read them back). VIEWS (default "front
+#    cheek_nose lips ear") chooses among the four.
 # The quality tiers (--skin-quality low, medium) get the same rows.
 #   scripts/skin-cost.sh [OUT.md]
 #   env: FRAMES (default 1), WIDTH, HEIGHT, LIGHTS, REPS (bench, default 5), JOBS (parallel
 #   valgrind runs, default: cores), SCENE (default: the bundled head), NO_BENCH=1 (instructions only),
-#   REFERENCES=DIR (the fidelity columns)
+#   REFERENCES=DIR (the fidelity columns), VIEWS, PRESKIN (the preskin program; default build/bin/preskin)
 set -euo pipefail
 cd "$(dirname "$0")/.."
 out="${1:-docs/skin-cost-table.md}"
@@ -34,7 +35,7 @@ lights="${LIGHTS:-256}"
 reps="${REPS:-5}"
 jobs="${JOBS:-$(nproc)}"
 scene="${SCENE:-}"
-preskin=build/bin/preskin
+preskin="${PRESKIN:-build/bin/preskin}"  # PRESKIN: another build or an installed tree's bin/preskin
 [ -x "$preskin" ] || { echo "skin-cost: build the tools first (scripts/build.sh or cmake --build build)" >&2; exit 1; }
 command -v valgrind >/dev/null || { echo "skin-cost: needs valgrind (apt-get install valgrind)" >&2; exit 1; }
 work="$(mktemp -d)"
@@ -104,7 +105,14 @@ printf '%s\n' "${configs[@]}" | xargs -d '\n' -P "$jobs" -I{} bash -c 'measure "
 # What each switch buys: compare on the four views, reading (or first computing) the references.
 if [ -n "${REFERENCES:-}" ]; then
   mkdir -p "$REFERENCES"
-  views=("front 1024" "cheek_nose 768" "lips 768" "ear 768")
+  views=()
+  for name in ${VIEWS:-front cheek_nose lips ear}; do
+    case "$name" in
+      front) views+=("front 1024") ;;
+      cheek_nose | lips | ear) views+=("$name 768") ;;
+      *) echo "skin-cost: VIEWS: '$name' is not one of front, cheek_nose, lips, ear" >&2; exit 1 ;;
+    esac
+  done
   for v in "${views[@]}"; do  # the references first, one at a time (each uses every core)
     set -- $v
     "$preskin" compare --camera "$1" --width "$2" --height "$2" --reference "$REFERENCES/$1.exr" \
@@ -147,7 +155,9 @@ fidelity = {}
 for path in glob.glob(os.path.join(work, "fidelity-*.json")):
     name, view = os.path.basename(path)[len("fidelity-"):-len(".json")].rsplit("-", 1)
     fidelity.setdefault(name, {})[view] = json.load(open(path))["regions"]
-views = ["front", "cheek_nose", "lips", "ear"]
+# The views measured, in the README's order.
+views = [v for v in ["front", "cheek_nose", "lips", "ear"] if any(v in f for f in fidelity.values())]
+sizes = {"front": "1024x1024", "cheek_nose": "768x768", "lips": "768x768", "ear": "768x768"}
 def fid(name):
     """'all / concave / near edges' means over the views, and the per-view 'all'; blanks without references."""
     if name not in fidelity:
@@ -170,8 +180,8 @@ lines = [
     + (f" Time: `preskin bench` skin_techniques at {bench['width']}x{bench['height']}, interleaved frames, medians."
        if bench else ""),
     "A technique's cost is the all-on frame minus the frame with that technique off (its standard fallback on); "
-    "the costs overlap, so they do not add up to the total. Fidelity: `preskin compare` of the README's four head "
-    "views (front 1024x1024, cheek_nose, lips and ear 768x768) with the technique off, skin's pooled RMSE over "
+    "the costs overlap, so they do not add up to the total. Fidelity: `preskin compare` of the README's head "
+    f"views ({', '.join(f'{v} {sizes[v]}' for v in views) or 'none measured'}) with the technique off, skin's pooled RMSE over "
     "Lambert's against the diffusion reference (below 1: closer than Lambert; higher than the all-on row: the "
     "technique buys accuracy there); specular is off in `compare`, so the specular rows buy nothing there.",
     "",
