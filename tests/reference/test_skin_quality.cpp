@@ -2,7 +2,8 @@
 // each through the tool with the validation layers on (high is the default render, pixel for
 // pixel; each lower tier differs from it), a material's own tier from PRESKIN_materials_skin and
 // the frame-wide override, and each tier against the diffusion reference on the 10 mm skin
-// sphere under a shadowed light: every tier far closer than Lambert, each with its own bound.
+// sphere under a shadowed light: every tier far closer than Lambert, each with its own bound; the
+// work a tier skips outside the forward pass (the wide shadow map's reduction) changes no pixel.
 #include "support/GpuTest.h"
 #include "support/ImageCompare.h"
 #include "support/Process.h"
@@ -12,8 +13,11 @@
 #include "unit/GltfTestFiles.h"
 
 #include <preskin/DiffusionReference.h>
+#include <preskin/Environment.h>
 #include <preskin/LutSet.h>
 #include <preskin/Renderer.h>
+#include <preskin/Scene.h>
+#include <preskin/View.h>
 
 #include <shared/skin_features.h>
 
@@ -59,6 +63,34 @@ TEST(SkinQuality, HeadRendersAtEveryTierUnderValidation) {
         const RenderedImage lower = render({"--skin-quality", tier}, std::string(tier) + ".png");
         EXPECT_GT(pixelsDifferingBy(high, lower, 2, largest), 20u) << tier << " leaves techniques out";
     }
+}
+
+// Below medium no skin pipeline reads the wide shadow map (penumbra scattering is off), so its
+// reduction is not recorded: a low frame is the same, pixel for pixel, whether the map was never
+// written or a high frame wrote it just before, and the frame still lists the pass.
+class SkinQualityPasses : public GpuTest {};
+
+TEST_F(SkinQualityPasses, LowSkipsTheWideShadowMapAndKeepsItsPixels) {
+    const Scene scene = Scene::load(std::string(PRESKIN_SOURCE_DIR) + "/samples/assets/head/head.gltf");
+    const LutSet& luts = LutSet::loadDefault();
+    const Environment environment = Environment::constant(glm::vec3(0.2f));
+    const View view = frameBoundsView(scene.worldBounds(), 1.0f);
+    RenderSettings low;
+    low.skinQuality = SkinQuality::Low;
+    RenderSettings high;
+    high.skinQuality = SkinQuality::High;
+    Renderer fresh(context(), scene, environment, &luts, low);
+    const RenderedImage never = fresh.render(view, 96, 96, OutputEncoding::DisplaySrgb8);
+    Renderer used(context(), scene, environment, &luts, high);
+    const RenderedImage highFrame = used.render(view, 96, 96, OutputEncoding::DisplaySrgb8);
+    used.setSettings(low);
+    const RenderedImage afterHigh = used.render(view, 96, 96, OutputEncoding::DisplaySrgb8);
+    int largest = 0;
+    EXPECT_EQ(pixelsDifferingBy(never, afterHigh, 0, largest), 0u) << "largest difference " << largest;
+    EXPECT_GT(pixelsDifferingBy(highFrame, afterHigh, 2, largest), 20u) << "low leaves the penumbra out";
+    bool listed = false;
+    for (const PassTime& p : used.frameStats().passes) listed = listed || p.name == "shadow reduction";
+    EXPECT_TRUE(listed);
 }
 
 TEST(SkinQuality, MaterialTierFromTheSceneAndTheOverride) {

@@ -190,6 +190,9 @@ struct Renderer::Impl {
     VkSampleCountFlagBits samples() const { return static_cast<VkSampleCountFlagBits>(settings.msaaSamples); }
 
     PipelineKey pipelineKey(const GpuMaterial& m, VkFormat format, VkFormat depthFormat, uint32_t eyes) const;
+    // Whether a skin pipeline of this frame reads the wide shadow map (penumbra scattering on for
+    // its material's tier and the settings); else its reduction is not recorded.
+    bool wideShadowRead() const;
 
     // The settings' EyeDrawing resolved for this device (see <preskin/Renderer.h>); resolved
     // when settings are set, since the probe submits work of its own.

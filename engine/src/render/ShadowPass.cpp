@@ -160,7 +160,15 @@ void Renderer::Impl::recordShadowPass(VkCommandBuffer cmd, Slot& slot, uint32_t 
                      VK_PIPELINE_STAGE_2_FRAGMENT_SHADER_BIT | VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT,
                      VK_ACCESS_2_SHADER_SAMPLED_READ_BIT);
     timestamp(cmd, slot, 6);  // the map drawn; the wide map's reduction (skin only) follows
-    if (sceneHasSkin) recordWideShadow(cmd, slot);
+    // Without a reader the wide map keeps its contents and its read-only layout (both unused).
+    if (sceneHasSkin && wideShadowRead()) recordWideShadow(cmd, slot);
+}
+
+bool Renderer::Impl::wideShadowRead() const {
+    for (const GpuMaterial& m : scene->materials)
+        if ((pipelineKey(m, VK_FORMAT_UNDEFINED, VK_FORMAT_UNDEFINED, 1).skinMask & gpu::kSkinPenumbra) != 0u)
+            return true;
+    return false;
 }
 
 }  // namespace preskin
