@@ -115,7 +115,8 @@ if [ -n "${REFERENCES:-}" ]; then
   done
   for v in "${views[@]}"; do  # the references first, one at a time (each uses every core)
     set -- $v
-    "$preskin" compare --camera "$1" --width "$2" --height "$2" --reference "$REFERENCES/$1.exr" \
+    # shellcheck disable=SC2086
+    "$preskin" compare $scene --camera "$1" --width "$2" --height "$2" --reference "$REFERENCES/$1.exr" \
       --json "$work/fidelity-skin-$1.json" >/dev/null 2>"$work/fidelity-skin-$1.log" ||
       { echo "skin-cost: compare $1 failed:" >&2; tail -3 "$work/fidelity-skin-$1.log" >&2; exit 1; }
   done
@@ -126,7 +127,7 @@ if [ -n "${REFERENCES:-}" ]; then
     for v in "${views[@]}"; do
       set -- $v
       # shellcheck disable=SC2086
-      "$preskin" compare --camera "$1" --width "$2" --height "$2" --reference "$REFERENCES/$1.exr" $flags \
+      "$preskin" compare $scene --camera "$1" --width "$2" --height "$2" --reference "$REFERENCES/$1.exr" $flags \
         --json "$work/fidelity-$name-$1.json" >/dev/null 2>"$work/fidelity-$name-$1.log" ||
         { echo "skin-cost: compare $name $1 failed:" >&2; tail -3 "$work/fidelity-$name-$1.log" >&2; exit 1; }
     done

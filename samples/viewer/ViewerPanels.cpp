@@ -264,8 +264,8 @@ void Viewer::panelTechniques() {
     ImGui::Combo("Quality tier", &tier, "each material's own\0low\0medium\0high\0");
     settings_.skinQuality = tier == 0 ? std::nullopt : std::optional<SkinQuality>(static_cast<SkinQuality>(tier - 1));
     tooltip(
-        "The techniques skin compiles in: high all, medium without the opposing light and second lobe, low "
-        "the diffuse LUT, SH transfer and per-channel normals only");
+        "The techniques skin compiles in: high all, medium without transmission and the second lobe, low "
+        "also without the penumbra (the diffuse LUT, per-channel normals, SH transfer and opposing light)");
     int method = static_cast<int>(settings_.diffusion);
     ImGui::RadioButton("Pre-integrated", &method, 0);
     ImGui::SameLine();

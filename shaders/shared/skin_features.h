@@ -16,11 +16,14 @@ PRESKIN_CONST(uint, kSkinOpposingLight, 64u)
 PRESKIN_CONST(uint, kSkinAll, 127u)
 
 // Quality tiers (SkinQuality, `--skin-quality`, PRESKIN_SKIN_QUALITY in a host shader): the
-// techniques each compiles in, chosen by what each costs and buys (docs/skin-cost.md). High is
-// every technique; Medium leaves out the opposing neighbours' light and the second specular
-// lobe; Low keeps the pre-integrated diffuse, the SH transfer and the per-channel normals.
-PRESKIN_CONST(uint, kSkinQualityLow, 11u)     // kSkinLutDiffuse | kSkinNormalPrefilter | kSkinShAmbient
-PRESKIN_CONST(uint, kSkinQualityMedium, 31u)  // Low | kSkinPenumbra | kSkinTransmission
+// techniques each compiles in, chosen by what each costs and buys in docs/skin-cost-table.md
+// (instructions per frame against compare's error on the head). High is every technique; Medium
+// leaves out transmission (11 % of the skin frame; it lights thin parts from behind, which the
+// front views do not show) and the second specular lobe; Low also the penumbra scattering and
+// its wide shadow map (14 %), keeping the pre-integrated diffuse, the per-channel normals, the
+// SH transfer and the opposing neighbours' light (2 %, the largest gain per instruction).
+PRESKIN_CONST(uint, kSkinQualityLow, 75u)     // kSkinLutDiffuse | kSkinNormalPrefilter | kSkinShAmbient | kSkinOpposingLight
+PRESKIN_CONST(uint, kSkinQualityMedium, 79u)  // Low | kSkinPenumbra
 PRESKIN_CONST(uint, kSkinQualityHigh, 127u)   // kSkinAll
 
 PRESKIN_GPU_END
