@@ -53,17 +53,19 @@ uint32_t areaLightTypes(const std::vector<Light>& lights) {
     return bits;
 }
 
+uint32_t Renderer::Impl::skinMask(const GpuMaterial& m) const {
+    // The baselines replace skin's diffusion: Lambert diffuse, one normal, plain shadows and
+    // Lambert's SH; the skin's specular, transmission and opposing light stay.
+    const uint32_t techniques = splitDiffusion() || textureDiffusionFrame()
+        ? settings.skin.mask() & (gpu::kSkinTransmission | gpu::kSkinOpposingLight | gpu::kSkinDualSpecular)
+        : settings.skin.mask();
+    return skinQualityMask(settings.skinQuality.value_or(m.quality)) & techniques;
+}
+
 PipelineKey Renderer::Impl::pipelineKey(const GpuMaterial& m, VkFormat format, VkFormat depthFormat,
                                         uint32_t eyes) const {
     const bool skin = m.skin && luts->valid();
     const uint32_t mode = splitDiffusion() ? kForwardSplit : textureDiffusionFrame() ? kForwardTexture : kForwardPlain;
-    // The baselines replace skin's diffusion: Lambert diffuse, one normal, plain shadows and
-    // Lambert's SH; the skin's specular and transmission stay.
-    const uint32_t tierMask = skinQualityFeatures(settings.skinQuality.value_or(m.quality)).mask();
-    const uint32_t skinMask = tierMask &
-        (mode != kForwardPlain
-             ? settings.skin.mask() & (gpu::kSkinTransmission | gpu::kSkinOpposingLight | gpu::kSkinDualSpecular)
-             : settings.skin.mask());
     return PipelineKey{
         skin ? gpu::kModelSkin : gpu::kModelStandard,
         static_cast<uint32_t>(m.alphaMode),
@@ -71,7 +73,7 @@ PipelineKey Renderer::Impl::pipelineKey(const GpuMaterial& m, VkFormat format, V
         static_cast<uint32_t>(format),
         static_cast<uint32_t>(depthFormat),
         static_cast<uint32_t>(settings.debugView),
-        skin ? skinMask : 0u,
+        skin ? skinMask(m) : 0u,
         settings.lightLoop == LightLoop::Clustered ? gpu::kLightLoopClustered : gpu::kLightLoopAll,
         !settings.specular         ? gpu::kSpecularOff
             : settings.specularIbl ? gpu::kSpecularIbl

@@ -77,10 +77,14 @@ bool finite(const glm::mat4& m) {
     return true;
 }
 
+uint32_t skinQualityMask(SkinQuality quality) {
+    return quality == SkinQuality::Low   ? gpu::kSkinQualityLow
+        : quality == SkinQuality::Medium ? gpu::kSkinQualityMedium
+                                         : gpu::kSkinQualityHigh;
+}
+
 SkinFeatures skinQualityFeatures(SkinQuality quality) {
-    const uint32_t m = quality == SkinQuality::Low ? gpu::kSkinQualityLow
-        : quality == SkinQuality::Medium           ? gpu::kSkinQualityMedium
-                                                   : gpu::kSkinQualityHigh;
+    const uint32_t m = skinQualityMask(quality);
     SkinFeatures f;
     f.lutDiffuse = (m & gpu::kSkinLutDiffuse) != 0u;
     f.normalPrefilter = (m & gpu::kSkinNormalPrefilter) != 0u;

@@ -33,6 +33,9 @@ inline constexpr uint32_t kSlotCount = 2;
 // start, after deformation, after curvature, after shadow, after clustering, after forward, and
 // with screen-space diffusion after its horizontal and vertical passes
 inline constexpr uint32_t kQueryCount = 9;
+
+// The technique mask a quality tier compiles in (shared/skin_features.h's kSkinQuality*).
+uint32_t skinQualityMask(SkinQuality quality);
 // The widest environment image the renderer keeps (the backdrop's; the lights' search and the
 // specular map read narrower copies): an 8192-wide image would hold 400 MB.
 inline constexpr uint32_t kEnvironmentKeptWidth = 2048;
@@ -190,6 +193,9 @@ struct Renderer::Impl {
     VkSampleCountFlagBits samples() const { return static_cast<VkSampleCountFlagBits>(settings.msaaSamples); }
 
     PipelineKey pipelineKey(const GpuMaterial& m, VkFormat format, VkFormat depthFormat, uint32_t eyes) const;
+    // The skin techniques a skin material's pipelines compile in: the settings' switches, its
+    // tier (or the settings' override), and what the diffusion baselines keep.
+    uint32_t skinMask(const GpuMaterial& m) const;
     // Whether a skin pipeline of this frame reads the wide shadow map (penumbra scattering on for
     // its material's tier and the settings); else its reduction is not recorded.
     bool wideShadowRead() const;

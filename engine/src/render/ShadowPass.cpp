@@ -166,8 +166,7 @@ void Renderer::Impl::recordShadowPass(VkCommandBuffer cmd, Slot& slot, uint32_t 
 
 bool Renderer::Impl::wideShadowRead() const {
     for (const GpuMaterial& m : scene->materials)
-        if ((pipelineKey(m, VK_FORMAT_UNDEFINED, VK_FORMAT_UNDEFINED, 1).skinMask & gpu::kSkinPenumbra) != 0u)
-            return true;
+        if (m.skin && luts->valid() && (skinMask(m) & gpu::kSkinPenumbra) != 0u) return true;
     return false;
 }
 

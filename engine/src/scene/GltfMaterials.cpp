@@ -7,11 +7,33 @@
 
 #include <algorithm>
 #include <cmath>
+#include <initializer_list>
 #include <set>
+#include <utility>
 
 namespace preskin::gltf {
 
 namespace {
+
+// A string field that names one of `names`: its value into `out`; another string is refused,
+// naming the field and listing the names.
+template <typename T>
+void namedField(const LoadContext& ctx, const tinygltf::Value& object, const char* key, const std::string& where,
+                std::initializer_list<std::pair<const char*, T>> names, T& out) {
+    const auto text = stringField(ctx, object, key, where);
+    if (!text) return;
+    std::string expected;
+    size_t i = 0;
+    for (const auto& [name, value] : names) {
+        if (*text == name) {
+            out = value;
+            return;
+        }
+        expected += std::string(i == 0 ? "" : i + 1 == names.size() ? " or " : ", ") + name;
+        ++i;
+    }
+    ctx.fail(where + "." + key, "'" + io::messageText(*text) + "' (expected " + expected + ")");
+}
 
 Filter filterOf(bool nearest) { return nearest ? Filter::Nearest : Filter::Linear; }
 
@@ -197,40 +219,22 @@ SkinMaterial parseSkinExtension(const LoadContext& ctx, const tinygltf::Value& s
     }
     constexpr double inf = std::numeric_limits<double>::infinity();
     skinNumber(ctx, skin, "scatterScale", where, s.scatterScale, 0.0, inf, true);
-    if (auto quality = stringField(ctx, skin, "quality", where)) {
-        if (*quality == "low")
-            s.quality = SkinQuality::Low;
-        else if (*quality == "medium")
-            s.quality = SkinQuality::Medium;
-        else if (*quality == "high")
-            s.quality = SkinQuality::High;
-        else
-            ctx.fail(where + ".quality", "'" + io::messageText(*quality) + "' (expected low, medium or high)");
-    }
-    if (auto source = stringField(ctx, skin, "curvatureSource", where)) {
-        if (*source == "vertex")
-            s.curvatureSource = CurvatureSource::Vertex;
-        else if (*source == "texture")
-            s.curvatureSource = CurvatureSource::Texture;
-        else if (*source == "derivatives")
-            s.curvatureSource = CurvatureSource::Derivatives;
-        else
-            ctx.fail(where + ".curvatureSource", "'" + *source + "' (expected vertex, texture or derivatives)");
-    }
+    namedField(ctx, skin, "quality", where,
+               {{"low", SkinQuality::Low}, {"medium", SkinQuality::Medium}, {"high", SkinQuality::High}}, s.quality);
+    namedField(ctx, skin, "curvatureSource", where,
+               {{"vertex", CurvatureSource::Vertex},
+                {"texture", CurvatureSource::Texture},
+                {"derivatives", CurvatureSource::Derivatives}},
+               s.curvatureSource);
     s.curvatureTexture = skinTextureRef(ctx, skin, "curvatureTexture", where, nullptr);
     if (s.curvatureSource == CurvatureSource::Texture && !s.curvatureTexture.valid()) {
         ctx.fail(where + ".curvatureSource", "'texture' but there is no usable curvatureTexture");
     }
     skinNumber(ctx, skin, "curvatureTextureScalePerM", where, s.curvatureTextureScalePerM, 0.0, inf);
     skinNumber(ctx, skin, "curvatureTextureBias", where, s.curvatureTextureBias, 0.0, 1.0);
-    if (auto deformed = stringField(ctx, skin, "deformedCurvature", where)) {
-        if (*deformed == "recomputed")
-            s.deformedCurvature = DeformedCurvature::Recomputed;
-        else if (*deformed == "bindPose")
-            s.deformedCurvature = DeformedCurvature::BindPose;
-        else
-            ctx.fail(where + ".deformedCurvature", "'" + *deformed + "' (expected recomputed or bindPose)");
-    }
+    namedField(ctx, skin, "deformedCurvature", where,
+               {{"recomputed", DeformedCurvature::Recomputed}, {"bindPose", DeformedCurvature::BindPose}},
+               s.deformedCurvature);
     if (auto bias = vec3Field(ctx, skin, "normalLodBias", where)) s.normalLodBias = *bias;
     s.detailNormalTexture = skinTextureRef(ctx, skin, "detailNormalTexture", where, &s.detailNormalScale);
     skinNumber(ctx, skin, "detailUvScale", where, s.detailUvScale, 0.0, inf, true);
