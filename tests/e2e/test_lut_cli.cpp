@@ -1,8 +1,11 @@
 // Tests of `preskin bake` as a user runs it: a good bake writes a loadable set; bad input (absurd
 // sizes, bad profile files, malformed colours, missing Burley parameters) exits non-zero with one
 // "preskin: error: ..." line and writes nothing. `preskin bake-curvature` the same way: the head's
-// map and its JSON, and bad input refused with nothing written.
+// map and its JSON, the scene written back reading the maps (--scene-out), and bad input refused
+// with nothing written.
+#include <preskin/CurvatureBake.h>
 #include <preskin/LutSet.h>
+#include <preskin/Scene.h>
 
 #include "support/Process.h"
 
@@ -15,6 +18,7 @@
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
+#include <map>
 #include <random>
 #include <sstream>
 
@@ -122,6 +126,76 @@ TEST_F(BakeCli, CurvatureMapOfTheHead) {
     EXPECT_EQ(j["PRESKIN_materials_skin"]["curvatureTextureBias"], 0.5);
     // A head's creases and ears: tens to hundreds of 1/m.
     EXPECT_GT(j["PRESKIN_materials_skin"]["curvatureTextureScalePerM"].get<double>(), 50.0);
+}
+
+// The scene `--scene-out` writes loads, and each skin material reads the map baked for it: its
+// texels are those bakeCurvatureMaps gives the source scene in-process, with its scale and bias;
+// the scene's other resources resolve from the new folder (beside the source and a folder above
+// it); the Khronos validator finds no error (where it is installed). A scene whose URIs would
+// leave its folder, maps outside its folder and a name other than .gltf are refused with nothing
+// written.
+TEST_F(BakeCli, CurvatureSceneOutReadsTheMaps) {
+    const fs::path head = dir_ / "head";
+    fs::copy(fs::path(PRESKIN_SOURCE_DIR) / "samples/assets/head", head, fs::copy_options::recursive);
+    const Scene source = Scene::load(head / "head.gltf");
+    CurvatureBakeSettings settings;
+    settings.size = 64;
+    const std::vector<CurvatureMap> expected = bakeCurvatureMaps(source, settings);
+    ASSERT_EQ(expected.size(), 1u);
+    const std::map<fs::path, fs::path> written{{head / "maps", head / "curved.gltf"},  // beside the source
+                                               {dir_ / "maps", dir_ / "above.gltf"}};  // a folder above it
+    std::vector<std::string> scenes;
+    for (const auto& [maps, scenePath] : written) {
+        const CliRun run = test::runCli({"bake-curvature", (head / "head.gltf").string(), "--size", "64", "--out",
+                                         maps.string(), "--scene-out", scenePath.string()},
+                                        dir_);
+        ASSERT_EQ(run.exitCode, 0) << run.err;
+        scenes.push_back(scenePath.string());
+        const Scene scene = Scene::load(scenePath);
+        ASSERT_EQ(scene.materials.size(), source.materials.size());
+        ASSERT_EQ(scene.meshes.size(), source.meshes.size());
+        EXPECT_EQ(scene.environmentPath.has_value(), source.environmentPath.has_value());
+        const Material& m = scene.materials[size_t(expected[0].material)];
+        ASSERT_TRUE(m.skin.has_value());
+        EXPECT_EQ(m.skin->curvatureSource, CurvatureSource::Texture);
+        EXPECT_FLOAT_EQ(m.skin->curvatureTextureScalePerM, expected[0].scalePerM);
+        EXPECT_FLOAT_EQ(m.skin->curvatureTextureBias, expected[0].bias);
+        ASSERT_TRUE(m.skin->curvatureTexture.valid());
+        const Image& image = scene.images[size_t(m.skin->curvatureTexture.image)];
+        ASSERT_EQ(image.width, 64u);
+        ASSERT_EQ(image.rgba16.size(), size_t(64 * 64 * 4));
+        const std::vector<uint16_t> texels = expected[0].encoded();
+        size_t differ = 0;
+        for (size_t i = 0; i < texels.size(); ++i) differ += image.rgba16[i * 4] != texels[i];
+        EXPECT_EQ(differ, 0u) << " of " << texels.size() << " texels";
+        // Everything else as the source has it: the base colour's texels, the specular map.
+        const Material& s = source.materials[size_t(expected[0].material)];
+        EXPECT_EQ(scene.images[size_t(m.baseColor.image)].rgba8, source.images[size_t(s.baseColor.image)].rgba8);
+        EXPECT_EQ(m.skin->specularTexture.valid(), s.skin->specularTexture.valid());
+    }
+    if (std::system("command -v node >/dev/null 2>&1") == 0) {
+        std::vector<std::string> args{"node", std::string(PRESKIN_SOURCE_DIR) + "/scripts/validate-gltf.js"};
+        args.insert(args.end(), scenes.begin(), scenes.end());
+        const test::ProcessResult r = test::runProcess("/usr/bin/env", args, {}, dir_, 300.0);
+        if (r.exitCode != 2) {
+            ASSERT_EQ(r.exitCode, 0) << r.err;
+            std::istringstream lines(r.out);
+            int reports = 0;
+            for (std::string line; std::getline(lines, line); ++reports)
+                EXPECT_EQ(nlohmann::json::parse(line).at("errors"), 0) << line;
+            EXPECT_EQ(reports, 2);
+        }
+    }
+
+    // Refused before anything is baked (expectRefused adds --out DIR/never and checks it is not made).
+    const std::string h = (head / "head.gltf").string();
+    expectRefused(
+        "bake-curvature",
+        {{{h, "--scene-out", (dir_ / "elsewhere" / "head.gltf").string()}, "would leave the new scene's folder"},
+         {{h, "--scene-out", (head / "curved.glb").string()}, "name it .gltf"},
+         {{h, "--scene-out", (head / "inside.gltf").string()}, "lies outside the scene's folder"}});
+    EXPECT_FALSE(fs::exists(dir_ / "elsewhere"));
+    EXPECT_FALSE(fs::exists(head / "inside.gltf"));
 }
 
 TEST_F(BakeCli, BadCurvatureInputIsRefusedAndNothingIsWritten) {
