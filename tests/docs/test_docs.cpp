@@ -351,16 +351,18 @@ TEST(DocsFigures, HostSampleSizeAndLimitsMatchTheCode) {
     ASSERT_TRUE(std::regex_search(
         readme, m,
         std::regex(
-            R"(The host example is (\d+) lines: `main.cpp` (\d+) .*`host.frag` (\d+), `host.vert` (\d+) and `CMakeLists.txt` (\d+))")))
+            R"(The host example is (\d+) lines: `main.cpp` (\d+) .*`Gpu.h` (\d+) .*`host.frag` (\d+), `host.vert` (\d+) and `CMakeLists.txt` (\d+))")))
         << "README no longer states the host example's size";
     const fs::path host = kSource / "samples" / "host";
-    const int main = lineCount(host / "main.cpp"), frag = lineCount(host / "host.frag"),
-              vert = lineCount(host / "host.vert"), cmake = lineCount(host / "CMakeLists.txt");
+    const int main = lineCount(host / "main.cpp"), gpu = lineCount(host / "Gpu.h"),
+              frag = lineCount(host / "host.frag"), vert = lineCount(host / "host.vert"),
+              cmake = lineCount(host / "CMakeLists.txt");
     EXPECT_EQ(std::stoi(m[2]), main);
-    EXPECT_EQ(std::stoi(m[3]), frag);
-    EXPECT_EQ(std::stoi(m[4]), vert);
-    EXPECT_EQ(std::stoi(m[5]), cmake);
-    EXPECT_EQ(std::stoi(m[1]), main + frag + vert + cmake);
+    EXPECT_EQ(std::stoi(m[3]), gpu);
+    EXPECT_EQ(std::stoi(m[4]), frag);
+    EXPECT_EQ(std::stoi(m[5]), vert);
+    EXPECT_EQ(std::stoi(m[6]), cmake);
+    EXPECT_EQ(std::stoi(m[1]), main + gpu + frag + vert + cmake);
 
     // docs/limits.md states each limit of <preskin/Limits.h> with its value.
     const std::string limitsDoc = readFile(kSource / "docs" / "limits.md");
@@ -425,6 +427,54 @@ TEST(DocsFigures, SkinCostFiguresAreTheGeneratedOnes) {
         << "docs/skin-cost.md should quote the table's tiers: " << tiers;
     EXPECT_NE(readme.find(wall + " in wall time"), std::string::npos)
         << "README.md should quote docs/bench-lavapipe.json's skin / standard: " << wall << " in wall time";
+}
+
+// The README's table of what each technique costs a host quotes docs/skin-cost-table.md's rows:
+// each technique's instructions per frame and compare's error with it off (the "all" figure), the
+// all-on error and specular IBL's cost.
+TEST(DocsFigures, HostCostTableIsTheGeneratedOne) {
+    const std::string table = readFile(kSource / "docs" / "skin-cost-table.md");
+    const std::string readme = readFile(kSource / "README.md");
+    auto tableRow = [&](const std::string& key) {
+        const size_t at = table.find("(`" + key + "`) |");
+        EXPECT_NE(at, std::string::npos) << key << " has no row in docs/skin-cost-table.md";
+        if (at == std::string::npos) return std::vector<std::string>{};
+        const size_t begin = table.rfind('\n', at) + 1;
+        std::vector<std::string> cells;
+        std::istringstream line(table.substr(begin, table.find('\n', at) - begin));
+        for (std::string cell; std::getline(line, cell, '|');) {
+            const size_t a = cell.find_first_not_of(' '), b = cell.find_last_not_of(' ');
+            cells.push_back(a == std::string::npos ? "" : cell.substr(a, b - a + 1));
+        }
+        return cells;  // "", name, M, share, wall, cpu, forward, fidelity, per view
+    };
+    int rows = 0;
+    for (const char* key : {"lut_diffuse", "normal_prefilter", "penumbra", "sh_ambient", "transmission",
+                            "opposing_light", "dual_specular"}) {
+        const std::vector<std::string> cells = tableRow(key);
+        if (cells.size() < 8) continue;
+        const std::string fidelity = cells[7].substr(0, cells[7].find(' '));
+        const size_t at = readme.find(std::string("(`") + key + "`; `--no-");
+        ASSERT_NE(at, std::string::npos) << "README.md's host cost table has no row for " << key;
+        const std::string line = readme.substr(at, readme.find('\n', at) - at);
+        EXPECT_NE(line.find("| " + cells[2] + " |"), std::string::npos) << line << " (table: " << cells[2] << " M)";
+        if (!fidelity.empty()) {  // the specular rows buy nothing compare measures
+            EXPECT_NE(line.find("| " + fidelity + " |"), std::string::npos) << line << " (table: " << fidelity << ")";
+        }
+        ++rows;
+    }
+    EXPECT_EQ(rows, 7);
+    const std::vector<std::string> ibl = tableRow("specular_ibl");
+    if (ibl.size() > 2) {
+        EXPECT_NE(readme.find("environment (" + ibl[2] + " M)"), std::string::npos) << ibl[2];
+    }
+    const size_t all = table.find("| skin frame, all techniques on |");
+    ASSERT_NE(all, std::string::npos);
+    static const std::regex allOn(R"(\| skin frame, all techniques on \| [0-9.]+ \| [0-9]+% \|[ |]*([0-9.]+) /)");
+    std::smatch m;
+    const std::string allLine = table.substr(all, table.find('\n', all) - all);
+    ASSERT_TRUE(std::regex_search(allLine, m, allOn)) << allLine;
+    EXPECT_NE(readme.find(std::string(m[1]) + " with all on"), std::string::npos) << m[1];
 }
 
 }  // namespace

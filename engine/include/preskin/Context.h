@@ -1,6 +1,7 @@
 // The Vulkan context preskin renders with: either one it creates (instance, device, queue) or
 // one a host engine hands over. Requirements on the device either way: Vulkan 1.3 with
-// dynamicRendering, synchronization2 and multiview enabled, and a queue with graphics and compute.
+// dynamicRendering, synchronization2, maintenance4 and multiview enabled, and a queue with
+// graphics and compute.
 #pragma once
 
 #include <preskin/Export.h>
@@ -34,7 +35,8 @@ struct ContextDesc {
 
 // What a host engine hands over when preskin should run on its device. The host keeps
 // ownership; the Context never destroys these handles. The device must have Vulkan 1.3
-// dynamicRendering and synchronization2 and Vulkan 1.1 multiview enabled.
+// dynamicRendering, synchronization2 and maintenance4 (compute stages size their workgroups with
+// specialization constants; every 1.3 device supports it) and Vulkan 1.1 multiview enabled.
 struct HostVulkan {
     PFN_vkGetInstanceProcAddr getInstanceProcAddr = nullptr;
     VkInstance instance = VK_NULL_HANDLE;

@@ -44,7 +44,7 @@ struct SkinFeatures {
     bool opposingLight = true;
 
     static SkinFeatures none() { return {false, false, false, false, false, false, false}; }
-    uint32_t mask() const;
+    PRESKIN_API uint32_t mask() const;
     bool operator==(const SkinFeatures&) const = default;
 };
 
