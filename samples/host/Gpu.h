@@ -186,6 +186,18 @@ public:
         vkCmdPipelineBarrier2(cmd, &dep);
     }
 
+    // A dynamic-rendering attachment cleared to `clear`, kept after the pass when `store`.
+    static VkRenderingAttachmentInfo clearedAttachment(VkImageView view, VkImageLayout layout, VkClearValue clear,
+                                                       bool store) {
+        VkRenderingAttachmentInfo a{VK_STRUCTURE_TYPE_RENDERING_ATTACHMENT_INFO};
+        a.imageView = view;
+        a.imageLayout = layout;
+        a.loadOp = VK_ATTACHMENT_LOAD_OP_CLEAR;
+        a.storeOp = store ? VK_ATTACHMENT_STORE_OP_STORE : VK_ATTACHMENT_STORE_OP_DONT_CARE;
+        a.clearValue = clear;
+        return a;
+    }
+
     // A sampled texture from tightly packed rows, with a mip chain of linear blits when `mipmapped`.
     VkImageView texture(VkFormat format, uint32_t width, uint32_t height, const void* pixels, size_t bytes,
                         bool mipmapped, VkImageViewType viewType = VK_IMAGE_VIEW_TYPE_2D) {

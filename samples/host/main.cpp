@@ -530,12 +530,8 @@ void renderWithHostPasses(Gpu& gpu, const Options& o, const preskin::Scene& scen
         };
         Gpu::barrier(cmd, shadowMap.image, VK_IMAGE_ASPECT_DEPTH_BIT, 0, 1, VK_IMAGE_LAYOUT_UNDEFINED,
                      VK_IMAGE_LAYOUT_DEPTH_ATTACHMENT_OPTIMAL);
-        VkRenderingAttachmentInfo shadowAttachment{VK_STRUCTURE_TYPE_RENDERING_ATTACHMENT_INFO};
-        shadowAttachment.imageView = shadowMap.view;
-        shadowAttachment.imageLayout = VK_IMAGE_LAYOUT_DEPTH_ATTACHMENT_OPTIMAL;
-        shadowAttachment.loadOp = VK_ATTACHMENT_LOAD_OP_CLEAR;
-        shadowAttachment.storeOp = VK_ATTACHMENT_STORE_OP_STORE;
-        shadowAttachment.clearValue.depthStencil = {1.0f, 0};
+        const VkRenderingAttachmentInfo shadowAttachment = Gpu::clearedAttachment(
+            shadowMap.view, VK_IMAGE_LAYOUT_DEPTH_ATTACHMENT_OPTIMAL, VkClearValue{.depthStencil = {1.0f, 0}}, true);
         VkRenderingInfo shadowPass{VK_STRUCTURE_TYPE_RENDERING_INFO};
         shadowPass.renderArea = shadowArea;
         shadowPass.layerCount = 1;
@@ -550,18 +546,12 @@ void renderWithHostPasses(Gpu& gpu, const Options& o, const preskin::Scene& scen
                      VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL);
         Gpu::barrier(cmd, depth.image, VK_IMAGE_ASPECT_DEPTH_BIT, 0, 1, VK_IMAGE_LAYOUT_UNDEFINED,
                      VK_IMAGE_LAYOUT_DEPTH_ATTACHMENT_OPTIMAL);
-        VkRenderingAttachmentInfo colorAttachment{VK_STRUCTURE_TYPE_RENDERING_ATTACHMENT_INFO};
-        colorAttachment.imageView = color.view;
-        colorAttachment.imageLayout = VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL;
-        colorAttachment.loadOp = VK_ATTACHMENT_LOAD_OP_CLEAR;
-        colorAttachment.storeOp = VK_ATTACHMENT_STORE_OP_STORE;
-        colorAttachment.clearValue.color = {{0.045f, 0.045f, 0.05f, 1.0f}};  // preskin render's background
-        VkRenderingAttachmentInfo depthAttachment{VK_STRUCTURE_TYPE_RENDERING_ATTACHMENT_INFO};
-        depthAttachment.imageView = depth.view;
-        depthAttachment.imageLayout = VK_IMAGE_LAYOUT_DEPTH_ATTACHMENT_OPTIMAL;
-        depthAttachment.loadOp = VK_ATTACHMENT_LOAD_OP_CLEAR;
-        depthAttachment.storeOp = VK_ATTACHMENT_STORE_OP_DONT_CARE;
-        depthAttachment.clearValue.depthStencil = {0.0f, 0};  // reversed Z: far
+        const VkRenderingAttachmentInfo colorAttachment =  // cleared to preskin render's background
+            Gpu::clearedAttachment(color.view, VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL,
+                                   VkClearValue{.color = {{0.045f, 0.045f, 0.05f, 1.0f}}}, true);
+        const VkRenderingAttachmentInfo depthAttachment =  // reversed Z: cleared to far
+            Gpu::clearedAttachment(depth.view, VK_IMAGE_LAYOUT_DEPTH_ATTACHMENT_OPTIMAL,
+                                   VkClearValue{.depthStencil = {0.0f, 0}}, false);
         VkRenderingInfo ri{VK_STRUCTURE_TYPE_RENDERING_INFO};
         ri.renderArea = scissor;
         ri.layerCount = 1;
