@@ -183,12 +183,13 @@ void run(const Options& o) {
     j.field("momentTolerance", o.reference.settings.momentTolerance);
     j.field("reachMm", luts.profile().reachMm(o.reference.settings.tailFraction));
     j.field("shadowEdgeRadiusMm", o.reference.settings.shadowEdgeWidths * luts.profile().maxWidthMm());
+    j.field("terminatorClearanceMm", o.reference.settings.terminatorClearanceMm);
     j.endObject();
     j.key("regions");
     j.beginObject();
     fmt::print("preskin: compare on {} ({}x{}), RMSE against the reference (linear radiance):\n", context->deviceName(),
                width, height);
-    fmt::print("  {:<11} {:>7}  {:>30}  {:>30}  {:>14}\n", "region", "pixels", "skin rmse r, g, b (pooled)",
+    fmt::print("  {:<13} {:>7}  {:>30}  {:>30}  {:>14}\n", "region", "pixels", "skin rmse r, g, b (pooled)",
                "lambert rmse r, g, b (pooled)", "skin / lambert");
     for (const Region& region : regions) {
         if (region.pixels == 0) {  // nothing to measure: no figures, not zeros and ratios of 1
@@ -196,7 +197,7 @@ void run(const Options& o) {
             j.beginObject();
             j.field("pixels", region.pixels);
             j.endObject();
-            fmt::print("  {:<11} {:>7}  no pixels\n", region.name, region.pixels);
+            fmt::print("  {:<13} {:>7}  no pixels\n", region.name, region.pixels);
             continue;
         }
         const ErrorStats s = measureError(skin.rgba32f, ref, region);
@@ -210,7 +211,7 @@ void run(const Options& o) {
         rgb(j, "ratioToLambert",
             glm::dvec3(ratio(s.rmse.r, l.rmse.r), ratio(s.rmse.g, l.rmse.g), ratio(s.rmse.b, l.rmse.b)));
         j.field("ratioToLambertPooled", ratio(s.rmsePooled, l.rmsePooled));
-        fmt::print("  {:<11} {:>7}  {:.4f} {:.4f} {:.4f} ({:.4f})  {:.4f} {:.4f} {:.4f} ({:.4f})  {:>14.3f}\n",
+        fmt::print("  {:<13} {:>7}  {:.4f} {:.4f} {:.4f} ({:.4f})  {:.4f} {:.4f} {:.4f} ({:.4f})  {:>14.3f}\n",
                    region.name, region.pixels, s.rmse.r, s.rmse.g, s.rmse.b, s.rmsePooled, l.rmse.r, l.rmse.g, l.rmse.b,
                    l.rmsePooled, ratio(s.rmsePooled, l.rmsePooled));
         // Each baseline: its error, its ratio to Lambert's, and skin's ratio to its own.
@@ -224,7 +225,7 @@ void run(const Options& o) {
             j.field("ratioToLambertPooled", ratio(e.rmsePooled, l.rmsePooled));
             j.field("skinRatioPooled", ratio(s.rmsePooled, e.rmsePooled));
             j.endObject();
-            fmt::print("  {:<11} {:>7}  {:<8} {:.4f} {:.4f} {:.4f} ({:.4f}), / lambert {:.3f}, skin / {} {:.3f}\n", "",
+            fmt::print("  {:<13} {:>7}  {:<8} {:.4f} {:.4f} {:.4f} ({:.4f}), / lambert {:.3f}, skin / {} {:.3f}\n", "",
                        "", baselines[b], e.rmse.r, e.rmse.g, e.rmse.b, e.rmsePooled, ratio(e.rmsePooled, l.rmsePooled),
                        baselines[b], ratio(s.rmsePooled, e.rmsePooled));
         }

@@ -6,13 +6,17 @@ namespace preskin::cli {
 
 std::vector<Region> compareRegions(const ReferenceImage& reference, double curvatureClassPerMm) {
     const size_t count = size_t(reference.width) * reference.height;
-    std::vector<Region> regions{{"all", {}, 0}, {"shadowEdge", {}, 0}, {"concave", {}, 0}, {"convex", {}, 0}};
+    std::vector<Region> regions{{"all", {}, 0},        {"shadowEdge", {}, 0},    {"concave", {}, 0},
+                                {"convex", {}, 0},     {"awayFromEdges", {}, 0}, {"concaveAway", {}, 0},
+                                {"convexAway", {}, 0}, {"terminator", {}, 0}};
     for (Region& r : regions) r.mask.assign(count, 0);
     for (size_t i = 0; i < count; ++i) {
         if (!(reference.rgba32f[4 * i + 3] > 0.0f) || !reference.skin[i]) continue;
         const double curvature = reference.curvaturePerMm[i];
-        const bool in[4] = {true, reference.nearShadowEdge[i] != 0,
-                            curvature<-curvatureClassPerMm, curvature> curvatureClassPerMm};
+        const bool edge = reference.nearShadowEdge[i] != 0;
+        const bool concave = curvature<-curvatureClassPerMm, convex = curvature> curvatureClassPerMm;
+        const bool in[8] = {
+            true, edge, concave, convex, !edge, concave && !edge, convex && !edge, reference.terminatorBand[i] != 0};
         for (size_t r = 0; r < regions.size(); ++r)
             if (in[r]) {
                 regions[r].mask[i] = 1;

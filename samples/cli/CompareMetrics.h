@@ -21,7 +21,10 @@ struct Region {
 };
 
 // all: visible skin; shadowEdge: skin near a cast-shadow edge; concave / convex: skin whose
-// signed mean curvature is below -curvatureClassPerMm / above +curvatureClassPerMm.
+// signed mean curvature is below -curvatureClassPerMm / above +curvatureClassPerMm;
+// awayFromEdges, concaveAway, convexAway: the same away from cast-shadow edges; terminator: the
+// reference's terminator band (the shadow light's N.L within [-0.1, 0.2], no cast shadow within
+// its clearance), in this order.
 std::vector<Region> compareRegions(const ReferenceImage& reference, double curvatureClassPerMm);
 
 struct ErrorStats {

@@ -85,6 +85,7 @@ void writeComparePicture(const std::filesystem::path& path, const std::string& t
         if (regions[3].mask[i]) col = glm::dvec3(90, 170, 90);
         if (regions[2].mask[i]) col = glm::dvec3(80, 120, 210);
         if (regions[1].mask[i]) col = glm::mix(col, glm::dvec3(230, 50, 40), 0.7);
+        if (regions[7].mask[i]) col = glm::mix(col, glm::dvec3(240, 210, 60), 0.7);
         return glm::u8vec3(col);
     });
     c.text(margin, 4, fmt::format("{}; error white at {:.3g}", title, scale), font, ink);

@@ -75,7 +75,7 @@ ReferenceKey referenceKey(const std::filesystem::path& scenePath, const ViewOpti
     const std::filesystem::path scene = std::filesystem::weakly_canonical(scenePath, ec);
     const ReferenceSettings& s = o.settings;
     return {
-        {"model", "1"},
+        {"model", "2"},  // 2: the terminator band
         {"scene", (ec ? scenePath : scene).string()},
         {"sceneHash", fileHash(scenePath)},
         {"size", fmt::format("{}x{}", view.width, view.height)},
@@ -97,8 +97,8 @@ ReferenceKey referenceKey(const std::filesystem::path& scenePath, const ViewOpti
              return fmt::format("{:016x}", fnv1a(kFnvOffset, json.data(), json.size()));
          }()},
         {"quadrature",
-         fmt::format("tail {} leaf {} finest {} moments {} edge {}", s.tailFraction, s.leafRatio, s.finestLeafRatio,
-                     s.momentTolerance, s.shadowEdgeWidths)},
+         fmt::format("tail {} leaf {} finest {} moments {} edge {} terminator {}", s.tailFraction, s.leafRatio,
+                     s.finestLeafRatio, s.momentTolerance, s.shadowEdgeWidths, s.terminatorClearanceMm)},
         {"ambient", s.environmentSamples > 0 ? fmt::format("traced {}", s.environmentSamples) : std::string("sh")},
     };
 }

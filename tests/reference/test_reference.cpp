@@ -6,7 +6,9 @@
 //    (derived in docs/reference.md) is the 1D integral over the angle psi between x and y of
 //    a^2 Rn(2 a sin(psi / 2)) sin(psi) Phi(theta, psi), where Phi is the closed-form azimuthal
 //    integral of the clamped cosine, evaluated here by adaptive Simpson quadrature (test-side);
-//  - results are bitwise identical on 1 and 2 threads and from run to run.
+//  - results are bitwise identical on 1 and 2 threads and from run to run;
+//  - the terminator band is where the sphere's analytic normal turns from the light (its cosine
+//    within [-0.1, 0.2]), and a cast shadow within the clearance takes it away.
 #include "reference/test_lut_reference.h"
 #include "support/SkinTestSupport.h"
 #include "support/TestLights.h"
@@ -241,6 +243,55 @@ TEST(DiffusionReference, RenderIsBitwiseReproducibleAndThreadIndependent) {
     EXPECT_GT(covered, 200u);
     EXPECT_GT(edge, 0u) << "the sphere's shadow on the floor has an edge";
     EXPECT_LT(edge, covered / 2);
+}
+
+// The band of a 10 mm skin sphere lit from the side, against the sphere's analytic normals
+// through the same pixel centres (pixels within 0.03 of the band's bounds may go either way: the
+// mesh's interpolated normals); then with a box casting a shadow on the sphere, which lies within
+// the 12 mm clearance of every point: no band.
+TEST(DiffusionReference, TerminatorBandIsWhereTheSphereTurnsFromTheLightAwayFromCastShadows) {
+    const DiffusionProfile profile = DiffusionProfile::deonLuebke();
+    const double radiusM = 0.005;
+    Primitive sphere = makeSphere(float(radiusM), 48, 24);
+    sphere.material = 0;
+    recomputeCurvature(sphere);
+    ReferenceSettings coarse;
+    coarse.leafRatio = 1.0;
+    coarse.finestLeafRatio = 4.0;
+    coarse.momentTolerance = 1e-5;
+    const Light light = shadowedDirectionalLight(glm::vec3(-1.0f, 0.0f, 0.0f), 2.0f);
+    const glm::dvec3 L(1.0, 0.0, 0.0);
+    const Scene lone = makeScene({{sphere, glm::mat4(1.0f)}}, {skinMaterial(glm::vec3(0.8f, 0.6f, 0.5f), 1.0f)});
+    const View view = orbitView(lone.worldBounds(), 0.0f, 0.0f, 0.0f, 1.0f);
+    constexpr uint32_t kSize = 40;
+    const ReferenceImage image =
+        DiffusionReference(lone, {light}, ShRgb{}, profile, coarse).render(view.eye(), kSize, kSize);
+    const auto hits = traceSphere(view, kSize, kSize, glm::dvec3(0.0), radiusM);
+    size_t band = 0, wrong = 0;
+    for (size_t i = 0; i < hits.size(); ++i) {
+        if (!hits[i].interior) continue;
+        const double NoL = glm::dot(glm::normalize(hits[i].positionWs), L);
+        const bool inside = NoL >= kTerminatorBandNoL[0] && NoL <= kTerminatorBandNoL[1];
+        const bool nearBound =
+            std::abs(NoL - kTerminatorBandNoL[0]) < 0.03 || std::abs(NoL - kTerminatorBandNoL[1]) < 0.03;
+        band += image.terminatorBand[i];
+        if ((image.terminatorBand[i] != 0) != inside && !nearBound) ++wrong;
+    }
+    std::printf("[ reference] terminator band: %zu pixels, %zu misplaced\n", band, wrong);
+    EXPECT_GT(band, 40u);
+    EXPECT_EQ(wrong, 0u);
+
+    // A box above the sphere's lit side shadows part of it.
+    Primitive box = makeBox(glm::vec3(0.004f, 0.002f, 0.012f));
+    box.material = 1;
+    Scene shadowed =
+        makeScene({{sphere, glm::mat4(1.0f)}, {box, glm::translate(glm::mat4(1.0f), glm::vec3(0.009f, 0.004f, 0.0f))}},
+                  {skinMaterial(glm::vec3(0.8f, 0.6f, 0.5f), 1.0f), Material{}});
+    const ReferenceImage withShadow =
+        DiffusionReference(shadowed, {light}, ShRgb{}, profile, coarse).render(view.eye(), kSize, kSize);
+    size_t shadowedBand = 0;
+    for (uint8_t b : withShadow.terminatorBand) shadowedBand += b;
+    EXPECT_EQ(shadowedBand, 0u);
 }
 
 }  // namespace

@@ -18,6 +18,7 @@
 
 #include <atomic>
 #include <cmath>
+#include <limits>
 #include <mutex>
 
 namespace preskin {
@@ -47,40 +48,62 @@ glm::dvec3 barycentricOf(const glm::dvec3& q, const std::array<glm::dvec3, 3>& t
 }
 
 // A visible point for the cast-shadow edge search: 0 not facing the shadow light (or
-// background), 1 facing and lit, 2 facing and in a cast shadow.
+// background), 1 facing and lit, 2 facing and in a cast shadow; and whether it may lie in the
+// terminator band (skin, its cosine to the shadow light within kTerminatorBandNoL).
 struct EdgePoint {
     glm::dvec3 positionWs{0.0};
-    double radiusM = 0.0;
+    double radiusM = 0.0;     // the cast-shadow edge radius (shadowEdgeWidths)
+    double clearanceM = 0.0;  // the terminator band's clearance (terminatorClearanceMm)
     int state = 0;
+    bool bandCandidate = false;
+    int bandReachPx = 0;  // pixels a point within the clearance can lie from this one, at most
 };
 
-// Marks the pixels with a facing point of the other state within their radius: the search runs
-// over the pixels whose projected distance can be within it (the radius over the pixel
-// footprint of the neighbours), exact in world space.
+// Whether a visible point within radiusM of pixel (x, y)'s satisfies `found`, searched over the
+// pixels up to reachPx away (exact in world space).
+template <typename Found>
+bool anyPointWithin(const std::vector<EdgePoint>& points, int w, int h, int x, int y, double radiusM, int reachPx,
+                    Found found) {
+    const EdgePoint& p = points[size_t(y) * size_t(w) + size_t(x)];
+    for (int ny = std::max(0, y - reachPx); ny <= std::min(h - 1, y + reachPx); ++ny)
+        for (int nx = std::max(0, x - reachPx); nx <= std::min(w - 1, x + reachPx); ++nx) {
+            const EdgePoint& q = points[size_t(ny) * size_t(w) + size_t(nx)];
+            if (found(q) && glm::length(q.positionWs - p.positionWs) <= radiusM) return true;
+        }
+    return false;
+}
+
+// The cast-shadow edge search's reach: the radius over the pixel footprint of the neighbours
+// (the right or lower one, whichever is on a surface).
+int edgeReachPx(const std::vector<EdgePoint>& points, int w, int h, int x, int y) {
+    const EdgePoint& p = points[size_t(y) * size_t(w) + size_t(x)];
+    double footprint = 0.0;
+    for (const auto& [dx, dy] : {std::pair{1, 0}, std::pair{-1, 0}, std::pair{0, 1}, std::pair{0, -1}}) {
+        const int nx = x + dx, ny = y + dy;
+        if (nx < 0 || ny < 0 || nx >= w || ny >= h) continue;
+        const EdgePoint& q = points[size_t(ny) * size_t(w) + size_t(nx)];
+        if (q.radiusM > 0.0) footprint = std::max(footprint, glm::length(q.positionWs - p.positionWs));
+    }
+    return footprint > 0.0 ? int(std::min(std::ceil(p.radiusM / footprint) + 1.0, 256.0)) : 1;
+}
+
+// Marks the pixels with a facing point of the other state within their edge radius
+// (nearShadowEdge), and the terminator band's candidates with no point in a cast shadow within
+// their clearance (terminatorBand).
 void markShadowEdges(ReferenceImage& image, const std::vector<EdgePoint>& points) {
     const int w = int(image.width), h = int(image.height);
     tbb::parallel_for(tbb::blocked_range<int>(0, h), [&](const tbb::blocked_range<int>& rows) {
         for (int y = rows.begin(); y != rows.end(); ++y)
             for (int x = 0; x < w; ++x) {
-                const EdgePoint& p = points[size_t(y) * size_t(w) + size_t(x)];
-                if (p.state == 0) continue;
-                // Pixel footprint from the right or lower neighbour (whichever is on a surface).
-                double footprint = 0.0;
-                for (const auto& [dx, dy] : {std::pair{1, 0}, std::pair{-1, 0}, std::pair{0, 1}, std::pair{0, -1}}) {
-                    const int nx = x + dx, ny = y + dy;
-                    if (nx < 0 || ny < 0 || nx >= w || ny >= h) continue;
-                    const EdgePoint& q = points[size_t(ny) * size_t(w) + size_t(nx)];
-                    if (q.radiusM > 0.0) footprint = std::max(footprint, glm::length(q.positionWs - p.positionWs));
-                }
-                const int reach = footprint > 0.0 ? int(std::min(std::ceil(p.radiusM / footprint) + 1.0, 256.0)) : 1;
-                bool found = false;
-                for (int ny = std::max(0, y - reach); ny <= std::min(h - 1, y + reach) && !found; ++ny)
-                    for (int nx = std::max(0, x - reach); nx <= std::min(w - 1, x + reach) && !found; ++nx) {
-                        const EdgePoint& q = points[size_t(ny) * size_t(w) + size_t(nx)];
-                        found =
-                            q.state != 0 && q.state != p.state && glm::length(q.positionWs - p.positionWs) <= p.radiusM;
-                    }
-                image.nearShadowEdge[size_t(y) * size_t(w) + size_t(x)] = found ? 1 : 0;
+                const size_t i = size_t(y) * size_t(w) + size_t(x);
+                const EdgePoint& p = points[i];
+                if (p.state != 0)
+                    image.nearShadowEdge[i] =
+                        anyPointWithin(points, w, h, x, y, p.radiusM, edgeReachPx(points, w, h, x, y),
+                                       [&](const EdgePoint& q) { return q.state != 0 && q.state != p.state; });
+                if (p.bandCandidate)
+                    image.terminatorBand[i] = !anyPointWithin(points, w, h, x, y, p.clearanceM, p.bandReachPx,
+                                                              [](const EdgePoint& q) { return q.state == 2; });
             }
     });
 }
@@ -115,6 +138,7 @@ struct DiffusionReference::Impl {
         checkSetting(s.finestLeafRatio, 0.0, 100.0, "finestLeafRatio", true);
         checkSetting(s.momentTolerance, 0.0, 1e-2, "momentTolerance", true);
         checkSetting(s.shadowEdgeWidths, 0.0, 100.0, "shadowEdgeWidths");
+        checkSetting(s.terminatorClearanceMm, 0.0, 1000.0, "terminatorClearanceMm");
         reachMm = profile.reachMm(s.tailFraction);
         rays = std::make_unique<RayScene>(mesh, [this](uint32_t t, const glm::dvec3& bary, const glm::dvec3& dir) {
             return acceptHit(t, bary, dir);
@@ -163,6 +187,7 @@ struct DiffusionReference::Impl {
         }
         out.facesShadowLight = atX.shadow != ShadowState::NotFacing;
         out.inCastShadow = atX.shadow == ShadowState::CastShadow;
+        out.shadowLightNoL = atX.shadowLightNoL;
         ++out.irradianceSamples;
         out.radiance += materials.emissive(m, footprint);
         return out;
@@ -215,12 +240,12 @@ ReferenceImage DiffusionReference::render(const Eye& eye, uint32_t width, uint32
     image.skin.assign(count, 0);
     image.curvaturePerMm.assign(count, 0.0f);
     image.nearShadowEdge.assign(count, 0);
+    image.terminatorBand.assign(count, 0);
     std::vector<uint64_t> rowSamples(height, 0);
     std::vector<EdgePoint> points(count);
-    auto edgeRadiusM = [&](const RayHit& hit) {
+    auto worldMPerProfileMm = [&](const RayHit& hit) {
         const Material& material = im.materials.material(im.mesh.triangles[hit.point.triangle].material);
-        const double scale = material.skin ? std::max(double(material.skin->scatterScale), 1e-6) : 1.0;
-        return im.settings.shadowEdgeWidths * im.profile.maxWidthMm() / scale * 1e-3;
+        return 1e-3 / (material.skin ? std::max(double(material.skin->scatterScale), 1e-6) : 1.0);
     };
     std::atomic<uint32_t> rowsDone{0};
     std::mutex progressMutex;
@@ -260,7 +285,27 @@ ReferenceImage DiffusionReference::render(const Eye& eye, uint32_t width, uint32
                 image.skin[i] = s.skin ? 1 : 0;
                 image.curvaturePerMm[i] = float(s.curvaturePerMm);
                 rowSamples[y] += s.irradianceSamples;
-                points[i] = {s.positionWs, edgeRadiusM(*hit), s.facesShadowLight ? (s.inCastShadow ? 2 : 1) : 0};
+                const double toM = worldMPerProfileMm(*hit);
+                EdgePoint& e = points[i];
+                e = {s.positionWs, im.settings.shadowEdgeWidths * im.profile.maxWidthMm() * toM,
+                     im.settings.terminatorClearanceMm * toM, s.facesShadowLight ? (s.inCastShadow ? 2 : 1) : 0,
+                     s.skin && s.shadowLightNoL && *s.shadowLightNoL >= kTerminatorBandNoL[0] &&
+                         *s.shadowLightNoL <= kTerminatorBandNoL[1]};
+                if (e.bandCandidate) {
+                    // A point within the clearance lies no nearer along the ray than the hit less the
+                    // clearance, where neighbouring pixels' rays are closest: at most the clearance
+                    // over that spacing pixels away on the screen, however the surface turns.
+                    const double nearest = std::max(glm::length(s.positionWs - origin) - e.clearanceM, 0.0);
+                    double spacing = std::numeric_limits<double>::infinity();
+                    for (const auto& [dx, dy] : {std::pair{1.5, 0.5}, std::pair{0.5, 1.5}}) {
+                        glm::dvec3 o, d;
+                        ray(x + dx, y + dy, o, d);
+                        spacing = std::min(spacing, glm::length(o + d * nearest - (origin + direction * nearest)));
+                    }
+                    e.bandReachPx = spacing > 0.0
+                        ? int(std::min(std::ceil(e.clearanceM / spacing) + 1.0, double(width + height)))
+                        : int(width + height);
+                }
             }
             const uint32_t done = rowsDone.fetch_add(1) + 1;
             if (progress) {

@@ -130,6 +130,11 @@ IrradianceSample IrradianceField::at(const SurfacePoint& p, bool flipNormal) con
     const glm::dvec3 position = mesh_.position(p);
     glm::dvec3 n = mesh_.normal(p);
     if (flipNormal) n = -n;
+    if (shadowLight_ >= 0) {
+        glm::dvec3 L, irradiance;
+        lightIncidence(lights_[size_t(shadowLight_)], position, L, irradiance);
+        out.shadowLightNoL = glm::dot(n, L);
+    }
     for (size_t i = 0; i < lights_.size(); ++i) {
         const Light& light = sceneLights_[i];
         const bool sun = light.type == LightType::Directional && light.angularRadius > 0.0f;

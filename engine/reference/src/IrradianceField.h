@@ -32,6 +32,7 @@
 #include <preskin/Scene.h>
 
 #include <cstdint>
+#include <optional>
 #include <vector>
 
 namespace preskin::reference {
@@ -45,6 +46,7 @@ enum class ShadowState : int8_t {
 struct IrradianceSample {
     glm::dvec3 irradiance{0.0};
     ShadowState shadow = ShadowState::NotFacing;
+    std::optional<double> shadowLightNoL;  // the normal's cosine to the shadow light (none without one)
 };
 
 class IrradianceField {

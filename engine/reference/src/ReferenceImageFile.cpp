@@ -20,7 +20,8 @@ namespace preskin {
 
 namespace {
 
-constexpr std::array<const char*, 7> kChannels = {"R", "G", "B", "A", "skin", "curvaturePerMm", "nearShadowEdge"};
+constexpr std::array<const char*, 8> kChannels = {
+    "R", "G", "B", "A", "skin", "curvaturePerMm", "nearShadowEdge", "terminatorBand"};
 constexpr std::string_view kKeyPrefix = "preskin:";
 
 }  // namespace
@@ -28,7 +29,8 @@ constexpr std::string_view kKeyPrefix = "preskin:";
 void writeReferenceImage(const std::filesystem::path& path, const ReferenceImage& image, const ReferenceKey& key) {
     const size_t count = size_t(image.width) * image.height;
     if (count == 0 || image.rgba32f.size() != count * 4 || image.skin.size() != count ||
-        image.curvaturePerMm.size() != count || image.nearShadowEdge.size() != count)
+        image.curvaturePerMm.size() != count || image.nearShadowEdge.size() != count ||
+        image.terminatorBand.size() != count)
         throw Error(fmt::format("{}: reference: image data does not match its size {}x{}", path.string(), image.width,
                                 image.height));
     std::vector<float> pixels(count * kChannels.size());
@@ -38,6 +40,7 @@ void writeReferenceImage(const std::filesystem::path& path, const ReferenceImage
         p[4] = float(image.skin[i]);
         p[5] = image.curvaturePerMm[i];
         p[6] = float(image.nearShadowEdge[i]);
+        p[7] = float(image.terminatorBand[i]);
         for (size_t c = 0; c < kChannels.size(); ++c)
             if (!std::isfinite(p[c]))
                 throw Error(fmt::format("{}: reference: channel {} is not finite at pixel {}; nothing written",
@@ -79,8 +82,9 @@ ReferenceImage readReferenceImage(const std::filesystem::path& path, ReferenceKe
         index[c] = spec.channelindex(kChannels[c]);
         if (index[c] < 0)
             throw Error(
-                fmt::format("{}: reference: channel {}: missing (write the file with `preskin compare "
-                            "--reference` or `preskin reference`)",
+                fmt::format("{}: reference: channel {}: missing: not a reference this preskin writes (an older "
+                            "one, or another file: remove it and let `preskin compare --reference` or `preskin "
+                            "reference` write it again)",
                             name, kChannels[c]));
     }
     key.clear();
@@ -103,6 +107,7 @@ ReferenceImage readReferenceImage(const std::filesystem::path& path, ReferenceKe
     image.skin.resize(count);
     image.curvaturePerMm.resize(count);
     image.nearShadowEdge.resize(count);
+    image.terminatorBand.resize(count);
     for (size_t i = 0; i < count; ++i) {
         const float* p = pixels.data() + i * channels;
         for (size_t c = 0; c < kChannels.size(); ++c)
@@ -112,6 +117,7 @@ ReferenceImage readReferenceImage(const std::filesystem::path& path, ReferenceKe
         image.skin[i] = p[index[4]] > 0.5f ? 1 : 0;
         image.curvaturePerMm[i] = p[index[5]];
         image.nearShadowEdge[i] = p[index[6]] > 0.5f ? 1 : 0;
+        image.terminatorBand[i] = p[index[7]] > 0.5f ? 1 : 0;
     }
     return image;
 }

@@ -70,18 +70,27 @@ struct ReferenceSettings {
     // lit and some in a cast shadow, lie within this many times the profile's widest channel
     // width (profile mm, so divided by the scatter scale in world units) of its point.
     double shadowEdgeWidths = 2.0;
+    // A skin pixel is in the "terminator band" when the interpolated normal's cosine to the shadow
+    // light lies within [kTerminatorBandNoL] and no visible point in a cast shadow of that light
+    // lies within this distance of its point (profile mm, divided by the scatter scale as above):
+    // where the shadow map shadows the surface itself, away from any occluder's shadow.
+    double terminatorClearanceMm = 12.0;
 };
+
+// The cosines to the shadow light that bound the terminator band (ReferenceSettings).
+inline constexpr double kTerminatorBandNoL[2] = {-0.1, 0.2};
 
 // What the reference knows about one shaded point.
 struct ReferenceSample {
     glm::dvec3 positionWs{0.0};
-    glm::dvec3 normalWs{0.0};        // interpolated vertex normal, facing the viewer
-    glm::dvec3 radiance{0.0};        // linear, before exposure
-    bool skin = false;               // the visible material is skin
-    double curvaturePerMm = 0.0;     // signed mean curvature in profile 1/mm (> 0 convex), skin only
-    bool facesShadowLight = false;   // N.L > 0 for the shadow-casting light
-    bool inCastShadow = false;       // ... and the point is occluded from it
-    uint32_t irradianceSamples = 0;  // E evaluations the integral used (a cost figure)
+    glm::dvec3 normalWs{0.0};              // interpolated vertex normal, facing the viewer
+    glm::dvec3 radiance{0.0};              // linear, before exposure
+    bool skin = false;                     // the visible material is skin
+    double curvaturePerMm = 0.0;           // signed mean curvature in profile 1/mm (> 0 convex), skin only
+    bool facesShadowLight = false;         // N.L > 0 for the shadow-casting light
+    bool inCastShadow = false;             // ... and the point is occluded from it
+    std::optional<double> shadowLightNoL;  // the normal's cosine to the shadow light; none without one
+    uint32_t irradianceSamples = 0;        // E evaluations the integral used (a cost figure)
 };
 
 struct ReferenceImage {
@@ -93,6 +102,7 @@ struct ReferenceImage {
     std::vector<uint8_t> skin;            // 1 where the visible surface is skin
     std::vector<float> curvaturePerMm;    // signed, profile 1/mm; 0 off skin
     std::vector<uint8_t> nearShadowEdge;  // 1 near a cast-shadow edge (ReferenceSettings::shadowEdgeWidths)
+    std::vector<uint8_t> terminatorBand;  // 1 in the terminator band (ReferenceSettings::terminatorClearanceMm)
     uint64_t irradianceSamples = 0;       // sum over pixels
 };
 
@@ -102,7 +112,8 @@ using ReferenceKey = std::vector<std::pair<std::string, std::string>>;
 
 // A reference image with everything `preskin compare` measures by (radiance and alpha, the skin
 // mask, the signed curvature, the shadow-edge mask) as a 32-bit float OpenEXR file: channels R,
-// G, B, A, skin, curvaturePerMm, nearShadowEdge; the key as string attributes "preskin:NAME".
+// G, B, A, skin, curvaturePerMm, nearShadowEdge, terminatorBand; the key as string attributes
+// "preskin:NAME".
 // Written into a temporary file renamed into place. Throws preskin::Error naming the file.
 PRESKIN_API void writeReferenceImage(const std::filesystem::path& path, const ReferenceImage& image,
                                      const ReferenceKey& key);

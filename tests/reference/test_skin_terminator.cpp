@@ -1,0 +1,148 @@
+// Skin at the terminator of closed surfaces with nothing else in the light: a sphere and a torus
+// lit from the side. The shadow map shadows each surface's own far side there, which is no cast
+// shadow: the diffuse LUT already holds the light scattered past the terminator, so penumbra
+// scattering must leave the terminator band (geometric N.L within [-0.1, 0.2], found by tracing
+// the analytic surface through each pixel centre) as it is without it, within 1/255.
+#include "support/GpuTest.h"
+#include "support/ImageCompare.h"
+#include "support/SkinTestSupport.h"
+#include "support/TestLights.h"
+#include "support/TestScenes.h"
+
+#include <preskin/LutSet.h>
+#include <preskin/Renderer.h>
+
+#include <glm/gtc/matrix_transform.hpp>
+
+#include <cmath>
+#include <cstdio>
+#include <functional>
+#include <optional>
+
+namespace preskin::test {
+namespace {
+
+// A torus about the y axis: the tube of radius minorM around the circle of radius majorM.
+Primitive makeTorus(float majorM, float minorM, uint32_t segments, uint32_t rings) {
+    Primitive p;
+    const float pi = 3.14159265358979f;
+    for (uint32_t r = 0; r <= rings; ++r) {
+        const float theta = 2.0f * pi * float(r) / float(rings);  // around the tube
+        for (uint32_t s = 0; s <= segments; ++s) {
+            const float phi = 2.0f * pi * float(s) / float(segments);  // around the axis
+            const glm::vec3 radial(std::sin(phi), 0.0f, std::cos(phi));
+            Vertex v;
+            v.normalOs = std::cos(theta) * radial + std::sin(theta) * glm::vec3(0.0f, 1.0f, 0.0f);
+            v.positionOs = majorM * radial + minorM * v.normalOs;
+            v.tangentOs = glm::vec4(std::cos(phi), 0.0f, -std::sin(phi), 1.0f);
+            v.uv0 = glm::vec2(float(s) / float(segments), float(r) / float(rings));
+            p.vertices.push_back(v);
+            p.boundsOs.extend(v.positionOs);
+        }
+    }
+    for (uint32_t r = 0; r < rings; ++r)
+        for (uint32_t s = 0; s < segments; ++s) {
+            const uint32_t a = r * (segments + 1) + s;
+            const uint32_t b = a + segments + 1;
+            p.indices.insert(p.indices.end(), {a, a + 1, b, a + 1, b + 1, b});
+        }
+    return p;
+}
+
+// The first hit of a ray on a surface given by its signed distance (sphere tracing in double
+// precision) and the surface's normal there; none when the ray misses.
+struct Hit {
+    glm::dvec3 position;
+    glm::dvec3 normal;
+};
+std::optional<Hit> traceSdf(const glm::dvec3& origin, const glm::dvec3& direction,
+                            const std::function<double(const glm::dvec3&)>& sdf) {
+    double t = 0.0;
+    for (int i = 0; i < 2000; ++i) {
+        const glm::dvec3 p = origin + t * direction;
+        const double d = sdf(p);
+        if (d < 1e-9) {
+            const double e = 1e-7;
+            const glm::dvec3 n(sdf(p + glm::dvec3(e, 0, 0)) - sdf(p - glm::dvec3(e, 0, 0)),
+                               sdf(p + glm::dvec3(0, e, 0)) - sdf(p - glm::dvec3(0, e, 0)),
+                               sdf(p + glm::dvec3(0, 0, e)) - sdf(p - glm::dvec3(0, 0, e)));
+            return Hit{p, glm::normalize(n)};
+        }
+        t += d;
+        if (t > 10.0) break;
+    }
+    return std::nullopt;
+}
+
+class SkinTerminator : public GpuTest {
+protected:
+    static constexpr uint32_t kSize = 128;
+
+    RenderedImage render(const Scene& scene, const View& view, bool penumbra) {
+        RenderSettings settings;
+        settings.specular = false;
+        settings.skin.penumbra = penumbra;
+        Renderer renderer(context(), scene, Environment::constant(glm::vec3(0.0f)), &LutSet::loadDefault(), settings);
+        return renderer.render(view, kSize, kSize, OutputEncoding::DisplaySrgb8);
+    }
+
+    // Pixels of the terminator band whose 8-bit channels differ by more than 1 between penumbra
+    // on and off, of how many; the largest difference.
+    void compareBand(const char* what, Primitive surface, const std::function<double(const glm::dvec3&)>& sdf,
+                     const glm::vec3& lightTravel, float yawDeg, float pitchDeg) {
+        recomputeCurvature(surface);
+        surface.material = 0;
+        Scene scene = makeScene({{surface, glm::mat4(1.0f)}}, {skinMaterial({0.8f, 0.6f, 0.5f})});
+        scene.lights = {shadowedDirectionalLight(lightTravel, 3.0f)};
+        const glm::dvec3 L = -glm::normalize(glm::dvec3(lightTravel));
+        const View view = orbitView(scene.worldBounds(), yawDeg, pitchDeg, 0.0f, 1.0f);
+        const RenderedImage on = render(scene, view, true), off = render(scene, view, false);
+        const glm::dmat4 worldFromClip = glm::inverse(glm::dmat4(view.eye().clipFromWorld()));
+        size_t band = 0, differing = 0;
+        int largest = 0;
+        for (uint32_t y = 0; y < kSize; ++y)
+            for (uint32_t x = 0; x < kSize; ++x) {
+                const glm::dvec2 ndc((x + 0.5) / kSize * 2.0 - 1.0, (y + 0.5) / kSize * 2.0 - 1.0);
+                const glm::dvec4 a = worldFromClip * glm::dvec4(ndc, 1.0, 1.0);
+                const glm::dvec4 b = worldFromClip * glm::dvec4(ndc, 0.5, 1.0);
+                const glm::dvec3 origin = glm::dvec3(a) / a.w;
+                const std::optional<Hit> hit = traceSdf(origin, glm::normalize(glm::dvec3(b) / b.w - origin), sdf);
+                if (!hit) continue;
+                const double NoL = glm::dot(hit->normal, L);
+                if (NoL < -0.1 || NoL > 0.2) continue;
+                ++band;
+                int d = 0;
+                for (int c = 0; c < 3; ++c) {
+                    const size_t i = (size_t(y) * kSize + x) * 4 + size_t(c);
+                    d = std::max(d, std::abs(int(on.rgba8[i]) - int(off.rgba8[i])));
+                }
+                largest = std::max(largest, d);
+                differing += d > 1 ? 1 : 0;
+            }
+        std::printf("[ terminator ] %s: %zu of %zu band pixels differ by more than 1/255 (largest %d/255)\n", what,
+                    differing, band, largest);
+        EXPECT_GT(band, size_t(kSize));
+        EXPECT_EQ(differing, 0u) << what;
+    }
+};
+
+TEST_F(SkinTerminator, PenumbraChangesNothingAtTheTerminatorOfASphere) {
+    for (const double radiusM : {0.005, 0.02}) {
+        const Primitive sphere = makeSphere(float(radiusM), 96, 48);
+        const auto sdf = [radiusM](const glm::dvec3& p) { return glm::length(p) - radiusM; };
+        compareBand(radiusM < 0.01 ? "10 mm sphere" : "40 mm sphere", sphere, sdf, {-1.0f, -0.2f, 0.0f}, 0.0f, 0.0f);
+    }
+}
+
+TEST_F(SkinTerminator, PenumbraChangesNothingAtTheTerminatorOfATorus) {
+    const double majorM = 0.02, minorM = 0.008;
+    const Primitive torus = makeTorus(float(majorM), float(minorM), 128, 64);
+    const auto sdf = [&](const glm::dvec3& p) {
+        return glm::length(glm::dvec2(glm::length(glm::dvec2(p.x, p.z)) - majorM, p.y)) - minorM;
+    };
+    // Lit along its axis: no part of the ring shadows another.
+    compareBand("torus (20 mm, 8 mm tube)", torus, sdf, {0.0f, -1.0f, 0.0f}, 0.0f, 20.0f);
+}
+
+}  // namespace
+}  // namespace preskin::test
