@@ -9,6 +9,12 @@ of the README ("Fidelity") hold beyond the bundled scenes:
                          inner equator), casting shadows on itself, lit from the upper left;
   head_low_left.gltf     the bundled head (its files copied) under a key light from the lower left
                          front instead of the upper right;
+  head_below_behind.gltf the head under a key light from below and behind: the ears and nostrils
+                         seen from the front lit through (transmission);
+  head_grazing.gltf      the head under a key light from above that grazes the forehead (N.L near
+                         0.1 there: its terminator band crosses the brow);
+  head_studio.gltf       the head under the studio environment alone (no lights: compare takes
+                         the environment's strongest light, with its shadow, and the rest as SH);
   sphere_10mm_studio.gltf  the 10 mm sphere under the studio environment alone, no lights (for
                          `compare --trace-environment`).
 
@@ -79,6 +85,28 @@ def main():
             node["rotation"] = make_spheres.quaternion_from_minus_z_to(
                 tuple(x / math.sqrt(0.7 ** 2 + 0.45 ** 2 + 0.55 ** 2) for x in (0.7, 0.45, -0.55)))
     make_spheres.write_document(os.path.join(out, "head_low_left.gltf"), head)
+
+    # The same head under other single key lights (directions the light travels, world +Y up, the
+    # camera at +Z), and under its environment alone.
+    for name, travel in [("head_below_behind.gltf", (-0.2, 0.6, 0.75)), ("head_grazing.gltf", (-0.1, -0.97, 0.2))]:
+        head = copy_head(out)
+        length = math.sqrt(sum(x * x for x in travel))
+        for node in head["nodes"]:
+            if node.get("name") == "key":
+                node["rotation"] = make_spheres.quaternion_from_minus_z_to(tuple(x / length for x in travel))
+        make_spheres.write_document(os.path.join(out, name), head)
+    head = copy_head(out)
+    lit = [i for i, node in enumerate(head["nodes"]) if "KHR_lights_punctual" in node.get("extensions", {})]
+    head["nodes"] = [node for i, node in enumerate(head["nodes"]) if i not in lit]
+    head["extensions"].pop("KHR_lights_punctual", None)
+    head["extensionsUsed"] = [e for e in head["extensionsUsed"] if e != "KHR_lights_punctual"]
+    renumber = {old: new for new, old in enumerate(i for i in range(len(head["nodes"]) + len(lit)) if i not in lit)}
+    for scene in head["scenes"]:
+        scene["nodes"] = [renumber[i] for i in scene["nodes"] if i in renumber]
+    for node in head["nodes"]:
+        if "children" in node:
+            node["children"] = [renumber[i] for i in node["children"] if i in renumber]
+    make_spheres.write_document(os.path.join(out, "head_studio.gltf"), head)
 
     # The bundled 10 mm sphere under the studio environment alone (no lights): what the skin's SH
     # ambient gives against the traced environment (`preskin compare --trace-environment`).
