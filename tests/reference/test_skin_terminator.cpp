@@ -22,33 +22,6 @@
 namespace preskin::test {
 namespace {
 
-// A torus about the y axis: the tube of radius minorM around the circle of radius majorM.
-Primitive makeTorus(float majorM, float minorM, uint32_t segments, uint32_t rings) {
-    Primitive p;
-    const float pi = 3.14159265358979f;
-    for (uint32_t r = 0; r <= rings; ++r) {
-        const float theta = 2.0f * pi * float(r) / float(rings);  // around the tube
-        for (uint32_t s = 0; s <= segments; ++s) {
-            const float phi = 2.0f * pi * float(s) / float(segments);  // around the axis
-            const glm::vec3 radial(std::sin(phi), 0.0f, std::cos(phi));
-            Vertex v;
-            v.normalOs = std::cos(theta) * radial + std::sin(theta) * glm::vec3(0.0f, 1.0f, 0.0f);
-            v.positionOs = majorM * radial + minorM * v.normalOs;
-            v.tangentOs = glm::vec4(std::cos(phi), 0.0f, -std::sin(phi), 1.0f);
-            v.uv0 = glm::vec2(float(s) / float(segments), float(r) / float(rings));
-            p.vertices.push_back(v);
-            p.boundsOs.extend(v.positionOs);
-        }
-    }
-    for (uint32_t r = 0; r < rings; ++r)
-        for (uint32_t s = 0; s < segments; ++s) {
-            const uint32_t a = r * (segments + 1) + s;
-            const uint32_t b = a + segments + 1;
-            p.indices.insert(p.indices.end(), {a, a + 1, b, a + 1, b + 1, b});
-        }
-    return p;
-}
-
 // The first hit of a ray on a surface given by its signed distance (sphere tracing in double
 // precision) and the surface's normal there; none when the ray misses.
 struct Hit {

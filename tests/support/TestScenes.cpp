@@ -4,6 +4,24 @@
 
 namespace preskin::test {
 
+namespace {
+
+// Two triangles per cell of a (rows + 1) x (columns + 1) vertex grid, row-major; `flip` reverses
+// the winding.
+void appendGridTriangles(Primitive& p, uint32_t rows, uint32_t columns, bool flip) {
+    for (uint32_t r = 0; r < rows; ++r)
+        for (uint32_t s = 0; s < columns; ++s) {
+            const uint32_t a = r * (columns + 1) + s;
+            const uint32_t b = a + columns + 1;
+            if (flip)
+                p.indices.insert(p.indices.end(), {a, a + 1, b, a + 1, b + 1, b});
+            else
+                p.indices.insert(p.indices.end(), {a, b, a + 1, a + 1, b, b + 1});
+        }
+}
+
+}  // namespace
+
 Primitive makeSphere(float radiusM, uint32_t segments, uint32_t rings) {
     Primitive p;
     const float pi = 3.14159265358979f;
@@ -21,13 +39,28 @@ Primitive makeSphere(float radiusM, uint32_t segments, uint32_t rings) {
             p.boundsOs.extend(v.positionOs);
         }
     }
-    for (uint32_t r = 0; r < rings; ++r)
-        for (uint32_t s = 0; s < segments; ++s) {
-            const uint32_t a = r * (segments + 1) + s;
-            const uint32_t b = a + segments + 1;
-            // Counter-clockwise seen from outside.
-            p.indices.insert(p.indices.end(), {a, b, a + 1, a + 1, b, b + 1});
+    appendGridTriangles(p, rings, segments, false);  // counter-clockwise seen from outside
+    return p;
+}
+
+Primitive makeTorus(float majorM, float minorM, uint32_t segments, uint32_t rings) {
+    Primitive p;
+    const float pi = 3.14159265358979f;
+    for (uint32_t r = 0; r <= rings; ++r) {
+        const float theta = 2.0f * pi * float(r) / float(rings);  // around the tube
+        for (uint32_t s = 0; s <= segments; ++s) {
+            const float phi = 2.0f * pi * float(s) / float(segments);  // around the axis
+            const glm::vec3 radial(std::sin(phi), 0.0f, std::cos(phi));
+            Vertex v;
+            v.normalOs = std::cos(theta) * radial + std::sin(theta) * glm::vec3(0.0f, 1.0f, 0.0f);
+            v.positionOs = majorM * radial + minorM * v.normalOs;
+            v.tangentOs = glm::vec4(std::cos(phi), 0.0f, -std::sin(phi), 1.0f);
+            v.uv0 = glm::vec2(float(s) / float(segments), float(r) / float(rings));
+            p.vertices.push_back(v);
+            p.boundsOs.extend(v.positionOs);
         }
+    }
+    appendGridTriangles(p, rings, segments, true);  // its rings run the other way round: counter-clockwise outside
     return p;
 }
 
@@ -43,12 +76,7 @@ Primitive makeQuad(float sizeM, uint32_t n) {
             p.vertices.push_back(v);
             p.boundsOs.extend(v.positionOs);
         }
-    for (uint32_t y = 0; y < n; ++y)
-        for (uint32_t x = 0; x < n; ++x) {
-            const uint32_t a = y * (n + 1) + x;
-            const uint32_t b = a + n + 1;
-            p.indices.insert(p.indices.end(), {a, b, a + 1, a + 1, b, b + 1});
-        }
+    appendGridTriangles(p, n, n, false);
     return p;
 }
 

@@ -7,6 +7,8 @@ namespace preskin::test {
 
 // UV sphere of the given radius at the origin (segments around, rings pole to pole).
 Primitive makeSphere(float radiusM, uint32_t segments, uint32_t rings);
+// A torus about the y axis: the tube of radius minorM around the circle of radius majorM.
+Primitive makeTorus(float majorM, float minorM, uint32_t segments, uint32_t rings);
 // Square in the XY plane facing +Z, centred at the origin, subdivided n x n.
 Primitive makeQuad(float sizeM, uint32_t n);
 // Axis-aligned box centred at the origin with outward faces.

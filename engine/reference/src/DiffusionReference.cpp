@@ -187,7 +187,7 @@ struct DiffusionReference::Impl {
         }
         out.facesShadowLight = atX.shadow != ShadowState::NotFacing;
         out.inCastShadow = atX.shadow == ShadowState::CastShadow;
-        out.shadowLightNoL = atX.shadowLightNoL;
+        out.shadowLightNoL = irradiance->shadowLightCosine(p, flip);
         ++out.irradianceSamples;
         out.radiance += materials.emissive(m, footprint);
         return out;

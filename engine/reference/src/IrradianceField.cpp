@@ -125,16 +125,18 @@ glm::dvec3 IrradianceField::sunIrradiance(const Light& light, const SurfacePoint
     return glm::dvec3(light.color) * double(light.intensity) * (radiance * visible * solidAngle / (k * k));
 }
 
+std::optional<double> IrradianceField::shadowLightCosine(const SurfacePoint& p, bool flipNormal) const {
+    if (shadowLight_ < 0) return std::nullopt;
+    glm::dvec3 L, irradiance;
+    lightIncidence(lights_[size_t(shadowLight_)], mesh_.position(p), L, irradiance);
+    return glm::dot(flipNormal ? -mesh_.normal(p) : mesh_.normal(p), L);
+}
+
 IrradianceSample IrradianceField::at(const SurfacePoint& p, bool flipNormal) const {
     IrradianceSample out;
     const glm::dvec3 position = mesh_.position(p);
     glm::dvec3 n = mesh_.normal(p);
     if (flipNormal) n = -n;
-    if (shadowLight_ >= 0) {
-        glm::dvec3 L, irradiance;
-        lightIncidence(lights_[size_t(shadowLight_)], position, L, irradiance);
-        out.shadowLightNoL = glm::dot(n, L);
-    }
     for (size_t i = 0; i < lights_.size(); ++i) {
         const Light& light = sceneLights_[i];
         const bool sun = light.type == LightType::Directional && light.angularRadius > 0.0f;

@@ -46,7 +46,6 @@ enum class ShadowState : int8_t {
 struct IrradianceSample {
     glm::dvec3 irradiance{0.0};
     ShadowState shadow = ShadowState::NotFacing;
-    std::optional<double> shadowLightNoL;  // the normal's cosine to the shadow light (none without one)
 };
 
 class IrradianceField {
@@ -58,6 +57,8 @@ public:
 
     // flipNormal: the point is shaded from the back of a double-sided surface.
     IrradianceSample at(const SurfacePoint& p, bool flipNormal) const;
+    // The cosine of the point's normal (flipped as above) to the shadow light; none without one.
+    std::optional<double> shadowLightCosine(const SurfacePoint& p, bool flipNormal) const;
 
 private:
     glm::dvec3 shadowRayOrigin(const SurfacePoint& p, const glm::dvec3& normal, bool flipNormal) const;
