@@ -1,11 +1,13 @@
 #!/usr/bin/env bash
 # Writes the GPU kit: a self-contained folder that measures every performance goal of preskin on
-# a machine with nothing installed but a GPU driver (glibc >= 2.36, x86-64):
+# a machine with nothing installed but a GPU driver (x86-64 Linux):
 #   DIR/run.sh [--device N|NAME] [--quick] [--out FOLDER]   -> gpu-report.json, gpu-report.md
 #   DIR/bin/preskin-gpu-kit        the program (samples/gpukit), built against the core library
 #   DIR/lib/                       libpreskin and every library it and the program load beyond
 #                                  glibc, libstdc++ and libgcc (found through run.sh)
 #   DIR/lib/vulkan/libvulkan.so.1  a Vulkan loader, used only when the system has none
+#   DIR/lib/runtime/               glibc and libstdc++, used only when the system's are older
+#   DIR/lib/glvnd/                 glvnd's dispatch libraries, used only when the system has none
 #   DIR/share/preskin/             the head scenes, the studio environment, the default LUTs
 #                                  (raw tables: the core reads them without the image component)
 #   DIR/LICENSES/                  the bundled libraries' and the sample assets' licences
@@ -44,11 +46,30 @@ LD_LIBRARY_PATH="$build/engine" ldd "$build/bin/preskin-gpu-kit" | while read -r
     cp -L "$path" "$tmp/lib/$name"
     echo "$path" >>"$tmp/.sources"
 done
-loader="$(ldconfig -p | awk '/libvulkan\.so\.1 .*x86-64/ {print $NF; exit}')"
+# The C and C++ runtime, for a system whose own is older than the one the kit was built on
+# (run.sh uses it only then): glibc's loader and libraries, libstdc++, libgcc_s.
+mkdir -p "$tmp/lib/runtime"
+for name in ld-linux-x86-64.so.2 libc.so.6 libm.so.6 libdl.so.2 libpthread.so.0 librt.so.1 libstdc++.so.6 libgcc_s.so.1; do
+    path="$(ldconfig -p | awk -v n="$name" '$1 == n && /x86-64/ && !found {print $NF; found = 1}')"
+    [ -n "$path" ] && [ -f "$path" ] || { echo "gpu-kit: $name not found" >&2; exit 1; }
+    cp -L "$path" "$tmp/lib/runtime/$name"
+    echo "$path" >>"$tmp/.sources"
+done
+# glvnd's dispatch libraries (libGLdispatch, and libEGL and libOpenGL over it: none needs X11),
+# which NVIDIA's Vulkan driver (libGLX_nvidia) loads and an NVIDIA container may lack (run.sh
+# uses them only then).
+mkdir -p "$tmp/lib/glvnd"
+for name in libGLdispatch.so.0 libEGL.so.1 libOpenGL.so.0; do
+    path="$(ldconfig -p | awk -v n="$name" '$1 == n && /x86-64/ && !found {print $NF; found = 1}')"
+    [ -n "$path" ] && [ -f "$path" ] || { echo "gpu-kit: $name not found (scripts/install-deps.sh installs it)" >&2; exit 1; }
+    cp -L "$path" "$tmp/lib/glvnd/$name"
+    echo "$path" >>"$tmp/.sources"
+done
+loader="$(ldconfig -p | awk '/libvulkan\.so\.1 .*x86-64/ && !found {print $NF; found = 1}')"
 [ -n "$loader" ] || { echo "gpu-kit: no Vulkan loader (libvulkan.so.1) on this machine to pack" >&2; exit 1; }
 cp -L "$loader" "$tmp/lib/vulkan/libvulkan.so.1"
 echo "$loader" >>"$tmp/.sources"
-strip --strip-unneeded "$tmp/lib/"*.so* "$tmp/lib/vulkan/"*.so* "$exe" 2>/dev/null || true
+strip --strip-unneeded "$tmp/lib/"*.so* "$tmp/lib/vulkan/"*.so* "$tmp/lib/glvnd/"*.so* "$exe" 2>/dev/null || true
 
 # Data: the scenes the bench renders, their textures and environment, raw default LUTs.
 mkdir -p "$tmp/share/preskin/samples/assets/head"
@@ -80,8 +101,11 @@ measures preskin's performance goals on this machine's GPU (GPU timestamps per p
 of 30 frames after warm-up) and writes gpu-report.json and gpu-report.md (into this folder unless
 --out says otherwise). --quick: small sizes and 3 frames per figure, a check that the kit runs.
 --device: an index or part of the device's name (default: the best GPU). A full run takes at most
-8 minutes on an H100/H200-class GPU. Nothing is installed; the kit needs glibc >= 2.36 (x86-64),
-libstdc++ and a Vulkan driver. LICENSES/ holds the licences of what it carries.
+8 minutes on an H100/H200-class GPU. Nothing is installed; the kit needs an x86-64 Linux and a
+Vulkan driver (an NVIDIA container's driver is found under /usr/local/nvidia); it brings a Vulkan
+loader and glvnd's dispatch libraries for a system without them and, for a system with an older
+glibc or libstdc++, its own (--bundled-runtime forces it).
+LICENSES/ holds the licences of what it carries.
 EOF
 
 size=$(du -sb "$tmp" | cut -f1)

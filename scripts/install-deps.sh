@@ -11,6 +11,7 @@ packages=(
   libglm-dev libglfw3-dev libtinygltf-dev nlohmann-json3-dev libstb-dev libjpeg-dev libpng-dev libopenimageio-dev
   libimgui-dev libcli11-dev libfmt-dev libtbb-dev libembree-dev
   libgtest-dev libbenchmark-dev xvfb xauth libx11-dev
+  libglvnd0 libegl1 libglx0 libopengl0 libgl1
   python3-numpy python3-matplotlib clang libclang-rt-14-dev valgrind
 )
 for arg in "$@"; do

@@ -69,7 +69,7 @@ TEST(GpuKit, MovedKitRunsInAnEmptyEnvironmentAndReportsEveryFigure) {
     EXPECT_GE(elves.size(), 4u);  // the program, libpreskin, its libraries, the Vulkan loader
     const std::string kitRoot = fs::canonical(kit).string() + "/";
     for (const fs::path& elf : elves) {
-        const ElfClosure closure = elfClosure(elf, {kit / "lib"});
+        const ElfClosure closure = elfClosure(elf, {kit / "lib", kit / "lib" / "glvnd", kit / "lib" / "vulkan"});
         for (const std::string& problem : closure.problems) ADD_FAILURE() << elf << ": " << problem;
         for (const auto& [name, library] : closure.libraries) {
             const auto& runtime = runtimeLibraries();
@@ -78,6 +78,19 @@ TEST(GpuKit, MovedKitRunsInAnEmptyEnvironmentAndReportsEveryFigure) {
             EXPECT_TRUE(inRuntime || inKit) << elf.filename() << " loads " << name << " from " << library.path;
         }
     }
+
+    // What run.sh falls back on where the system lacks it: glvnd (NVIDIA's Vulkan driver loads
+    // it) and the C/C++ runtime; --bundled-runtime starts the program on the kit's glibc.
+    for (const char* name : {"glvnd/libGLdispatch.so.0", "glvnd/libEGL.so.1", "runtime/ld-linux-x86-64.so.2",
+                             "runtime/libc.so.6", "runtime/libstdc++.so.6", "vulkan/libvulkan.so.1"})
+        EXPECT_TRUE(fs::is_regular_file(kit / "lib" / name)) << name;
+    const ProcessResult bundled =
+        runProcess("/usr/bin/env", {"-i", "LD_DEBUG=libs", (kit / "run.sh").string(), "--bundled-runtime", "--help"},
+                   {}, work, 60.0);
+    EXPECT_EQ(bundled.exitCode, 0) << bundled.err.substr(0, 2000);
+    EXPECT_NE(bundled.out.find("preskin-gpu-kit"), std::string::npos) << bundled.out;
+    const std::string kitLibc = "calling init: " + (fs::canonical(kit) / "lib" / "runtime" / "libc.so.6").string();
+    EXPECT_NE(bundled.err.find(kitLibc), std::string::npos) << bundled.err.substr(0, 2000);
 
     // The quick run in an empty environment, validation on.
     const fs::path report = work / "report";
