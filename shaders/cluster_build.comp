@@ -6,7 +6,9 @@
 //     cone's spherical sector) and the box of froxels it may touch;
 //   pass 1 (kClusterPassAssign), one workgroup per screen tile, one invocation per depth slice:
 //     the lights whose box covers the tile are marked in a shared bit mask (batches of
-//     kClusterBatchLights), then each invocation tests them in ascending order against its
+//     kClusterBatchLights; consecutive invocations read consecutive lights' boxes, so that a
+//     workgroup's reads coalesce; a light must also reach one of the slices where surfaces
+//     are in the tile, and a tile and 32-slice chunk without surfaces tests no light), then each invocation tests them in ascending order against its
 //     froxel: the bounding sphere cut to the slice, then to the row (each cut bounds the light's
 //     part on the froxel's side of a plane), then against the column's slab; spots also test
 //     their cone against the froxel's bounding sphere (Wronski, "Cull that cone!", 2017). The
@@ -35,8 +37,14 @@ layout(std430, set = 0, binding = kClusterBindingRanges) writeonly buffer Ranges
 layout(std430, set = 0, binding = kClusterBindingIndices) writeonly buffer Indices { uint indices[]; };
 layout(std430, set = 0, binding = kClusterBindingCounters) buffer Counters { ClusterCounters counters; };
 layout(std430, set = 0, binding = kClusterBindingSurfaces) readonly buffer Surfaces { vec4 surfaces[]; };
+layout(std430, set = 0, binding = kClusterBindingTileBoxes) buffer TileBoxes { uvec4 tileBoxes[]; };
 
-shared uint candidateMask[kClusterAssignGroupSize];
+// The candidates of the first kClusterCachedBatches - 1 batches, kept from the counting sweep for
+// the writing sweep; later batches share the last slot and are marked again.
+shared uint candidateMask[kClusterCachedBatches * kClusterAssignGroupSize];
+shared uint columnMask[kClusterAssignGroupSize];
+shared uint occupiedLo;  // the slices of this workgroup's chunk with surfaces in its tile
+shared uint occupiedHi;
 
 float planeDistance(vec4 plane, vec3 p) { return dot(plane.xyz, p) + plane.w; }
 vec4 columnPlane(uint i) { return geometry[params.geometryOffsets.x + i]; }
@@ -122,6 +130,7 @@ void volumePass() {
     v.axisCos = vec4(axis, cosOuter);
     v.box = uvec4(lo.x | (hi.x << 16), lo.y | (hi.y << 16), lo.z | (hi.z << 16), flags | (empty ? kClusterVolumeEmpty : 0u));
     volumes[i] = v;
+    tileBoxes[i] = empty ? uvec4(0xffffu, 0u, 0u, 0u) : uvec4(v.box.xyz, 0u);
 }
 
 // Cuts the sphere to the inner side of a plane (inner = +1: distance >= 0, -1: <= 0).
@@ -228,19 +237,27 @@ bool froxelTouched(uint i, Froxel fr) {
 }
 
 // Marks, for this workgroup's tile, which lights of [base, base + kClusterBatchLights) have a
-// froxel box covering it. Every invocation calls this (it holds barriers).
-void markCandidates(uint base, uvec2 tile, uint lane) {
+// froxel box covering it and slices zLo..zHi: bit b of word w is light base + 32 w + b.
+// Invocation `lane` reads the lights base + 32 w + lane (consecutive invocations, consecutive
+// boxes) into bit w of its own column word, then makes word `lane` of the mask by transposing
+// the 32 x 32 bits (no atomics), into mask slot `slot`. Every invocation calls this (it holds
+// barriers).
+void markCandidates(uint base, uint slot, uvec2 tile, uint zLo, uint zHi, uint lane) {
+    barrier();
+    uint column = 0u;
+    for (uint w = 0u; w < kClusterAssignGroupSize; ++w) {
+        uint i = base + w * 32u + lane;
+        if (i >= params.lightInfo.y) break;
+        uvec3 box = tileBoxes[i].xyz;
+        if (tile.x >= (box.x & 0xffffu) && tile.x <= (box.x >> 16) && tile.y >= (box.y & 0xffffu) &&
+            tile.y <= (box.y >> 16) && zHi >= (box.z & 0xffffu) && zLo <= (box.z >> 16))
+            column |= 1u << w;
+    }
+    columnMask[lane] = column;
     barrier();
     uint word = 0u;
-    for (uint b = 0u; b < 32u; ++b) {
-        uint i = base + lane * 32u + b;
-        if (i >= params.lightInfo.y) break;
-        uvec4 box = volumes[i].box;
-        if ((box.w & kClusterVolumeEmpty) == 0u && tile.x >= (box.x & 0xffffu) && tile.x <= (box.x >> 16) &&
-            tile.y >= (box.y & 0xffffu) && tile.y <= (box.y >> 16))
-            word |= 1u << b;
-    }
-    candidateMask[lane] = word;
+    for (uint b = 0u; b < 32u; ++b) word |= ((columnMask[b] >> lane) & 1u) << b;
+    candidateMask[slot * kClusterAssignGroupSize + lane] = word;
     barrier();
 }
 
@@ -277,12 +294,30 @@ void assignPass() {
             occupied = fr.bandD0 <= fr.bandD1;
         }
 
+        // The chunk's occupied slices: lights reaching none of them are not candidates, and a
+        // chunk without surfaces in this tile tests no light.
+        barrier();
+        if (lane == 0u) {
+            occupiedLo = 0xffffffffu;
+            occupiedHi = 0u;
+        }
+        barrier();
+        if (occupied) {
+            atomicMin(occupiedLo, z);
+            atomicMax(occupiedHi, z);
+        }
+        barrier();
+        uint zLo = occupiedLo;
+        uint zHi = occupiedHi;
+        uint lightsToTest = zLo <= zHi ? localCount : 0u;
+
         uint found = 0u;
-        for (uint base = 0u; base < localCount; base += kClusterBatchLights) {
-            markCandidates(base, tile, lane);
+        for (uint base = 0u; base < lightsToTest; base += kClusterBatchLights) {
+            uint slot = min(base / kClusterBatchLights, kClusterCachedBatches - 1u);
+            markCandidates(base, slot, tile, zLo, zHi, lane);
             if (!occupied) continue;
             for (uint w = 0u; w < kClusterAssignGroupSize; ++w) {
-                uint mask = candidateMask[w];
+                uint mask = candidateMask[slot * kClusterAssignGroupSize + w];
                 while (mask != 0u) {
                     uint bit = uint(findLSB(mask));
                     mask &= mask - 1u;
@@ -304,11 +339,14 @@ void assignPass() {
         }
 
         uint written = 0u;
-        for (uint base = 0u; base < localCount; base += kClusterBatchLights) {
-            // With one batch the mask from the counting sweep is still in place.
-            if (localCount > kClusterBatchLights) markCandidates(base, tile, lane);
+        for (uint base = 0u; base < lightsToTest; base += kClusterBatchLights) {
+            // The counting sweep's masks are still in place, but for the batches sharing the last slot.
+            uint batch = base / kClusterBatchLights;
+            uint slot = min(batch, kClusterCachedBatches - 1u);
+            if (batch >= kClusterCachedBatches - 1u && lightsToTest > kClusterCachedBatches * kClusterBatchLights)
+                markCandidates(base, slot, tile, zLo, zHi, lane);
             for (uint w = 0u; w < kClusterAssignGroupSize && written < keep; ++w) {
-                uint mask = candidateMask[w];
+                uint mask = candidateMask[slot * kClusterAssignGroupSize + w];
                 while (mask != 0u && written < keep) {
                     uint bit = uint(findLSB(mask));
                     mask &= mask - 1u;

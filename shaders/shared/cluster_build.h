@@ -19,6 +19,9 @@ PRESKIN_CONST(uint, kClusterBindingCounters, 6)  // ClusterCounters
 PRESKIN_CONST(uint, kClusterBindingSurfaces, 7)  // vec4[]: where the surfaces are (slicing.z = 1): per froxel
                                                  // (depth min, max, along min, max), then per tile the
                                                  // slab's axis (w = 1; 0: none), engine/src/lights/ClusterSurfaces.h
+PRESKIN_CONST(uint, kClusterBindingTileBoxes, 8)  // uvec4 per local light: ClusterLightVolume.box's xyz, the
+                                                  // froxel box (pass 0 writes; empty: lo.x > hi.x), which
+                                                  // pass 1 reads for every tile, packed apart from the rest
 
 // Specialization constant 0 selects the pass.
 PRESKIN_CONST(uint, kClusterSpecPass, 0)
@@ -28,6 +31,9 @@ PRESKIN_CONST(uint, kClusterVolumeGroupSize, 64)
 PRESKIN_CONST(uint, kClusterAssignGroupSize, 32)
 // Lights tested against a tile per batch: kClusterAssignGroupSize words of 32 bits.
 PRESKIN_CONST(uint, kClusterBatchLights, 1024)
+// Batches whose candidates the assign pass keeps in shared memory between its two sweeps (8 KiB:
+// 65,536 lights marked once; beyond, the last slot's batches are marked again).
+PRESKIN_CONST(uint, kClusterCachedBatches, 64)
 
 // ClusterLightVolume.box.w flags.
 PRESKIN_CONST(uint, kClusterVolumeCone, 1)

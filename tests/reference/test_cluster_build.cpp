@@ -12,6 +12,7 @@
 #include "support/TestScenes.h"
 
 #include "lights/ClusterBuilder.h"
+#include "shared/cluster_build.h"
 #include "shared/gpu_types.h"
 
 #include <preskin/ClusterGrid.h>
@@ -384,6 +385,46 @@ TEST_F(ClusterBuildGpu, ComputeBuildWithSurfacesMatchesCpuBuild) {
         std::printf(
             "[ clusters ] surfaces, outsidePx %.0f: CPU %zu, compute %zu entries, %zu differ; whole froxels %zu\n",
             double(outsidePx), cpu.indices.size(), gpu.indices.size(), differing, whole.indices.size());
+    }
+}
+
+// Past one batch of candidates (kClusterBatchLights) and past the batches the assign pass keeps
+// between its two sweeps (kClusterCachedBatches, after which batches are marked again), with
+// whole froxels and with the surfaces (whose empty slices and tiles test no light): the compute
+// build lists what the CPU build lists, lights of the last batches included.
+TEST_F(ClusterBuildGpu, ComputeBuildMatchesCpuBuildOverManyBatches) {
+    const View view = testView();
+    const Scene scene = testScene(false);
+    const SceneTriangles triangles(scene);
+    const ClusterSurfaces surfaces = triangles.surfaces(0.0f);
+    ClusterSettings settings = gridSettings();
+    settings.fitDepthToScene = true;
+    for (uint32_t count :
+         {3 * gpu::kClusterBatchLights + 17, (gpu::kClusterCachedBatches + 2) * gpu::kClusterBatchLights + 5}) {
+        std::vector<Light> lights = randomLights(count, 40 + count);
+        // A few lights per froxel at every count (volume per light inversely as the count).
+        const float scale = 0.2f * std::cbrt(3000.0f / float(count));
+        for (size_t i = 1; i < lights.size(); ++i) lights[i].range *= scale;
+        for (bool withSurfaces : {false, true}) {
+            const ClusterSurfaces given = withSurfaces ? surfaces : ClusterSurfaces{};
+            const ClusterGrid cpu =
+                buildLists(context(), settings, ClusterBuild::Cpu, view, lights, scene.worldBounds(), given);
+            const ClusterGrid gpu =
+                buildLists(context(), settings, ClusterBuild::Gpu, view, lights, scene.worldBounds(), given);
+            EXPECT_EQ(gpu.overflowedClusters, cpu.overflowedClusters);  // the per-froxel cap: lowest indices kept
+            EXPECT_EQ(gpu.requestedIndices, cpu.requestedIndices);
+            const size_t differing = differingEntries(cpu, gpu);
+            EXPECT_LE(double(differing), 1e-3 * double(cpu.indices.size()))
+                << differing << " of " << cpu.indices.size() << " entries differ (" << count << " lights)";
+            EXPECT_GT(cpu.indices.size(), size_t(count) / 100);
+            // Lights of the later batches (of the shared slot where there are more than it keeps).
+            const uint32_t later =
+                std::min(count / gpu::kClusterBatchLights, gpu::kClusterCachedBatches - 1u) * gpu::kClusterBatchLights;
+            EXPECT_TRUE(std::any_of(gpu.indices.begin(), gpu.indices.end(), [&](uint32_t i) { return i > later; }))
+                << "no light past index " << later << " listed (" << count << " lights)";
+            std::printf("[ clusters ] %u lights, %s: CPU %zu, compute %zu entries, %zu differ\n", count,
+                        withSurfaces ? "surfaces" : "whole froxels", cpu.indices.size(), gpu.indices.size(), differing);
+        }
     }
 }
 

@@ -63,11 +63,12 @@ void ClusterBuilder::createPipelines() {
         {gpu::kClusterBindingIndices, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, cs},
         {gpu::kClusterBindingCounters, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, cs},
         {gpu::kClusterBindingSurfaces, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, cs},
+        {gpu::kClusterBindingTileBoxes, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, cs},
     };
     setLayout_ = vk::createSetLayout(device_, bindings);
     pipelineLayout_ = vk::createPipelineLayout(device_, std::span(&setLayout_, 1), 0, 0);
     const VkDescriptorPoolSize sizes[] = {{VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, kSlots},
-                                          {VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 7 * kSlots}};
+                                          {VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 8 * kSlots}};
     pool_ = vk::createDescriptorPool(device_, sizes, kSlots);
     for (Slot& s : slots_) s.set = vk::allocateDescriptorSet(device_, pool_, setLayout_);
     const auto code = shaders::spirv("cluster_build.comp");
@@ -174,6 +175,7 @@ void ClusterBuilder::prepareGpu(Slot& s, const ClusterSettings& settings, const 
     ensureBuffer(device_, s.counters, sizeof(gpu::ClusterCounters), kStorage | VK_BUFFER_USAGE_TRANSFER_DST_BIT, true);
     ensureBuffer(device_, s.volumes, VkDeviceSize(std::max(localCount, 1u)) * sizeof(gpu::ClusterLightVolume), kStorage,
                  false);
+    ensureBuffer(device_, s.tileBoxes, VkDeviceSize(std::max(localCount, 1u)) * sizeof(glm::uvec4), kStorage, false);
     ensureBuffer(device_, s.gpuRanges, froxels * sizeof(glm::uvec2), kStorage | VK_BUFFER_USAGE_TRANSFER_SRC_BIT,
                  false);
     ensureBuffer(device_, s.gpuIndices, VkDeviceSize(s.indexCapacity) * sizeof(uint32_t),
@@ -191,12 +193,13 @@ void ClusterBuilder::prepareGpu(Slot& s, const ClusterSettings& settings, const 
         {s.geometry.handle(), 0, VK_WHOLE_SIZE},  {s.volumes.handle(), 0, VK_WHOLE_SIZE},
         {s.gpuRanges.handle(), 0, VK_WHOLE_SIZE}, {s.gpuIndices.handle(), 0, VK_WHOLE_SIZE},
         {s.counters.handle(), 0, VK_WHOLE_SIZE},  {s.surfaces.handle(), 0, VK_WHOLE_SIZE},
+        {s.tileBoxes.handle(), 0, VK_WHOLE_SIZE},
     };
-    const uint32_t bindings[] = {gpu::kClusterBindingParams,   gpu::kClusterBindingLights,
-                                 gpu::kClusterBindingGeometry, gpu::kClusterBindingVolumes,
-                                 gpu::kClusterBindingRanges,   gpu::kClusterBindingIndices,
-                                 gpu::kClusterBindingCounters, gpu::kClusterBindingSurfaces};
-    std::array<VkWriteDescriptorSet, 8> writes{};
+    const uint32_t bindings[] = {
+        gpu::kClusterBindingParams,   gpu::kClusterBindingLights,   gpu::kClusterBindingGeometry,
+        gpu::kClusterBindingVolumes,  gpu::kClusterBindingRanges,   gpu::kClusterBindingIndices,
+        gpu::kClusterBindingCounters, gpu::kClusterBindingSurfaces, gpu::kClusterBindingTileBoxes};
+    std::array<VkWriteDescriptorSet, 9> writes{};
     for (size_t i = 0; i < writes.size(); ++i) {
         writes[i] = {VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET};
         writes[i].dstSet = s.set;
@@ -250,7 +253,8 @@ const vk::Buffer& ClusterBuilder::indices(uint32_t slot) {
 uint64_t ClusterBuilder::gridBytes(uint32_t slot) const {
     const Slot& s = slots_[slot];
     auto bytes = [](const vk::Buffer& b) -> uint64_t { return b ? b.size() : 0; };
-    if (s.gpu) return bytes(s.gpuRanges) + bytes(s.gpuIndices) + bytes(s.volumes) + bytes(s.surfaces);
+    if (s.gpu)
+        return bytes(s.gpuRanges) + bytes(s.gpuIndices) + bytes(s.volumes) + bytes(s.tileBoxes) + bytes(s.surfaces);
     return bytes(s.cpuRanges) + bytes(s.cpuIndices) + froxelSurfaces_.values.capacity() * sizeof(glm::vec4) +
         froxelSurfaces_.occupiedBits.capacity() * sizeof(uint64_t);
 }

@@ -80,6 +80,7 @@ private:
         vk::Buffer params, geometry, counters;      // host-visible, compute build
         vk::Buffer surfaces;                        // host-visible, compute build: per froxel (ClusterSurfaces.h)
         vk::Buffer volumes, gpuRanges, gpuIndices;  // device-local, compute build
+        vk::Buffer tileBoxes;                       // device-local, compute build: each light's tile box
         VkDescriptorSet set = VK_NULL_HANDLE;
     };
 
