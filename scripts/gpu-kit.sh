@@ -79,6 +79,8 @@ for f in head.gltf head.bin head_animated.gltf head_animated.bin Map-COL.jpg Map
     cp "samples/assets/head/$f" "$tmp/share/preskin/samples/assets/head/"
 done
 "$build/bin/preskin" bake --profile deon --raw --out "$tmp/share/preskin/luts" >/dev/null
+# The commit the kit is made from (the reports name it).
+echo "$(git describe --always --dirty 2>/dev/null || echo unknown) ($(date -u +%Y-%m-%d))" >"$tmp/share/preskin/kit-source.txt"
 
 # Licences of what the kit carries.
 cp samples/assets/head/CREDITS.md "$tmp/LICENSES/head-CREDITS.md"

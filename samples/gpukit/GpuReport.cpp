@@ -79,6 +79,7 @@ ojson makeReport(const json& bench, const ReportInfo& info) {
     r["mode"] = info.mode;
     r["date"] = info.date;
     r["command"] = info.command;
+    r["source"] = info.source;
     r["elapsed_s"] = info.elapsedS;
     r["device"] = at(bench, {"device"});
     r["driver"] = at(bench, {"driver"});
@@ -203,9 +204,11 @@ ojson makeReport(const json& bench, const ReportInfo& info) {
 std::string reportMarkdown(const ojson& r) {
     std::ostringstream md;
     md << "# preskin GPU report\n\n";
-    md << fmt::format("- device: {}\n- driver: {}\n- date: {}\n- mode: {}\n- command: `{}`\n- elapsed: {:.0f} s\n\n",
-                      r["device"].get<std::string>(), r["driver"].get<std::string>(), r["date"].get<std::string>(),
-                      r["mode"].get<std::string>(), r["command"].get<std::string>(), r["elapsed_s"].get<double>());
+    md << fmt::format(
+        "- device: {}\n- driver: {}\n- date: {}\n- mode: {}\n- command: `{}`\n- kit made from: {}\n- elapsed: {:.0f} s\n\n",
+        r["device"].get<std::string>(), r["driver"].get<std::string>(), r["date"].get<std::string>(),
+        r["mode"].get<std::string>(), r["command"].get<std::string>(), r.value("source", std::string("-")),
+        r["elapsed_s"].get<double>());
     md << r["timing"].get<std::string>()
        << ".\n\n## Goals\n\n| goal | target | measured | holds |\n| --- | --- | --- | --- |\n";
     for (const auto& g : r["goals"])

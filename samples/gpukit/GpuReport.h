@@ -15,6 +15,7 @@ struct ReportInfo {
     std::string mode;     // "full" or "quick"
     std::string date;     // ISO 8601, UTC
     double elapsedS = 0.0;
+    std::string source;  // what the kit was made from (scripts/gpu-kit.sh: the commit), or "a build folder"
 };
 
 // The report from the bench's JSON. Throws std::runtime_error naming a figure the bench did not

@@ -15,6 +15,7 @@
 
 #include "BenchMeasure.h"  // samples/bench
 #include "CommandLine.h"   // samples/common
+#include "Options.h"       // samples/common
 
 #include <preskin/Error.h>
 #include <preskin/OutputFile.h>
@@ -25,6 +26,7 @@
 #include <chrono>
 #include <ctime>
 #include <filesystem>
+#include <fstream>
 #include <string>
 
 namespace {
@@ -92,6 +94,9 @@ void run(const KitOptions& k, const std::string& command) {
     info.mode = k.quick ? "quick" : "full";
     info.date = utcNow();
     info.elapsedS = std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
+    // scripts/gpu-kit.sh writes the commit the kit was made from beside its data.
+    std::ifstream sourceFile(preskin::cli::dataDir() / "kit-source.txt");
+    if (!std::getline(sourceFile, info.source) || info.source.empty()) info.source = "a build folder";
     nlohmann::ordered_json report;
     try {
         report = preskin::gpukit::makeReport(nlohmann::json::parse(benchJson), info);

@@ -106,6 +106,7 @@ TEST(GpuKit, MovedKitRunsInAnEmptyEnvironmentAndReportsEveryFigure) {
     EXPECT_EQ(r.value("mode", ""), "quick");
     EXPECT_NE(r.value("device", "").find("llvmpipe"), std::string::npos);
     EXPECT_FALSE(r.value("driver", "").empty());
+    EXPECT_NE(r.value("source", "").find(" (20"), std::string::npos) << r.value("source", "");  // commit (date)
     size_t numbers = 0;
     for (const char* section : {"head", "vr", "lights", "animation", "goals"}) {
         ASSERT_TRUE(r.contains(section)) << section;
