@@ -68,17 +68,12 @@ vec2 preskinDiffuseRow(LutMapping m, sampler2DArray diffuseLut, float curvatureP
 // Pre-integrated diffuse, replacing saturate(NoL) per channel: red at NoL.r, green at NoL.g,
 // blue at NoL.b (the per-channel prefiltered normals; pass one NoL three times for RGB at one
 // angle), on row `row` (preskinDiffuseRow) of layer `layer`.
-// imageSize: the table's textureSize, found once per fragment (preskinDiffuseRows) rather than
-// per light (a size query goes through a GPU's texture unit like a fetch).
-vec3 preskinDiffuseLut(LutMapping m, vec2 row, vec2 imageSize, sampler2DArray diffuseLut, float layer, vec3 NoL) {
+vec3 preskinDiffuseLut(LutMapping m, vec2 row, sampler2DArray diffuseLut, float layer, vec3 NoL) {
+    vec2 imageSize = vec2(textureSize(diffuseLut, 0).xy);
     float width = imageSize.x / 3.0;
     return vec3(preskinLutGather(diffuseLut, imageSize, 0.0, preskinLutAxis(preskinDiffuseLutU(m, NoL.r), width), row, layer),
                 preskinLutGather(diffuseLut, imageSize, 1.0, preskinLutAxis(preskinDiffuseLutU(m, NoL.g), width), row, layer),
                 preskinLutGather(diffuseLut, imageSize, 2.0, preskinLutAxis(preskinDiffuseLutU(m, NoL.b), width), row, layer));
-}
-
-vec3 preskinDiffuseLut(LutMapping m, vec2 row, sampler2DArray diffuseLut, float layer, vec3 NoL) {
-    return preskinDiffuseLut(m, row, vec2(textureSize(diffuseLut, 0).xy), diffuseLut, layer, NoL);
 }
 
 // The same at one curvature (finds the row on every call).
@@ -134,12 +129,10 @@ float preskinMixPatchMm(PreskinProfileMix p) {
 struct PreskinDiffuseRows {
     vec4 y0;
     vec4 fy;
-    vec2 imageSize;  // the table's textureSize
 };
 
 PreskinDiffuseRows preskinDiffuseRows(PreskinProfileMix p, sampler2DArray diffuseLut, float curvaturePerMm) {
     PreskinDiffuseRows rows;
-    rows.imageSize = vec2(textureSize(diffuseLut, 0).xy);
     vec2 row = preskinDiffuseRow(p.mapping[0], diffuseLut, curvaturePerMm);
     rows.y0 = vec4(row.x);
     rows.fy = vec4(row.y);
@@ -155,12 +148,11 @@ PreskinDiffuseRows preskinDiffuseRows(PreskinProfileMix p, sampler2DArray diffus
 // compiled where PRESKIN_PROFILE_MIX_MAX is 1). With the rows found once per fragment
 // (preskinDiffuseRows), for a loop over lights:
 vec3 preskinDiffuseLut(PreskinProfileMix p, PreskinDiffuseRows rows, sampler2DArray diffuseLut, vec3 NoL) {
-    vec3 sum = p.weight.x *
-               preskinDiffuseLut(p.mapping[0], vec2(rows.y0.x, rows.fy.x), rows.imageSize, diffuseLut, p.layer.x, NoL);
+    vec3 sum = p.weight.x * preskinDiffuseLut(p.mapping[0], vec2(rows.y0.x, rows.fy.x), diffuseLut, p.layer.x, NoL);
     if (int(PRESKIN_PROFILE_MIX_MAX) > 1) for (int i = 1; i < p.count; ++i) {
         if (p.weight[i] <= 0.0) continue;
-        sum += p.weight[i] * preskinDiffuseLut(preskinMixMapping(p, i), vec2(rows.y0[i], rows.fy[i]), rows.imageSize,
-                                               diffuseLut, p.layer[i], NoL);
+        sum += p.weight[i] *
+               preskinDiffuseLut(preskinMixMapping(p, i), vec2(rows.y0[i], rows.fy[i]), diffuseLut, p.layer[i], NoL);
     }
     return sum;
 }
