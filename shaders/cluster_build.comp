@@ -1,18 +1,23 @@
 #version 460
-// cluster_build.comp: the compute build of the light grid (froxels), two passes selected by a
-// specialization constant:
+// cluster_build.comp: the compute build of the light grid (froxels), three passes selected by a
+// specialization constant, recorded in this order:
 //   pass 0 (kClusterPassVolumes), one invocation per local light: the light in view space, its
 //     bounding sphere (the range sphere, or for spots under 60 degrees the sphere around the
-//     cone's spherical sector) and the box of froxels it may touch;
+//     cone's spherical sector) and the box of froxels it may touch (also on its own, 16 bytes a
+//     light, for the passes that read every light's);
+//   pass 2 (kClusterPassBlocks), one workgroup per block of kClusterBlockTiles^2 tiles: the
+//     lights whose box meets the block, in ascending order, into the block's list (a list that
+//     does not fit its share of the buffer is marked, and its tiles read every light);
 //   pass 1 (kClusterPassAssign), one workgroup per screen tile, one invocation per depth slice:
-//     the lights whose box covers the tile are marked in a shared bit mask (batches of
-//     kClusterBatchLights; consecutive invocations read consecutive lights' boxes, so that a
-//     workgroup's reads coalesce; a light must also reach one of the slices where surfaces
-//     are in the tile, and a tile and 32-slice chunk without surfaces tests no light), then each invocation tests them in ascending order against its
-//     froxel: the bounding sphere cut to the slice, then to the row (each cut bounds the light's
-//     part on the froxel's side of a plane), then against the column's slab; spots also test
-//     their cone against the froxel's bounding sphere (Wronski, "Cull that cone!", 2017). The
-//     first sweep counts, an atomic reserves the froxel's range, a second sweep writes. With the
+//     of its block's lights, those whose box covers the tile and reaches one of the slices where
+//     surfaces are in it are marked in a shared bit mask (batches of kClusterBatchLights;
+//     consecutive invocations read consecutive boxes, so a workgroup's reads coalesce; a tile
+//     and 32-slice chunk without surfaces tests no light), then each invocation tests them in
+//     ascending order against its froxel: the bounding sphere cut to the slice, then to the row
+//     (each cut bounds the light's part on the froxel's side of a plane), then against the
+//     column's slab; spots also test their cone against the froxel's bounding sphere (Wronski,
+//     "Cull that cone!", 2017). The first sweep counts, an atomic reserves the froxel's range, a
+//     second sweep writes (the masks of the first batches kept from the first). With the
 //     surfaces per froxel (slicing.z = 1, engine/src/lights/ClusterSurfaces.h) the sphere is first
 //     cut to their slab, its depth slab is the part of the slice they occupy, and a froxel
 //     without surfaces lists nothing.
@@ -38,6 +43,8 @@ layout(std430, set = 0, binding = kClusterBindingIndices) writeonly buffer Indic
 layout(std430, set = 0, binding = kClusterBindingCounters) buffer Counters { ClusterCounters counters; };
 layout(std430, set = 0, binding = kClusterBindingSurfaces) readonly buffer Surfaces { vec4 surfaces[]; };
 layout(std430, set = 0, binding = kClusterBindingTileBoxes) buffer TileBoxes { uvec4 tileBoxes[]; };
+layout(std430, set = 0, binding = kClusterBindingBlockRanges) buffer BlockRanges { uvec2 blockRanges[]; };
+layout(std430, set = 0, binding = kClusterBindingBlockIndices) buffer BlockIndices { uint blockIndices[]; };
 
 // The candidates of the first kClusterCachedBatches - 1 batches, kept from the counting sweep for
 // the writing sweep; later batches share the last slot and are marked again.
@@ -236,21 +243,30 @@ bool froxelTouched(uint i, Froxel fr) {
     return coneReachesFroxel(v, f.xy, coneD0, coneD1);
 }
 
-// Marks, for this workgroup's tile, which lights of [base, base + kClusterBatchLights) have a
-// froxel box covering it and slices zLo..zHi: bit b of word w is light base + 32 w + b.
-// Invocation `lane` reads the lights base + 32 w + lane (consecutive invocations, consecutive
-// boxes) into bit w of its own column word, then makes word `lane` of the mask by transposing
-// the 32 x 32 bits (no atomics), into mask slot `slot`. Every invocation calls this (it holds
-// barriers).
-void markCandidates(uint base, uint slot, uvec2 tile, uint zLo, uint zHi, uint lane) {
+// The lights a workgroup tests: positions 0 .. count - 1 of its block's list (listOffset into
+// blockIndices), or every local light (listed false: position = light).
+struct Candidates {
+    bool listed;
+    uint listOffset;
+    uint count;
+};
+
+uint candidateLight(Candidates c, uint position) { return c.listed ? blockIndices[c.listOffset + position] : position; }
+
+// Marks which candidates of positions [base, base + kClusterBatchLights) have a froxel box that
+// meets tiles rectLo..rectHi and slices zLo..zHi: bit b of word w is position base + 32 w + b, in
+// mask slot `slot`. Invocation `lane` reads positions base + 32 w + lane (consecutive invocations,
+// consecutive boxes) into bit w of its own column word, then makes word `lane` of the mask by
+// transposing the 32 x 32 bits (no atomics). Every invocation calls this (it holds barriers).
+void markCandidates(Candidates c, uint base, uint slot, uvec2 rectLo, uvec2 rectHi, uint zLo, uint zHi, uint lane) {
     barrier();
     uint column = 0u;
     for (uint w = 0u; w < kClusterAssignGroupSize; ++w) {
-        uint i = base + w * 32u + lane;
-        if (i >= params.lightInfo.y) break;
-        uvec3 box = tileBoxes[i].xyz;
-        if (tile.x >= (box.x & 0xffffu) && tile.x <= (box.x >> 16) && tile.y >= (box.y & 0xffffu) &&
-            tile.y <= (box.y >> 16) && zHi >= (box.z & 0xffffu) && zLo <= (box.z >> 16))
+        uint position = base + w * 32u + lane;
+        if (position >= c.count) break;
+        uvec3 box = tileBoxes[candidateLight(c, position)].xyz;
+        if (rectHi.x >= (box.x & 0xffffu) && rectLo.x <= (box.x >> 16) && rectHi.y >= (box.y & 0xffffu) &&
+            rectLo.y <= (box.y >> 16) && zHi >= (box.z & 0xffffu) && zLo <= (box.z >> 16))
             column |= 1u << w;
     }
     columnMask[lane] = column;
@@ -259,6 +275,61 @@ void markCandidates(uint base, uint slot, uvec2 tile, uint zLo, uint zHi, uint l
     for (uint b = 0u; b < 32u; ++b) word |= ((columnMask[b] >> lane) & 1u) << b;
     candidateMask[slot * kClusterAssignGroupSize + lane] = word;
     barrier();
+}
+
+// Does the writing sweep mark batch `batch` again (its slot shared with later batches)?
+bool markedAgain(uint batch, uint count) {
+    return batch >= kClusterCachedBatches - 1u && count > kClusterCachedBatches * kClusterBatchLights;
+}
+
+// Pass 2: the local lights whose froxel box meets this workgroup's block of tiles, in ascending
+// order, into the block list (a count sweep, an atomic reserving the block's range, a writing
+// sweep); a block whose list does not fit is marked kClusterBlockOverflow and its tiles test
+// every light.
+void blocksPass() {
+    uint lane = gl_LocalInvocationIndex;
+    uvec2 block = gl_WorkGroupID.xy;
+    uvec2 rectLo = block * kClusterBlockTiles;
+    uvec2 rectHi = min(rectLo + kClusterBlockTiles - 1u, params.dims.xy - 1u);
+    uint blockIndex = block.y * gl_NumWorkGroups.x + block.x;
+    Candidates all = Candidates(false, 0u, params.lightInfo.y);
+    uint total = 0u;
+    for (uint base = 0u; base < all.count; base += kClusterBatchLights) {
+        uint slot = min(base / kClusterBatchLights, kClusterCachedBatches - 1u);
+        markCandidates(all, base, slot, rectLo, rectHi, 0u, params.dims.z - 1u, lane);
+        for (uint w = 0u; w < kClusterAssignGroupSize; ++w) total += bitCount(candidateMask[slot * kClusterAssignGroupSize + w]);
+    }
+    if (lane == 0u) {
+        uint offset = total > 0u ? atomicAdd(counters.values.w, total) : 0u;
+        bool fits = offset + total <= params.lightInfo.w && offset + total >= offset;
+        blockRanges[blockIndex] = uvec2(fits ? offset : 0u, fits ? total : kClusterBlockOverflow);
+        columnMask[0] = fits ? offset : kClusterBlockOverflow;
+    }
+    barrier();
+    uint offset = columnMask[0];
+    if (offset == kClusterBlockOverflow || total == 0u) return;
+    uint written = 0u;
+    for (uint base = 0u; base < all.count; base += kClusterBatchLights) {
+        uint batch = base / kClusterBatchLights;
+        uint slot = min(batch, kClusterCachedBatches - 1u);
+        if (markedAgain(batch, all.count)) markCandidates(all, base, slot, rectLo, rectHi, 0u, params.dims.z - 1u, lane);
+        // Word `lane`'s lights go after the lights of the words before it.
+        uint before = 0u;
+        uint inBatch = 0u;
+        for (uint w = 0u; w < kClusterAssignGroupSize; ++w) {
+            uint n = bitCount(candidateMask[slot * kClusterAssignGroupSize + w]);
+            before += w < lane ? n : 0u;
+            inBatch += n;
+        }
+        uint mask = candidateMask[slot * kClusterAssignGroupSize + lane];
+        uint at = offset + written + before;
+        while (mask != 0u) {
+            uint bit = uint(findLSB(mask));
+            mask &= mask - 1u;
+            blockIndices[at++] = base + lane * 32u + bit;
+        }
+        written += inBatch;
+    }
 }
 
 void assignPass() {
@@ -309,19 +380,22 @@ void assignPass() {
         barrier();
         uint zLo = occupiedLo;
         uint zHi = occupiedHi;
-        uint lightsToTest = zLo <= zHi ? localCount : 0u;
+        Candidates c = Candidates(false, 0u, zLo <= zHi ? localCount : 0u);
+        uvec2 listRange = blockRanges[(tile.y / kClusterBlockTiles) * ((params.dims.x + kClusterBlockTiles - 1u) / kClusterBlockTiles) +
+                                      tile.x / kClusterBlockTiles];
+        if (listRange.y != kClusterBlockOverflow) c = Candidates(true, listRange.x, zLo <= zHi ? listRange.y : 0u);
 
         uint found = 0u;
-        for (uint base = 0u; base < lightsToTest; base += kClusterBatchLights) {
+        for (uint base = 0u; base < c.count; base += kClusterBatchLights) {
             uint slot = min(base / kClusterBatchLights, kClusterCachedBatches - 1u);
-            markCandidates(base, slot, tile, zLo, zHi, lane);
+            markCandidates(c, base, slot, tile, tile, zLo, zHi, lane);
             if (!occupied) continue;
             for (uint w = 0u; w < kClusterAssignGroupSize; ++w) {
                 uint mask = candidateMask[slot * kClusterAssignGroupSize + w];
                 while (mask != 0u) {
                     uint bit = uint(findLSB(mask));
                     mask &= mask - 1u;
-                    if (froxelTouched(base + w * 32u + bit, fr)) ++found;
+                    if (froxelTouched(candidateLight(c, base + w * 32u + bit), fr)) ++found;
                 }
             }
         }
@@ -339,18 +413,17 @@ void assignPass() {
         }
 
         uint written = 0u;
-        for (uint base = 0u; base < lightsToTest; base += kClusterBatchLights) {
+        for (uint base = 0u; base < c.count; base += kClusterBatchLights) {
             // The counting sweep's masks are still in place, but for the batches sharing the last slot.
             uint batch = base / kClusterBatchLights;
             uint slot = min(batch, kClusterCachedBatches - 1u);
-            if (batch >= kClusterCachedBatches - 1u && lightsToTest > kClusterCachedBatches * kClusterBatchLights)
-                markCandidates(base, slot, tile, zLo, zHi, lane);
+            if (markedAgain(batch, c.count)) markCandidates(c, base, slot, tile, tile, zLo, zHi, lane);
             for (uint w = 0u; w < kClusterAssignGroupSize && written < keep; ++w) {
                 uint mask = candidateMask[slot * kClusterAssignGroupSize + w];
                 while (mask != 0u && written < keep) {
                     uint bit = uint(findLSB(mask));
                     mask &= mask - 1u;
-                    uint i = base + w * 32u + bit;
+                    uint i = candidateLight(c, base + w * 32u + bit);
                     if (froxelTouched(i, fr)) {
                         indices[offset + written] = params.lightInfo.x + i;
                         ++written;
@@ -363,5 +436,6 @@ void assignPass() {
 
 void main() {
     if (kPass == kClusterPassVolumes) volumePass();
+    else if (kPass == kClusterPassBlocks) blocksPass();
     else assignPass();
 }

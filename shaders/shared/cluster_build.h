@@ -21,12 +21,16 @@ PRESKIN_CONST(uint, kClusterBindingSurfaces, 7)  // vec4[]: where the surfaces a
                                                  // slab's axis (w = 1; 0: none), engine/src/lights/ClusterSurfaces.h
 PRESKIN_CONST(uint, kClusterBindingTileBoxes, 8)  // uvec4 per local light: ClusterLightVolume.box's xyz, the
                                                   // froxel box (pass 0 writes; empty: lo.x > hi.x), which
-                                                  // pass 1 reads for every tile, packed apart from the rest
+                                                  // the blocks pass reads for every block, packed apart
+PRESKIN_CONST(uint, kClusterBindingBlockRanges, 9)    // uvec2 (offset, count) per block of tiles into the block
+                                                      // list; count kClusterBlockOverflow: the list did not fit
+PRESKIN_CONST(uint, kClusterBindingBlockIndices, 10)  // uint: per block, the local lights whose box meets it, ascending
 
 // Specialization constant 0 selects the pass.
 PRESKIN_CONST(uint, kClusterSpecPass, 0)
 PRESKIN_CONST(uint, kClusterPassVolumes, 0)  // one invocation per local light
 PRESKIN_CONST(uint, kClusterPassAssign, 1)   // one workgroup per screen tile, one invocation per slice
+PRESKIN_CONST(uint, kClusterPassBlocks, 2)   // one workgroup per block of kClusterBlockTiles^2 tiles
 PRESKIN_CONST(uint, kClusterVolumeGroupSize, 64)
 PRESKIN_CONST(uint, kClusterAssignGroupSize, 32)
 // Lights tested against a tile per batch: kClusterAssignGroupSize words of 32 bits.
@@ -34,6 +38,10 @@ PRESKIN_CONST(uint, kClusterBatchLights, 1024)
 // Batches whose candidates the assign pass keeps in shared memory between its two sweeps (8 KiB:
 // 65,536 lights marked once; beyond, the last slot's batches are marked again).
 PRESKIN_CONST(uint, kClusterCachedBatches, 64)
+// A block's side in tiles: the blocks pass lists each block's lights, the assign pass reads a
+// tile's candidates from its block's list.
+PRESKIN_CONST(uint, kClusterBlockTiles, 8)
+PRESKIN_CONST(uint, kClusterBlockOverflow, 0xffffffff)
 
 // ClusterLightVolume.box.w flags.
 PRESKIN_CONST(uint, kClusterVolumeCone, 1)
@@ -43,7 +51,8 @@ PRESKIN_CONST(uint, kClusterVolumeEmpty, 4)
 struct ClusterBuildParams {
     mat4 viewFromWorld;
     uvec4 dims;             // xyz froxels; w: max lights per cluster
-    uvec4 lightInfo;        // x: first local light in the light buffer, y: local lights, z: index capacity
+    uvec4 lightInfo;        // x: first local light in the light buffer, y: local lights, z: index capacity,
+                            // w: block list capacity
     uvec4 geometryOffsets;  // vec4 offsets in the geometry buffer: x column planes (dims.x + 1),
                             // y row planes (dims.y + 1), z slice starts in .x (dims.z + 1),
                             // w corner lines: origin, direction interleaved ((dims.x + 1) * (dims.y + 1) pairs)
@@ -66,7 +75,7 @@ PRESKIN_CHECK_SIZE(ClusterLightVolume, 64)
 
 struct ClusterCounters {
     uvec4 values;  // x: index entries reserved (may pass the capacity), y: froxels that lost lights,
-                   // z: entries requested before the caps, w: unused
+                   // z: entries requested before the caps, w: block list entries reserved
 };
 PRESKIN_CHECK_SIZE(ClusterCounters, 16)
 

@@ -41,7 +41,8 @@ View testView() {
 // `before`: a view the same builder built lists for first (on the CPU), as a moving camera does.
 ClusterGrid buildLists(Context& context, ClusterSettings settings, ClusterBuild build, const View& view,
                        const std::vector<Light>& lights, const Bounds& sceneBounds = {},
-                       const ClusterSurfaces& surfaces = {}, const View* before = nullptr) {
+                       const ClusterSurfaces& surfaces = {}, const View* before = nullptr,
+                       uint32_t blockListLimit = 0xffffffffu) {
     const vk::Device& device = ContextAccess::core(context);
     std::vector<gpu::GpuLight> gpuLights;
     std::vector<ClusterLight> gridLights;
@@ -58,6 +59,7 @@ ClusterGrid buildLists(Context& context, ClusterSettings settings, ClusterBuild 
                            VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, true);
     lightBuffer.upload(gpuLights.data(), gpuLights.size() * sizeof(gpu::GpuLight));
     ClusterBuilder builder(device);
+    builder.limitBlockList(blockListLimit);
     if (before) {
         settings.build = ClusterBuild::Cpu;
         builder.prepare(0, settings, clusterCamera(*before, kWidth, kHeight), sceneBounds, gridLights, firstLocal,
@@ -390,8 +392,10 @@ TEST_F(ClusterBuildGpu, ComputeBuildWithSurfacesMatchesCpuBuild) {
 
 // Past one batch of candidates (kClusterBatchLights) and past the batches the assign pass keeps
 // between its two sweeps (kClusterCachedBatches, after which batches are marked again), with
-// whole froxels and with the surfaces (whose empty slices and tiles test no light): the compute
-// build lists what the CPU build lists, lights of the last batches included.
+// whole froxels and with the surfaces (whose empty slices and tiles test no light), and with
+// block lists that fit, that fit for some blocks only, and that fit for none (their tiles test
+// every light): the compute build lists what the CPU build lists, lights of the last batches
+// included.
 TEST_F(ClusterBuildGpu, ComputeBuildMatchesCpuBuildOverManyBatches) {
     const View view = testView();
     const Scene scene = testScene(false);
@@ -399,6 +403,7 @@ TEST_F(ClusterBuildGpu, ComputeBuildMatchesCpuBuildOverManyBatches) {
     const ClusterSurfaces surfaces = triangles.surfaces(0.0f);
     ClusterSettings settings = gridSettings();
     settings.fitDepthToScene = true;
+    settings.tileSizePx = 4;  // 40 x 30 tiles: 5 x 4 blocks
     for (uint32_t count :
          {3 * gpu::kClusterBatchLights + 17, (gpu::kClusterCachedBatches + 2) * gpu::kClusterBatchLights + 5}) {
         std::vector<Light> lights = randomLights(count, 40 + count);
@@ -409,21 +414,25 @@ TEST_F(ClusterBuildGpu, ComputeBuildMatchesCpuBuildOverManyBatches) {
             const ClusterSurfaces given = withSurfaces ? surfaces : ClusterSurfaces{};
             const ClusterGrid cpu =
                 buildLists(context(), settings, ClusterBuild::Cpu, view, lights, scene.worldBounds(), given);
-            const ClusterGrid gpu =
-                buildLists(context(), settings, ClusterBuild::Gpu, view, lights, scene.worldBounds(), given);
-            EXPECT_EQ(gpu.overflowedClusters, cpu.overflowedClusters);  // the per-froxel cap: lowest indices kept
-            EXPECT_EQ(gpu.requestedIndices, cpu.requestedIndices);
-            const size_t differing = differingEntries(cpu, gpu);
-            EXPECT_LE(double(differing), 1e-3 * double(cpu.indices.size()))
-                << differing << " of " << cpu.indices.size() << " entries differ (" << count << " lights)";
             EXPECT_GT(cpu.indices.size(), size_t(count) / 100);
-            // Lights of the later batches (of the shared slot where there are more than it keeps).
-            const uint32_t later =
-                std::min(count / gpu::kClusterBatchLights, gpu::kClusterCachedBatches - 1u) * gpu::kClusterBatchLights;
-            EXPECT_TRUE(std::any_of(gpu.indices.begin(), gpu.indices.end(), [&](uint32_t i) { return i > later; }))
-                << "no light past index " << later << " listed (" << count << " lights)";
-            std::printf("[ clusters ] %u lights, %s: CPU %zu, compute %zu entries, %zu differ\n", count,
-                        withSurfaces ? "surfaces" : "whole froxels", cpu.indices.size(), gpu.indices.size(), differing);
+            for (uint32_t blockList : {0xffffffffu, count / 8, 1u}) {
+                const ClusterGrid gpu = buildLists(context(), settings, ClusterBuild::Gpu, view, lights,
+                                                   scene.worldBounds(), given, nullptr, blockList);
+                EXPECT_EQ(gpu.overflowedClusters, cpu.overflowedClusters);  // the per-froxel cap: lowest indices kept
+                EXPECT_EQ(gpu.requestedIndices, cpu.requestedIndices);
+                const size_t differing = differingEntries(cpu, gpu);
+                EXPECT_LE(double(differing), 1e-3 * double(cpu.indices.size()))
+                    << differing << " of " << cpu.indices.size() << " entries differ (" << count
+                    << " lights, block list " << blockList << ")";
+                // Lights of the later batches (of the shared slot where there are more than it keeps).
+                const uint32_t later = std::min(count / gpu::kClusterBatchLights, gpu::kClusterCachedBatches - 1u) *
+                    gpu::kClusterBatchLights;
+                EXPECT_TRUE(std::any_of(gpu.indices.begin(), gpu.indices.end(), [&](uint32_t i) { return i > later; }))
+                    << "no light past index " << later << " listed (" << count << " lights)";
+                std::printf("[ clusters ] %u lights, %s, block list %u: CPU %zu, compute %zu entries, %zu differ\n",
+                            count, withSurfaces ? "surfaces" : "whole froxels", blockList, cpu.indices.size(),
+                            gpu.indices.size(), differing);
+            }
         }
     }
 }

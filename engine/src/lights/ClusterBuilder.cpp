@@ -40,6 +40,7 @@ ClusterBuilder::~ClusterBuilder() {
     const VkDevice d = device_.device();
     if (volumePipeline_) vkDestroyPipeline(d, volumePipeline_, nullptr);
     if (assignPipeline_) vkDestroyPipeline(d, assignPipeline_, nullptr);
+    if (blocksPipeline_) vkDestroyPipeline(d, blocksPipeline_, nullptr);
     if (pool_) vkDestroyDescriptorPool(d, pool_, nullptr);
     if (pipelineLayout_) vkDestroyPipelineLayout(d, pipelineLayout_, nullptr);
     if (setLayout_) vkDestroyDescriptorSetLayout(d, setLayout_, nullptr);
@@ -64,11 +65,13 @@ void ClusterBuilder::createPipelines() {
         {gpu::kClusterBindingCounters, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, cs},
         {gpu::kClusterBindingSurfaces, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, cs},
         {gpu::kClusterBindingTileBoxes, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, cs},
+        {gpu::kClusterBindingBlockRanges, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, cs},
+        {gpu::kClusterBindingBlockIndices, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, cs},
     };
     setLayout_ = vk::createSetLayout(device_, bindings);
     pipelineLayout_ = vk::createPipelineLayout(device_, std::span(&setLayout_, 1), 0, 0);
     const VkDescriptorPoolSize sizes[] = {{VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, kSlots},
-                                          {VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 8 * kSlots}};
+                                          {VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 10 * kSlots}};
     pool_ = vk::createDescriptorPool(device_, sizes, kSlots);
     for (Slot& s : slots_) s.set = vk::allocateDescriptorSet(device_, pool_, setLayout_);
     const auto code = shaders::spirv("cluster_build.comp");
@@ -78,6 +81,8 @@ void ClusterBuilder::createPipelines() {
     volumePipeline_ = vk::createComputePipeline(device_, code, pipelineLayout_, spec);
     spec.values = {gpu::kClusterPassAssign};
     assignPipeline_ = vk::createComputePipeline(device_, code, pipelineLayout_, spec);
+    spec.values = {gpu::kClusterPassBlocks};
+    blocksPipeline_ = vk::createComputePipeline(device_, code, pipelineLayout_, spec);
 }
 
 ClusterBuilder::FrameGrid ClusterBuilder::prepare(uint32_t slot, const ClusterSettings& settings,
@@ -161,7 +166,13 @@ void ClusterBuilder::prepareGpu(Slot& s, const ClusterSettings& settings, const 
     }
     p.viewFromWorld = view.viewFromWorld;
     p.dims = glm::uvec4(shape.dims, static_cast<uint32_t>(perCluster));
-    p.lightInfo = glm::uvec4(firstLocal, localCount, s.indexCapacity, 0u);
+    // Blocks of tiles and their lists: a light's box meets a few blocks; a list that does not fit
+    // makes its block's tiles test every light (the shader's overflow rule), so this bounds memory.
+    s.blocks = (glm::uvec2(shape.dims) + gpu::kClusterBlockTiles - 1u) / gpu::kClusterBlockTiles;
+    const uint64_t blockCount = uint64_t(s.blocks.x) * s.blocks.y;
+    const auto blockCapacity = static_cast<uint32_t>(std::max<uint64_t>(
+        std::min<uint64_t>({blockCount * localCount, 16ull * localCount + 65536ull, blockListLimit_}), 1));
+    p.lightInfo = glm::uvec4(firstLocal, localCount, s.indexCapacity, blockCapacity);
     p.slack = glm::vec4(kClusterDepthSlack, kClusterRadiusSlack, kClusterConeSlack, shape.nearM);
     p.slicing = glm::vec4(shape.sliceScale, shape.sliceBias, 0.0f, 0.0f);
     if (!shape.lightBounds.empty()) {
@@ -176,6 +187,8 @@ void ClusterBuilder::prepareGpu(Slot& s, const ClusterSettings& settings, const 
     ensureBuffer(device_, s.volumes, VkDeviceSize(std::max(localCount, 1u)) * sizeof(gpu::ClusterLightVolume), kStorage,
                  false);
     ensureBuffer(device_, s.tileBoxes, VkDeviceSize(std::max(localCount, 1u)) * sizeof(glm::uvec4), kStorage, false);
+    ensureBuffer(device_, s.blockRanges, blockCount * sizeof(glm::uvec2), kStorage, false);
+    ensureBuffer(device_, s.blockIndices, VkDeviceSize(blockCapacity) * sizeof(uint32_t), kStorage, false);
     ensureBuffer(device_, s.gpuRanges, froxels * sizeof(glm::uvec2), kStorage | VK_BUFFER_USAGE_TRANSFER_SRC_BIT,
                  false);
     ensureBuffer(device_, s.gpuIndices, VkDeviceSize(s.indexCapacity) * sizeof(uint32_t),
@@ -189,17 +202,19 @@ void ClusterBuilder::prepareGpu(Slot& s, const ClusterSettings& settings, const 
         s.surfaces.upload(froxelSurfaces_.values.data(), froxelSurfaces_.values.size() * sizeof(glm::vec4));
 
     const VkDescriptorBufferInfo infos[] = {
-        {s.params.handle(), 0, sizeof(p)},        {lightBuffer.handle(), 0, VK_WHOLE_SIZE},
-        {s.geometry.handle(), 0, VK_WHOLE_SIZE},  {s.volumes.handle(), 0, VK_WHOLE_SIZE},
-        {s.gpuRanges.handle(), 0, VK_WHOLE_SIZE}, {s.gpuIndices.handle(), 0, VK_WHOLE_SIZE},
-        {s.counters.handle(), 0, VK_WHOLE_SIZE},  {s.surfaces.handle(), 0, VK_WHOLE_SIZE},
-        {s.tileBoxes.handle(), 0, VK_WHOLE_SIZE},
+        {s.params.handle(), 0, sizeof(p)},           {lightBuffer.handle(), 0, VK_WHOLE_SIZE},
+        {s.geometry.handle(), 0, VK_WHOLE_SIZE},     {s.volumes.handle(), 0, VK_WHOLE_SIZE},
+        {s.gpuRanges.handle(), 0, VK_WHOLE_SIZE},    {s.gpuIndices.handle(), 0, VK_WHOLE_SIZE},
+        {s.counters.handle(), 0, VK_WHOLE_SIZE},     {s.surfaces.handle(), 0, VK_WHOLE_SIZE},
+        {s.tileBoxes.handle(), 0, VK_WHOLE_SIZE},    {s.blockRanges.handle(), 0, VK_WHOLE_SIZE},
+        {s.blockIndices.handle(), 0, VK_WHOLE_SIZE},
     };
     const uint32_t bindings[] = {
-        gpu::kClusterBindingParams,   gpu::kClusterBindingLights,   gpu::kClusterBindingGeometry,
-        gpu::kClusterBindingVolumes,  gpu::kClusterBindingRanges,   gpu::kClusterBindingIndices,
-        gpu::kClusterBindingCounters, gpu::kClusterBindingSurfaces, gpu::kClusterBindingTileBoxes};
-    std::array<VkWriteDescriptorSet, 9> writes{};
+        gpu::kClusterBindingParams,      gpu::kClusterBindingLights,      gpu::kClusterBindingGeometry,
+        gpu::kClusterBindingVolumes,     gpu::kClusterBindingRanges,      gpu::kClusterBindingIndices,
+        gpu::kClusterBindingCounters,    gpu::kClusterBindingSurfaces,    gpu::kClusterBindingTileBoxes,
+        gpu::kClusterBindingBlockRanges, gpu::kClusterBindingBlockIndices};
+    std::array<VkWriteDescriptorSet, 11> writes{};
     for (size_t i = 0; i < writes.size(); ++i) {
         writes[i] = {VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET};
         writes[i].dstSet = s.set;
@@ -228,6 +243,10 @@ void ClusterBuilder::record(VkCommandBuffer cmd, uint32_t slot) {
         vk::memoryBarrier(cmd, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT,
                           VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_ACCESS_2_SHADER_STORAGE_READ_BIT);
     }
+    vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, blocksPipeline_);
+    vkCmdDispatch(cmd, s.blocks.x, s.blocks.y, 1);
+    vk::memoryBarrier(cmd, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT,
+                      VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_ACCESS_2_SHADER_STORAGE_READ_BIT);
     vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, assignPipeline_);
     vkCmdDispatch(cmd, s.shape.dims.x, s.shape.dims.y, 1);
     vk::memoryBarrier(
@@ -254,7 +273,8 @@ uint64_t ClusterBuilder::gridBytes(uint32_t slot) const {
     const Slot& s = slots_[slot];
     auto bytes = [](const vk::Buffer& b) -> uint64_t { return b ? b.size() : 0; };
     if (s.gpu)
-        return bytes(s.gpuRanges) + bytes(s.gpuIndices) + bytes(s.volumes) + bytes(s.tileBoxes) + bytes(s.surfaces);
+        return bytes(s.gpuRanges) + bytes(s.gpuIndices) + bytes(s.volumes) + bytes(s.tileBoxes) + bytes(s.blockRanges) +
+            bytes(s.blockIndices) + bytes(s.surfaces);
     return bytes(s.cpuRanges) + bytes(s.cpuIndices) + froxelSurfaces_.values.capacity() * sizeof(glm::vec4) +
         froxelSurfaces_.occupiedBits.capacity() * sizeof(uint64_t);
 }

@@ -59,6 +59,10 @@ public:
     // Bytes of the slot's light-grid buffers as allocated (froxel ranges and light indices, where
     // the surfaces are per froxel; for the compute build also its per-light volumes), headroom included.
     uint64_t gridBytes(uint32_t slot) const;
+    // The compute build's block lists (the lights meeting each block of tiles) hold at most this
+    // many entries from the next build on; a block whose list does not fit has its tiles test
+    // every light. The default fits every frame's lists but the most crowded; tests lower it.
+    void limitBlockList(uint32_t entries) { blockListLimit_ = entries; }
     // The grid shape of the slot's last prepare() (its tile size the automatic one where chosen).
     const ClusterGridShape& shape(uint32_t slot) const { return slots_[slot].shape; }
     // CPU time of the last prepare() of the slot (the whole build, or the compute build's setup).
@@ -81,6 +85,8 @@ private:
         vk::Buffer surfaces;                        // host-visible, compute build: per froxel (ClusterSurfaces.h)
         vk::Buffer volumes, gpuRanges, gpuIndices;  // device-local, compute build
         vk::Buffer tileBoxes;                       // device-local, compute build: each light's tile box
+        vk::Buffer blockRanges, blockIndices;       // device-local, compute build: the lights of each block of tiles
+        glm::uvec2 blocks{0u};                      // blocks across, down
         VkDescriptorSet set = VK_NULL_HANDLE;
     };
 
@@ -114,6 +120,8 @@ private:
     VkDescriptorPool pool_ = VK_NULL_HANDLE;
     VkPipeline volumePipeline_ = VK_NULL_HANDLE;
     VkPipeline assignPipeline_ = VK_NULL_HANDLE;
+    VkPipeline blocksPipeline_ = VK_NULL_HANDLE;
+    uint32_t blockListLimit_ = 0xffffffffu;
 };
 
 }  // namespace preskin
