@@ -83,6 +83,14 @@ void BenchRun::skinSection(const std::vector<uint32_t>& skinCounts) {
                 without.skin.*t.flag = false;
                 configs.push_back({&renderer, without, fmt::format("{} lights, skin without {}", n, t.name), 0.0});
             }
+            // The quality tiers below high (every skin material at that tier), in the same rounds.
+            const std::pair<const char*, SkinQuality> tiers[] = {{"medium", SkinQuality::Medium},
+                                                                 {"low", SkinQuality::Low}};
+            for (const auto& [name, quality] : tiers) {
+                RenderSettings tier = base;
+                tier.skinQuality = quality;
+                configs.push_back({&renderer, tier, fmt::format("{} lights, skin at the {} tier", n, name), 0.0});
+            }
             const std::vector<Measurement> measured = bench.measure(configs, lights);
             j.key("skin_techniques");
             j.beginObject();
@@ -108,6 +116,19 @@ void BenchRun::skinSection(const std::vector<uint32_t>& skinCounts) {
             j.field("skin_over_standard", measured[0].wallMs() / measured[1].wallMs());
             j.field("skin_over_standard_gpu", measured[0].gpuMs() / measured[1].gpuMs());
             j.field("skin_over_standard_cpu", measured[0].cpuMs() / measured[1].cpuMs());
+            j.key("tiers");
+            j.beginObject();
+            for (size_t i = 0; i < std::size(tiers); ++i) {
+                const Measurement& m = measured[2 + std::size(techniques) + i];
+                j.key(tiers[i].first);
+                j.beginObject();
+                j.key("frame");
+                writeMeasurement(j, m);
+                j.field("over_standard", m.wallMs() / measured[1].wallMs());
+                j.field("over_standard_gpu", m.gpuMs() / measured[1].gpuMs());
+                j.endObject();
+            }
+            j.endObject();
             j.endObject();
         }
     } else if (!skinCounts.empty()) {

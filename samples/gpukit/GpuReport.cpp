@@ -103,6 +103,13 @@ ojson makeReport(const json& bench, const ReportInfo& info) {
     const json& costs = at(bench, {"skin_techniques", "cost_ms"});
     for (auto it = costs.begin(); it != costs.end(); ++it) techniques[it.key()] = number(it.value(), {"forward_gpu"});
     head["technique_cost_forward_gpu_ms"] = techniques;
+    // The quality tiers (high is the skin frame): their frames and ratios to the standard frame
+    // measured in the techniques' rounds.
+    ojson tiers;
+    tiers["high"] = number(at(bench, {"skin_techniques"}), {"skin_over_standard_gpu"});
+    const json& tierRows = at(bench, {"skin_techniques", "tiers"});
+    for (const char* tier : {"medium", "low"}) tiers[tier] = number(at(tierRows, {tier}), {"over_standard_gpu"});
+    head["tier_over_standard"] = tiers;
     const json& mono = at(bench, {"diffusion_methods", "mono"});
     head["preintegrated"] = frame(at(mono, {"preintegrated"}));
     head["screen_space"] = frame(at(mono, {"screen"}));
@@ -228,6 +235,9 @@ std::string reportMarkdown(const ojson& r) {
     md << "\n| technique | forward-pass cost, GPU ms (skin frame minus the frame without it) |\n| --- | --- |\n";
     for (auto it = h["technique_cost_forward_gpu_ms"].begin(); it != h["technique_cost_forward_gpu_ms"].end(); ++it)
         md << fmt::format("| {} | {} |\n", it.key(), ms(it.value()));
+    md << "\n| quality tier | skin frame / standard frame (GPU time, in the techniques' rounds) |\n| --- | --- |\n";
+    for (auto it = h["tier_over_standard"].begin(); it != h["tier_over_standard"].end(); ++it)
+        md << fmt::format("| {} | {} |\n", it.key(), ratio(it.value()));
     const ojson& v = r["vr"];
     md << fmt::format("\n## VR: 2 x {}x{}, MSAA {}x, {} lights\n\n| frame | GPU ms | passes |\n| --- | --- | --- |\n",
                       v["eye_width"].get<int>(), v["eye_height"].get<int>(), v["msaa_samples"].get<int>(),

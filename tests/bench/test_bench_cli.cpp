@@ -90,6 +90,12 @@ TEST_F(BenchCli, WritesJsonAndPlot) {
         EXPECT_TRUE(techniques.at(t).at("wall").is_number()) << t;
         EXPECT_TRUE(techniques.at(t).at("cpu").is_number()) << t;
     }
+    // The tiers below high, measured in the same rounds: each lighter than the skin frame in CPU time.
+    for (const char* tier : {"medium", "low"}) {
+        const auto& row = j.at("skin_techniques").at("tiers").at(tier);
+        EXPECT_GT(row.at("over_standard").get<double>(), 0.0) << tier;
+        EXPECT_GT(row.at("frame").at("cpu_ms").get<double>(), 0.0) << tier;
+    }
     // The methods preskin replaces, beside it: their passes and targets as their frames report them.
     for (const char* row : {"mono", "stereo_msaa4"}) {
         const auto& methods = j.at("diffusion_methods").at(row);

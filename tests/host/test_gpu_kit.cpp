@@ -118,6 +118,8 @@ TEST(GpuKit, MovedKitRunsInAnEmptyEnvironmentAndReportsEveryFigure) {
     for (const char* technique :
          {"lut_diffuse", "normal_prefilter", "penumbra", "sh_ambient", "transmission", "dual_specular"})
         EXPECT_TRUE(r["head"]["technique_cost_forward_gpu_ms"].contains(technique)) << technique;
+    for (const char* tier : {"high", "medium", "low"})
+        EXPECT_GT(r["head"]["tier_over_standard"].value(tier, 0.0), 0.0) << tier;
     EXPECT_EQ(r["vr"]["msaa_samples"], 4);
     EXPECT_EQ(r["lights"]["counts"].size(), 3u);
     EXPECT_GT(r["animation"]["deform_gpu_ms"].get<double>(), 0.0);
