@@ -109,7 +109,7 @@ void run(const Options& o) {
         for (const std::string& b : baselines)
             checkOutputPath(o.renders + "." + b + ".exr", OutputEncoding::LinearFloat);
     }
-    const ReferenceKey key = referenceKey(scenePath, o.view, o.common, o.reference, luts);
+    const ReferenceKey key = referenceKey(scenePath, scene, o.view, o.common, o.reference, luts);
     // A reference file is read and checked before anything is rendered: a stale one stops the run at once.
     ReferenceImage ref;
     const auto start = std::chrono::steady_clock::now();

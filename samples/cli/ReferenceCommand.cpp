@@ -46,7 +46,7 @@ void run(const Options& o) {
     const ReferenceImage image = renderReference(*reference, view, o.view, o.common.exposure, o.reference);
     const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 
-    writeReferenceImage(outPath, image, referenceKey(scenePath, o.view, o.common, o.reference, luts));
+    writeReferenceImage(outPath, image, referenceKey(scenePath, scene, o.view, o.common, o.reference, luts));
     fmt::print("preskin: wrote {} ({}x{})\n", outPath.string(), image.width, image.height);
     fmt::print("preskin: reference of '{}' in {:.1f} s: reach {:.2f} profile mm, {} irradiance samples\n",
                luts.profile().name(), seconds, reference->reachMm(), image.irradianceSamples);

@@ -43,8 +43,17 @@ std::unique_ptr<DiffusionReference> makeReference(const Scene& scene, const Envi
                                                   const ReferenceOptions& o) {
     ReferenceSettings settings = o.settings;
     settings.shadows = !common.noShadows;
-    return std::make_unique<DiffusionReference>(scene, sceneLights(scene, common), environment, luts.profile(),
-                                                settings);
+    const std::vector<Light> lights = sceneLights(scene, common);
+    // Traced: the environment image itself, occluded by the scene (the truth the renderer's
+    // extracted lights and SH ambient stand for).
+    if (settings.environmentSamples > 0)
+        return std::make_unique<DiffusionReference>(scene, lights, environment, luts.profile(), settings);
+    // SH ambient: the renderer's own model of the environment, its extracted lights (the first
+    // shadowed when no other light is) and the SH they leave.
+    const EnvironmentLights extracted =
+        extractEnvironmentLights(environment, uint32_t(environmentLightCount(scene, common)));
+    return std::make_unique<DiffusionReference>(scene, withEnvironmentLights(lights, extracted, common.envLightSize),
+                                                extracted.residualSh, luts.profile(), settings);
 }
 
 namespace {
@@ -69,8 +78,9 @@ std::string fileHash(const std::filesystem::path& path) {
 
 }  // namespace
 
-ReferenceKey referenceKey(const std::filesystem::path& scenePath, const ViewOptions& view, const CommonOptions& common,
-                          const ReferenceOptions& o, const LutSet& luts) {
+ReferenceKey referenceKey(const std::filesystem::path& scenePath, const Scene& loadedScene, const ViewOptions& view,
+                          const CommonOptions& common, const ReferenceOptions& o, const LutSet& luts) {
+    const int environmentLights = environmentLightCount(loadedScene, common);
     std::error_code ec;
     const std::filesystem::path scene = std::filesystem::weakly_canonical(scenePath, ec);
     const ReferenceSettings& s = o.settings;
@@ -99,7 +109,13 @@ ReferenceKey referenceKey(const std::filesystem::path& scenePath, const ViewOpti
         {"quadrature",
          fmt::format("tail {} leaf {} finest {} moments {} edge {} terminator {}", s.tailFraction, s.leafRatio,
                      s.finestLeafRatio, s.momentTolerance, s.shadowEdgeWidths, s.terminatorClearanceMm)},
-        {"ambient", s.environmentSamples > 0 ? fmt::format("traced {}", s.environmentSamples) : std::string("sh")},
+        // The SH ambient with the environment's lights as the renderer extracts them (none: the
+        // SH of the whole environment, as before they were modelled).
+        {"ambient",
+         s.environmentSamples > 0 ? fmt::format("traced {}", s.environmentSamples)
+             : environmentLights > 0
+             ? fmt::format("sh less {} environment lights{}", environmentLights, common.envLightSize ? " (sized)" : "")
+             : std::string("sh")},
     };
 }
 

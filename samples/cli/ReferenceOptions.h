@@ -30,8 +30,9 @@ std::unique_ptr<DiffusionReference> makeReference(const Scene& scene, const Envi
 // `preskin compare --reference`: the model's version, the scene file (path and a hash of its
 // bytes), the view and size, the lighting options, the LUT set's profile (name and a hash of its
 // definition: a LUT set baked again from it, at any size, keeps the reference) and the quadrature.
-ReferenceKey referenceKey(const std::filesystem::path& scenePath, const ViewOptions& view, const CommonOptions& common,
-                          const ReferenceOptions& o, const LutSet& luts);
+// `scene`: the loaded scene (whether its environment gives lights depends on its lights).
+ReferenceKey referenceKey(const std::filesystem::path& scenePath, const Scene& scene, const ViewOptions& view,
+                          const CommonOptions& common, const ReferenceOptions& o, const LutSet& luts);
 
 // Renders it with a progress bar on stderr, on --threads threads.
 ReferenceImage renderReference(const DiffusionReference& reference, const View& view, const ViewOptions& size,

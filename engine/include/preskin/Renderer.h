@@ -51,6 +51,15 @@ struct SkinFeatures {
 // The techniques a quality tier compiles in, as SkinFeatures (shared/skin_features.h's kSkinQuality*).
 PRESKIN_API SkinFeatures skinQualityFeatures(SkinQuality quality);
 
+// The lights a frame is lit by: `lights`, then the environment's extracted lights
+// (extractEnvironmentLights) as directional lights named "environment light N", with their
+// angular radius where `lightSizes` (RenderSettings::environmentLightSizes), the first casting
+// the shadow when none of `lights` does. The renderer lights every frame so, with the ambient SH
+// the extraction leaves (EnvironmentLights::residualSh); the diffusion reference with an SH
+// ambient takes the same lights and ambient.
+PRESKIN_API std::vector<Light> withEnvironmentLights(const std::vector<Light>& lights,
+                                                     const EnvironmentLights& extracted, bool lightSizes);
+
 enum class DebugView { None, Curvature, Normals, Shadow, Penumbra, LightCount, ShAmbient, Transmission };
 
 // How the one forward pass draws several eyes; either way each draw is recorded once.

@@ -222,24 +222,8 @@ void Renderer::Impl::updateEnvironmentLights(bool environmentChanged) {
         if (!environmentMaps) environmentMaps = std::make_unique<GpuEnvironment>(dev);
         environmentMaps->set(environment, extracted.residualImage);
     }
-    extractedLights.clear();
-    for (size_t i = 0; i < extracted.lights.size(); ++i) {
-        const EnvironmentLight& e = extracted.lights[i];
-        Light l;
-        l.name = fmt::format("environment light {}", i + 1);
-        l.type = LightType::Directional;
-        l.intensity = std::max({e.irradiance.r, e.irradiance.g, e.irradiance.b});
-        l.color = l.intensity > 0.0f ? e.irradiance / l.intensity : glm::vec3(1.0f);
-        l.directionWs = e.directionWs;
-        l.angularRadius = settings.environmentLightSizes ? e.angularRadius : 0.0f;
-        extractedLights.push_back(l);
-    }
-    frameLights = lights;
-    const bool sceneShadow = shadowLightIndex(lights) >= 0;
-    for (size_t i = 0; i < extractedLights.size(); ++i) {
-        frameLights.push_back(extractedLights[i]);
-        frameLights.back().castsShadow = i == 0 && !sceneShadow;
-    }
+    frameLights = withEnvironmentLights(lights, extracted, settings.environmentLightSizes);
+    extractedLights.assign(frameLights.begin() + std::ptrdiff_t(lights.size()), frameLights.end());
     frameAreaLightTypes = areaLightTypes(frameLights);
 }
 
@@ -680,6 +664,25 @@ void Renderer::setEnvironment(const Environment& environment) {
     impl_->updateEnvironmentLights(true);
 }
 const std::vector<Light>& Renderer::environmentLights() const { return impl_->extractedLights; }
+
+std::vector<Light> withEnvironmentLights(const std::vector<Light>& lights, const EnvironmentLights& extracted,
+                                         bool lightSizes) {
+    std::vector<Light> out = lights;
+    const bool sceneShadow = shadowLightIndex(lights) >= 0;
+    for (size_t i = 0; i < extracted.lights.size(); ++i) {
+        const EnvironmentLight& e = extracted.lights[i];
+        Light l;
+        l.name = fmt::format("environment light {}", i + 1);
+        l.type = LightType::Directional;
+        l.intensity = std::max({e.irradiance.r, e.irradiance.g, e.irradiance.b});
+        l.color = l.intensity > 0.0f ? e.irradiance / l.intensity : glm::vec3(1.0f);
+        l.directionWs = e.directionWs;
+        l.angularRadius = lightSizes ? e.angularRadius : 0.0f;
+        l.castsShadow = i == 0 && !sceneShadow;
+        out.push_back(l);
+    }
+    return out;
+}
 
 void Renderer::setLuts(const LutSet* luts) { impl_->setLutLayers(layersOf(luts)); }
 
