@@ -57,7 +57,7 @@ if ! hasManifest; then
             if [ -e "$d/libGLX_nvidia.so.0" ]; then glx="$d/libGLX_nvidia.so.0"; break; fi
         done
         if [ -n "$glx" ]; then
-            manifest="$(mktemp /tmp/preskin-kit-icd.XXXXXX)"
+            manifest="${TMPDIR:-/tmp}/preskin-kit-icd-$(id -u).json"  # one per user, rewritten each run
             printf '{ "file_format_version": "1.0.1", "ICD": { "library_path": "%s", "api_version": "1.3.0" } }\n' "$glx" >"$manifest"
             VK_DRIVER_FILES="$manifest"
             export VK_DRIVER_FILES

@@ -282,6 +282,11 @@ bool markedAgain(uint batch, uint count) {
     return batch >= kClusterCachedBatches - 1u && count > kClusterCachedBatches * kClusterBatchLights;
 }
 
+// Where block `block`'s list range is in blockRanges (the blocks pass writes it, the assign pass reads it).
+uint blockIndex(uvec2 block) {
+    return block.y * ((params.dims.x + kClusterBlockTiles - 1u) / kClusterBlockTiles) + block.x;
+}
+
 // Pass 2: the local lights whose froxel box meets this workgroup's block of tiles, in ascending
 // order, into the block list (a count sweep, an atomic reserving the block's range, a writing
 // sweep); a block whose list does not fit is marked kClusterBlockOverflow and its tiles test
@@ -291,7 +296,6 @@ void blocksPass() {
     uvec2 block = gl_WorkGroupID.xy;
     uvec2 rectLo = block * kClusterBlockTiles;
     uvec2 rectHi = min(rectLo + kClusterBlockTiles - 1u, params.dims.xy - 1u);
-    uint blockIndex = block.y * gl_NumWorkGroups.x + block.x;
     Candidates all = Candidates(false, 0u, params.lightInfo.y);
     uint total = 0u;
     for (uint base = 0u; base < all.count; base += kClusterBatchLights) {
@@ -302,7 +306,7 @@ void blocksPass() {
     if (lane == 0u) {
         uint offset = total > 0u ? atomicAdd(counters.values.w, total) : 0u;
         bool fits = offset + total <= params.lightInfo.w && offset + total >= offset;
-        blockRanges[blockIndex] = uvec2(fits ? offset : 0u, fits ? total : kClusterBlockOverflow);
+        blockRanges[blockIndex(block)] = uvec2(fits ? offset : 0u, fits ? total : kClusterBlockOverflow);
         columnMask[0] = fits ? offset : kClusterBlockOverflow;
     }
     barrier();
@@ -336,6 +340,8 @@ void assignPass() {
     uvec2 tile = gl_WorkGroupID.xy;
     uint lane = gl_LocalInvocationIndex;
     uint localCount = params.lightInfo.y;
+    // The tile's block list (every chunk of slices reads the same).
+    uvec2 listRange = blockRanges[blockIndex(tile / kClusterBlockTiles)];
     for (uint zBase = 0u; zBase < params.dims.z; zBase += kClusterAssignGroupSize) {
         uint z = zBase + lane;
         bool inGrid = z < params.dims.z;
@@ -381,8 +387,6 @@ void assignPass() {
         uint zLo = occupiedLo;
         uint zHi = occupiedHi;
         Candidates c = Candidates(false, 0u, zLo <= zHi ? localCount : 0u);
-        uvec2 listRange = blockRanges[(tile.y / kClusterBlockTiles) * ((params.dims.x + kClusterBlockTiles - 1u) / kClusterBlockTiles) +
-                                      tile.x / kClusterBlockTiles];
         if (listRange.y != kClusterBlockOverflow) c = Candidates(true, listRange.x, zLo <= zHi ? listRange.y : 0u);
 
         uint found = 0u;
