@@ -267,16 +267,41 @@ vec3 preskinSkinShadow(PreskinProfileMix m, sampler2DArray penumbraLut, float vi
                            channelWidthsMm);
 }
 
+// How much of a shadow map's shadow at a skin point another surface casts (1) rather than the
+// point's own surface (0), from the filter's occluders' distance along the light (Chiang, Li &
+// Burley, "Taming the Shadow Terminator", SIGGRAPH 2019 Talks, on the terminator's
+// self-shadowing). Near the terminator the map shadows the receiver's own surface, which the
+// diffuse LUT already holds, light scattered past the terminator included (the LUT integrates
+// max(N.L, 0) of the neighbours over the osculating sphere); there the LUT's own falloff applies,
+// unshadowed, penumbra scattering or not. The receiver's own surface can lie along the light
+// within ownMm = r tan(theta) + 2 a max(-N.L, 0) of it: the tangent plane's rise over the
+// filter's reach r (3 kernel widths on the map; what the receiver-plane bias does not take back
+// where it is clamped near the terminator), and on convex skin (radius a = 1 / curvature) past
+// the terminator the chord to the sphere's lit side. Occluders within ownMm are the receiver's
+// own, beyond twice that another surface's (a nose, a lid over the eye, a crease's far wall),
+// with a smooth step between. Without the diffuse LUT (kSkinLutDiffuse off), or where the filter
+// found no occluder, 1.
+float preskinCastShadowShare(PreskinSkinSurface s, PreskinShadowSample shadow, vec3 L, uint features) {
+    if ((features & kSkinLutDiffuse) == 0u || shadow.blockerDistanceM <= 0.0) return 1.0;
+    float c = dot(s.geometricNormal, L);
+    float toMm = 1000.0 * s.scatterScale;
+    float ownMm = max(shadow.kernelWidthM * toMm, 1e-6);
+    if (s.curvaturePerMm > 0.0 && c < 0.0) ownMm -= 2.0 * c / s.curvaturePerMm;
+    return smoothstep(ownMm, 2.0 * ownMm, shadow.blockerDistanceM * toMm);
+}
+
 // Per-channel shadow for skin: the penumbra LUT indexed by the filtered visibility and the
 // filter's width on the receiver (its width in the light's image plane stretched across the edge,
 // preskinEdgeStretch). The LUT takes the shadow as a hard edge that the filter blurred; a light
 // with a size (shadow.penumbraWidthM > 0, preskinSampleShadow's) has a soft one (preskinSoftEdge).
+// The receiver's own shadow at the terminator is lifted (preskinCastShadowShare).
 vec3 preskinSkinShadow(PreskinSkinSurface s, PreskinProfileMix m, sampler2DArray penumbraLut,
                        PreskinShadowSample shadow, vec3 L, uint features) {
     vec3 widths = shadow.penumbraWidthM > 0.0 ? preskinPenumbraChannelWidths(m, penumbraLut) : vec3(0.0);
     float toProfileMm = 1000.0 * s.scatterScale * preskinEdgeStretch(s.geometricNormal, L, shadow.gradientWs);
-    return preskinSkinShadow(m, penumbraLut, shadow.visibility, shadow.kernelWidthM, shadow.penumbraWidthM, widths,
-                             toProfileMm, features);
+    vec3 rgb = preskinSkinShadow(m, penumbraLut, shadow.visibility, shadow.kernelWidthM, shadow.penumbraWidthM, widths,
+                                 toProfileMm, features);
+    return mix(vec3(1.0), rgb, preskinCastShadowShare(s, shadow, L, features));
 }
 
 // The same with skin's wide shadow map (shaders/shadow_reduce.comp: each texel the nearest depth of
@@ -290,9 +315,9 @@ vec3 preskinSkinShadow(PreskinSkinSurface s, PreskinProfileMix m, sampler2DArray
 // occluders lie within red's reach of the receiver this fades to the shadow map's alone.
 // wide: the wide map's sample; wideTexelM: its texel size (m). Where the shadow map's filter is as
 // wide as the wide map's (a light with a size), the shadow map's alone.
-vec3 preskinSkinShadow(PreskinSkinSurface s, PreskinProfileMix m, sampler2DArray penumbraLut,
-                       PreskinShadowSample shadow, PreskinShadowSample wide, float wideTexelM, vec3 L,
-                       uint features) {
+vec3 preskinSkinShadowEdges(PreskinSkinSurface s, PreskinProfileMix m, sampler2DArray penumbraLut,
+                            PreskinShadowSample shadow, PreskinShadowSample wide, float wideTexelM, vec3 L,
+                            uint features) {
     float visibility = shadow.visibility;
     if ((features & kSkinPenumbra) == 0u) return vec3(visibility);
     bool fineEdge = visibility > 0.0 && visibility < 1.0;
@@ -340,6 +365,15 @@ vec3 preskinSkinShadow(PreskinSkinSurface s, PreskinProfileMix m, sampler2DArray
     vec3 edge = preskinPenumbraLut(m, penumbraLut, preskinNormalCdf(x / sigmaWide), sigmaWide);
     if (shadow.penumbraWidthM > 0.0) edge = preskinSoftEdge(edge, x, shadow.penumbraWidthM * toProfileMm, widths);
     return mix(fineOnly, edge, wideTrust);
+}
+
+// The same with skin's wide map, the receiver's own shadow at the terminator lifted
+// (preskinCastShadowShare): the forward pass's form.
+vec3 preskinSkinShadow(PreskinSkinSurface s, PreskinProfileMix m, sampler2DArray penumbraLut,
+                       PreskinShadowSample shadow, PreskinShadowSample wide, float wideTexelM, vec3 L,
+                       uint features) {
+    return mix(vec3(1.0), preskinSkinShadowEdges(s, m, penumbraLut, shadow, wide, wideTexelM, L, features),
+               preskinCastShadowShare(s, shadow, L, features));
 }
 
 // Light that reaches the skin through the skin from a lit surface the light meets first
