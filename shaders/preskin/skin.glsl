@@ -270,23 +270,25 @@ vec3 preskinSkinShadow(PreskinProfileMix m, sampler2DArray penumbraLut, float vi
 // How much of a shadow map's shadow at a skin point another surface casts (1) rather than the
 // point's own surface (0), from the filter's occluders' distance along the light (Chiang, Li &
 // Burley, "Taming the Shadow Terminator", SIGGRAPH 2019 Talks, on the terminator's
-// self-shadowing). Near the terminator the map shadows the receiver's own surface, which the
-// diffuse LUT already holds, light scattered past the terminator included (the LUT integrates
-// max(N.L, 0) of the neighbours over the osculating sphere); there the LUT's own falloff applies,
-// unshadowed, penumbra scattering or not. The receiver's own surface can lie along the light
-// within ownMm = r tan(theta) + 2 a max(-N.L, 0) of it: the tangent plane's rise over the
-// filter's reach r (3 kernel widths on the map; what the receiver-plane bias does not take back
-// where it is clamped near the terminator), and on convex skin (radius a = 1 / curvature) past
-// the terminator the chord to the sphere's lit side. Occluders within ownMm are the receiver's
-// own, beyond twice that another surface's (a nose, a lid over the eye, a crease's far wall),
-// with a smooth step between. Without the diffuse LUT (kSkinLutDiffuse off), or where the filter
-// found no occluder, 1.
-float preskinCastShadowShare(PreskinSkinSurface s, PreskinShadowSample shadow, vec3 L, uint features) {
+// self-shadowing). Past the terminator of convex skin the map shadows the receiver's own surface,
+// whose light the diffuse LUT already holds, the light scattered past the terminator included
+// (it integrates max(N.L, 0) of the neighbours over the osculating sphere); there the LUT's own
+// falloff applies, unshadowed, penumbra scattering or not. The receiver's own surface can lie
+// along the light within ownMm of it: one kernel width of the filter, plus past the terminator
+// (N.L < 0) the chord to the osculating sphere's lit side, 2 a |N.L| (a = 1 / curvature), at most
+// the profile's reach (3 local patches, preskinMixPatchMm: farther, the LUT has no light left to
+// lose), which is also what flat and concave skin get (their LUT rows hold no light past the
+// terminator, so nothing changes there but the per-channel normals' own), so that the share is
+// continuous in the curvature. Occluders within ownMm are the receiver's own, beyond twice that
+// another surface's (a nose, a lid over the eye, a crease's far wall), with a smooth step
+// between. Without the diffuse LUT (kSkinLutDiffuse off), or where the filter found no occluder, 1.
+float preskinCastShadowShare(PreskinSkinSurface s, PreskinProfileMix m, PreskinShadowSample shadow, vec3 L,
+                             uint features) {
     if ((features & kSkinLutDiffuse) == 0u || shadow.blockerDistanceM <= 0.0) return 1.0;
     float c = dot(s.geometricNormal, L);
     float toMm = 1000.0 * s.scatterScale;
     float ownMm = max(shadow.kernelWidthM * toMm, 1e-6);
-    if (s.curvaturePerMm > 0.0 && c < 0.0) ownMm -= 2.0 * c / s.curvaturePerMm;
+    if (c < 0.0) ownMm -= 2.0 * c / max(s.curvaturePerMm, -2.0 * c / (3.0 * preskinMixPatchMm(m)));
     return smoothstep(ownMm, 2.0 * ownMm, shadow.blockerDistanceM * toMm);
 }
 
@@ -301,7 +303,7 @@ vec3 preskinSkinShadow(PreskinSkinSurface s, PreskinProfileMix m, sampler2DArray
     float toProfileMm = 1000.0 * s.scatterScale * preskinEdgeStretch(s.geometricNormal, L, shadow.gradientWs);
     vec3 rgb = preskinSkinShadow(m, penumbraLut, shadow.visibility, shadow.kernelWidthM, shadow.penumbraWidthM, widths,
                                  toProfileMm, features);
-    return mix(vec3(1.0), rgb, preskinCastShadowShare(s, shadow, L, features));
+    return mix(vec3(1.0), rgb, preskinCastShadowShare(s, m, shadow, L, features));
 }
 
 // The same with skin's wide shadow map (shaders/shadow_reduce.comp: each texel the nearest depth of
@@ -373,7 +375,7 @@ vec3 preskinSkinShadow(PreskinSkinSurface s, PreskinProfileMix m, sampler2DArray
                        PreskinShadowSample shadow, PreskinShadowSample wide, float wideTexelM, vec3 L,
                        uint features) {
     return mix(vec3(1.0), preskinSkinShadowEdges(s, m, penumbraLut, shadow, wide, wideTexelM, L, features),
-               preskinCastShadowShare(s, shadow, L, features));
+               preskinCastShadowShare(s, m, shadow, L, features));
 }
 
 // Light that reaches the skin through the skin from a lit surface the light meets first
