@@ -23,6 +23,9 @@
 //    turned 60 degrees along it (the receiver's stretch across the edge is then 1.14, not
 //    1 / N.L = 4): the red, green and blue profiles across the edge (rows averaged) within 5 % of
 //    each channel's lit level, where the plain shadow (no penumbra scattering) is off by more.
+//  - The same scene with a bar 0.6 mm wide for the plate, a shadow strip narrower than the wide
+//    shadow map's blocks: beside it red no farther from the reference than the plain shadow's,
+//    in it closer.
 #include "support/GpuTest.h"
 #include "support/ImageCompare.h"
 #include "support/SkinTestSupport.h"
@@ -374,6 +377,70 @@ INSTANTIATE_TEST_SUITE_P(Lights, SkinPenumbraEdge,
                          ::testing::Values(EdgeLight{"High", 63.434949f, 0.0f}, EdgeLight{"LowAcross", 30.0f, 0.0f},
                                            EdgeLight{"LowTurned", 14.5f, 60.0f}),
                          edgeLightName);
+
+// Penumbra scattering never takes skin farther from the truth than the plain shadow, at a shadow
+// too narrow for the wide shadow map to resolve: a bar 0.6 mm wide, 30 mm over the plane, casts a
+// strip that covers part of one block of the wide map (blocks of a third of the profile's reach,
+// 2 to 3 mm here), whose nearest depth takes it for a shadow a block wide. Beside the strip,
+// where the shadow map's own filter sees no shadow (the plain shadow lit in every column), red
+// with penumbra scattering on must be no farther from the diffusion reference than with it off
+// (the columns' means, rows averaged, over the lit level); in the strip, closer. (With the wide
+// edge not moved back half a block, preskinSkinShadowEdges, red beside the strip is 0.155 off
+// against the plain shadow's 0.101.)
+TEST_F(SkinPenumbra, NarrowStripIsNoFartherFromTheReferenceThanThePlainShadow) {
+    const StraightEdgeScene strip = straightEdgeScene(0.4f, 63.434949f, 0.0f, 0.0006f);
+    RenderSettings settings;
+    settings.specular = false;
+    const Environment dark = Environment::constant(glm::vec3(0.0f));
+    Renderer renderer(context(), strip.scene, dark, &LutSet::loadDefault(), settings);
+    const RenderedImage skin = renderer.render(strip.view, strip.width, strip.height, OutputEncoding::LinearFloat);
+    settings.skin.penumbra = false;
+    renderer.setSettings(settings);
+    const RenderedImage plain = renderer.render(strip.view, strip.width, strip.height, OutputEncoding::LinearFloat);
+    const DiffusionReference reference(strip.scene, strip.scene.lights, dark.radianceSh(),
+                                       LutSet::loadDefault().profile());
+    const ReferenceImage truth = reference.render(strip.view.eye(), strip.width, strip.height);
+    const uint32_t width = strip.width, height = strip.height;
+    auto columns = [&](const std::vector<float>& rgba) {
+        std::vector<glm::dvec3> means(width, glm::dvec3(0.0));
+        for (uint32_t y = 0; y < height; ++y)
+            for (uint32_t x = 0; x < width; ++x)
+                for (int c = 0; c < 3; ++c)
+                    means[x][c] += double(rgba[(size_t(y) * width + x) * 4 + size_t(c)]) / height;
+        return means;
+    };
+    const std::vector<glm::dvec3> on = columns(skin.rgba32f), off = columns(plain.rgba32f),
+                                  ref = columns(truth.rgba32f);
+    const glm::dvec3 lit = off[width - 1];  // the plain shadow's lit level
+    std::vector<bool> shadowed(width);
+    for (uint32_t x = 0; x < width; ++x) shadowed[x] = off[x].g < 0.995 * lit.g;
+    double besideOn = 0.0, besideOff = 0.0, inOn = 0.0, inOff = 0.0;
+    int beside = 0, inside = 0;
+    for (uint32_t x = 0; x < width; ++x) {
+        const double errorOn = std::abs(on[x].r - ref[x].r) / lit.r, errorOff = std::abs(off[x].r - ref[x].r) / lit.r;
+        if (shadowed[x]) {
+            inOn = std::max(inOn, errorOn);
+            inOff = std::max(inOff, errorOff);
+            ++inside;
+            continue;
+        }
+        bool near = false;  // within 40 columns (3.75 mm) of the strip
+        for (uint32_t n = uint32_t(std::max(int(x) - 40, 0)); n < std::min(x + 41, width); ++n)
+            near = near || shadowed[n];
+        if (!near) continue;
+        besideOn = std::max(besideOn, errorOn);
+        besideOff = std::max(besideOff, errorOff);
+        ++beside;
+    }
+    std::printf(
+        "[ skin     ] 0.6 mm strip: red's largest difference / lit level beside it %.4f (plain %.4f, %d columns), "
+        "in it %.4f (plain %.4f, %d columns)\n",
+        besideOn, besideOff, beside, inOn, inOff, inside);
+    ASSERT_GE(inside, 3) << "the strip's shadow should cover a few columns";
+    ASSERT_GE(beside, 40) << "there should be lit columns beside the strip";
+    EXPECT_LE(besideOn, besideOff + 0.005) << "penumbra scattering took red from the lit skin beside a narrow strip";
+    EXPECT_LT(inOn, inOff) << "penumbra scattering should bring the strip's red closer to the reference";
+}
 
 TEST_F(SkinPenumbra, WideShadowReachMustBeAFiniteLength) {
     const Scene scene = makeScene({{makeQuad(0.1f, 2), glm::mat4(1.0f)}}, {});

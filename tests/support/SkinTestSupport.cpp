@@ -253,7 +253,7 @@ Scene overhangScene() {
     return scene;
 }
 
-StraightEdgeScene straightEdgeScene(float planeM, float lightElevationDeg, float lightAzimuthDeg) {
+StraightEdgeScene straightEdgeScene(float planeM, float lightElevationDeg, float lightAzimuthDeg, float casterWidthM) {
     const glm::mat4 turn = glm::rotate(glm::mat4(1.0f), glm::radians(25.0f), glm::vec3(0.0f, 0.0f, 1.0f));
     Material plate;
     plate.baseColorFactor = glm::vec4(0.2f, 0.2f, 0.2f, 1.0f);
@@ -268,9 +268,12 @@ StraightEdgeScene straightEdgeScene(float planeM, float lightElevationDeg, float
     const float e = glm::radians(lightElevationDeg), a = glm::radians(lightAzimuthDeg);
     const float edgeM = -0.03f * std::cos(e) / std::sin(e) * std::cos(a);
     StraightEdgeScene out;
-    out.scene = makeScene({{plane, glm::mat4(1.0f)},
-                           {caster, turn * glm::translate(glm::mat4(1.0f), glm::vec3(edgeM - 0.3f, 0.0f, 0.03f))}},
-                          {skinMaterial(glm::vec3(0.8f, 0.6f, 0.5f)), plate});
+    out.scene =
+        makeScene({{plane, glm::mat4(1.0f)},
+                   {caster,
+                    turn * glm::translate(glm::mat4(1.0f), glm::vec3(edgeM - 0.5f * casterWidthM, 0.0f, 0.03f)) *
+                        glm::scale(glm::mat4(1.0f), glm::vec3(casterWidthM / 0.6f, 1.0f, 1.0f))}},
+                  {skinMaterial(glm::vec3(0.8f, 0.6f, 0.5f)), plate});
     Light light;
     light.type = LightType::Directional;
     light.directionWs = glm::normalize(

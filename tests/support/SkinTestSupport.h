@@ -89,14 +89,16 @@ SphereAgreement compareWithSkinReference(const RenderedImage& image, const View&
 // edge), its approach turned `lightAzimuthDeg` from across the edge towards along it; the edge
 // falls at x' = 0, x' being x turned 25 degrees about the plane's normal (with the plate, the
 // light and the view), so the edge runs across the shadow map's texel rows, as edges in scenes
-// do. Seen from 80 mm above: 12 mm across the edge in width x height pixels.
+// do. Seen from 80 mm above: 12 mm across the edge in width x height pixels. A plate
+// `casterWidthM` wide (less than the view) is a bar: its shadow a strip from x' = 0 towards -x'.
 struct StraightEdgeScene {
     Scene scene;
     View view;
     uint32_t width = 128;
     uint32_t height = 8;
 };
-StraightEdgeScene straightEdgeScene(float planeM, float lightElevationDeg = 63.434949f, float lightAzimuthDeg = 0.0f);
+StraightEdgeScene straightEdgeScene(float planeM, float lightElevationDeg = 63.434949f, float lightAzimuthDeg = 0.0f,
+                                    float casterWidthM = 0.6f);
 
 // A skin plate's underside 1 mm over a lit skin floor (x from -40 to 0 mm over a floor 80 mm
 // wide, 1 mm cells), the plate's other faces casting its shadow, one shadowed directional light
