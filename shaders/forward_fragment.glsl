@@ -19,6 +19,8 @@
 // (1 - F) / pi, ambient and transmission included) and the surface's metres per texel along u
 // and v; with PRESKIN_TEXTURE_DIFFUSION (forward_texture.frag) skin's diffuse light is its albedo
 // times that irradiance blurred by its profile (render/TextureDiffusion.h), read at TEXCOORD_0.
+#extension GL_EXT_control_flow_attributes : require
+#define PRESKIN_UNROLL [[unroll]]  // the shadow filter's loops (preskin/common.glsl)
 #include "forward_material.glsl"
 
 layout(set = 0, binding = kBindingFrame) uniform Frame { FrameUniforms frame; };

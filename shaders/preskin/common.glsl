@@ -4,6 +4,15 @@
 
 #include "shared/constants.h"
 
+// Marks the shadow filter's loops for unrolling: a shader that enables
+// GL_EXT_control_flow_attributes may define it as [[unroll]] before including (the renderer's
+// shaders do). A CPU driver (lavapipe) left the skin path's filter loop, with the occluders' sums
+// in it, rolled, and indexed its weight arrays lane by lane in memory: 6 % of the skin frame's
+// instructions.
+#ifndef PRESKIN_UNROLL
+#define PRESKIN_UNROLL
+#endif
+
 const float PRESKIN_PI = kPi;
 
 float preskinSaturate(float x) { return clamp(x, 0.0, 1.0); }

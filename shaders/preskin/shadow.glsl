@@ -165,7 +165,7 @@ PreskinShadowPcf preskinShadowPcf(sampler2D shadowMap, vec2 t, float mapSize, fl
     float varianceX = 0.0;
     float varianceY = 0.0;
     vec2 weightMoment = vec2(0.0);  // the weights' first moments along each axis
-    for (int k = 0; k < 2 * G; ++k) {
+    PRESKIN_UNROLL for (int k = 0; k < 2 * G; ++k) {
         vec2 d = origin + step * float(k);
         wx[k] = max(exp(-d.x * d.x / twoVariance) - window, 0.0);
         wy[k] = max(exp(-d.y * d.y / twoVariance) - window, 0.0);
@@ -177,8 +177,8 @@ PreskinShadowPcf preskinShadowPcf(sampler2D shadowMap, vec2 t, float mapSize, fl
     }
     if (sparse) {  // each lattice point compared at its nearest texel
         ivec2 last = ivec2(mapSize) - 1;
-        for (int j = 0; j < 2 * G; ++j) {
-            for (int i = 0; i < 2 * G; ++i) {
+        PRESKIN_UNROLL for (int j = 0; j < 2 * G; ++j) {
+            PRESKIN_UNROLL for (int i = 0; i < 2 * G; ++i) {
                 vec2 lu = firstU + vec2(i, j);
                 vec2 texel = floor(stride * (lu.x * ax + lu.y * ay) + 0.5);
                 float w = wx[i] * wy[j];
@@ -193,9 +193,9 @@ PreskinShadowPcf preskinShadowPcf(sampler2D shadowMap, vec2 t, float mapSize, fl
             }
         }
     } else {
-        for (int j = 0; j < G; ++j) {
+        PRESKIN_UNROLL for (int j = 0; j < G; ++j) {
             float y0 = first.y + float(2 * j) - t.y;  // offsets of the gathered rows: y0 and y0 + 1
-            for (int i = 0; i < G; ++i) {
+            PRESKIN_UNROLL for (int i = 0; i < G; ++i) {
                 float x0 = first.x + float(2 * i) - t.x;
                 // The 2x2 texels from (x0, y0); gather order: (0,1), (1,1), (1,0), (0,0).
                 vec4 occluder = textureGather(shadowMap, (first + vec2(2 * i, 2 * j) + 1.0) / mapSize, 0);
