@@ -330,6 +330,30 @@ TEST_F(SkinPenumbra, SkinShadowIsTheHardEdgeWhereTheFilterPutsIt) {
     EXPECT_GT(worstNoScatter, 0.05) << "the skin shadow should differ from the plain one, or the check means little";
 }
 
+// A straight-edge scene rendered with penumbra scattering (skin) and without it (plain), specular
+// off, and its diffusion reference.
+struct EdgeRenders {
+    RenderedImage skin;
+    RenderedImage plain;
+    ReferenceImage truth;
+};
+
+EdgeRenders renderEdge(Context& context, const StraightEdgeScene& edge) {
+    RenderSettings settings;
+    settings.specular = false;
+    const Environment dark = Environment::constant(glm::vec3(0.0f));
+    Renderer renderer(context, edge.scene, dark, &LutSet::loadDefault(), settings);
+    EdgeRenders out;
+    out.skin = renderer.render(edge.view, edge.width, edge.height, OutputEncoding::LinearFloat);
+    settings.skin.penumbra = false;
+    renderer.setSettings(settings);
+    out.plain = renderer.render(edge.view, edge.width, edge.height, OutputEncoding::LinearFloat);
+    const DiffusionReference reference(edge.scene, edge.scene.lights, dark.radianceSh(),
+                                       LutSet::loadDefault().profile());
+    out.truth = reference.render(edge.view.eye(), edge.width, edge.height);
+    return out;
+}
+
 // The issue's own measure of penumbra scattering: at a straight cast-shadow edge on a plane, the
 // profile across the edge matches the ray-traced diffusion reference, with the light 63 and 30
 // degrees above the plane approaching across the edge, and 14.5 degrees above it (N.L 0.25)
@@ -348,20 +372,10 @@ class SkinPenumbraEdge : public GpuTest, public ::testing::WithParamInterface<Ed
 
 TEST_P(SkinPenumbraEdge, StraightEdgeMatchesTheDiffusionReference) {
     // Skin plane 0.4 m wide (the shadow map fitted to it as to a head), the default 2048 map.
-    const StraightEdgeScene edge = straightEdgeScene(0.4f, GetParam().elevationDeg, GetParam().azimuthDeg);
-    RenderSettings settings;
-    settings.specular = false;
-    const Environment dark = Environment::constant(glm::vec3(0.0f));
-    Renderer renderer(context(), edge.scene, dark, &LutSet::loadDefault(), settings);
-    const RenderedImage skin = renderer.render(edge.view, edge.width, edge.height, OutputEncoding::LinearFloat);
-    settings.skin.penumbra = false;
-    renderer.setSettings(settings);
-    const RenderedImage plain = renderer.render(edge.view, edge.width, edge.height, OutputEncoding::LinearFloat);
-    const DiffusionReference reference(edge.scene, edge.scene.lights, dark.radianceSh(),
-                                       LutSet::loadDefault().profile());
-    const ReferenceImage truth = reference.render(edge.view.eye(), edge.width, edge.height);
-    const glm::dvec3 worst = largestColumnDifference(skin, truth);
-    const glm::dvec3 worstPlain = largestColumnDifference(plain, truth);
+    const EdgeRenders edge =
+        renderEdge(context(), straightEdgeScene(0.4f, GetParam().elevationDeg, GetParam().azimuthDeg));
+    const glm::dvec3 worst = largestColumnDifference(edge.skin, edge.truth);
+    const glm::dvec3 worstPlain = largestColumnDifference(edge.plain, edge.truth);
     std::printf(
         "[ skin     ] straight edge, light %.1f degrees up, %.0f along: largest difference / lit level R %.3f G "
         "%.3f B %.3f (plain shadow R %.3f G %.3f B %.3f)\n",
@@ -388,19 +402,8 @@ INSTANTIATE_TEST_SUITE_P(Lights, SkinPenumbraEdge,
 // edge not moved back half a block, preskinSkinShadowEdges, red beside the strip is 0.155 off
 // against the plain shadow's 0.101.)
 TEST_F(SkinPenumbra, NarrowStripIsNoFartherFromTheReferenceThanThePlainShadow) {
-    const StraightEdgeScene strip = straightEdgeScene(0.4f, 63.434949f, 0.0f, 0.0006f);
-    RenderSettings settings;
-    settings.specular = false;
-    const Environment dark = Environment::constant(glm::vec3(0.0f));
-    Renderer renderer(context(), strip.scene, dark, &LutSet::loadDefault(), settings);
-    const RenderedImage skin = renderer.render(strip.view, strip.width, strip.height, OutputEncoding::LinearFloat);
-    settings.skin.penumbra = false;
-    renderer.setSettings(settings);
-    const RenderedImage plain = renderer.render(strip.view, strip.width, strip.height, OutputEncoding::LinearFloat);
-    const DiffusionReference reference(strip.scene, strip.scene.lights, dark.radianceSh(),
-                                       LutSet::loadDefault().profile());
-    const ReferenceImage truth = reference.render(strip.view.eye(), strip.width, strip.height);
-    const uint32_t width = strip.width, height = strip.height;
+    const EdgeRenders strip = renderEdge(context(), straightEdgeScene(0.4f, 63.434949f, 0.0f, 0.0006f));
+    const uint32_t width = strip.truth.width, height = strip.truth.height;
     auto columns = [&](const std::vector<float>& rgba) {
         std::vector<glm::dvec3> means(width, glm::dvec3(0.0));
         for (uint32_t y = 0; y < height; ++y)
@@ -409,8 +412,8 @@ TEST_F(SkinPenumbra, NarrowStripIsNoFartherFromTheReferenceThanThePlainShadow) {
                     means[x][c] += double(rgba[(size_t(y) * width + x) * 4 + size_t(c)]) / height;
         return means;
     };
-    const std::vector<glm::dvec3> on = columns(skin.rgba32f), off = columns(plain.rgba32f),
-                                  ref = columns(truth.rgba32f);
+    const std::vector<glm::dvec3> on = columns(strip.skin.rgba32f), off = columns(strip.plain.rgba32f),
+                                  ref = columns(strip.truth.rgba32f);
     const glm::dvec3 lit = off[width - 1];  // the plain shadow's lit level
     std::vector<bool> shadowed(width);
     for (uint32_t x = 0; x < width; ++x) shadowed[x] = off[x].g < 0.995 * lit.g;
