@@ -404,16 +404,9 @@ INSTANTIATE_TEST_SUITE_P(Lights, SkinPenumbraEdge,
 TEST_F(SkinPenumbra, NarrowStripIsNoFartherFromTheReferenceThanThePlainShadow) {
     const EdgeRenders strip = renderEdge(context(), straightEdgeScene(0.4f, 63.434949f, 0.0f, 0.0006f));
     const uint32_t width = strip.truth.width, height = strip.truth.height;
-    auto columns = [&](const std::vector<float>& rgba) {
-        std::vector<glm::dvec3> means(width, glm::dvec3(0.0));
-        for (uint32_t y = 0; y < height; ++y)
-            for (uint32_t x = 0; x < width; ++x)
-                for (int c = 0; c < 3; ++c)
-                    means[x][c] += double(rgba[(size_t(y) * width + x) * 4 + size_t(c)]) / height;
-        return means;
-    };
-    const std::vector<glm::dvec3> on = columns(strip.skin.rgba32f), off = columns(strip.plain.rgba32f),
-                                  ref = columns(strip.truth.rgba32f);
+    const std::vector<glm::dvec3> on = columnMeans(strip.skin.rgba32f, width, height),
+                                  off = columnMeans(strip.plain.rgba32f, width, height),
+                                  ref = columnMeans(strip.truth.rgba32f, width, height);
     const glm::dvec3 lit = off[width - 1];  // the plain shadow's lit level
     std::vector<bool> shadowed(width);
     for (uint32_t x = 0; x < width; ++x) shadowed[x] = off[x].g < 0.995 * lit.g;

@@ -289,19 +289,24 @@ StraightEdgeScene straightEdgeScene(float planeM, float lightElevationDeg, float
     return out;
 }
 
+std::vector<glm::dvec3> columnMeans(const std::vector<float>& rgba, uint32_t width, uint32_t height) {
+    std::vector<glm::dvec3> means(width, glm::dvec3(0.0));
+    for (uint32_t x = 0; x < width; ++x) {
+        for (uint32_t y = 0; y < height; ++y)
+            for (int c = 0; c < 3; ++c) means[x][c] += double(rgba[(size_t(y) * width + x) * 4 + size_t(c)]);
+        means[x] /= double(height);
+    }
+    return means;
+}
+
 glm::dvec3 largestColumnDifference(const RenderedImage& render, const ReferenceImage& truth) {
     const uint32_t width = truth.width, height = truth.height;
-    auto column = [&](const std::vector<float>& rgba, uint32_t x) {
-        glm::dvec3 sum(0.0);
-        for (uint32_t y = 0; y < height; ++y)
-            for (int c = 0; c < 3; ++c) sum[c] += double(rgba[(size_t(y) * width + x) * 4 + size_t(c)]);
-        return sum / double(height);
-    };
+    const std::vector<glm::dvec3> rendered = columnMeans(render.rgba32f, width, height);
+    const std::vector<glm::dvec3> reference = columnMeans(truth.rgba32f, width, height);
     glm::dvec3 lit(0.0);
-    for (uint32_t x = width - 4; x < width; ++x) lit += column(truth.rgba32f, x) / 4.0;
+    for (uint32_t x = width - 4; x < width; ++x) lit += reference[x] / 4.0;
     glm::dvec3 worst(0.0);
-    for (uint32_t x = 0; x < width; ++x)
-        worst = glm::max(worst, glm::abs(column(render.rgba32f, x) - column(truth.rgba32f, x)) / lit);
+    for (uint32_t x = 0; x < width; ++x) worst = glm::max(worst, glm::abs(rendered[x] - reference[x]) / lit);
     return worst;
 }
 

@@ -108,6 +108,8 @@ Scene overhangScene();
 
 // Per column (rows averaged), the largest |render - truth| over the truth's lit level (the mean
 // of its four rightmost columns: the edge's lit side), per channel.
+// Each column's mean (rows averaged) of a width x height RGBA float image's red, green and blue.
+std::vector<glm::dvec3> columnMeans(const std::vector<float>& rgba, uint32_t width, uint32_t height);
 glm::dvec3 largestColumnDifference(const RenderedImage& render, const ReferenceImage& truth);
 
 // A 40 mm skin sphere under sphereLight() (casting the shadow) rendered with `settings` as a
