@@ -72,6 +72,7 @@ configs=(
   "standard|--skin none"
   "lut_diffuse|--no-lut-diffuse"
   "normal_prefilter|--no-normal-prefilter"
+  "normal_map_levels|--no-normal-map-levels"
   "penumbra|--no-penumbra"
   "sh_ambient|--no-sh-skin"
   "transmission|--no-transmission"
@@ -184,7 +185,9 @@ lines = [
     "the costs overlap, so they do not add up to the total. Fidelity: `preskin compare` of the README's head "
     f"views ({', '.join(f'{v} {sizes[v]}' for v in views) or 'none measured'}) with the technique off, skin's pooled RMSE over "
     "Lambert's against the diffusion reference (below 1: closer than Lambert; higher than the all-on row: the "
-    "technique buys accuracy there); specular is off in `compare`, so the specular rows buy nothing there.",
+    "technique buys accuracy there); specular is off in `compare`, so the specular rows buy nothing there, and "
+    "it renders without normal maps (the reference shades the smooth surface), so the normal-map levels' row "
+    "is not measured there (left blank).",
     "",
     "| | instructions per frame (M) | share of the skin frame | wall ms | process CPU ms | forward-pass ms "
     "| fidelity with it off: all / concave / near cast-shadow edges (mean of views) | all, per view |",
@@ -202,7 +205,8 @@ lines.append(f"| skin frame, all techniques on | {M(skin)} | 100% "
 lines.append(f"| standard-material frame (`--skin none`) | {M(std)} | {100 * std / skin:.0f}% "
              + (frame(t["standard_material"]) if t else "| | | ") + "| | |")
 labels = {"lut_diffuse": "diffuse LUT fetches (per light, per channel)",
-          "normal_prefilter": "normal samples (three prefiltered normals)",
+          "normal_prefilter": "per-channel normals (geometric and normal-map)",
+          "normal_map_levels": "normal-map levels per channel (of those)",
           "penumbra": "penumbra LUT", "sh_ambient": "SH transfer", "transmission": "thickness and transmission",
           "opposing_light": "the opposing neighbours' light", "dual_specular": "dual specular",
           "specular_ibl": "specular IBL (prefiltered environment)"}

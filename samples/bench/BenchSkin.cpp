@@ -71,11 +71,14 @@ void BenchRun::skinSection(const std::vector<uint32_t>& skinCounts) {
                 const char* name;
                 bool SkinFeatures::*flag;
             };
-            const Technique techniques[] = {
-                {"lut_diffuse", &SkinFeatures::lutDiffuse},      {"normal_prefilter", &SkinFeatures::normalPrefilter},
-                {"penumbra", &SkinFeatures::penumbra},           {"sh_ambient", &SkinFeatures::shAmbient},
-                {"transmission", &SkinFeatures::transmission},   {"dual_specular", &SkinFeatures::dualSpecular},
-                {"opposing_light", &SkinFeatures::opposingLight}};
+            const Technique techniques[] = {{"lut_diffuse", &SkinFeatures::lutDiffuse},
+                                            {"normal_prefilter", &SkinFeatures::normalPrefilter},
+                                            {"penumbra", &SkinFeatures::penumbra},
+                                            {"sh_ambient", &SkinFeatures::shAmbient},
+                                            {"transmission", &SkinFeatures::transmission},
+                                            {"dual_specular", &SkinFeatures::dualSpecular},
+                                            {"opposing_light", &SkinFeatures::opposingLight},
+                                            {"normal_map_levels", &SkinFeatures::normalMapLevels}};
             std::vector<Config> configs{{&renderer, base, fmt::format("{} lights, skin", n), 0.0},
                                         {&standardRenderer, base, fmt::format("{} lights, standard material", n), 0.0}};
             for (const Technique& t : techniques) {

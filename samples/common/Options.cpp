@@ -124,7 +124,10 @@ void addCommonOptions(CLI::App& cmd, CommonOptions& o) {
 
 void addSkinTechniqueOptions(CLI::App& cmd, CommonOptions& o) {
     cmd.add_flag("--no-lut-diffuse", o.noLutDiffuse, "Skin: Lambert instead of the pre-integrated diffuse LUT");
-    cmd.add_flag("--no-normal-prefilter", o.noNormalPrefilter, "Skin: one normal-map sample for all channels");
+    cmd.add_flag("--no-normal-prefilter", o.noNormalPrefilter,
+                 "Skin: one normal for all channels (no per-channel geometric normals or normal-map levels)");
+    cmd.add_flag("--no-normal-map-levels", o.noNormalMapLevels,
+                 "Skin: the normal map read once for all channels (each keeps its own geometric normal)");
     cmd.add_flag("--no-penumbra", o.noPenumbra, "Skin: plain PCF shadow instead of penumbra scattering");
     cmd.add_flag("--no-sh-skin", o.noShSkin, "Skin: Lambert SH ambient instead of the skin transfer");
     cmd.add_flag("--no-transmission", o.noTransmission, "Skin: no transmission through thin parts");
@@ -382,6 +385,7 @@ RenderSettings renderSettings(const CommonOptions& o) {
     s.skin.transmission = !o.noTransmission;
     s.skin.dualSpecular = !o.noDualSpecular;
     s.skin.opposingLight = !o.noOpposingLight;
+    s.skin.normalMapLevels = !o.noNormalMapLevels;
     if (!o.skinQuality.empty())
         s.skinQuality = o.skinQuality == "low" ? SkinQuality::Low
             : o.skinQuality == "medium"        ? SkinQuality::Medium

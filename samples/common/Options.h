@@ -50,6 +50,7 @@ struct CommonOptions {
     bool noTransmission = false;
     bool noDualSpecular = false;
     bool noOpposingLight = false;
+    bool noNormalMapLevels = false;
     std::string skinQuality;  // --skin-quality: "" (each material's own), low, medium or high
     bool skinTermsPerFragment = false;
     bool noSpecular = false;

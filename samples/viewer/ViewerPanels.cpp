@@ -246,7 +246,9 @@ void Viewer::panelTechniques() {
     ImGui::Checkbox("Pre-integrated diffuse (LUT)", &f.lutDiffuse);
     tooltip("Off: Lambert N.L");
     ImGui::Checkbox("Normal prefilter (per channel)", &f.normalPrefilter);
-    tooltip("Off: one normal-map sample for all channels");
+    tooltip("Off: one normal for all channels");
+    ImGui::Checkbox("Normal-map levels (per channel)", &f.normalMapLevels);
+    tooltip("Off: the normal map read once, on each channel's geometric normal");
     ImGui::Checkbox("Penumbra scattering", &f.penumbra);
     tooltip("Off: the plain filtered shadow");
     ImGui::Checkbox("SH ambient skin transfer", &f.shAmbient);
@@ -265,7 +267,8 @@ void Viewer::panelTechniques() {
     settings_.skinQuality = tier == 0 ? std::nullopt : std::optional<SkinQuality>(static_cast<SkinQuality>(tier - 1));
     tooltip(
         "The techniques skin compiles in: high all, medium without transmission and the second lobe, low "
-        "also without the penumbra (the diffuse LUT, per-channel normals, SH transfer and opposing light)");
+        "also without the penumbra and the normal map's per-channel levels (the diffuse LUT, per-channel "
+        "geometric normals, SH transfer and opposing light)");
     int method = static_cast<int>(settings_.diffusion);
     ImGui::RadioButton("Pre-integrated", &method, 0);
     ImGui::SameLine();

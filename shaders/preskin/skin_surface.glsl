@@ -59,7 +59,9 @@ vec3 preskinNormalTs(vec3 baseTexel, vec3 detailTexel, PreskinNormalMaps maps) {
 }
 
 // The surface's four normals from the maps: normalSpecular (unbiased) and normalR/G/B
-// (prefiltered per channel when kSkinNormalPrefilter is set, else equal to normalSpecular).
+// (prefiltered per channel when kSkinNormalPrefilter is set, else equal to normalSpecular: each
+// channel's geometric normal carrying the map at that channel's level, or with
+// kSkinNormalMapLevels off the one unbiased sample).
 // geometricNormal: the interpolated vertex normal facing the viewer; geometricR/G/B: the same
 // prefiltered per channel (the mesh seen through each channel's profile, <preskin/NormalBasis.h>;
 // the geometric normal where the host has none), whose tangent frames carry each channel's map
@@ -70,7 +72,8 @@ void preskinSkinNormals(sampler2D normalMap, sampler2D detailMap, PreskinNormalM
                         out vec3 normalB) {
     mat3 tbn = preskinTangentFrame(geometricNormal, tangentWs);
     vec2 uvDetail = uv * maps.detailUvScale;
-    bool levels = (features & kSkinNormalPrefilter) != 0u;
+    bool perChannel = (features & kSkinNormalPrefilter) != 0u;
+    bool levels = perChannel && (features & kSkinNormalMapLevels) != 0u;  // else one sample for all channels
     vec3 base = vec3(0.5, 0.5, 1.0);
     vec3 detail = vec3(0.5, 0.5, 1.0);
     if (!levels || !maps.specularFromLevels) {
@@ -95,11 +98,11 @@ void preskinSkinNormals(sampler2D normalMap, sampler2D detailMap, PreskinNormalM
         }
     }
     normalSpecular = normalize(tbn * preskinNormalTs(base, detail, maps));
-    normalR = levels ? normalize(preskinTangentFrame(geometricR, tangentWs) * preskinNormalTs(baseR, detailR, maps))
+    normalR = perChannel ? normalize(preskinTangentFrame(geometricR, tangentWs) * preskinNormalTs(baseR, detailR, maps))
                      : normalSpecular;
-    normalG = levels ? normalize(preskinTangentFrame(geometricG, tangentWs) * preskinNormalTs(baseG, detailG, maps))
+    normalG = perChannel ? normalize(preskinTangentFrame(geometricG, tangentWs) * preskinNormalTs(baseG, detailG, maps))
                      : normalSpecular;
-    normalB = levels ? normalize(preskinTangentFrame(geometricB, tangentWs) * preskinNormalTs(baseB, detailB, maps))
+    normalB = perChannel ? normalize(preskinTangentFrame(geometricB, tangentWs) * preskinNormalTs(baseB, detailB, maps))
                      : normalSpecular;
 }
 

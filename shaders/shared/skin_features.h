@@ -13,18 +13,23 @@ PRESKIN_CONST(uint, kSkinShAmbient, 8u)
 PRESKIN_CONST(uint, kSkinTransmission, 16u)
 PRESKIN_CONST(uint, kSkinDualSpecular, 32u)
 PRESKIN_CONST(uint, kSkinOpposingLight, 64u)
-PRESKIN_CONST(uint, kSkinAll, 127u)
+// With kSkinNormalPrefilter: the normal map read at each channel's level of detail (red blurred
+// most); without it the map is read once and each channel's geometric normal carries that sample.
+PRESKIN_CONST(uint, kSkinNormalMapLevels, 128u)
+PRESKIN_CONST(uint, kSkinAll, 255u)
 
 // Quality tiers (SkinQuality, `--skin-quality`, PRESKIN_SKIN_QUALITY in a host shader): the
 // techniques each compiles in, chosen by what each costs and buys in docs/skin-cost-table.md
 // (instructions per frame against compare's error on the head). High is every technique; Medium
 // leaves out transmission (11 % of the skin frame; it lights thin parts from behind, which the
 // front views do not show) and the second specular lobe; Low also the penumbra scattering and
-// its wide shadow map (14 %), keeping the pre-integrated diffuse, the per-channel normals, the
-// SH transfer and the opposing neighbours' light (2 %, the largest gain per instruction).
-PRESKIN_CONST(uint, kSkinQualityLow, 75u)     // kSkinLutDiffuse | kSkinNormalPrefilter | kSkinShAmbient | kSkinOpposingLight
-PRESKIN_CONST(uint, kSkinQualityMedium, 79u)  // Low | kSkinPenumbra
-PRESKIN_CONST(uint, kSkinQualityHigh, 127u)   // kSkinAll
+// its wide shadow map (14 %) and the normal map's per-channel levels (4 %: a distant face's
+// map detail is already under its own mip level), keeping the pre-integrated diffuse, the
+// per-channel geometric normals, the SH transfer and the opposing neighbours' light (2 %, the
+// largest gain per instruction).
+PRESKIN_CONST(uint, kSkinQualityLow, 75u)      // kSkinLutDiffuse | kSkinNormalPrefilter | kSkinShAmbient | kSkinOpposingLight
+PRESKIN_CONST(uint, kSkinQualityMedium, 207u)  // Low | kSkinPenumbra | kSkinNormalMapLevels
+PRESKIN_CONST(uint, kSkinQualityHigh, 255u)    // kSkinAll
 
 PRESKIN_GPU_END
 

@@ -158,6 +158,7 @@ TEST_F(SkinToggles, EachTechniqueChangesTheImage) {
     ToggleScene overhang = overhangToggleScene();
     const std::vector<Case> cases = {{"lutDiffuse", &SkinFeatures::lutDiffuse, &sphere},
                                      {"normalPrefilter", &SkinFeatures::normalPrefilter, &sphere},
+                                     {"normalMapLevels", &SkinFeatures::normalMapLevels, &sphere},
                                      {"shAmbient", &SkinFeatures::shAmbient, &sphere},
                                      {"dualSpecular", &SkinFeatures::dualSpecular, &sphere},
                                      {"penumbra", &SkinFeatures::penumbra, &penumbra},

@@ -38,6 +38,10 @@ TEST(SkinQuality, TiersCompileInTheirTechniques) {
     EXPECT_EQ(medium.mask() & low.mask(), low.mask());
     EXPECT_EQ(high.mask() & medium.mask(), medium.mask());
     EXPECT_TRUE(low.lutDiffuse);
+    // Low keeps the per-channel geometric normals but reads the normal map once.
+    EXPECT_TRUE(low.normalPrefilter);
+    EXPECT_FALSE(low.normalMapLevels);
+    EXPECT_TRUE(medium.normalMapLevels);
     EXPECT_NE(medium.mask(), high.mask());
     EXPECT_NE(low.mask(), medium.mask());
 }

@@ -42,8 +42,11 @@ struct SkinFeatures {
     // The light of neighbours that face the point across a gap, a contact or a thin part (the
     // lips' line, the ear's folds; <preskin/NormalBasis.h>), from the shadow-casting light.
     bool opposingLight = true;
+    // With normalPrefilter: the normal map read at each channel's level of detail (red blurred
+    // most); off, read once, each channel's geometric normal carrying that one sample.
+    bool normalMapLevels = true;
 
-    static SkinFeatures none() { return {false, false, false, false, false, false, false}; }
+    static SkinFeatures none() { return {false, false, false, false, false, false, false, false}; }
     PRESKIN_API uint32_t mask() const;
     bool operator==(const SkinFeatures&) const = default;
 };
