@@ -74,6 +74,7 @@ configs=(
   "normal_prefilter|--no-normal-prefilter"
   "normal_map_levels|--no-normal-map-levels"
   "penumbra|--no-penumbra"
+  "wide_penumbra|--no-wide-penumbra"
   "sh_ambient|--no-sh-skin"
   "transmission|--no-transmission"
   "dual_specular|--no-dual-specular"
@@ -121,7 +122,7 @@ if [ -n "${REFERENCES:-}" ]; then
       --json "$work/fidelity-skin-$1.json" >/dev/null 2>"$work/fidelity-skin-$1.log" ||
       { echo "skin-cost: compare $1 failed:" >&2; tail -3 "$work/fidelity-skin-$1.log" >&2; exit 1; }
   done
-  for c in "lut_diffuse|--no-lut-diffuse" "normal_prefilter|--no-normal-prefilter" "penumbra|--no-penumbra" \
+  for c in "lut_diffuse|--no-lut-diffuse" "normal_prefilter|--no-normal-prefilter" "penumbra|--no-penumbra" "wide_penumbra|--no-wide-penumbra" \
            "sh_ambient|--no-sh-skin" "transmission|--no-transmission" "opposing_light|--no-opposing-light" \
            "quality_medium|--skin-quality medium" "quality_low|--skin-quality low"; do
     name="${c%%|*}" flags="${c#*|}"
@@ -207,7 +208,7 @@ lines.append(f"| standard-material frame (`--skin none`) | {M(std)} | {100 * std
 labels = {"lut_diffuse": "diffuse LUT fetches (per light, per channel)",
           "normal_prefilter": "per-channel normals (geometric and normal-map)",
           "normal_map_levels": "normal-map levels per channel (of those)",
-          "penumbra": "penumbra LUT", "sh_ambient": "SH transfer", "transmission": "thickness and transmission",
+          "penumbra": "penumbra LUT", "wide_penumbra": "the wide shadow map (of the penumbra's)", "sh_ambient": "SH transfer", "transmission": "thickness and transmission",
           "opposing_light": "the opposing neighbours' light", "dual_specular": "dual specular",
           "specular_ibl": "specular IBL (prefiltered environment)"}
 for name, label in labels.items():

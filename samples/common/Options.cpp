@@ -126,6 +126,8 @@ void addSkinTechniqueOptions(CLI::App& cmd, CommonOptions& o) {
     cmd.add_flag("--no-lut-diffuse", o.noLutDiffuse, "Skin: Lambert instead of the pre-integrated diffuse LUT");
     cmd.add_flag("--no-normal-prefilter", o.noNormalPrefilter,
                  "Skin: one normal for all channels (no per-channel geometric normals or normal-map levels)");
+    cmd.add_flag("--no-wide-penumbra", o.noWidePenumbra,
+                 "Skin: penumbra scattering within the shadow filter's reach only (no wide shadow map)");
     cmd.add_flag("--no-normal-map-levels", o.noNormalMapLevels,
                  "Skin: the normal map read once for all channels (each keeps its own geometric normal)");
     cmd.add_flag("--no-penumbra", o.noPenumbra, "Skin: plain PCF shadow instead of penumbra scattering");
@@ -386,6 +388,7 @@ RenderSettings renderSettings(const CommonOptions& o) {
     s.skin.dualSpecular = !o.noDualSpecular;
     s.skin.opposingLight = !o.noOpposingLight;
     s.skin.normalMapLevels = !o.noNormalMapLevels;
+    s.skin.widePenumbra = !o.noWidePenumbra;
     if (!o.skinQuality.empty())
         s.skinQuality = o.skinQuality == "low" ? SkinQuality::Low
             : o.skinQuality == "medium"        ? SkinQuality::Medium

@@ -16,20 +16,25 @@ PRESKIN_CONST(uint, kSkinOpposingLight, 64u)
 // With kSkinNormalPrefilter: the normal map read at each channel's level of detail (red blurred
 // most); without it the map is read once and each channel's geometric normal carries that sample.
 PRESKIN_CONST(uint, kSkinNormalMapLevels, 128u)
-PRESKIN_CONST(uint, kSkinAll, 255u)
+// With kSkinPenumbra: skin's wide shadow map (a reduction pass and the wide filter), which carries
+// red's scattering past the shadow map's own filter; without it the penumbra LUT acts within the
+// shadow filter's reach only.
+PRESKIN_CONST(uint, kSkinWidePenumbra, 256u)
+PRESKIN_CONST(uint, kSkinAll, 511u)
 
 // Quality tiers (SkinQuality, `--skin-quality`, PRESKIN_SKIN_QUALITY in a host shader): the
 // techniques each compiles in, chosen by what each costs and buys in docs/skin-cost-table.md
 // (instructions per frame against compare's error on the head). High is every technique; Medium
 // leaves out transmission (11 % of the skin frame; it lights thin parts from behind, which the
-// front views do not show) and the second specular lobe; Low also the penumbra scattering and
-// its wide shadow map (14 %) and the normal map's per-channel levels (4 %: a distant face's
-// map detail is already under its own mip level), keeping the pre-integrated diffuse, the
+// front views do not show) and the second specular lobe; Low also the wide shadow map (its
+// reduction pass and nine gathers per fragment, 12 % of the frame; the penumbra LUT stays, within
+// the shadow filter's reach, for 2 %) and the normal map's per-channel levels (4 %: a distant
+// face's map detail is already under its own mip level), keeping the pre-integrated diffuse, the
 // per-channel geometric normals, the SH transfer and the opposing neighbours' light (2 %, the
 // largest gain per instruction).
-PRESKIN_CONST(uint, kSkinQualityLow, 75u)      // kSkinLutDiffuse | kSkinNormalPrefilter | kSkinShAmbient | kSkinOpposingLight
-PRESKIN_CONST(uint, kSkinQualityMedium, 207u)  // Low | kSkinPenumbra | kSkinNormalMapLevels
-PRESKIN_CONST(uint, kSkinQualityHigh, 255u)    // kSkinAll
+PRESKIN_CONST(uint, kSkinQualityLow, 79u)      // kSkinLutDiffuse | kSkinNormalPrefilter | kSkinPenumbra | kSkinShAmbient | kSkinOpposingLight
+PRESKIN_CONST(uint, kSkinQualityMedium, 463u)  // Low | kSkinNormalMapLevels | kSkinWidePenumbra
+PRESKIN_CONST(uint, kSkinQualityHigh, 511u)    // kSkinAll
 
 PRESKIN_GPU_END
 

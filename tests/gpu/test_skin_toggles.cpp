@@ -162,6 +162,7 @@ TEST_F(SkinToggles, EachTechniqueChangesTheImage) {
                                      {"shAmbient", &SkinFeatures::shAmbient, &sphere},
                                      {"dualSpecular", &SkinFeatures::dualSpecular, &sphere},
                                      {"penumbra", &SkinFeatures::penumbra, &penumbra},
+                                     {"widePenumbra", &SkinFeatures::widePenumbra, &penumbra},
                                      {"transmission", &SkinFeatures::transmission, &transmission},
                                      {"opposingLight", &SkinFeatures::opposingLight, &overhang}};
     const LutSet& luts = LutSet::loadDefault();

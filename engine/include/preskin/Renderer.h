@@ -45,8 +45,12 @@ struct SkinFeatures {
     // With normalPrefilter: the normal map read at each channel's level of detail (red blurred
     // most); off, read once, each channel's geometric normal carrying that one sample.
     bool normalMapLevels = true;
+    // With penumbra: skin's wide shadow map, which carries red's scattering past the shadow
+    // filter's reach (a reduction pass, nine more gathers per fragment); off, the penumbra LUT
+    // acts within the shadow filter's reach only.
+    bool widePenumbra = true;
 
-    static SkinFeatures none() { return {false, false, false, false, false, false, false, false}; }
+    static SkinFeatures none() { return {false, false, false, false, false, false, false, false, false}; }
     PRESKIN_API uint32_t mask() const;
     bool operator==(const SkinFeatures&) const = default;
 };

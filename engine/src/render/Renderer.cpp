@@ -94,6 +94,7 @@ SkinFeatures skinQualityFeatures(SkinQuality quality) {
     f.dualSpecular = (m & gpu::kSkinDualSpecular) != 0u;
     f.opposingLight = (m & gpu::kSkinOpposingLight) != 0u;
     f.normalMapLevels = (m & gpu::kSkinNormalMapLevels) != 0u;
+    f.widePenumbra = (m & gpu::kSkinWidePenumbra) != 0u;
     return f;
 }
 
@@ -101,7 +102,8 @@ uint32_t SkinFeatures::mask() const {
     return (lutDiffuse ? gpu::kSkinLutDiffuse : 0u) | (normalPrefilter ? gpu::kSkinNormalPrefilter : 0u) |
         (penumbra ? gpu::kSkinPenumbra : 0u) | (shAmbient ? gpu::kSkinShAmbient : 0u) |
         (transmission ? gpu::kSkinTransmission : 0u) | (dualSpecular ? gpu::kSkinDualSpecular : 0u) |
-        (opposingLight ? gpu::kSkinOpposingLight : 0u) | (normalMapLevels ? gpu::kSkinNormalMapLevels : 0u);
+        (opposingLight ? gpu::kSkinOpposingLight : 0u) | (normalMapLevels ? gpu::kSkinNormalMapLevels : 0u) |
+        (widePenumbra ? gpu::kSkinWidePenumbra : 0u);
 }
 
 Renderer::Impl::Impl(Context& ctx, const Scene& s, const Environment& env, const std::vector<const LutSet*>& lutLayers,

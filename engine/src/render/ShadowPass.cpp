@@ -166,7 +166,10 @@ void Renderer::Impl::recordShadowPass(VkCommandBuffer cmd, Slot& slot, uint32_t 
 
 bool Renderer::Impl::wideShadowRead() const {
     for (const GpuMaterial& m : scene->materials)
-        if (m.skin && luts->valid() && (skinMask(m) & gpu::kSkinPenumbra) != 0u) return true;
+        if (m.skin && luts->valid() &&
+            (skinMask(m) & (gpu::kSkinPenumbra | gpu::kSkinWidePenumbra)) ==
+                (gpu::kSkinPenumbra | gpu::kSkinWidePenumbra))
+            return true;
     return false;
 }
 
