@@ -51,7 +51,8 @@ const bool kSkinShPerVertex =
     (kSkinVertexCurvature & uint((kSkinFeatures & kSkinShAmbient) != 0u)) != 0u;
 const bool kSkinLiftPerVertex = (kSkinVertexCurvature & uint((kSkinFeatures & kSkinLutDiffuse) != 0u)) != 0u;
 // Skin with penumbra scattering samples the wide shadow map (shaders/shadow_reduce.comp) too.
-const bool kSkinWideShadow = (uint(kMaterialModel == kModelSkin) & uint((kSkinFeatures & (kSkinPenumbra | kSkinWidePenumbra)) == (kSkinPenumbra | kSkinWidePenumbra))) != 0u;
+const bool kSkinWideShadow =
+    (uint(kMaterialModel == kModelSkin) & uint((kSkinFeatures & kSkinWideShadowBits) == kSkinWideShadowBits)) != 0u;
 const bool kSkinSphereTransmittancePerVertex =
     (kSkinVertexCurvature & uint((kSkinFeatures & kSkinLutDiffuse) != 0u) &
      uint((kSkinFeatures & kSkinTransmission) != 0u) & uint(!kSkinDoubleSided)) != 0u;

@@ -20,6 +20,8 @@ PRESKIN_CONST(uint, kSkinNormalMapLevels, 128u)
 // red's scattering past the shadow map's own filter; without it the penumbra LUT acts within the
 // shadow filter's reach only.
 PRESKIN_CONST(uint, kSkinWidePenumbra, 256u)
+// The bits that read the wide shadow map (and record its reduction pass): both must be set.
+PRESKIN_CONST(uint, kSkinWideShadowBits, 260u)  // kSkinPenumbra | kSkinWidePenumbra
 PRESKIN_CONST(uint, kSkinAll, 511u)
 
 // Quality tiers (SkinQuality, `--skin-quality`, PRESKIN_SKIN_QUALITY in a host shader): the

@@ -57,6 +57,7 @@ std::span<const uint32_t> builtinShader(const char* name) {
 }  // namespace
 
 static_assert(gpu::kMaxEyes == kMaxEyes, "shaders/shared and <preskin/View.h> disagree on the eye limit");
+static_assert(gpu::kSkinWideShadowBits == (gpu::kSkinPenumbra | gpu::kSkinWidePenumbra));
 // The enum codes the shaders branch on (shared/constants.h) are the C++ enums' values.
 static_assert(gpu::kAlphaOpaque == uint32_t(AlphaMode::Opaque) && gpu::kAlphaMask == uint32_t(AlphaMode::Mask) &&
               gpu::kAlphaBlend == uint32_t(AlphaMode::Blend));

@@ -166,9 +166,7 @@ void Renderer::Impl::recordShadowPass(VkCommandBuffer cmd, Slot& slot, uint32_t 
 
 bool Renderer::Impl::wideShadowRead() const {
     for (const GpuMaterial& m : scene->materials)
-        if (m.skin && luts->valid() &&
-            (skinMask(m) & (gpu::kSkinPenumbra | gpu::kSkinWidePenumbra)) ==
-                (gpu::kSkinPenumbra | gpu::kSkinWidePenumbra))
+        if (m.skin && luts->valid() && (skinMask(m) & gpu::kSkinWideShadowBits) == gpu::kSkinWideShadowBits)
             return true;
     return false;
 }
