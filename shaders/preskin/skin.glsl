@@ -434,9 +434,10 @@ vec3 preskinSkinOpposingLight(PreskinSkinSurface s, sampler2D shadowMap, mat4 sh
     float toWorldM = 0.001 / max(s.scatterScale, 1e-6);
     vec3 towards = normalize(opposingR + opposingG + opposingB);
     vec3 centroidWs = positionWs + centroidOffsetWs + towards * (kSkinOpposingLiftMm * toWorldM);
-    float visibility = preskinShadowVisibility2x2(shadowMap, shadowClipFromWorld, params, centroidWs, towards,
-                                                  kSkinOpposingReliefMm * toWorldM);
-    return max(facing, vec3(0.0)) * visibility * s.transmissionTint * s.albedo / PRESKIN_PI * irradiance;
+    PreskinShadowSample lit = preskinSampleShadow(
+        shadowMap, shadowClipFromWorld, params, centroidWs, towards,
+        PreskinShadowFilter(1, 0.0, kSkinOpposingReliefMm * toWorldM, 1.0));
+    return max(facing, vec3(0.0)) * lit.visibility * s.transmissionTint * s.albedo / PRESKIN_PI * irradiance;
 }
 
 // The occluder preskinSkinTransmission takes for the light that owns the shadow map (towards L),
