@@ -67,6 +67,33 @@ PreskinShadowOccluder preskinShadowOccluder(sampler2D shadowMap, mat4 shadowClip
                                  inversesqrt(1.0 + dot(slope, slope)), slope, uv, clip.z);
 }
 
+// Visibility alone from the 2 x 2 texels around positionWs (one gather), bilinear: the normal
+// offset and receiver plane of preskinSampleShadow, the compared depth lowered by riseM. For a
+// lookup that needs no edge, width or occluder (one texel's blur is all it is meant to have).
+float preskinShadowVisibility2x2(sampler2D shadowMap, mat4 shadowClipFromWorld, vec4 params, vec3 positionWs,
+                                 vec3 normalWs, float riseM) {
+    vec3 r0 = vec3(shadowClipFromWorld[0][0], shadowClipFromWorld[1][0], shadowClipFromWorld[2][0]);
+    vec3 r1 = vec3(shadowClipFromWorld[0][1], shadowClipFromWorld[1][1], shadowClipFromWorld[2][1]);
+    vec3 r2 = vec3(shadowClipFromWorld[0][2], shadowClipFromWorld[1][2], shadowClipFromWorld[2][2]);
+    float cosTheta = abs(dot(normalWs, r2)) * inversesqrt(dot(r2, r2));
+    vec3 offsetWs = normalWs * params.x * (0.25 + 1.5 * smoothstep(0.25, 0.0, cosTheta));
+    vec4 clip = shadowClipFromWorld * vec4(positionWs + offsetWs, 1.0);
+    vec2 uv = clip.xy * 0.5 + 0.5;
+    if (any(lessThan(uv, vec2(0.0))) || any(greaterThan(uv, vec2(1.0))) || clip.z > 1.0) return 1.0;
+    float n2 = dot(normalWs, r2) / dot(r2, r2);
+    vec2 n01 = vec2(dot(normalWs, r0) / dot(r0, r0), dot(normalWs, r1) / dot(r1, r1));
+    n2 = sign(n2) * max(abs(n2), 1e-4 * (abs(n01.x) + abs(n01.y)) + 1e-12);
+    vec2 dzPerTexel = clamp(-n01 / n2 * (2.0 / params.w), vec2(-0.02), vec2(0.02));
+    vec2 t = uv * params.w - 0.5;
+    vec2 first = floor(t);
+    vec2 f = t - first;
+    vec4 occluder = textureGather(shadowMap, (first + 1.0) / params.w, 0);  // (0,1), (1,1), (1,0), (0,0)
+    float z = clip.z - 2e-4 - riseM / params.z;
+    vec4 receiver = z + dzPerTexel.x * (vec4(0.0, 1.0, 1.0, 0.0) - f.x) + dzPerTexel.y * (vec4(1.0, 1.0, 0.0, 0.0) - f.y);
+    vec4 lit = vec4(greaterThanEqual(occluder, receiver));
+    return mix(mix(lit.w, lit.z, f.x), mix(lit.x, lit.y, f.x), f.y);
+}
+
 // The receiver plane's depth slope along the map's axes (metres per metre) for its normal and the
 // direction L towards the light.
 vec2 preskinShadowReceiverSlope(mat4 shadowClipFromWorld, vec3 normal, vec3 L) {
@@ -210,9 +237,7 @@ PreskinShadowPcf preskinShadowPcf(sampler2D shadowMap, vec2 t, float mapSize, fl
                 weightSum += dot(w, vec4(1.0));
                 // The lit weights' first moment: the texels' offsets are x0 + (0, 1, 1, 0), y0 + (1, 1, 0, 0).
                 litMoment += vec2(x0, y0) * litSum + vec2(wLit.y + wLit.z, wLit.x + wLit.y);
-                vec4 blocked = w * (1.0 - lit);
-                blockerSum += dot(blocked, occluder);
-                blockerWeight += dot(blocked, vec4(1.0));
+                blockerSum += dot(w - wLit, occluder);
             }
         }
     }
@@ -220,7 +245,10 @@ PreskinShadowPcf preskinShadowPcf(sampler2D shadowMap, vec2 t, float mapSize, fl
     PreskinShadowPcf r;
     r.visibility = sum / weightSum;
     r.varianceTexels = variance;
-    r.blockerDepth = blockerWeight > 0.0 ? blockerSum / blockerWeight : z;
+    // The occluding texels' weights, sum of w (1 - lit): at stride 1 the weights less the lit ones
+    // (a fully lit footprint leaves rounding's few ulps, which the test below takes for none).
+    if (!sparse) blockerWeight = max(weightSum - sum, 0.0);
+    r.blockerDepth = blockerWeight > 1e-6 * weightSum ? blockerSum / blockerWeight : z;
     r.blockerWeight = blockerWeight / weightSum;
     vec2 moment = sparse ? sparseMoment : weightMoment * vec2(sumY, sumX);  // sum of weight x offset
     r.gradient = (litMoment - r.visibility * moment) / weightSum;

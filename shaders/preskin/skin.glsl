@@ -420,7 +420,8 @@ vec3 preskinSkinTransmission(PreskinSkinSurface s, PreskinProfileMix m, sampler2
 // with L is the share of the light on them that reaches the point (for a sheet d thick,
 // the profile's transmittance T(d) times the cosine). Whether the light reaches them: the shadow
 // map at their centroid (centroidOffsetWs from positionWs), lifted kSkinOpposingLiftMm towards the
-// point, one gather, occluders nearer than kSkinOpposingReliefMm along
+// point, one gather read bilinearly (preskinShadowVisibility2x2), occluders nearer than
+// kSkinOpposingReliefMm along
 // the light not counted: the relief that forms the gap (a lip over the lips' line, a helix over its
 // fold) shadows the centroid, deep in the gap, but not the lit surface around it that sends the
 // light, while a far occluder (a nose, a hat) shadows both. Distances in profile millimetres.
@@ -434,10 +435,9 @@ vec3 preskinSkinOpposingLight(PreskinSkinSurface s, sampler2D shadowMap, mat4 sh
     float toWorldM = 0.001 / max(s.scatterScale, 1e-6);
     vec3 towards = normalize(opposingR + opposingG + opposingB);
     vec3 centroidWs = positionWs + centroidOffsetWs + towards * (kSkinOpposingLiftMm * toWorldM);
-    PreskinShadowSample lit = preskinSampleShadow(
-        shadowMap, shadowClipFromWorld, params, centroidWs, towards,
-        PreskinShadowFilter(1, 0.0, kSkinOpposingReliefMm * toWorldM, 1.0));
-    return max(facing, vec3(0.0)) * lit.visibility * s.transmissionTint * s.albedo / PRESKIN_PI * irradiance;
+    float visibility = preskinShadowVisibility2x2(shadowMap, shadowClipFromWorld, params, centroidWs, towards,
+                                                  kSkinOpposingReliefMm * toWorldM);
+    return max(facing, vec3(0.0)) * visibility * s.transmissionTint * s.albedo / PRESKIN_PI * irradiance;
 }
 
 // The occluder preskinSkinTransmission takes for the light that owns the shadow map (towards L),
