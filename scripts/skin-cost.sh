@@ -75,6 +75,7 @@ configs=(
   "normal_map_levels|--no-normal-map-levels"
   "penumbra|--no-penumbra"
   "wide_penumbra|--no-wide-penumbra"
+  "lut_every_light|--no-lut-every-light"
   "sh_ambient|--no-sh-skin"
   "transmission|--no-transmission"
   "dual_specular|--no-dual-specular"
@@ -188,7 +189,9 @@ lines = [
     "Lambert's against the diffusion reference (below 1: closer than Lambert; higher than the all-on row: the "
     "technique buys accuracy there); specular is off in `compare`, so the specular rows buy nothing there, and "
     "it renders without normal maps (the reference shades the smooth surface), so the normal-map levels' row "
-    "is not measured there (left blank).",
+    "is not measured there (left blank); its views are lit by the shadow light and the environment alone, so "
+    "neither is the row of the LUT for the other lights (`SkinQualityFidelity.LowTiersRowFitIsFarCloserToTheReferenceThanLambert` "
+    "measures that one).",
     "",
     "| | instructions per frame (M) | share of the skin frame | wall ms | process CPU ms | forward-pass ms "
     "| fidelity with it off: all / concave / near cast-shadow edges (mean of views) | all, per view |",
@@ -208,7 +211,8 @@ lines.append(f"| standard-material frame (`--skin none`) | {M(std)} | {100 * std
 labels = {"lut_diffuse": "diffuse LUT fetches (per light, per channel)",
           "normal_prefilter": "per-channel normals (geometric and normal-map)",
           "normal_map_levels": "normal-map levels per channel (of those)",
-          "penumbra": "penumbra LUT", "wide_penumbra": "the wide shadow map (of the penumbra's)", "sh_ambient": "SH transfer", "transmission": "thickness and transmission",
+          "penumbra": "penumbra LUT", "wide_penumbra": "the wide shadow map (of the penumbra's)",
+          "lut_every_light": "the diffuse LUT for lights other than the shadow light (of the LUT's)", "sh_ambient": "SH transfer", "transmission": "thickness and transmission",
           "opposing_light": "the opposing neighbours' light", "dual_specular": "dual specular",
           "specular_ibl": "specular IBL (prefiltered environment)"}
 for name, label in labels.items():

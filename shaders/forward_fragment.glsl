@@ -324,14 +324,15 @@ void main() {
                                                                     inPositionWs, inOpposingCentroidWs, inOpposingRedWs,
                                                                     inOpposingGreenWs, inOpposingBlueWs, L, irradiance,
                                                                     features));
+            // The shadow light reads the diffuse LUT in every tier (kSkinLutEveryLight).
             PreskinSkinLightParts lit;
             if (kCapShadowLight)
                 lit = preskinSkinLightParts(skin, lighting, profiles, diffuseLut, V,
                                             preskinLightSample(lights[0], inPositionWs, skin.normalSpecular, R, ltc, true),
-                                            penumbra, shadow.visibility, features, ltc.dfg);
+                                            penumbra, shadow.visibility, features | kSkinLutEveryLight, ltc.dfg);
             else
                 lit = preskinSkinLightParts(skin, lighting, profiles, diffuseLut, V, L, irradiance, penumbra,
-                                            shadow.visibility, features);
+                                            shadow.visibility, features | kSkinLutEveryLight);
             skinDiffuse += lit.diffuse;
             color += lit.specular;
         }

@@ -79,7 +79,8 @@ void BenchRun::skinSection(const std::vector<uint32_t>& skinCounts) {
                                             {"dual_specular", &SkinFeatures::dualSpecular},
                                             {"opposing_light", &SkinFeatures::opposingLight},
                                             {"normal_map_levels", &SkinFeatures::normalMapLevels},
-                                            {"wide_penumbra", &SkinFeatures::widePenumbra}};
+                                            {"wide_penumbra", &SkinFeatures::widePenumbra},
+                                            {"lut_every_light", &SkinFeatures::lutEveryLight}};
             std::vector<Config> configs{{&renderer, base, fmt::format("{} lights, skin", n), 0.0},
                                         {&standardRenderer, base, fmt::format("{} lights, standard material", n), 0.0}};
             for (const Technique& t : techniques) {

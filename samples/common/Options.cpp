@@ -124,6 +124,8 @@ void addCommonOptions(CLI::App& cmd, CommonOptions& o) {
 
 void addSkinTechniqueOptions(CLI::App& cmd, CommonOptions& o) {
     cmd.add_flag("--no-lut-diffuse", o.noLutDiffuse, "Skin: Lambert instead of the pre-integrated diffuse LUT");
+    cmd.add_flag("--no-lut-every-light", o.noLutEveryLight,
+                 "Skin: the diffuse LUT for the shadow light only, the other lights its row as a smoothed ramp");
     cmd.add_flag("--no-normal-prefilter", o.noNormalPrefilter,
                  "Skin: one normal for all channels (no per-channel geometric normals or normal-map levels)");
     cmd.add_flag("--no-wide-penumbra", o.noWidePenumbra,
@@ -389,6 +391,7 @@ RenderSettings renderSettings(const CommonOptions& o) {
     s.skin.opposingLight = !o.noOpposingLight;
     s.skin.normalMapLevels = !o.noNormalMapLevels;
     s.skin.widePenumbra = !o.noWidePenumbra;
+    s.skin.lutEveryLight = !o.noLutEveryLight;
     if (!o.skinQuality.empty())
         s.skinQuality = o.skinQuality == "low" ? SkinQuality::Low
             : o.skinQuality == "medium"        ? SkinQuality::Medium

@@ -51,6 +51,7 @@ struct CommonOptions {
     bool noDualSpecular = false;
     bool noOpposingLight = false;
     bool noNormalMapLevels = false;
+    bool noLutEveryLight = false;
     bool noWidePenumbra = false;
     std::string skinQuality;  // --skin-quality: "" (each material's own), low, medium or high
     bool skinTermsPerFragment = false;

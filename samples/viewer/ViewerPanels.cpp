@@ -251,6 +251,8 @@ void Viewer::panelTechniques() {
     tooltip("Off: the normal map read once, on each channel's geometric normal");
     ImGui::Checkbox("Penumbra scattering", &f.penumbra);
     tooltip("Off: the plain filtered shadow");
+    ImGui::Checkbox("Diffuse LUT for every light", &f.lutEveryLight);
+    tooltip("Off: the LUT for the shadow light only, the other lights its row as a smoothed ramp");
     ImGui::Checkbox("Wide penumbra (wide shadow map)", &f.widePenumbra);
     tooltip("Off: penumbra scattering within the shadow filter's reach only");
     ImGui::Checkbox("SH ambient skin transfer", &f.shAmbient);
@@ -269,8 +271,9 @@ void Viewer::panelTechniques() {
     settings_.skinQuality = tier == 0 ? std::nullopt : std::optional<SkinQuality>(static_cast<SkinQuality>(tier - 1));
     tooltip(
         "The techniques skin compiles in: high all, medium without transmission and the second lobe, low "
-        "also without the wide shadow map and the normal map's per-channel levels (the diffuse LUT, per-channel "
-        "geometric normals, the penumbra within the shadow filter's reach, SH transfer and opposing light)");
+        "also without the wide shadow map, the normal map's per-channel levels and the diffuse LUT for lights "
+        "other than the shadow light (the diffuse LUT, per-channel geometric normals, the penumbra within the "
+        "shadow filter's reach, SH transfer and opposing light)");
     int method = static_cast<int>(settings_.diffusion);
     ImGui::RadioButton("Pre-integrated", &method, 0);
     ImGui::SameLine();

@@ -6,6 +6,8 @@
 //    and per colour channel D_c(NoL_c, curvature) from the diffuse LUT replaces saturate(NoL);
 //    NoL_c uses that channel's prefiltered normal; concave skin (negative curvature) reads the
 //    LUT's concave half, where the local patch shadows itself and no light passes the terminator;
+//    without kSkinLutEveryLight only the lights the caller marks with it read the table, the
+//    others the fragment's row fitted once by a smoothed ramp (preskinDiffuseRowFit);
 //  - self-shadowing apart from cast shadows: the shadow map is looked up above the local patch
 //    near the terminator (preskinSkinShadowPosition), so it does not remove the light the diffuse
 //    LUT scatters past the terminator;
@@ -73,6 +75,8 @@ struct PreskinSkinSurface {
 // (preskinSkinLighting) and passes it to each preskinSkinLight.
 struct PreskinSkinLighting {
     PreskinDiffuseRows diffuseRows;
+    vec3 rowScale;   // per channel, the row as a smoothed ramp (preskinDiffuseRowFit; without kSkinLutEveryLight)
+    vec3 rowWidth;
     float NoV;
     vec2 alpha;      // lobe 0, lobe 1 (lobe 0 twice without dual specular)
     vec2 viewTerm;   // preskinSmithViewTerm of each lobe
@@ -81,7 +85,21 @@ struct PreskinSkinLighting {
 PreskinSkinLighting preskinSkinLighting(PreskinSkinSurface s, PreskinProfileMix m, sampler2DArray diffuseLut, vec3 V,
                                         uint features) {
     PreskinSkinLighting k;
-    if ((features & kSkinLutDiffuse) != 0u) k.diffuseRows = preskinDiffuseRows(m, diffuseLut, s.curvaturePerMm);
+    k.rowScale = vec3(1.0);
+    k.rowWidth = vec3(0.0);
+    if ((features & kSkinLutDiffuse) != 0u) {
+        k.diffuseRows = preskinDiffuseRows(m, diffuseLut, s.curvaturePerMm);
+        if ((features & kSkinLutEveryLight) == 0u) {
+            // The fit through the row's values at the terminator and at normal incidence:
+            // s c / 2 = D(0), s (1 + sqrt(1 + c^2)) / 2 = D(1); with rho = D(0) / D(1) = tan(atan(c) / 2),
+            // c = 2 rho / (1 - rho^2) and s = D(1) (1 - rho^2).
+            vec3 d0 = preskinDiffuseLut(m, k.diffuseRows, diffuseLut, vec3(0.0));
+            vec3 d1 = preskinDiffuseLut(m, k.diffuseRows, diffuseLut, vec3(1.0));
+            vec3 rho = min(d0 / max(d1, vec3(1e-4)), vec3(0.9));
+            k.rowScale = d1 * (1.0 - rho * rho);
+            k.rowWidth = 2.0 * rho / (1.0 - rho * rho);
+        }
+    }
     k.NoV = max(dot(s.normalSpecular, V), 1e-4);
     if ((features & kSkinDualSpecular) == 0u) {
         k.alpha = vec2(max(s.roughness * s.roughness, 1e-3));
@@ -93,12 +111,30 @@ PreskinSkinLighting preskinSkinLighting(PreskinSkinSurface s, PreskinProfileMix 
     return k;
 }
 
+// A diffuse LUT row D(x), x = N.L, as a smoothed ramp per channel: s (x + sqrt(x^2 + c^2)) / 2, the
+// hyperbola whose asymptotes are 0 and s x, through the row's values at x = 0 and 1
+// (preskinSkinLighting). A convex row is the ramp max(x, 0) blurred by the profile over the
+// osculating sphere: its light past the terminator, its softened knee and its lit side's lower
+// slope (red's light moved into the shadow) are what the fit keeps; within the LUT's own accuracy
+// where the row is nearly Lambert's, off by a tenth to a fifth of Lambert's error on red's rows
+// of face curvatures and a fifth to a half on green's and blue's. A concave row's self-shadowed
+// band past N.L = sin(patch / 2r) it does not hold: there the fit is Lambert's but for red.
+vec3 preskinDiffuseRowFit(vec3 NoL, vec3 scale, vec3 width) {
+    return scale * (0.5 * (NoL + sqrt(NoL * NoL + width * width)));
+}
+
+// The fragment's diffuse row at NoL per channel: the LUT, or without kSkinLutEveryLight its fit.
+vec3 preskinSkinDiffuseRow(PreskinSkinLighting k, PreskinProfileMix m, sampler2DArray diffuseLut, vec3 NoL, uint features) {
+    if ((features & kSkinLutEveryLight) == 0u) return preskinDiffuseRowFit(NoL, k.rowScale, k.rowWidth);
+    return preskinDiffuseLut(m, k.diffuseRows, diffuseLut, NoL);
+}
+
 // Diffuse response per channel for one light direction (replaces saturate(NoL)).
 vec3 preskinSkinDiffuseResponse(PreskinSkinSurface s, PreskinSkinLighting k, PreskinProfileMix m,
                                 sampler2DArray diffuseLut, vec3 L, uint features) {
     vec3 NoL = vec3(dot(s.normalR, L), dot(s.normalG, L), dot(s.normalB, L));
     if ((features & kSkinLutDiffuse) == 0u) return clamp(NoL, 0.0, 1.0);
-    return preskinDiffuseLut(m, k.diffuseRows, diffuseLut, NoL);  // without prefiltering the three are equal
+    return preskinSkinDiffuseRow(k, m, diffuseLut, NoL, features);  // without prefiltering the three are equal
 }
 
 // The same for a light with a size, the cap of directions of `l` (preskin/light_sample.glsl):
@@ -124,7 +160,7 @@ vec3 preskinSkinDiffuseResponse(PreskinSkinSurface s, PreskinSkinLighting k, Pre
                     preskinCapLambert(NoL.b, l.cosSigma, l.sinSigma)) + l.lambertCorrection;
     for (int i = 0; i < 4; ++i) {
         vec3 c = vec3(cR[i], cG[i], cB[i]);
-        sum += vec3(wR[i], wG[i], wB[i]) * (preskinDiffuseLut(m, k.diffuseRows, diffuseLut, c) - max(c, vec3(0.0)));
+        sum += vec3(wR[i], wG[i], wB[i]) * (preskinSkinDiffuseRow(k, m, diffuseLut, c, features) - max(c, vec3(0.0)));
     }
     return max(sum, vec3(0.0));
 }

@@ -22,7 +22,12 @@ PRESKIN_CONST(uint, kSkinNormalMapLevels, 128u)
 PRESKIN_CONST(uint, kSkinWidePenumbra, 256u)
 // The bits that read the wide shadow map (and record its reduction pass): both must be set.
 PRESKIN_CONST(uint, kSkinWideShadowBits, 260u)  // kSkinPenumbra | kSkinWidePenumbra
-PRESKIN_CONST(uint, kSkinAll, 511u)
+// With kSkinLutDiffuse: the diffuse LUT read for every light (three gathers per light). Without
+// it a light reads the table only where its caller adds this bit (the renderer and the host
+// sample do for the shadow light); the others get the fragment's row as a smoothed ramp fitted
+// once per fragment (preskinDiffuseRowFit of preskin/skin.glsl): ALU per light, no fetch.
+PRESKIN_CONST(uint, kSkinLutEveryLight, 512u)
+PRESKIN_CONST(uint, kSkinAll, 1023u)
 
 // Quality tiers (SkinQuality, `--skin-quality`, PRESKIN_SKIN_QUALITY in a host shader): the
 // techniques each compiles in, chosen by what each costs and buys in docs/skin-cost-table.md
@@ -33,10 +38,11 @@ PRESKIN_CONST(uint, kSkinAll, 511u)
 // the shadow filter's reach, for 2 %) and the normal map's per-channel levels (4 %: a distant
 // face's map detail is already under its own mip level), keeping the pre-integrated diffuse, the
 // per-channel geometric normals, the SH transfer and the opposing neighbours' light (2 %, the
-// largest gain per instruction).
+// largest gain per instruction), and reading the diffuse LUT for the shadow light alone (the
+// other lights' fetches are 4 % of the low frame; compare's views have one light).
 PRESKIN_CONST(uint, kSkinQualityLow, 79u)      // kSkinLutDiffuse | kSkinNormalPrefilter | kSkinPenumbra | kSkinShAmbient | kSkinOpposingLight
-PRESKIN_CONST(uint, kSkinQualityMedium, 463u)  // Low | kSkinNormalMapLevels | kSkinWidePenumbra
-PRESKIN_CONST(uint, kSkinQualityHigh, 511u)    // kSkinAll
+PRESKIN_CONST(uint, kSkinQualityMedium, 975u)  // Low | kSkinNormalMapLevels | kSkinWidePenumbra | kSkinLutEveryLight
+PRESKIN_CONST(uint, kSkinQualityHigh, 1023u)   // kSkinAll
 
 PRESKIN_GPU_END
 

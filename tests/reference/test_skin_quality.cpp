@@ -2,8 +2,9 @@
 // each through the tool with the validation layers on (high is the default render, pixel for
 // pixel; each lower tier differs from it), a material's own tier from PRESKIN_materials_skin and
 // the frame-wide override, and each tier against the diffusion reference on the 10 mm skin
-// sphere under a shadowed light: every tier far closer than Lambert, each with its own bound; the
-// work a tier skips outside the forward pass (the wide shadow map's reduction) changes no pixel.
+// sphere under a shadowed light: every tier far closer than Lambert, each with its own bound, and
+// low's fitted rows for the other lights on spheres under an unshadowed one; the work a tier skips
+// outside the forward pass (the wide shadow map's reduction) changes no pixel.
 #include "support/GpuTest.h"
 #include "support/ImageCompare.h"
 #include "support/Process.h"
@@ -23,6 +24,7 @@
 
 #include <cmath>
 #include <cstdio>
+#include <optional>
 #include <string>
 
 namespace preskin::test {
@@ -46,6 +48,9 @@ TEST(SkinQuality, TiersCompileInTheirTechniques) {
     EXPECT_TRUE(low.penumbra);
     EXPECT_FALSE(low.widePenumbra);
     EXPECT_TRUE(medium.widePenumbra);
+    // Low reads the diffuse LUT for the shadow light alone.
+    EXPECT_FALSE(low.lutEveryLight);
+    EXPECT_TRUE(medium.lutEveryLight);
     EXPECT_NE(medium.mask(), high.mask());
     EXPECT_NE(low.mask(), medium.mask());
 }
@@ -125,6 +130,17 @@ TEST(SkinQuality, MaterialTierFromTheSceneAndTheOverride) {
 
 class SkinQualityFidelity : public GpuTest {};
 
+// The RMSE of an image against the diffusion reference over the reference's skin pixels.
+double referenceError(const ReferenceImage& truth, const RenderedImage& image) {
+    double squared = 0.0;
+    for (size_t i = 0; i < truth.skin.size(); ++i)
+        if (truth.skin[i])
+            for (int c = 0; c < 3; ++c)
+                squared +=
+                    std::pow(double(image.rgba32f[4 * i + size_t(c)]) - double(truth.rgba32f[4 * i + size_t(c)]), 2.0);
+    return std::sqrt(squared);
+}
+
 // The 10 mm sphere of SkinFidelity.WholeSphereIsFarCloserToTheReferenceThanLambert at each tier.
 TEST_F(SkinQualityFidelity, EveryTierIsFarCloserToTheReferenceThanLambertOnTheSphere) {
     constexpr uint32_t kSize = 64;
@@ -144,15 +160,7 @@ TEST_F(SkinQualityFidelity, EveryTierIsFarCloserToTheReferenceThanLambertOnTheSp
     lambertSettings.specular = false;
     lambertSettings.skin = SkinFeatures::none();
     const RenderedImage lambert = render(lambertSettings);
-    auto error = [&](const RenderedImage& image) {
-        double squared = 0.0;
-        for (size_t i = 0; i < truth.skin.size(); ++i)
-            if (truth.skin[i])
-                for (int c = 0; c < 3; ++c)
-                    squared += std::pow(
-                        double(image.rgba32f[4 * i + size_t(c)]) - double(truth.rgba32f[4 * i + size_t(c)]), 2.0);
-        return std::sqrt(squared);
-    };
+    auto error = [&](const RenderedImage& image) { return referenceError(truth, image); };
     const double lambertError = error(lambert);
     // Bounds: high as SkinFidelity's 0.3; the lower tiers leave out techniques this sphere barely
     // needs (no cast shadow, no gap), so they stay close.
@@ -164,6 +172,43 @@ TEST_F(SkinQualityFidelity, EveryTierIsFarCloserToTheReferenceThanLambertOnTheSp
         const double ratio = error(render(settings)) / lambertError;
         std::printf("[ quality  ] 10 mm sphere, tier %d: skin / Lambert RMSE %.3f\n", int(tier), ratio);
         EXPECT_LT(ratio, bound) << int(tier);
+    }
+}
+
+// Lights other than the shadow light: low shades them with the fragment's LUT row fitted by a
+// smoothed ramp (preskinDiffuseRowFit), high reads the table. Spheres of 10 and 3 mm under a light
+// that casts no shadow, from the side, against the diffusion reference: the fit keeps most of
+// what the table gains over Lambert.
+TEST_F(SkinQualityFidelity, LowTiersRowFitIsFarCloserToTheReferenceThanLambert) {
+    constexpr uint32_t kSize = 64;
+    for (const float radiusM : {0.005f, 0.0015f}) {
+        Primitive sphere = makeSphere(radiusM, 64, 32);
+        recomputeCurvature(sphere);
+        sphere.material = 0;
+        Scene scene = makeScene({{sphere, glm::mat4(1.0f)}}, {skinMaterial({0.8f, 0.6f, 0.5f})});
+        Light light = shadowedDirectionalLight({0.9f, -0.2f, -0.3f}, 3.0f);
+        light.castsShadow = false;
+        scene.lights = {light};
+        const View view = orbitView(scene.worldBounds(), 0.0f, 8.0f, 0.0f, 1.0f);
+        const DiffusionReference reference(scene, scene.lights, ShRgb{}, LutSet::loadDefault().profile());
+        const ReferenceImage truth = reference.render(view.eye(), kSize, kSize);
+        auto error = [&](const RenderSettings& base, std::optional<SkinQuality> tier) {
+            RenderSettings settings = base;
+            settings.specular = false;
+            settings.skinQuality = tier;
+            Renderer renderer(context(), scene, Environment::constant(glm::vec3(0.0f)), &LutSet::loadDefault(),
+                              settings);
+            return referenceError(truth, renderer.render(view, kSize, kSize, OutputEncoding::LinearFloat));
+        };
+        RenderSettings lambertSettings;
+        lambertSettings.skin = SkinFeatures::none();
+        const double lambert = error(lambertSettings, std::nullopt);
+        const double high = error(RenderSettings{}, SkinQuality::High) / lambert;
+        const double low = error(RenderSettings{}, SkinQuality::Low) / lambert;
+        std::printf("[ quality  ] %.1f mm sphere, unshadowed light: skin / Lambert RMSE high %.3f, low %.3f\n",
+                    double(radiusM) * 2000.0, high, low);
+        EXPECT_LT(high, 0.3);
+        EXPECT_LT(low, 0.25);
     }
 }
 

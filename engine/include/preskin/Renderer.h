@@ -49,8 +49,11 @@ struct SkinFeatures {
     // filter's reach (a reduction pass, nine more gathers per fragment); off, the penumbra LUT
     // acts within the shadow filter's reach only.
     bool widePenumbra = true;
+    // With lutDiffuse: the diffuse LUT read for every light; off, for the shadow light only, the
+    // others shaded by the fragment's LUT row as a smoothed ramp (no fetch per light).
+    bool lutEveryLight = true;
 
-    static SkinFeatures none() { return {false, false, false, false, false, false, false, false, false}; }
+    static SkinFeatures none() { return {false, false, false, false, false, false, false, false, false, false}; }
     PRESKIN_API uint32_t mask() const;
     bool operator==(const SkinFeatures&) const = default;
 };
