@@ -67,29 +67,55 @@ PreskinShadowOccluder preskinShadowOccluder(sampler2D shadowMap, mat4 shadowClip
                                  inversesqrt(1.0 + dot(slope, slope)), slope, uv, clip.z);
 }
 
-// Visibility alone from the 2 x 2 texels around positionWs (one gather), bilinear: the normal
-// offset and receiver plane of preskinSampleShadow, the compared depth lowered by riseM. For a
-// lookup that needs no edge, width or occluder (one texel's blur is all it is meant to have).
-float preskinShadowVisibility2x2(sampler2D shadowMap, mat4 shadowClipFromWorld, vec4 params, vec3 positionWs,
-                                 vec3 normalWs, float riseM) {
+// Where a receiver falls on the map: its point moved along its normal, and its plane's depth per
+// texel. Normal offset: a quarter texel along the normal, growing to 1.75 texels only where the
+// light grazes (cos < 0.25). An offset along the normal moves the lookup across the map by its
+// component perpendicular to the light, which at grazing light puts cast-shadow edges off their
+// place: against the ray-traced reference on the head, growing it over the whole hemisphere
+// shrank the nose's shadow on the cheek by about a millimetre (green RMSE 0.0038 against 0.0031
+// at 1024x1024). The receiver plane's depth step per texel (Isidoro's receiver-plane bias) is
+// clamped to 0.02 times texelScale (the map's texels per shadow-map texel side).
+struct PreskinShadowReceiver {
+    vec2 uv;          // on the map
+    float z;          // the receiver's depth on the map
+    vec2 dzPerTexel;  // its plane's depth step per texel along the map's axes
+    bool inside;      // within the map (outside: lit)
+};
+
+PreskinShadowReceiver preskinShadowReceiver(mat4 shadowClipFromWorld, vec4 params, vec3 positionWs, vec3 normalWs,
+                                            float texelScale) {
     vec3 r0 = vec3(shadowClipFromWorld[0][0], shadowClipFromWorld[1][0], shadowClipFromWorld[2][0]);
     vec3 r1 = vec3(shadowClipFromWorld[0][1], shadowClipFromWorld[1][1], shadowClipFromWorld[2][1]);
     vec3 r2 = vec3(shadowClipFromWorld[0][2], shadowClipFromWorld[1][2], shadowClipFromWorld[2][2]);
-    float cosTheta = abs(dot(normalWs, r2)) * inversesqrt(dot(r2, r2));
+    float cosTheta = abs(dot(normalWs, normalize(r2)));
     vec3 offsetWs = normalWs * params.x * (0.25 + 1.5 * smoothstep(0.25, 0.0, cosTheta));
     vec4 clip = shadowClipFromWorld * vec4(positionWs + offsetWs, 1.0);
-    vec2 uv = clip.xy * 0.5 + 0.5;
-    if (any(lessThan(uv, vec2(0.0))) || any(greaterThan(uv, vec2(1.0))) || clip.z > 1.0) return 1.0;
+    PreskinShadowReceiver r;
+    r.uv = clip.xy * 0.5 + 0.5;
+    r.z = clip.z;
+    float n0 = dot(normalWs, r0) / dot(r0, r0);
+    float n1 = dot(normalWs, r1) / dot(r1, r1);
     float n2 = dot(normalWs, r2) / dot(r2, r2);
-    vec2 n01 = vec2(dot(normalWs, r0) / dot(r0, r0), dot(normalWs, r1) / dot(r1, r1));
-    n2 = sign(n2) * max(abs(n2), 1e-4 * (abs(n01.x) + abs(n01.y)) + 1e-12);
-    vec2 dzPerTexel = clamp(-n01 / n2 * (2.0 / params.w), vec2(-0.02), vec2(0.02));
-    vec2 t = uv * params.w - 0.5;
+    n2 = sign(n2) * max(abs(n2), 1e-4 * (abs(n0) + abs(n1)) + 1e-12);
+    r.dzPerTexel = clamp(-vec2(n0, n1) / n2 * (2.0 / params.w), vec2(-0.02 * texelScale), vec2(0.02 * texelScale));
+    r.inside = all(greaterThanEqual(r.uv, vec2(0.0))) && all(lessThanEqual(r.uv, vec2(1.0))) && r.z <= 1.0;
+    return r;
+}
+
+// Visibility alone from the 2 x 2 texels around positionWs (one gather), bilinear: the normal
+// offset and receiver plane of preskinSampleShadow (preskinShadowReceiver), the compared depth
+// lowered by riseM. For a lookup that needs no edge, width or occluder (one texel's blur is all it
+// is meant to have).
+float preskinShadowVisibility2x2(sampler2D shadowMap, mat4 shadowClipFromWorld, vec4 params, vec3 positionWs,
+                                 vec3 normalWs, float riseM) {
+    PreskinShadowReceiver r = preskinShadowReceiver(shadowClipFromWorld, params, positionWs, normalWs, 1.0);
+    if (!r.inside) return 1.0;
+    vec2 t = r.uv * params.w - 0.5;
     vec2 first = floor(t);
     vec2 f = t - first;
     vec4 occluder = textureGather(shadowMap, (first + 1.0) / params.w, 0);  // (0,1), (1,1), (1,0), (0,0)
-    float z = clip.z - 2e-4 - riseM / params.z;
-    vec4 receiver = z + dzPerTexel.x * (vec4(0.0, 1.0, 1.0, 0.0) - f.x) + dzPerTexel.y * (vec4(1.0, 1.0, 0.0, 0.0) - f.y);
+    float z = r.z - 2e-4 - riseM / params.z;
+    vec4 receiver = z + r.dzPerTexel.x * (vec4(0.0, 1.0, 1.0, 0.0) - f.x) + r.dzPerTexel.y * (vec4(1.0, 1.0, 0.0, 0.0) - f.y);
     vec4 lit = vec4(greaterThanEqual(occluder, receiver));
     return mix(mix(lit.w, lit.z, f.x), mix(lit.x, lit.y, f.x), f.y);
 }
@@ -268,30 +294,11 @@ PreskinShadowSample preskinSampleShadow(sampler2D shadowMap, mat4 shadowClipFrom
     PreskinShadowSample result;
     float mapSize = params.w;
     float sigma = max(params.y, 0.25);
-    // Normal offset: a quarter texel along the normal, growing to 1.75 texels only where the light
-    // grazes (cos < 0.25). An offset along the normal moves the lookup across the map by its
-    // component perpendicular to the light, which at grazing light puts cast-shadow edges off their
-    // place: against the ray-traced reference on the head, growing it over the whole hemisphere
-    // shrank the nose's shadow on the cheek by about a millimetre (green RMSE 0.0038 against 0.0031
-    // at 1024x1024). The receiver-plane bias below handles sloped receivers.
-    vec3 r0 = vec3(shadowClipFromWorld[0][0], shadowClipFromWorld[1][0], shadowClipFromWorld[2][0]);
-    vec3 r1 = vec3(shadowClipFromWorld[0][1], shadowClipFromWorld[1][1], shadowClipFromWorld[2][1]);
-    vec3 r2 = vec3(shadowClipFromWorld[0][2], shadowClipFromWorld[1][2], shadowClipFromWorld[2][2]);
-    vec3 lightDir = normalize(r2);
-    float cosTheta = abs(dot(geometricNormalWs, lightDir));
-    vec3 offsetWs = geometricNormalWs * params.x * (0.25 + 1.5 * smoothstep(0.25, 0.0, cosTheta));
-    vec4 clip = shadowClipFromWorld * vec4(positionWs + offsetWs, 1.0);
-    vec2 uv = clip.xy * 0.5 + 0.5;
-    float z = clip.z;
-
-    // Depth gradient along the receiver plane per shadow-map texel, from the normal.
-    vec3 n = geometricNormalWs;
-    float n0 = dot(n, r0) / dot(r0, r0);
-    float n1 = dot(n, r1) / dot(r1, r1);
-    float n2 = dot(n, r2) / dot(r2, r2);
-    n2 = sign(n2) * max(abs(n2), 1e-4 * (abs(n0) + abs(n1)) + 1e-12);
-    vec2 dzPerTexel = clamp(-vec2(n0, n1) / n2 * (2.0 / mapSize), vec2(-0.02 * shadowFilter.texelScale),
-                            vec2(0.02 * shadowFilter.texelScale));
+    PreskinShadowReceiver receiver =
+        preskinShadowReceiver(shadowClipFromWorld, params, positionWs, geometricNormalWs, shadowFilter.texelScale);
+    vec2 uv = receiver.uv;
+    float z = receiver.z;
+    vec2 dzPerTexel = receiver.dzPerTexel;
     float bias = 2e-4 + shadowFilter.slopeBiasTexels * (abs(dzPerTexel.x) + abs(dzPerTexel.y)) + shadowFilter.riseM / params.z;
 
     vec2 t = uv * mapSize - 0.5;
@@ -314,13 +321,15 @@ PreskinShadowSample preskinSampleShadow(sampler2D shadowMap, mat4 shadowClipFrom
         if (sigma > 1.6) stride = min(ceil(2.5 * sigma / (float(G) - 0.5)), 16.0);
     }
     PreskinShadowPcf pcf = preskinShadowPcf(shadowMap, t, mapSize, z, bias, dzPerTexel, G, stride, sigma);
-    bool inside = all(greaterThanEqual(uv, vec2(0.0))) && all(lessThanEqual(uv, vec2(1.0))) && z <= 1.0;
+    bool inside = receiver.inside;
     result.visibility = inside ? pcf.visibility : 1.0;
     // The weights' standard deviation (mean of the two axes), the filter's width across an edge.
     result.kernelWidthM = sqrt(pcf.varianceTexels) * params.x;
     result.blockerDistanceM = inside ? max(z - pcf.blockerDepth, 0.0) * params.z : 0.0;
     // The Gaussian's gradient is its first moment over its variance (texels); texel coordinates
     // change by mapSize / 2 times rows r0, r1 of the transform per metre.
+    vec3 r0 = vec3(shadowClipFromWorld[0][0], shadowClipFromWorld[1][0], shadowClipFromWorld[2][0]);
+    vec3 r1 = vec3(shadowClipFromWorld[0][1], shadowClipFromWorld[1][1], shadowClipFromWorld[2][1]);
     vec3 gradient = (pcf.gradient.x * r0 + pcf.gradient.y * r1) * (0.5 * mapSize / max(pcf.varianceTexels, 1e-6));
     result.gradientWs = inside ? gradient : vec3(0.0);
     return result;

@@ -39,7 +39,7 @@ PRESKIN_CONST(uint, kSkinAll, 1023u)
 // face's map detail is already under its own mip level), keeping the pre-integrated diffuse, the
 // per-channel geometric normals, the SH transfer and the opposing neighbours' light (2 %, the
 // largest gain per instruction), and reading the diffuse LUT for the shadow light alone (the
-// other lights' fetches are 4 % of the low frame; compare's views have one light).
+// other lights' fetches are 3 % of the low frame; compare's views have one light).
 PRESKIN_CONST(uint, kSkinQualityLow, 79u)      // kSkinLutDiffuse | kSkinNormalPrefilter | kSkinPenumbra | kSkinShAmbient | kSkinOpposingLight
 PRESKIN_CONST(uint, kSkinQualityMedium, 975u)  // Low | kSkinNormalMapLevels | kSkinWidePenumbra | kSkinLutEveryLight
 PRESKIN_CONST(uint, kSkinQualityHigh, 1023u)   // kSkinAll
