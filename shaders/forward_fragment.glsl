@@ -72,10 +72,11 @@ layout(location = 10) in vec3 inSphereTransmittance;     // kSkinSphereTransmitt
 layout(location = 11) centroid in vec3 inNormalRedWs;             // skin: per-channel prefiltered geometric normals
 layout(location = 12) centroid in vec3 inNormalGreenWs;
 layout(location = 13) centroid in vec3 inNormalBlueWs;
-layout(location = 14) in vec3 inOpposingRedWs;  // skin: the opposing neighbours per channel (preskinOpposingNormal)
-layout(location = 15) in vec3 inOpposingGreenWs;
-layout(location = 16) in vec3 inOpposingBlueWs;
-layout(location = 17) in vec3 inOpposingCentroidWs;
+layout(location = 14) in vec3 inOpposingFacing;  // skin: the vertex stage's PreskinOpposingLookup
+layout(location = 15) in vec3 inOpposingShadowUvZ;
+layout(location = 16) in vec2 inOpposingDzPerTexel;
+layout(location = 17) in vec3 inRowFitScale;  // kSkinRowFitPerVertex: the vertex stage's PreskinDiffuseFit
+layout(location = 18) in vec3 inRowFitWidth;
 
 layout(location = 0) out vec4 outColor;
 #ifdef PRESKIN_TEXTURE_IRRADIANCE
@@ -289,7 +290,12 @@ void main() {
         skin.transmissionTint = material.skinScatter.w * material.skinTransmission.rgb;
         skin.thicknessScale = material.skinTransmission.w;
 
-        PreskinSkinLighting lighting = preskinSkinLighting(skin, profiles, diffuseLut, V, features);
+        PreskinSkinLighting lighting;
+        if (kSkinRowFitPerVertex)
+            lighting = preskinSkinLighting(skin, profiles, diffuseLut, V, features,
+                                           PreskinDiffuseFit(inRowFitScale, inRowFitWidth));
+        else
+            lighting = preskinSkinLighting(skin, profiles, diffuseLut, V, features);
         // Lights with a size (preskin/lights.glsl); their specular from the lobes' linearly
         // transformed cosines.
         vec3 R = reflect(-V, skin.normalSpecular);
@@ -320,9 +326,9 @@ void main() {
                                                   shadow.visibility, coverage, features);
             // The neighbours facing this point across a gap, a contact or a thin part: the same
             // light as transmission's where both see the same surface, so the larger of the two.
-            transmitted = max(transmitted, preskinSkinOpposingLight(skin, shadowMap, shadowClipFromWorld, shadowParams,
-                                                                    inPositionWs, inOpposingCentroidWs, inOpposingRedWs,
-                                                                    inOpposingGreenWs, inOpposingBlueWs, L, irradiance,
+            PreskinOpposingLookup opposing =
+                PreskinOpposingLookup(inOpposingFacing, inOpposingShadowUvZ, inOpposingDzPerTexel);
+            transmitted = max(transmitted, preskinSkinOpposingLight(skin, shadowMap, shadowParams, opposing, irradiance,
                                                                     features));
             // The shadow light reads the diffuse LUT in every tier (kSkinLutEveryLight).
             PreskinSkinLightParts lit;

@@ -40,7 +40,7 @@ const bool kSkinSpecularFromLevels = (kSkinInputs & kSkinInputSpecularFromLevels
 // (preskin/skin_vertex.glsl) is found by the vertex stage and interpolated where curvature is per
 // vertex or from a curvature map, read at the vertex (unless RenderSettings::skinTermsPerVertex is
 // off: kSkinInputTermsPerFragment; never for screen-derivative curvature): the shadow
-// lookup's lift, the SH transfer and, on single-sided skin (the vertex stage cannot tell which side
+// lookup's lift, the SH transfer, the diffuse row's smoothed ramp and, on single-sided skin (the vertex stage cannot tell which side
 // faces the viewer), the transmittance the diffuse LUT already holds; a material blending profiles
 // finds them for the blend at the vertex (materialProfileMix of forward_material.glsl).
 // (Written as comparisons of uints: glslang turns && of specialization constants into control flow.)
@@ -50,6 +50,9 @@ const uint kSkinVertexCurvature = uint(kMaterialModel == kModelSkin) &
 const bool kSkinShPerVertex =
     (kSkinVertexCurvature & uint((kSkinFeatures & kSkinShAmbient) != 0u)) != 0u;
 const bool kSkinLiftPerVertex = (kSkinVertexCurvature & uint((kSkinFeatures & kSkinLutDiffuse) != 0u)) != 0u;
+// The diffuse row's smoothed ramp (preskinDiffuseFit), which the lights without the table read.
+const bool kSkinRowFitPerVertex =
+    (kSkinVertexCurvature & uint((kSkinFeatures & (kSkinLutDiffuse | kSkinLutEveryLight)) == kSkinLutDiffuse)) != 0u;
 // Skin with penumbra scattering samples the wide shadow map (shaders/shadow_reduce.comp) too.
 const bool kSkinWideShadow =
     (uint(kMaterialModel == kModelSkin) & uint((kSkinFeatures & kSkinWideShadowBits) == kSkinWideShadowBits)) != 0u;

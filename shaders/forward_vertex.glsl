@@ -8,13 +8,14 @@
 // every eye, and the eye index for the fragment stage; for skin, the geometric normal prefiltered
 // per colour channel from the normal basis (vertex binding 1). Skin pipelines with per-vertex curvature
 // also find the skin terms that depend on curvature alone (preskin/skin_vertex.glsl: the SH
-// transfer, the shadow lookup's lift, the sphere transmittance; see forward_specialization.glsl
+// transfer, the shadow lookup's lift, the diffuse row's smoothed ramp, the sphere transmittance; see forward_specialization.glsl
 // for when), which the fragment stage interpolates instead of finding them per fragment. The
 // including file defines PRESKIN_EYE_INDEX (and PRESKIN_WRITE_LAYER for layered drawing).
 #include "forward_material.glsl"
 
 layout(set = 0, binding = kBindingFrame) uniform Frame { FrameUniforms frame; };
 layout(std430, set = 0, binding = kBindingInstances) readonly buffer Instances { GpuInstance instances[]; };
+layout(set = 0, binding = kBindingDiffuseLut) uniform sampler2DArray diffuseLut;
 layout(set = 0, binding = kBindingShTransferLut) uniform sampler2DArray shTransferLut;
 layout(set = 0, binding = kBindingTransmittanceLut) uniform sampler2DArray transmittanceLut;
 layout(push_constant) uniform Push { DrawPush draw; };
@@ -46,10 +47,11 @@ layout(location = 10) out vec3 outSphereTransmittance;     // kSkinSphereTransmi
 layout(location = 11) out vec3 outNormalRedWs;             // skin: the per-channel prefiltered geometric normals
 layout(location = 12) out vec3 outNormalGreenWs;
 layout(location = 13) out vec3 outNormalBlueWs;
-layout(location = 14) out vec3 outOpposingRedWs;           // skin: the opposing neighbours per channel
-layout(location = 15) out vec3 outOpposingGreenWs;
-layout(location = 16) out vec3 outOpposingBlueWs;
-layout(location = 17) out vec3 outOpposingCentroidWs;      // their centroid, from the vertex
+layout(location = 14) out vec3 outOpposingFacing;          // skin: the opposing neighbours' light's lookup for
+layout(location = 15) out vec3 outOpposingShadowUvZ;       // the shadow light (preskinSkinOpposingLookup)
+layout(location = 16) out vec2 outOpposingDzPerTexel;
+layout(location = 17) out vec3 outRowFitScale;             // kSkinRowFitPerVertex: preskinDiffuseFit
+layout(location = 18) out vec3 outRowFitWidth;
 
 void main() {
     uint eye = uint(PRESKIN_EYE_INDEX);
@@ -62,10 +64,9 @@ void main() {
     outNormalRedWs = outNormalWs;
     outNormalGreenWs = outNormalWs;
     outNormalBlueWs = outNormalWs;
-    outOpposingRedWs = vec3(0.0);
-    outOpposingGreenWs = vec3(0.0);
-    outOpposingBlueWs = vec3(0.0);
-    outOpposingCentroidWs = vec3(0.0);
+    outOpposingFacing = vec3(0.0);
+    outOpposingShadowUvZ = vec3(-1.0, -1.0, 0.0);
+    outOpposingDzPerTexel = vec2(0.0);
     // The material's profile mix at this vertex, as the fragment stage finds it at its texel.
     PreskinProfileMix profile = materialProfileMix(
         materialBlendedProfiles() > 0 ? textureLod(profileWeightTexture, inUv0, 0.0).rgb : vec3(0.0));
@@ -84,7 +85,7 @@ void main() {
         outNormalGreenWs = normalWorldFromObject * preskinPrefilteredNormal(inNormalOs, inNormalBasis, weights[1]);
         outNormalBlueWs = normalWorldFromObject * preskinPrefilteredNormal(inNormalOs, inNormalBasis, weights[2]);
         // The opposing sums keep their length (a share of the light), not the transform's scale.
-        if ((kSkinFeatures & kSkinOpposingLight) != 0u) {
+        if ((kSkinFeatures & kSkinOpposingLight) != 0u && frame.shadowDirectionWs.w > 0.5) {
             vec3 o[3] = vec3[3](preskinOpposingNormal(inOpposing, weights[0]),
                                 preskinOpposingNormal(inOpposing, weights[1]),
                                 preskinOpposingNormal(inOpposing, weights[2]));
@@ -93,10 +94,13 @@ void main() {
                 float len = length(ws);
                 o[c] = len > 0.0 ? ws * (length(o[c]) / len) : vec3(0.0);
             }
-            outOpposingCentroidWs = mat3(instance.worldFromObject) * inOpposingCentroid;
-            outOpposingRedWs = o[0];
-            outOpposingGreenWs = o[1];
-            outOpposingBlueWs = o[2];
+            PreskinOpposingLookup lookup = preskinSkinOpposingLookup(
+                frame.shadowClipFromWorld, frame.shadowParams, positionWs.xyz,
+                mat3(instance.worldFromObject) * inOpposingCentroid, o[0], o[1], o[2], -frame.shadowDirectionWs.xyz,
+                material.skinScatter.x);
+            outOpposingFacing = lookup.facing;
+            outOpposingShadowUvZ = lookup.shadowUvZ;
+            outOpposingDzPerTexel = lookup.dzPerTexel;
         }
     }
     outCurvaturePerM = inCurvature * instance.params.x;
@@ -116,6 +120,10 @@ void main() {
     outShadowLift = vec2(0.0);
     if (kSkinLiftPerVertex)
         outShadowLift = preskinSkinShadowLift(curvaturePerMm, material.skinScatter.x, profile);
+    PreskinDiffuseFit fit = PreskinDiffuseFit(vec3(1.0), vec3(0.0));
+    if (kSkinRowFitPerVertex) fit = preskinDiffuseFit(profile, diffuseLut, curvaturePerMm);
+    outRowFitScale = fit.scale;
+    outRowFitWidth = fit.width;
     outSphereTransmittance = vec3(0.0);
     if (kSkinSphereTransmittancePerVertex && frame.shadowDirectionWs.w > 0.5)
         outSphereTransmittance = preskinSkinSphereTransmittance(profile, transmittanceLut, curvaturePerMm,

@@ -82,6 +82,11 @@ struct PreskinShadowReceiver {
     bool inside;      // within the map (outside: lit)
 };
 
+// Whether a point at uv and depth z on the map lies within it.
+bool preskinShadowInside(vec2 uv, float z) {
+    return all(greaterThanEqual(uv, vec2(0.0))) && all(lessThanEqual(uv, vec2(1.0))) && z <= 1.0;
+}
+
 PreskinShadowReceiver preskinShadowReceiver(mat4 shadowClipFromWorld, vec4 params, vec3 positionWs, vec3 normalWs,
                                             float texelScale) {
     vec3 r0 = vec3(shadowClipFromWorld[0][0], shadowClipFromWorld[1][0], shadowClipFromWorld[2][0]);
@@ -98,23 +103,19 @@ PreskinShadowReceiver preskinShadowReceiver(mat4 shadowClipFromWorld, vec4 param
     float n2 = dot(normalWs, r2) / dot(r2, r2);
     n2 = sign(n2) * max(abs(n2), 1e-4 * (abs(n0) + abs(n1)) + 1e-12);
     r.dzPerTexel = clamp(-vec2(n0, n1) / n2 * (2.0 / params.w), vec2(-0.02 * texelScale), vec2(0.02 * texelScale));
-    r.inside = all(greaterThanEqual(r.uv, vec2(0.0))) && all(lessThanEqual(r.uv, vec2(1.0))) && r.z <= 1.0;
+    r.inside = preskinShadowInside(r.uv, r.z);
     return r;
 }
 
-// Visibility alone from the 2 x 2 texels around positionWs (one gather), bilinear: the normal
-// offset and receiver plane of preskinSampleShadow (preskinShadowReceiver), the compared depth
-// lowered by riseM. For a lookup that needs no edge, width or occluder (one texel's blur is all it
-// is meant to have).
-float preskinShadowVisibility2x2(sampler2D shadowMap, mat4 shadowClipFromWorld, vec4 params, vec3 positionWs,
-                                 vec3 normalWs, float riseM) {
-    PreskinShadowReceiver r = preskinShadowReceiver(shadowClipFromWorld, params, positionWs, normalWs, 1.0);
+// Visibility alone from the 2 x 2 texels around the receiver r (one gather), bilinear. For a
+// lookup that needs no edge, width or occluder (one texel's blur is all it is meant to have).
+float preskinShadowVisibility2x2(sampler2D shadowMap, vec4 params, PreskinShadowReceiver r) {
     if (!r.inside) return 1.0;
     vec2 t = r.uv * params.w - 0.5;
     vec2 first = floor(t);
     vec2 f = t - first;
     vec4 occluder = textureGather(shadowMap, (first + 1.0) / params.w, 0);  // (0,1), (1,1), (1,0), (0,0)
-    float z = r.z - 2e-4 - riseM / params.z;
+    float z = r.z - 2e-4;
     vec4 receiver = z + r.dzPerTexel.x * (vec4(0.0, 1.0, 1.0, 0.0) - f.x) + r.dzPerTexel.y * (vec4(1.0, 1.0, 0.0, 0.0) - f.y);
     vec4 lit = vec4(greaterThanEqual(occluder, receiver));
     return mix(mix(lit.w, lit.z, f.x), mix(lit.x, lit.y, f.x), f.y);

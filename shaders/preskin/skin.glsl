@@ -75,31 +75,19 @@ struct PreskinSkinSurface {
 // (preskinSkinLighting) and passes it to each preskinSkinLight.
 struct PreskinSkinLighting {
     PreskinDiffuseRows diffuseRows;
-    vec3 rowScale;   // per channel, the row as a smoothed ramp (preskinDiffuseRowFit; without kSkinLutEveryLight)
-    vec3 rowWidth;
+    PreskinDiffuseFit rowFit;  // the row as a smoothed ramp (preskinDiffuseFit; read without kSkinLutEveryLight)
     float NoV;
     vec2 alpha;      // lobe 0, lobe 1 (lobe 0 twice without dual specular)
     vec2 viewTerm;   // preskinSmithViewTerm of each lobe
 };
 
+// fit: the row's smoothed ramp where the caller found it (the vertex stage, preskin/skin_vertex.glsl),
+// read only without kSkinLutEveryLight.
 PreskinSkinLighting preskinSkinLighting(PreskinSkinSurface s, PreskinProfileMix m, sampler2DArray diffuseLut, vec3 V,
-                                        uint features) {
+                                        uint features, PreskinDiffuseFit fit) {
     PreskinSkinLighting k;
-    k.rowScale = vec3(1.0);
-    k.rowWidth = vec3(0.0);
-    if ((features & kSkinLutDiffuse) != 0u) {
-        k.diffuseRows = preskinDiffuseRows(m, diffuseLut, s.curvaturePerMm);
-        if ((features & kSkinLutEveryLight) == 0u) {
-            // The fit through the row's values at the terminator and at normal incidence:
-            // s c / 2 = D(0), s (1 + sqrt(1 + c^2)) / 2 = D(1); with rho = D(0) / D(1) = tan(atan(c) / 2),
-            // c = 2 rho / (1 - rho^2) and s = D(1) (1 - rho^2).
-            vec3 d0 = preskinDiffuseLut(m, k.diffuseRows, diffuseLut, vec3(0.0));
-            vec3 d1 = preskinDiffuseLut(m, k.diffuseRows, diffuseLut, vec3(1.0));
-            vec3 rho = min(d0 / max(d1, vec3(1e-4)), vec3(0.9));
-            k.rowScale = d1 * (1.0 - rho * rho);
-            k.rowWidth = 2.0 * rho / (1.0 - rho * rho);
-        }
-    }
+    k.rowFit = fit;
+    if ((features & kSkinLutDiffuse) != 0u) k.diffuseRows = preskinDiffuseRows(m, diffuseLut, s.curvaturePerMm);
     k.NoV = max(dot(s.normalSpecular, V), 1e-4);
     if ((features & kSkinDualSpecular) == 0u) {
         k.alpha = vec2(max(s.roughness * s.roughness, 1e-3));
@@ -111,21 +99,30 @@ PreskinSkinLighting preskinSkinLighting(PreskinSkinSurface s, PreskinProfileMix 
     return k;
 }
 
+// The same, the fit found here from the fragment's row.
+PreskinSkinLighting preskinSkinLighting(PreskinSkinSurface s, PreskinProfileMix m, sampler2DArray diffuseLut, vec3 V,
+                                        uint features) {
+    PreskinSkinLighting k = preskinSkinLighting(s, m, diffuseLut, V, features, PreskinDiffuseFit(vec3(1.0), vec3(0.0)));
+    if ((features & (kSkinLutDiffuse | kSkinLutEveryLight)) == kSkinLutDiffuse)
+        k.rowFit = preskinDiffuseFit(m, k.diffuseRows, diffuseLut);
+    return k;
+}
+
 // A diffuse LUT row D(x), x = N.L, as a smoothed ramp per channel: s (x + sqrt(x^2 + c^2)) / 2, the
 // hyperbola whose asymptotes are 0 and s x, through the row's values at x = 0 and 1
-// (preskinSkinLighting). A convex row is the ramp max(x, 0) blurred by the profile over the
+// (preskinDiffuseFit of preskin/skin_vertex.glsl). A convex row is the ramp max(x, 0) blurred by the profile over the
 // osculating sphere: its light past the terminator, its softened knee and its lit side's lower
 // slope (red's light moved into the shadow) are what the fit keeps; within the LUT's own accuracy
 // where the row is nearly Lambert's, off by a tenth to a fifth of Lambert's error on red's rows
 // of face curvatures and a fifth to a half on green's and blue's. A concave row's self-shadowed
 // band past N.L = sin(patch / 2r) it does not hold: there the fit is Lambert's but for red.
-vec3 preskinDiffuseRowFit(vec3 NoL, vec3 scale, vec3 width) {
-    return scale * (0.5 * (NoL + sqrt(NoL * NoL + width * width)));
+vec3 preskinDiffuseRowFit(vec3 NoL, PreskinDiffuseFit fit) {
+    return fit.scale * (0.5 * (NoL + sqrt(NoL * NoL + fit.width * fit.width)));
 }
 
 // The fragment's diffuse row at NoL per channel: the LUT, or without kSkinLutEveryLight its fit.
 vec3 preskinSkinDiffuseRow(PreskinSkinLighting k, PreskinProfileMix m, sampler2DArray diffuseLut, vec3 NoL, uint features) {
-    if ((features & kSkinLutEveryLight) == 0u) return preskinDiffuseRowFit(NoL, k.rowScale, k.rowWidth);
+    if ((features & kSkinLutEveryLight) == 0u) return preskinDiffuseRowFit(NoL, k.rowFit);
     return preskinDiffuseLut(m, k.diffuseRows, diffuseLut, NoL);
 }
 
@@ -453,27 +450,33 @@ vec3 preskinSkinTransmission(PreskinSkinSurface s, PreskinProfileMix m, sampler2
 // other side of a thin part (the upper lip's underside facing the lit lower lip, a fold facing
 // its wall, the far side of an ear): their profile-weighted normal integral per channel,
 // opposing* = sum_b a_cb O_b (preskinOpposingNormal of preskin/skin_vertex.glsl, world space), dotted
-// with L is the share of the light on them that reaches the point (for a sheet d thick,
-// the profile's transmittance T(d) times the cosine). Whether the light reaches them: the shadow
-// map at their centroid (centroidOffsetWs from positionWs), lifted kSkinOpposingLiftMm towards the
-// point, one gather read bilinearly (preskinShadowVisibility2x2), occluders nearer than
-// kSkinOpposingReliefMm along
-// the light not counted: the relief that forms the gap (a lip over the lips' line, a helix over its
-// fold) shadows the centroid, deep in the gap, but not the lit surface around it that sends the
-// light, while a far occluder (a nose, a hat) shadows both. Distances in profile millimetres.
-// The light transmission takes from the far side of a thin part is also here: take the larger.
+// with L is the share of the light on them that reaches the point (for a sheet d thick, the
+// profile's transmittance T(d) times the cosine). Whether the light reaches them: the shadow map
+// at their centroid, one gather read bilinearly (preskinShadowVisibility2x2), occluders of the
+// relief that forms the gap not counted (preskinSkinOpposingLookup of preskin/skin_vertex.glsl,
+// `o`, found per vertex or per fragment). The light transmission takes from the far side of a
+// thin part is also here: take the larger.
 // Limits: one shadow lookup for the whole neighbourhood; neighbours on other meshes are not seen.
+vec3 preskinSkinOpposingLight(PreskinSkinSurface s, sampler2D shadowMap, vec4 params, PreskinOpposingLookup o,
+                              vec3 irradiance, uint features) {
+    if ((features & kSkinOpposingLight) == 0u || max(max(o.facing.r, o.facing.g), o.facing.b) <= 0.0) return vec3(0.0);
+    PreskinShadowReceiver r;
+    r.uv = o.shadowUvZ.xy;
+    r.z = o.shadowUvZ.z;
+    r.dzPerTexel = o.dzPerTexel;
+    r.inside = preskinShadowInside(r.uv, r.z);
+    float visibility = preskinShadowVisibility2x2(shadowMap, params, r);
+    return max(o.facing, vec3(0.0)) * visibility * s.transmissionTint * s.albedo / PRESKIN_PI * irradiance;
+}
+
+// The same, the lookup found here (centroidOffsetWs: the neighbours' centroid from positionWs).
 vec3 preskinSkinOpposingLight(PreskinSkinSurface s, sampler2D shadowMap, mat4 shadowClipFromWorld, vec4 params,
                               vec3 positionWs, vec3 centroidOffsetWs, vec3 opposingR, vec3 opposingG,
                               vec3 opposingB, vec3 L, vec3 irradiance, uint features) {
-    vec3 facing = vec3(dot(opposingR, L), dot(opposingG, L), dot(opposingB, L));
-    if ((features & kSkinOpposingLight) == 0u || max(max(facing.r, facing.g), facing.b) <= 0.0) return vec3(0.0);
-    float toWorldM = 0.001 / max(s.scatterScale, 1e-6);
-    vec3 towards = normalize(opposingR + opposingG + opposingB);
-    vec3 centroidWs = positionWs + centroidOffsetWs + towards * (kSkinOpposingLiftMm * toWorldM);
-    float visibility = preskinShadowVisibility2x2(shadowMap, shadowClipFromWorld, params, centroidWs, towards,
-                                                  kSkinOpposingReliefMm * toWorldM);
-    return max(facing, vec3(0.0)) * visibility * s.transmissionTint * s.albedo / PRESKIN_PI * irradiance;
+    return preskinSkinOpposingLight(s, shadowMap, params,
+                                    preskinSkinOpposingLookup(shadowClipFromWorld, params, positionWs, centroidOffsetWs,
+                                                              opposingR, opposingG, opposingB, L, s.scatterScale),
+                                    irradiance, features);
 }
 
 // The occluder preskinSkinTransmission takes for the light that owns the shadow map (towards L),

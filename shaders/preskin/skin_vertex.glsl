@@ -16,6 +16,7 @@
 
 #include "preskin/common.glsl"
 #include "preskin/lut.glsl"
+#include "preskin/shadow.glsl"
 #include "shared/skin_features.h"
 
 // The mesh normal seen through one colour channel's profile (<preskin/NormalBasis.h>): `normal`
@@ -78,6 +79,66 @@ vec3 preskinSkinSphereTransmittance(PreskinProfileMix m, sampler2DArray transmit
     float r = sqrt(max((a - d) * (a - d) * c * c + 2.0 * a * d - d * d, 0.0));
     float sphereMm = ((a - d) * c + r) * r / a + d;
     return preskinTransmittanceLut(m, transmittanceLut, sphereMm);
+}
+
+// The diffuse LUT's row at one curvature as a smoothed ramp per channel, s (x + sqrt(x^2 + c^2)) / 2
+// (preskinDiffuseRowFit of preskin/skin.glsl), through the row's values at N.L = 0 and 1:
+// s c / 2 = D(0), s (1 + sqrt(1 + c^2)) / 2 = D(1); with rho = D(0) / D(1) = tan(atan(c) / 2),
+// c = 2 rho / (1 - rho^2) and s = D(1) (1 - rho^2). What the lights a fragment shades without the
+// table (no kSkinLutEveryLight) read: it depends on the curvature alone.
+struct PreskinDiffuseFit {
+    vec3 scale;  // s per channel
+    vec3 width;  // c per channel
+};
+
+PreskinDiffuseFit preskinDiffuseFit(PreskinProfileMix m, PreskinDiffuseRows rows, sampler2DArray diffuseLut) {
+    vec3 d0 = preskinDiffuseLut(m, rows, diffuseLut, vec3(0.0));
+    vec3 d1 = preskinDiffuseLut(m, rows, diffuseLut, vec3(1.0));
+    vec3 rho = min(d0 / max(d1, vec3(1e-4)), vec3(0.9));
+    return PreskinDiffuseFit(d1 * (1.0 - rho * rho), 2.0 * rho / (1.0 - rho * rho));
+}
+
+PreskinDiffuseFit preskinDiffuseFit(PreskinProfileMix m, sampler2DArray diffuseLut, float curvaturePerMm) {
+    return preskinDiffuseFit(m, preskinDiffuseRows(m, diffuseLut, curvaturePerMm), diffuseLut);
+}
+
+// What the opposing neighbours' light (preskinSkinOpposingLight of preskin/skin.glsl) needs of a
+// directional light towards L that owns the shadow map, none of it from the normal maps: the share
+// of the light on the neighbours that reaches the point per channel, opposing_c . L, and where
+// their centroid (centroidOffsetWs from positionWs) falls on the map, lifted kSkinOpposingLiftMm
+// towards the point, with the normal offset and receiver plane of preskinSampleShadow
+// (preskinShadowReceiver) and the compared depth lowered by kSkinOpposingReliefMm: the relief that
+// forms the gap (a lip over the lips' line, a helix over its fold) shadows the centroid, deep in
+// the gap, but not the lit surface around it that sends the light, while a far occluder (a nose, a
+// hat) shadows both. Distances in profile millimetres (scatterScale: profile mm per world mm).
+// Where the opposing sums are per vertex (the renderer's) it is found in the vertex stage and
+// interpolated: the map's transform is affine, so only the normalisation of the direction towards
+// the point and the normal offset's grazing term are not interpolated exactly.
+struct PreskinOpposingLookup {
+    vec3 facing;      // opposing_c . L per channel
+    vec3 shadowUvZ;   // the lifted centroid on the shadow map: uv, and the depth it is compared at
+    vec2 dzPerTexel;  // the receiver plane's depth step per texel (PreskinShadowReceiver)
+};
+
+PreskinOpposingLookup preskinSkinOpposingLookup(mat4 shadowClipFromWorld, vec4 params, vec3 positionWs,
+                                                vec3 centroidOffsetWs, vec3 opposingR, vec3 opposingG, vec3 opposingB,
+                                                vec3 L, float scatterScale) {
+    PreskinOpposingLookup o;
+    o.facing = vec3(dot(opposingR, L), dot(opposingG, L), dot(opposingB, L));
+    vec3 sum = opposingR + opposingG + opposingB;
+    if (dot(sum, sum) <= 0.0) {  // no neighbours: off the map (lit), facing 0
+        o.shadowUvZ = vec3(-1.0, -1.0, 0.0);
+        o.dzPerTexel = vec2(0.0);
+        return o;
+    }
+    float toWorldM = 0.001 / max(scatterScale, 1e-6);
+    vec3 towards = normalize(sum);
+    PreskinShadowReceiver r = preskinShadowReceiver(shadowClipFromWorld, params,
+                                                    positionWs + centroidOffsetWs + towards * (kSkinOpposingLiftMm * toWorldM),
+                                                    towards, 1.0);
+    o.shadowUvZ = vec3(r.uv, r.z - kSkinOpposingReliefMm * toWorldM / params.z);
+    o.dzPerTexel = r.dzPerTexel;
+    return o;
 }
 
 #endif

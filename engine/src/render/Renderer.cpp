@@ -166,7 +166,7 @@ void Renderer::Impl::createLayouts() {
         {gpu::kBindingLights, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, fs},
         {gpu::kBindingInstances, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, VK_SHADER_STAGE_VERTEX_BIT},
         {gpu::kBindingShadowMap, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, fs},
-        {gpu::kBindingDiffuseLut, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, fs},
+        {gpu::kBindingDiffuseLut, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, all},  // per-vertex row fit
         {gpu::kBindingPenumbraLut, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, fs},
         {gpu::kBindingShTransferLut, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, all},     // per-vertex SH transfer
         {gpu::kBindingTransmittanceLut, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, all},  // per-vertex sphere term
