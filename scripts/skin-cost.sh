@@ -81,7 +81,7 @@ configs=(
   "dual_specular|--no-dual-specular"
   "opposing_light|--no-opposing-light"
   "specular_ibl|--no-specular-ibl"
-  "quality_medium|--skin-quality medium"
+  "lut_every_light|--no-lut-every-light" "quality_medium|--skin-quality medium"
   "quality_low|--skin-quality low"
   "all_off|--standard"
   "no_shadows|--no-shadows"
@@ -189,9 +189,7 @@ lines = [
     "Lambert's against the diffusion reference (below 1: closer than Lambert; higher than the all-on row: the "
     "technique buys accuracy there); specular is off in `compare`, so the specular rows buy nothing there, and "
     "it renders without normal maps (the reference shades the smooth surface), so the normal-map levels' row "
-    "is not measured there (left blank); its views are lit by the shadow light and the environment alone, so "
-    "neither is the row of the LUT for the other lights (`SkinQualityFidelity.LowTiersRowFitIsFarCloserToTheReferenceThanLambert` "
-    "measures that one).",
+    "is not measured there (left blank).",
     "",
     "| | instructions per frame (M) | share of the skin frame | wall ms | process CPU ms | forward-pass ms "
     "| fidelity with it off: all / concave / near cast-shadow edges (mean of views) | all, per view |",
@@ -212,7 +210,7 @@ labels = {"lut_diffuse": "diffuse LUT fetches (per light, per channel)",
           "normal_prefilter": "per-channel normals (geometric and normal-map)",
           "normal_map_levels": "normal-map levels per channel (of those)",
           "penumbra": "penumbra LUT", "wide_penumbra": "the wide shadow map (of the penumbra's)",
-          "lut_every_light": "the diffuse LUT for lights other than the shadow light (of the LUT's)", "sh_ambient": "SH transfer", "transmission": "thickness and transmission",
+          "lut_every_light": "the diffuse LUT per light (of the LUT's; without it the row's fit)", "sh_ambient": "SH transfer", "transmission": "thickness and transmission",
           "opposing_light": "the opposing neighbours' light", "dual_specular": "dual specular",
           "specular_ibl": "specular IBL (prefiltered environment)"}
 for name, label in labels.items():

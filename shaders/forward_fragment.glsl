@@ -330,15 +330,14 @@ void main() {
                 PreskinOpposingLookup(inOpposingFacing, inOpposingShadowUvZ, inOpposingDzPerTexel);
             transmitted = max(transmitted, preskinSkinOpposingLight(skin, shadowMap, shadowParams, opposing, irradiance,
                                                                     features));
-            // The shadow light reads the diffuse LUT in every tier (kSkinLutEveryLight).
             PreskinSkinLightParts lit;
             if (kCapShadowLight)
                 lit = preskinSkinLightParts(skin, lighting, profiles, diffuseLut, V,
                                             preskinLightSample(lights[0], inPositionWs, skin.normalSpecular, R, ltc, true),
-                                            penumbra, shadow.visibility, features | kSkinLutEveryLight, ltc.dfg);
+                                            penumbra, shadow.visibility, features, ltc.dfg);
             else
                 lit = preskinSkinLightParts(skin, lighting, profiles, diffuseLut, V, L, irradiance, penumbra,
-                                            shadow.visibility, features | kSkinLutEveryLight);
+                                            shadow.visibility, features);
             skinDiffuse += lit.diffuse;
             color += lit.specular;
         }

@@ -125,7 +125,7 @@ void addCommonOptions(CLI::App& cmd, CommonOptions& o) {
 void addSkinTechniqueOptions(CLI::App& cmd, CommonOptions& o) {
     cmd.add_flag("--no-lut-diffuse", o.noLutDiffuse, "Skin: Lambert instead of the pre-integrated diffuse LUT");
     cmd.add_flag("--no-lut-every-light", o.noLutEveryLight,
-                 "Skin: the diffuse LUT for the shadow light only, the other lights its row as a smoothed ramp");
+                 "Skin: no light reads the diffuse LUT: each gets its row as a smoothed ramp");
     cmd.add_flag("--no-normal-prefilter", o.noNormalPrefilter,
                  "Skin: one normal for all channels (no per-channel geometric normals or normal-map levels)");
     cmd.add_flag("--no-wide-penumbra", o.noWidePenumbra,

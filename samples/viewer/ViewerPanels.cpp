@@ -252,7 +252,7 @@ void Viewer::panelTechniques() {
     ImGui::Checkbox("Penumbra scattering", &f.penumbra);
     tooltip("Off: the plain filtered shadow");
     ImGui::Checkbox("Diffuse LUT for every light", &f.lutEveryLight);
-    tooltip("Off: the LUT for the shadow light only, the other lights its row as a smoothed ramp");
+    tooltip("Off: no light reads the LUT, each gets its row as a smoothed ramp");
     ImGui::Checkbox("Wide penumbra (wide shadow map)", &f.widePenumbra);
     tooltip("Off: penumbra scattering within the shadow filter's reach only");
     ImGui::Checkbox("SH ambient skin transfer", &f.shAmbient);

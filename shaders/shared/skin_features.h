@@ -23,9 +23,9 @@ PRESKIN_CONST(uint, kSkinWidePenumbra, 256u)
 // The bits that read the wide shadow map (and record its reduction pass): both must be set.
 PRESKIN_CONST(uint, kSkinWideShadowBits, 260u)  // kSkinPenumbra | kSkinWidePenumbra
 // With kSkinLutDiffuse: the diffuse LUT read for every light (three gathers per light). Without
-// it a light reads the table only where its caller adds this bit (the renderer and the host
-// sample do for the shadow light); the others get the fragment's row as a smoothed ramp fitted
-// once per fragment (preskinDiffuseRowFit of preskin/skin.glsl): ALU per light, no fetch.
+// it no light reads the table: each gets the fragment's row as a smoothed ramp
+// (preskinDiffuseRowFit of preskin/skin.glsl), fitted once per vertex or per fragment
+// (preskinDiffuseFit of preskin/skin_vertex.glsl): ALU per light, no fetch.
 PRESKIN_CONST(uint, kSkinLutEveryLight, 512u)
 PRESKIN_CONST(uint, kSkinAll, 1023u)
 
@@ -38,8 +38,9 @@ PRESKIN_CONST(uint, kSkinAll, 1023u)
 // the shadow filter's reach, for 2 %) and the normal map's per-channel levels (4 %: a distant
 // face's map detail is already under its own mip level), keeping the pre-integrated diffuse, the
 // per-channel geometric normals, the SH transfer and the opposing neighbours' light (2 %, the
-// largest gain per instruction), and reading the diffuse LUT for the shadow light alone (the
-// other lights' fetches are 3 % of the low frame; compare's views have one light).
+// largest gain per instruction), and shading every light by the diffuse row's fit instead of
+// reading the table per light (3 % of the high frame; on compare's views 0.002 of Lambert's
+// error, mostly in the terminator band).
 PRESKIN_CONST(uint, kSkinQualityLow, 79u)      // kSkinLutDiffuse | kSkinNormalPrefilter | kSkinPenumbra | kSkinShAmbient | kSkinOpposingLight
 PRESKIN_CONST(uint, kSkinQualityMedium, 975u)  // Low | kSkinNormalMapLevels | kSkinWidePenumbra | kSkinLutEveryLight
 PRESKIN_CONST(uint, kSkinQualityHigh, 1023u)   // kSkinAll

@@ -48,7 +48,7 @@ TEST(SkinQuality, TiersCompileInTheirTechniques) {
     EXPECT_TRUE(low.penumbra);
     EXPECT_FALSE(low.widePenumbra);
     EXPECT_TRUE(medium.widePenumbra);
-    // Low reads the diffuse LUT for the shadow light alone.
+    // Low reads no diffuse LUT per light (the row's fit).
     EXPECT_FALSE(low.lutEveryLight);
     EXPECT_TRUE(medium.lutEveryLight);
     EXPECT_NE(medium.mask(), high.mask());

@@ -49,8 +49,8 @@ struct SkinFeatures {
     // filter's reach (a reduction pass, nine more gathers per fragment); off, the penumbra LUT
     // acts within the shadow filter's reach only.
     bool widePenumbra = true;
-    // With lutDiffuse: the diffuse LUT read for every light; off, for the shadow light only, the
-    // others shaded by the fragment's LUT row as a smoothed ramp (no fetch per light).
+    // With lutDiffuse: the diffuse LUT read for every light; off, no light reads it: each is shaded
+    // by the fragment's LUT row as a smoothed ramp, fitted per vertex (no fetch per light).
     bool lutEveryLight = true;
 
     static SkinFeatures none() { return {false, false, false, false, false, false, false, false, false, false}; }
