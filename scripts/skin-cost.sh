@@ -76,12 +76,13 @@ configs=(
   "penumbra|--no-penumbra"
   "wide_penumbra|--no-wide-penumbra"
   "lut_every_light|--no-lut-every-light"
+  "full_shadow_filter|--no-full-shadow-filter"
   "sh_ambient|--no-sh-skin"
   "transmission|--no-transmission"
   "dual_specular|--no-dual-specular"
   "opposing_light|--no-opposing-light"
   "specular_ibl|--no-specular-ibl"
-  "lut_every_light|--no-lut-every-light" "quality_medium|--skin-quality medium"
+  "quality_medium|--skin-quality medium"
   "quality_low|--skin-quality low"
   "all_off|--standard"
   "no_shadows|--no-shadows"
@@ -125,6 +126,7 @@ if [ -n "${REFERENCES:-}" ]; then
   done
   for c in "lut_diffuse|--no-lut-diffuse" "normal_prefilter|--no-normal-prefilter" "penumbra|--no-penumbra" "wide_penumbra|--no-wide-penumbra" \
            "sh_ambient|--no-sh-skin" "transmission|--no-transmission" "opposing_light|--no-opposing-light" \
+           "lut_every_light|--no-lut-every-light" "full_shadow_filter|--no-full-shadow-filter" \
            "quality_medium|--skin-quality medium" "quality_low|--skin-quality low"; do
     name="${c%%|*}" flags="${c#*|}"
     for v in "${views[@]}"; do
@@ -210,7 +212,8 @@ labels = {"lut_diffuse": "diffuse LUT fetches (per light, per channel)",
           "normal_prefilter": "per-channel normals (geometric and normal-map)",
           "normal_map_levels": "normal-map levels per channel (of those)",
           "penumbra": "penumbra LUT", "wide_penumbra": "the wide shadow map (of the penumbra's)",
-          "lut_every_light": "the diffuse LUT per light (of the LUT's; without it the row's fit)", "sh_ambient": "SH transfer", "transmission": "thickness and transmission",
+          "lut_every_light": "the diffuse LUT per light (of the LUT's; without it the row's fit)",
+          "full_shadow_filter": "the shadow filter's 8 x 8 footprint (against 6 x 6)", "sh_ambient": "SH transfer", "transmission": "thickness and transmission",
           "opposing_light": "the opposing neighbours' light", "dual_specular": "dual specular",
           "specular_ibl": "specular IBL (prefiltered environment)"}
 for name, label in labels.items():

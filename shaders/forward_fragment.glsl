@@ -224,8 +224,10 @@ void main() {
             float sinSigma = lights[0].spotScaleOffset.z;
             penumbraPerM = 0.545 * sinSigma * inversesqrt(max(1.0 - sinSigma * sinSigma, 1e-6));
         }
+        PreskinShadowFilter shadowFilter = kPreskinShadowMapFilter;
+        if (kMaterialModel == kModelSkin) shadowFilter = preskinSkinShadowFilter(kSkinFeatures);
         shadow = preskinSampleShadow(shadowMap, shadowClipFromWorld, shadowParams, shadowPositionWs, geometricN,
-                                     kPreskinShadowMapFilter, penumbraPerM);
+                                     shadowFilter, penumbraPerM);
     }
 
     uint first;

@@ -80,7 +80,8 @@ void BenchRun::skinSection(const std::vector<uint32_t>& skinCounts) {
                                             {"opposing_light", &SkinFeatures::opposingLight},
                                             {"normal_map_levels", &SkinFeatures::normalMapLevels},
                                             {"wide_penumbra", &SkinFeatures::widePenumbra},
-                                            {"lut_every_light", &SkinFeatures::lutEveryLight}};
+                                            {"lut_every_light", &SkinFeatures::lutEveryLight},
+                                            {"full_shadow_filter", &SkinFeatures::fullShadowFilter}};
             std::vector<Config> configs{{&renderer, base, fmt::format("{} lights, skin", n), 0.0},
                                         {&standardRenderer, base, fmt::format("{} lights, standard material", n), 0.0}};
             for (const Technique& t : techniques) {

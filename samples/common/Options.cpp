@@ -128,6 +128,8 @@ void addSkinTechniqueOptions(CLI::App& cmd, CommonOptions& o) {
                  "Skin: no light reads the diffuse LUT: each gets its row as a smoothed ramp");
     cmd.add_flag("--no-normal-prefilter", o.noNormalPrefilter,
                  "Skin: one normal for all channels (no per-channel geometric normals or normal-map levels)");
+    cmd.add_flag("--no-full-shadow-filter", o.noFullShadowFilter,
+                 "Skin: the shadow map filtered over 6 x 6 texels (9 gathers) instead of 8 x 8 (16)");
     cmd.add_flag("--no-wide-penumbra", o.noWidePenumbra,
                  "Skin: penumbra scattering within the shadow filter's reach only (no wide shadow map)");
     cmd.add_flag("--no-normal-map-levels", o.noNormalMapLevels,
@@ -392,6 +394,7 @@ RenderSettings renderSettings(const CommonOptions& o) {
     s.skin.normalMapLevels = !o.noNormalMapLevels;
     s.skin.widePenumbra = !o.noWidePenumbra;
     s.skin.lutEveryLight = !o.noLutEveryLight;
+    s.skin.fullShadowFilter = !o.noFullShadowFilter;
     if (!o.skinQuality.empty())
         s.skinQuality = o.skinQuality == "low" ? SkinQuality::Low
             : o.skinQuality == "medium"        ? SkinQuality::Medium

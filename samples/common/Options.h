@@ -52,6 +52,7 @@ struct CommonOptions {
     bool noOpposingLight = false;
     bool noNormalMapLevels = false;
     bool noLutEveryLight = false;
+    bool noFullShadowFilter = false;
     bool noWidePenumbra = false;
     std::string skinQuality;  // --skin-quality: "" (each material's own), low, medium or high
     bool skinTermsPerFragment = false;

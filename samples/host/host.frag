@@ -85,7 +85,7 @@ void main() {
             vec3 shadowAt = preskinSkinShadowPosition(inPositionWs, geometricN, L,
                                                       preskinSkinShadowLift(s.curvaturePerMm, s.scatterScale, profile));
             PreskinShadowSample shadow = preskinSampleShadow(shadowMap, frame.shadowClipFromWorld, frame.shadowParams,
-                                                             shadowAt, geometricN);
+                                                             shadowAt, geometricN, preskinSkinShadowFilter(kFeatures));
             shadowRgb = preskinSkinShadow(s, profile, penumbraLut, shadow, L, kFeatures);
             visibility = shadow.visibility;
             // Light through the skin from the lit surface the light reaches first (behind a thin

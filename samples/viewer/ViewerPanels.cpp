@@ -253,6 +253,8 @@ void Viewer::panelTechniques() {
     tooltip("Off: the plain filtered shadow");
     ImGui::Checkbox("Diffuse LUT for every light", &f.lutEveryLight);
     tooltip("Off: no light reads the LUT, each gets its row as a smoothed ramp");
+    ImGui::Checkbox("Shadow filter over 8 x 8 texels", &f.fullShadowFilter);
+    tooltip("Off: 6 x 6 texels (9 gathers instead of 16)");
     ImGui::Checkbox("Wide penumbra (wide shadow map)", &f.widePenumbra);
     tooltip("Off: penumbra scattering within the shadow filter's reach only");
     ImGui::Checkbox("SH ambient skin transfer", &f.shAmbient);

@@ -536,6 +536,15 @@ vec3 preskinSkinAmbientIrradiance(PreskinSkinSurface s, PreskinShTransfer t, vec
                vec3(0.0));
 }
 
+// The shadow map's filter for skin (preskinSampleShadow): 8 x 8 texels, the standard material's,
+// with kSkinFullShadowFilter; without it 6 x 6 (9 gathers instead of 16), the Gaussian of the same
+// sigma windowed at 3 texels, which narrows it where sigma exceeds about 1.2 texels (the filter
+// reports the width it has, which the penumbra LUT reads).
+PreskinShadowFilter preskinSkinShadowFilter(uint features) {
+    if ((features & kSkinFullShadowFilter) != 0u) return kPreskinShadowMapFilter;
+    return PreskinShadowFilter(3, 0.0, 0.0, 1.0);
+}
+
 // Where skin looks up the shadow map for the light towards L: near the terminator, the point
 // lifted along its normal by the sagitta of its osculating sphere (radius 1 / |curvature|) over
 // the local patch (radius rho = m.diffuseNoL.w profile mm, LutSet::localPatchMm),

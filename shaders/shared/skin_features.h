@@ -27,7 +27,11 @@ PRESKIN_CONST(uint, kSkinWideShadowBits, 260u)  // kSkinPenumbra | kSkinWidePenu
 // (preskinDiffuseRowFit of preskin/skin.glsl), fitted once per vertex or per fragment
 // (preskinDiffuseFit of preskin/skin_vertex.glsl): ALU per light, no fetch.
 PRESKIN_CONST(uint, kSkinLutEveryLight, 512u)
-PRESKIN_CONST(uint, kSkinAll, 1023u)
+// Skin's shadow filter over 8 x 8 texels of the shadow map (16 gathers, the standard material's);
+// without it 6 x 6 (9 gathers: preskinSkinShadowFilter of preskin/skin.glsl), the Gaussian of
+// the same sigma windowed at 3 texels instead of 4 (narrower where sigma exceeds about 1.2).
+PRESKIN_CONST(uint, kSkinFullShadowFilter, 1024u)
+PRESKIN_CONST(uint, kSkinAll, 2047u)
 
 // Quality tiers (SkinQuality, `--skin-quality`, PRESKIN_SKIN_QUALITY in a host shader): the
 // techniques each compiles in, chosen by what each costs and buys in docs/skin-cost-table.md
@@ -42,8 +46,8 @@ PRESKIN_CONST(uint, kSkinAll, 1023u)
 // reading the table per light (3 % of the high frame; on compare's views 0.002 of Lambert's
 // error, mostly in the terminator band).
 PRESKIN_CONST(uint, kSkinQualityLow, 79u)      // kSkinLutDiffuse | kSkinNormalPrefilter | kSkinPenumbra | kSkinShAmbient | kSkinOpposingLight
-PRESKIN_CONST(uint, kSkinQualityMedium, 975u)  // Low | kSkinNormalMapLevels | kSkinWidePenumbra | kSkinLutEveryLight
-PRESKIN_CONST(uint, kSkinQualityHigh, 1023u)   // kSkinAll
+PRESKIN_CONST(uint, kSkinQualityMedium, 1999u)  // Low | kSkinNormalMapLevels | kSkinWidePenumbra | kSkinLutEveryLight | kSkinFullShadowFilter
+PRESKIN_CONST(uint, kSkinQualityHigh, 2047u)    // kSkinAll
 
 PRESKIN_GPU_END
 

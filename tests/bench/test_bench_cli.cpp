@@ -86,7 +86,7 @@ TEST_F(BenchCli, WritesJsonAndPlot) {
     EXPECT_GT(j.at("skin_vs_standard")[0].at("skin").at("cpu_ms").get<double>(), 0.0);
     const auto& techniques = j.at("skin_techniques").at("cost_ms");
     for (const char* t : {"lut_diffuse", "normal_prefilter", "penumbra", "sh_ambient", "transmission", "dual_specular",
-                          "normal_map_levels", "wide_penumbra", "lut_every_light"}) {
+                          "normal_map_levels", "wide_penumbra", "lut_every_light", "full_shadow_filter"}) {
         EXPECT_TRUE(techniques.at(t).at("wall").is_number()) << t;
         EXPECT_TRUE(techniques.at(t).at("cpu").is_number()) << t;
     }

@@ -12,6 +12,8 @@
 //    the wide shadow map).
 //  - The plain filtered shadow (Shadow debug view) must be a smooth, strictly monotone Gaussian
 //    edge, within 0.02 of Phi(x / sigma) with sigma fitted from its own 16%/84% points.
+//    Skin's 6 x 6 filter (the low tier's) must be one too, narrower than the 8 x 8 filter's by
+//    the ratio of the Gaussian windowed at 3 and at 4 texels, integrated on the CPU.
 //  - Where the filter sees the edge (|Phi^-1(visibility)| < 2), every channel's skin shadow,
 //    (skin - dark) / (lit - dark), must be the profile's hard-edge response at the place the
 //    filter puts the edge, x = sigma Phi^-1(visibility) (sigma the fitted filter width on the
@@ -46,6 +48,8 @@
 #include <optional>
 #include <ostream>
 #include <string>
+#include <utility>
+#include <vector>
 
 namespace preskin::test {
 namespace {
@@ -139,8 +143,9 @@ constexpr float kScatterScale = 0.5f;  // scattering twice as wide in world unit
 
 class SkinPenumbra : public GpuTest {
 protected:
-    // Renders the scene with penumbra scattering on, off, and the plain visibility (debug view).
-    void render() {
+    // Renders the scene with penumbra scattering on, off, and the plain visibility (debug view);
+    // fullShadowFilter off: skin's shadow filter over 6 x 6 texels (SkinFeatures::fullShadowFilter).
+    void render(bool fullShadowFilter = true) {
         SkinMaterial skin;
         skin.scatterScale = kScatterScale;
         skin.specularIntensity = 0.0f;
@@ -172,6 +177,7 @@ protected:
         RenderSettings settings;
         settings.shadowMapSize = 512;  // a wide filter on the receiver: 1.27 mm texels, sigma 1.5 texels
         settings.shadowSoftnessTexels = 1.5f;
+        settings.skin.fullShadowFilter = fullShadowFilter;
         Renderer renderer(context(), scene, Environment::constant(glm::vec3(0.05f)), &LutSet::loadDefault(), settings);
         // The plane across the edge, seen straight from above.
         const glm::mat4 worldFromView = glm::inverse(
@@ -282,6 +288,63 @@ TEST_F(SkinPenumbra, PlainShadowEdgeIsASmoothGaussian) {
     EXPECT_EQ(steps, 0u) << "the filtered shadow has plateaus or steps across the edge";
     EXPECT_LE(worst, 0.02) << "the filtered shadow edge is not Gaussian";
     EXPECT_GT(sigmaMm / (kViewMm / kSize), 4.0) << "the edge should span many pixels, or the check means little";
+}
+
+// The windowed Gaussian of the shadow filter (preskin/shadow.glsl: exp(-d^2 / 2v) less its value at
+// the window W, v = sigma^2 + 1/6 texels^2) across a straight edge: half the distance between
+// the 16 % and 84 % points of its cumulative integral, texels.
+double windowedEdgeSigma(double sigma, double window) {
+    const double v = sigma * sigma + 1.0 / 6.0;
+    const double floorValue = std::exp(-window * window / (2.0 * v));
+    const double step = 1e-3;
+    std::vector<double> cdf;
+    double sum = 0.0;
+    for (double d = -window; d <= window; d += step) {
+        sum += std::max(std::exp(-d * d / (2.0 * v)) - floorValue, 0.0);
+        cdf.push_back(sum);
+    }
+    auto at = [&](double p) {
+        const size_t i = size_t(std::lower_bound(cdf.begin(), cdf.end(), p * sum) - cdf.begin());
+        return -window + double(i) * step;
+    };
+    return 0.5 * (at(0.841345) - at(0.158655));
+}
+
+// Mean fitted width (pixels) of the plain shadow edge over the rows, and the steps inside it.
+std::pair<double, size_t> plainEdge(const RenderedImage& visibility) {
+    double sigmaSum = 0.0;
+    int rows = 0;
+    size_t steps = 0;
+    for (uint32_t y = 8; y + 8 < kSize; ++y) {
+        const std::vector<double> row = visibilityRow(visibility, y);
+        const auto fit = fitEdge(row);
+        if (!fit) continue;
+        for (size_t x = 0; x + 1 < row.size(); ++x) {
+            const bool inside = row[x] < 0.995 && row[x] > 0.005 && row[x + 1] < 0.995 && row[x + 1] > 0.005;
+            if (inside && !(row[x + 1] < row[x])) ++steps;
+        }
+        sigmaSum += fit->sigma;
+        ++rows;
+    }
+    return {rows > 0 ? sigmaSum / rows : 0.0, steps};
+}
+
+// Skin's shadow filter over 6 x 6 texels (the low tier's) is the same Gaussian windowed at 3
+// texels instead of 4: still a strictly monotone edge, narrower by the windowed kernels' ratio
+// (sigma 1.5 texels: 0.866, integrated here on the CPU).
+TEST_F(SkinPenumbra, SmallShadowFilterIsTheGaussianWindowedAtThreeTexels) {
+    render(true);
+    const auto [fullSigma, fullSteps] = plainEdge(visibility);
+    render(false);
+    const auto [smallSigma, smallSteps] = plainEdge(visibility);
+    const double expected = windowedEdgeSigma(1.5, 3.0) / windowedEdgeSigma(1.5, 4.0);
+    std::printf(
+        "[ skin     ] plain edge sigma: 8 x 8 filter %.3f px, 6 x 6 filter %.3f px, ratio %.4f (expected %.4f)\n",
+        fullSigma, smallSigma, smallSigma / fullSigma, expected);
+    ASSERT_GT(fullSigma, 4.0) << "the edge should span many pixels, or the check means little";
+    EXPECT_EQ(fullSteps, 0u);
+    EXPECT_EQ(smallSteps, 0u) << "the 6 x 6 filter's edge has plateaus or steps";
+    EXPECT_NEAR(smallSigma / fullSigma, expected, 0.03);
 }
 
 // Where the filter sees the edge, each channel's skin shadow is the profile's hard-edge response

@@ -51,6 +51,9 @@ TEST(SkinQuality, TiersCompileInTheirTechniques) {
     // Low reads no diffuse LUT per light (the row's fit).
     EXPECT_FALSE(low.lutEveryLight);
     EXPECT_TRUE(medium.lutEveryLight);
+    // Low filters the shadow map over 6 x 6 texels.
+    EXPECT_FALSE(low.fullShadowFilter);
+    EXPECT_TRUE(medium.fullShadowFilter);
     EXPECT_NE(medium.mask(), high.mask());
     EXPECT_NE(low.mask(), medium.mask());
 }

@@ -52,8 +52,11 @@ struct SkinFeatures {
     // With lutDiffuse: the diffuse LUT read for every light; off, no light reads it: each is shaded
     // by the fragment's LUT row as a smoothed ramp, fitted per vertex (no fetch per light).
     bool lutEveryLight = true;
+    // The shadow filter over 8 x 8 texels of the shadow map (16 gathers); off, 6 x 6 (9 gathers),
+    // the same Gaussian windowed at 3 texels.
+    bool fullShadowFilter = true;
 
-    static SkinFeatures none() { return {false, false, false, false, false, false, false, false, false, false}; }
+    static SkinFeatures none() { return {false, false, false, false, false, false, false, false, false, false, false}; }
     PRESKIN_API uint32_t mask() const;
     bool operator==(const SkinFeatures&) const = default;
 };
