@@ -6,8 +6,8 @@
 //    and per colour channel D_c(NoL_c, curvature) from the diffuse LUT replaces saturate(NoL);
 //    NoL_c uses that channel's prefiltered normal; concave skin (negative curvature) reads the
 //    LUT's concave half, where the local patch shadows itself and no light passes the terminator;
-//    without kSkinLutEveryLight only the lights the caller marks with it read the table, the
-//    others the fragment's row fitted once by a smoothed ramp (preskinDiffuseRowFit);
+//    without kSkinLutEveryLight no light reads the table: each gets the fragment's row as a
+//    smoothed ramp (preskinDiffuseRowFit), fitted once per vertex or per fragment;
 //  - self-shadowing apart from cast shadows: the shadow map is looked up above the local patch
 //    near the terminator (preskinSkinShadowPosition), so it does not remove the light the diffuse
 //    LUT scatters past the terminator;
@@ -27,7 +27,8 @@
 //  - specular: two GGX lobes (roughness multipliers and mix in the material) with F0 = 0.028
 //    (IOR 1.4) times the specular map.
 // Every technique can be switched off (kSkin* bits of shared/skin_features.h in `features`); off falls back to the
-// standard equivalent, so with no bits set this equals the standard dielectric BRDF. The quality
+// standard equivalent, so with no bits set but kSkinFullShadowFilter (the standard material's
+// filter) this equals the standard dielectric BRDF. The quality
 // tiers are such masks: kSkinQualityHigh (every technique), kSkinQualityMedium, kSkinQualityLow
 // (shared/skin_features.h; docs/skin-cost.md gives each one's cost and fidelity); a host passes
 // one as a specialization constant, so what a tier leaves out is compiled out.

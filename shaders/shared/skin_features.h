@@ -29,7 +29,8 @@ PRESKIN_CONST(uint, kSkinWideShadowBits, 260u)  // kSkinPenumbra | kSkinWidePenu
 PRESKIN_CONST(uint, kSkinLutEveryLight, 512u)
 // Skin's shadow filter over 8 x 8 texels of the shadow map (16 gathers, the standard material's);
 // without it 6 x 6 (9 gathers: preskinSkinShadowFilter of preskin/skin.glsl), the Gaussian of
-// the same sigma windowed at 3 texels instead of 4 (narrower where sigma exceeds about 1.2).
+// the same sigma windowed at 3 texels instead of 4 (narrower where sigma exceeds about 1.2). The
+// standard material's filter: the mask of standard shading keeps it (SkinFeatures::none()).
 PRESKIN_CONST(uint, kSkinFullShadowFilter, 1024u)
 PRESKIN_CONST(uint, kSkinAll, 2047u)
 
@@ -42,10 +43,11 @@ PRESKIN_CONST(uint, kSkinAll, 2047u)
 // the shadow filter's reach, for 2 %) and the normal map's per-channel levels (4 %: a distant
 // face's map detail is already under its own mip level), keeping the pre-integrated diffuse, the
 // per-channel geometric normals, the SH transfer and the opposing neighbours' light (2 %, the
-// largest gain per instruction), and shading every light by the diffuse row's fit instead of
-// reading the table per light (3 % of the high frame; on compare's views 0.002 of Lambert's
-// error, mostly in the terminator band).
-PRESKIN_CONST(uint, kSkinQualityLow, 79u)      // kSkinLutDiffuse | kSkinNormalPrefilter | kSkinPenumbra | kSkinShAmbient | kSkinOpposingLight
+// largest gain per instruction), shading every light by the diffuse row's fit instead of
+// reading the table per light (2 % of the high frame; on compare's views 0.002 of Lambert's
+// error, mostly in the terminator band) and filtering the shadow map over 6 x 6 texels instead
+// of 8 x 8 (4 % of the low frame; 0.02 of Lambert's error, near cast-shadow edges).
+PRESKIN_CONST(uint, kSkinQualityLow, 79u)       // kSkinLutDiffuse | kSkinNormalPrefilter | kSkinPenumbra | kSkinShAmbient | kSkinOpposingLight
 PRESKIN_CONST(uint, kSkinQualityMedium, 1999u)  // Low | kSkinNormalMapLevels | kSkinWidePenumbra | kSkinLutEveryLight | kSkinFullShadowFilter
 PRESKIN_CONST(uint, kSkinQualityHigh, 2047u)    // kSkinAll
 

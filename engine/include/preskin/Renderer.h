@@ -56,7 +56,8 @@ struct SkinFeatures {
     // the same Gaussian windowed at 3 texels.
     bool fullShadowFilter = true;
 
-    static SkinFeatures none() { return {false, false, false, false, false, false, false, false, false, false, false}; }
+    // Every technique off: the standard shading, with the standard material's 8 x 8 shadow filter.
+    static SkinFeatures none() { return {false, false, false, false, false, false, false, false, false, false, true}; }
     PRESKIN_API uint32_t mask() const;
     bool operator==(const SkinFeatures&) const = default;
 };
