@@ -64,9 +64,9 @@ void main() {
     outNormalRedWs = outNormalWs;
     outNormalGreenWs = outNormalWs;
     outNormalBlueWs = outNormalWs;
-    outOpposingFacing = vec3(0.0);
-    outOpposingShadowUvZ = vec3(-1.0, -1.0, 0.0);
-    outOpposingDzPerTexel = vec2(0.0);
+    outOpposingFacing = kPreskinOpposingNone.facing;
+    outOpposingShadowUvZ = kPreskinOpposingNone.shadowUvZ;
+    outOpposingDzPerTexel = kPreskinOpposingNone.dzPerTexel;
     // The material's profile mix at this vertex, as the fragment stage finds it at its texel.
     PreskinProfileMix profile = materialProfileMix(
         materialBlendedProfiles() > 0 ? textureLod(profileWeightTexture, inUv0, 0.0).rgb : vec3(0.0));
@@ -120,7 +120,7 @@ void main() {
     outShadowLift = vec2(0.0);
     if (kSkinLiftPerVertex)
         outShadowLift = preskinSkinShadowLift(curvaturePerMm, material.skinScatter.x, profile);
-    PreskinDiffuseFit fit = PreskinDiffuseFit(vec3(1.0), vec3(0.0));
+    PreskinDiffuseFit fit = kPreskinDiffuseFitLambert;
     if (kSkinRowFitPerVertex) fit = preskinDiffuseFit(profile, diffuseLut, curvaturePerMm);
     outRowFitScale = fit.scale;
     outRowFitWidth = fit.width;

@@ -103,7 +103,7 @@ PreskinSkinLighting preskinSkinLighting(PreskinSkinSurface s, PreskinProfileMix 
 // The same, the fit found here from the fragment's row.
 PreskinSkinLighting preskinSkinLighting(PreskinSkinSurface s, PreskinProfileMix m, sampler2DArray diffuseLut, vec3 V,
                                         uint features) {
-    PreskinSkinLighting k = preskinSkinLighting(s, m, diffuseLut, V, features, PreskinDiffuseFit(vec3(1.0), vec3(0.0)));
+    PreskinSkinLighting k = preskinSkinLighting(s, m, diffuseLut, V, features, kPreskinDiffuseFitLambert);
     if ((features & (kSkinLutDiffuse | kSkinLutEveryLight)) == kSkinLutDiffuse)
         k.rowFit = preskinDiffuseFit(m, k.diffuseRows, diffuseLut);
     return k;

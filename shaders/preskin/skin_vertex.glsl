@@ -91,6 +91,9 @@ struct PreskinDiffuseFit {
     vec3 width;  // c per channel
 };
 
+// The fit that is Lambert's max(x, 0) (what a light gets with the diffuse LUT off).
+const PreskinDiffuseFit kPreskinDiffuseFitLambert = PreskinDiffuseFit(vec3(1.0), vec3(0.0));
+
 PreskinDiffuseFit preskinDiffuseFit(PreskinProfileMix m, PreskinDiffuseRows rows, sampler2DArray diffuseLut) {
     vec3 d0 = preskinDiffuseLut(m, rows, diffuseLut, vec3(0.0));
     vec3 d1 = preskinDiffuseLut(m, rows, diffuseLut, vec3(1.0));
@@ -120,17 +123,16 @@ struct PreskinOpposingLookup {
     vec2 dzPerTexel;  // the receiver plane's depth step per texel (PreskinShadowReceiver)
 };
 
+// No neighbours facing the point: nothing passed on, off the map.
+const PreskinOpposingLookup kPreskinOpposingNone = PreskinOpposingLookup(vec3(0.0), vec3(-1.0, -1.0, 0.0), vec2(0.0));
+
 PreskinOpposingLookup preskinSkinOpposingLookup(mat4 shadowClipFromWorld, vec4 params, vec3 positionWs,
                                                 vec3 centroidOffsetWs, vec3 opposingR, vec3 opposingG, vec3 opposingB,
                                                 vec3 L, float scatterScale) {
+    vec3 sum = opposingR + opposingG + opposingB;
+    if (dot(sum, sum) <= 0.0) return kPreskinOpposingNone;
     PreskinOpposingLookup o;
     o.facing = vec3(dot(opposingR, L), dot(opposingG, L), dot(opposingB, L));
-    vec3 sum = opposingR + opposingG + opposingB;
-    if (dot(sum, sum) <= 0.0) {  // no neighbours: off the map (lit), facing 0
-        o.shadowUvZ = vec3(-1.0, -1.0, 0.0);
-        o.dzPerTexel = vec2(0.0);
-        return o;
-    }
     float toWorldM = 0.001 / max(scatterScale, 1e-6);
     vec3 towards = normalize(sum);
     PreskinShadowReceiver r = preskinShadowReceiver(shadowClipFromWorld, params,
