@@ -225,7 +225,7 @@ void main() {
             penumbraPerM = 0.545 * sinSigma * inversesqrt(max(1.0 - sinSigma * sinSigma, 1e-6));
         }
         PreskinShadowFilter shadowFilter = kPreskinShadowMapFilter;
-        if (kMaterialModel == kModelSkin) shadowFilter = preskinSkinShadowFilter(kSkinFeatures);
+        if (kMaterialModel == kModelSkin) shadowFilter = preskinSkinShadowFilter(kSkinFeatures, penumbraPerM);
         shadow = preskinSampleShadow(shadowMap, shadowClipFromWorld, shadowParams, shadowPositionWs, geometricN,
                                      shadowFilter, penumbraPerM);
     }

@@ -129,7 +129,7 @@ void addSkinTechniqueOptions(CLI::App& cmd, CommonOptions& o) {
     cmd.add_flag("--no-normal-prefilter", o.noNormalPrefilter,
                  "Skin: one normal for all channels (no per-channel geometric normals or normal-map levels)");
     cmd.add_flag("--no-full-shadow-filter", o.noFullShadowFilter,
-                 "Skin: the shadow map filtered over 6 x 6 texels (9 gathers) instead of 8 x 8 (16)");
+                 "Skin: a parallel light's shadow map filtered over 6 x 6 texels (9 gathers) instead of 8 x 8 (16)");
     cmd.add_flag("--no-wide-penumbra", o.noWidePenumbra,
                  "Skin: penumbra scattering within the shadow filter's reach only (no wide shadow map)");
     cmd.add_flag("--no-normal-map-levels", o.noNormalMapLevels,

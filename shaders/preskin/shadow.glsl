@@ -318,8 +318,9 @@ PreskinShadowSample preskinSampleShadow(sampler2D shadowMap, mat4 shadowClipFrom
         // The map's own filter only hides its texels, which a wider penumbra's filter does too.
         sigma = max(sigma, penumbraTexels);
         result.penumbraWidthM = penumbraTexels * params.x;
-        // Stride 1 holds sigma up to 1.6 texels; wider, the window stays 2.5 sigma or more.
-        if (sigma > 1.6) stride = min(ceil(2.5 * sigma / (float(G) - 0.5)), 16.0);
+        // Stride 1 holds sigma up to 0.4 G texels (the window at 2.5 sigma); wider, a stride keeps
+        // the window at 2.5 sigma or more.
+        if (sigma > 0.4 * float(G)) stride = min(ceil(2.5 * sigma / (float(G) - 0.5)), 16.0);
     }
     PreskinShadowPcf pcf = preskinShadowPcf(shadowMap, t, mapSize, z, bias, dzPerTexel, G, stride, sigma);
     bool inside = receiver.inside;

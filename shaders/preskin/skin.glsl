@@ -546,6 +546,15 @@ PreskinShadowFilter preskinSkinShadowFilter(uint features) {
     return PreskinShadowFilter(3, 0.0, 0.0, 1.0);
 }
 
+// The same for a light with a size (penumbraPerM > 0, preskinSampleShadow): its penumbra is the
+// filter's width, which the 6 x 6 window would cut, so it keeps the 8 x 8 filter (a 1-degree sun
+// over a skin plane: skin's error 1.03 of Lambert's with 6 x 6, 0.90 with 8 x 8, the low tier,
+// SunShadow.SkinPenumbraIsCloserToTheReferenceThanLambert).
+PreskinShadowFilter preskinSkinShadowFilter(uint features, float penumbraPerM) {
+    if (penumbraPerM > 0.0) return kPreskinShadowMapFilter;
+    return preskinSkinShadowFilter(features);
+}
+
 // Where skin looks up the shadow map for the light towards L: near the terminator, the point
 // lifted along its normal by the sagitta of its osculating sphere (radius 1 / |curvature|) over
 // the local patch (radius rho = m.diffuseNoL.w profile mm, LutSet::localPatchMm),

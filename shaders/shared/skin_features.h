@@ -29,7 +29,8 @@ PRESKIN_CONST(uint, kSkinWideShadowBits, 260u)  // kSkinPenumbra | kSkinWidePenu
 PRESKIN_CONST(uint, kSkinLutEveryLight, 512u)
 // Skin's shadow filter over 8 x 8 texels of the shadow map (16 gathers, the standard material's);
 // without it 6 x 6 (9 gathers: preskinSkinShadowFilter of preskin/skin.glsl), the Gaussian of
-// the same sigma windowed at 3 texels instead of 4 (narrower where sigma exceeds about 1.2). The
+// the same sigma windowed at 3 texels instead of 4 (narrower where sigma exceeds about 1.2), for a
+// parallel light (a light with a size keeps 8 x 8: its penumbra is the filter's width). The
 // standard material's filter: the mask of standard shading keeps it (SkinFeatures::none()).
 PRESKIN_CONST(uint, kSkinFullShadowFilter, 1024u)
 PRESKIN_CONST(uint, kSkinAll, 2047u)

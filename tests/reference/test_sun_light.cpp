@@ -208,6 +208,8 @@ TEST_F(SunShadow, PenumbraFollowsTheSunsSize) {
 TEST_F(SunShadow, SkinPenumbraIsCloserToTheReferenceThanLambert) {
     // Skin ground, the opaque half plane of the standard material, a sun of 1 degree: near the
     // edge skin scatters the soft shadow (the diffusion reference samples the sun's cap with rays).
+    // The high tier and the low one (no wide shadow map; its 6 x 6 shadow filter must give way to
+    // the 8 x 8 one, which holds the sun's penumbra).
     Primitive ground = makeQuad(0.3f, 64);
     ground.material = 1;
     recomputeCurvature(ground);
@@ -224,34 +226,38 @@ TEST_F(SunShadow, SkinPenumbraIsCloserToTheReferenceThanLambert) {
         perspectiveView(glm::inverse(glm::lookAt(glm::vec3(0.05f, 0.0f, 0.12f), glm::vec3(0.05f, 0.0f, 0.0f),
                                                  glm::vec3(0.0f, 1.0f, 0.0f))),
                         0.2f, 1.0f, 0.05f, 10.0f);
-    RenderedImage images[2];
-    for (int skin = 0; skin < 2; ++skin) {
+    RenderedImage images[3];  // Lambert, skin (high), skin (low)
+    for (int i = 0; i < 3; ++i) {
         RenderSettings settings;
         settings.specular = false;
-        if (!skin) settings.skin = SkinFeatures::none();
+        if (i == 0) settings.skin = SkinFeatures::none();
+        if (i == 2) settings.skinQuality = SkinQuality::Low;
         Renderer renderer(context(), scene, Environment::constant(glm::vec3(0.0f)), &LutSet::loadDefault(), settings);
-        images[skin] = renderer.render(close, kPixels, kPixels, OutputEncoding::LinearFloat);
+        images[i] = renderer.render(close, kPixels, kPixels, OutputEncoding::LinearFloat);
     }
     const DiffusionReference reference(scene, scene.lights, ShRgb{}, LutSet::loadDefault().profile());
     const ReferenceImage truth = reference.render(close.eye(), kPixels, kPixels);
     dumpImage("sun_skin_penumbra", images[1]);
-    double s = 0.0, l = 0.0;
+    double sq[3] = {0.0, 0.0, 0.0};
     int pixels = 0;
-    for (size_t i = 0; i < truth.skin.size(); ++i) {
-        if (!truth.skin[i]) continue;
+    for (size_t p = 0; p < truth.skin.size(); ++p) {
+        if (!truth.skin[p]) continue;
         ++pixels;
-        for (size_t c = 0; c < 3; ++c) {
-            const double want = double(truth.rgba32f[4 * i + c]);
-            s += std::pow(double(images[1].rgba32f[4 * i + c]) - want, 2.0);
-            l += std::pow(double(images[0].rgba32f[4 * i + c]) - want, 2.0);
-        }
+        for (int i = 0; i < 3; ++i)
+            for (size_t c = 0; c < 3; ++c)
+                sq[i] += std::pow(double(images[i].rgba32f[4 * p + c]) - double(truth.rgba32f[4 * p + c]), 2.0);
     }
-    const double ratio = std::sqrt(s / l);
-    std::printf("[ sun light ] skin plane under a 1-degree sun's edge shadow: skin / Lambert RMSE %.3f (%d pixels)\n",
-                ratio, pixels);
+    const double high = std::sqrt(sq[1] / sq[0]);
+    const double low = std::sqrt(sq[2] / sq[0]);
+    std::printf(
+        "[ sun light ] skin plane under a 1-degree sun's edge shadow: skin / Lambert RMSE high %.3f, low %.3f "
+        "(%d pixels)\n",
+        high, low, pixels);
     EXPECT_GT(pixels, 1000);
     // 0.845 measured; the penumbra LUT taking the sun's soft edge as a hard one gave 2.37.
-    EXPECT_LT(ratio, 0.9);
+    EXPECT_LT(high, 0.9);
+    // 0.901 measured (the penumbra LUT within the filter's reach only); 1.025 with the 6 x 6 filter.
+    EXPECT_LT(low, 0.95);
 }
 
 TEST_F(SunShadow, VanishingSunEqualsTheParallelLight) {

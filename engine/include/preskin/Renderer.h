@@ -53,7 +53,8 @@ struct SkinFeatures {
     // by the fragment's LUT row as a smoothed ramp, fitted per vertex (no fetch per light).
     bool lutEveryLight = true;
     // The shadow filter over 8 x 8 texels of the shadow map (16 gathers); off, 6 x 6 (9 gathers),
-    // the same Gaussian windowed at 3 texels.
+    // the same Gaussian windowed at 3 texels, for a parallel shadow light (one with a size keeps
+    // 8 x 8: its penumbra is the filter's width).
     bool fullShadowFilter = true;
 
     // Every technique off: the standard shading, with the standard material's 8 x 8 shadow filter.
