@@ -206,13 +206,10 @@ void main() {
         if (kSkinWideShadow) {
             // Skin's wide map (shaders/shadow_reduce.comp: its texels hold their blocks' nearest
             // depths), for red's scattering past the shadow map's filter. Concave skin rises towards
-            // the light within the wide kernel, which its own walls must not shadow: a crease of
-            // mean curvature H bends by 2H across, k r^2 / 2 at the kernel's reach r = 3 wide
-            // texels on the map, r / N.L on the skin, seen along the light by N.L.
+            // the light within the wide kernel's reach of 3 wide texels (preskinSkinConcaveRiseM).
             vec4 wideParams = vec4(frame.wideShadow.z, 1.0, shadowParams.z, frame.wideShadow.y);
-            float concavePerM = max(-skinCurvaturePerMm / max(material.skinScatter.x, 1e-6), 0.0) * 1000.0;
-            float riseM = 9.0 * concavePerM * frame.wideShadow.z * frame.wideShadow.z /
-                          max(abs(dot(geometricN, frame.shadowDirectionWs.xyz)), 0.3);
+            float riseM = preskinSkinConcaveRiseM(skinCurvaturePerMm, material.skinScatter.x,
+                                                  dot(geometricN, frame.shadowDirectionWs.xyz), 3.0 * frame.wideShadow.z);
             wideShadow = preskinSampleShadow(wideShadowMap, preskinScaledShadowClip(shadowClipFromWorld, frame.wideShadow.x),
                                              wideParams, shadowPositionWs, geometricN,
                                              PreskinShadowFilter(3, 0.75, riseM, frame.wideShadow.w));
@@ -225,7 +222,9 @@ void main() {
             penumbraPerM = 0.545 * sinSigma * inversesqrt(max(1.0 - sinSigma * sinSigma, 1e-6));
         }
         PreskinShadowFilter shadowFilter = kPreskinShadowMapFilter;
-        if (kMaterialModel == kModelSkin) shadowFilter = preskinSkinShadowFilter(kSkinFeatures, penumbraPerM);
+        if (kMaterialModel == kModelSkin)
+            shadowFilter = preskinSkinShadowFilter(kSkinFeatures, penumbraPerM, skinCurvaturePerMm, material.skinScatter.x,
+                                                   dot(geometricN, frame.shadowDirectionWs.xyz), shadowParams.x);
         shadow = preskinSampleShadow(shadowMap, shadowClipFromWorld, shadowParams, shadowPositionWs, geometricN,
                                      shadowFilter, penumbraPerM);
     }

@@ -84,8 +84,10 @@ void main() {
             vec3 L = l.L;
             vec3 shadowAt = preskinSkinShadowPosition(inPositionWs, geometricN, L,
                                                       preskinSkinShadowLift(s.curvaturePerMm, s.scatterScale, profile));
+            PreskinShadowFilter shadowFilter = preskinSkinShadowFilter(kFeatures, 0.0, s.curvaturePerMm, s.scatterScale,
+                                                                       dot(geometricN, L), frame.shadowParams.x);
             PreskinShadowSample shadow = preskinSampleShadow(shadowMap, frame.shadowClipFromWorld, frame.shadowParams,
-                                                             shadowAt, geometricN, preskinSkinShadowFilter(kFeatures));
+                                                             shadowAt, geometricN, shadowFilter);
             shadowRgb = preskinSkinShadow(s, profile, penumbraLut, shadow, L, kFeatures);
             visibility = shadow.visibility;
             // Light through the skin from the lit surface the light reaches first (behind a thin
