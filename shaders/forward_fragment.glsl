@@ -203,13 +203,14 @@ void main() {
     mat4 shadowClipFromWorld = frame.shadowClipFromWorld;
     vec4 shadowParams = frame.shadowParams;
     if (frame.shadowDirectionWs.w > 0.5) {
+        float shadowNoL = dot(geometricN, frame.shadowDirectionWs.xyz);  // sign aside: the filters' rise takes |N.L|
         if (kSkinWideShadow) {
             // Skin's wide map (shaders/shadow_reduce.comp: its texels hold their blocks' nearest
             // depths), for red's scattering past the shadow map's filter. Concave skin rises towards
             // the light within the wide kernel's reach of 3 wide texels (preskinSkinConcaveRiseM).
             vec4 wideParams = vec4(frame.wideShadow.z, 1.0, shadowParams.z, frame.wideShadow.y);
-            float riseM = preskinSkinConcaveRiseM(skinCurvaturePerMm, material.skinScatter.x,
-                                                  dot(geometricN, frame.shadowDirectionWs.xyz), 3.0 * frame.wideShadow.z);
+            float riseM = preskinSkinConcaveRiseM(skinCurvaturePerMm, material.skinScatter.x, shadowNoL,
+                                                  3.0 * frame.wideShadow.z);
             wideShadow = preskinSampleShadow(wideShadowMap, preskinScaledShadowClip(shadowClipFromWorld, frame.wideShadow.x),
                                              wideParams, shadowPositionWs, geometricN,
                                              PreskinShadowFilter(3, 0.75, riseM, frame.wideShadow.w));
@@ -224,7 +225,7 @@ void main() {
         PreskinShadowFilter shadowFilter = kPreskinShadowMapFilter;
         if (kMaterialModel == kModelSkin)
             shadowFilter = preskinSkinShadowFilter(kSkinFeatures, penumbraPerM, skinCurvaturePerMm, material.skinScatter.x,
-                                                   dot(geometricN, frame.shadowDirectionWs.xyz), shadowParams.x);
+                                                   shadowNoL, shadowParams.x);
         shadow = preskinSampleShadow(shadowMap, shadowClipFromWorld, shadowParams, shadowPositionWs, geometricN,
                                      shadowFilter, penumbraPerM);
     }

@@ -556,9 +556,10 @@ float preskinSkinConcaveRiseM(float curvaturePerMm, float scatterScale, float No
     return concavePerM * reachM * reachM / max(abs(NoL), 0.3);
 }
 
-// The same for a light with a size (penumbraPerM > 0, preskinSampleShadow): its penumbra is the
-// filter's width, which the 6 x 6 window would cut, so it keeps the 8 x 8 filter (a 1-degree sun
-// over a skin plane: skin's error 1.03 of Lambert's with 6 x 6, 0.90 with 8 x 8, the low tier,
+// Skin's filter for the shadow light at a fragment. A light with a size (penumbraPerM > 0,
+// preskinSampleShadow) keeps the 8 x 8 filter whatever the features: its penumbra is the filter's
+// width, which the 6 x 6 window would cut (a 1-degree sun over a skin plane: skin's error 1.03 of
+// Lambert's with 6 x 6, 0.90 with 8 x 8, the low tier,
 // SunShadow.SkinPenumbraIsCloserToTheReferenceThanLambert). Concave skin (curvaturePerMm < 0)
 // gets the depth its walls rise within the filter's window (preskinSkinConcaveRiseM; texelM the
 // shadow map's texel, NoL the geometric normal's with the light): on the head's views against the
