@@ -11,7 +11,8 @@
 // normals inwards, so its mesh curvature is negative) must be shaded with the diffuse LUT's
 // concave response: D(NoL, -1/r), no light past the terminator, not the convex D(NoL, 1/r); and
 // the floor of a groove lit across it must be closer to the reference than Lambert (pooled below
-// 0.3 of Lambert's error, red alone below 0.7).
+// 0.3 of Lambert's error, red alone below 0.7), and the shadow filter must not shadow it with its
+// own walls on a coarse map (it is lit everywhere).
 #include "support/GpuTest.h"
 #include "support/ImageCompare.h"
 #include "support/SkinTestSupport.h"
@@ -371,9 +372,8 @@ void expectStripCarriesTheRed(const StripRed& strip, const char* what, const cha
     EXPECT_NEAR(strip.skin, strip.truth, meanTolerance * strip.truth);
 }
 
-TEST_F(SkinFidelity, ConcaveGrooveIsCloserToTheReferenceThanLambert) {
-    const double depthM = 0.003, widthM = 0.0025, halfM = 0.02;
-    const uint32_t n = 80;
+// A groove z = -depthM exp(-x^2 / 2 widthM^2) along y in a skin plane 2 halfM square, n x n quads.
+Primitive makeGroove(double depthM, double widthM, double halfM, uint32_t n) {
     Primitive groove;
     for (uint32_t j = 0; j <= n; ++j)
         for (uint32_t i = 0; i <= n; ++i) {
@@ -393,7 +393,12 @@ TEST_F(SkinFidelity, ConcaveGrooveIsCloserToTheReferenceThanLambert) {
         }
     recomputeCurvature(groove);
     groove.material = 0;
-    Scene scene = makeScene({{groove, glm::mat4(1.0f)}}, {skinMaterial({0.8f, 0.6f, 0.5f})});
+    return groove;
+}
+
+TEST_F(SkinFidelity, ConcaveGrooveIsCloserToTheReferenceThanLambert) {
+    Scene scene =
+        makeScene({{makeGroove(0.003, 0.0025, 0.02, 80), glm::mat4(1.0f)}}, {skinMaterial({0.8f, 0.6f, 0.5f})});
     const Light light = shadowedDirectionalLight({0.6f, 0.0f, -0.8f}, 3.0f);
     scene.lights = {light};
     const uint32_t size = kFromAboveSize;
@@ -417,6 +422,52 @@ TEST_F(SkinFidelity, ConcaveGrooveIsCloserToTheReferenceThanLambert) {
     EXPECT_GT(pixels, size_t(size) * 10);
     EXPECT_LT(ratio, 0.3);
     EXPECT_LT(redRatio, 0.7);
+}
+
+// The same groove seen by the shadow map's filter alone (the Shadow debug view: its filtered
+// visibility) on a map coarse enough that the filter's window (4 texels of 0.4 mm at high, 3 at
+// low) spans much of the floor's curve. The light is steeper than the groove's steepest wall
+// (slope 0.75 against 0.73), so nothing shadows any of it: the visibility must be 1 on the floor.
+// A filter that takes the floor's tangent plane for the receiver finds the walls within its window
+// above that plane and shadows the floor: without the concave rise (preskinSkinConcaveRiseM) the
+// floor's mean visibility is 0.961 at high (lowest 0.915), 0.989 at low (lowest 0.952).
+TEST_F(SkinFidelity, ConcaveGrooveFloorIsNotShadowedByItsOwnWallsInTheShadowFilter) {
+    Scene scene =
+        makeScene({{makeGroove(0.003, 0.0025, 0.02, 80), glm::mat4(1.0f)}}, {skinMaterial({0.8f, 0.6f, 0.5f})});
+    scene.lights = {shadowedDirectionalLight({0.6f, 0.0f, -0.8f}, 3.0f)};
+    const View view = perspectiveView(
+        glm::inverse(glm::lookAt(glm::vec3(0.0f, 0.0f, 0.06f), glm::vec3(0.0f), glm::vec3(0.0f, 1.0f, 0.0f))),
+        2.0f * std::atan(0.01f / 0.06f), 1.0f, 0.01f, 1.0f);
+    RenderSettings settings;
+    settings.specular = false;
+    settings.shadowMapSize = 128;
+    settings.debugView = DebugView::Shadow;
+    const uint32_t size = kFromAboveSize;
+    for (const SkinQuality quality : {SkinQuality::High, SkinQuality::Low}) {
+        settings.skinQuality = quality;
+        Renderer renderer(context(), scene, Environment::constant(glm::vec3(0.0f)), &LutSet::loadDefault(), settings);
+        const RenderedImage visibility = renderer.render(view, size, size, OutputEncoding::LinearFloat);
+        dumpImage(quality == SkinQuality::High ? "groove_visibility_high" : "groove_visibility_low", visibility);
+        // The floor, |x| within 1 mm of the groove's axis (0.4 of its width; concave to 1), away
+        // from the image's top and bottom rows: 20 mm across at z = 0 seen from 60 mm, 63 mm to the floor.
+        double sum = 0.0, lowest = 1.0;
+        size_t pixels = 0;
+        for (uint32_t y = 8; y < size - 8; ++y)
+            for (uint32_t x = 0; x < size; ++x) {
+                const double xMm = (double(x) + 0.5 - 0.5 * size) * 20.0 / size * 63.0 / 60.0;
+                if (std::abs(xMm) > 1.0) continue;
+                const double v = pixelLinear(visibility, x, y).r;
+                sum += v;
+                lowest = std::min(lowest, v);
+                ++pixels;
+            }
+        std::printf(
+            "[ fidelity ] groove floor, %s tier, 128-texel shadow map: %zu pixels, visibility mean %.4f, lowest %.4f\n",
+            quality == SkinQuality::High ? "high" : "low", pixels, sum / double(pixels), lowest);
+        EXPECT_GT(pixels, size_t(200));
+        EXPECT_GT(sum / double(pixels), 0.995);
+        EXPECT_GT(lowest, 0.97);
+    }
 }
 
 // A plate lying 1 mm above a floor (both skin, 2 mm thick, 40 mm wide), lit 30 degrees above
