@@ -285,7 +285,11 @@ void main() {
         skin.scatterScale = material.skinScatter.x;
         skin.curvaturePerMm = skinCurvaturePerMm;
         skin.roughness = roughness;
-        float specularMap = kSkinSpecularMap ? texture(specularTexture, uvBase).r : 1.0;
+        // The specular map, or its copy in an opaque base colour's unused alpha (one read fewer;
+        // the material's alpha factor is then 1, GpuScene::uniformsFor).
+        float specularMap = kSkinSpecularInBaseAlpha ? baseColor.a
+                            : kSkinSpecularMap       ? texture(specularTexture, uvBase).r
+                                                     : 1.0;
         skin.F0 = preskinSkinF0(material.skinSpecular.x, specularMap);
         skin.specularWeight = kSpecularWeight;
         skin.lobes = material.skinSpecular.yzww;

@@ -34,6 +34,7 @@ const bool kSkinDetailNormals = (kSkinInputs & kSkinInputDetailNormals) != 0u;
 const uint kSkinCurvatureSource = (kSkinInputs >> kSkinInputCurvatureShift) & 3u;
 const uint kSkinNormalLevels = (kSkinInputs >> kSkinInputNormalLevelsShift) & 31u;  // PreskinNormalMaps::levelCount
 const bool kSkinSpecularMap = (kSkinInputs & kSkinInputSpecularMap) != 0u;
+const bool kSkinSpecularInBaseAlpha = (kSkinInputs & kSkinInputSpecularInBaseAlpha) != 0u;
 const bool kSkinDoubleSided = (kSkinInputs & kSkinInputDoubleSided) != 0u;
 const bool kSkinSpecularFromLevels = (kSkinInputs & kSkinInputSpecularFromLevels) != 0u;  // PreskinNormalMaps::specularFromLevels
 // What depends on curvature, the geometric normal and the shadow light alone

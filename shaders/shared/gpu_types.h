@@ -70,6 +70,7 @@ PRESKIN_CONST(uint, kSkinInputSpecularMap, 256u)       // a specular map
 PRESKIN_CONST(uint, kSkinInputDoubleSided, 512u)       // double-sided (the vertex stage cannot tell the facing)
 PRESKIN_CONST(uint, kSkinInputTermsPerFragment, 1024u) // curvature-only terms per fragment (RenderSettings::skinTermsPerVertex off)
 PRESKIN_CONST(uint, kSkinInputSpecularFromLevels, 2048u)  // the unbiased normal from the biased samples' levels
+PRESKIN_CONST(uint, kSkinInputSpecularInBaseAlpha, 4096u)  // the specular map in the base colour's alpha (GpuScene packs it)
 
 PRESKIN_CONST(uint, kModelStandard, 0)
 PRESKIN_CONST(uint, kModelSkin, 1)

@@ -6,7 +6,8 @@
 //    the standard dielectric's 0.04, and the standard material is a dielectric (metallic 0) with
 //    the same base colour, roughness and normal map.
 // A skin material's optional inputs (a detail normal map, the curvature source) specialise its
-// pipeline: each input, when the material has it, still reaches the image.
+// pipeline: each input, when the material has it, still reaches the image; a specular map packed
+// into the base colour's alpha renders as the map read on its own.
 // Scenes: a normal-mapped skin sphere (2 cm, scatter scale 0.2: it scatters like a 4 mm one) under a shadowed key light with a
 // caster and a structured environment (LUT diffuse, normal prefilter, SH ambient, dual specular);
 // a skin plane behind a caster with a wide shadow filter (penumbra); a thin skin slab lit from
@@ -24,6 +25,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <functional>
 #include <string>
 #include <vector>
 
@@ -258,6 +260,65 @@ TEST_F(SkinToggles, MaterialInputsReachTheImage) {
                 tiltedDetailChanged);
     EXPECT_LE(flatDetailChanged, size_t(kSize * kSize / 200));
     EXPECT_GE(tiltedDetailChanged, size_t(kSize * kSize / 20));
+}
+
+// An image whose texels are colour(u, v) (0..1 per channel, alpha 1).
+int addPatternImage(Scene& scene, uint32_t size, const std::function<glm::vec3(float, float)>& colour) {
+    Image image;
+    image.name = "pattern";
+    image.width = image.height = size;
+    image.rgba8.resize(size_t(size) * size * 4);
+    for (uint32_t y = 0; y < size; ++y)
+        for (uint32_t x = 0; x < size; ++x) {
+            const glm::vec3 c = colour((float(x) + 0.5f) / float(size), (float(y) + 0.5f) / float(size));
+            uint8_t* t = &image.rgba8[4 * (size_t(y) * size + x)];
+            for (int k = 0; k < 3; ++k) t[k] = static_cast<uint8_t>(std::lround(255.0f * std::clamp(c[k], 0.0f, 1.0f)));
+            t[3] = 255;
+        }
+    scene.images.push_back(std::move(image));
+    return static_cast<int>(scene.images.size()) - 1;
+}
+
+// An opaque skin material's specular map travels in its base colour's unused alpha where both
+// share a sampler and a size (GpuScene: one texture read fewer per fragment). Through two
+// identical samplers (not packed) the image must be the same within 1/255, and the packed map
+// must still reach the image: a map of 0 against a map of 1 changes the highlights.
+TEST_F(SkinToggles, SpecularMapInTheBaseColourAlphaRendersAsTheMapItself) {
+    const LutSet& luts = LutSet::loadDefault();
+    ToggleScene s = sphereScene();
+    auto render = [&](const Scene& scene) {
+        Renderer renderer(context(), scene, s.environment, &luts, s.settings);
+        return renderer.render(s.view, kSize, kSize, OutputEncoding::LinearFloat);
+    };
+    const float pi = 3.14159265f;
+    Scene scene = s.scene;
+    scene.samplers = {Sampler{}, Sampler{}};
+    Material& m = scene.materials[0];
+    m.baseColor.image = addPatternImage(scene, 64, [&](float u, float v) {
+        return glm::vec3(0.8f, 0.55f + 0.2f * std::sin(2.0f * pi * 5.0f * u),
+                         0.45f + 0.2f * std::cos(2.0f * pi * 3.0f * v));
+    });
+    const int pattern = addPatternImage(scene, 64, [&](float u, float v) {
+        return glm::vec3(0.5f + 0.5f * std::sin(2.0f * pi * 7.0f * u) * std::sin(2.0f * pi * 4.0f * v));
+    });
+    m.baseColor.sampler = 0;
+    m.baseColorFactor.a = 0.5f;  // unused by an opaque material, and not the specular map's either
+    m.skin->specularTexture = SkinTextureRef{pattern, 0};
+    const RenderedImage packed = render(scene);
+    m.skin->specularTexture.sampler = 1;
+    const RenderedImage apart = render(scene);
+    dumpImage("skin_specular_packed", packed);
+    dumpImage("skin_specular_apart", apart);
+    const double packedVsApart = maxSrgbDifference(packed, apart);
+    m.skin->specularTexture =
+        SkinTextureRef{addPatternImage(scene, 64, [](float, float) { return glm::vec3(0.0f); }), 0};
+    const size_t noSpecularChanged = countDifferingPixels(packed, render(scene), 2.0);
+    std::printf(
+        "[ skin     ] specular map in the base colour's alpha: %.2f/255 from the map read apart; a map of 0 "
+        "changes %zu pixels by > 2/255\n",
+        packedVsApart, noSpecularChanged);
+    EXPECT_LE(packedVsApart, 1.0);
+    EXPECT_GE(noSpecularChanged, size_t(kSize * kSize / 50));
 }
 
 // The shadow map belongs to the light flagged castsShadow wherever the scene lists it: with an

@@ -40,6 +40,23 @@ gpu::GpuUvTransform toGpu(const TextureRef& ref) {
     return {glm::vec4(m[0][0], m[1][0], m[2][0], 0.0f), glm::vec4(m[0][1], m[1][1], m[2][1], 0.0f)};
 }
 
+// Whether a skin material's specular map can ride in its base colour's alpha, saving a texture
+// read per fragment: the material is opaque (its base colour's alpha unused), both maps are 8-bit
+// images of one size read through one sampler (the shader reads the specular map at the base
+// colour's uv either way), so the packed alpha is filtered as the map itself would be.
+bool specularPacksIntoBaseAlpha(const Scene& scene, const Material& mat) {
+    if (!mat.skin || mat.alphaMode != AlphaMode::Opaque) return false;
+    const TextureRef& base = mat.baseColor;
+    const SkinTextureRef& specular = mat.skin->specularTexture;
+    const auto image = [&](int i) {
+        return i >= 0 && size_t(i) < scene.images.size() ? &scene.images[size_t(i)] : nullptr;
+    };
+    const Image* b = image(base.image);
+    const Image* s = image(specular.image);
+    return b && s && base.sampler == specular.sampler && b->width == s->width && b->height == s->height &&
+        s->rgba16.empty() && b->rgba8.size() == size_t(b->width) * b->height * 4 && s->rgba8.size() == b->rgba8.size();
+}
+
 }  // namespace
 
 gpu::GpuInstance toGpuInstance(const glm::mat4& worldFromObject) {
@@ -232,10 +249,13 @@ GpuScene::GpuScene(const vk::Device& device, const Scene& scene) : device_(devic
         if (mat.skin) gm.quality = mat.skin->quality;
         gm.alphaMode = mat.alphaMode;
         gm.doubleSided = mat.doubleSided;
+        const bool specularInBaseAlpha = specularPacksIntoBaseAlpha(scene, mat);
         if (mat.skin)
             gm.skinInputs = (mat.skin->detailNormalTexture.valid() ? gpu::kSkinInputDetailNormals : 0u) |
                 (uint32_t(static_cast<int>(mat.skin->curvatureSource)) << gpu::kSkinInputCurvatureShift) |
-                (mat.skin->specularTexture.valid() ? gpu::kSkinInputSpecularMap : 0u);
+                (specularInBaseAlpha                     ? gpu::kSkinInputSpecularInBaseAlpha
+                     : mat.skin->specularTexture.valid() ? gpu::kSkinInputSpecularMap
+                                                         : 0u);
         // Without anisotropic filtering the unbiased normal is the biased samples' levels blended
         // at the unbiased level of detail: the shader takes it from them.
         if (mat.skin && !samplerAnisotropic_[samplerSlot(mat.normal.sampler)] &&
@@ -258,16 +278,19 @@ GpuScene::GpuScene(const vk::Device& device, const Scene& scene) : device_(devic
             int sampler;
             bool srgb;
             const vk::Image* fallbackImage;
+            int alphaFrom = -1;
         };
         const SkinMaterial skin = mat.skin.value_or(SkinMaterial{});
         const Slot slots[] = {
-            {gpu::kBindingBaseColorTexture, mat.baseColor.image, mat.baseColor.sampler, true, &white_},
+            {gpu::kBindingBaseColorTexture, mat.baseColor.image, mat.baseColor.sampler, true, &white_,
+             specularInBaseAlpha ? skin.specularTexture.image : -1},
             {gpu::kBindingMetallicRoughnessTexture, mat.metallicRoughness.image, mat.metallicRoughness.sampler, false,
              &white_},
             {gpu::kBindingNormalTexture, mat.normal.image, mat.normal.sampler, false, &flatNormal_},
             {gpu::kBindingOcclusionTexture, mat.occlusion.image, mat.occlusion.sampler, false, &white_},
             {gpu::kBindingEmissiveTexture, mat.emissive.image, mat.emissive.sampler, true, &white_},
-            {gpu::kBindingSpecularTexture, skin.specularTexture.image, skin.specularTexture.sampler, false, &white_},
+            {gpu::kBindingSpecularTexture, specularInBaseAlpha ? -1 : skin.specularTexture.image,
+             skin.specularTexture.sampler, false, &white_},
             {gpu::kBindingDetailNormalTexture, skin.detailNormalTexture.image, skin.detailNormalTexture.sampler, false,
              &flatNormal_},
             {gpu::kBindingCurvatureTexture, skin.curvatureTexture.image, skin.curvatureTexture.sampler, false, &white_},
@@ -287,7 +310,8 @@ GpuScene::GpuScene(const vk::Device& device, const Scene& scene) : device_(devic
         for (size_t s = 0; s < std::size(slots); ++s) {
             const Slot& slot = slots[s];
             const bool valid = slot.image >= 0 && size_t(slot.image) < scene.images.size();
-            const vk::Image& image = valid ? texture(scene, slot.image, slot.srgb) : *slot.fallbackImage;
+            const vk::Image& image =
+                valid ? texture(scene, slot.image, slot.srgb, slot.alphaFrom) : *slot.fallbackImage;
             imageInfos[s] = {sampler(slot.sampler), image.view(), VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL};
             if (slot.binding == gpu::kBindingNormalTexture || slot.binding == gpu::kBindingDetailNormalTexture)
                 gm.normalMipLevels = std::max(gm.normalMipLevels, image.desc().mipLevels);
@@ -311,13 +335,28 @@ GpuScene::~GpuScene() {
     if (materialLayout_) vkDestroyDescriptorSetLayout(dev, materialLayout_, nullptr);
 }
 
-const vk::Image& GpuScene::texture(const Scene& scene, int image, bool srgb) {
-    const auto key = std::make_pair(image, srgb);
+const vk::Image& GpuScene::texture(const Scene& scene, int image, bool srgb, int alphaFrom) {
+    const auto key = std::make_tuple(image, srgb, alphaFrom);
     auto it = textures_.find(key);
     if (it != textures_.end()) return it->second;
     const Image& src = scene.images[size_t(image)];
     if (src.width == 0 || src.height == 0 || src.rgba8.size() != size_t(src.width) * src.height * 4)
         throw Error(fmt::format("{}: image data does not match its size {}x{}", src.name, src.width, src.height));
+    if (alphaFrom >= 0) {
+        // 8 bits per channel (specularPacksIntoBaseAlpha checked the sizes): the alpha source's red.
+        const Image& alpha = scene.images[size_t(alphaFrom)];
+        std::vector<uint8_t> packed = src.rgba8;
+        for (size_t p = 3; p < packed.size(); p += 4) packed[p] = alpha.rgba8[p - 3];
+        vk::ImageDesc desc;
+        desc.format = srgb ? VK_FORMAT_R8G8B8A8_SRGB : VK_FORMAT_R8G8B8A8_UNORM;
+        desc.width = src.width;
+        desc.height = src.height;
+        desc.mipLevels = vk::mipLevelCount(src.width, src.height);
+        desc.usage = VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_DST_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT;
+        vk::Image gpuImage(device_, desc);
+        gpuImage.uploadAndGenerateMips(packed.data(), packed.size());
+        return textures_.emplace(key, std::move(gpuImage)).first->second;
+    }
     const uint32_t maxDim = device_.properties().limits.maxImageDimension2D;
     if (src.width > maxDim || src.height > maxDim)
         throw Error(fmt::format("{}: {}x{} exceeds the device's largest texture ({})", src.name, src.width, src.height,
@@ -355,6 +394,9 @@ gpu::MaterialUniforms GpuScene::uniformsFor(const Material& mat, const GpuMateri
                                             const std::vector<ProfileLayer>& layers) const {
     gpu::MaterialUniforms u{};
     u.baseColorFactor = mat.baseColorFactor;
+    // A specular map packed into the base colour's alpha reads through an alpha factor of 1 (an
+    // opaque material's alpha is unused otherwise).
+    if ((gm.skinInputs & gpu::kSkinInputSpecularInBaseAlpha) != 0u) u.baseColorFactor.a = 1.0f;
     u.emissiveAlphaCutoff = glm::vec4(mat.emissiveFactor, mat.alphaCutoff);
     u.pbr = glm::vec4(mat.metallicFactor, mat.roughnessFactor, mat.normal.scale, mat.occlusion.scale);
     u.textureFlags = glm::vec4(0.0f, 1.0f, 0.0f, mat.normal.valid() ? 1.0f : 0.0f);

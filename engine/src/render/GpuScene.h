@@ -13,6 +13,7 @@
 #include <map>
 #include <memory>
 #include <string>
+#include <tuple>
 #include <utility>
 #include <vector>
 
@@ -88,7 +89,9 @@ public:
     std::vector<std::string> skinWithoutUvLayout;
 
 private:
-    const vk::Image& texture(const Scene& scene, int image, bool srgb);
+    // Scene image `image` on the GPU (sRGB or linear), with alphaFrom's red channel in its alpha
+    // where alphaFrom >= 0 (a skin material's specular map packed into its base colour).
+    const vk::Image& texture(const Scene& scene, int image, bool srgb, int alphaFrom = -1);
     VkSampler sampler(int index) const;
     size_t samplerSlot(int index) const;  // into samplers_: the scene's sampler `index`, or the default
     gpu::MaterialUniforms uniformsFor(const Material& material, const GpuMaterial& gpu,
@@ -96,7 +99,7 @@ private:
 
     const vk::Device& device_;
     std::vector<Material> sceneMaterials_;
-    std::map<std::pair<int, bool>, vk::Image> textures_;
+    std::map<std::tuple<int, bool, int>, vk::Image> textures_;  // by image, sRGB, alphaFrom
     vk::Image white_;
     vk::Image flatNormal_;
     std::vector<VkSampler> samplers_;       // scene samplers, then the default
