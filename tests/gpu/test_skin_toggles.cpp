@@ -207,13 +207,15 @@ int addUniformImage16(Scene& scene, uint16_t value) {
     return index;
 }
 
+// `scene` (the sphere scene's, changed) rendered with the sphere scene's environment, settings and view.
+RenderedImage renderSphereView(Context& context, const ToggleScene& s, const Scene& scene) {
+    Renderer renderer(context, scene, s.environment, &LutSet::loadDefault(), s.settings);
+    return renderer.render(s.view, kSize, kSize, OutputEncoding::LinearFloat);
+}
+
 TEST_F(SkinToggles, MaterialInputsReachTheImage) {
-    const LutSet& luts = LutSet::loadDefault();
-    ToggleScene s = sphereScene();
-    auto render = [&](const Scene& scene) {
-        Renderer renderer(context(), scene, s.environment, &luts, s.settings);
-        return renderer.render(s.view, kSize, kSize, OutputEncoding::LinearFloat);
-    };
+    const ToggleScene s = sphereScene();
+    auto render = [&](const Scene& scene) { return renderSphereView(context(), s, scene); };
     const RenderedImage vertex = render(s.scene);
     // Curvature from a texture: the sphere's own curvature (1 / 2 cm = 50 / m) as a uniform
     // texture renders as the per-vertex curvature does; a texture of 0 (flat skin) does not.
@@ -282,14 +284,10 @@ int addPatternImage(Scene& scene, uint32_t size, const std::function<glm::vec3(f
 // An opaque skin material's specular map travels in its base colour's unused alpha where both
 // share a sampler and a size (GpuScene: one texture read fewer per fragment). Through two
 // identical samplers (not packed) the image must be the same within 1/255, and the packed map
-// must still reach the image: a map of 0 against a map of 1 changes the highlights.
+// must still reach the image: a map of 0 in its place changes the highlights.
 TEST_F(SkinToggles, SpecularMapInTheBaseColourAlphaRendersAsTheMapItself) {
-    const LutSet& luts = LutSet::loadDefault();
-    ToggleScene s = sphereScene();
-    auto render = [&](const Scene& scene) {
-        Renderer renderer(context(), scene, s.environment, &luts, s.settings);
-        return renderer.render(s.view, kSize, kSize, OutputEncoding::LinearFloat);
-    };
+    const ToggleScene s = sphereScene();
+    auto render = [&](const Scene& scene) { return renderSphereView(context(), s, scene); };
     const float pi = 3.14159265f;
     Scene scene = s.scene;
     scene.samplers = {Sampler{}, Sampler{}};
