@@ -54,7 +54,7 @@ bool specularPacksIntoBaseAlpha(const Scene& scene, const Material& mat) {
     const Image* b = image(base.image);
     const Image* s = image(specular.image);
     return b && s && base.sampler == specular.sampler && b->width == s->width && b->height == s->height &&
-        s->rgba16.empty() && b->rgba8.size() == size_t(b->width) * b->height * 4 && s->rgba8.size() == b->rgba8.size();
+        s->rgba16.empty() && s->rgba8.size() == b->rgba8.size();
 }
 
 }  // namespace
@@ -342,21 +342,6 @@ const vk::Image& GpuScene::texture(const Scene& scene, int image, bool srgb, int
     const Image& src = scene.images[size_t(image)];
     if (src.width == 0 || src.height == 0 || src.rgba8.size() != size_t(src.width) * src.height * 4)
         throw Error(fmt::format("{}: image data does not match its size {}x{}", src.name, src.width, src.height));
-    if (alphaFrom >= 0) {
-        // 8 bits per channel (specularPacksIntoBaseAlpha checked the sizes): the alpha source's red.
-        const Image& alpha = scene.images[size_t(alphaFrom)];
-        std::vector<uint8_t> packed = src.rgba8;
-        for (size_t p = 3; p < packed.size(); p += 4) packed[p] = alpha.rgba8[p - 3];
-        vk::ImageDesc desc;
-        desc.format = srgb ? VK_FORMAT_R8G8B8A8_SRGB : VK_FORMAT_R8G8B8A8_UNORM;
-        desc.width = src.width;
-        desc.height = src.height;
-        desc.mipLevels = vk::mipLevelCount(src.width, src.height);
-        desc.usage = VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_DST_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT;
-        vk::Image gpuImage(device_, desc);
-        gpuImage.uploadAndGenerateMips(packed.data(), packed.size());
-        return textures_.emplace(key, std::move(gpuImage)).first->second;
-    }
     const uint32_t maxDim = device_.properties().limits.maxImageDimension2D;
     if (src.width > maxDim || src.height > maxDim)
         throw Error(fmt::format("{}: {}x{} exceeds the device's largest texture ({})", src.name, src.width, src.height,
@@ -366,7 +351,7 @@ const vk::Image& GpuScene::texture(const Scene& scene, int image, bool srgb, int
             fmt::format("{}: 16-bit image data does not match its size {}x{}", src.name, src.width, src.height));
     // Linear uses of 16-bit sources keep their precision (curvature and height maps step visibly at
     // 8 bits) where the device filters and blits the format (optional in Vulkan; common).
-    const bool sixteen = !srgb && !src.rgba16.empty() &&
+    const bool sixteen = !srgb && alphaFrom < 0 && !src.rgba16.empty() &&
         device_.supportsFormat(VK_FORMAT_R16G16B16A16_UNORM,
                                VK_FORMAT_FEATURE_2_SAMPLED_IMAGE_FILTER_LINEAR_BIT | VK_FORMAT_FEATURE_2_BLIT_SRC_BIT |
                                    VK_FORMAT_FEATURE_2_BLIT_DST_BIT);
@@ -377,10 +362,17 @@ const vk::Image& GpuScene::texture(const Scene& scene, int image, bool srgb, int
     desc.mipLevels = vk::mipLevelCount(src.width, src.height);
     desc.usage = VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_DST_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT;
     vk::Image gpuImage(device_, desc);
-    if (sixteen)
+    if (sixteen) {
         gpuImage.uploadAndGenerateMips(src.rgba16.data(), src.rgba16.size() * sizeof(uint16_t));
-    else
+    } else if (alphaFrom >= 0) {
+        // The alpha source's red in the alpha (specularPacksIntoBaseAlpha matched the two sizes).
+        const Image& alpha = scene.images[size_t(alphaFrom)];
+        std::vector<uint8_t> packed = src.rgba8;
+        for (size_t p = 3; p < packed.size(); p += 4) packed[p] = alpha.rgba8[p - 3];
+        gpuImage.uploadAndGenerateMips(packed.data(), packed.size());
+    } else {
         gpuImage.uploadAndGenerateMips(src.rgba8.data(), src.rgba8.size());
+    }
     return textures_.emplace(key, std::move(gpuImage)).first->second;
 }
 
