@@ -11,8 +11,9 @@
 #    technique off, interleaved, medians; 1280x720) and the skin / standard-material ratio, in
 #    wall time and in the process's CPU time per frame (on lavapipe the rendering threads' work,
 #    steadier than wall time when other programs share the machine).
-# A technique's cost is the all-on frame minus the frame with that technique off (its standard
-# fallback on); the standard frame is the same scene with the skin extension removed
+# A technique's cost is the all-on frame (the default, high) minus the frame with that technique
+# off (its standard fallback on), an addition's (lut_other_lights, in no tier) its frame minus the
+# all-on one; the standard frame is the same scene with the skin extension removed
 # (`--skin none`). Both at LIGHTS scattered lights (default 256) on the bundled head.
 #  - what each buys: with REFERENCES=DIR, `preskin compare` of the README's four head views (front
 #    1024x1024; cheek_nose, lips, ear 768x768) with the same switch, skin's error over Lambert's
@@ -75,7 +76,8 @@ configs=(
   "normal_map_levels|--no-normal-map-levels"
   "penumbra|--no-penumbra"
   "wide_penumbra|--no-wide-penumbra"
-  "lut_every_light|--no-lut-every-light"
+  "lut_shadow_light|--no-lut-shadow-light"
+  "lut_other_lights|--lut-other-lights"
   "full_shadow_filter|--no-full-shadow-filter"
   "sh_ambient|--no-sh-skin"
   "transmission|--no-transmission"
@@ -126,7 +128,8 @@ if [ -n "${REFERENCES:-}" ]; then
   done
   for c in "lut_diffuse|--no-lut-diffuse" "normal_prefilter|--no-normal-prefilter" "penumbra|--no-penumbra" "wide_penumbra|--no-wide-penumbra" \
            "sh_ambient|--no-sh-skin" "transmission|--no-transmission" "opposing_light|--no-opposing-light" \
-           "lut_every_light|--no-lut-every-light" "full_shadow_filter|--no-full-shadow-filter" \
+           "lut_shadow_light|--no-lut-shadow-light" "lut_other_lights|--lut-other-lights" \
+           "full_shadow_filter|--no-full-shadow-filter" \
            "quality_medium|--skin-quality medium" "quality_low|--skin-quality low"; do
     name="${c%%|*}" flags="${c#*|}"
     for v in "${views[@]}"; do
@@ -185,7 +188,8 @@ lines = [
     f"{width}x{height}."
     + (f" Time: `preskin bench` skin_techniques at {bench['width']}x{bench['height']}, interleaved frames, medians."
        if bench else ""),
-    "A technique's cost is the all-on frame minus the frame with that technique off (its standard fallback on); "
+    "A technique's cost is the all-on frame (the default, high) minus the frame with that technique off (its "
+    "standard fallback on), the row marked added its frame minus the all-on one (its fidelity with it on); "
     "the costs overlap, so they do not add up to the total. Fidelity: `preskin compare` of the README's head "
     f"views ({', '.join(f'{v} {sizes[v]}' for v in views) or 'none measured'}) with the technique off, skin's pooled RMSE over "
     "Lambert's against the diffusion reference (below 1: closer than Lambert; higher than the all-on row: the "
@@ -212,12 +216,14 @@ labels = {"lut_diffuse": "diffuse LUT fetches (per light, per channel)",
           "normal_prefilter": "per-channel normals (geometric and normal-map)",
           "normal_map_levels": "normal-map levels per channel (of those)",
           "penumbra": "penumbra LUT", "wide_penumbra": "the wide shadow map (of the penumbra's)",
-          "lut_every_light": "the diffuse LUT per light (of the LUT's; without it the row's fit)",
+          "lut_shadow_light": "the diffuse LUT for the shadow light (of the LUT's; without it the row's fit)",
+          "lut_other_lights": "added: the diffuse LUT for the other lights too (`--lut-other-lights`; in no tier)",
           "full_shadow_filter": "the shadow filter's 8 x 8 footprint (against 6 x 6)", "sh_ambient": "SH transfer", "transmission": "thickness and transmission",
           "opposing_light": "the opposing neighbours' light", "dual_specular": "dual specular",
           "specular_ibl": "specular IBL (prefiltered environment)"}
+additions = {"lut_other_lights"}  # off by default: the row is its frame less the all-on one, its fidelity with it on
 for name, label in labels.items():
-    d = skin - count[name]
+    d = count[name] - skin if name in additions else skin - count[name]
     lines.append(f"| {label} (`{name}`) | {M(d)} | {100 * d / skin:.0f}% {timed(name)}{fid(name)}")
 d = skin - count["no_shadows"]
 ds = std - count["standard_no_shadows"]

@@ -340,10 +340,10 @@ void main() {
             if (kCapShadowLight)
                 lit = preskinSkinLightParts(skin, lighting, profiles, diffuseLut, V,
                                             preskinLightSample(lights[0], inPositionWs, skin.normalSpecular, R, ltc, true),
-                                            penumbra, shadow.visibility, features, ltc.dfg);
+                                            penumbra, shadow.visibility, preskinShadowLightFeatures(features), ltc.dfg);
             else
                 lit = preskinSkinLightParts(skin, lighting, profiles, diffuseLut, V, L, irradiance, penumbra,
-                                            shadow.visibility, features);
+                                            shadow.visibility, preskinShadowLightFeatures(features));
             skinDiffuse += lit.diffuse;
             color += lit.specular;
         }

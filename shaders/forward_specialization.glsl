@@ -53,7 +53,8 @@ const bool kSkinShPerVertex =
 const bool kSkinLiftPerVertex = (kSkinVertexCurvature & uint((kSkinFeatures & kSkinLutDiffuse) != 0u)) != 0u;
 // The diffuse row's smoothed ramp (preskinDiffuseFit), which the lights without the table read.
 const bool kSkinRowFitPerVertex =
-    (kSkinVertexCurvature & uint((kSkinFeatures & (kSkinLutDiffuse | kSkinLutEveryLight)) == kSkinLutDiffuse)) != 0u;
+    (kSkinVertexCurvature & uint((kSkinFeatures & kSkinLutDiffuse) != 0u) &
+     uint((kSkinFeatures & (kSkinLutOtherLights | kSkinLutShadowLight)) != (kSkinLutOtherLights | kSkinLutShadowLight))) != 0u;
 // Skin with penumbra scattering samples the wide shadow map (shaders/shadow_reduce.comp) too.
 const bool kSkinWideShadow =
     (uint(kMaterialModel == kModelSkin) & uint((kSkinFeatures & kSkinWideShadowBits) == kSkinWideShadowBits)) != 0u;

@@ -124,8 +124,10 @@ void addCommonOptions(CLI::App& cmd, CommonOptions& o) {
 
 void addSkinTechniqueOptions(CLI::App& cmd, CommonOptions& o) {
     cmd.add_flag("--no-lut-diffuse", o.noLutDiffuse, "Skin: Lambert instead of the pre-integrated diffuse LUT");
-    cmd.add_flag("--no-lut-every-light", o.noLutEveryLight,
-                 "Skin: no light reads the diffuse LUT: each gets its row as a smoothed ramp");
+    cmd.add_flag("--no-lut-shadow-light", o.noLutShadowLight,
+                 "Skin: the shadow light gets the diffuse LUT's row as a smoothed ramp, as the other lights do");
+    cmd.add_flag("--lut-other-lights", o.lutOtherLights,
+                 "Skin: the lights besides the shadow light read the diffuse LUT too (high and medium tiers)");
     cmd.add_flag("--no-normal-prefilter", o.noNormalPrefilter,
                  "Skin: one normal for all channels (no per-channel geometric normals or normal-map levels)");
     cmd.add_flag("--no-full-shadow-filter", o.noFullShadowFilter,
@@ -393,7 +395,8 @@ RenderSettings renderSettings(const CommonOptions& o) {
     s.skin.opposingLight = !o.noOpposingLight;
     s.skin.normalMapLevels = !o.noNormalMapLevels;
     s.skin.widePenumbra = !o.noWidePenumbra;
-    s.skin.lutEveryLight = !o.noLutEveryLight;
+    s.skin.lutShadowLight = !o.noLutShadowLight;
+    s.skin.lutOtherLights = o.lutOtherLights;
     s.skin.fullShadowFilter = !o.noFullShadowFilter;
     if (!o.skinQuality.empty())
         s.skinQuality = o.skinQuality == "low" ? SkinQuality::Low

@@ -51,7 +51,8 @@ struct CommonOptions {
     bool noDualSpecular = false;
     bool noOpposingLight = false;
     bool noNormalMapLevels = false;
-    bool noLutEveryLight = false;
+    bool noLutShadowLight = false;
+    bool lutOtherLights = false;
     bool noFullShadowFilter = false;
     bool noWidePenumbra = false;
     std::string skinQuality;  // --skin-quality: "" (each material's own), low, medium or high

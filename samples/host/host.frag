@@ -78,7 +78,9 @@ void main() {
         PreskinLightSample l = preskinLightSample(frame.lights[i], inPositionWs, s.normalSpecular, R);
         vec3 shadowRgb = vec3(1.0);
         float visibility = 1.0;
+        uint features = kFeatures;  // the shadow light's: preskinShadowLightFeatures (its diffuse LUT)
         if (frame.lightCount.z != 0u && i == frame.lightCount.y) {
+            features = preskinShadowLightFeatures(kFeatures);
             // The shadow map read above the local patch near the terminator (its self-shadowing is
             // the diffuse LUT's), then per channel through the penumbra LUT.
             vec3 L = l.L;
@@ -102,7 +104,7 @@ void main() {
                                                                inPositionWs, inOpposingCentroidWs, inOpposingRedWs,
                                                                inOpposingGreenWs, inOpposingBlueWs, L, l.irradiance, kFeatures));
         }
-        color += preskinSkinLight(s, lighting, profile, diffuseLut, V, l, shadowRgb, visibility, kFeatures, vec4(0.0));
+        color += preskinSkinLight(s, lighting, profile, diffuseLut, V, l, shadowRgb, visibility, features, vec4(0.0));
     }
     outColor = vec4(preskinTonemapNeutral(max(color, vec3(0.0))), 1.0);
 }

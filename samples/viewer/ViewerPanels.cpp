@@ -251,8 +251,10 @@ void Viewer::panelTechniques() {
     tooltip("Off: the normal map read once, on each channel's geometric normal");
     ImGui::Checkbox("Penumbra scattering", &f.penumbra);
     tooltip("Off: the plain filtered shadow");
-    ImGui::Checkbox("Diffuse LUT for every light", &f.lutEveryLight);
-    tooltip("Off: no light reads the LUT, each gets its row as a smoothed ramp");
+    ImGui::Checkbox("Diffuse LUT for the shadow light", &f.lutShadowLight);
+    tooltip("Off: the shadow light gets the LUT's row as a smoothed ramp");
+    ImGui::Checkbox("Diffuse LUT for the other lights", &f.lutOtherLights);
+    tooltip("On: every light reads the LUT (three fetches per light); off: the row's smoothed ramp");
     ImGui::Checkbox("Shadow filter over 8 x 8 texels", &f.fullShadowFilter);
     tooltip("Off: 6 x 6 texels (9 gathers instead of 16)");
     ImGui::Checkbox("Wide penumbra (wide shadow map)", &f.widePenumbra);

@@ -6,8 +6,9 @@
 //    and per colour channel D_c(NoL_c, curvature) from the diffuse LUT replaces saturate(NoL);
 //    NoL_c uses that channel's prefiltered normal; concave skin (negative curvature) reads the
 //    LUT's concave half, where the local patch shadows itself and no light passes the terminator;
-//    without kSkinLutEveryLight no light reads the table: each gets the fragment's row as a
-//    smoothed ramp (preskinDiffuseRowFit), fitted once per vertex or per fragment;
+//    the lights other than the shadow light read the table with kSkinLutOtherLights, the shadow
+//    light with kSkinLutShadowLight; a light without it gets the fragment's row as a smoothed ramp
+//    (preskinDiffuseRowFit), fitted once per vertex or per fragment;
 //  - self-shadowing apart from cast shadows: the shadow map is looked up above the local patch
 //    near the terminator (preskinSkinShadowPosition), so it does not remove the light the diffuse
 //    LUT scatters past the terminator;
@@ -29,7 +30,8 @@
 // Every technique can be switched off (kSkin* bits of shared/skin_features.h in `features`); off falls back to the
 // standard equivalent, so with no bits set but kSkinFullShadowFilter (the standard material's
 // filter) this equals the standard dielectric BRDF. The quality
-// tiers are such masks: kSkinQualityHigh (every technique), kSkinQualityMedium, kSkinQualityLow
+// tiers are such masks: kSkinQualityHigh (every technique but the table for the lights besides
+// the shadow light; kSkinAll has it), kSkinQualityMedium, kSkinQualityLow
 // (shared/skin_features.h; docs/skin-cost.md gives each one's cost and fidelity); a host passes
 // one as a specialization constant, so what a tier leaves out is compiled out.
 //
@@ -76,14 +78,27 @@ struct PreskinSkinSurface {
 // (preskinSkinLighting) and passes it to each preskinSkinLight.
 struct PreskinSkinLighting {
     PreskinDiffuseRows diffuseRows;
-    PreskinDiffuseFit rowFit;  // the row as a smoothed ramp (preskinDiffuseFit; read without kSkinLutEveryLight)
+    PreskinDiffuseFit rowFit;  // the row as a smoothed ramp (preskinDiffuseFit; read by the lights without the table)
     float NoV;
     vec2 alpha;      // lobe 0, lobe 1 (lobe 0 twice without dual specular)
     vec2 viewTerm;   // preskinSmithViewTerm of each lobe
 };
 
+// The technique mask the shadow light is shaded with (its diffuse LUT read by
+// kSkinLutShadowLight; the per-light functions test kSkinLutOtherLights).
+uint preskinShadowLightFeatures(uint features) {
+    return (features & kSkinLutShadowLight) != 0u ? features | kSkinLutOtherLights : features & ~kSkinLutOtherLights;
+}
+
+// Whether some light gets the diffuse row's fit instead of the table (kSkinLutDiffuse without
+// one of kSkinLutOtherLights, kSkinLutShadowLight).
+bool preskinSkinNeedsRowFit(uint features) {
+    const uint lut = kSkinLutDiffuse | kSkinLutOtherLights | kSkinLutShadowLight;
+    return (features & kSkinLutDiffuse) != 0u && (features & lut) != lut;
+}
+
 // fit: the row's smoothed ramp where the caller found it (the vertex stage, preskin/skin_vertex.glsl),
-// read only without kSkinLutEveryLight.
+// read only by the lights without the table (preskinSkinDiffuseRow).
 PreskinSkinLighting preskinSkinLighting(PreskinSkinSurface s, PreskinProfileMix m, sampler2DArray diffuseLut, vec3 V,
                                         uint features, PreskinDiffuseFit fit) {
     PreskinSkinLighting k;
@@ -104,7 +119,7 @@ PreskinSkinLighting preskinSkinLighting(PreskinSkinSurface s, PreskinProfileMix 
 PreskinSkinLighting preskinSkinLighting(PreskinSkinSurface s, PreskinProfileMix m, sampler2DArray diffuseLut, vec3 V,
                                         uint features) {
     PreskinSkinLighting k = preskinSkinLighting(s, m, diffuseLut, V, features, kPreskinDiffuseFitLambert);
-    if ((features & (kSkinLutDiffuse | kSkinLutEveryLight)) == kSkinLutDiffuse)
+    if (preskinSkinNeedsRowFit(features))
         k.rowFit = preskinDiffuseFit(m, k.diffuseRows, diffuseLut);
     return k;
 }
@@ -121,9 +136,11 @@ vec3 preskinDiffuseRowFit(vec3 NoL, PreskinDiffuseFit fit) {
     return fit.scale * (0.5 * (NoL + sqrt(NoL * NoL + fit.width * fit.width)));
 }
 
-// The fragment's diffuse row at NoL per channel: the LUT, or without kSkinLutEveryLight its fit.
+// The fragment's diffuse row at NoL per channel: the LUT, or without kSkinLutOtherLights its fit.
+// The per-light functions below test that bit; the shadow light is shaded with
+// preskinShadowLightFeatures(features), which sets it from kSkinLutShadowLight.
 vec3 preskinSkinDiffuseRow(PreskinSkinLighting k, PreskinProfileMix m, sampler2DArray diffuseLut, vec3 NoL, uint features) {
-    if ((features & kSkinLutEveryLight) == 0u) return preskinDiffuseRowFit(NoL, k.rowFit);
+    if ((features & kSkinLutOtherLights) == 0u) return preskinDiffuseRowFit(NoL, k.rowFit);
     return preskinDiffuseLut(m, k.diffuseRows, diffuseLut, NoL);
 }
 

@@ -85,7 +85,7 @@ vec3 preskinSkinSphereTransmittance(PreskinProfileMix m, sampler2DArray transmit
 // (preskinDiffuseRowFit of preskin/skin.glsl), through the row's values at N.L = 0 and 1:
 // s c / 2 = D(0), s (1 + sqrt(1 + c^2)) / 2 = D(1); with rho = D(0) / D(1) = tan(atan(c) / 2),
 // c = 2 rho / (1 - rho^2) and s = D(1) (1 - rho^2). What the lights a fragment shades without the
-// table (no kSkinLutEveryLight) read: it depends on the curvature alone.
+// table (preskinSkinNeedsRowFit of preskin/skin.glsl) read: it depends on the curvature alone.
 struct PreskinDiffuseFit {
     vec3 scale;  // s per channel
     vec3 width;  // c per channel

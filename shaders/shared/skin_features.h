@@ -22,35 +22,41 @@ PRESKIN_CONST(uint, kSkinNormalMapLevels, 128u)
 PRESKIN_CONST(uint, kSkinWidePenumbra, 256u)
 // The bits that read the wide shadow map (and record its reduction pass): both must be set.
 PRESKIN_CONST(uint, kSkinWideShadowBits, 260u)  // kSkinPenumbra | kSkinWidePenumbra
-// With kSkinLutDiffuse: the diffuse LUT read for every light (three gathers per light). Without
-// it no light reads the table: each gets the fragment's row as a smoothed ramp
-// (preskinDiffuseRowFit of preskin/skin.glsl), fitted once per vertex or per fragment
-// (preskinDiffuseFit of preskin/skin_vertex.glsl): ALU per light, no fetch.
-PRESKIN_CONST(uint, kSkinLutEveryLight, 512u)
+// With kSkinLutDiffuse: the diffuse LUT read for the lights other than the shadow light (three
+// gathers per light, the only technique whose cost grows with the light count). Without it those
+// lights get the fragment's row as a smoothed ramp (preskinDiffuseRowFit of preskin/skin.glsl),
+// fitted once per vertex or per fragment (preskinDiffuseFit of preskin/skin_vertex.glsl): ALU
+// per light, no fetch. No tier has it: with kSkinAll every light reads the table.
+PRESKIN_CONST(uint, kSkinLutOtherLights, 512u)
 // Skin's shadow filter over 8 x 8 texels of the shadow map (16 gathers, the standard material's);
 // without it 6 x 6 (9 gathers: preskinSkinShadowFilter of preskin/skin.glsl), the Gaussian of
 // the same sigma windowed at 3 texels instead of 4 (narrower where sigma exceeds about 1.2), for a
 // parallel light (a light with a size keeps 8 x 8: its penumbra is the filter's width). The
 // standard material's filter: the mask of standard shading keeps it (SkinFeatures::none()).
 PRESKIN_CONST(uint, kSkinFullShadowFilter, 1024u)
-PRESKIN_CONST(uint, kSkinAll, 2047u)
+// With kSkinLutDiffuse: the diffuse LUT read for the shadow light (without it, the row's fit),
+// where the terminator and the penumbra the shadow map draws are.
+PRESKIN_CONST(uint, kSkinLutShadowLight, 2048u)
+PRESKIN_CONST(uint, kSkinAll, 4095u)
 
 // Quality tiers (SkinQuality, `--skin-quality`, PRESKIN_SKIN_QUALITY in a host shader): the
 // techniques each compiles in, chosen by what each costs and buys in docs/skin-cost-table.md
-// (instructions per frame against compare's error on the head). High is every technique; Medium
-// leaves out transmission (11 % of the skin frame; it lights thin parts from behind, which the
-// front views do not show) and the second specular lobe; Low also the wide shadow map (its
-// reduction pass and nine gathers per fragment, 12 % of the frame; the penumbra LUT stays, within
-// the shadow filter's reach, for 2 %) and the normal map's per-channel levels (4 %: a distant
-// face's map detail is already under its own mip level), keeping the pre-integrated diffuse, the
-// per-channel geometric normals, the SH transfer and the opposing neighbours' light (2 %, the
-// largest gain per instruction), shading every light by the diffuse row's fit instead of
-// reading the table per light (2 % of the high frame; on compare's views 0.002 of Lambert's
-// error, mostly in the terminator band) and filtering the shadow map over 6 x 6 texels instead
-// of 8 x 8 (4 % of the low frame; 0.02 of Lambert's error, near cast-shadow edges).
+// (instructions per frame against compare's error on the head). High is every technique but the
+// table for the lights besides the shadow light, which get the row's fit (4 % of the frame;
+// compare's views are lit by the shadow light alone; kSkinAll adds it); Medium leaves out
+// transmission (5 % of the skin frame; it lights thin parts from behind, which the front views
+// do not show) and the second specular lobe; Low also the wide shadow map (its reduction pass and
+// nine gathers per fragment, 12 % of the frame; the penumbra LUT stays, within the shadow
+// filter's reach, for 2 %) and the normal map's per-channel levels (4 %: a distant face's map
+// detail is already under its own mip level), keeping the pre-integrated diffuse, the
+// per-channel geometric normals, the SH transfer and the opposing neighbours' light (1 %, the
+// largest gain per instruction), shading the shadow light by the row's fit too (1.5 % of the
+// high frame; on compare's views 0.002 of Lambert's error, mostly in the terminator band) and
+// filtering the shadow map over 6 x 6 texels instead of 8 x 8 (4 % of the low frame; 0.02 of
+// Lambert's error, near cast-shadow edges).
 PRESKIN_CONST(uint, kSkinQualityLow, 79u)       // kSkinLutDiffuse | kSkinNormalPrefilter | kSkinPenumbra | kSkinShAmbient | kSkinOpposingLight
-PRESKIN_CONST(uint, kSkinQualityMedium, 1999u)  // Low | kSkinNormalMapLevels | kSkinWidePenumbra | kSkinLutEveryLight | kSkinFullShadowFilter
-PRESKIN_CONST(uint, kSkinQualityHigh, 2047u)    // kSkinAll
+PRESKIN_CONST(uint, kSkinQualityMedium, 3535u)  // Low | kSkinNormalMapLevels | kSkinWidePenumbra | kSkinFullShadowFilter | kSkinLutShadowLight
+PRESKIN_CONST(uint, kSkinQualityHigh, 3583u)    // Medium | kSkinTransmission | kSkinDualSpecular (kSkinAll but kSkinLutOtherLights)
 
 PRESKIN_GPU_END
 

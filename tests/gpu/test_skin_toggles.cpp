@@ -364,6 +364,46 @@ TEST_F(SkinToggles, ShadowLightIsTheCasterWhereverItIsListed) {
     }
 }
 
+// The diffuse LUT's reads by light (kSkinLutShadowLight, kSkinLutOtherLights): by default (high)
+// the shadow light reads the table and every other light gets the fragment's row fit, so on the
+// sphere scene (one directional light, a scattering radius of about 4 mm, where the fit and the
+// table part near the terminator) turning the shadow light's table off moves the image and adding
+// the other lights' does not; the same light without its shadow is one of the other lights, and
+// the two switches swap.
+TEST_F(SkinToggles, ShadowLightReadsTheDiffuseLutTheOtherLightsItsRowFit) {
+    for (bool castsShadow : {true, false}) {
+        ToggleScene s = sphereScene();
+        s.scene.lights[0].castsShadow = castsShadow;
+        Renderer renderer(context(), s.scene, s.environment, &LutSet::loadDefault(), s.settings);
+        auto render = [&](bool shadowLight, bool otherLights) {
+            RenderSettings settings = s.settings;
+            settings.skin.lutShadowLight = shadowLight;
+            settings.skin.lutOtherLights = otherLights;
+            renderer.setSettings(settings);
+            return renderer.render(s.view, kSize, kSize, OutputEncoding::LinearFloat);
+        };
+        // The largest change of a linear colour value, as a share of the image's brightest value.
+        auto largestChange = [](const RenderedImage& a, const RenderedImage& b) {
+            double change = 0.0, peak = 0.0;
+            for (size_t i = 0; i < a.rgba32f.size(); ++i) {
+                if (i % 4 == 3) continue;
+                change = std::max(change, std::abs(double(a.rgba32f[i]) - double(b.rgba32f[i])));
+                peak = std::max(peak, double(a.rgba32f[i]));
+            }
+            return change / std::max(peak, 1e-6);
+        };
+        const RenderedImage high = render(true, false);
+        const double shadowLightOff = largestChange(high, render(false, false));
+        const double otherLightsOn = largestChange(high, render(true, true));
+        std::printf(
+            "[ skin     ] %s light: the shadow light's table off moves a value by %.4f of the brightest, the other "
+            "lights' table on by %.4f\n",
+            castsShadow ? "shadowed" : "unshadowed", shadowLightOff, otherLightsOn);
+        EXPECT_GE(castsShadow ? shadowLightOff : otherLightsOn, 0.001);
+        EXPECT_EQ(castsShadow ? otherLightsOn : shadowLightOff, 0.0);
+    }
+}
+
 TEST_F(SkinToggles, AllOffEqualsStandardPath) {
     const LutSet& luts = LutSet::loadDefault();
     for (ToggleScene s : {sphereScene(), penumbraScene(), transmissionScene()}) {

@@ -35,7 +35,9 @@ TEST(SkinQuality, TiersCompileInTheirTechniques) {
     const SkinFeatures medium = skinQualityFeatures(SkinQuality::Medium);
     const SkinFeatures low = skinQualityFeatures(SkinQuality::Low);
     EXPECT_EQ(high, SkinFeatures{});
-    EXPECT_EQ(high.mask(), gpu::kSkinAll);
+    // High is every technique but the table for the lights besides the shadow light (an addition).
+    EXPECT_EQ(high.mask(), gpu::kSkinAll & ~gpu::kSkinLutOtherLights);
+    EXPECT_EQ(high.mask(), gpu::kSkinQualityHigh);
     // Each tier holds the one below it, and the diffuse LUT is in all of them.
     EXPECT_EQ(medium.mask() & low.mask(), low.mask());
     EXPECT_EQ(high.mask() & medium.mask(), medium.mask());
@@ -48,9 +50,10 @@ TEST(SkinQuality, TiersCompileInTheirTechniques) {
     EXPECT_TRUE(low.penumbra);
     EXPECT_FALSE(low.widePenumbra);
     EXPECT_TRUE(medium.widePenumbra);
-    // Low reads no diffuse LUT per light (the row's fit).
-    EXPECT_FALSE(low.lutEveryLight);
-    EXPECT_TRUE(medium.lutEveryLight);
+    // Low reads the diffuse LUT for no light (the row's fit); medium and high for the shadow light.
+    EXPECT_FALSE(low.lutShadowLight);
+    EXPECT_TRUE(medium.lutShadowLight);
+    EXPECT_FALSE(high.lutOtherLights);
     // Low filters the shadow map over 6 x 6 texels.
     EXPECT_FALSE(low.fullShadowFilter);
     EXPECT_TRUE(medium.fullShadowFilter);
@@ -178,8 +181,8 @@ TEST_F(SkinQualityFidelity, EveryTierIsFarCloserToTheReferenceThanLambertOnTheSp
     }
 }
 
-// Lights other than the shadow light: low shades them with the fragment's LUT row fitted by a
-// smoothed ramp (preskinDiffuseRowFit), high reads the table. Spheres of 10 and 3 mm under a light
+// Lights other than the shadow light: every tier shades them with the fragment's LUT row fitted by
+// a smoothed ramp (preskinDiffuseRowFit), lutOtherLights reads the table. Spheres of 10 and 3 mm under a light
 // that casts no shadow, from the side, against the diffusion reference: the fit keeps most of
 // what the table gains over Lambert.
 TEST_F(SkinQualityFidelity, LowTiersRowFitIsFarCloserToTheReferenceThanLambert) {
@@ -206,11 +209,19 @@ TEST_F(SkinQualityFidelity, LowTiersRowFitIsFarCloserToTheReferenceThanLambert) 
         RenderSettings lambertSettings;
         lambertSettings.skin = SkinFeatures::none();
         const double lambert = error(lambertSettings, std::nullopt);
+        // An unshadowed light is one of the "other" lights: the row's fit in every tier, the table
+        // with lutOtherLights.
         const double high = error(RenderSettings{}, SkinQuality::High) / lambert;
         const double low = error(RenderSettings{}, SkinQuality::Low) / lambert;
-        std::printf("[ quality  ] %.1f mm sphere, unshadowed light: skin / Lambert RMSE high %.3f, low %.3f\n",
-                    double(radiusM) * 2000.0, high, low);
-        EXPECT_LT(high, 0.3);
+        RenderSettings table;
+        table.skin.lutOtherLights = true;
+        const double highTable = error(table, SkinQuality::High) / lambert;
+        std::printf(
+            "[ quality  ] %.1f mm sphere, unshadowed light: skin / Lambert RMSE high %.3f (with the table %.3f), "
+            "low %.3f\n",
+            double(radiusM) * 2000.0, high, highTable, low);
+        EXPECT_LT(high, 0.25);
+        EXPECT_LT(highTable, 0.3);
         EXPECT_LT(low, 0.25);
     }
 }

@@ -49,16 +49,23 @@ struct SkinFeatures {
     // filter's reach (a reduction pass, nine more gathers per fragment); off, the penumbra LUT
     // acts within the shadow filter's reach only.
     bool widePenumbra = true;
-    // With lutDiffuse: the diffuse LUT read for every light; off, no light reads it: each is shaded
-    // by the fragment's LUT row as a smoothed ramp, fitted per vertex (no fetch per light).
-    bool lutEveryLight = true;
+    // With lutDiffuse: the diffuse LUT read for the shadow light; off, it is shaded by the
+    // fragment's LUT row as a smoothed ramp, fitted per vertex (no fetch), as the other lights are.
+    bool lutShadowLight = true;
     // The shadow filter over 8 x 8 texels of the shadow map (16 gathers); off, 6 x 6 (9 gathers),
     // the same Gaussian windowed at 3 texels, for a parallel shadow light (one with a size keeps
     // 8 x 8: its penumbra is the filter's width).
     bool fullShadowFilter = true;
+    // With lutDiffuse: the diffuse LUT read for the lights other than the shadow light too (three
+    // gathers per light and fragment) instead of the row's fit. An addition to the tiers that
+    // read it for the shadow light (high, medium; kSkinAll in shared/skin_features.h), off by
+    // default: the fit is what those lights get in every tier.
+    bool lutOtherLights = false;
 
     // Every technique off: the standard shading, with the standard material's 8 x 8 shadow filter.
-    static SkinFeatures none() { return {false, false, false, false, false, false, false, false, false, false, true}; }
+    static SkinFeatures none() {
+        return {false, false, false, false, false, false, false, false, false, false, true, false};
+    }
     PRESKIN_API uint32_t mask() const;
     bool operator==(const SkinFeatures&) const = default;
 };

@@ -59,7 +59,11 @@ uint32_t Renderer::Impl::skinMask(const GpuMaterial& m) const {
     const uint32_t techniques = splitDiffusion() || textureDiffusionFrame()
         ? settings.skin.mask() & (gpu::kSkinTransmission | gpu::kSkinOpposingLight | gpu::kSkinDualSpecular)
         : settings.skin.mask();
-    return skinQualityMask(settings.skinQuality.value_or(m.quality)) & techniques;
+    // The tier's techniques, and the table for the other lights where asked (lutOtherLights) in a
+    // tier that reads it for the shadow light.
+    const uint32_t tier = skinQualityMask(settings.skinQuality.value_or(m.quality));
+    const uint32_t otherLights = (tier & gpu::kSkinLutShadowLight) != 0u ? gpu::kSkinLutOtherLights : 0u;
+    return (tier | otherLights) & techniques;
 }
 
 PipelineKey Renderer::Impl::pipelineKey(const GpuMaterial& m, VkFormat format, VkFormat depthFormat,

@@ -96,7 +96,7 @@ SkinFeatures skinQualityFeatures(SkinQuality quality) {
     f.opposingLight = (m & gpu::kSkinOpposingLight) != 0u;
     f.normalMapLevels = (m & gpu::kSkinNormalMapLevels) != 0u;
     f.widePenumbra = (m & gpu::kSkinWidePenumbra) != 0u;
-    f.lutEveryLight = (m & gpu::kSkinLutEveryLight) != 0u;
+    f.lutShadowLight = (m & gpu::kSkinLutShadowLight) != 0u;
     f.fullShadowFilter = (m & gpu::kSkinFullShadowFilter) != 0u;
     return f;
 }
@@ -106,8 +106,8 @@ uint32_t SkinFeatures::mask() const {
         (penumbra ? gpu::kSkinPenumbra : 0u) | (shAmbient ? gpu::kSkinShAmbient : 0u) |
         (transmission ? gpu::kSkinTransmission : 0u) | (dualSpecular ? gpu::kSkinDualSpecular : 0u) |
         (opposingLight ? gpu::kSkinOpposingLight : 0u) | (normalMapLevels ? gpu::kSkinNormalMapLevels : 0u) |
-        (widePenumbra ? gpu::kSkinWidePenumbra : 0u) | (lutEveryLight ? gpu::kSkinLutEveryLight : 0u) |
-        (fullShadowFilter ? gpu::kSkinFullShadowFilter : 0u);
+        (widePenumbra ? gpu::kSkinWidePenumbra : 0u) | (lutShadowLight ? gpu::kSkinLutShadowLight : 0u) |
+        (fullShadowFilter ? gpu::kSkinFullShadowFilter : 0u) | (lutOtherLights ? gpu::kSkinLutOtherLights : 0u);
 }
 
 Renderer::Impl::Impl(Context& ctx, const Scene& s, const Environment& env, const std::vector<const LutSet*>& lutLayers,
