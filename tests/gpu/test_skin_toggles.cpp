@@ -365,15 +365,37 @@ TEST_F(SkinToggles, ShadowLightIsTheCasterWhereverItIsListed) {
 }
 
 // The diffuse LUT's reads by light (kSkinLutShadowLight, kSkinLutOtherLights): by default (high)
-// the shadow light reads the table and every other light gets the fragment's row fit, so on the
-// sphere scene (one directional light, a scattering radius of about 4 mm, where the fit and the
-// table part near the terminator) turning the shadow light's table off moves the image and adding
-// the other lights' does not; the same light without its shadow is one of the other lights, and
-// the two switches swap.
+// the shadow light reads the table and every other light gets the fragment's row fit, and
+// without a shadow map every light reads the table. On the sphere scene (a scattering radius of
+// about 4 mm, where the fit and the table part near the terminator): with its shadowed key light
+// alone, turning the shadow light's table off moves the image and adding the other lights' does
+// not; with an unshadowed fill light beside it, adding the other lights' table moves it; with the
+// key's shadow off (no shadow map), adding it changes nothing and the shadow light's switch
+// decides for every light.
 TEST_F(SkinToggles, ShadowLightReadsTheDiffuseLutTheOtherLightsItsRowFit) {
-    for (bool castsShadow : {true, false}) {
+    // The largest change of a linear colour value, as a share of the image's brightest value.
+    auto largestChange = [](const RenderedImage& a, const RenderedImage& b) {
+        double change = 0.0, peak = 0.0;
+        for (size_t i = 0; i < a.rgba32f.size(); ++i) {
+            if (i % 4 == 3) continue;
+            change = std::max(change, std::abs(double(a.rgba32f[i]) - double(b.rgba32f[i])));
+            peak = std::max(peak, double(a.rgba32f[i]));
+        }
+        return change / std::max(peak, 1e-6);
+    };
+    Light fill;
+    fill.type = LightType::Directional;
+    fill.directionWs = glm::normalize(glm::vec3(0.7f, -0.2f, -0.7f));
+    fill.intensity = 1.0f;
+    struct Case {
+        const char* name;
+        bool castsShadow, withFill, otherLightsMove;
+    };
+    for (const Case& c : {Case{"shadowed key", true, false, false}, Case{"shadowed key and fill", true, true, true},
+                          Case{"unshadowed key", false, false, false}}) {
         ToggleScene s = sphereScene();
-        s.scene.lights[0].castsShadow = castsShadow;
+        s.scene.lights[0].castsShadow = c.castsShadow;
+        if (c.withFill) s.scene.lights.push_back(fill);
         Renderer renderer(context(), s.scene, s.environment, &LutSet::loadDefault(), s.settings);
         auto render = [&](bool shadowLight, bool otherLights) {
             RenderSettings settings = s.settings;
@@ -382,25 +404,19 @@ TEST_F(SkinToggles, ShadowLightReadsTheDiffuseLutTheOtherLightsItsRowFit) {
             renderer.setSettings(settings);
             return renderer.render(s.view, kSize, kSize, OutputEncoding::LinearFloat);
         };
-        // The largest change of a linear colour value, as a share of the image's brightest value.
-        auto largestChange = [](const RenderedImage& a, const RenderedImage& b) {
-            double change = 0.0, peak = 0.0;
-            for (size_t i = 0; i < a.rgba32f.size(); ++i) {
-                if (i % 4 == 3) continue;
-                change = std::max(change, std::abs(double(a.rgba32f[i]) - double(b.rgba32f[i])));
-                peak = std::max(peak, double(a.rgba32f[i]));
-            }
-            return change / std::max(peak, 1e-6);
-        };
         const RenderedImage high = render(true, false);
         const double shadowLightOff = largestChange(high, render(false, false));
         const double otherLightsOn = largestChange(high, render(true, true));
         std::printf(
-            "[ skin     ] %s light: the shadow light's table off moves a value by %.4f of the brightest, the other "
+            "[ skin     ] %s: the shadow light's table off moves a value by %.4f of the brightest, the other "
             "lights' table on by %.4f\n",
-            castsShadow ? "shadowed" : "unshadowed", shadowLightOff, otherLightsOn);
-        EXPECT_GE(castsShadow ? shadowLightOff : otherLightsOn, 0.001);
-        EXPECT_EQ(castsShadow ? otherLightsOn : shadowLightOff, 0.0);
+            c.name, shadowLightOff, otherLightsOn);
+        EXPECT_GE(shadowLightOff, 0.001) << c.name;
+        if (c.otherLightsMove) {
+            EXPECT_GE(otherLightsOn, 0.001) << c.name;
+        } else {
+            EXPECT_EQ(otherLightsOn, 0.0) << c.name;
+        }
     }
 }
 

@@ -63,7 +63,12 @@ uint32_t Renderer::Impl::skinMask(const GpuMaterial& m) const {
     // tier that reads it for the shadow light.
     const uint32_t tier = skinQualityMask(settings.skinQuality.value_or(m.quality));
     const uint32_t otherLights = (tier & gpu::kSkinLutShadowLight) != 0u ? gpu::kSkinLutOtherLights : 0u;
-    return (tier | otherLights) & techniques;
+    uint32_t mask = (tier | otherLights) & techniques;
+    // A frame without a shadow map has no shadow light to tell the key light by: the shadow
+    // light's table goes to every light (a host without shadows keeps the table on its key).
+    const bool hasShadowMap = settings.shadows && frameShadowLight >= 0;
+    if (!hasShadowMap && (mask & gpu::kSkinLutShadowLight) != 0u) mask |= gpu::kSkinLutOtherLights;
+    return mask;
 }
 
 PipelineKey Renderer::Impl::pipelineKey(const GpuMaterial& m, VkFormat format, VkFormat depthFormat,

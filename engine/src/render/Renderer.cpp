@@ -232,6 +232,7 @@ void Renderer::Impl::updateEnvironmentLights(bool environmentChanged) {
     frameLights = withEnvironmentLights(lights, extracted, settings.environmentLightSizes);
     extractedLights.assign(frameLights.begin() + std::ptrdiff_t(lights.size()), frameLights.end());
     frameAreaLightTypes = areaLightTypes(frameLights);
+    frameShadowLight = shadowLightIndex(frameLights);
 }
 
 // Replaces an attachment without waiting: the old image lives on until every other slot

@@ -94,6 +94,7 @@ struct Renderer::Impl {
     std::vector<Light> extractedLights;
     std::vector<Light> frameLights;
     uint32_t frameAreaLightTypes = 0;  // areaLightTypes(frameLights), kept with them (pipeline keys read it per draw)
+    int frameShadowLight = -1;         // shadowLightIndex(frameLights), likewise (skinMask)
     std::vector<gpu::GpuLight> gpuLights;             // this frame's light array, as the shaders read it
     std::vector<ClusterLight> gridLights;             // its point and spot lights as the light grid bounds them
     std::unique_ptr<GpuEnvironment> environmentMaps;  // the backdrop, the prefiltered cube, the DFG table
