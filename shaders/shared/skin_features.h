@@ -26,7 +26,8 @@ PRESKIN_CONST(uint, kSkinWideShadowBits, 260u)  // kSkinPenumbra | kSkinWidePenu
 // gathers per light, the only technique whose cost grows with the light count). Without it those
 // lights get the fragment's row as a smoothed ramp (preskinDiffuseRowFit of preskin/skin.glsl),
 // fitted once per vertex or per fragment (preskinDiffuseFit of preskin/skin_vertex.glsl): ALU
-// per light, no fetch. No tier has it: with kSkinAll every light reads the table.
+// per light, no fetch. No tier has it: with kSkinAll every light reads the table (the renderer
+// adds it to a frame without a shadow map, which has no shadow light to tell the key by).
 PRESKIN_CONST(uint, kSkinLutOtherLights, 512u)
 // Skin's shadow filter over 8 x 8 texels of the shadow map (16 gathers, the standard material's);
 // without it 6 x 6 (9 gathers: preskinSkinShadowFilter of preskin/skin.glsl), the Gaussian of

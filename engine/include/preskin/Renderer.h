@@ -59,7 +59,8 @@ struct SkinFeatures {
     // With lutDiffuse: the diffuse LUT read for the lights other than the shadow light too (three
     // gathers per light and fragment) instead of the row's fit. An addition to the tiers that
     // read it for the shadow light (high, medium; kSkinAll in shared/skin_features.h), off by
-    // default: the fit is what those lights get in every tier.
+    // default: the fit is what those lights get in every tier. A frame without a shadow map has
+    // no shadow light: there every light reads the table where the shadow light would.
     bool lutOtherLights = false;
 
     // Every technique off: the standard shading, with the standard material's 8 x 8 shadow filter.
