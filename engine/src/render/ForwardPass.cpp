@@ -66,8 +66,7 @@ uint32_t Renderer::Impl::skinMask(const GpuMaterial& m) const {
     uint32_t mask = (tier | otherLights) & techniques;
     // A frame without a shadow map has no shadow light to tell the key light by: the shadow
     // light's table goes to every light (a host without shadows keeps the table on its key).
-    const bool hasShadowMap = settings.shadows && frameShadowLight >= 0;
-    if (!hasShadowMap && (mask & gpu::kSkinLutShadowLight) != 0u) mask |= gpu::kSkinLutOtherLights;
+    if (shadowMapLight() < 0 && (mask & gpu::kSkinLutShadowLight) != 0u) mask |= gpu::kSkinLutOtherLights;
     return mask;
 }
 

@@ -325,7 +325,7 @@ bool Renderer::Impl::prepareFrame(Slot& slot, uint32_t slotIndex, const View& vi
         slot.instancesPose = poseVersion;
     }
     deformer->prepare(slotIndex, pose);
-    const int shadowLight = settings.shadows ? frameShadowLight : -1;
+    const int shadowLight = shadowMapLight();
     // Directional lights first, the shadow light (if any) at index 0: forward.frag shades it on
     // its own and loops over the rest; then the point and spot lights the grid lists, in order.
     const uint32_t directional = frameLightRecords(frameLights, shadowLight, gpuLights, gridLights);

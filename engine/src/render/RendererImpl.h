@@ -95,6 +95,8 @@ struct Renderer::Impl {
     std::vector<Light> frameLights;
     uint32_t frameAreaLightTypes = 0;  // areaLightTypes(frameLights), kept with them (pipeline keys read it per draw)
     int frameShadowLight = -1;         // shadowLightIndex(frameLights), likewise (skinMask)
+    // The light this frame's shadow map is drawn for: frameShadowLight, -1 with shadows off.
+    int shadowMapLight() const { return settings.shadows ? frameShadowLight : -1; }
     std::vector<gpu::GpuLight> gpuLights;             // this frame's light array, as the shaders read it
     std::vector<ClusterLight> gridLights;             // its point and spot lights as the light grid bounds them
     std::unique_ptr<GpuEnvironment> environmentMaps;  // the backdrop, the prefiltered cube, the DFG table
