@@ -316,7 +316,7 @@ void main() {
         if (hasShadowLight) {
             vec3 L;
             vec3 irradiance;
-            preskinLightIncidence(lights[0], inPositionWs, L, irradiance);
+            preskinDirectionalLightIncidence(lights[0], L, irradiance);
             penumbra = preskinSkinShadow(skin, profiles, penumbraLut, shadow, wideShadow, frame.wideShadow.z, L, features);
             // The lit surface the light reaches first, from where it scatters to this point
             // through the skin: behind it where the skin faces away (transmission), or above it
@@ -407,7 +407,7 @@ void main() {
             } else {
                 vec3 L;
                 vec3 irradiance;
-                preskinLightIncidence(lights[0], inPositionWs, L, irradiance);
+                preskinDirectionalLightIncidence(lights[0], L, irradiance);
                 color += preskinStandardLight(surface, N, V, L, irradiance * shadow.visibility);
             }
         }
