@@ -118,6 +118,14 @@ void localLightRange(out uint first, out uint count, out bool indirect) {
     }
 }
 
+// The shadow light's direction and irradiance (lights[0], directional) from the frame's uniforms:
+// a CPU driver (lavapipe) reads a storage buffer lane by lane, and would evaluate a light of
+// unknown type's attenuation under a mask.
+void shadowLightIncidence(out vec3 L, out vec3 irradiance) {
+    L = -frame.shadowDirectionWs.xyz;
+    irradiance = frame.shadowIrradiance.rgb;
+}
+
 // Light i of the loop after the shadow light: the other directional lights, then the
 // fragment's local lights (localLightRange).
 GpuLight unshadowedLight(uint i, uint shadowLights, uint first, bool indirect) {
@@ -316,7 +324,7 @@ void main() {
         if (hasShadowLight) {
             vec3 L;
             vec3 irradiance;
-            preskinDirectionalLightIncidence(lights[0], L, irradiance);
+            shadowLightIncidence(L, irradiance);
             penumbra = preskinSkinShadow(skin, profiles, penumbraLut, shadow, wideShadow, frame.wideShadow.z, L, features);
             // The lit surface the light reaches first, from where it scatters to this point
             // through the skin: behind it where the skin faces away (transmission), or above it
@@ -407,7 +415,7 @@ void main() {
             } else {
                 vec3 L;
                 vec3 irradiance;
-                preskinDirectionalLightIncidence(lights[0], L, irradiance);
+                shadowLightIncidence(L, irradiance);
                 color += preskinStandardLight(surface, N, V, L, irradiance * shadow.visibility);
             }
         }

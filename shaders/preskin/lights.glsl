@@ -52,14 +52,6 @@ void preskinLightIncidence(GpuLight light, vec3 positionWs, out vec3 L, out vec3
     irradiance = light.colorIntensity.rgb * attenuation;
 }
 
-// The same for a light known to be directional (the shadow light): a CPU driver (lavapipe) would
-// evaluate the local lights' attenuation above under a lane mask for it, and read the light's
-// other fields.
-void preskinDirectionalLightIncidence(GpuLight light, out vec3 L, out vec3 irradiance) {
-    L = -light.directionType.xyz;
-    irradiance = light.colorIntensity.rgb;
-}
-
 // KHR_lights_punctual's range window at squared distance d2 (1 for an unlimited light).
 float preskinRangeWindow(float d2, float range) {
     if (range <= 0.0) return 1.0;

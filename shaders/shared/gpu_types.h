@@ -118,8 +118,9 @@ struct FrameUniforms {
                                 // texel size (m), w shadow-map texels per side of its texels
     vec4 environment;           // x, y: cos and sin of the environment's turn about +Y, z: the prefiltered cube's
                                 // last mip level (roughness 1), w unused
+    vec4 shadowIrradiance;      // rgb: the shadow light's irradiance (lights[0].colorIntensity.rgb), w unused
 };
-PRESKIN_CHECK_SIZE(FrameUniforms, 6 * 96 + 2 * 64 + 4 * 16 + 9 * 16 + 5 * 16)
+PRESKIN_CHECK_SIZE(FrameUniforms, 6 * 96 + 2 * 64 + 4 * 16 + 9 * 16 + 6 * 16)
 
 // Per-texture transform rows (KHR_texture_transform): uv' = (dot(r0.xyz, (u,v,1)), dot(r1.xyz, (u,v,1))).
 struct GpuUvTransform {

@@ -356,6 +356,7 @@ bool Renderer::Impl::prepareFrame(Slot& slot, uint32_t slotIndex, const View& vi
         shadowClipFromWorld = fit.clipFromWorld;
         u.shadowClipFromWorld = shadowClipFromWorld;
         u.shadowDirectionWs = glm::vec4(dir, 1.0f);
+        u.shadowIrradiance = glm::vec4(toGpuLight(frameLights[size_t(shadowLight)], true).colorIntensity);
     }
     u.shadowParams =
         glm::vec4(fit.texelSizeM, std::max(settings.shadowSoftnessTexels, 0.25f), fit.depthRangeM, float(mapSize));
