@@ -349,14 +349,15 @@ bool Renderer::Impl::prepareFrame(Slot& slot, uint32_t slotIndex, const View& vi
     fit.texelSizeM = 2.0f / float(mapSize);
     fit.depthRangeM = 2.0f;
     if (shadowLight >= 0) {
-        const glm::vec3 dir = glm::length(frameLights[size_t(shadowLight)].directionWs) > 0.0f
-            ? glm::normalize(frameLights[size_t(shadowLight)].directionWs)
-            : glm::vec3(0.0f, 0.0f, -1.0f);
+        // The shadow light's record (gpuLights[0]): its unit direction and irradiance, which the
+        // forward pass reads from here rather than from the lights' storage buffer.
+        const gpu::GpuLight& record = gpuLights.front();
+        const glm::vec3 dir(record.directionType);
         fit = fitDirectionalShadow(bounds, settings.fitShadowToSkin ? receivers : Bounds{}, view, dir, mapSize);
         shadowClipFromWorld = fit.clipFromWorld;
         u.shadowClipFromWorld = shadowClipFromWorld;
         u.shadowDirectionWs = glm::vec4(dir, 1.0f);
-        u.shadowIrradiance = glm::vec4(toGpuLight(frameLights[size_t(shadowLight)], true).colorIntensity);
+        u.shadowIrradiance = glm::vec4(glm::vec3(record.colorIntensity), 0.0f);
     }
     u.shadowParams =
         glm::vec4(fit.texelSizeM, std::max(settings.shadowSoftnessTexels, 0.25f), fit.depthRangeM, float(mapSize));
