@@ -24,6 +24,12 @@ layout(set = 1, binding = kBindingCurvatureTexture) uniform sampler2D curvatureT
 
 #include "preskin/skin_vertex.glsl"
 
+// The forward pass's depth prepass draws opaque meshes with this stage alone (no fragment stage,
+// Renderer::Impl::recordForwardPass): their positions must come out bit for bit the same in both,
+// so what computes them is precise (no fused or reordered arithmetic that either compile could
+// choose differently).
+precise gl_Position;
+
 layout(location = kAttributePosition) in vec3 inPositionOs;
 layout(location = kAttributeNormal) in vec3 inNormalOs;
 layout(location = kAttributeTangent) in vec4 inTangentOs;

@@ -101,6 +101,14 @@ void BenchRun::skinSection(const std::vector<uint32_t>& skinCounts) {
                 tier.skinQuality = quality;
                 configs.push_back({&renderer, tier, fmt::format("{} lights, skin at the {} tier", n, name), 0.0});
             }
+            // Both frames without the depth prepass (RenderSettings::depthPrepass), in the same rounds.
+            const size_t noPrepass = configs.size();
+            for (const auto& [r, name] :
+                 {std::pair{&renderer, "skin"}, std::pair{&standardRenderer, "standard material"}}) {
+                RenderSettings without = base;
+                without.depthPrepass = false;
+                configs.push_back({r, without, fmt::format("{} lights, {}, no depth prepass", n, name), 0.0});
+            }
             const std::vector<Measurement> measured = bench.measure(configs, lights);
             j.key("skin_techniques");
             j.beginObject();
@@ -140,6 +148,20 @@ void BenchRun::skinSection(const std::vector<uint32_t>& skinCounts) {
                 writeMeasurement(j, m);
                 j.field("over_standard", m.wallMs() / measured[1].wallMs());
                 j.field("over_standard_gpu", m.gpuMs() / measured[1].gpuMs());
+                j.endObject();
+            }
+            j.endObject();
+            // What the depth prepass saves each frame: the frame without it less the frame with it.
+            j.key("depth_prepass_saves_ms");
+            j.beginObject();
+            for (size_t i = 0; i < 2; ++i) {
+                const Measurement& with = measured[i];
+                const Measurement& without = measured[noPrepass + i];
+                j.key(i == 0 ? "skin" : "standard_material");
+                j.beginObject();
+                j.field("wall", without.wallMs() - with.wallMs());
+                j.field("cpu", without.cpuMs() - with.cpuMs());
+                j.field("forward_gpu", without.passMs("forward") - with.passMs("forward"));
                 j.endObject();
             }
             j.endObject();

@@ -116,6 +116,8 @@ void addCommonOptions(CLI::App& cmd, CommonOptions& o) {
     cmd.add_option("--msaa", o.msaa, "Samples per pixel (1, 2, 4 or 8, as the device offers; lavapipe: 1 or 4)")
         ->check(oneOf({"1", "2", "4", "8"}))
         ->capture_default_str();
+    cmd.add_flag("--no-depth-prepass", o.noDepthPrepass,
+                 "Shade opaque meshes without drawing their depth first (the same image, more fragments shaded)");
     addLutOptions(cmd, o);
     addProfileBakeOptions(cmd, o);
     cmd.add_flag("--allow-outside-links", o.allowOutsideLinks,
@@ -440,6 +442,7 @@ RenderSettings renderSettings(const CommonOptions& o) {
     s.shadowMapSize = o.shadowMapSize;
     s.shadows = !o.noShadows;
     s.msaaSamples = o.msaa;
+    s.depthPrepass = !o.noDepthPrepass;
     s.environmentLightSizes = o.envLightSize;
     s.background = parseBackground(o.background);
     return s;

@@ -75,6 +75,7 @@ struct CommonOptions {
     uint32_t shadowMapSize = 2048;
     bool noShadows = false;
     uint32_t msaa = 1;
+    bool noDepthPrepass = false;
     std::string luts;                // LUT set folder; default: the committed luts/ (d'Eon)
     ProfileChoice profile;           // render --profile: baked at start instead of a LUT folder
     bool allowOutsideLinks = false;  // SceneLoadOptions::allowLinksOutsideFolder

@@ -160,6 +160,9 @@ struct RenderSettings {
     // into the target by averaging. Shading stays per pixel; alpha-mask materials use
     // alpha-to-coverage when this is above 1.
     uint32_t msaaSamples = 1;
+    // true: the forward pass draws the opaque meshes' depth first (their vertex stage alone), so
+    // that their shading runs only where they are seen; the image is the same either way.
+    bool depthPrepass = true;
     EyeDrawing eyeDrawing = EyeDrawing::Auto;
     // true: where a skin material's curvature is per vertex, what depends on curvature alone (the
     // SH transfer, the shadow lookup's lift, the transmittance the diffuse LUT already holds:

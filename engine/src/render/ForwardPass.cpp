@@ -180,6 +180,11 @@ VkPipeline Renderer::Impl::createForwardPipeline(const PipelineKey& key) const {
         desc.depthTest = desc.depthWrite = desc.alphaBlend = false;
         desc.viewMask = 0;  // one layer, no multiview
     }
+    if (key.depthOnly != 0u) {  // the depth prepass: the same vertex stage, no fragment stage, no colour
+        desc.fragmentSpirv = {};
+        desc.colorWriteMasks.assign(desc.colorFormats.size(), 0);
+        desc.alphaBlend = desc.alphaToCoverage = desc.alphaToOne = false;
+    }
     return vk::createGraphicsPipeline(dev, desc);
 }
 
@@ -352,16 +357,15 @@ void Renderer::Impl::recordForwardPass(VkCommandBuffer cmd, Slot& slot, uint32_t
         vkCmdDraw(cmd, 3, layered ? eyes : 1u, 0, 0);
         backgroundDrawn = true;
     };
-    for (const DrawItem* d : order) {
-        const GpuMaterial& m = scene->materials[d->material];
-        if (!backgroundDrawn && m.alphaMode == AlphaMode::Blend) drawBackground();
-        VkPipeline p = pipeline(pipelineKey(m, target.format, depthFormat, eyes));
+    auto draw = [&](const DrawItem* d, const PipelineKey& key) {
+        VkPipeline p = pipeline(key);
         if (p != bound) {
             vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, p);
             bound = p;
         }
         if (d->material != boundMaterial) {
-            vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, forwardLayout, 1, 1, &m.set, 0, nullptr);
+            vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, forwardLayout, 1, 1,
+                                    &scene->materials[d->material].set, 0, nullptr);
             boundMaterial = d->material;
         }
         const uint32_t layer = drawLayers.empty() ? 0u : drawLayers[size_t(d - scene->draws.data())];
@@ -370,6 +374,23 @@ void Renderer::Impl::recordForwardPass(VkCommandBuffer cmd, Slot& slot, uint32_t
                            sizeof(push), &push);
         const int32_t vertexOffset = bindDrawVertices(cmd, slotIndex, *d, boundVertices);
         vkCmdDrawIndexed(cmd, d->indexCount, layered ? eyes : 1u, d->firstIndex, vertexOffset, 0);
+    };
+    // The depth prepass: the opaque draws' depth first, so that the shading draws below run their
+    // fragment stage only where a surface is seen (the depth test, GREATER_OR_EQUAL, passes the
+    // equal depth; masked materials' depth depends on their texture's alpha, blended ones write
+    // none). The fragment stage is what the frame's time goes to, skin's most.
+    if (settings.depthPrepass)
+        for (const DrawItem* d : order) {
+            const GpuMaterial& m = scene->materials[d->material];
+            if (m.alphaMode != AlphaMode::Opaque) continue;
+            PipelineKey key = pipelineKey(m, target.format, depthFormat, eyes);
+            key.depthOnly = 1u;
+            draw(d, key);
+        }
+    for (const DrawItem* d : order) {
+        const GpuMaterial& m = scene->materials[d->material];
+        if (!backgroundDrawn && m.alphaMode == AlphaMode::Blend) drawBackground();
+        draw(d, pipelineKey(m, target.format, depthFormat, eyes));
     }
     if (!backgroundDrawn) drawBackground();
     vkCmdEndRendering(cmd);

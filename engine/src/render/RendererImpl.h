@@ -55,9 +55,10 @@ struct PipelineKey {
         samples, layered, profileMix, skinInputs, areaLights,
         split;  // a baseline's pass: kForwardPlain, kForwardSplit, kForwardTexture, kTextureIrradiance
     std::array<uint32_t, 32> lutMapping;  // skin: the material's own LutMapping, as bits (kSpecLutMapping)
+    uint32_t depthOnly = 0;
     auto tie() const {
         return std::tie(model, alphaMode, doubleSided, format, depthFormat, debugView, skinMask, lightLoop, specular,
-                        eyes, samples, layered, profileMix, skinInputs, areaLights, split, lutMapping);
+                        eyes, samples, layered, profileMix, skinInputs, areaLights, split, lutMapping, depthOnly);
     }
     bool operator<(const PipelineKey& o) const { return tie() < o.tie(); }
 };
