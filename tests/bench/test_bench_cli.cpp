@@ -91,6 +91,11 @@ TEST_F(BenchCli, WritesJsonAndPlot) {
         EXPECT_TRUE(techniques.at(t).at("wall").is_number()) << t;
         EXPECT_TRUE(techniques.at(t).at("cpu").is_number()) << t;
     }
+    // What the depth prepass saves each frame, both frames measured without it in the same rounds.
+    for (const char* frame : {"skin", "standard_material"})
+        for (const char* measure : {"wall", "cpu", "forward_gpu"})
+            EXPECT_TRUE(j.at("skin_techniques").at("depth_prepass_saves_ms").at(frame).at(measure).is_number())
+                << frame << " " << measure;
     // The tiers below high, measured in the same rounds: each lighter than the skin frame in CPU time.
     for (const char* tier : {"medium", "low"}) {
         const auto& row = j.at("skin_techniques").at("tiers").at(tier);
