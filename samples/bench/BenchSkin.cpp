@@ -121,18 +121,22 @@ void BenchRun::skinSection(const std::vector<uint32_t>& skinCounts) {
             writeMeasurement(j, measured[0]);
             j.key("standard_material");
             writeMeasurement(j, measured[1]);
+            // What `heavier` takes beyond `lighter`, in each measure.
+            auto writeDifference = [&](const char* key, const Measurement& heavier, const Measurement& lighter) {
+                j.key(key);
+                j.beginObject();
+                j.field("wall", heavier.wallMs() - lighter.wallMs());
+                j.field("cpu", heavier.cpuMs() - lighter.cpuMs());
+                j.field("forward_gpu", heavier.passMs("forward") - lighter.passMs("forward"));
+                j.endObject();
+            };
             j.key("cost_ms");
             j.beginObject();
             for (size_t i = 0; i < std::size(techniques); ++i) {
                 // What the technique adds to the frame it is in: for an addition, its frame less the default.
                 const Measurement& with = base.skin.*techniques[i].flag ? measured[0] : measured[2 + i];
                 const Measurement& without = base.skin.*techniques[i].flag ? measured[2 + i] : measured[0];
-                j.key(techniques[i].name);
-                j.beginObject();
-                j.field("wall", with.wallMs() - without.wallMs());
-                j.field("cpu", with.cpuMs() - without.cpuMs());
-                j.field("forward_gpu", with.passMs("forward") - without.passMs("forward"));
-                j.endObject();
+                writeDifference(techniques[i].name, with, without);
             }
             j.endObject();
             j.field("skin_over_standard", measured[0].wallMs() / measured[1].wallMs());
@@ -154,16 +158,8 @@ void BenchRun::skinSection(const std::vector<uint32_t>& skinCounts) {
             // What the depth prepass saves each frame: the frame without it less the frame with it.
             j.key("depth_prepass_saves_ms");
             j.beginObject();
-            for (size_t i = 0; i < 2; ++i) {
-                const Measurement& with = measured[i];
-                const Measurement& without = measured[noPrepass + i];
-                j.key(i == 0 ? "skin" : "standard_material");
-                j.beginObject();
-                j.field("wall", without.wallMs() - with.wallMs());
-                j.field("cpu", without.cpuMs() - with.cpuMs());
-                j.field("forward_gpu", without.passMs("forward") - with.passMs("forward"));
-                j.endObject();
-            }
+            writeDifference("skin", measured[noPrepass], measured[0]);
+            writeDifference("standard_material", measured[noPrepass + 1], measured[1]);
             j.endObject();
             j.endObject();
         }

@@ -188,6 +188,25 @@ VkPipeline Renderer::Impl::createForwardPipeline(const PipelineKey& key) const {
     return vk::createGraphicsPipeline(dev, desc);
 }
 
+// The depth prepass's pipeline for a draw of `shading`'s: what the pass's attachments, the eyes and
+// the sidedness need, and nothing of the material's shading, so every opaque material shares one.
+// The vertex stage is the standard material's: its position is the skin one's (the same precise
+// arithmetic of the same inputs), and it needs no normal basis.
+PipelineKey Renderer::Impl::depthPrepassKey(const PipelineKey& shading) const {
+    PipelineKey key{};
+    key.model = gpu::kModelStandard;
+    key.doubleSided = shading.doubleSided;
+    key.format = shading.format;
+    key.depthFormat = shading.depthFormat;
+    key.eyes = shading.eyes;
+    key.samples = shading.samples;
+    key.layered = shading.layered;
+    key.split = shading.split;
+    key.profileMix = 1u;  // as any standard material's
+    key.depthOnly = 1u;
+    return key;
+}
+
 PipelineKey Renderer::Impl::backgroundKey(VkFormat format, VkFormat depthFormat, uint32_t eyes) const {
     PipelineKey key{};
     key.model = gpu::kModelBackground;
@@ -357,6 +376,11 @@ void Renderer::Impl::recordForwardPass(VkCommandBuffer cmd, Slot& slot, uint32_t
         vkCmdDraw(cmd, 3, layered ? eyes : 1u, 0, 0);
         backgroundDrawn = true;
     };
+    // Each draw's pipeline key, found once for both of its draws.
+    std::vector<PipelineKey> keys;
+    keys.reserve(order.size());
+    for (const DrawItem* d : order)
+        keys.push_back(pipelineKey(scene->materials[d->material], target.format, depthFormat, eyes));
     auto draw = [&](const DrawItem* d, const PipelineKey& key) {
         VkPipeline p = pipeline(key);
         if (p != bound) {
@@ -380,17 +404,12 @@ void Renderer::Impl::recordForwardPass(VkCommandBuffer cmd, Slot& slot, uint32_t
     // equal depth; masked materials' depth depends on their texture's alpha, blended ones write
     // none). The fragment stage is what the frame's time goes to, skin's most.
     if (settings.depthPrepass)
-        for (const DrawItem* d : order) {
-            const GpuMaterial& m = scene->materials[d->material];
-            if (m.alphaMode != AlphaMode::Opaque) continue;
-            PipelineKey key = pipelineKey(m, target.format, depthFormat, eyes);
-            key.depthOnly = 1u;
-            draw(d, key);
-        }
-    for (const DrawItem* d : order) {
-        const GpuMaterial& m = scene->materials[d->material];
-        if (!backgroundDrawn && m.alphaMode == AlphaMode::Blend) drawBackground();
-        draw(d, pipelineKey(m, target.format, depthFormat, eyes));
+        for (size_t i = 0; i < order.size(); ++i)
+            if (scene->materials[order[i]->material].alphaMode == AlphaMode::Opaque)
+                draw(order[i], depthPrepassKey(keys[i]));
+    for (size_t i = 0; i < order.size(); ++i) {
+        if (!backgroundDrawn && scene->materials[order[i]->material].alphaMode == AlphaMode::Blend) drawBackground();
+        draw(order[i], keys[i]);
     }
     if (!backgroundDrawn) drawBackground();
     vkCmdEndRendering(cmd);

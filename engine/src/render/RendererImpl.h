@@ -218,6 +218,7 @@ struct Renderer::Impl {
     // The backdrop's key (background*.vert, background.frag) for a target, eye count, samples and
     // eye drawing: model kModelBackground.
     PipelineKey backgroundKey(VkFormat format, VkFormat depthFormat, uint32_t eyes) const;
+    PipelineKey depthPrepassKey(const PipelineKey& shading) const;
     VkPipeline createBackgroundPipeline(const PipelineKey& key) const;
 
     VkPipeline createShadowPipeline(bool masked) const;
