@@ -7,6 +7,10 @@ of the README ("Fidelity") hold beyond the bundled scenes:
   torus.gltf             a skin torus of tube radius 6 mm around a 10 mm ring radius: convex
                          outside, concave round the 4 mm hole (mean curvature -1/24 per mm on the
                          inner equator), casting shadows on itself, lit from the upper left;
+  rod_over_skin.gltf     a skin rod of radius 2 mm lying 1 mm over a skin floor, one mesh (a
+                         finger over a palm), lit 30 degrees above the horizon across it: its
+                         shadow on the floor begins under its terminator, 1.3 mm up (a curved
+                         nearby occluder, for the light its lit side sends into the shadow);
   head_low_left.gltf     the bundled head (its files copied) under a key light from the lower left
                          front instead of the upper right;
   head_below_behind.gltf the head under a key light from below and behind: the ears and nostrils
@@ -50,6 +54,37 @@ def torus(ring_radius, tube_radius, segments=128, sides=64):
     return positions, normals, uvs, indices
 
 
+def rod_over_floor(radius, gap, axis_x, half, sides=128, rows=64, cells=64):
+    """A rod along Z of `radius` whose underside lies `gap` over a floor (the XZ plane, facing +Y),
+    its axis at x = axis_x, both 2 half long and wide: one mesh, metres."""
+    positions, normals, uvs, indices = [], [], [], []
+    for j in range(cells + 1):  # the floor: counter-clockwise seen from +Y
+        for i in range(cells + 1):
+            positions += [-half + 2.0 * half * i / cells, 0.0, -half + 2.0 * half * j / cells]
+            normals += [0.0, 1.0, 0.0]
+            uvs += [i / cells, j / cells]
+    for j in range(cells):
+        for i in range(cells):
+            a = j * (cells + 1) + i
+            b = a + cells + 1
+            indices += [a, b, a + 1, a + 1, b, b + 1]
+    first = len(positions) // 3
+    for i in range(rows + 1):  # the rod: counter-clockwise seen from outside
+        z = -half + 2.0 * half * i / rows
+        for j in range(sides + 1):
+            v = 2.0 * math.pi * j / sides
+            n = (math.cos(v), math.sin(v), 0.0)
+            positions += [axis_x + radius * n[0], gap + radius + radius * n[1], z]
+            normals += n
+            uvs += [j / sides, i / rows]
+    for i in range(rows):
+        for j in range(sides):
+            a = first + i * (sides + 1) + j
+            b = a + sides + 1
+            indices += [a, a + 1, b, b, a + 1, b + 1]
+    return positions, normals, uvs, indices
+
+
 def copy_head(out):
     """Copies the bundled head's files into `out` and returns its glTF document (a dict)."""
     head_dir = os.path.join(ROOT, "samples", "assets", "head")
@@ -78,6 +113,11 @@ def main():
     # Tilted towards the camera (+Z) so the hole and the inner wall are in view.
     doc["nodes"][0]["rotation"] = [math.sin(0.5 * 0.9), 0.0, 0.0, math.cos(0.5 * 0.9)]
     make_spheres.write_document(os.path.join(out, "torus.gltf"), doc)
+
+    positions, normals, uvs, indices = rod_over_floor(0.002, 0.001, -0.004, 0.02)
+    make_spheres.write_document(os.path.join(out, "rod_over_skin.gltf"),
+                                make_spheres.scene_document("rod_over_skin", positions, normals, uvs, indices,
+                                                            (math.cos(math.radians(30.0)), -0.5, 0.0)))
 
     head = copy_head(out)
     for node in head["nodes"]:
