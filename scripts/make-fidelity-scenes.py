@@ -46,11 +46,7 @@ def torus(ring_radius, tube_radius, segments=128, sides=64):
             normals += n
             positions += [c[k] + tube_radius * n[k] for k in range(3)]
             uvs += [i / segments, j / sides]
-    for i in range(segments):
-        for j in range(sides):
-            a = i * (sides + 1) + j
-            b = a + sides + 1
-            indices += [a, a + 1, b, b, a + 1, b + 1]  # counter-clockwise seen from outside
+    indices = make_spheres.grid_indices(segments, sides, flip=True)  # counter-clockwise seen from outside
     return positions, normals, uvs, indices
 
 
@@ -63,11 +59,7 @@ def rod_over_floor(radius, gap, axis_x, half, sides=128, rows=64, cells=64):
             positions += [-half + 2.0 * half * i / cells, 0.0, -half + 2.0 * half * j / cells]
             normals += [0.0, 1.0, 0.0]
             uvs += [i / cells, j / cells]
-    for j in range(cells):
-        for i in range(cells):
-            a = j * (cells + 1) + i
-            b = a + cells + 1
-            indices += [a, b, a + 1, a + 1, b, b + 1]
+    indices = make_spheres.grid_indices(cells, cells)
     first = len(positions) // 3
     for i in range(rows + 1):  # the rod: counter-clockwise seen from outside
         z = -half + 2.0 * half * i / rows
@@ -77,11 +69,7 @@ def rod_over_floor(radius, gap, axis_x, half, sides=128, rows=64, cells=64):
             positions += [axis_x + radius * n[0], gap + radius + radius * n[1], z]
             normals += n
             uvs += [j / sides, i / rows]
-    for i in range(rows):
-        for j in range(sides):
-            a = first + i * (sides + 1) + j
-            b = a + sides + 1
-            indices += [a, a + 1, b, b, a + 1, b + 1]
+    indices += make_spheres.grid_indices(rows, sides, first, flip=True)
     return positions, normals, uvs, indices
 
 

@@ -17,6 +17,19 @@ HERE = os.path.dirname(os.path.abspath(__file__))
 SEGMENTS, RINGS = 64, 32
 
 
+def grid_indices(rows, columns, first=0, flip=False):
+    """Two triangles per cell of a (rows + 1) x (columns + 1) vertex grid, row-major from vertex
+    `first`: counter-clockwise when a row's next vertex and the next row's span the outside
+    (`flip` reverses the winding)."""
+    indices = []
+    for r in range(rows):
+        for s in range(columns):
+            a = first + r * (columns + 1) + s
+            b = a + columns + 1
+            indices += [a, a + 1, b, b, a + 1, b + 1] if flip else [a, b, a + 1, a + 1, b, b + 1]
+    return indices
+
+
 def sphere(radius):
     positions, normals, uvs, indices = [], [], [], []
     for r in range(RINGS + 1):
@@ -27,11 +40,7 @@ def sphere(radius):
             normals += n
             positions += [c * radius for c in n]
             uvs += [s / SEGMENTS, r / RINGS]
-    for r in range(RINGS):
-        for s in range(SEGMENTS):
-            a = r * (SEGMENTS + 1) + s
-            b = a + SEGMENTS + 1
-            indices += [a, b, a + 1, a + 1, b, b + 1]  # counter-clockwise seen from outside
+    indices = grid_indices(RINGS, SEGMENTS)  # counter-clockwise seen from outside
     return positions, normals, uvs, indices
 
 
