@@ -292,6 +292,13 @@ void main() {
         NoV = max(dot(N, V), 1e-4);
         skin.scatterScale = material.skinScatter.x;
         skin.curvaturePerMm = skinCurvaturePerMm;
+        // The principal curvatures about the mean, for each light's row (uniform control flow here).
+        skin.curvatureAxis = vec3(0.0);
+        skin.curvatureSpreadPerMm = 0.0;
+        if ((features & kSkinLightCurvature) != 0u)
+            preskinSkinCurvatureSpread(geometricN, skinCurvaturePerMm, skin.scatterScale, dFdx(inPositionWs),
+                                       dFdy(inPositionWs), dFdx(geometricN), dFdy(geometricN), skin.curvatureAxis,
+                                       skin.curvatureSpreadPerMm);
         skin.roughness = roughness;
         // The specular map, or its copy in an opaque base colour's unused alpha (one read fewer;
         // the material's alpha factor is then 1, GpuScene::uniformsFor).

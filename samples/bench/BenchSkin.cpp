@@ -82,7 +82,8 @@ void BenchRun::skinSection(const std::vector<uint32_t>& skinCounts) {
                                             {"wide_penumbra", &SkinFeatures::widePenumbra},
                                             {"lut_shadow_light", &SkinFeatures::lutShadowLight},
                                             {"full_shadow_filter", &SkinFeatures::fullShadowFilter},
-                                            {"lut_other_lights", &SkinFeatures::lutOtherLights}};
+                                            {"lut_other_lights", &SkinFeatures::lutOtherLights},
+                                            {"light_curvature", &SkinFeatures::lightCurvature}};
             std::vector<Config> configs{{&renderer, base, fmt::format("{} lights, skin", n), 0.0},
                                         {&standardRenderer, base, fmt::format("{} lights, standard material", n), 0.0}};
             for (const Technique& t : techniques) {

@@ -130,6 +130,8 @@ void addSkinTechniqueOptions(CLI::App& cmd, CommonOptions& o) {
                  "Skin: the shadow light gets the diffuse LUT's row as a smoothed ramp, as the other lights do");
     cmd.add_flag("--lut-other-lights", o.lutOtherLights,
                  "Skin: the lights besides the shadow light read the diffuse LUT too (high and medium tiers)");
+    cmd.add_flag("--no-light-curvature", o.noLightCurvature,
+                 "Skin: every light's diffuse LUT row at the mean curvature (not the curvature along the light)");
     cmd.add_flag("--no-normal-prefilter", o.noNormalPrefilter,
                  "Skin: one normal for all channels (no per-channel geometric normals or normal-map levels)");
     cmd.add_flag("--no-full-shadow-filter", o.noFullShadowFilter,
@@ -399,6 +401,7 @@ RenderSettings renderSettings(const CommonOptions& o) {
     s.skin.widePenumbra = !o.noWidePenumbra;
     s.skin.lutShadowLight = !o.noLutShadowLight;
     s.skin.lutOtherLights = o.lutOtherLights;
+    s.skin.lightCurvature = !o.noLightCurvature;
     s.skin.fullShadowFilter = !o.noFullShadowFilter;
     if (!o.skinQuality.empty())
         s.skinQuality = o.skinQuality == "low" ? SkinQuality::Low

@@ -52,6 +52,7 @@ struct CommonOptions {
     bool noOpposingLight = false;
     bool noNormalMapLevels = false;
     bool noLutShadowLight = false;
+    bool noLightCurvature = false;
     bool lutOtherLights = false;
     bool noFullShadowFilter = false;
     bool noWidePenumbra = false;

@@ -61,6 +61,9 @@ void main() {
     s.geometricNormal = geometricN;
     s.scatterScale = frame.skin.x;
     s.curvaturePerMm = preskinCurvatureProfilePerMm(inCurvaturePerM, s.scatterScale);
+    // The principal curvatures about the mean (each light's diffuse LUT row; uniform control flow).
+    preskinSkinCurvatureSpread(geometricN, s.curvaturePerMm, s.scatterScale, dFdx(inPositionWs), dFdy(inPositionWs),
+                               dFdx(geometricN), dFdy(geometricN), s.curvatureAxis, s.curvatureSpreadPerMm);
     s.roughness = frame.skin.y;
     s.F0 = preskinSkinF0(frame.skin.z, texture(specularMap, inUv0).r);
     s.specularWeight = 1.0;
@@ -78,9 +81,11 @@ void main() {
         PreskinLightSample l = preskinLightSample(frame.lights[i], inPositionWs, s.normalSpecular, R);
         vec3 shadowRgb = vec3(1.0);
         float visibility = 1.0;
-        uint features = kFeatures;  // the shadow light's: preskinShadowLightFeatures (its diffuse LUT)
-        if (frame.lightCount.z != 0u && i == frame.lightCount.y) {
-            features = preskinShadowLightFeatures(kFeatures);
+        // The shadow light's features (preskinShadowLightFeatures: its diffuse LUT where the tier reads
+        // it); without a shadow map no light is told apart, and every light gets them.
+        bool shadowLight = frame.lightCount.z != 0u && i == frame.lightCount.y;
+        uint features = shadowLight || frame.lightCount.z == 0u ? preskinShadowLightFeatures(kFeatures) : kFeatures;
+        if (shadowLight) {
             // The shadow map read above the local patch near the terminator (its self-shadowing is
             // the diffuse LUT's), then per channel through the penumbra LUT.
             vec3 L = l.L;

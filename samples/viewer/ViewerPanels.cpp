@@ -255,6 +255,8 @@ void Viewer::panelTechniques() {
     tooltip("Off: the shadow light gets the LUT's row as a smoothed ramp");
     ImGui::Checkbox("Diffuse LUT for the other lights", &f.lutOtherLights);
     tooltip("On: every light reads the LUT (three fetches per light); off: the row's smoothed ramp");
+    ImGui::Checkbox("Diffuse LUT row along each light", &f.lightCurvature);
+    tooltip("Off: every light reads the mean curvature's row");
     ImGui::Checkbox("Shadow filter over 8 x 8 texels", &f.fullShadowFilter);
     tooltip("Off: 6 x 6 texels (9 gathers instead of 16)");
     ImGui::Checkbox("Wide penumbra (wide shadow map)", &f.widePenumbra);

@@ -64,6 +64,8 @@ struct PreskinSkinSurface {
     vec3 normalSpecular;     // unbiased normal for specular
     vec3 geometricNormal;    // interpolated vertex normal, facing the viewer
     float curvaturePerMm;    // signed mean curvature in profile units (world 1/mm / scatter scale), < 0 concave
+    vec3 curvatureAxis;      // with kSkinLightCurvature: the tangent of the larger principal curvature and half
+    float curvatureSpreadPerMm;  // the principal curvatures' difference, profile 1/mm (preskinSkinCurvatureSpread; 0: the mean's row)
     float scatterScale;      // profile mm per world mm
     float roughness;         // perceptual
     vec3 F0;                 // 0.028 * intensity * specular map for skin
@@ -136,12 +138,39 @@ vec3 preskinDiffuseRowFit(vec3 NoL, PreskinDiffuseFit fit) {
     return fit.scale * (0.5 * (NoL + sqrt(NoL * NoL + fit.width * fit.width)));
 }
 
-// The fragment's diffuse row at NoL per channel: the LUT, or without kSkinLutOtherLights its fit.
-// The per-light functions below test that bit; the shadow light is shaded with
-// preskinShadowLightFeatures(features), which sets it from kSkinLutShadowLight.
-vec3 preskinSkinDiffuseRow(PreskinSkinLighting k, PreskinProfileMix m, sampler2DArray diffuseLut, vec3 NoL, uint features) {
+// The curvature (profile 1/mm) of the diffuse LUT's row for light L (kSkinLightCurvature). The
+// LUT integrates the profile over the sphere of the mean curvature H. Over a cylinder lit across
+// its axis (d'Eon's red profile integrated numerically at radii 2 to 16 mm, docs/fidelity.md) the
+// sphere that matches is the one of the normal curvature along the light's tangent direction,
+// k_L, at N.L <= 0.2 (at the terminator the falloff runs along L), and nearly the mean's on the lit
+// side (N.L >= 0.6, where the direction across L counts as much): the row is read at
+// H + w (k_L - H), w = 1 there, 0.2 here, k_L - H = spread cos(2 theta), theta the angle of L's
+// tangent direction from the axis (preskinSkinCurvatureSpread). Concave skin and a zero spread keep H.
+float preskinSkinLightCurvaturePerMm(PreskinSkinSurface s, vec3 L) {
+    float c = dot(s.geometricNormal, L);
+    float t = dot(s.curvatureAxis, L);
+    float tangent2 = 1.0 - c * c;  // |L's tangent part|^2; below 1e-3 (L along N) the anisotropic part fades out
+    float cos2Theta = clamp((2.0 * t * t - tangent2) / max(tangent2, 1e-3), -1.0, 1.0);
+    float w = mix(1.0, 0.2, smoothstep(0.2, 0.6, c));
+    return max(s.curvaturePerMm + w * s.curvatureSpreadPerMm * cos2Theta, min(s.curvaturePerMm, 0.0));
+}
+
+// The diffuse LUT's rows for light L: at the curvature along it (kSkinLightCurvature), or the
+// fragment's rows at its mean curvature.
+PreskinDiffuseRows preskinSkinLightRows(PreskinSkinSurface s, PreskinSkinLighting k, PreskinProfileMix m,
+                                        sampler2DArray diffuseLut, vec3 L, uint features) {
+    if ((features & kSkinLightCurvature) == 0u) return k.diffuseRows;
+    return preskinDiffuseRows(m, diffuseLut, preskinSkinLightCurvaturePerMm(s, L));
+}
+
+// The diffuse row at NoL per channel: the LUT's `rows` (preskinSkinLightRows), or without
+// kSkinLutOtherLights the fragment's row's fit. The per-light functions below test that bit; the
+// shadow light is shaded with preskinShadowLightFeatures(features), which sets it from
+// kSkinLutShadowLight.
+vec3 preskinSkinDiffuseRow(PreskinSkinLighting k, PreskinDiffuseRows rows, PreskinProfileMix m,
+                           sampler2DArray diffuseLut, vec3 NoL, uint features) {
     if ((features & kSkinLutOtherLights) == 0u) return preskinDiffuseRowFit(NoL, k.rowFit);
-    return preskinDiffuseLut(m, k.diffuseRows, diffuseLut, NoL);
+    return preskinDiffuseLut(m, rows, diffuseLut, NoL);
 }
 
 // Diffuse response per channel for one light direction (replaces saturate(NoL)).
@@ -149,7 +178,9 @@ vec3 preskinSkinDiffuseResponse(PreskinSkinSurface s, PreskinSkinLighting k, Pre
                                 sampler2DArray diffuseLut, vec3 L, uint features) {
     vec3 NoL = vec3(dot(s.normalR, L), dot(s.normalG, L), dot(s.normalB, L));
     if ((features & kSkinLutDiffuse) == 0u) return clamp(NoL, 0.0, 1.0);
-    return preskinSkinDiffuseRow(k, m, diffuseLut, NoL, features);  // without prefiltering the three are equal
+    if ((features & kSkinLutOtherLights) == 0u) return preskinDiffuseRowFit(NoL, k.rowFit);
+    // without prefiltering the three are equal
+    return preskinDiffuseLut(m, preskinSkinLightRows(s, k, m, diffuseLut, L, features), diffuseLut, NoL);
 }
 
 // The same for a light with a size, the cap of directions of `l` (preskin/light_sample.glsl):
@@ -165,6 +196,8 @@ vec3 preskinSkinDiffuseResponse(PreskinSkinSurface s, PreskinSkinLighting k, Pre
     if ((features & kSkinLutDiffuse) == 0u)
         return vec3(preskinCapLambert(NoL.r, l.cosSigma, l.sinSigma), preskinCapLambert(NoL.g, l.cosSigma, l.sinSigma),
                     preskinCapLambert(NoL.b, l.cosSigma, l.sinSigma)) + l.lambertCorrection;
+    PreskinDiffuseRows rows = k.diffuseRows;
+    if ((features & kSkinLutOtherLights) != 0u) rows = preskinSkinLightRows(s, k, m, diffuseLut, l.L, features);
     vec4 cR, wR, cG, wG, cB, wB;
     preskinCapNodes(NoL.r, l.cosSigma, l.sinSigma, cR, wR);
     preskinCapNodes(NoL.g, l.cosSigma, l.sinSigma, cG, wG);
@@ -175,7 +208,7 @@ vec3 preskinSkinDiffuseResponse(PreskinSkinSurface s, PreskinSkinLighting k, Pre
                     preskinCapLambert(NoL.b, l.cosSigma, l.sinSigma)) + l.lambertCorrection;
     for (int i = 0; i < 4; ++i) {
         vec3 c = vec3(cR[i], cG[i], cB[i]);
-        sum += vec3(wR[i], wG[i], wB[i]) * (preskinSkinDiffuseRow(k, m, diffuseLut, c, features) - max(c, vec3(0.0)));
+        sum += vec3(wR[i], wG[i], wB[i]) * (preskinSkinDiffuseRow(k, rows, m, diffuseLut, c, features) - max(c, vec3(0.0)));
     }
     return max(sum, vec3(0.0));
 }
@@ -332,10 +365,13 @@ vec3 preskinSkinShadow(PreskinProfileMix m, sampler2DArray penumbraLut, float vi
 // terminator, so nothing changes there but the per-channel normals' own), so that the share is
 // continuous in the curvature. Occluders within ownMm are the receiver's own, beyond twice that
 // another surface's (a nose, a lid over the eye, a crease's far wall), with a smooth step
-// between. Without the diffuse LUT (kSkinLutDiffuse off), or where the filter found no occluder, 1.
+// between. Occluding texels no nearer the light than the receiver (blockerDistanceM 0 with the
+// visibility below 1) are its own surface, below the receiver plane the map extrapolates where
+// the surface turns along the light (the inner rim of a torus lit along its axis): 0. Without the
+// diffuse LUT (kSkinLutDiffuse off), or where the filter found no occluder, 1.
 float preskinCastShadowShare(PreskinSkinSurface s, PreskinProfileMix m, PreskinShadowSample shadow, vec3 L,
                              uint features) {
-    if ((features & kSkinLutDiffuse) == 0u || shadow.blockerDistanceM <= 0.0) return 1.0;
+    if ((features & kSkinLutDiffuse) == 0u || (shadow.blockerDistanceM <= 0.0 && shadow.visibility >= 1.0)) return 1.0;
     float c = dot(s.geometricNormal, L);
     float toMm = 1000.0 * s.scatterScale;
     float ownMm = max(shadow.kernelWidthM * toMm, 1e-6);

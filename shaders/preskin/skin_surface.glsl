@@ -131,6 +131,37 @@ float preskinSkinCurvaturePerM(uint source, float vertexCurvaturePerM, sampler2D
     return vertexCurvaturePerM;
 }
 
+// The surface's principal curvatures about their mean, from the interpolated normal's screen
+// derivatives (dN = S dP over the pixel's steps dPx, dPy and the normal's dNx, dNy; call them in
+// uniform control flow): the unit tangent `axis` of the larger normal curvature and half the two
+// curvatures' difference, in profile 1/mm (world 1/mm / scatterScale), >= 0. A light's diffuse
+// LUT row (preskinSkinLightCurvaturePerMm of preskin/skin.glsl) reads the curvature along it from
+// these; 0 (no derivatives, or concave skin, curvaturePerMm <= 0, whose rows keep the mean) gives
+// every light the mean curvature's row.
+void preskinSkinCurvatureSpread(vec3 N, float curvaturePerMm, float scatterScale, vec3 dPx, vec3 dPy, vec3 dNx,
+                                vec3 dNy, out vec3 axis, out float spreadPerMm) {
+    vec3 e1 = dPx - dot(dPx, N) * N;
+    float l1 = length(e1);
+    axis = vec3(0.0);
+    spreadPerMm = 0.0;
+    if (curvaturePerMm <= 0.0 || l1 <= 0.0) return;
+    e1 /= l1;
+    vec3 e2 = cross(N, e1);
+    mat2 P = mat2(dot(dPx, e1), dot(dPx, e2), dot(dPy, e1), dot(dPy, e2));
+    float det = determinant(P);
+    if (!(abs(det) > 1e-20)) return;
+    mat2 S = mat2(dot(dNx, e1), dot(dNx, e2), dot(dNy, e1), dot(dNy, e2)) * inverse(P);
+    // S's symmetric part less its mean: [[p, q], [q, -p]], eigenvalues +-sqrt(p^2 + q^2).
+    float p = 0.5 * (S[0][0] - S[1][1]);
+    float q = 0.5 * (S[1][0] + S[0][1]);
+    float spread = sqrt(p * p + q * q);
+    if (!(spread > 0.0)) return;
+    // The eigenvector of +spread: (p + spread, q), or (0, 1) where p = -spread.
+    vec2 v = p >= 0.0 ? vec2(p + spread, q) : vec2(q, spread - p);
+    axis = normalize(v.x * e1 + v.y * e2);
+    spreadPerMm = min(spread * 0.001 / max(scatterScale, 1e-6), 1e4);
+}
+
 // Skin's specular reflectance at normal incidence.
 vec3 preskinSkinF0(float specularIntensity, float specularMap) { return vec3(kSkinF0 * specularIntensity * specularMap); }
 

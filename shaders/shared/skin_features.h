@@ -38,7 +38,13 @@ PRESKIN_CONST(uint, kSkinFullShadowFilter, 1024u)
 // With kSkinLutDiffuse: the diffuse LUT read for the shadow light (without it, the row's fit),
 // where the terminator and the penumbra the shadow map draws are.
 PRESKIN_CONST(uint, kSkinLutShadowLight, 2048u)
-PRESKIN_CONST(uint, kSkinAll, 4095u)
+// With kSkinLutDiffuse: each light's diffuse LUT row read at convex skin's curvature along that
+// light near the terminator (preskinSkinLightCurvaturePerMm of preskin/skin.glsl; the principal
+// curvatures from the normal's screen derivatives) instead of at the mean curvature: a cylinder,
+// an ear's rim, a nose's bridge lit across them scatter past the terminator as a sphere of their
+// curvature across, not of half of it. ALU per light that reads the table, no fetch.
+PRESKIN_CONST(uint, kSkinLightCurvature, 4096u)
+PRESKIN_CONST(uint, kSkinAll, 8191u)
 
 // Quality tiers (SkinQuality, `--skin-quality`, PRESKIN_SKIN_QUALITY in a host shader): the
 // techniques each compiles in, chosen by what each costs and buys in docs/skin-cost-table.md
@@ -56,8 +62,8 @@ PRESKIN_CONST(uint, kSkinAll, 4095u)
 // filtering the shadow map over 6 x 6 texels instead of 8 x 8 (4 % of the low frame; 0.02 of
 // Lambert's error, near cast-shadow edges).
 PRESKIN_CONST(uint, kSkinQualityLow, 79u)       // kSkinLutDiffuse | kSkinNormalPrefilter | kSkinPenumbra | kSkinShAmbient | kSkinOpposingLight
-PRESKIN_CONST(uint, kSkinQualityMedium, 3535u)  // Low | kSkinNormalMapLevels | kSkinWidePenumbra | kSkinFullShadowFilter | kSkinLutShadowLight
-PRESKIN_CONST(uint, kSkinQualityHigh, 3583u)    // Medium | kSkinTransmission | kSkinDualSpecular (kSkinAll but kSkinLutOtherLights)
+PRESKIN_CONST(uint, kSkinQualityMedium, 7631u)  // Low | kSkinNormalMapLevels | kSkinWidePenumbra | kSkinFullShadowFilter | kSkinLutShadowLight | kSkinLightCurvature
+PRESKIN_CONST(uint, kSkinQualityHigh, 7679u)    // Medium | kSkinTransmission | kSkinDualSpecular (kSkinAll but kSkinLutOtherLights)
 
 PRESKIN_GPU_END
 

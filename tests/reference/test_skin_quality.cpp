@@ -54,6 +54,9 @@ TEST(SkinQuality, TiersCompileInTheirTechniques) {
     EXPECT_FALSE(low.lutShadowLight);
     EXPECT_TRUE(medium.lutShadowLight);
     EXPECT_FALSE(high.lutOtherLights);
+    // The rows along each light where some light reads the table (medium and high).
+    EXPECT_FALSE(low.lightCurvature);
+    EXPECT_TRUE(medium.lightCurvature);
     // Low filters the shadow map over 6 x 6 texels.
     EXPECT_FALSE(low.fullShadowFilter);
     EXPECT_TRUE(medium.fullShadowFilter);

@@ -62,10 +62,16 @@ struct SkinFeatures {
     // default: the fit is what those lights get in every tier. A frame without a shadow map has
     // no shadow light: there every light reads the table where the shadow light would.
     bool lutOtherLights = false;
+    // With lutDiffuse: each light that reads the diffuse LUT reads the row of convex skin's
+    // curvature along that light near the terminator (from the principal curvatures of the
+    // normal's screen derivatives) instead of the mean curvature's: a cylinder, an ear's rim, a
+    // nose's bridge lit across them scatter past the terminator as a sphere of their curvature
+    // across. ALU per such light, no fetch.
+    bool lightCurvature = true;
 
     // Every technique off: the standard shading, with the standard material's 8 x 8 shadow filter.
     static SkinFeatures none() {
-        return {false, false, false, false, false, false, false, false, false, false, true, false};
+        return {false, false, false, false, false, false, false, false, false, false, true, false, false};
     }
     PRESKIN_API uint32_t mask() const;
     bool operator==(const SkinFeatures&) const = default;

@@ -98,6 +98,7 @@ SkinFeatures skinQualityFeatures(SkinQuality quality) {
     f.widePenumbra = (m & gpu::kSkinWidePenumbra) != 0u;
     f.lutShadowLight = (m & gpu::kSkinLutShadowLight) != 0u;
     f.fullShadowFilter = (m & gpu::kSkinFullShadowFilter) != 0u;
+    f.lightCurvature = (m & gpu::kSkinLightCurvature) != 0u;
     return f;
 }
 
@@ -107,7 +108,8 @@ uint32_t SkinFeatures::mask() const {
         (transmission ? gpu::kSkinTransmission : 0u) | (dualSpecular ? gpu::kSkinDualSpecular : 0u) |
         (opposingLight ? gpu::kSkinOpposingLight : 0u) | (normalMapLevels ? gpu::kSkinNormalMapLevels : 0u) |
         (widePenumbra ? gpu::kSkinWidePenumbra : 0u) | (lutShadowLight ? gpu::kSkinLutShadowLight : 0u) |
-        (fullShadowFilter ? gpu::kSkinFullShadowFilter : 0u) | (lutOtherLights ? gpu::kSkinLutOtherLights : 0u);
+        (fullShadowFilter ? gpu::kSkinFullShadowFilter : 0u) | (lutOtherLights ? gpu::kSkinLutOtherLights : 0u) |
+        (lightCurvature ? gpu::kSkinLightCurvature : 0u);
 }
 
 Renderer::Impl::Impl(Context& ctx, const Scene& s, const Environment& env, const std::vector<const LutSet*>& lutLayers,
