@@ -78,6 +78,7 @@ configs=(
   "wide_penumbra|--no-wide-penumbra"
   "lut_shadow_light|--no-lut-shadow-light"
   "lut_other_lights|--lut-other-lights"
+  "light_curvature|--no-light-curvature"
   "full_shadow_filter|--no-full-shadow-filter"
   "sh_ambient|--no-sh-skin"
   "transmission|--no-transmission"
@@ -129,6 +130,7 @@ if [ -n "${REFERENCES:-}" ]; then
   for c in "lut_diffuse|--no-lut-diffuse" "normal_prefilter|--no-normal-prefilter" "penumbra|--no-penumbra" "wide_penumbra|--no-wide-penumbra" \
            "sh_ambient|--no-sh-skin" "transmission|--no-transmission" "opposing_light|--no-opposing-light" \
            "lut_shadow_light|--no-lut-shadow-light" "lut_other_lights|--lut-other-lights" \
+           "light_curvature|--no-light-curvature" \
            "full_shadow_filter|--no-full-shadow-filter" \
            "quality_medium|--skin-quality medium" "quality_low|--skin-quality low"; do
     name="${c%%|*}" flags="${c#*|}"
@@ -218,6 +220,7 @@ labels = {"lut_diffuse": "diffuse LUT fetches (per light, per channel)",
           "penumbra": "penumbra LUT", "wide_penumbra": "the wide shadow map (of the penumbra's)",
           "lut_shadow_light": "the diffuse LUT for the shadow light (of the LUT's; without it the row's fit)",
           "lut_other_lights": "added: the diffuse LUT for the other lights too (`--lut-other-lights`; in no tier)",
+          "light_curvature": "the diffuse LUT's row along each light (of the LUT's; without it the mean curvature's)",
           "full_shadow_filter": "the shadow filter's 8 x 8 footprint (against 6 x 6)", "sh_ambient": "SH transfer", "transmission": "thickness and transmission",
           "opposing_light": "the opposing neighbours' light", "dual_specular": "dual specular",
           "specular_ibl": "specular IBL (prefiltered environment)"}
