@@ -8,7 +8,10 @@
 //    LUT's concave half, where the local patch shadows itself and no light passes the terminator;
 //    the lights other than the shadow light read the table with kSkinLutOtherLights, the shadow
 //    light with kSkinLutShadowLight; a light without it gets the fragment's row as a smoothed ramp
-//    (preskinDiffuseRowFit), fitted once per vertex or per fragment;
+//    (preskinDiffuseRowFit), fitted once per vertex or per fragment; with kSkinLightCurvature a
+//    light that reads the table reads the row of convex skin's curvature along it near the
+//    terminator (preskinSkinLightCurvaturePerMm: a cylinder lit across falls off as the sphere of
+//    its curvature across);
 //  - self-shadowing apart from cast shadows: the shadow map is looked up above the local patch
 //    near the terminator (preskinSkinShadowPosition), so it does not remove the light the diffuse
 //    LUT scatters past the terminator;
@@ -40,10 +43,11 @@
 // preskin/sh.glsl, preskin/shadow.glsl and preskin/skin_surface.glsl (building the surface from
 // a host's textures); needs the four LUT array samplers and the fragment's profile mix
 // (PreskinProfileMix of preskin/lut.glsl; preskinSingleProfile for one profile; see README, "Embedding").
-// Limits: curvature and thickness are scalar per fragment; transmission only for the light that
-// owns the shadow map; the diffuse LUT assumes locally spherical geometry of the mean curvature
-// (a cylinder reads as a sphere of twice its radius); the concave patch's extent is a model
-// constant (LutSet::localPatchMm).
+// Limits: thickness is scalar per fragment; transmission only for the light that
+// owns the shadow map; the diffuse LUT assumes locally spherical geometry (of the mean curvature,
+// or near the terminator of the curvature along the light, from the interpolated normal's screen
+// derivatives: constant over a triangle, aliased where triangles are smaller than a pixel quad; the
+// row fit of the lights without the table keeps the mean's); the concave patch's extent is a model constant (LutSet::localPatchMm).
 #ifndef PRESKIN_SKIN_GLSL
 #define PRESKIN_SKIN_GLSL
 

@@ -4,13 +4,16 @@
 // scattering must leave the terminator band (geometric N.L within [-0.1, 0.2], found by tracing
 // the analytic surface through each pixel centre) as it is without it, within 1/255, and past
 // the terminator the sphere's own shadow must not take away the light the LUT scatters there
-// (the image with the shadow map as without it).
+// (the image with the shadow map as without it). On a cylinder lit across its axis the rows read
+// along the light must bring red in the band closer to the diffusion reference than the mean
+// curvature's rows.
 #include "support/GpuTest.h"
 #include "support/ImageCompare.h"
 #include "support/SkinTestSupport.h"
 #include "support/TestLights.h"
 #include "support/TestScenes.h"
 
+#include <preskin/DiffusionReference.h>
 #include <preskin/LutSet.h>
 #include <preskin/Renderer.h>
 
@@ -152,6 +155,71 @@ TEST_F(SkinTerminator, OwnShadowKeepsTheLightScatteredPastTheTerminator) {
     unshadowed.shadows = false;
     compareWhere("40 mm sphere", "shadow map on and off", render(scene, view, shadowed),
                  render(scene, view, unshadowed), sdf, -glm::normalize(glm::dvec3(travel)), view, -0.4, -0.02);
+}
+
+// A skin cylinder of radius 3 mm lit across its axis and seen from the front, the terminator
+// running along its middle: a sphere of its mean curvature (half its curvature across) holds
+// half the light the profile scatters past a cylinder's terminator, the sphere of its curvature
+// across nearly all of it (docs/fidelity.md). With each light's row at the curvature along it
+// (kSkinLightCurvature) red in the terminator band is closer to the diffusion reference than with
+// the mean curvature's row, and the whole cylinder no farther.
+TEST_F(SkinTerminator, RowAlongTheLightBringsACylindersTerminatorCloserToTheReference) {
+    const float radiusM = 0.003f, lengthM = 0.06f;
+    const uint32_t around = 96, along = 24;
+    Primitive cylinder;
+    for (uint32_t r = 0; r <= along; ++r)
+        for (uint32_t s = 0; s <= around; ++s) {
+            const float theta = 2.0f * 3.14159265358979f * float(s) / float(around);
+            Vertex v;
+            v.normalOs = glm::vec3(0.0f, std::sin(theta), std::cos(theta));
+            v.positionOs = glm::vec3((float(r) / float(along) - 0.5f) * lengthM, 0.0f, 0.0f) + radiusM * v.normalOs;
+            v.tangentOs = glm::vec4(1.0f, 0.0f, 0.0f, 1.0f);
+            v.uv0 = glm::vec2(float(s) / float(around), float(r) / float(along));
+            cylinder.vertices.push_back(v);
+            cylinder.boundsOs.extend(v.positionOs);
+        }
+    for (uint32_t r = 0; r < along; ++r)
+        for (uint32_t s = 0; s < around; ++s) {
+            const uint32_t a = r * (around + 1) + s, b = a + 1, c = a + around + 1, d = c + 1;
+            cylinder.indices.insert(cylinder.indices.end(), {a, d, b, a, c, d});  // counter-clockwise outside
+        }
+    const glm::vec3 travel(0.0f, -1.0f, 0.0f);
+    const Scene scene = litSurface(cylinder, travel);
+    const View view = orbitView(scene.worldBounds(), 0.0f, 0.0f, 0.025f, 1.0f);
+    auto render = [&](bool lightCurvature) {
+        RenderSettings settings;
+        settings.specular = false;
+        settings.skin.lightCurvature = lightCurvature;
+        Renderer renderer(context(), scene, Environment::constant(glm::vec3(0.0f)), &LutSet::loadDefault(), settings);
+        return renderer.render(view, kSize, kSize, OutputEncoding::LinearFloat);
+    };
+    const RenderedImage along_ = render(true), mean = render(false);
+    const DiffusionReference reference(scene, scene.lights, ShRgb{}, LutSet::loadDefault().profile());
+    const ReferenceImage truth = reference.render(view.eye(), kSize, kSize);
+    // Red's RMSE of each against the reference, in the band and over the whole cylinder.
+    double bandAlong = 0.0, bandMean = 0.0, allAlong = 0.0, allMean = 0.0;
+    size_t band = 0, all = 0;
+    for (size_t i = 0; i < truth.skin.size(); ++i) {
+        if (!truth.skin[i]) continue;
+        const double want = double(truth.rgba32f[4 * i]);
+        const double a = std::pow(double(along_.rgba32f[4 * i]) - want, 2.0);
+        const double m = std::pow(double(mean.rgba32f[4 * i]) - want, 2.0);
+        allAlong += a;
+        allMean += m;
+        ++all;
+        if (!truth.terminatorBand[i]) continue;
+        bandAlong += a;
+        bandMean += m;
+        ++band;
+    }
+    const double bandRatio = std::sqrt(bandAlong / bandMean), allRatio = std::sqrt(allAlong / allMean);
+    std::printf(
+        "[ terminator ] 6 mm cylinder lit across (%zu pixels, %zu in the band): red RMSE with the row along "
+        "the light / with the mean curvature's, band %.3f, whole %.3f\n",
+        all, band, bandRatio, allRatio);
+    EXPECT_GT(band, size_t(kSize) * 3);
+    EXPECT_LT(bandRatio, 0.8);
+    EXPECT_LE(allRatio, 1.0);
 }
 
 }  // namespace
