@@ -85,9 +85,9 @@ TEST_F(BenchCli, WritesJsonAndPlot) {
     EXPECT_GT(j.at("skin_vs_standard")[0].at("skin_over_standard_cpu").get<double>(), 0.0);
     EXPECT_GT(j.at("skin_vs_standard")[0].at("skin").at("cpu_ms").get<double>(), 0.0);
     const auto& techniques = j.at("skin_techniques").at("cost_ms");
-    for (const char* t :
-         {"lut_diffuse", "normal_prefilter", "penumbra", "sh_ambient", "transmission", "dual_specular",
-          "normal_map_levels", "wide_penumbra", "lut_shadow_light", "full_shadow_filter", "lut_other_lights"}) {
+    for (const char* t : {"lut_diffuse", "normal_prefilter", "penumbra", "sh_ambient", "transmission", "dual_specular",
+                          "normal_map_levels", "wide_penumbra", "lut_shadow_light", "full_shadow_filter",
+                          "lut_other_lights", "light_curvature"}) {
         EXPECT_TRUE(techniques.at(t).at("wall").is_number()) << t;
         EXPECT_TRUE(techniques.at(t).at("cpu").is_number()) << t;
     }

@@ -115,9 +115,9 @@ TEST(GpuKit, MovedKitRunsInAnEmptyEnvironmentAndReportsEveryFigure) {
     EXPECT_GT(numbers, 100u);
     // The figures the kit exists for, each one a goal with its measure.
     EXPECT_EQ(r["goals"].size(), 6u);
-    for (const char* technique :
-         {"lut_diffuse", "normal_prefilter", "penumbra", "sh_ambient", "transmission", "dual_specular",
-          "normal_map_levels", "wide_penumbra", "lut_shadow_light", "full_shadow_filter", "lut_other_lights"})
+    for (const char* technique : {"lut_diffuse", "normal_prefilter", "penumbra", "sh_ambient", "transmission",
+                                  "dual_specular", "normal_map_levels", "wide_penumbra", "lut_shadow_light",
+                                  "full_shadow_filter", "lut_other_lights", "light_curvature"})
         EXPECT_TRUE(r["head"]["technique_cost_forward_gpu_ms"].contains(technique)) << technique;
     for (const char* tier : {"high", "medium", "low"})
         EXPECT_GT(r["head"]["tier_over_standard"].value(tier, 0.0), 0.0) << tier;
