@@ -164,27 +164,8 @@ TEST_F(SkinTerminator, OwnShadowKeepsTheLightScatteredPastTheTerminator) {
 // (kSkinLightCurvature) red in the terminator band is closer to the diffusion reference than with
 // the mean curvature's row, and the whole cylinder no farther.
 TEST_F(SkinTerminator, RowAlongTheLightBringsACylindersTerminatorCloserToTheReference) {
-    const float radiusM = 0.003f, lengthM = 0.06f;
-    const uint32_t around = 96, along = 24;
-    Primitive cylinder;
-    for (uint32_t r = 0; r <= along; ++r)
-        for (uint32_t s = 0; s <= around; ++s) {
-            const float theta = 2.0f * 3.14159265358979f * float(s) / float(around);
-            Vertex v;
-            v.normalOs = glm::vec3(0.0f, std::sin(theta), std::cos(theta));
-            v.positionOs = glm::vec3((float(r) / float(along) - 0.5f) * lengthM, 0.0f, 0.0f) + radiusM * v.normalOs;
-            v.tangentOs = glm::vec4(1.0f, 0.0f, 0.0f, 1.0f);
-            v.uv0 = glm::vec2(float(s) / float(around), float(r) / float(along));
-            cylinder.vertices.push_back(v);
-            cylinder.boundsOs.extend(v.positionOs);
-        }
-    for (uint32_t r = 0; r < along; ++r)
-        for (uint32_t s = 0; s < around; ++s) {
-            const uint32_t a = r * (around + 1) + s, b = a + 1, c = a + around + 1, d = c + 1;
-            cylinder.indices.insert(cylinder.indices.end(), {a, d, b, a, c, d});  // counter-clockwise outside
-        }
     const glm::vec3 travel(0.0f, -1.0f, 0.0f);
-    const Scene scene = litSurface(cylinder, travel);
+    const Scene scene = litSurface(makeCylinder(0.003f, 0.06f, 96, 24), travel);
     const View view = orbitView(scene.worldBounds(), 0.0f, 0.0f, 0.025f, 1.0f);
     auto render = [&](bool lightCurvature) {
         RenderSettings settings;

@@ -64,6 +64,24 @@ Primitive makeTorus(float majorM, float minorM, uint32_t segments, uint32_t ring
     return p;
 }
 
+Primitive makeCylinder(float radiusM, float lengthM, uint32_t around, uint32_t along) {
+    Primitive p;
+    const float pi = 3.14159265358979f;
+    for (uint32_t r = 0; r <= along; ++r)
+        for (uint32_t s = 0; s <= around; ++s) {
+            const float theta = 2.0f * pi * float(s) / float(around);
+            Vertex v;
+            v.normalOs = glm::vec3(0.0f, std::sin(theta), std::cos(theta));
+            v.positionOs = glm::vec3((float(r) / float(along) - 0.5f) * lengthM, 0.0f, 0.0f) + radiusM * v.normalOs;
+            v.tangentOs = glm::vec4(1.0f, 0.0f, 0.0f, 1.0f);
+            v.uv0 = glm::vec2(float(s) / float(around), float(r) / float(along));
+            p.vertices.push_back(v);
+            p.boundsOs.extend(v.positionOs);
+        }
+    appendGridTriangles(p, along, around, false);  // counter-clockwise seen from outside
+    return p;
+}
+
 Primitive makeQuad(float sizeM, uint32_t n) {
     Primitive p;
     for (uint32_t y = 0; y <= n; ++y)

@@ -9,6 +9,9 @@ namespace preskin::test {
 Primitive makeSphere(float radiusM, uint32_t segments, uint32_t rings);
 // A torus about the y axis: the tube of radius minorM around the circle of radius majorM.
 Primitive makeTorus(float majorM, float minorM, uint32_t segments, uint32_t rings);
+// An open tube along the x axis, centred at the origin, lengthM long (around: quads about the
+// axis, along: quads along it), normals outwards.
+Primitive makeCylinder(float radiusM, float lengthM, uint32_t around, uint32_t along);
 // Square in the XY plane facing +Z, centred at the origin, subdivided n x n.
 Primitive makeQuad(float sizeM, uint32_t n);
 // Axis-aligned box centred at the origin with outward faces.
