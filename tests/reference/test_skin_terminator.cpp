@@ -174,7 +174,7 @@ TEST_F(SkinTerminator, RowAlongTheLightBringsACylindersTerminatorCloserToTheRefe
         Renderer renderer(context(), scene, Environment::constant(glm::vec3(0.0f)), &LutSet::loadDefault(), settings);
         return renderer.render(view, kSize, kSize, OutputEncoding::LinearFloat);
     };
-    const RenderedImage along_ = render(true), mean = render(false);
+    const RenderedImage alongLight = render(true), mean = render(false);
     const DiffusionReference reference(scene, scene.lights, ShRgb{}, LutSet::loadDefault().profile());
     const ReferenceImage truth = reference.render(view.eye(), kSize, kSize);
     // Red's RMSE of each against the reference, in the band and over the whole cylinder.
@@ -183,7 +183,7 @@ TEST_F(SkinTerminator, RowAlongTheLightBringsACylindersTerminatorCloserToTheRefe
     for (size_t i = 0; i < truth.skin.size(); ++i) {
         if (!truth.skin[i]) continue;
         const double want = double(truth.rgba32f[4 * i]);
-        const double a = std::pow(double(along_.rgba32f[4 * i]) - want, 2.0);
+        const double a = std::pow(double(alongLight.rgba32f[4 * i]) - want, 2.0);
         const double m = std::pow(double(mean.rgba32f[4 * i]) - want, 2.0);
         allAlong += a;
         allMean += m;
