@@ -167,14 +167,14 @@ TEST_F(SkinTerminator, RowAlongTheLightBringsACylindersTerminatorCloserToTheRefe
     const glm::vec3 travel(0.0f, -1.0f, 0.0f);
     const Scene scene = litSurface(makeCylinder(0.003f, 0.06f, 96, 24), travel);
     const View view = orbitView(scene.worldBounds(), 0.0f, 0.0f, 0.025f, 1.0f);
-    auto render = [&](bool lightCurvature) {
+    auto renderWith = [&](bool lightCurvature) {
         RenderSettings settings;
         settings.specular = false;
         settings.skin.lightCurvature = lightCurvature;
         Renderer renderer(context(), scene, Environment::constant(glm::vec3(0.0f)), &LutSet::loadDefault(), settings);
         return renderer.render(view, kSize, kSize, OutputEncoding::LinearFloat);
     };
-    const RenderedImage alongLight = render(true), mean = render(false);
+    const RenderedImage alongLight = renderWith(true), mean = renderWith(false);
     const DiffusionReference reference(scene, scene.lights, ShRgb{}, LutSet::loadDefault().profile());
     const ReferenceImage truth = reference.render(view.eye(), kSize, kSize);
     // Red's RMSE of each against the reference, in the band and over the whole cylinder.
