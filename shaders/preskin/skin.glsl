@@ -182,9 +182,8 @@ vec3 preskinSkinDiffuseResponse(PreskinSkinSurface s, PreskinSkinLighting k, Pre
                                 sampler2DArray diffuseLut, vec3 L, uint features) {
     vec3 NoL = vec3(dot(s.normalR, L), dot(s.normalG, L), dot(s.normalB, L));
     if ((features & kSkinLutDiffuse) == 0u) return clamp(NoL, 0.0, 1.0);
-    if ((features & kSkinLutOtherLights) == 0u) return preskinDiffuseRowFit(NoL, k.rowFit);
     // without prefiltering the three are equal
-    return preskinDiffuseLut(m, preskinSkinLightRows(s, k, m, diffuseLut, L, features), diffuseLut, NoL);
+    return preskinSkinDiffuseRow(k, preskinSkinLightRows(s, k, m, diffuseLut, L, features), m, diffuseLut, NoL, features);
 }
 
 // The same for a light with a size, the cap of directions of `l` (preskin/light_sample.glsl):
