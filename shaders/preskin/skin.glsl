@@ -156,7 +156,11 @@ float preskinSkinLightCurvaturePerMm(PreskinSkinSurface s, vec3 L) {
     float tangent2 = 1.0 - c * c;  // |L's tangent part|^2; below 1e-3 (L along N) the anisotropic part fades out
     float cos2Theta = clamp((2.0 * t * t - tangent2) / max(tangent2, 1e-3), -1.0, 1.0);
     float w = mix(1.0, 0.2, smoothstep(0.2, 0.6, c));
-    return max(s.curvaturePerMm + w * s.curvatureSpreadPerMm * cos2Theta, min(s.curvaturePerMm, 0.0));
+    if (s.curvatureSpreadPerMm <= 0.0) return s.curvaturePerMm;
+    float cos2 = 0.5 + 0.5 * cos2Theta;
+    float k1 = s.curvaturePerMm + s.curvatureSpreadPerMm, k2 = s.curvaturePerMm - s.curvatureSpreadPerMm;
+    float kL = sqrt(k1 * k1 * cos2 + k2 * k2 * (1.0 - cos2));
+    return s.curvaturePerMm + w * (kL - s.curvaturePerMm);
 }
 
 // The diffuse LUT's rows for light L: at the curvature along it (kSkinLightCurvature), or the
