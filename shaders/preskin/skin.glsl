@@ -143,23 +143,27 @@ vec3 preskinDiffuseRowFit(vec3 NoL, PreskinDiffuseFit fit) {
 }
 
 // The curvature (profile 1/mm) of the diffuse LUT's row for light L (kSkinLightCurvature). The
-// LUT integrates the profile over the sphere of the mean curvature H. Over a cylinder lit across
-// its axis (d'Eon's red profile integrated numerically at radii 2 to 16 mm, docs/fidelity.md) the
-// sphere that matches is the one of the normal curvature along the light's tangent direction,
-// k_L, at N.L <= 0.2 (at the terminator the falloff runs along L), and nearly the mean's on the lit
-// side (N.L >= 0.6, where the direction across L counts as much): the row is read at
-// H + w (k_L - H), w = 1 there, 0.2 here, k_L - H = spread cos(2 theta), theta the angle of L's
-// tangent direction from the axis (preskinSkinCurvatureSpread). Concave skin and a zero spread keep H.
+// LUT integrates the profile over the sphere of the mean curvature H, where N.L falls off along
+// the surface at k sqrt(1 - N.L^2) per unit length for the sphere's k. On any surface it falls
+// off along the direction S t at |S t| sqrt(1 - N.L^2), t the unit tangent direction of L and S the
+// shape operator, so the sphere that falls off as fast has k_L = |S t| = sqrt(k1^2 cos^2 theta +
+// k2^2 sin^2 theta), k1 >= k2 the principal curvatures and theta t's angle from the axis of k1
+// (preskinSkinCurvatureSpread): a cylinder lit across its axis is the sphere of its curvature
+// across, one lit along its axis a flat surface, and on a saddle k_L stays positive. Over a
+// cylinder lit across (d'Eon's red profile integrated numerically at radii 2 to 16 mm,
+// docs/fidelity.md) that sphere matches at N.L <= 0.2 and the mean's nearly on the lit side
+// (N.L >= 0.6, where neighbours across the falloff's direction count as much): the row is read at
+// H + w (k_L - H), w = 1 there, 0.2 here. Concave skin and a zero spread keep H.
 float preskinSkinLightCurvaturePerMm(PreskinSkinSurface s, vec3 L) {
+    if (s.curvatureSpreadPerMm <= 0.0) return s.curvaturePerMm;
     float c = dot(s.geometricNormal, L);
     float t = dot(s.curvatureAxis, L);
-    float tangent2 = 1.0 - c * c;  // |L's tangent part|^2; below 1e-3 (L along N) the anisotropic part fades out
+    float tangent2 = 1.0 - c * c;  // |L's tangent part|^2; below 1e-3 (L along N) theta's part fades out
     float cos2Theta = clamp((2.0 * t * t - tangent2) / max(tangent2, 1e-3), -1.0, 1.0);
-    float w = mix(1.0, 0.2, smoothstep(0.2, 0.6, c));
-    if (s.curvatureSpreadPerMm <= 0.0) return s.curvaturePerMm;
-    float cos2 = 0.5 + 0.5 * cos2Theta;
+    float cosTheta2 = 0.5 + 0.5 * cos2Theta;
     float k1 = s.curvaturePerMm + s.curvatureSpreadPerMm, k2 = s.curvaturePerMm - s.curvatureSpreadPerMm;
-    float kL = sqrt(k1 * k1 * cos2 + k2 * k2 * (1.0 - cos2));
+    float kL = sqrt(k1 * k1 * cosTheta2 + k2 * k2 * (1.0 - cosTheta2));
+    float w = mix(1.0, 0.2, smoothstep(0.2, 0.6, c));
     return s.curvaturePerMm + w * (kL - s.curvaturePerMm);
 }
 
@@ -366,11 +370,13 @@ vec3 preskinSkinShadow(PreskinProfileMix m, sampler2DArray penumbraLut, float vi
 // (it integrates max(N.L, 0) of the neighbours over the osculating sphere); there the LUT's own
 // falloff applies, unshadowed, penumbra scattering or not. The receiver's own surface can lie
 // along the light within ownMm of it: one kernel width of the filter, plus past the terminator
-// (N.L < 0) the chord to the osculating sphere's lit side, 2 a |N.L| (a = 1 / curvature), at most
-// the profile's reach (3 local patches, preskinMixPatchMm: farther, the LUT has no light left to
-// lose), which is also what flat and concave skin get (their LUT rows hold no light past the
-// terminator, so nothing changes there but the per-channel normals' own), so that the share is
-// continuous in the curvature. Occluders within ownMm are the receiver's own, beyond twice that
+// (N.L < 0) the chord to the osculating sphere's lit side, 2 a |N.L| (a = 1 / curvature). The
+// light the LUT scattered there crossed the surface from the terminator, a |N.L| away (half the
+// chord), so the chord is capped where that distance reaches the profile's reach (3 local
+// patches, preskinMixPatchMm: farther, the LUT has no light left to lose), at 6 patches, which is
+// also what flat and concave skin get (their LUT rows hold no light past the terminator, so
+// nothing changes there but the per-channel normals' own), so that the share is continuous in
+// the curvature. Occluders within ownMm are the receiver's own, beyond twice that
 // another surface's (a nose, a lid over the eye, a crease's far wall), with a smooth step
 // between. Occluding texels no nearer the light than the receiver (blockerDistanceM 0 with the
 // visibility below 1) are its own surface, below the receiver plane the map extrapolates where
@@ -382,7 +388,7 @@ float preskinCastShadowShare(PreskinSkinSurface s, PreskinProfileMix m, PreskinS
     float c = dot(s.geometricNormal, L);
     float toMm = 1000.0 * s.scatterScale;
     float ownMm = max(shadow.kernelWidthM * toMm, 1e-6);
-    if (c < 0.0) ownMm -= 2.0 * c / max(s.curvaturePerMm, -2.0 * c / (3.0 * preskinMixPatchMm(m)));
+    if (c < 0.0) ownMm -= 2.0 * c / max(s.curvaturePerMm, -c / (3.0 * preskinMixPatchMm(m)));
     return smoothstep(ownMm, 2.0 * ownMm, shadow.blockerDistanceM * toMm);
 }
 
