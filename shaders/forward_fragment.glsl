@@ -270,6 +270,9 @@ void main() {
         vec3 geometricR = facingSign * normalize(inNormalRedWs);
         vec3 geometricG = facingSign * normalize(inNormalGreenWs);
         vec3 geometricB = facingSign * normalize(inNormalBlueWs);
+        skin.geometricNormalR = geometricR;
+        skin.geometricNormalG = geometricG;
+        skin.geometricNormalB = geometricB;
         if (hasNormalMap) {
             PreskinNormalMaps maps;
             maps.scale = material.pbr.z;

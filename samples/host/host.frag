@@ -54,11 +54,13 @@ void main() {
     vec3 geometricN = normalize(inNormalWs) * facing;
     PreskinNormalMaps maps = PreskinNormalMaps(frame.skin.w, false, 1.0, 0.0, frame.lodBias.rgb, int(frame.lodBias.w), false);
     PreskinSkinSurface s;
-    preskinSkinNormals(normalMap, normalMap, maps, inUv0, geometricN, normalize(inNormalRedWs) * facing,
-                       normalize(inNormalGreenWs) * facing, normalize(inNormalBlueWs) * facing, inTangentWs, kFeatures,
-                       s.normalSpecular, s.normalR, s.normalG, s.normalB);
-    s.albedo = texture(baseColorMap, inUv0).rgb;
     s.geometricNormal = geometricN;
+    s.geometricNormalR = normalize(inNormalRedWs) * facing;
+    s.geometricNormalG = normalize(inNormalGreenWs) * facing;
+    s.geometricNormalB = normalize(inNormalBlueWs) * facing;
+    preskinSkinNormals(normalMap, normalMap, maps, inUv0, geometricN, s.geometricNormalR, s.geometricNormalG,
+                       s.geometricNormalB, inTangentWs, kFeatures, s.normalSpecular, s.normalR, s.normalG, s.normalB);
+    s.albedo = texture(baseColorMap, inUv0).rgb;
     s.scatterScale = frame.skin.x;
     s.curvaturePerMm = preskinCurvatureProfilePerMm(inCurvaturePerM, s.scatterScale);
     // The principal curvatures about the mean (each light's diffuse LUT row; uniform control flow).
