@@ -267,12 +267,9 @@ void main() {
 #endif
         skin.geometricNormal = geometricN;
         // The geometric normal seen through each channel's profile (the vertex stage's normal basis).
-        vec3 geometricR = facingSign * normalize(inNormalRedWs);
-        vec3 geometricG = facingSign * normalize(inNormalGreenWs);
-        vec3 geometricB = facingSign * normalize(inNormalBlueWs);
-        skin.geometricNormalR = geometricR;
-        skin.geometricNormalG = geometricG;
-        skin.geometricNormalB = geometricB;
+        skin.geometricNormalR = facingSign * normalize(inNormalRedWs);
+        skin.geometricNormalG = facingSign * normalize(inNormalGreenWs);
+        skin.geometricNormalB = facingSign * normalize(inNormalBlueWs);
         if (hasNormalMap) {
             PreskinNormalMaps maps;
             maps.scale = material.pbr.z;
@@ -282,14 +279,14 @@ void main() {
             maps.lodBias = materialNormalLodBias(profiles);
             maps.levelCount = int(kSkinNormalLevels);
             maps.specularFromLevels = kSkinSpecularFromLevels;
-            preskinSkinNormals(normalTexture, detailNormalTexture, maps, uvNormal, geometricN, geometricR, geometricG,
-                               geometricB, inTangentWs, features, skin.normalSpecular, skin.normalR, skin.normalG,
-                               skin.normalB);
+            preskinSkinNormals(normalTexture, detailNormalTexture, maps, uvNormal, geometricN, skin.geometricNormalR,
+                               skin.geometricNormalG, skin.geometricNormalB, inTangentWs, features,
+                               skin.normalSpecular, skin.normalR, skin.normalG, skin.normalB);
         } else {
             skin.normalSpecular = geometricN;
-            skin.normalR = geometricR;
-            skin.normalG = geometricG;
-            skin.normalB = geometricB;
+            skin.normalR = skin.geometricNormalR;
+            skin.normalG = skin.geometricNormalG;
+            skin.normalB = skin.geometricNormalB;
         }
         N = skin.normalSpecular;
         NoV = max(dot(N, V), 1e-4);

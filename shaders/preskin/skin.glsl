@@ -223,8 +223,8 @@ vec3 preskinSkinDiffuseResponse(PreskinSkinSurface s, PreskinSkinLighting k, Pre
 // diffusion profile's response to it. The result multiplies l.irradiance.
 vec3 preskinSkinDiffuseResponse(PreskinSkinSurface s, PreskinSkinLighting k, PreskinProfileMix m,
                                 sampler2DArray diffuseLut, PreskinLightSample l, uint features) {
-    vec3 NoL = preskinSkinNoL(s, l.L, features);
     if (l.cosSigma >= 1.0) return preskinSkinDiffuseResponse(s, k, m, diffuseLut, l.L, features);
+    vec3 NoL = preskinSkinNoL(s, l.L, features);
     if ((features & kSkinLutDiffuse) == 0u)
         return vec3(preskinCapLambert(NoL.r, l.cosSigma, l.sinSigma), preskinCapLambert(NoL.g, l.cosSigma, l.sinSigma),
                     preskinCapLambert(NoL.b, l.cosSigma, l.sinSigma)) + l.lambertCorrection;
