@@ -377,28 +377,64 @@ void expectStripCarriesTheRed(const StripRed& strip, const char* what, const cha
     EXPECT_NEAR(strip.skin, strip.truth, meanTolerance * strip.truth);
 }
 
-// A groove z = -depthM exp(-x^2 / 2 widthM^2) along y in a skin plane 2 halfM square, n x n quads.
-Primitive makeGroove(double depthM, double widthM, double halfM, uint32_t n) {
-    Primitive groove;
+// A skin height field over a square 2 halfM wide, n x n quads: surface(x, y) gives the height z and
+// the (unnormalised) normal at (x, y), metres.
+template <typename Surface>
+Primitive makeHeightField(double halfM, uint32_t n, Surface surface) {
+    Primitive field;
     for (uint32_t j = 0; j <= n; ++j)
         for (uint32_t i = 0; i <= n; ++i) {
             const double x = -halfM + 2.0 * halfM * i / n, y = -halfM + 2.0 * halfM * j / n;
-            const double e = std::exp(-x * x / (2.0 * widthM * widthM));
+            glm::dvec3 normal(0.0);
+            const double z = surface(x, y, normal);
             Vertex v;
-            v.positionOs = glm::vec3(float(x), float(y), float(-depthM * e));
-            v.normalOs = glm::vec3(glm::normalize(glm::dvec3(-depthM * x / (widthM * widthM) * e, 0.0, 1.0)));
+            v.positionOs = glm::vec3(float(x), float(y), float(z));
+            v.normalOs = glm::vec3(glm::normalize(normal));
             v.uv0 = glm::vec2(float(i) / float(n), float(j) / float(n));
-            groove.vertices.push_back(v);
-            groove.boundsOs.extend(v.positionOs);
+            field.vertices.push_back(v);
+            field.boundsOs.extend(v.positionOs);
         }
     for (uint32_t j = 0; j < n; ++j)
         for (uint32_t i = 0; i < n; ++i) {
             const uint32_t a = j * (n + 1) + i, b = a + 1, c = a + n + 1, d = c + 1;
-            groove.indices.insert(groove.indices.end(), {a, b, d, a, d, c});
+            field.indices.insert(field.indices.end(), {a, b, d, a, d, c});
         }
-    recomputeCurvature(groove);
-    groove.material = 0;
-    return groove;
+    recomputeCurvature(field);
+    field.material = 0;
+    return field;
+}
+
+// A groove z = -depthM exp(-x^2 / 2 widthM^2) along y in a skin plane 2 halfM square, n x n quads.
+Primitive makeGroove(double depthM, double widthM, double halfM, uint32_t n) {
+    return makeHeightField(halfM, n, [&](double x, double, glm::dvec3& normal) {
+        const double e = std::exp(-x * x / (2.0 * widthM * widthM));
+        normal = glm::dvec3(-depthM * x / (widthM * widthM) * e, 0.0, 1.0);
+        return -depthM * e;
+    });
+}
+
+// A saddle z = (x^2 - y^2) / (2 radiusM) in a skin square 2 halfM wide, n x n quads: principal
+// curvatures +-1 / radiusM, mean curvature 0.
+Primitive makeSaddle(double radiusM, double halfM, uint32_t n) {
+    return makeHeightField(halfM, n, [&](double x, double y, glm::dvec3& normal) {
+        normal = glm::dvec3(-x / radiusM, y / radiusM, 1.0);
+        return (x * x - y * y) / (2.0 * radiusM);
+    });
+}
+
+// Red's RMSE of skin over Lambert's against the reference on the pixels whose reference
+// curvature (profile 1/mm) `keep` accepts.
+template <typename Keep>
+double redOverLambert(const FromAbove& images, Keep keep, size_t& pixels) {
+    double skinRed = 0.0, lambertRed = 0.0;
+    pixels = 0;
+    for (size_t i = 0; i < images.truth.skin.size(); ++i) {
+        if (!images.truth.skin[i] || !keep(images.truth.curvaturePerMm[i])) continue;
+        ++pixels;
+        skinRed += std::pow(double(images.skin.rgba32f[4 * i]) - double(images.truth.rgba32f[4 * i]), 2.0);
+        lambertRed += std::pow(double(images.other.rgba32f[4 * i]) - double(images.truth.rgba32f[4 * i]), 2.0);
+    }
+    return std::sqrt(skinRed / lambertRed);
 }
 
 TEST_F(SkinFidelity, ConcaveGrooveIsCloserToTheReferenceThanLambert) {
@@ -415,13 +451,9 @@ TEST_F(SkinFidelity, ConcaveGrooveIsCloserToTheReferenceThanLambert) {
         skinOverLambert(truth, skin, lambert, pixels, [&](size_t i) { return truth.curvaturePerMm[i] <= -0.01f; });
     // Red alone, the channel that scatters furthest (the crease's own walls shadow the floor's
     // edges: red must stay close there too).
-    double skinRed = 0.0, lambertRed = 0.0;
-    for (size_t i = 0; i < truth.skin.size(); ++i) {
-        if (!truth.skin[i] || truth.curvaturePerMm[i] > -0.01f) continue;
-        skinRed += std::pow(double(skin.rgba32f[4 * i]) - double(truth.rgba32f[4 * i]), 2.0);
-        lambertRed += std::pow(double(lambert.rgba32f[4 * i]) - double(truth.rgba32f[4 * i]), 2.0);
-    }
-    const double redRatio = std::sqrt(skinRed / lambertRed);
+    size_t redPixels = 0;
+    const double redRatio = redOverLambert(
+        images, [](float k) { return k <= -0.01f; }, redPixels);
     std::printf("[ fidelity ] groove floor: %zu concave pixels, skin / Lambert RMSE %.3f, red %.3f\n", pixels, ratio,
                 redRatio);
     EXPECT_GT(pixels, size_t(size) * 10);
@@ -443,16 +475,9 @@ TEST_F(SkinFidelity, GrooveLitAcrossKeepsTheLightOfItsLitWallInRed) {
         glm::normalize(glm::vec3(std::cos(glm::radians(25.0f)), 0.0f, -std::sin(glm::radians(25.0f))));
     scene.lights = {shadowedDirectionalLight(travel, 3.0f)};
     const FromAbove images = renderFromAbove(context(), scene, SkinFeatures::none());
-    const ReferenceImage& truth = images.truth;
-    double skinRed = 0.0, lambertRed = 0.0;
     size_t pixels = 0;
-    for (size_t i = 0; i < truth.skin.size(); ++i) {
-        if (!truth.skin[i] || truth.curvaturePerMm[i] > -0.01f) continue;
-        ++pixels;
-        skinRed += std::pow(double(images.skin.rgba32f[4 * i]) - double(truth.rgba32f[4 * i]), 2.0);
-        lambertRed += std::pow(double(images.other.rgba32f[4 * i]) - double(truth.rgba32f[4 * i]), 2.0);
-    }
-    const double redRatio = std::sqrt(skinRed / lambertRed);
+    const double redRatio = redOverLambert(
+        images, [](float k) { return k <= -0.01f; }, pixels);
     std::printf("[ fidelity ] groove lit across at 25 degrees: %zu concave pixels, red skin / Lambert RMSE %.3f\n",
                 pixels, redRatio);
     EXPECT_GT(pixels, size_t(kFromAboveSize) * 10);
@@ -475,45 +500,6 @@ Environment skyAcrossTheGroove() {
             sky.rgb.insert(sky.rgb.end(), {radiance, radiance, radiance});
         }
     return Environment::fromImage(std::move(sky));
-}
-
-// Red's RMSE of skin over Lambert's against the reference on the pixels whose reference
-// curvature (profile 1/mm) `keep` accepts.
-template <typename Keep>
-double redOverLambert(const FromAbove& images, Keep keep, size_t& pixels) {
-    double skinRed = 0.0, lambertRed = 0.0;
-    pixels = 0;
-    for (size_t i = 0; i < images.truth.skin.size(); ++i) {
-        if (!images.truth.skin[i] || !keep(images.truth.curvaturePerMm[i])) continue;
-        ++pixels;
-        skinRed += std::pow(double(images.skin.rgba32f[4 * i]) - double(images.truth.rgba32f[4 * i]), 2.0);
-        lambertRed += std::pow(double(images.other.rgba32f[4 * i]) - double(images.truth.rgba32f[4 * i]), 2.0);
-    }
-    return std::sqrt(skinRed / lambertRed);
-}
-
-// A saddle z = (x^2 - y^2) / (2 radiusM) in a skin square 2 halfM wide, n x n quads: principal
-// curvatures +-1 / radiusM, mean curvature 0.
-Primitive makeSaddle(double radiusM, double halfM, uint32_t n) {
-    Primitive saddle;
-    for (uint32_t j = 0; j <= n; ++j)
-        for (uint32_t i = 0; i <= n; ++i) {
-            const double x = -halfM + 2.0 * halfM * i / n, y = -halfM + 2.0 * halfM * j / n;
-            Vertex v;
-            v.positionOs = glm::vec3(float(x), float(y), float((x * x - y * y) / (2.0 * radiusM)));
-            v.normalOs = glm::vec3(glm::normalize(glm::dvec3(-x / radiusM, y / radiusM, 1.0)));
-            v.uv0 = glm::vec2(float(i) / float(n), float(j) / float(n));
-            saddle.vertices.push_back(v);
-            saddle.boundsOs.extend(v.positionOs);
-        }
-    for (uint32_t j = 0; j < n; ++j)
-        for (uint32_t i = 0; i < n; ++i) {
-            const uint32_t a = j * (n + 1) + i, b = a + 1, c = a + n + 1, d = c + 1;
-            saddle.indices.insert(saddle.indices.end(), {a, b, d, a, d, c});
-        }
-    recomputeCurvature(saddle);
-    saddle.material = 0;
-    return saddle;
 }
 
 // The SH ambient on curved skin against the reference, under a sky with a strong linear band
