@@ -422,14 +422,14 @@ Primitive makeSaddle(double radiusM, double halfM, uint32_t n) {
     });
 }
 
-// Red's RMSE of skin over Lambert's against the reference on the pixels whose reference
-// curvature (profile 1/mm) `keep` accepts.
+// Red's RMSE of skin over Lambert's against the reference on the skin pixels (index y * size + x)
+// that `keep` accepts.
 template <typename Keep>
 double redOverLambert(const FromAbove& images, Keep keep, size_t& pixels) {
     double skinRed = 0.0, lambertRed = 0.0;
     pixels = 0;
     for (size_t i = 0; i < images.truth.skin.size(); ++i) {
-        if (!images.truth.skin[i] || !keep(images.truth.curvaturePerMm[i])) continue;
+        if (!images.truth.skin[i] || !keep(i)) continue;
         ++pixels;
         skinRed += std::pow(double(images.skin.rgba32f[4 * i]) - double(images.truth.rgba32f[4 * i]), 2.0);
         lambertRed += std::pow(double(images.other.rgba32f[4 * i]) - double(images.truth.rgba32f[4 * i]), 2.0);
@@ -453,7 +453,7 @@ TEST_F(SkinFidelity, ConcaveGrooveIsCloserToTheReferenceThanLambert) {
     // edges: red must stay close there too).
     size_t redPixels = 0;
     const double redRatio = redOverLambert(
-        images, [](float k) { return k <= -0.01f; }, redPixels);
+        images, [&](size_t i) { return truth.curvaturePerMm[i] <= -0.01f; }, redPixels);
     std::printf("[ fidelity ] groove floor: %zu concave pixels, skin / Lambert RMSE %.3f, red %.3f\n", pixels, ratio,
                 redRatio);
     EXPECT_GT(pixels, size_t(size) * 10);
@@ -477,7 +477,7 @@ TEST_F(SkinFidelity, GrooveLitAcrossKeepsTheLightOfItsLitWallInRed) {
     const FromAbove images = renderFromAbove(context(), scene, SkinFeatures::none());
     size_t pixels = 0;
     const double redRatio = redOverLambert(
-        images, [](float k) { return k <= -0.01f; }, pixels);
+        images, [&](size_t i) { return images.truth.curvaturePerMm[i] <= -0.01f; }, pixels);
     std::printf("[ fidelity ] groove lit across at 25 degrees: %zu concave pixels, red skin / Lambert RMSE %.3f\n",
                 pixels, redRatio);
     EXPECT_GT(pixels, size_t(kFromAboveSize) * 10);
@@ -518,27 +518,19 @@ TEST_F(SkinFidelity, GrooveAndSaddleUnderASkyAreCloserToTheReferenceThanLambert)
     const FromAbove grooveImages = renderFromAbove(context(), groove, SkinFeatures::none(), 0.06f, &sky);
     size_t floorPixels = 0;
     const double floorRed = redOverLambert(
-        grooveImages, [](float k) { return k <= -0.01f; }, floorPixels);
+        grooveImages, [&](size_t i) { return grooveImages.truth.curvaturePerMm[i] <= -0.01f; }, floorPixels);
 
     Scene saddle = makeScene({{makeSaddle(0.004, 0.016, 128), glm::mat4(1.0f)}}, {skinMaterial({0.8f, 0.6f, 0.5f})});
     const FromAbove saddleImages = renderFromAbove(context(), saddle, SkinFeatures::none(), 0.06f, &sky);
     // The centre, within 5 mm of the axes (the square's edges, where the reference's
     // neighbourhood ends, 11 mm away): 20 mm across at z = 0 seen from 60 mm.
     const uint32_t size = kFromAboveSize;
-    double skinRed = 0.0, lambertRed = 0.0;
+    const auto placeMm = [&](size_t xy) { return (double(xy) + 0.5 - 0.5 * size) * 20.0 / size; };
     size_t centrePixels = 0;
-    for (uint32_t y = 0; y < size; ++y)
-        for (uint32_t x = 0; x < size; ++x) {
-            const double xMm = (double(x) + 0.5 - 0.5 * size) * 20.0 / size;
-            const double yMm = (double(y) + 0.5 - 0.5 * size) * 20.0 / size;
-            if (std::abs(xMm) > 5.0 || std::abs(yMm) > 5.0) continue;
-            const size_t i = size_t(y) * size + x;
-            const double truth = double(saddleImages.truth.rgba32f[4 * i]);
-            skinRed += std::pow(double(saddleImages.skin.rgba32f[4 * i]) - truth, 2.0);
-            lambertRed += std::pow(double(saddleImages.other.rgba32f[4 * i]) - truth, 2.0);
-            ++centrePixels;
-        }
-    const double centreRed = std::sqrt(skinRed / lambertRed);
+    const double centreRed = redOverLambert(
+        saddleImages,
+        [&](size_t i) { return std::abs(placeMm(i % size)) <= 5.0 && std::abs(placeMm(i / size)) <= 5.0; },
+        centrePixels);
     std::printf(
         "[ fidelity ] under a sky 25 degrees up: groove floor %zu pixels, red skin / Lambert RMSE %.3f; "
         "saddle centre %zu pixels, %.3f\n",
