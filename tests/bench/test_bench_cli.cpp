@@ -138,7 +138,8 @@ TEST_F(BenchCli, WritesJsonAndPlot) {
 }
 
 // A scene whose skin materials name their own diffusion profiles renders with them, as
-// `preskin render` renders it (the profiles baked at --profile-lut-size).
+// `preskin render` renders it (the profiles baked at --profile-lut-size). The skin section alone:
+// WritesJsonAndPlot runs every section.
 TEST_F(BenchCli, MeasuresSceneWithItsOwnProfiles) {
     const fs::path json = dir_ / "bench.json";
     std::string err;
@@ -155,13 +156,8 @@ TEST_F(BenchCli, MeasuresSceneWithItsOwnProfiles) {
                      "1",
                      "--warmup",
                      "0",
-                     "--no-brute",
-                     "--no-build-compare",
-                     "--no-lut-bake",
-                     "--no-vr",
-                     "--no-per-pixel",
-                     "--no-animation",
-                     "--no-profiles",
+                     "--only",
+                     "skin",
                      "--no-techniques",
                      "--profile-lut-size",
                      "16",
