@@ -422,6 +422,11 @@ Primitive makeSaddle(double radiusM, double halfM, uint32_t n) {
     });
 }
 
+// The pixels whose reference curvature is concave (below -0.01 per profile mm): a groove's floor.
+auto concavePixels(const ReferenceImage& truth) {
+    return [&truth](size_t i) { return truth.curvaturePerMm[i] <= -0.01f; };
+}
+
 // Red's RMSE of skin over Lambert's against the reference on the skin pixels (index y * size + x)
 // that `keep` accepts.
 template <typename Keep>
@@ -447,13 +452,11 @@ TEST_F(SkinFidelity, ConcaveGrooveIsCloserToTheReferenceThanLambert) {
     const ReferenceImage& truth = images.truth;
     const RenderedImage &skin = images.skin, &lambert = images.other;
     size_t pixels = 0;
-    const double ratio =
-        skinOverLambert(truth, skin, lambert, pixels, [&](size_t i) { return truth.curvaturePerMm[i] <= -0.01f; });
+    const double ratio = skinOverLambert(truth, skin, lambert, pixels, concavePixels(truth));
     // Red alone, the channel that scatters furthest (the crease's own walls shadow the floor's
     // edges: red must stay close there too).
     size_t redPixels = 0;
-    const double redRatio = redOverLambert(
-        images, [&](size_t i) { return truth.curvaturePerMm[i] <= -0.01f; }, redPixels);
+    const double redRatio = redOverLambert(images, concavePixels(truth), redPixels);
     std::printf("[ fidelity ] groove floor: %zu concave pixels, skin / Lambert RMSE %.3f, red %.3f\n", pixels, ratio,
                 redRatio);
     EXPECT_GT(pixels, size_t(size) * 10);
@@ -476,8 +479,7 @@ TEST_F(SkinFidelity, GrooveLitAcrossKeepsTheLightOfItsLitWallInRed) {
     scene.lights = {shadowedDirectionalLight(travel, 3.0f)};
     const FromAbove images = renderFromAbove(context(), scene, SkinFeatures::none());
     size_t pixels = 0;
-    const double redRatio = redOverLambert(
-        images, [&](size_t i) { return images.truth.curvaturePerMm[i] <= -0.01f; }, pixels);
+    const double redRatio = redOverLambert(images, concavePixels(images.truth), pixels);
     std::printf("[ fidelity ] groove lit across at 25 degrees: %zu concave pixels, red skin / Lambert RMSE %.3f\n",
                 pixels, redRatio);
     EXPECT_GT(pixels, size_t(kFromAboveSize) * 10);
@@ -517,8 +519,7 @@ TEST_F(SkinFidelity, GrooveAndSaddleUnderASkyAreCloserToTheReferenceThanLambert)
         makeScene({{makeGroove(0.003, 0.0025, 0.02, 80), glm::mat4(1.0f)}}, {skinMaterial({0.8f, 0.6f, 0.5f})});
     const FromAbove grooveImages = renderFromAbove(context(), groove, SkinFeatures::none(), 0.06f, &sky);
     size_t floorPixels = 0;
-    const double floorRed = redOverLambert(
-        grooveImages, [&](size_t i) { return grooveImages.truth.curvaturePerMm[i] <= -0.01f; }, floorPixels);
+    const double floorRed = redOverLambert(grooveImages, concavePixels(grooveImages.truth), floorPixels);
 
     Scene saddle = makeScene({{makeSaddle(0.004, 0.016, 128), glm::mat4(1.0f)}}, {skinMaterial({0.8f, 0.6f, 0.5f})});
     const FromAbove saddleImages = renderFromAbove(context(), saddle, SkinFeatures::none(), 0.06f, &sky);
