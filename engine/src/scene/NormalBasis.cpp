@@ -41,7 +41,10 @@ struct Node {
     dvec3 centroid{0.0};
     dvec3 normalIntegral{0.0};  // int n dA, n interpolated linearly (not renormalised)
     double area = 0.0;
-    double radius = 0.0;            // bounding sphere about the centroid
+    double radius = 0.0;  // bounding sphere about the centroid
+    // |int n dA| / area (1: every normal alike), the spread of its normals about their mean (the
+    // sine of about their largest angle to it) and |int n dA|.
+    double coherence = 0.0, spread = 0.0, normalLength = 0.0;
     uint32_t first = 0, count = 0;  // leaf: triangles [first, first + count) of the order
     int32_t left = -1, right = -1;
 };
@@ -71,6 +74,9 @@ int32_t build(Mesh& m, uint32_t first, uint32_t count) {
         }
     }
     node.centroid = node.area > 0.0 ? node.centroid / node.area : 0.5 * (lo + hi);
+    node.coherence = node.area > 0.0 ? glm::length(node.normalIntegral) / node.area : 0.0;
+    node.spread = std::sqrt(std::max(0.0, 1.0 - node.coherence * node.coherence));
+    node.normalLength = node.coherence * node.area;
     for (uint32_t i = first; i < first + count; ++i)
         for (uint32_t v : m.triangles[m.order[i]])
             node.radius = std::max(node.radius, glm::length(m.p[v] - node.centroid));
@@ -133,72 +139,96 @@ struct Sums {
     }
 };
 
-// Adds the triangle (p, with corner normals n) to sum, split into four while it is too large for
-// the Gaussian.
-void addTriangle(const Kernel& g, const dvec3& x, const dvec3& nx, const dvec3 (&p)[3], const dvec3 (&n)[3], Sums& sum,
-                 int depth) {
+using Kernels = std::array<Kernel, kNormalBasisCount>;
+using KernelSums = std::array<Sums, kNormalBasisCount>;
+using KernelMask = uint32_t;  // bit b: the Gaussian kernels[b] still gathers here
+
+// Adds the triangle (p, with corner normals n) to the sums of the Gaussians in `mask`, each
+// splitting it into four while it is too large for that Gaussian: one recursion for all of them,
+// each Gaussian's pieces and their order the same as in a recursion of its own.
+void addTriangle(const Kernels& kernels, KernelMask mask, const dvec3& x, const dvec3& nx, const dvec3 (&p)[3],
+                 const dvec3 (&n)[3], KernelSums& sums, int depth) {
     const dvec3 centre = (p[0] + p[1] + p[2]) / 3.0;
     double size = 0.0;
     for (int k = 0; k < 3; ++k) size = std::max(size, glm::length(p[k] - centre));
     const double distance = glm::length(centre - x);
-    if (distance - size > g.reach) return;
-    if (depth < 12 && size > g.largestPiece(distance, kTriangleTheta)) {
+    KernelMask split = 0, here = 0;
+    for (int b = 0; b < kNormalBasisCount; ++b) {
+        if ((mask & (1u << b)) == 0 || distance - size > kernels[size_t(b)].reach) continue;
+        if (depth < 12 && size > kernels[size_t(b)].largestPiece(distance, kTriangleTheta))
+            split |= 1u << b;
+        else
+            here |= 1u << b;
+    }
+    if (here != 0) {
+        const double third = 0.5 * glm::length(glm::cross(p[1] - p[0], p[2] - p[0])) / 3.0;
+        for (int b = 0; b < kNormalBasisCount; ++b) {
+            if ((here & (1u << b)) == 0) continue;
+            const Kernel& g = kernels[size_t(b)];
+            for (int k = 0; k < 3; ++k) {  // the edge midpoints, a third of the area each
+                const dvec3 y = 0.5 * (p[k] + p[(k + 1) % 3]);
+                const dvec3 d = y - x;
+                const double r2 = glm::dot(d, d);
+                if (r2 > g.reach * g.reach) continue;
+                sums[size_t(b)].add(g(r2) * third, 0.5 * (n[k] + n[(k + 1) % 3]), 1.0, y, x, nx);
+            }
+        }
+    }
+    if (split != 0) {
         const dvec3 pm[3] = {0.5 * (p[0] + p[1]), 0.5 * (p[1] + p[2]), 0.5 * (p[2] + p[0])};
         const dvec3 nm[3] = {0.5 * (n[0] + n[1]), 0.5 * (n[1] + n[2]), 0.5 * (n[2] + n[0])};
         const dvec3 t0[3] = {p[0], pm[0], pm[2]}, n0[3] = {n[0], nm[0], nm[2]};
         const dvec3 t1[3] = {pm[0], p[1], pm[1]}, n1[3] = {nm[0], n[1], nm[1]};
         const dvec3 t2[3] = {pm[2], pm[1], p[2]}, n2[3] = {nm[2], nm[1], n[2]};
         const dvec3 t3[3] = {pm[0], pm[1], pm[2]}, n3[3] = {nm[0], nm[1], nm[2]};
-        addTriangle(g, x, nx, t0, n0, sum, depth + 1);
-        addTriangle(g, x, nx, t1, n1, sum, depth + 1);
-        addTriangle(g, x, nx, t2, n2, sum, depth + 1);
-        addTriangle(g, x, nx, t3, n3, sum, depth + 1);
-        return;
-    }
-    const double third = 0.5 * glm::length(glm::cross(p[1] - p[0], p[2] - p[0])) / 3.0;
-    for (int k = 0; k < 3; ++k) {  // the edge midpoints, a third of the area each
-        const dvec3 y = 0.5 * (p[k] + p[(k + 1) % 3]);
-        const dvec3 d = y - x;
-        const double r2 = glm::dot(d, d);
-        if (r2 > g.reach * g.reach) continue;
-        sum.add(g(r2) * third, 0.5 * (n[k] + n[(k + 1) % 3]), 1.0, y, x, nx);
+        addTriangle(kernels, split, x, nx, t0, n0, sums, depth + 1);
+        addTriangle(kernels, split, x, nx, t1, n1, sums, depth + 1);
+        addTriangle(kernels, split, x, nx, t2, n2, sums, depth + 1);
+        addTriangle(kernels, split, x, nx, t3, n3, sums, depth + 1);
     }
 }
 
-// The sums over the mesh for one Gaussian (its own traversal: each Gaussian opens the tree only as
-// far as its own width needs).
-Sums integrate(const Mesh& m, const Kernel& g, const dvec3& x, const dvec3& nx, std::vector<int32_t>& stack) {
-    Sums sum;
-    stack.assign(1, 0);
+// The sums over the mesh for every Gaussian, in one traversal of the tree: each node is opened
+// for the Gaussians whose width needs it (the mask), and each Gaussian meets its nodes in the
+// order a traversal of its own would.
+KernelSums integrate(const Mesh& m, const Kernels& kernels, const dvec3& x, const dvec3& nx,
+                     std::vector<std::pair<int32_t, KernelMask>>& stack) {
+    KernelSums sums{};
+    stack.assign(1, {0, (1u << kNormalBasisCount) - 1u});
     while (!stack.empty()) {
-        const Node& node = m.nodes[size_t(stack.back())];
+        const auto [index, mask] = stack.back();
         stack.pop_back();
+        const Node& node = m.nodes[size_t(index)];
         const double distance = glm::length(node.centroid - x);
-        if (distance - node.radius > g.reach) continue;
         // Its normals lie within about acos(|int n dA| / area) of their mean: wholly on one side of
-        // the cut at 90 degrees from nx and small for the Gaussian, the node counts as one sample.
-        const double coherence = node.area > 0.0 ? glm::length(node.normalIntegral) / node.area : 0.0;
-        const double side = coherence > 0.0 ? glm::dot(node.normalIntegral, nx) / (coherence * node.area) : 0.0;
-        const double spread = std::sqrt(std::max(0.0, 1.0 - coherence * coherence));
-        if (coherence >= kCoherentNormals && std::abs(side) > spread &&
-            node.radius < g.largestPiece(distance, kNodeTheta)) {
-            if (distance <= g.reach)
-                sum.add(g(distance * distance), node.normalIntegral, node.area, node.centroid, x, nx);
-            continue;
+        // the cut at 90 degrees from nx and small for a Gaussian, the node counts as one sample.
+        const bool oneSided = node.coherence >= kCoherentNormals &&
+            std::abs(glm::dot(node.normalIntegral, nx) / node.normalLength) > node.spread;
+        KernelMask open = 0;
+        for (int b = 0; b < kNormalBasisCount; ++b) {
+            const Kernel& g = kernels[size_t(b)];
+            if ((mask & (1u << b)) == 0 || distance - node.radius > g.reach) continue;
+            if (oneSided && node.radius < g.largestPiece(distance, kNodeTheta)) {
+                if (distance <= g.reach)
+                    sums[size_t(b)].add(g(distance * distance), node.normalIntegral, node.area, node.centroid, x, nx);
+                continue;
+            }
+            open |= 1u << b;
         }
+        if (open == 0) continue;
         if (node.left >= 0) {
-            stack.push_back(node.left);
-            stack.push_back(node.right);
+            stack.emplace_back(node.left, open);
+            stack.emplace_back(node.right, open);
             continue;
         }
         for (uint32_t i = node.first; i < node.first + node.count; ++i) {
             const auto& t = m.triangles[m.order[i]];
             const dvec3 p[3] = {m.p[t[0]], m.p[t[1]], m.p[t[2]]};
             const dvec3 n[3] = {m.n[t[0]], m.n[t[1]], m.n[t[2]]};
-            addTriangle(g, x, nx, p, n, sum, 0);
+            addTriangle(kernels, open, x, nx, p, n, sums, 0);
         }
     }
-    return sum;
+    return sums;
 }
 
 }  // namespace
@@ -251,20 +281,21 @@ std::vector<NormalBasis> computeNormalBasis(std::span<const glm::vec3> positions
         m.nodes.reserve(2 * m.triangles.size() / kLeafTriangles + 2);
         build(m, 0, uint32_t(m.triangles.size()));
 
-        std::array<Kernel, kNormalBasisCount> kernels{};
+        Kernels kernels{};
         for (size_t b = 0; b < kernels.size(); ++b) {
             const double sigma = kNormalBasisSigmaMm[b];
             kernels[b] = {0.5 / (sigma * sigma), 1.0 / (2.0 * std::numbers::pi * sigma * sigma), sigma,
                           kReachSigmas * sigma};
         }
         tbb::parallel_for(tbb::blocked_range<uint32_t>(0, weld.weldedCount, 64), [&](const auto& range) {
-            std::vector<int32_t> stack;
+            std::vector<std::pair<int32_t, KernelMask>> stack;
             for (uint32_t w = range.begin(); w != range.end(); ++w) {
                 if (m.n[w] == dvec3(0.0)) continue;
+                const KernelSums sums = integrate(m, kernels, m.p[w], m.n[w], stack);
                 dvec3 centroid(0.0);
                 double weight = 0.0;
                 for (size_t b = 0; b < kernels.size(); ++b) {
-                    const Sums s = integrate(m, kernels[b], m.p[w], m.n[w], stack);
+                    const Sums& s = sums[b];
                     welded[w].averaged[b] = glm::vec3(m.n[w] + s.averaged);
                     welded[w].opposing[b] = glm::vec3(s.opposing);
                     centroid += s.centroid;
