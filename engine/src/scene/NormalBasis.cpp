@@ -162,15 +162,15 @@ void addTriangle(const Kernels& kernels, KernelMask mask, const dvec3& x, const 
     }
     if (here != 0) {
         const double third = 0.5 * glm::length(glm::cross(p[1] - p[0], p[2] - p[0])) / 3.0;
-        for (int b = 0; b < kNormalBasisCount; ++b) {
-            if ((here & (1u << b)) == 0) continue;
-            const Kernel& g = kernels[size_t(b)];
-            for (int k = 0; k < 3; ++k) {  // the edge midpoints, a third of the area each
-                const dvec3 y = 0.5 * (p[k] + p[(k + 1) % 3]);
-                const dvec3 d = y - x;
-                const double r2 = glm::dot(d, d);
-                if (r2 > g.reach * g.reach) continue;
-                sums[size_t(b)].add(g(r2) * third, 0.5 * (n[k] + n[(k + 1) % 3]), 1.0, y, x, nx);
+        for (int k = 0; k < 3; ++k) {  // the edge midpoints, a third of the area each
+            const dvec3 y = 0.5 * (p[k] + p[(k + 1) % 3]);
+            const dvec3 ny = 0.5 * (n[k] + n[(k + 1) % 3]);
+            const dvec3 d = y - x;
+            const double r2 = glm::dot(d, d);
+            for (int b = 0; b < kNormalBasisCount; ++b) {
+                const Kernel& g = kernels[size_t(b)];
+                if ((here & (1u << b)) == 0 || r2 > g.reach * g.reach) continue;
+                sums[size_t(b)].add(g(r2) * third, ny, 1.0, y, x, nx);
             }
         }
     }
