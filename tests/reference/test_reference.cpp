@@ -217,10 +217,8 @@ TEST(DiffusionReference, RenderIsBitwiseReproducibleAndThreadIndependent) {
                             {skinMaterial(glm::vec3(0.8f, 0.6f, 0.5f), 1.0f)});
     const Light light = shadowedDirectionalLight(glm::vec3(0.4f, -1.0f, -0.3f), 2.0f);
     const Environment env = Environment::constant(glm::vec3(0.1f));
-    ReferenceSettings coarse;  // determinism does not depend on the accuracy: keep the test fast
-    coarse.leafRatio = 1.0;
-    coarse.finestLeafRatio = 4.0;
-    coarse.momentTolerance = 1e-5;
+    // Determinism does not depend on the accuracy: keep the test fast.
+    const ReferenceSettings coarse = coarseReferenceSettings();
     const DiffusionReference reference(scene, {light}, env.radianceSh(), profile, coarse);
     const View view = orbitView(scene.worldBounds(), 20.0f, 25.0f, 0.0f, 1.0f);
     auto renderWith = [&](int threads) {
@@ -255,10 +253,7 @@ TEST(DiffusionReference, TerminatorBandIsWhereTheSphereTurnsFromTheLightAwayFrom
     Primitive sphere = makeSphere(float(radiusM), 48, 24);
     sphere.material = 0;
     recomputeCurvature(sphere);
-    ReferenceSettings coarse;
-    coarse.leafRatio = 1.0;
-    coarse.finestLeafRatio = 4.0;
-    coarse.momentTolerance = 1e-5;
+    const ReferenceSettings coarse = coarseReferenceSettings();
     const Light light = shadowedDirectionalLight(glm::vec3(-1.0f, 0.0f, 0.0f), 2.0f);
     const glm::dvec3 L(1.0, 0.0, 0.0);
     const Scene lone = makeScene({{sphere, glm::mat4(1.0f)}}, {skinMaterial(glm::vec3(0.8f, 0.6f, 0.5f), 1.0f)});

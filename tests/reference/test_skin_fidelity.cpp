@@ -321,10 +321,7 @@ FromAbove renderFromAbove(Context& context, const Scene& scene, const SkinFeatur
     settings.skin = other;
     renderer.setSettings(settings);
     images.other = renderer.render(view, kFromAboveSize, kFromAboveSize, OutputEncoding::LinearFloat);
-    ReferenceSettings coarse;
-    coarse.leafRatio = 1.0;
-    coarse.finestLeafRatio = 4.0;
-    coarse.momentTolerance = 1e-5;
+    const ReferenceSettings coarse = coarseReferenceSettings();
     const DiffusionReference reference(scene, scene.lights, ambient.radianceSh(), LutSet::loadDefault().profile(),
                                        coarse);
     images.truth = reference.render(view.eye(), kFromAboveSize, kFromAboveSize);

@@ -175,10 +175,7 @@ TEST_F(SkinTerminator, RowAlongTheLightBringsACylindersTerminatorCloserToTheRefe
         return renderer.render(view, kSize, kSize, OutputEncoding::LinearFloat);
     };
     const RenderedImage alongLight = renderWith(true), mean = renderWith(false);
-    ReferenceSettings coarse;
-    coarse.leafRatio = 1.0;
-    coarse.finestLeafRatio = 4.0;
-    coarse.momentTolerance = 1e-5;
+    const ReferenceSettings coarse = coarseReferenceSettings();
     const DiffusionReference reference(scene, scene.lights, ShRgb{}, LutSet::loadDefault().profile(), coarse);
     const ReferenceImage truth = reference.render(view.eye(), kSize, kSize);
     // Red's RMSE of each against the reference, in the band and over the whole cylinder.

@@ -43,6 +43,16 @@ Environment makeEnvironment(uint32_t width, const std::function<glm::vec3(const 
 // scene's images and returns its index.
 int addNormalMap(Scene& scene, uint32_t width, uint32_t height, const std::function<glm::vec3(glm::vec2)>& normalAt);
 
+// The diffusion reference at coarse settings (larger irradiance pieces, a looser profile
+// quadrature), for tests whose assertions hold with a wide margin, at a fraction of the time.
+inline ReferenceSettings coarseReferenceSettings() {
+    ReferenceSettings coarse;
+    coarse.leafRatio = 1.0;
+    coarse.finestLeafRatio = 4.0;
+    coarse.momentTolerance = 1e-5;
+    return coarse;
+}
+
 // Per-vertex curvature of a primitive recomputed from its positions and normals
 // (computeVertexCurvature), replacing whatever it held.
 void recomputeCurvature(Primitive& primitive);

@@ -18,6 +18,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <numbers>
 #include <numeric>
 
@@ -42,9 +43,10 @@ struct Node {
     dvec3 normalIntegral{0.0};  // int n dA, n interpolated linearly (not renormalised)
     double area = 0.0;
     double radius = 0.0;  // bounding sphere about the centroid
-    // |int n dA| / area (1: every normal alike), the spread of its normals about their mean (the
-    // sine of about their largest angle to it) and |int n dA|.
-    double coherence = 0.0, spread = 0.0, normalLength = 0.0;
+    // |int n dA|, and the spread of its normals about their mean: the sine of about their largest
+    // angle to it, from |int n dA| / area; infinite where they agree too little (that ratio below
+    // kCoherentNormals) for the node to count as one sample.
+    double normalLength = 0.0, spread = 0.0;
     uint32_t first = 0, count = 0;  // leaf: triangles [first, first + count) of the order
     int32_t left = -1, right = -1;
 };
@@ -74,9 +76,10 @@ int32_t build(Mesh& m, uint32_t first, uint32_t count) {
         }
     }
     node.centroid = node.area > 0.0 ? node.centroid / node.area : 0.5 * (lo + hi);
-    node.coherence = node.area > 0.0 ? glm::length(node.normalIntegral) / node.area : 0.0;
-    node.spread = std::sqrt(std::max(0.0, 1.0 - node.coherence * node.coherence));
-    node.normalLength = node.coherence * node.area;
+    const double coherence = node.area > 0.0 ? glm::length(node.normalIntegral) / node.area : 0.0;
+    node.normalLength = coherence * node.area;
+    node.spread = coherence >= kCoherentNormals ? std::sqrt(std::max(0.0, 1.0 - coherence * coherence))
+                                                : std::numeric_limits<double>::infinity();
     for (uint32_t i = first; i < first + count; ++i)
         for (uint32_t v : m.triangles[m.order[i]])
             node.radius = std::max(node.radius, glm::length(m.p[v] - node.centroid));
@@ -202,8 +205,8 @@ KernelSums integrate(const Mesh& m, const Kernels& kernels, const dvec3& x, cons
         const double distance = glm::length(node.centroid - x);
         // Its normals lie within about acos(|int n dA| / area) of their mean: wholly on one side of
         // the cut at 90 degrees from nx and small for a Gaussian, the node counts as one sample.
-        const bool oneSided = node.coherence >= kCoherentNormals &&
-            std::abs(glm::dot(node.normalIntegral, nx) / node.normalLength) > node.spread;
+        const bool oneSided =
+            std::isfinite(node.spread) && std::abs(glm::dot(node.normalIntegral, nx) / node.normalLength) > node.spread;
         KernelMask open = 0;
         for (int b = 0; b < kNormalBasisCount; ++b) {
             const Kernel& g = kernels[size_t(b)];
